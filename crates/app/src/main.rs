@@ -1,0 +1,187 @@
+//! `caustics`: render scenes, inspect scene files, list the techniques.
+
+mod progress;
+mod render;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::{Args, Parser, Subcommand};
+
+use caustics_core::scene::{BUILTIN_SCENES, Scene};
+use caustics_core::techniques::TECHNIQUES;
+
+#[derive(Parser)]
+#[command(
+    name = "caustics",
+    version,
+    about = "Real-time water caustics: five published techniques, a physically based reference, and the tools to compare them"
+)]
+struct Cli {
+    /// More logging (-v info, -vv debug); RUST_LOG overrides.
+    #[arg(short, long, action = clap::ArgAction::Count, global = true)]
+    verbose: u8,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene: the final image from its camera and/or the raw caustics map.
+    Render(render::RenderArgs),
+    /// List the caustics techniques.
+    Techniques,
+    /// Scene files: check one, list the built-in ones, or print one as TOML.
+    #[command(subcommand)]
+    Scene(SceneCommand),
+}
+
+#[derive(Subcommand)]
+enum SceneCommand {
+    /// Load and validate a scene file (or a built-in scene's name) and summarise it.
+    Check(SceneArg),
+    /// List the built-in scenes.
+    List,
+    /// Print a built-in scene as TOML, a starting point for your own.
+    Print(SceneArg),
+}
+
+#[derive(Args)]
+struct SceneArg {
+    /// A scene file (.toml) or a built-in scene name.
+    scene: String,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let level = match cli.verbose {
+        0 => "warn",
+        1 => "info",
+        _ => "debug",
+    };
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(level)),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Render(args) => render::run(args),
+        Command::Techniques => {
+            println!("{:<18} {:<6} description", "technique", "paper");
+            for t in TECHNIQUES {
+                let status = if t.implemented {
+                    ""
+                } else {
+                    " [not yet implemented]"
+                };
+                println!("{:<18} {:<6} {}{}", t.name, t.paper, t.summary, status);
+            }
+            Ok(())
+        }
+        Command::Scene(SceneCommand::List) => {
+            for (name, text) in BUILTIN_SCENES {
+                let about = text.lines().next().unwrap_or("").trim_start_matches("# ");
+                println!("{name:<10} {about}");
+            }
+            Ok(())
+        }
+        Command::Scene(SceneCommand::Print(arg)) => {
+            let (_, text) = BUILTIN_SCENES
+                .iter()
+                .find(|(n, _)| *n == arg.scene)
+                .with_context(|| {
+                    format!(
+                        "no built-in scene `{}` (try `caustics scene list`)",
+                        arg.scene
+                    )
+                })?;
+            print!("{text}");
+            Ok(())
+        }
+        Command::Scene(SceneCommand::Check(arg)) => {
+            let scene = Scene::load_or_builtin(&arg.scene)?;
+            println!("{}", summary(&scene));
+            println!("ok");
+            Ok(())
+        }
+    }
+}
+
+fn summary(scene: &Scene) -> String {
+    let mut s = format!("scene `{}`\n", scene.name);
+    match &scene.water {
+        Some(w) => {
+            let source = match &w.source {
+                caustics_core::scene::WaterSource::Flat => "flat".to_string(),
+                caustics_core::scene::WaterSource::Waves(v) => format!("{} sine waves", v.len()),
+                caustics_core::scene::WaterSource::Procedural(p) => {
+                    format!("paper 2 wave function, {} octaves", p.octaves)
+                }
+                caustics_core::scene::WaterSource::Ocean(_) => "FFT ocean".to_string(),
+                caustics_core::scene::WaterSource::Ripple(r) => {
+                    format!("ripple simulation {0} x {0}", r.resolution)
+                }
+                caustics_core::scene::WaterSource::HeightField(g) => {
+                    format!("height field {} x {}", g.cols, g.rows)
+                }
+            };
+            s += &format!(
+                "  water: {source}; square {} x {}, depth {}, ior {}, {}, absorption {:?}\n",
+                w.size,
+                w.size,
+                w.depth,
+                w.ior,
+                if w.wrap { "periodic" } else { "clamped" },
+                w.absorption.to_array()
+            );
+        }
+        None => s += "  water: none\n",
+    }
+    s += &format!(
+        "  floor: {}\n",
+        match &scene.floor.terrain {
+            Some(t) => format!("terrain {} x {}", t.cols, t.rows),
+            None => "plane z = 0".into(),
+        }
+    );
+    s += &format!("  objects: {}\n", scene.objects.len());
+    let d = scene.light.direction;
+    s += &format!(
+        "  sun: direction ({:.3}, {:.3}, {:.3}), elevation {:.1} degrees\n",
+        d.x,
+        d.y,
+        d.z,
+        (-d.z).asin().to_degrees()
+    );
+    s += &format!(
+        "  caustics: {} at {} x {}\n",
+        scene.caustics.technique, scene.caustics.width, scene.caustics.height
+    );
+    s += &format!(
+        "  camera: {} x {}, fov {} degrees",
+        scene.camera.width, scene.camera.height, scene.camera.fov_y
+    );
+    s
+}
+
+/// Where outputs go unless told otherwise.
+pub(crate) fn default_output(scene: &str) -> PathBuf {
+    let stem = std::path::Path::new(scene)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    PathBuf::from(format!("{stem}.png"))
+}

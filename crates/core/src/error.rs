@@ -1,0 +1,50 @@
+//! The library's error type: every failure names the input at fault and what is wrong with it.
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error("cannot read {path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: malformed scene file: {message}")]
+    SceneSyntax { path: PathBuf, message: String },
+    #[error("invalid scene: `{field}` {problem}")]
+    InvalidField { field: String, problem: String },
+    #[error("{path}: {problem}")]
+    BadFile { path: PathBuf, problem: String },
+    #[error("unknown built-in scene `{0}` (known: pool, shore, objects, glass)")]
+    UnknownScene(String),
+    #[error("unknown technique `{0}`; `caustics techniques` lists them")]
+    UnknownTechnique(String),
+    #[error("invalid parameter: {0}")]
+    InvalidParameter(String),
+}
+
+impl Error {
+    pub fn field(field: impl Into<String>, problem: impl Into<String>) -> Self {
+        Error::InvalidField {
+            field: field.into(),
+            problem: problem.into(),
+        }
+    }
+
+    pub fn bad_file(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
+        Error::BadFile {
+            path: path.into(),
+            problem: problem.into(),
+        }
+    }
+
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,16 @@
+//! `caustics-core`: everything about water caustics that needs no GPU. The scene model, the water
+//! surfaces, the optics shared by all techniques, the physically based reference that judges them,
+//! the CPU twins of the GPU techniques, and a CPU renderer of the final image.
+
+pub mod error;
+pub mod grid;
+pub mod map;
+pub mod mesh;
+pub mod optics;
+pub mod reference;
+pub mod render;
+pub mod scene;
+pub mod techniques;
+pub mod water;
+
+pub use error::{Error, Result};

@@ -1,0 +1,470 @@
+//! The final image on the CPU: the scene seen from its camera, the floor or terrain lit by the sun
+//! through a caustics map, the water surface with the Fresnel reflection of a sky and the refraction
+//! of what is under it, and the objects. This is the no-GPU fallback and the picture of the README.
+//!
+//! Light transport (radiometric, linear RGB, before tone mapping):
+//! - The sun gives the horizontal irradiance `E_h = I |L_z|` above the water.
+//! - Under water, the floor receives `E_h T(θ₀) M(x, y)`, where `M` is the caustics map (relative
+//!   irradiance: Fresnel, focusing, absorption and terrain slope are already in it), plus a small
+//!   ambient term for the skylight scattered in the water. A Lambertian floor reflects `ρ / π` of it.
+//! - On the way back to the eye, the view ray is attenuated by `exp(−K d)` in the water and
+//!   transmitted with `1 − R`, where `R` is the Fresnel reflectance of the surface for the view ray;
+//!   `R` weights the reflected sky.
+//! - Objects under water are lit by the flat-water refracted sun with their own shadow test; they
+//!   do not receive caustics from the reference (which knows only the floor) until a technique that
+//!   handles mesh receivers provides them.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use crate::map::CausticsMap;
+use crate::mesh::MeshBvh;
+use crate::optics::{fresnel_transmittance, height_field_normal, reflect, refract};
+use crate::scene::{Material, Scene};
+use crate::water::Surface;
+
+pub struct RenderOptions {
+    /// Samples per pixel along each axis (n² rays per pixel).
+    pub supersampling: u32,
+    pub exposure: f64,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            supersampling: 2,
+            exposure: 1.4,
+        }
+    }
+}
+
+/// An 8-bit sRGB image, rows top to bottom.
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub rgb: Vec<u8>,
+}
+
+const AMBIENT: f64 = 0.12;
+
+struct Tracer<'a> {
+    scene: &'a Scene,
+    surface: Option<&'a dyn Surface>,
+    caustics: Option<&'a CausticsMap>,
+    bvhs: Vec<MeshBvh>,
+    /// Bound on |h| of the water, for the slab the surface lies in.
+    h_max: f64,
+    sun: DVec3,
+    /// Refracted sun direction under flat water and its transmittance.
+    sun_water: DVec3,
+    t_flat: f64,
+    pool: bool,
+}
+
+/// Render the scene from its camera. `caustics` is the map of the floor (none: the floor is lit as if
+/// the water were flat). `progress(rows_done, rows)` reports as rows finish.
+pub fn render(
+    scene: &Scene,
+    surface: Option<&dyn Surface>,
+    caustics: Option<&CausticsMap>,
+    options: &RenderOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Image {
+    let cam = &scene.camera;
+    let h_max = match (surface, &scene.water) {
+        (Some(s), Some(w)) => {
+            let n = 128;
+            let mut m: f64 = 0.0;
+            for i in 0..n {
+                for j in 0..n {
+                    let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) * (w.size / n as f64);
+                    m = m.max(s.height(p).abs());
+                }
+            }
+            m * 1.5 + 1e-6
+        }
+        _ => 0.0,
+    };
+    let ior = scene.water.as_ref().map_or(1.0, |w| w.ior);
+    let sun = scene.light.direction;
+    let tracer = Tracer {
+        scene,
+        surface,
+        caustics,
+        bvhs: scene.objects.iter().map(|o| o.mesh.bvh()).collect(),
+        h_max,
+        sun,
+        sun_water: refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun),
+        t_flat: fresnel_transmittance(-sun.z, 1.0, ior),
+        pool: scene.floor.terrain.is_none(),
+    };
+    let n = options.supersampling.max(1) as usize;
+    let (w, h) = (cam.width as usize, cam.height as usize);
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let rows: Vec<Vec<u8>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let mut row = Vec::with_capacity(w * 3);
+            for x in 0..w {
+                let mut c = DVec3::ZERO;
+                for sy in 0..n {
+                    for sx in 0..n {
+                        let (o, d) = cam.ray(
+                            x as f64 + (sx as f64 + 0.5) / n as f64 - 0.5,
+                            y as f64 + (sy as f64 + 0.5) / n as f64 - 0.5,
+                        );
+                        c += tracer.trace(o, d, 0);
+                    }
+                }
+                let c = c / (n * n) as f64 * options.exposure;
+                row.extend(tone_map(c));
+            }
+            let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(d, h);
+            row
+        })
+        .collect();
+    Image {
+        width: cam.width,
+        height: cam.height,
+        rgb: rows.concat(),
+    }
+}
+
+/// Filmic curve (Narkowicz's ACES fit) then the sRGB transfer function.
+fn tone_map(c: DVec3) -> [u8; 3] {
+    let f = |x: f64| {
+        let y = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+        let y = y.clamp(0.0, 1.0);
+        let s = if y <= 0.003_130_8 {
+            12.92 * y
+        } else {
+            1.055 * y.powf(1.0 / 2.4) - 0.055
+        };
+        (s * 255.0 + 0.5) as u8
+    };
+    [f(c.x), f(c.y), f(c.z)]
+}
+
+impl Tracer<'_> {
+    fn sun_radiance(&self) -> DVec3 {
+        self.scene.light.color * self.scene.light.intensity
+    }
+
+    fn sky(&self, d: DVec3) -> DVec3 {
+        let up = d.z.max(0.0);
+        let horizon = DVec3::new(0.75, 0.85, 0.95);
+        let zenith = DVec3::new(0.22, 0.42, 0.78);
+        let base = horizon.lerp(zenith, up.powf(0.6));
+        let c = d.dot(-self.sun).max(0.0);
+        let glow = c.powf(400.0) * 40.0 + c.powf(12.0) * 0.4;
+        (base * 0.8 + DVec3::splat(glow)) * self.sun_radiance()
+    }
+
+    fn nearest_object(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<(f64, DVec3, usize)> {
+        let mut best: Option<(f64, DVec3, usize)> = None;
+        for (k, (obj, bvh)) in self.scene.objects.iter().zip(&self.bvhs).enumerate() {
+            let limit = best.map_or(t_max, |b| b.0);
+            if let Some((t, n)) = bvh.intersect(&obj.mesh, o, d, limit) {
+                best = Some((t, n, k));
+            }
+        }
+        best
+    }
+
+    fn occluded(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
+        self.scene.objects.iter().zip(&self.bvhs).any(|(obj, bvh)| {
+            matches!(obj.material, Material::Diffuse { .. })
+                && bvh.intersect(&obj.mesh, o, d, t_max).is_some()
+        })
+    }
+
+    fn trace(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+        if depth > 6 {
+            return DVec3::ZERO;
+        }
+        let scene = self.scene;
+        let Some(water) = &scene.water else {
+            return self.trace_air(o, d, depth);
+        };
+        let size = water.size;
+        let level = water.depth;
+        // Water surface hit, searched in the slab |z - level| <= h_max.
+        let water_hit = self.surface.and_then(|s| self.hit_water(s, o, d, level));
+        let obj = self.nearest_object(o, d, water_hit.map_or(f64::INFINITY, |w| w.0));
+        if let Some((t, n, k)) = obj {
+            return self.shade_object(o + d * t, n, d, k, depth, false);
+        }
+        let Some((t, p)) = water_hit else {
+            // A pool is sunk into a deck around it; beyond the terrain's square the world goes on.
+            return self.shade_above(o, d);
+        };
+        if self.pool && !inside(p.truncate(), size) {
+            return self.shade_above(o, d);
+        }
+        let s = self.surface.expect("a water hit implies a surface");
+        let n = height_field_normal(s.gradient(p.truncate()));
+        let cos_v = -d.dot(n);
+        let t_view = fresnel_transmittance(cos_v, 1.0, water.ior);
+        let reflected = self.sky(reflect(d, n)) * (1.0 - t_view);
+        let Some(r) = refract(d, n, 1.0 / water.ior) else {
+            return reflected;
+        };
+        debug_assert!(t >= 0.0);
+        reflected + self.trace_under(p, r, depth) * t_view
+    }
+
+    /// Radiance arriving along `d` at point `o` under the water.
+    fn trace_under(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+        let scene = self.scene;
+        let water = scene.water.as_ref().expect("under water");
+        let size = water.size;
+        let (t_floor, floor_p) = self.hit_floor(o, d);
+        let obj = self.nearest_object(o, d, t_floor);
+        let (dist, colour) = if let Some((t, n, k)) = obj {
+            (t, self.shade_object(o + d * t, n, d, k, depth, true))
+        } else if self.pool && !inside(floor_p.truncate(), size) {
+            // The ray meets a pool wall first: tiles lit by the ambient light only.
+            let t = wall_distance(o, d, size);
+            let p = o + d * t;
+            let a = scene.floor.albedo.at(DVec2::new(p.x + p.y, p.z), size);
+            (t, a * AMBIENT * self.sun_radiance())
+        } else {
+            (t_floor, self.shade_floor(floor_p))
+        };
+        colour * (-water.absorption * dist).exp()
+    }
+
+    fn shade_floor(&self, p: DVec3) -> DVec3 {
+        let scene = self.scene;
+        let water = scene.water.as_ref().expect("under water");
+        let size = water.size;
+        let albedo = scene.floor.albedo.at(p.truncate(), size);
+        let e_h = scene.light.intensity * -self.sun.z;
+        let relative = match self.caustics {
+            Some(m) => {
+                let c = m.sample(p.x, p.y, water.wrap && scene.floor.terrain.is_none());
+                DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)
+            }
+            None => {
+                let d = (water.depth - p.z) / -self.sun_water.z;
+                (-water.absorption * d).exp()
+            }
+        };
+        let shadow = if self.occluded(p + DVec3::Z * 1e-4, -self.sun_water, f64::INFINITY) {
+            0.0
+        } else {
+            1.0
+        };
+        let direct = relative * (e_h * self.t_flat * shadow);
+        let ambient = AMBIENT * (-water.absorption * water.depth).exp();
+        albedo * (direct + ambient) * scene.light.color
+    }
+
+    fn shade_object(
+        &self,
+        p: DVec3,
+        n: DVec3,
+        d: DVec3,
+        k: usize,
+        depth: u32,
+        under: bool,
+    ) -> DVec3 {
+        let obj = &self.scene.objects[k];
+        // Closed meshes with outward normals: the ray enters where it meets the outside.
+        let entering = n.dot(d) < 0.0;
+        let n = if entering { n } else { -n };
+        match &obj.material {
+            Material::Diffuse { color } => {
+                let (sun_dir, t) = if under {
+                    (self.sun_water, self.t_flat)
+                } else {
+                    (self.sun, 1.0)
+                };
+                let lambert = n.dot(-sun_dir).max(0.0);
+                let lit = if lambert > 0.0 && !self.occluded(p + n * 1e-4, -sun_dir, f64::INFINITY)
+                {
+                    1.0
+                } else {
+                    0.0
+                };
+                let water_path = match (&self.scene.water, under) {
+                    (Some(w), true) => {
+                        (-w.absorption * ((w.depth - p.z).max(0.0) / -sun_dir.z)).exp()
+                    }
+                    _ => DVec3::ONE,
+                };
+                *color
+                    * (water_path * (self.scene.light.intensity * lambert * lit * t)
+                        + DVec3::splat(AMBIENT))
+                    * self.scene.light.color
+            }
+            Material::Glass { ior, tint } => {
+                let outside_ior = if under {
+                    self.scene.water.as_ref().map_or(1.0, |w| w.ior)
+                } else {
+                    1.0
+                };
+                let (n1, n2) = if entering {
+                    (outside_ior, *ior)
+                } else {
+                    (*ior, outside_ior)
+                };
+                let cos_i = -d.dot(n);
+                let t = fresnel_transmittance(cos_i, n1, n2);
+                let refl = self.trace_from(p + n * 1e-5, reflect(d, n), depth + 1, under);
+                let refr = match refract(d, n, n1 / n2) {
+                    Some(r) => self.trace_from(p - n * 1e-5, r, depth + 1, under) * *tint,
+                    None => DVec3::ZERO,
+                };
+                refl * (1.0 - t) + refr * t
+            }
+        }
+    }
+
+    fn trace_from(&self, o: DVec3, d: DVec3, depth: u32, under: bool) -> DVec3 {
+        if under {
+            self.trace_under(o, d, depth)
+        } else {
+            self.trace(o, d, depth)
+        }
+    }
+
+    /// No water in the scene: objects over the floor plane in open air.
+    fn trace_air(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+        let t_floor = if d.z < 0.0 { -o.z / d.z } else { f64::INFINITY };
+        if let Some((t, n, k)) = self.nearest_object(o, d, t_floor) {
+            return self.shade_object(o + d * t, n, d, k, depth, false);
+        }
+        if t_floor.is_finite() {
+            let p = o + d * t_floor;
+            let albedo = self.scene.floor.albedo.at(p.truncate(), self.scene.size);
+            let lit = if self.occluded(p + DVec3::Z * 1e-5, -self.sun, f64::INFINITY) {
+                0.0
+            } else {
+                1.0
+            };
+            let e = self.scene.light.intensity * -self.sun.z * lit + AMBIENT;
+            return albedo * e * self.scene.light.color;
+        }
+        self.sky(d)
+    }
+
+    /// Above the water, outside the pool: the deck, or the sky.
+    fn shade_above(&self, o: DVec3, d: DVec3) -> DVec3 {
+        let water = self.scene.water.as_ref().expect("water");
+        if self.pool && d.z < 0.0 {
+            let deck = water.depth + 0.1 * water.size.min(1.0) + self.h_max;
+            let t = (deck - o.z) / d.z;
+            if t > 0.0 {
+                let p = o + d * t;
+                let v = ((p.x * 3.0).floor() + (p.y * 3.0).floor()).rem_euclid(2.0);
+                let albedo = DVec3::splat(0.55 + 0.05 * v);
+                return albedo
+                    * (self.scene.light.intensity * -self.sun.z + AMBIENT)
+                    * self.scene.light.color;
+            }
+        }
+        if !self.pool && d.z < 0.0 {
+            // Beyond the surface's slab the open sea: the flat-water Fresnel reflection of the sky.
+            let r = fresnel_transmittance(-d.z, 1.0, water.ior);
+            return self.sky(reflect(d, DVec3::Z)) * (1.0 - r);
+        }
+        self.sky(d)
+    }
+
+    /// The first crossing of the ray with `z = level + h(x, y)`.
+    fn hit_water(&self, s: &dyn Surface, o: DVec3, d: DVec3, level: f64) -> Option<(f64, DVec3)> {
+        let top = level + self.h_max;
+        let bottom = level - self.h_max;
+        if o.z < bottom || d.z >= 0.0 {
+            return None; // the camera is above the water in every scene
+        }
+        let t0 = ((top - o.z) / d.z).max(0.0);
+        let t1 = (bottom - o.z) / d.z;
+        let f = |t: f64| {
+            let p = o + d * t;
+            p.z - level - s.height(p.truncate())
+        };
+        let steps = 24;
+        let dt = (t1 - t0) / steps as f64;
+        let mut a = t0;
+        for k in 1..=steps {
+            let b = t0 + dt * k as f64;
+            let fb = f(b);
+            if fb <= 0.0 {
+                let (mut lo, mut hi) = (a, b);
+                for _ in 0..30 {
+                    let m = 0.5 * (lo + hi);
+                    if f(m) > 0.0 {
+                        lo = m;
+                    } else {
+                        hi = m;
+                    }
+                }
+                let t = 0.5 * (lo + hi);
+                return Some((t, o + d * t));
+            }
+            a = b;
+        }
+        None
+    }
+
+    /// Distance to and point on the floor or terrain along an underwater ray.
+    fn hit_floor(&self, o: DVec3, d: DVec3) -> (f64, DVec3) {
+        if d.z >= 0.0 {
+            return (f64::INFINITY, o);
+        }
+        match &self.scene.floor.terrain {
+            None => {
+                let t = -o.z / d.z;
+                (t, o + d * t)
+            }
+            Some(_) => {
+                let size = self.scene.size;
+                let gap = |t: f64| {
+                    let p = o + d * t;
+                    p.z - self.scene.floor.height_gradient(p.truncate(), size).0
+                };
+                let t_end = -o.z / d.z;
+                let steps = 64;
+                let mut a = 0.0;
+                for k in 1..=steps {
+                    let b = t_end * k as f64 / steps as f64;
+                    if gap(b) <= 0.0 {
+                        let (mut lo, mut hi) = (a, b);
+                        for _ in 0..30 {
+                            let m = 0.5 * (lo + hi);
+                            if gap(m) > 0.0 {
+                                lo = m;
+                            } else {
+                                hi = m;
+                            }
+                        }
+                        let t = 0.5 * (lo + hi);
+                        return (t, o + d * t);
+                    }
+                    a = b;
+                }
+                (t_end, o + d * t_end)
+            }
+        }
+    }
+}
+
+fn inside(p: DVec2, size: f64) -> bool {
+    p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size
+}
+
+/// Distance along the ray to the wall of the pool square it leaves through.
+fn wall_distance(o: DVec3, d: DVec3, size: f64) -> f64 {
+    let mut t = f64::INFINITY;
+    for (oc, dc) in [(o.x, d.x), (o.y, d.y)] {
+        if dc > 0.0 {
+            t = t.min((size - oc) / dc);
+        } else if dc < 0.0 {
+            t = t.min(-oc / dc);
+        }
+    }
+    t.max(0.0)
+}

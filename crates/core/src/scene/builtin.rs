@@ -1,0 +1,8 @@
+//! The built-in scenes, usable by name; each is an ordinary scene file.
+
+pub const BUILTIN_SCENES: &[(&str, &str)] = &[
+    ("pool", include_str!("scenes/pool.toml")),
+    ("shore", include_str!("scenes/shore.toml")),
+    ("objects", include_str!("scenes/objects.toml")),
+    ("glass", include_str!("scenes/glass.toml")),
+];

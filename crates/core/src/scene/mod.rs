@@ -1,0 +1,474 @@
+//! The scene model shared by every technique: water over a floor (flat or terrain), objects, a sun,
+//! a camera, and the chosen caustics technique. A scene is read from TOML ([`SceneFile`], the serde
+//! schema, unknown keys rejected) and then checked into a [`Scene`], whose fields are all valid: every
+//! problem is reported with the dotted name of the field at fault.
+//!
+//! The built-in scenes live as TOML beside this file (`scenes/*.toml`) so they double as examples.
+
+mod builtin;
+mod validate;
+
+use std::path::{Path, PathBuf};
+
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::{Edge, Grid};
+use crate::mesh::TriangleMesh;
+use crate::water::ocean::{Ocean, OceanParams};
+use crate::water::procedural::{Procedural, ProceduralParams};
+use crate::water::ripple::{RippleParams, Ripples};
+use crate::water::waves::{Wave, Waves};
+use crate::water::{Flat, GridSurface, Surface};
+
+pub use builtin::BUILTIN_SCENES;
+pub use validate::MAX_RESOLUTION;
+
+// ---------------------------------------------------------------------------------------------
+// The file schema.
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub water: Option<WaterSpec>,
+    pub light: LightSpec,
+    #[serde(default)]
+    pub caustics: CausticsSpec,
+    #[serde(default)]
+    pub floor: FloorSpec,
+    #[serde(default)]
+    pub objects: Vec<ObjectSpec>,
+    #[serde(default)]
+    pub camera: Option<CameraSpec>,
+    /// Simulation time at which the water is frozen, seconds.
+    #[serde(default)]
+    pub time: f64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WaterSpec {
+    /// A height field file: `.npy` float32 (rows, cols), `.exr`, or 16-bit `.png`.
+    pub heightfield: Option<PathBuf>,
+    /// For 16-bit PNG height fields: the displacements that 0 and 65535 stand for.
+    pub heightfield_range: Option<[f32; 2]>,
+    pub waves: Option<Vec<Wave>>,
+    pub procedural: Option<ProceduralParams>,
+    pub ocean: Option<OceanParams>,
+    pub ripple: Option<RippleParams>,
+    #[serde(default = "one")]
+    pub size: f64,
+    pub depth: f64,
+    #[serde(default = "water_ior")]
+    pub ior: f64,
+    #[serde(default = "yes")]
+    pub wrap: bool,
+    /// Absorption coefficient `K` per RGB channel, per world unit of path (Beer-Lambert `exp(-K d)`).
+    #[serde(default)]
+    pub absorption: [f64; 3],
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LightSpec {
+    /// The direction the sunlight travels; need not be normalised; must point down (z < 0).
+    pub direction: [f64; 3],
+    #[serde(default = "white")]
+    pub color: [f64; 3],
+    #[serde(default = "one")]
+    pub intensity: f64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CausticsSpec {
+    #[serde(default = "default_resolution")]
+    pub resolution: [u32; 2],
+    #[serde(default = "default_technique")]
+    pub technique: String,
+    /// Per-technique parameter tables, `[caustics.<technique>]`, read by each technique.
+    #[serde(flatten)]
+    pub params: toml::Table,
+}
+
+impl Default for CausticsSpec {
+    fn default() -> Self {
+        CausticsSpec {
+            resolution: default_resolution(),
+            technique: default_technique(),
+            params: toml::Table::new(),
+        }
+    }
+}
+
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FloorSpec {
+    pub terrain: Option<TerrainSpec>,
+    /// An albedo image (sRGB PNG) stretched over the floor square.
+    pub albedo: Option<PathBuf>,
+    #[serde(default)]
+    pub pattern: FloorPattern,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FloorPattern {
+    /// Pale pool tiles with dark grout.
+    #[default]
+    Tiles,
+    /// Sand.
+    Sand,
+    /// Uniform light grey.
+    Plain,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TerrainSpec {
+    /// A terrain height field file (same formats and centring as the water's); heights above z = 0.
+    pub heightfield: Option<PathBuf>,
+    pub heightfield_range: Option<[f32; 2]>,
+    /// A generated beach: the floor rises from `deep` at x = 0 to `shallow` at x = size.
+    pub beach: Option<BeachSpec>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BeachSpec {
+    /// Floor height at x = 0 (the sea side).
+    pub deep: f64,
+    /// Floor height at x = size (the shore side).
+    pub shallow: f64,
+    /// Amplitude of the sand ripples on the slope.
+    #[serde(default)]
+    pub dunes: f64,
+    #[serde(default = "default_terrain_resolution")]
+    pub resolution: usize,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSpec {
+    pub shape: ShapeSpec,
+    /// Centre of the object's base (it rests at this point), world units.
+    #[serde(default)]
+    pub position: [f64; 3],
+    /// Uniform scale applied to the shape's native size.
+    #[serde(default = "one")]
+    pub scale: f64,
+    /// Rotation about the vertical axis, degrees.
+    #[serde(default)]
+    pub rotation: f64,
+    #[serde(default)]
+    pub material: MaterialSpec,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ShapeSpec {
+    /// The Utah teapot, 1 unit high before scaling.
+    Teapot,
+    /// A sphere of radius 1 before scaling.
+    Sphere,
+    /// A box with the given half extents before scaling.
+    Cuboid { half_extents: [f64; 3] },
+    /// A triangle mesh from an OBJ file.
+    Mesh { path: PathBuf },
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum MaterialSpec {
+    Diffuse { color: [f64; 3] },
+    Glass { ior: f64, tint: Option<[f64; 3]> },
+}
+
+impl Default for MaterialSpec {
+    fn default() -> Self {
+        MaterialSpec::Diffuse {
+            color: [0.8, 0.8, 0.8],
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraSpec {
+    pub position: [f64; 3],
+    pub target: [f64; 3],
+    #[serde(default = "default_fov")]
+    pub fov_y: f64,
+    #[serde(default = "default_image")]
+    pub resolution: [u32; 2],
+}
+
+fn one() -> f64 {
+    1.0
+}
+fn yes() -> bool {
+    true
+}
+fn water_ior() -> f64 {
+    1.333
+}
+fn white() -> [f64; 3] {
+    [1.0, 1.0, 1.0]
+}
+fn default_resolution() -> [u32; 2] {
+    [256, 256]
+}
+fn default_technique() -> String {
+    "reference".into()
+}
+fn default_terrain_resolution() -> usize {
+    256
+}
+fn default_fov() -> f64 {
+    50.0
+}
+fn default_image() -> [u32; 2] {
+    [960, 540]
+}
+
+// ---------------------------------------------------------------------------------------------
+// The validated scene.
+
+/// A scene whose every field has been checked: positive sizes, a downward sun, finite height fields.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub name: String,
+    pub water: Option<Water>,
+    pub light: Light,
+    pub caustics: CausticsSettings,
+    pub floor: Floor,
+    pub objects: Vec<Object>,
+    pub camera: Camera,
+    pub time: f64,
+    /// The square `[0, size]²` the water, the floor and the caustics map cover (1 without water).
+    pub size: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct Water {
+    pub source: WaterSource,
+    pub size: f64,
+    pub depth: f64,
+    pub ior: f64,
+    pub wrap: bool,
+    pub absorption: DVec3,
+}
+
+#[derive(Clone, Debug)]
+pub enum WaterSource {
+    Flat,
+    Waves(Vec<Wave>),
+    Procedural(ProceduralParams),
+    Ocean(Box<Ocean>),
+    Ripple(RippleParams),
+    HeightField(Grid),
+}
+
+impl Water {
+    pub fn edge(&self) -> Edge {
+        if self.wrap { Edge::Wrap } else { Edge::Clamp }
+    }
+
+    /// The surface at time `t` (seconds). The ripple simulation runs its initial drops, its settling
+    /// steps and then `t` worth of further steps.
+    pub fn surface_at(&self, t: f64) -> Result<Box<dyn Surface>> {
+        Ok(match &self.source {
+            WaterSource::Flat => Box::new(Flat),
+            WaterSource::Waves(w) => Box::new(Waves::new(w, self.size, t)),
+            WaterSource::Procedural(p) => Box::new(Procedural {
+                params: p.clone(),
+                t,
+            }),
+            WaterSource::Ocean(o) => Box::new(o.surface(t)),
+            WaterSource::Ripple(p) => {
+                let mut r = Ripples::new(p, self.size, self.edge())?;
+                r.run_initial();
+                let extra = (t / p.time_step).round().max(0.0) as u64;
+                for _ in 0..extra {
+                    r.step();
+                }
+                Box::new(r.surface())
+            }
+            WaterSource::HeightField(g) => Box::new(GridSurface {
+                grid: g.clone(),
+                size: self.size,
+                edge: self.edge(),
+            }),
+        })
+    }
+
+    /// The water's rest level above z = 0.
+    pub fn level(&self) -> f64 {
+        self.depth
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Light {
+    /// Unit direction of travel, z < 0.
+    pub direction: DVec3,
+    pub color: DVec3,
+    pub intensity: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct CausticsSettings {
+    pub width: u32,
+    pub height: u32,
+    pub technique: String,
+    pub params: toml::Table,
+}
+
+#[derive(Clone, Debug)]
+pub struct Floor {
+    /// Terrain heights above z = 0 on the scene square (clamped at its edges); `None` is the plane z = 0.
+    pub terrain: Option<Grid>,
+    pub albedo: Albedo,
+}
+
+impl Floor {
+    /// Height of the floor and its gradient at `p`.
+    pub fn height_gradient(&self, p: DVec2, size: f64) -> (f64, DVec2) {
+        match &self.terrain {
+            Some(g) => g.sample(p, size, Edge::Clamp),
+            None => (0.0, DVec2::ZERO),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub enum Albedo {
+    Pattern(FloorPattern),
+    /// Linear RGB texels, row 0 at y = 0.
+    Image {
+        width: usize,
+        height: usize,
+        texels: Vec<[f32; 3]>,
+    },
+}
+
+impl Albedo {
+    /// Linear-RGB albedo at floor point `p` of a square of side `size`.
+    pub fn at(&self, p: DVec2, size: f64) -> DVec3 {
+        let u = p / size;
+        match self {
+            Albedo::Pattern(FloorPattern::Tiles) => {
+                // 8 tiles across the square, 4 % grout lines.
+                let t = (u * 8.0).fract_gl();
+                let grout = t.x < 0.04 || t.y < 0.04;
+                if grout {
+                    DVec3::new(0.18, 0.2, 0.22)
+                } else {
+                    DVec3::new(0.62, 0.78, 0.82)
+                }
+            }
+            Albedo::Pattern(FloorPattern::Sand) => {
+                let n = (u.x * 157.0).sin() * (u.y * 113.0).sin() * 0.03;
+                DVec3::new(0.76 + n, 0.68 + n, 0.5 + n)
+            }
+            Albedo::Pattern(FloorPattern::Plain) => DVec3::splat(0.7),
+            Albedo::Image {
+                width,
+                height,
+                texels,
+            } => {
+                let j = ((u.x.rem_euclid(1.0)) * *width as f64) as usize;
+                let i = ((u.y.rem_euclid(1.0)) * *height as f64) as usize;
+                let t = texels[i.min(height - 1) * width + j.min(width - 1)];
+                DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64)
+            }
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Object {
+    pub mesh: TriangleMesh,
+    pub material: Material,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Material {
+    Diffuse { color: DVec3 },
+    Glass { ior: f64, tint: DVec3 },
+}
+
+#[derive(Clone, Debug)]
+pub struct Camera {
+    pub position: DVec3,
+    pub target: DVec3,
+    /// Vertical field of view, degrees.
+    pub fov_y: f64,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Camera {
+    /// The primary ray through pixel centre `(x + 0.5, y + 0.5)`, y down the image.
+    pub fn ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
+        let forward = (self.target - self.position).normalize();
+        let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
+        let up = right.cross(forward);
+        let half = (self.fov_y.to_radians() * 0.5).tan();
+        let aspect = self.width as f64 / self.height as f64;
+        let sx = (2.0 * (x + 0.5) / self.width as f64 - 1.0) * half * aspect;
+        let sy = (1.0 - 2.0 * (y + 0.5) / self.height as f64) * half;
+        (self.position, (forward + right * sx + up * sy).normalize())
+    }
+}
+
+impl Scene {
+    /// Read and check a scene file; relative paths inside it are relative to the file.
+    pub fn load(path: &Path) -> Result<Scene> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let base = path.parent().unwrap_or(Path::new("."));
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        Scene::from_toml(&text, base, &name).map_err(|e| match e {
+            Error::SceneSyntax { message, .. } => Error::SceneSyntax {
+                path: path.to_path_buf(),
+                message,
+            },
+            other => other,
+        })
+    }
+
+    /// A built-in scene by name (`pool`, `shore`, `objects`, `glass`).
+    pub fn builtin(name: &str) -> Result<Scene> {
+        let (_, text) = BUILTIN_SCENES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .ok_or_else(|| Error::UnknownScene(name.to_string()))?;
+        Scene::from_toml(text, Path::new("."), name)
+    }
+
+    /// A scene file path, or a built-in scene's name.
+    pub fn load_or_builtin(arg: &str) -> Result<Scene> {
+        let path = Path::new(arg);
+        if path.exists() || arg.ends_with(".toml") {
+            Scene::load(path)
+        } else {
+            Scene::builtin(arg)
+        }
+    }
+
+    pub fn from_toml(text: &str, base: &Path, name: &str) -> Result<Scene> {
+        let file: SceneFile = toml::from_str(text).map_err(|e| Error::SceneSyntax {
+            path: PathBuf::from(format!("<{name}>")),
+            message: e.to_string(),
+        })?;
+        validate::validate(file, base, name)
+    }
+
+    /// Height of the floor under `p`, 0 for the plane.
+    pub fn floor_height(&self, p: DVec2) -> f64 {
+        self.floor.height_gradient(p, self.size).0
+    }
+}

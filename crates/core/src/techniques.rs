@@ -1,0 +1,60 @@
+//! The registry of caustics techniques: names as the CLI and scene files spell them.
+
+pub struct TechniqueInfo {
+    pub name: &'static str,
+    pub paper: &'static str,
+    pub summary: &'static str,
+    /// Whether this build renders it; the others are accepted in scene files but not yet implemented.
+    pub implemented: bool,
+}
+
+pub const TECHNIQUES: &[TechniqueInfo] = &[
+    TechniqueInfo {
+        name: "reference",
+        paper: "-",
+        summary: "physically based forward flux tracing: exact Snell + Fresnel at a fine triangulation of the surface, exact area deposit (CPU, the ground truth)",
+        implemented: true,
+    },
+    TechniqueInfo {
+        name: "yuksel",
+        paper: "1",
+        summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser)",
+        implemented: false,
+    },
+    TechniqueInfo {
+        name: "procedural",
+        paper: "2",
+        summary: "aesthetic procedural caustics: vertical ray to the waves, refract, look up a sun map (Sanchez-Crespo)",
+        implemented: false,
+    },
+    TechniqueInfo {
+        name: "volumes",
+        paper: "3",
+        summary: "illumination volumes against colour + depth textures and reference planes, caustics on underwater objects",
+        implemented: false,
+    },
+    TechniqueInfo {
+        name: "caustic-triangles",
+        paper: "4",
+        summary: "layered distance maps, photon hit image, caustic triangles into a light cube map (Umenhoffer et al.)",
+        implemented: false,
+    },
+    TechniqueInfo {
+        name: "cascaded",
+        paper: "5",
+        summary: "cascaded caustic maps for oceans: four light-view cascades, photons splatted in eye space, dispersion (Backlund)",
+        implemented: false,
+    },
+];
+
+pub fn is_known(name: &str) -> bool {
+    TECHNIQUES.iter().any(|t| t.name == name)
+}
+
+pub fn names() -> Vec<&'static str> {
+    TECHNIQUES.iter().map(|t| t.name).collect()
+}
+
+pub fn info(name: &str) -> Option<&'static TechniqueInfo> {
+    TECHNIQUES.iter().find(|t| t.name == name)
+}

@@ -1,0 +1,236 @@
+//! Device creation (headless or for a window), adapter selection, and the translation of wgpu's
+//! failures into [`GpuError`]s that name the problem.
+
+use std::sync::{Arc, Mutex};
+
+use crate::GpuError;
+
+/// How to pick the adapter. Empty fields fall back to `WGPU_BACKEND` / `WGPU_ADAPTER_NAME`, then to
+/// wgpu's default choice.
+#[derive(Clone, Debug, Default)]
+pub struct GpuOptions {
+    /// `vulkan`, `metal`, `dx12` (comma-separated list allowed).
+    pub backend: Option<String>,
+    /// A case-insensitive substring of the adapter's name.
+    pub adapter_name: Option<String>,
+}
+
+/// A device and queue with what the techniques need to know about them.
+pub struct GpuContext {
+    pub instance: wgpu::Instance,
+    pub adapter: wgpu::Adapter,
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub info: wgpu::AdapterInfo,
+    /// Whether per-pass timestamps can be written.
+    pub timestamps: bool,
+    errors: Arc<Mutex<Vec<String>>>,
+    lost: Arc<Mutex<Option<String>>>,
+}
+
+fn parse_backends(s: &str) -> Result<wgpu::Backends, GpuError> {
+    let mut b = wgpu::Backends::empty();
+    for part in s.split(',').map(|p| p.trim().to_ascii_lowercase()) {
+        b |= match part.as_str() {
+            "vulkan" | "vk" => wgpu::Backends::VULKAN,
+            "metal" | "mtl" => wgpu::Backends::METAL,
+            "dx12" | "d3d12" => wgpu::Backends::DX12,
+            "gl" | "gles" | "opengl" => wgpu::Backends::GL,
+            "" => continue,
+            other => {
+                return Err(GpuError::BadOption(format!(
+                    "unknown backend `{other}` (expected vulkan, metal, dx12 or gl)"
+                )));
+            }
+        };
+    }
+    Ok(b)
+}
+
+impl GpuContext {
+    /// A device without a window, for rendering to textures, compute and tests.
+    pub fn headless(options: &GpuOptions) -> Result<Self, GpuError> {
+        pollster::block_on(Self::create(options, None))
+    }
+
+    /// Create the instance alone (the viewer needs it to make a window surface first).
+    pub fn instance(options: &GpuOptions) -> Result<wgpu::Instance, GpuError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        if let Some(b) = &options.backend {
+            desc.backends = parse_backends(b)?;
+        }
+        Ok(wgpu::Instance::new(desc))
+    }
+
+    /// Pick an adapter and create the device; `surface` restricts the choice to adapters that can
+    /// present to it.
+    pub async fn create(
+        options: &GpuOptions,
+        surface: Option<(&wgpu::Instance, &wgpu::Surface<'_>)>,
+    ) -> Result<Self, GpuError> {
+        let instance = match surface {
+            Some((i, _)) => i.clone(),
+            None => Self::instance(options)?,
+        };
+        let backends = match &options.backend {
+            Some(b) => parse_backends(b)?,
+            None => wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all()),
+        };
+        let wanted = options
+            .adapter_name
+            .clone()
+            .or_else(|| std::env::var("WGPU_ADAPTER_NAME").ok())
+            .map(|s| s.to_lowercase());
+        let adapters = instance.enumerate_adapters(backends).await;
+        let names: Vec<String> = adapters
+            .iter()
+            .map(|a| format!("{} ({:?})", a.get_info().name, a.get_info().backend))
+            .collect();
+        let usable = |a: &wgpu::Adapter| surface.is_none_or(|(_, s)| a.is_surface_supported(s));
+        let adapter = match &wanted {
+            Some(w) => adapters
+                .into_iter()
+                .find(|a| a.get_info().name.to_lowercase().contains(w) && usable(a))
+                .ok_or_else(|| GpuError::NoAdapter {
+                    wanted: format!("an adapter whose name contains `{w}`"),
+                    seen: names.clone(),
+                })?,
+            None => instance
+                .request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::from_env()
+                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                    compatible_surface: surface.map(|(_, s)| s),
+                    force_fallback_adapter: false,
+                    apply_limit_buckets: false,
+                })
+                .await
+                .map_err(|e| GpuError::NoAdapter {
+                    wanted: format!("any adapter ({e})"),
+                    seen: names.clone(),
+                })?,
+        };
+        let info = adapter.get_info();
+        let available = adapter.features();
+        let wanted_features = wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
+            | wgpu::Features::FLOAT32_FILTERABLE
+            | wgpu::Features::FLOAT32_BLENDABLE;
+        let features = available & wanted_features;
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("caustics"),
+                required_features: features,
+                required_limits: adapter.limits(),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| GpuError::RequestDevice(e.to_string()))?;
+
+        let errors = Arc::new(Mutex::new(Vec::new()));
+        let sink = errors.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            tracing::error!("GPU error: {e}");
+            sink.lock().expect("error sink").push(e.to_string());
+        }));
+        let lost = Arc::new(Mutex::new(None));
+        let lost_sink = lost.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            *lost_sink.lock().expect("lost flag") = Some(format!("{reason:?}: {message}"));
+        });
+        tracing::info!(
+            "GPU adapter: {} ({:?}, {:?})",
+            info.name,
+            info.backend,
+            info.device_type
+        );
+        Ok(GpuContext {
+            instance,
+            adapter,
+            device,
+            queue,
+            info,
+            timestamps: features.contains(wgpu::Features::TIMESTAMP_QUERY),
+            errors,
+            lost,
+        })
+    }
+
+    /// One line naming the adapter, for logs and benchmark tables.
+    pub fn describe(&self) -> String {
+        format!(
+            "{} ({:?}, {:?}, driver {} {})",
+            self.info.name,
+            self.info.backend,
+            self.info.device_type,
+            self.info.driver,
+            self.info.driver_info
+        )
+    }
+
+    pub fn limits(&self) -> wgpu::Limits {
+        self.device.limits()
+    }
+
+    /// Refuse a 2-D texture the device cannot hold, naming what it was for.
+    pub fn check_texture_size(&self, what: &str, width: u32, height: u32) -> Result<(), GpuError> {
+        let max = self.limits().max_texture_dimension_2d;
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(GpuError::TooLarge {
+                what: what.to_string(),
+                size: format!("{width} x {height}"),
+                limit: format!("1 .. {max} per side"),
+            });
+        }
+        Ok(())
+    }
+
+    /// Refuse a storage buffer the device cannot bind.
+    pub fn check_buffer_size(&self, what: &str, bytes: u64) -> Result<(), GpuError> {
+        let l = self.limits();
+        let max = l.max_storage_buffer_binding_size.min(l.max_buffer_size);
+        if bytes == 0 || bytes > max {
+            return Err(GpuError::TooLarge {
+                what: what.to_string(),
+                size: format!("{bytes} bytes"),
+                limit: format!("{max} bytes"),
+            });
+        }
+        Ok(())
+    }
+
+    /// Turn any error wgpu reported since the last call, or a lost device, into a `GpuError`.
+    pub fn check(&self) -> Result<(), GpuError> {
+        if let Some(reason) = self.lost.lock().expect("lost flag").clone() {
+            return Err(GpuError::DeviceLost(reason));
+        }
+        let mut errors = self.errors.lock().expect("error sink");
+        if !errors.is_empty() {
+            let all = errors.join("\n");
+            errors.clear();
+            return Err(GpuError::Validation(all));
+        }
+        Ok(())
+    }
+
+    /// Block until the queue is idle, then [`check`](Self::check).
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
+        self.check()
+    }
+}
+
+/// The device for GPU tests. Without an adapter the test is skipped with a message, unless
+/// `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), in which case it fails: CI must not pass by skipping.
+pub fn test_context() -> Option<GpuContext> {
+    let required = std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1");
+    match GpuContext::headless(&GpuOptions::default()) {
+        Ok(ctx) => Some(ctx),
+        Err(e) if required => panic!("CAUSTICS_REQUIRE_GPU=1 but no GPU device: {e}"),
+        Err(e) => {
+            eprintln!("skipping GPU test: {e}");
+            None
+        }
+    }
+}

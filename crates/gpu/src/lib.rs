@@ -1,0 +1,39 @@
+//! `caustics-gpu`: the GPU side of caustics on wgpu + WGSL. Device plumbing ([`GpuContext`]),
+//! readback, per-pass timestamps, the shared WGSL math ([`shaders`]), and the GPU water simulations.
+//! Each technique lives in its own module with one WGSL file per pass; its CPU twin lives in
+//! `caustics-core`.
+
+pub mod context;
+pub mod probe;
+pub mod shaders;
+pub mod timing;
+mod transfer;
+pub mod water;
+
+pub use context::{GpuContext, GpuOptions};
+pub use timing::{GpuTimer, PassTime};
+
+/// Everything that can go wrong on the GPU side, each naming the problem.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error("no GPU adapter found: wanted {wanted}; adapters present: {}", if seen.is_empty() { "none".to_string() } else { seen.join(", ") })]
+    NoAdapter { wanted: String, seen: Vec<String> },
+    #[error("the GPU adapter refused to create a device: {0}")]
+    RequestDevice(String),
+    #[error("{what} of {size} is beyond what this GPU allows ({limit})")]
+    TooLarge {
+        what: String,
+        size: String,
+        limit: String,
+    },
+    #[error("the GPU device was lost: {0}")]
+    DeviceLost(String),
+    #[error("GPU validation error: {0}")]
+    Validation(String),
+    #[error("reading GPU results back failed: {0}")]
+    Readback(String),
+    #[error("{0}")]
+    BadOption(String),
+    #[error(transparent)]
+    Core(#[from] caustics_core::Error),
+}

@@ -1,0 +1,139 @@
+//! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`) on chosen inputs,
+//! so that tests can hold every function against its CPU twin in `caustics-core`.
+
+use wgpu::util::DeviceExt;
+
+use crate::water::{GpuProceduralWave, GpuSineWave};
+use crate::{GpuContext, GpuError, shaders};
+
+/// Mirrors `ProbeIn` in `shaders/probe.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ProbeIn {
+    /// Direction, then `eta`.
+    pub incident: [f32; 4],
+    /// Normal, then `n2` for the Fresnel transmittance from `n1 = 1`.
+    pub normal: [f32; 4],
+    pub point: [f32; 4],
+}
+
+/// Mirrors `ProbeOut` in `shaders/probe.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ProbeOut {
+    pub refracted: [f32; 4],
+    pub fresnel_sine: [f32; 4],
+    pub procedural: [f32; 4],
+    pub grid: [f32; 4],
+}
+
+/// Mirrors `ProbeParams` in `shaders/probe.wgsl` (uniform layout, padded to 16 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+struct ProbeParams {
+    procedural: GpuProceduralWave,
+    wave_count: u32,
+    size: f32,
+    wrap: u32,
+    _pad: u32,
+}
+
+pub struct ProbeSetup<'a> {
+    pub waves: &'a [GpuSineWave],
+    pub procedural: GpuProceduralWave,
+    pub grid: &'a caustics_core::grid::Grid,
+    pub size: f32,
+    pub wrap: bool,
+}
+
+pub fn run(
+    ctx: &GpuContext,
+    inputs: &[ProbeIn],
+    setup: &ProbeSetup,
+) -> Result<Vec<ProbeOut>, GpuError> {
+    let device = &ctx.device;
+    let module = shaders::PROBE.module(device);
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("probe"),
+        layout: None,
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe inputs"),
+        contents: bytemuck::cast_slice(inputs),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("probe outputs"),
+        size: (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    // A storage binding may not be empty: keep one zero wave when there are none.
+    let waves: Vec<GpuSineWave> = if setup.waves.is_empty() {
+        vec![GpuSineWave::default()]
+    } else {
+        setup.waves.to_vec()
+    };
+    let waves = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe waves"),
+        contents: bytemuck::cast_slice(&waves),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let params = ProbeParams {
+        procedural: setup.procedural,
+        wave_count: setup.waves.len() as u32,
+        size: setup.size,
+        wrap: setup.wrap as u32,
+        _pad: 0,
+    };
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("probe params"),
+        contents: bytemuck::bytes_of(&params),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let height = ctx.upload_grid("probe height field", setup.grid)?;
+    let height_view = height.create_view(&Default::default());
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("probe"),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: waves.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: params.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: wgpu::BindingResource::TextureView(&height_view),
+            },
+        ],
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("probe"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
+    }
+    ctx.queue.submit([encoder.finish()]);
+    ctx.check()?;
+    ctx.read_buffer(&output)
+}

@@ -1,0 +1,50 @@
+//! WGSL sources. The math shared by all passes lives in `shaders/optics.wgsl` and
+//! `shaders/water.wgsl`, once; each pass is its own file and is composed with the shared files it
+//! needs by [`compose`] (plain concatenation: WGSL has no include, and a build-time preprocessor is
+//! more machinery than two files need).
+//!
+//! Every composed pass is listed in [`ALL_PASSES`], which a test parses and validates with naga
+//! without a GPU.
+
+pub const OPTICS: &str = include_str!("shaders/optics.wgsl");
+pub const WATER: &str = include_str!("shaders/water.wgsl");
+
+/// Shared files followed by a pass's own source.
+pub fn compose(shared: &[&str], pass: &str) -> String {
+    let mut s = String::new();
+    for part in shared {
+        s.push_str(part);
+        s.push('\n');
+    }
+    s.push_str(pass);
+    s
+}
+
+/// A pass shader: its name (for messages), the shared files it includes, and its own source.
+pub struct PassSource {
+    pub name: &'static str,
+    pub shared: &'static [&'static str],
+    pub source: &'static str,
+}
+
+impl PassSource {
+    pub fn composed(&self) -> String {
+        compose(self.shared, self.source)
+    }
+
+    pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
+        device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(self.name),
+            source: wgpu::ShaderSource::Wgsl(self.composed().into()),
+        })
+    }
+}
+
+pub const PROBE: PassSource = PassSource {
+    name: "probe",
+    shared: &[OPTICS, WATER],
+    source: include_str!("shaders/probe.wgsl"),
+};
+
+/// Every pass shader of the crate.
+pub const ALL_PASSES: &[&PassSource] = &[&PROBE];

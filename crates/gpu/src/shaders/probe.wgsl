@@ -1,0 +1,47 @@
+// Evaluates the shared WGSL math on a list of inputs, so tests can hold it against the CPU twins.
+
+struct ProbeIn {
+    incident: vec4<f32>,   // xyz direction, w = eta
+    normal: vec4<f32>,     // xyz normal, w = n2 for the Fresnel test (n1 = 1)
+    point: vec4<f32>,      // xy: a point on the water
+}
+
+struct ProbeOut {
+    refracted: vec4<f32>,
+    fresnel_sine_procedural: vec4<f32>, // x: Fresnel T, yzw: sum of the sine waves (h, grad)
+    procedural: vec4<f32>,              // xyz: paper 2's wave (h, grad)
+    grid: vec4<f32>,                    // xyz: bicubic height texture (h, grad)
+}
+
+struct ProbeParams {
+    procedural: ProceduralWave,
+    wave_count: u32,
+    size: f32,
+    wrap: u32,
+}
+
+@group(0) @binding(0) var<storage, read> inputs: array<ProbeIn>;
+@group(0) @binding(1) var<storage, read_write> outputs: array<ProbeOut>;
+@group(0) @binding(2) var<storage, read> waves: array<SineWave>;
+@group(0) @binding(3) var<uniform> params: ProbeParams;
+@group(0) @binding(4) var height: texture_2d<f32>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let k = id.x;
+    if k >= arrayLength(&inputs) {
+        return;
+    }
+    let inp = inputs[k];
+    var o: ProbeOut;
+    o.refracted = refract_dir(inp.incident.xyz, inp.normal.xyz, inp.incident.w);
+    let cos_i = -dot(inp.incident.xyz, inp.normal.xyz);
+    var s = vec3<f32>(0.0);
+    for (var w = 0u; w < params.wave_count; w++) {
+        s += sine_wave(waves[w], inp.point.xy);
+    }
+    o.fresnel_sine_procedural = vec4<f32>(fresnel_transmittance(cos_i, 1.0, inp.normal.w), s);
+    o.procedural = vec4<f32>(procedural_wave(params.procedural, inp.point.xy), 0.0);
+    o.grid = vec4<f32>(grid_sample(height, inp.point.xy, params.size, params.wrap != 0u), 0.0);
+    outputs[k] = o;
+}

@@ -1,0 +1,137 @@
+//! Moving data between the CPU and the GPU: height fields up as textures, results back from buffers
+//! and textures (with the row padding wgpu requires).
+
+use crate::{GpuContext, GpuError};
+
+impl GpuContext {
+    /// Read a whole buffer (which must have `COPY_SRC` usage) as plain data.
+    pub fn read_buffer<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Result<Vec<T>, GpuError> {
+        let size = buffer.size();
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("readback"),
+            });
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+        self.queue.submit([encoder.finish()]);
+        self.map_and_copy(&staging, |bytes| bytemuck::cast_slice(bytes).to_vec())
+    }
+
+    /// Read mip level 0 of a 2-D texture (with `COPY_SRC` usage) whose texels are `T` (e.g. `f32` for
+    /// `R32Float`, `[f32; 4]` for `Rgba32Float`, `[u8; 4]` for `Rgba8Unorm`), rows from row 0.
+    pub fn read_texture<T: bytemuck::Pod>(
+        &self,
+        texture: &wgpu::Texture,
+    ) -> Result<Vec<T>, GpuError> {
+        let (w, h) = (texture.width(), texture.height());
+        let texel = std::mem::size_of::<T>() as u32;
+        let row = w * texel;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("texture readback"),
+            size: padded as u64 * h as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("readback"),
+            });
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &staging,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: Some(h),
+                },
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([encoder.finish()]);
+        self.map_and_copy(&staging, |bytes| {
+            let mut out = Vec::with_capacity((w * h) as usize);
+            for r in 0..h as usize {
+                let start = r * padded as usize;
+                out.extend_from_slice(bytemuck::cast_slice(&bytes[start..start + row as usize]));
+            }
+            out
+        })
+    }
+
+    fn map_and_copy<R>(
+        &self,
+        staging: &wgpu::Buffer,
+        f: impl FnOnce(&[u8]) -> R,
+    ) -> Result<R, GpuError> {
+        let slice = staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.wait()?;
+        rx.recv()
+            .map_err(|_| GpuError::Readback("the map callback never ran".into()))?
+            .map_err(|e| GpuError::Readback(e.to_string()))?;
+        let out = {
+            let view = slice
+                .get_mapped_range()
+                .map_err(|e| GpuError::Readback(e.to_string()))?;
+            f(&view)
+        };
+        staging.unmap();
+        Ok(out)
+    }
+}
+
+impl GpuContext {
+    /// Upload a height field as an `R32Float` texture (row 0 first), checking the device's limits.
+    pub fn upload_grid(
+        &self,
+        what: &str,
+        grid: &caustics_core::grid::Grid,
+    ) -> Result<wgpu::Texture, GpuError> {
+        self.check_texture_size(what, grid.cols as u32, grid.rows as u32)?;
+        let size = wgpu::Extent3d {
+            width: grid.cols as u32,
+            height: grid.rows as u32,
+            depth_or_array_layers: 1,
+        };
+        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(what),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        self.queue.write_texture(
+            texture.as_image_copy(),
+            bytemuck::cast_slice(&grid.data),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(grid.cols as u32 * 4),
+                rows_per_image: Some(grid.rows as u32),
+            },
+            size,
+        );
+        Ok(texture)
+    }
+}

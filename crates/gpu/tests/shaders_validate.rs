@@ -1,0 +1,44 @@
+//! Every WGSL pass, composed with the shared math it includes, parses and validates with naga. Needs
+//! no GPU, so a shader error fails CI even where no adapter exists.
+
+use caustics_gpu::shaders::ALL_PASSES;
+
+#[test]
+fn every_pass_parses_and_validates() {
+    assert!(!ALL_PASSES.is_empty());
+    for pass in ALL_PASSES {
+        let source = pass.composed();
+        let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
+            panic!("{}: {}", pass.name, e.emit_to_string(&source));
+        });
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
+    }
+}
+
+#[test]
+fn uniform_structs_match_their_wgsl_size() {
+    let source = caustics_gpu::shaders::PROBE.composed();
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let size_of = |name: &str| {
+        let (_, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
+        ty.inner.size(module.to_ctx()) as usize
+    };
+    use caustics_gpu::probe::{ProbeIn, ProbeOut};
+    use caustics_gpu::water::{GpuProceduralWave, GpuSineWave};
+    assert_eq!(size_of("SineWave"), std::mem::size_of::<GpuSineWave>());
+    assert_eq!(
+        size_of("ProceduralWave"),
+        std::mem::size_of::<GpuProceduralWave>()
+    );
+    assert_eq!(size_of("ProbeIn"), std::mem::size_of::<ProbeIn>());
+    assert_eq!(size_of("ProbeOut"), std::mem::size_of::<ProbeOut>());
+}

@@ -1,0 +1,137 @@
+//! The shared WGSL math against its CPU twins in `caustics-core`, evaluated on the GPU.
+
+use caustics_core::grid::{Edge, Grid};
+use caustics_core::optics::{fresnel_transmittance, refract};
+use caustics_core::water::Surface;
+use caustics_core::water::procedural::{Procedural, ProceduralParams};
+use caustics_core::water::waves::{Wave, Waves};
+use caustics_gpu::context::test_context;
+use caustics_gpu::probe::{self, ProbeIn, ProbeSetup};
+use caustics_gpu::water::{GpuProceduralWave, GpuSineWave};
+use glam::{DVec2, DVec3};
+
+fn close(gpu: f32, cpu: f64, tol: f64, what: &str) {
+    assert!(
+        (gpu as f64 - cpu).abs() <= tol * (1.0 + cpu.abs()),
+        "{what}: GPU {gpu}, CPU {cpu}"
+    );
+}
+
+#[test]
+fn wgsl_optics_and_water_match_the_cpu() {
+    let Some(ctx) = test_context() else { return };
+    let size = 2.0;
+    let waves = Waves::new(
+        &[
+            Wave {
+                amplitude: 0.01,
+                wavelength: 0.3,
+                direction: [1.0, 0.4],
+                phase: 0.2,
+            },
+            Wave {
+                amplitude: 0.004,
+                wavelength: 0.11,
+                direction: [-0.5, 1.0],
+                phase: 1.0,
+            },
+        ],
+        size,
+        0.8,
+    );
+    let procedural = Procedural {
+        params: ProceduralParams::default(),
+        t: 0.6,
+    };
+    let grid = Grid::from_fn(32, 24, |i, j| {
+        (0.3 * i as f32).sin() * 0.01 + (0.2 * j as f32).cos() * 0.02
+    });
+
+    // Directions over the hemisphere, normals tilted, points over the square and beyond it.
+    let mut inputs = Vec::new();
+    let mut expect = Vec::new();
+    for a in 0..16 {
+        for b in 0..8 {
+            let theta = 0.05 + 1.5 * b as f64 / 8.0;
+            let phi = a as f64 * 0.4;
+            let d = DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                -theta.cos(),
+            );
+            let n =
+                DVec3::new(0.1 * (a as f64 - 8.0) / 8.0, 0.05 * (b as f64 - 4.0), 1.0).normalize();
+            let eta = if a % 2 == 0 { 1.0 / 1.333 } else { 1.333 };
+            let p = DVec2::new(a as f64 * 0.17 - 0.3, b as f64 * 0.31 - 0.2);
+            inputs.push(ProbeIn {
+                incident: [d.x as f32, d.y as f32, d.z as f32, eta as f32],
+                normal: [n.x as f32, n.y as f32, n.z as f32, 1.333],
+                point: [p.x as f32, p.y as f32, 0.0, 0.0],
+            });
+            expect.push((d, n, eta, p));
+        }
+    }
+    let out = probe::run(
+        &ctx,
+        &inputs,
+        &ProbeSetup {
+            waves: &GpuSineWave::from_waves(&waves),
+            procedural: GpuProceduralWave::from(&procedural),
+            grid: &grid,
+            size: size as f32,
+            wrap: true,
+        },
+    )
+    .expect("probe runs");
+
+    let grid_surface = caustics_core::water::GridSurface {
+        grid: grid.clone(),
+        size,
+        edge: Edge::Wrap,
+    };
+    for (o, (d, n, eta, p)) in out.iter().zip(&expect) {
+        match refract(*d, *n, *eta) {
+            Some(t) => {
+                assert_eq!(o.refracted[3], 1.0);
+                for c in 0..3 {
+                    close(o.refracted[c], t[c], 1e-5, "refract");
+                }
+            }
+            None => assert_eq!(o.refracted[3], 0.0, "total internal reflection"),
+        }
+        close(
+            o.fresnel_sine[0],
+            fresnel_transmittance(-d.dot(*n), 1.0, 1.333),
+            1e-5,
+            "fresnel",
+        );
+        let (h, g) = waves.height_gradient(*p);
+        close(o.fresnel_sine[1], h, 1e-5, "waves h");
+        close(o.fresnel_sine[2], g.x, 1e-4, "waves dh/dx");
+        close(o.fresnel_sine[3], g.y, 1e-4, "waves dh/dy");
+        let (h, g) = procedural.height_gradient(*p);
+        close(o.procedural[0], h, 1e-4, "procedural h");
+        close(o.procedural[1], g.x, 1e-3, "procedural dh/dx");
+        close(o.procedural[2], g.y, 1e-3, "procedural dh/dy");
+        let (h, g) = grid_surface.height_gradient(*p);
+        close(o.grid[0], h, 1e-5, "grid h");
+        close(o.grid[1], g.x, 1e-4, "grid dh/dx");
+        close(o.grid[2], g.y, 1e-4, "grid dh/dy");
+    }
+}
+
+#[test]
+fn textures_beyond_the_device_limit_are_refused() {
+    let Some(ctx) = test_context() else { return };
+    let max = ctx.limits().max_texture_dimension_2d;
+    let err = ctx
+        .check_texture_size("caustics map", max + 1, 16)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("caustics map") && err.contains(&format!("{}", max + 1)),
+        "{err}"
+    );
+    assert!(ctx.check_texture_size("caustics map", 0, 16).is_err());
+    assert!(ctx.check_texture_size("caustics map", 64, 64).is_ok());
+}
