@@ -33,7 +33,7 @@ impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
             supersampling: 2,
-            exposure: 1.4,
+            exposure: 0.85,
         }
     }
 }
@@ -359,7 +359,7 @@ impl Tracer<'_> {
             if t > 0.0 {
                 let p = o + d * t;
                 let v = ((p.x * 3.0).floor() + (p.y * 3.0).floor()).rem_euclid(2.0);
-                let albedo = DVec3::splat(0.55 + 0.05 * v);
+                let albedo = DVec3::splat(0.32 + 0.04 * v);
                 return albedo
                     * (self.scene.light.intensity * -self.sun.z + AMBIENT)
                     * self.scene.light.color;

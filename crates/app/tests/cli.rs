@@ -1,0 +1,255 @@
+//! The `caustics` binary as a user meets it: the scene contract, outputs, and clear errors for bad
+//! input with a non-zero exit.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use caustics_core::grid::Grid;
+
+fn caustics(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_caustics"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("caustics-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const CONTRACT: &str = r#"
+[water]
+heightfield = "surface.npy"
+size = 1.0
+depth = 0.4
+ior = 1.333
+wrap = true
+
+[light]
+direction = [0.3, 0.1, -1.0]
+
+[caustics]
+resolution = [48, 32]
+technique = "reference"
+"#;
+
+fn contract_dir(name: &str, surface: &Grid, toml: &str) -> PathBuf {
+    let d = tmpdir(name);
+    surface.write_npy(&d.join("surface.npy")).unwrap();
+    std::fs::write(d.join("scene.toml"), toml).unwrap();
+    d
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn the_minimum_contract_renders_a_raw_map_of_the_stated_shape() {
+    // A gentle periodic swell sampled on the contract's lattice.
+    let n = 64;
+    let g = Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        (0.004 * (std::f64::consts::TAU * (3.0 * x + y)).sin()) as f32
+    });
+    let d = contract_dir("contract", &g, CONTRACT);
+    let o = caustics(&["render", "--scene", "scene.toml", "--raw", "map.npy"], &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let map = Grid::load(&d.join("map.npy"), [0.0, 1.0]).unwrap();
+    assert_eq!((map.rows, map.cols), (32, 48), "shape is (height, width)");
+    // Flux is conserved: the mean is the mean Fresnel ratio, within a percent of 1 for a gentle swell.
+    assert!((map.mean() - 1.0).abs() < 0.01, "mean {}", map.mean());
+    let (lo, hi) = map.min_max();
+    assert!(lo < 0.9 && hi > 1.1, "caustics present: {lo} .. {hi}");
+    // The same map as EXR.
+    let o = caustics(&["render", "--scene", "scene.toml", "--raw", "map.exr"], &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let exr = Grid::load(&d.join("map.exr"), [0.0, 1.0]).unwrap();
+    assert_eq!(exr, map);
+}
+
+#[test]
+fn a_flat_height_field_gives_one() {
+    let d = contract_dir("flat", &Grid::new(16, 16), CONTRACT);
+    let o = caustics(
+        &["render", "--scene", "scene.toml", "--raw", "flat.npy"],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let map = Grid::load(&d.join("flat.npy"), [0.0, 1.0]).unwrap();
+    for v in &map.data {
+        assert!((v - 1.0).abs() < 1e-4, "{v}");
+    }
+}
+
+#[test]
+fn the_default_scene_renders_an_image() {
+    let d = tmpdir("default");
+    let o = caustics(
+        &[
+            "render",
+            "--resolution",
+            "64x64",
+            "--image-size",
+            "96x54",
+            "--supersampling",
+            "1",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(d.join("pool.png")).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (96, 54));
+}
+
+fn expect_error(name: &str, toml: &str, surface: &Grid, needle: &[&str]) {
+    let d = contract_dir(name, surface, toml);
+    let o = caustics(&["render", "--scene", "scene.toml", "--raw", "out.npy"], &d);
+    let e = stderr(&o);
+    assert!(!o.status.success(), "{name}: must fail");
+    for n in needle {
+        assert!(e.contains(n), "{name}: `{n}` not in: {e}");
+    }
+    assert!(!e.contains("panicked"), "{name}: {e}");
+    assert!(!d.join("out.npy").exists(), "{name}: no output on error");
+}
+
+#[test]
+fn bad_input_gets_a_clear_error() {
+    let ok = Grid::new(16, 16);
+    expect_error(
+        "up",
+        &CONTRACT.replace("[0.3, 0.1, -1.0]", "[0.3, 0.1, 0.5]"),
+        &ok,
+        &["light.direction", "points up"],
+    );
+    expect_error(
+        "depth",
+        &CONTRACT.replace("depth = 0.4", "depth = -0.4"),
+        &ok,
+        &["water.depth", "positive"],
+    );
+    expect_error(
+        "ior",
+        &CONTRACT.replace("ior = 1.333", "ior = 0.8"),
+        &ok,
+        &["water.ior", "at least 1"],
+    );
+    expect_error(
+        "zero",
+        &CONTRACT.replace("[48, 32]", "[0, 32]"),
+        &ok,
+        &["caustics.resolution"],
+    );
+    expect_error(
+        "absurd",
+        &CONTRACT.replace("[48, 32]", "[100000, 32]"),
+        &ok,
+        &["caustics.resolution", "beyond"],
+    );
+    expect_error(
+        "syntax",
+        &CONTRACT.replace("depth = 0.4", "depth = "),
+        &ok,
+        &["scene.toml", "malformed"],
+    );
+    expect_error(
+        "typo",
+        &CONTRACT.replace("depth = 0.4", "depht = 0.4"),
+        &ok,
+        &["depht"],
+    );
+    expect_error(
+        "technique",
+        &CONTRACT.replace("\"reference\"", "\"nope\""),
+        &ok,
+        &["nope"],
+    );
+    let mut nan = Grid::new(8, 8);
+    nan.data[9] = f32::NAN;
+    expect_error(
+        "nan",
+        CONTRACT,
+        &nan,
+        &["surface.npy", "row 1, column 1", "NaN"],
+    );
+    expect_error(
+        "missing",
+        &CONTRACT.replace("surface.npy", "nowhere.npy"),
+        &ok,
+        &["nowhere.npy"],
+    );
+    let deep = Grid::from_fn(8, 8, |_, _| -0.5);
+    expect_error(
+        "below floor",
+        CONTRACT,
+        &deep,
+        &["surface.npy", "below the floor"],
+    );
+}
+
+#[test]
+fn a_height_field_of_the_wrong_shape_is_refused() {
+    let d = contract_dir("shape", &Grid::new(4, 4), CONTRACT);
+    // A 1-D array written by hand: magic, version 1.0, header, 4 float32 samples.
+    let header = "{'descr': '<f4', 'fortran_order': False, 'shape': (4,), }";
+    let mut h = header.to_string();
+    while (10 + h.len() + 1) % 64 != 0 {
+        h.push(' ');
+    }
+    h.push('\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend((h.len() as u16).to_le_bytes());
+    bytes.extend(h.as_bytes());
+    bytes.extend([0u8; 16]);
+    std::fs::write(d.join("surface.npy"), bytes).unwrap();
+    let o = caustics(&["render", "--scene", "scene.toml", "--raw", "out.npy"], &d);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("2-D"), "{}", stderr(&o));
+}
+
+#[test]
+fn inputs_are_never_overwritten() {
+    let g = Grid::from_fn(8, 8, |i, j| 0.001 * (i + j) as f32);
+    let d = contract_dir("overwrite", &g, CONTRACT);
+    let before = std::fs::read(d.join("surface.npy")).unwrap();
+    let o = caustics(
+        &["render", "--scene", "scene.toml", "--raw", "surface.npy"],
+        &d,
+    );
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("refusing to overwrite"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read(d.join("surface.npy")).unwrap(), before);
+}
+
+#[test]
+fn scene_check_and_techniques() {
+    let d = tmpdir("check");
+    for name in ["pool", "shore", "objects", "glass"] {
+        let o = caustics(&["scene", "check", name], &d);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+    }
+    let o = caustics(&["scene", "check", "missing.toml"], &d);
+    assert!(!o.status.success() && stderr(&o).contains("missing.toml"));
+    let o = caustics(&["techniques"], &d);
+    let out = String::from_utf8_lossy(&o.stdout);
+    for t in [
+        "reference",
+        "yuksel",
+        "procedural",
+        "volumes",
+        "caustic-triangles",
+        "cascaded",
+    ] {
+        assert!(out.contains(t), "{t} missing from:\n{out}");
+    }
+}
