@@ -46,5 +46,42 @@ pub const PROBE: PassSource = PassSource {
     source: include_str!("shaders/probe.wgsl"),
 };
 
+pub const OCEAN_SPECTRUM: PassSource = PassSource {
+    name: "ocean_spectrum",
+    shared: &[],
+    source: include_str!("shaders/ocean_spectrum.wgsl"),
+};
+
+pub const OCEAN_FFT: PassSource = PassSource {
+    name: "ocean_fft",
+    shared: &[],
+    source: include_str!("shaders/ocean_fft.wgsl"),
+};
+
+pub const OCEAN_OUTPUT: PassSource = PassSource {
+    name: "ocean_output",
+    shared: &[],
+    source: include_str!("shaders/ocean_output.wgsl"),
+};
+
+pub const RIPPLE_STEP: PassSource = PassSource {
+    name: "ripple_step",
+    shared: &[],
+    source: include_str!("shaders/ripple_step.wgsl"),
+};
+
+pub const RIPPLE_DROP: PassSource = PassSource {
+    name: "ripple_drop",
+    shared: &[],
+    source: include_str!("shaders/ripple_drop.wgsl"),
+};
+
 /// Every pass shader of the crate.
-pub const ALL_PASSES: &[&PassSource] = &[&PROBE];
+pub const ALL_PASSES: &[&PassSource] = &[
+    &PROBE,
+    &OCEAN_SPECTRUM,
+    &OCEAN_FFT,
+    &OCEAN_OUTPUT,
+    &RIPPLE_STEP,
+    &RIPPLE_DROP,
+];

@@ -42,3 +42,35 @@ fn uniform_structs_match_their_wgsl_size() {
     assert_eq!(size_of("ProbeIn"), std::mem::size_of::<ProbeIn>());
     assert_eq!(size_of("ProbeOut"), std::mem::size_of::<ProbeOut>());
 }
+
+/// The size naga gives the WGSL struct `name` of a pass.
+fn wgsl_size(pass: &caustics_gpu::shaders::PassSource, name: &str) -> usize {
+    let module = naga::front::wgsl::parse_str(&pass.composed()).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("{}: no WGSL struct {name}", pass.name));
+    ty.inner.size(module.to_ctx()) as usize
+}
+
+#[test]
+fn water_uniform_structs_match_their_wgsl_size() {
+    use caustics_gpu::shaders::{OCEAN_FFT, OCEAN_SPECTRUM, RIPPLE_DROP, RIPPLE_STEP};
+    use caustics_gpu::water::ocean::{FftStage, SpectrumParams};
+    use caustics_gpu::water::ripple::{RippleDrop, RippleStep};
+    use std::mem::size_of;
+    assert_eq!(
+        wgsl_size(&OCEAN_SPECTRUM, "SpectrumParams"),
+        size_of::<SpectrumParams>()
+    );
+    assert_eq!(wgsl_size(&OCEAN_FFT, "FftStage"), size_of::<FftStage>());
+    assert_eq!(
+        wgsl_size(&RIPPLE_STEP, "RippleStep"),
+        size_of::<RippleStep>()
+    );
+    assert_eq!(
+        wgsl_size(&RIPPLE_DROP, "RippleDrop"),
+        size_of::<RippleDrop>()
+    );
+}

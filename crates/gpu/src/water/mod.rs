@@ -1,5 +1,8 @@
 //! GPU-side descriptions of the water surfaces, laid out as the structs of `shaders/water.wgsl`.
 
+pub mod ocean;
+pub mod ripple;
+
 use caustics_core::water::procedural::Procedural;
 use caustics_core::water::waves::Waves;
 
