@@ -199,7 +199,7 @@ fn a_height_field_of_the_wrong_shape_is_refused() {
     // A 1-D array written by hand: magic, version 1.0, header, 4 float32 samples.
     let header = "{'descr': '<f4', 'fortran_order': False, 'shape': (4,), }";
     let mut h = header.to_string();
-    while (10 + h.len() + 1) % 64 != 0 {
+    while !(10 + h.len() + 1).is_multiple_of(64) {
         h.push(' ');
     }
     h.push('\n');

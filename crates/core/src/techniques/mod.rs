@@ -1,4 +1,8 @@
-//! The registry of caustics techniques: names as the CLI and scene files spell them.
+//! The caustics techniques: the registry of names as the CLI and scene files spell them, the input
+//! every technique takes, and the CPU twin of each (the oracle of its GPU implementation's tests and
+//! the fallback where no GPU adapter exists).
+
+pub mod yuksel;
 
 pub struct TechniqueInfo {
     pub name: &'static str,
@@ -19,7 +23,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         name: "yuksel",
         paper: "1",
         summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser)",
-        implemented: false,
+        implemented: true,
     },
     TechniqueInfo {
         name: "procedural",

@@ -1,0 +1,53 @@
+// Technique `yuksel`, our compute variant: the three passes fused into one. A 16 x 16 tile of map
+// pixels first refracts every sample its region needs (the tile plus an apron of N/2 columns and
+// M/2 rows each side) into workgroup memory, then each pixel gathers the N x (M + 1) samples of its
+// region directly: no intermediate render targets, no channel budget, and the samples shared by
+// neighbouring pixels are refracted once per tile instead of read back through memory.
+// Same sums as pass 1 + pass 2 (in another order).
+
+@group(0) @binding(2) var map_out: texture_storage_2d<rgba32float, write>;
+
+const TILE: u32 = 16u;
+// Up to N = 31 and M = 30: (16 + 30) x (16 + 30) samples.
+const APRON_MAX: u32 = 30u;
+const SPAN: u32 = TILE + APRON_MAX;
+var<workgroup> tile_dx: array<f32, 2116>;
+var<workgroup> tile_dy: array<f32, 2116>;
+var<workgroup> tile_w: array<f32, 2116>;
+
+@compute @workgroup_size(16, 16)
+fn main(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_index) local: u32,
+    @builtin(local_invocation_id) lid: vec3<u32>,
+) {
+    let nh = i32(u.n / 2u);
+    let mh = i32(u.m / 2u);
+    let cols = TILE + u.n - 1u;
+    let rows = TILE + u.m;
+    let origin = vec2<i32>(group.xy * TILE) - vec2<i32>(nh, mh);
+    for (var t = local; t < cols * rows; t += TILE * TILE) {
+        let c = t % cols;
+        let r = t / cols;
+        let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r));
+        tile_dx[r * SPAN + c] = s.x;
+        tile_dy[r * SPAN + c] = s.y;
+        tile_w[r * SPAN + c] = s.z;
+    }
+    workgroupBarrier();
+    let pixel = vec2<i32>(group.xy * TILE + lid.xy);
+    if pixel.x >= i32(u.width) || pixel.y >= i32(u.height) {
+        return;
+    }
+    var e = 0.0;
+    for (var dr = -mh; dr <= mh; dr++) {
+        let row = u32(i32(lid.y) + mh + dr) * SPAN;
+        for (var dc = -nh; dc <= nh; dc++) {
+            let k = row + u32(i32(lid.x) + nh + dc);
+            let ax = box_overlap(f32(dc) + tile_dx[k]);
+            let ay = box_overlap(f32(dr) + tile_dy[k]);
+            e += ax * ay * tile_w[k];
+        }
+    }
+    textureStore(map_out, pixel, vec4<f32>(e * u.attenuation.rgb, 1.0));
+}

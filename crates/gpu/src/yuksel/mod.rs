@@ -1,0 +1,489 @@
+//! Technique `yuksel` on the GPU: "Fast Real-time Caustics from Height Fields" (Yuksel & Keyser).
+//! The method, its passes and where it departs from the reference are documented with its CPU twin,
+//! `caustics_core::techniques::yuksel`, which these passes mirror one for one:
+//!
+//! | pass | WGSL | CPU twin |
+//! |---|---|---|
+//! | pre-pass (compute) | `shaders/yuksel/prepass.wgsl` + `sample.wgsl` | `prepass` |
+//! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
+//! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
+//! | fused variant (compute, workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
+//!
+//! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
+//! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
+//! 128 bytes per sample give all 32 channels in one draw, as the paper's MRT design intends); with
+//! fewer it draws again for the remaining layers.
+
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+use caustics_core::grid::Grid;
+use caustics_core::map::CausticsMap;
+use caustics_core::techniques::yuksel::YukselSetup;
+use wgpu::util::DeviceExt;
+
+use crate::shaders::{self, OPTICS, PassSource, WATER};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+const COMMON: &str = include_str!("../shaders/yuksel/common.wgsl");
+const SAMPLE: &str = include_str!("../shaders/yuksel/sample.wgsl");
+
+pub const PREPASS: PassSource = PassSource {
+    name: "yuksel pre-pass",
+    shared: &[OPTICS, WATER, COMMON, SAMPLE],
+    source: include_str!("../shaders/yuksel/prepass.wgsl"),
+};
+pub const PASS2: PassSource = PassSource {
+    name: "yuksel pass 2",
+    shared: &[COMMON],
+    source: include_str!("../shaders/yuksel/pass2.wgsl"),
+};
+pub const GATHER: PassSource = PassSource {
+    name: "yuksel gather",
+    shared: &[OPTICS, WATER, COMMON, SAMPLE],
+    source: include_str!("../shaders/yuksel/gather.wgsl"),
+};
+const PASS1_BODY: &str = include_str!("../shaders/yuksel/pass1.wgsl");
+
+/// Pass 1 for a draw that writes `targets` render targets: the static body plus the generated output
+/// struct and entry point.
+pub fn pass1_source(targets: u32) -> String {
+    let mut s = shaders::compose(&[COMMON], PASS1_BODY);
+    s.push_str("\nstruct Pass1Out {\n");
+    for t in 0..targets {
+        s.push_str(&format!("    @location({t}) c{t}: vec4<f32>,\n"));
+    }
+    s.push_str("}\n\n@fragment\nfn fs_main(@builtin(position) frag: vec4<f32>) -> Pass1Out {\n");
+    s.push_str(&format!(
+        "    let v = pass1_channels(i32(frag.x), i32(frag.y), {});\n    var o: Pass1Out;\n",
+        4 * targets
+    ));
+    for t in 0..targets {
+        let k = 4 * t;
+        s.push_str(&format!(
+            "    o.c{t} = vec4<f32>(v[{}], v[{}], v[{}], v[{}]);\n",
+            k,
+            k + 1,
+            k + 2,
+            k + 3
+        ));
+    }
+    s.push_str("    return o;\n}\n");
+    s
+}
+
+/// Which GPU implementation to run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Variant {
+    /// The paper's: pre-pass, pass 1 into multiple render targets, pass 2.
+    RenderTargets,
+    /// Ours: one compute pass with workgroup memory.
+    Gather,
+}
+
+/// Mirrors `Yuksel` in `shaders/yuksel/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct YukselUniform {
+    pub light: [f32; 4],
+    pub pixel: [f32; 2],
+    pub centre_offset: [f32; 2],
+    pub attenuation: [f32; 4],
+    pub size: f32,
+    pub depth: f32,
+    pub ior: f32,
+    pub fresnel: u32,
+    pub width: u32,
+    pub height: u32,
+    pub n: u32,
+    pub m: u32,
+    pub wrap: u32,
+    pub channel_base: u32,
+    pub _pad: [u32; 2],
+}
+
+impl YukselUniform {
+    pub fn new(s: &YukselSetup, channel_base: u32) -> Self {
+        YukselUniform {
+            light: [
+                s.light.x as f32,
+                s.light.y as f32,
+                s.light.z as f32,
+                s.eta as f32,
+            ],
+            pixel: [s.pixel.x as f32, s.pixel.y as f32],
+            centre_offset: [s.centre_offset.x as f32, s.centre_offset.y as f32],
+            attenuation: [
+                s.attenuation.x as f32,
+                s.attenuation.y as f32,
+                s.attenuation.z as f32,
+                s.t_flat as f32,
+            ],
+            size: s.size as f32,
+            depth: s.depth as f32,
+            ior: s.ior as f32,
+            fresnel: s.fresnel as u32,
+            width: s.width as u32,
+            height: s.height as u32,
+            n: s.n as u32,
+            m: s.m as u32,
+            wrap: s.wrap as u32,
+            channel_base,
+            _pad: [0; 2],
+        }
+    }
+}
+
+/// The technique's pipelines, built once per device.
+pub struct Yuksel {
+    prepass: wgpu::ComputePipeline,
+    pass2: wgpu::RenderPipeline,
+    gather: wgpu::ComputePipeline,
+    /// Pass 1 per number of targets per draw.
+    pass1: Mutex<HashMap<u32, wgpu::RenderPipeline>>,
+    /// Render targets one pass-1 draw may write on this device.
+    pub targets_per_draw: u32,
+}
+
+const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+fn compute_pipeline(ctx: &GpuContext, pass: &PassSource) -> wgpu::ComputePipeline {
+    ctx.device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(pass.name),
+            layout: None,
+            module: &pass.module(&ctx.device),
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+}
+
+fn render_pipeline(
+    ctx: &GpuContext,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    targets: u32,
+) -> wgpu::RenderPipeline {
+    let target = Some(wgpu::ColorTargetState {
+        format: MAP_FORMAT,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
+    });
+    let targets: Vec<_> = (0..targets).map(|_| target.clone()).collect();
+    ctx.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}
+
+/// One frame's resources for a given map and height-field size.
+pub struct Frame {
+    uniform: wgpu::Buffer,
+    heights: wgpu::Texture,
+    pre: wgpu::Texture,
+    channels: wgpu::Texture,
+    pub map: wgpu::Texture,
+    map_storage: wgpu::Texture,
+    layers: u32,
+    setup: YukselSetup,
+}
+
+impl Yuksel {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let limits = ctx.limits();
+        let by_bytes = limits.max_color_attachment_bytes_per_sample / 16;
+        let targets_per_draw = limits.max_color_attachments.min(by_bytes).clamp(1, 8);
+        let pass2_module = PASS2.module(&ctx.device);
+        let y = Yuksel {
+            prepass: compute_pipeline(ctx, &PREPASS),
+            pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
+            gather: compute_pipeline(ctx, &GATHER),
+            pass1: Mutex::new(HashMap::new()),
+            targets_per_draw,
+        };
+        ctx.check()?;
+        Ok(y)
+    }
+
+    fn pass1_pipeline(&self, ctx: &GpuContext, targets: u32) -> wgpu::RenderPipeline {
+        self.pass1
+            .lock()
+            .expect("pipeline cache")
+            .entry(targets)
+            .or_insert_with(|| {
+                let module = ctx
+                    .device
+                    .create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some("yuksel pass 1"),
+                        source: wgpu::ShaderSource::Wgsl(pass1_source(targets).into()),
+                    });
+                render_pipeline(ctx, "yuksel pass 1", &module, targets)
+            })
+            .clone()
+    }
+
+    /// Allocate a frame's textures and upload the height field.
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &YukselSetup,
+        heights: &Grid,
+    ) -> Result<Frame, GpuError> {
+        let (w, h) = (setup.width as u32, setup.height as u32);
+        let (pw, ph) = setup.prepass_size();
+        let (p1w, p1h) = setup.pass1_size();
+        ctx.check_texture_size("yuksel caustics map", w, h)?;
+        ctx.check_texture_size("yuksel pre-pass texture", pw as u32, ph as u32)?;
+        ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
+        let layers = (setup.m as u32 + 1).div_ceil(4);
+        let tex = |label: &str, w: u32, h: u32, layers: u32, usage: wgpu::TextureUsages| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: w,
+                    height: h,
+                    depth_or_array_layers: layers,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: MAP_FORMAT,
+                usage,
+                view_formats: &[],
+            })
+        };
+        use wgpu::TextureUsages as U;
+        let frame = Frame {
+            uniform: ctx
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("yuksel uniform"),
+                    contents: bytemuck::bytes_of(&YukselUniform::new(setup, 0)),
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                }),
+            heights: ctx.upload_grid("yuksel height field", heights)?,
+            pre: tex(
+                "yuksel pre-pass",
+                pw as u32,
+                ph as u32,
+                1,
+                U::STORAGE_BINDING | U::TEXTURE_BINDING,
+            ),
+            channels: tex(
+                "yuksel pass-1 channels",
+                p1w as u32,
+                p1h as u32,
+                layers,
+                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+            ),
+            map: tex(
+                "yuksel map",
+                w,
+                h,
+                1,
+                U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
+            ),
+            map_storage: tex(
+                "yuksel map (gather)",
+                w,
+                h,
+                1,
+                U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
+            ),
+            layers,
+            setup: setup.clone(),
+        };
+        ctx.check()?;
+        Ok(frame)
+    }
+
+    /// Record the technique's passes for `frame`. Returns the texture the map ends in.
+    pub fn encode<'f>(
+        &self,
+        ctx: &GpuContext,
+        frame: &'f Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        variant: Variant,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> &'f wgpu::Texture {
+        let device = &ctx.device;
+        let heights_view = frame.heights.create_view(&Default::default());
+        let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
+        match variant {
+            Variant::Gather => {
+                let out = frame.map_storage.create_view(&Default::default());
+                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("yuksel gather"),
+                    layout: &self.gather.get_bind_group_layout(0),
+                    entries: &[
+                        entry(0, frame.uniform.as_entire_binding()),
+                        entry(1, wgpu::BindingResource::TextureView(&heights_view)),
+                        entry(2, wgpu::BindingResource::TextureView(&out)),
+                    ],
+                });
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("yuksel gather"),
+                    timestamp_writes: timer
+                        .as_mut()
+                        .and_then(|t| t.compute_pass("yuksel gather")),
+                });
+                pass.set_pipeline(&self.gather);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups(w.div_ceil(16), h.div_ceil(16), 1);
+                &frame.map_storage
+            }
+            Variant::RenderTargets => {
+                let pre_view = frame.pre.create_view(&Default::default());
+                {
+                    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("yuksel pre-pass"),
+                        layout: &self.prepass.get_bind_group_layout(0),
+                        entries: &[
+                            entry(0, frame.uniform.as_entire_binding()),
+                            entry(1, wgpu::BindingResource::TextureView(&heights_view)),
+                            entry(2, wgpu::BindingResource::TextureView(&pre_view)),
+                        ],
+                    });
+                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                        label: Some("yuksel pre-pass"),
+                        timestamp_writes: timer
+                            .as_mut()
+                            .and_then(|t| t.compute_pass("yuksel pre-pass")),
+                    });
+                    pass.set_pipeline(&self.prepass);
+                    pass.set_bind_group(0, &bind, &[]);
+                    let (pw, ph) = frame.setup.prepass_size();
+                    pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
+                }
+                // Pass 1: as many layers per draw as the device allows.
+                let per_draw = self.targets_per_draw.min(frame.layers);
+                let mut first = 0;
+                while first < frame.layers {
+                    let count = per_draw.min(frame.layers - first);
+                    let pipeline = self.pass1_pipeline(ctx, count);
+                    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("yuksel pass-1 uniform"),
+                        contents: bytemuck::bytes_of(&YukselUniform::new(&frame.setup, 4 * first)),
+                        usage: wgpu::BufferUsages::UNIFORM,
+                    });
+                    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("yuksel pass 1"),
+                        layout: &pipeline.get_bind_group_layout(0),
+                        entries: &[
+                            entry(0, uniform.as_entire_binding()),
+                            entry(1, wgpu::BindingResource::TextureView(&pre_view)),
+                        ],
+                    });
+                    let views: Vec<wgpu::TextureView> = (first..first + count)
+                        .map(|layer| {
+                            frame.channels.create_view(&wgpu::TextureViewDescriptor {
+                                dimension: Some(wgpu::TextureViewDimension::D2),
+                                base_array_layer: layer,
+                                array_layer_count: Some(1),
+                                ..Default::default()
+                            })
+                        })
+                        .collect();
+                    let attachments: Vec<_> = views.iter().map(color_attachment).collect();
+                    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some("yuksel pass 1"),
+                        color_attachments: &attachments,
+                        depth_stencil_attachment: None,
+                        timestamp_writes: timer
+                            .as_mut()
+                            .and_then(|t| t.render_pass("yuksel pass 1")),
+                        occlusion_query_set: None,
+                        multiview_mask: None,
+                    });
+                    pass.set_pipeline(&pipeline);
+                    pass.set_bind_group(0, &bind, &[]);
+                    pass.draw(0..3, 0..1);
+                    first += count;
+                }
+                let channels_view = frame.channels.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                });
+                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("yuksel pass 2"),
+                    layout: &self.pass2.get_bind_group_layout(0),
+                    entries: &[
+                        entry(0, frame.uniform.as_entire_binding()),
+                        entry(1, wgpu::BindingResource::TextureView(&channels_view)),
+                    ],
+                });
+                let map_view = frame.map.create_view(&Default::default());
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("yuksel pass 2"),
+                    color_attachments: &[color_attachment(&map_view)],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: timer
+                        .as_mut()
+                        .and_then(|t| t.render_pass("yuksel pass 2")),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&self.pass2);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.draw(0..3, 0..1);
+                &frame.map
+            }
+        }
+    }
+
+    /// Run the technique once and read the map back.
+    pub fn caustics(
+        &self,
+        ctx: &GpuContext,
+        setup: &YukselSetup,
+        heights: &Grid,
+        variant: Variant,
+    ) -> Result<CausticsMap, GpuError> {
+        let frame = self.frame(ctx, setup, heights)?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let texture = self.encode(ctx, &frame, &mut encoder, variant, None);
+        ctx.queue.submit([encoder.finish()]);
+        let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
+        Ok(CausticsMap {
+            width: setup.width,
+            height: setup.height,
+            size: setup.size,
+            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+        })
+    }
+}
+
+fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource }
+}
+
+fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        },
+    })
+}

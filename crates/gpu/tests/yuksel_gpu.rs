@@ -1,0 +1,158 @@
+//! Technique `yuksel`: the GPU passes against their CPU twin, and the two GPU variants against each
+//! other.
+
+use caustics_core::grid::Grid;
+use caustics_core::map::CausticsMap;
+use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
+use caustics_gpu::context::test_context;
+use caustics_gpu::yuksel::{Variant, Yuksel};
+use glam::DVec3;
+
+fn surface(n: usize) -> Grid {
+    Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        let tau = std::f64::consts::TAU;
+        (0.004 * (tau * (3.0 * x + y)).sin() + 0.002 * (tau * (-2.0 * x + 5.0 * y) + 1.0).sin())
+            as f32
+    })
+}
+
+/// Largest difference relative to the map's mean (f32 sums in different orders).
+fn worst(a: &CausticsMap, b: &CausticsMap) -> f32 {
+    let mean = a.texels.iter().map(|t| t[0]).sum::<f32>() / a.texels.len() as f32;
+    a.texels
+        .iter()
+        .zip(&b.texels)
+        .flat_map(|(x, y)| (0..3).map(move |c| (x[c] - y[c]).abs()))
+        .fold(0.0, f32::max)
+        / mean
+}
+
+#[test]
+fn gpu_variants_match_the_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    let yuksel = Yuksel::new(&ctx).expect("pipelines");
+    let heights = surface(48);
+    for (params, wrap, light, (w, h)) in [
+        (
+            YukselParams::default(),
+            true,
+            DVec3::new(0.3, 0.1, -1.0),
+            (64, 40),
+        ),
+        (
+            YukselParams {
+                n: 9,
+                m: 10,
+                ..Default::default()
+            },
+            false,
+            DVec3::new(-0.5, 0.4, -1.0),
+            (50, 70),
+        ),
+        (
+            YukselParams {
+                n: 3,
+                m: 30,
+                fresnel: false,
+                absorption: true,
+            },
+            true,
+            DVec3::new(0.0, 0.0, -1.0),
+            (33, 33),
+        ),
+    ] {
+        let setup = YukselSetup::new(
+            &params,
+            w,
+            h,
+            1.0,
+            0.35,
+            1.333,
+            DVec3::new(0.4, 0.1, 0.05),
+            wrap,
+            light.normalize(),
+        )
+        .unwrap();
+        let cpu = yuksel::caustics(&setup, &heights);
+        let mrt = yuksel
+            .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
+            .expect("render targets");
+        let gather = yuksel
+            .caustics(&ctx, &setup, &heights, Variant::Gather)
+            .expect("gather");
+        // f32 on both sides; the GPU's bicubic and refraction round differently from the CPU's f64.
+        assert!(
+            worst(&cpu, &mrt) < 2e-3,
+            "{params:?}: CPU vs render targets {}",
+            worst(&cpu, &mrt)
+        );
+        assert!(
+            worst(&mrt, &gather) < 1e-4,
+            "{params:?}: render targets vs gather {}",
+            worst(&mrt, &gather)
+        );
+        let max = cpu.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+        assert!(max > 1.1, "the test surface makes caustics: {max}");
+    }
+}
+
+/// Where the adapter allows fewer render targets than the channels need, pass 1 draws again for the
+/// remaining layers: same map.
+#[test]
+fn fewer_render_targets_give_the_same_map() {
+    let Some(ctx) = test_context() else { return };
+    let mut yuksel = Yuksel::new(&ctx).expect("pipelines");
+    let params = YukselParams {
+        n: 7,
+        m: 22,
+        ..Default::default()
+    };
+    let setup = YukselSetup::new(
+        &params,
+        40,
+        40,
+        1.0,
+        0.3,
+        1.333,
+        DVec3::ZERO,
+        true,
+        DVec3::new(0.2, 0.3, -1.0),
+    )
+    .unwrap();
+    let heights = surface(40);
+    let all = yuksel
+        .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
+        .unwrap();
+    yuksel.targets_per_draw = 2;
+    let split = yuksel
+        .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
+        .unwrap();
+    assert_eq!(all, split);
+}
+
+#[test]
+fn a_map_beyond_the_device_limit_is_refused() {
+    let Some(ctx) = test_context() else { return };
+    let yuksel = Yuksel::new(&ctx).expect("pipelines");
+    let max = ctx.limits().max_texture_dimension_2d as usize;
+    let setup = YukselSetup::new(
+        &YukselParams::default(),
+        max + 1,
+        4,
+        1.0,
+        0.3,
+        1.333,
+        DVec3::ZERO,
+        true,
+        DVec3::NEG_Z,
+    )
+    .unwrap();
+    let err = yuksel
+        .frame(&ctx, &setup, &surface(8))
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("yuksel caustics map"), "{err}");
+}
