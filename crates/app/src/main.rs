@@ -1,7 +1,10 @@
 //! `caustics`: render scenes, inspect scene files, list the techniques.
 
+mod bench;
+mod compare;
 mod progress;
 mod render;
+mod techniques;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -32,6 +35,10 @@ enum Command {
     Render(render::RenderArgs),
     /// List the caustics techniques.
     Techniques,
+    /// Every technique against the reference on generated surfaces: Markdown, CSV, pictures.
+    Compare(compare::CompareArgs),
+    /// GPU time per pass and CPU time of each technique over resolutions: Markdown, CSV, a plot.
+    Bench(bench::BenchArgs),
     /// Scene files: check one, list the built-in ones, or print one as TOML.
     #[command(subcommand)]
     Scene(SceneCommand),
@@ -79,6 +86,8 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Compare(args) => compare::run(args),
+        Command::Bench(args) => bench::run(args),
         Command::Techniques => {
             println!("{:<18} {:<6} description", "technique", "paper");
             for t in TECHNIQUES {
@@ -175,6 +184,43 @@ fn summary(scene: &Scene) -> String {
         scene.camera.width, scene.camera.height, scene.camera.fov_y
     );
     s
+}
+
+/// How to choose the GPU, shared by the commands that use one.
+#[derive(Args, Clone, Debug)]
+pub(crate) struct GpuArgs {
+    /// Use the CPU twins even where a GPU adapter exists.
+    #[arg(long)]
+    cpu: bool,
+    /// GPU backend: vulkan, metal, dx12 or gl (default: WGPU_BACKEND, else all).
+    #[arg(long)]
+    backend: Option<String>,
+    /// A substring of the adapter's name (default: WGPU_ADAPTER_NAME, else the best adapter).
+    #[arg(long)]
+    adapter: Option<String>,
+}
+
+impl GpuArgs {
+    /// The GPU, or `None` with one line saying why the CPU path is used.
+    pub(crate) fn context(&self) -> Option<caustics_gpu::GpuContext> {
+        if self.cpu {
+            return None;
+        }
+        let options = caustics_gpu::GpuOptions {
+            backend: self.backend.clone(),
+            adapter_name: self.adapter.clone(),
+        };
+        match caustics_gpu::GpuContext::headless(&options) {
+            Ok(ctx) => {
+                eprintln!("GPU: {}", ctx.describe());
+                Some(ctx)
+            }
+            Err(e) => {
+                eprintln!("no GPU adapter ({e}): using the CPU path");
+                None
+            }
+        }
+    }
 }
 
 /// Where outputs go unless told otherwise.

@@ -2,10 +2,12 @@
 //! surfaces, the optics shared by all techniques, the physically based reference that judges them,
 //! the CPU twins of the GPU techniques, and a CPU renderer of the final image.
 
+pub mod cases;
 pub mod error;
 pub mod grid;
 pub mod map;
 pub mod mesh;
+pub mod metrics;
 pub mod optics;
 pub mod reference;
 pub mod render;

@@ -150,7 +150,7 @@ fn a_map_beyond_the_device_limit_is_refused() {
     )
     .unwrap();
     let err = yuksel
-        .frame(&ctx, &setup, &surface(8))
+        .frame(&ctx, &setup, &surface(8), Variant::Gather)
         .err()
         .expect("refused")
         .to_string();

@@ -199,12 +199,28 @@ fn render_pipeline(
 pub struct Frame {
     uniform: wgpu::Buffer,
     heights: wgpu::Texture,
-    pre: wgpu::Texture,
-    channels: wgpu::Texture,
+    /// The paper's intermediate textures; the fused variant needs neither.
+    pre: Option<wgpu::Texture>,
+    channels: Option<wgpu::Texture>,
     pub map: wgpu::Texture,
-    map_storage: wgpu::Texture,
     layers: u32,
     setup: YukselSetup,
+    pub variant: Variant,
+}
+
+impl Frame {
+    /// GPU memory this frame's textures and buffers take, bytes.
+    pub fn bytes(&self) -> u64 {
+        let texels = |t: &wgpu::Texture| {
+            t.width() as u64 * t.height() as u64 * t.depth_or_array_layers() as u64
+        };
+        let rgba = |t: &Option<wgpu::Texture>| t.as_ref().map_or(0, |t| texels(t) * 16);
+        texels(&self.map) * 16
+            + texels(&self.heights) * 4
+            + rgba(&self.pre)
+            + rgba(&self.channels)
+            + self.uniform.size()
+    }
 }
 
 impl Yuksel {
@@ -247,6 +263,7 @@ impl Yuksel {
         ctx: &GpuContext,
         setup: &YukselSetup,
         heights: &Grid,
+        variant: Variant,
     ) -> Result<Frame, GpuError> {
         let (w, h) = (setup.width as u32, setup.height as u32);
         let (pw, ph) = setup.prepass_size();
@@ -281,36 +298,34 @@ impl Yuksel {
                     usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 }),
             heights: ctx.upload_grid("yuksel height field", heights)?,
-            pre: tex(
-                "yuksel pre-pass",
-                pw as u32,
-                ph as u32,
-                1,
-                U::STORAGE_BINDING | U::TEXTURE_BINDING,
-            ),
-            channels: tex(
-                "yuksel pass-1 channels",
-                p1w as u32,
-                p1h as u32,
-                layers,
-                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-            ),
+            pre: (variant == Variant::RenderTargets).then(|| {
+                tex(
+                    "yuksel pre-pass",
+                    pw as u32,
+                    ph as u32,
+                    1,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                )
+            }),
+            channels: (variant == Variant::RenderTargets).then(|| {
+                tex(
+                    "yuksel pass-1 channels",
+                    p1w as u32,
+                    p1h as u32,
+                    layers,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                )
+            }),
             map: tex(
                 "yuksel map",
                 w,
                 h,
                 1,
-                U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
-            ),
-            map_storage: tex(
-                "yuksel map (gather)",
-                w,
-                h,
-                1,
-                U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
+                U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
             ),
             layers,
             setup: setup.clone(),
+            variant,
         };
         ctx.check()?;
         Ok(frame)
@@ -322,15 +337,14 @@ impl Yuksel {
         ctx: &GpuContext,
         frame: &'f Frame,
         encoder: &mut wgpu::CommandEncoder,
-        variant: Variant,
         mut timer: Option<&mut GpuTimer>,
     ) -> &'f wgpu::Texture {
         let device = &ctx.device;
         let heights_view = frame.heights.create_view(&Default::default());
         let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
-        match variant {
+        match frame.variant {
             Variant::Gather => {
-                let out = frame.map_storage.create_view(&Default::default());
+                let out = frame.map.create_view(&Default::default());
                 let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("yuksel gather"),
                     layout: &self.gather.get_bind_group_layout(0),
@@ -342,17 +356,18 @@ impl Yuksel {
                 });
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("yuksel gather"),
-                    timestamp_writes: timer
-                        .as_mut()
-                        .and_then(|t| t.compute_pass("yuksel gather")),
+                    timestamp_writes: timer.as_mut().and_then(|t| t.compute_pass("yuksel gather")),
                 });
                 pass.set_pipeline(&self.gather);
                 pass.set_bind_group(0, &bind, &[]);
                 pass.dispatch_workgroups(w.div_ceil(16), h.div_ceil(16), 1);
-                &frame.map_storage
+                &frame.map
             }
             Variant::RenderTargets => {
-                let pre_view = frame.pre.create_view(&Default::default());
+                let (Some(pre), Some(channels)) = (&frame.pre, &frame.channels) else {
+                    unreachable!("a render-target frame holds its intermediate textures");
+                };
+                let pre_view = pre.create_view(&Default::default());
                 {
                     let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("yuksel pre-pass"),
@@ -395,7 +410,7 @@ impl Yuksel {
                     });
                     let views: Vec<wgpu::TextureView> = (first..first + count)
                         .map(|layer| {
-                            frame.channels.create_view(&wgpu::TextureViewDescriptor {
+                            channels.create_view(&wgpu::TextureViewDescriptor {
                                 dimension: Some(wgpu::TextureViewDimension::D2),
                                 base_array_layer: layer,
                                 array_layer_count: Some(1),
@@ -419,7 +434,7 @@ impl Yuksel {
                     pass.draw(0..3, 0..1);
                     first += count;
                 }
-                let channels_view = frame.channels.create_view(&wgpu::TextureViewDescriptor {
+                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
                     dimension: Some(wgpu::TextureViewDimension::D2Array),
                     ..Default::default()
                 });
@@ -436,9 +451,7 @@ impl Yuksel {
                     label: Some("yuksel pass 2"),
                     color_attachments: &[color_attachment(&map_view)],
                     depth_stencil_attachment: None,
-                    timestamp_writes: timer
-                        .as_mut()
-                        .and_then(|t| t.render_pass("yuksel pass 2")),
+                    timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("yuksel pass 2")),
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
@@ -458,9 +471,9 @@ impl Yuksel {
         heights: &Grid,
         variant: Variant,
     ) -> Result<CausticsMap, GpuError> {
-        let frame = self.frame(ctx, setup, heights)?;
+        let frame = self.frame(ctx, setup, heights, variant)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let texture = self.encode(ctx, &frame, &mut encoder, variant, None);
+        let texture = self.encode(ctx, &frame, &mut encoder, None);
         ctx.queue.submit([encoder.finish()]);
         let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
         Ok(CausticsMap {

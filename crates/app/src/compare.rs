@@ -1,0 +1,285 @@
+//! `caustics compare`: every technique against the reference on the generated cases of
+//! `caustics_core::cases`, with the metrics of `caustics_core::metrics`; writes Markdown, CSV and
+//! pictures (technique | reference | difference, with a colour bar).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use image::{Rgb, RgbImage};
+
+use caustics_core::cases::{Case, cases};
+use caustics_core::map::CausticsMap;
+use caustics_core::metrics::{Metrics, compare};
+
+use crate::progress;
+use crate::techniques::{Job, Runner, Spec};
+
+#[derive(Args)]
+pub struct CompareArgs {
+    /// Techniques to measure, `name` or `name:key=value,...` (e.g. `yuksel:n=15,m=14`,
+    /// `yuksel-gather`); repeat the flag. Default: every implemented technique and variant.
+    #[arg(long = "technique")]
+    techniques: Vec<Spec>,
+    /// Caustics-map resolutions (square), comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "256")]
+    resolution: Vec<u32>,
+    /// Only the mid sun over deep water.
+    #[arg(long)]
+    quick: bool,
+    /// Output folder.
+    #[arg(long, default_value = "compare")]
+    out: PathBuf,
+    /// Reference quality: triangulation cells per texel.
+    #[arg(long, default_value_t = 4)]
+    cells_per_texel: u32,
+    /// Write a picture for every row (by default only for the first resolution).
+    #[arg(long)]
+    all_pictures: bool,
+    #[command(flatten)]
+    gpu: crate::GpuArgs,
+}
+
+pub struct Row {
+    pub case: String,
+    pub technique: String,
+    pub resolution: u32,
+    pub backend: &'static str,
+    pub metrics: Metrics,
+    pub picture: Option<String>,
+    pub diff_range: f32,
+}
+
+pub fn run(args: CompareArgs) -> Result<()> {
+    let specs = if args.techniques.is_empty() {
+        vec!["yuksel".parse()?, "yuksel-gather".parse()?]
+    } else {
+        args.techniques.clone()
+    };
+    for &r in &args.resolution {
+        if r == 0 || r > 8192 {
+            anyhow::bail!("--resolution {r}: must be between 1 and 8192");
+        }
+    }
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    let mut runner = Runner::new(args.gpu.context());
+    let adapter = runner
+        .gpu
+        .as_ref()
+        .map_or("none (CPU twins)".to_string(), |c| c.describe());
+    let cases = cases(args.quick);
+    let bar = progress::bar("compare");
+    bar.set_length((cases.len() * args.resolution.len()) as u64);
+    let mut rows = Vec::new();
+    for case in &cases {
+        let surface = case.water.surface_at(case.time)?;
+        for (k, &res) in args.resolution.iter().enumerate() {
+            let job = Job {
+                water: &case.water,
+                floor: &case.floor,
+                surface: surface.as_ref(),
+                light: case.light,
+                width: res as usize,
+                height: res as usize,
+                cells_per_texel: args.cells_per_texel,
+            };
+            let truth = runner.run(&"reference".parse()?, &job)?.map;
+            for spec in &specs {
+                let out = runner
+                    .run(spec, &job)
+                    .with_context(|| format!("{} on {}", spec.label, case.name))?;
+                let metrics = compare(&out.map, &truth);
+                let (picture, diff_range) = if k == 0 || args.all_pictures {
+                    let name = format!("{}-{}-{}.png", case.name, file_safe(&spec.label), res);
+                    let range = write_triptych(&args.out.join(&name), &out.map, &truth)?;
+                    (Some(name), range)
+                } else {
+                    (None, 0.0)
+                };
+                rows.push(Row {
+                    case: case.name.clone(),
+                    technique: spec.label.clone(),
+                    resolution: res,
+                    backend: out.backend,
+                    metrics,
+                    picture,
+                    diff_range,
+                });
+            }
+            bar.inc(1);
+        }
+    }
+    bar.finish_and_clear();
+    std::fs::write(args.out.join("compare.csv"), csv(&rows))?;
+    std::fs::write(
+        args.out.join("compare.md"),
+        markdown(&rows, &cases, &adapter, &args),
+    )?;
+    eprintln!(
+        "wrote {} ({} rows)",
+        args.out.join("compare.md").display(),
+        rows.len()
+    );
+    Ok(())
+}
+
+fn file_safe(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+pub fn csv(rows: &[Row]) -> String {
+    let mut s =
+        "case,technique,resolution,backend,relative_l1,relative_rmse,flux_error,ssim\n".to_string();
+    for r in rows {
+        let m = &r.metrics;
+        let _ = writeln!(
+            s,
+            "{},\"{}\",{},{},{:.6},{:.6},{:.6},{:.6}",
+            r.case,
+            r.technique,
+            r.resolution,
+            r.backend,
+            m.relative_l1,
+            m.relative_rmse,
+            m.flux_error,
+            m.ssim
+        );
+    }
+    s
+}
+
+fn markdown(rows: &[Row], cases: &[Case], adapter: &str, args: &CompareArgs) -> String {
+    let mut s = String::from("# Techniques against the reference\n\n");
+    let _ = writeln!(
+        s,
+        "Generated by `caustics compare{}` on adapter: {adapter}. The reference uses {} triangulation cells \
+         per texel. {} cases: water kinds x suns (zenith angle 0, 30, 60 degrees) x depths (0.15, 0.5 on the \
+         unit square).\n",
+        if args.quick { " --quick" } else { "" },
+        args.cells_per_texel,
+        cases.len()
+    );
+    s += "- **rel. L1**: sum |technique - reference| / sum reference: the share of the light misplaced or lost.\n";
+    s += "- **rel. RMSE**: root mean square difference over the mean irradiance.\n";
+    s += "- **flux**: total light of the map over the reference's, minus 1 (negative: light lost).\n";
+    s += "- **SSIM**: structural similarity of the tone-mapped maps (1 = identical).\n\n";
+    // Means per technique and resolution.
+    s += "## Summary (mean over cases)\n\n| technique | resolution | rel. L1 | rel. RMSE | flux | SSIM |\n|---|---|---|---|---|---|\n";
+    let mut keys: Vec<(String, u32)> = rows
+        .iter()
+        .map(|r| (r.technique.clone(), r.resolution))
+        .collect();
+    keys.dedup();
+    keys.sort();
+    keys.dedup();
+    for (t, res) in keys {
+        let sel: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.technique == t && r.resolution == res)
+            .collect();
+        let n = sel.len() as f64;
+        let mean = |f: fn(&Metrics) -> f64| sel.iter().map(|r| f(&r.metrics)).sum::<f64>() / n;
+        let _ = writeln!(
+            s,
+            "| {t} | {res} | {:.2} % | {:.2} % | {:+.2} % | {:.3} |",
+            100.0 * mean(|m| m.relative_l1),
+            100.0 * mean(|m| m.relative_rmse),
+            100.0 * mean(|m| m.flux_error),
+            mean(|m| m.ssim)
+        );
+    }
+    s += "\n## Every case\n\n| case | technique | resolution | backend | rel. L1 | rel. RMSE | flux | SSIM | picture |\n|---|---|---|---|---|---|---|---|---|\n";
+    for r in rows {
+        let m = &r.metrics;
+        let pic = r.picture.as_ref().map_or(String::new(), |p| {
+            format!("[png]({p}) (difference ±{:.2})", r.diff_range)
+        });
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {:.2} % | {:.2} % | {:+.2} % | {:.3} | {pic} |",
+            r.case,
+            r.technique,
+            r.resolution,
+            r.backend,
+            100.0 * m.relative_l1,
+            100.0 * m.relative_rmse,
+            100.0 * m.flux_error,
+            m.ssim
+        );
+    }
+    s += "\nPictures: technique | reference | difference (blue: technique darker, red: brighter, scaled to \
+          the 99th percentile of |difference|, given beside each link), with the colour bar at the right. \
+          Maps are tone-mapped as E / (1 + E): flat water is mid-grey.\n";
+    s
+}
+
+/// Technique | reference | difference, and a colour bar. Returns the difference range shown.
+pub fn write_triptych(
+    path: &Path,
+    technique: &CausticsMap,
+    reference: &CausticsMap,
+) -> Result<f32> {
+    let a = technique.mean_channel();
+    let r = reference.mean_channel();
+    let (w, h) = (a.cols as u32, a.rows as u32);
+    let gap = 4;
+    let bar = 12;
+    let mut img = RgbImage::from_pixel(3 * w + 3 * gap + bar, h, Rgb([255, 255, 255]));
+    let mut diffs: Vec<f32> = a
+        .data
+        .iter()
+        .zip(&r.data)
+        .map(|(x, y)| (x - y).abs())
+        .collect();
+    diffs.sort_by(f32::total_cmp);
+    let range = diffs[((diffs.len() - 1) as f32 * 0.99) as usize].max(1e-6);
+    let grey = |e: f32| {
+        let v = (e.max(0.0) / (1.0 + e.max(0.0)) * 255.0) as u8;
+        Rgb([v, v, v])
+    };
+    for i in 0..h {
+        for j in 0..w {
+            // Row 0 of a map is y = 0: draw it at the bottom, as seen from above.
+            let y = h - 1 - i;
+            let k = (i * w + j) as usize;
+            img.put_pixel(j, y, grey(a.data[k]));
+            img.put_pixel(w + gap + j, y, grey(r.data[k]));
+            img.put_pixel(
+                2 * (w + gap) + j,
+                y,
+                diverging((a.data[k] - r.data[k]) / range),
+            );
+        }
+    }
+    for y in 0..h {
+        let v = 1.0 - 2.0 * y as f32 / (h - 1).max(1) as f32;
+        for x in 0..bar {
+            img.put_pixel(3 * (w + gap) + x, y, diverging(v));
+        }
+    }
+    img.save(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(range)
+}
+
+/// Blue (−1) through white (0) to red (+1).
+fn diverging(v: f32) -> Rgb<u8> {
+    let v = v.clamp(-1.0, 1.0);
+    let t = 1.0 - v.abs();
+    let strong = 255.0 * t;
+    if v >= 0.0 {
+        Rgb([255, strong as u8, strong as u8])
+    } else {
+        Rgb([strong as u8, strong as u8, 255])
+    }
+}

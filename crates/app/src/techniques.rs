@@ -1,0 +1,170 @@
+//! Running any technique by name, on the GPU when there is one and on its CPU twin otherwise.
+
+use anyhow::{Context, Result, bail};
+use glam::DVec3;
+
+use caustics_core::grid::Grid;
+use caustics_core::map::CausticsMap;
+use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
+use caustics_core::scene::{Floor, Water, WaterSource};
+use caustics_core::techniques::{self, yuksel};
+use caustics_core::water::{Surface, sample_grid};
+use caustics_gpu::GpuContext;
+use caustics_gpu::yuksel::{Variant, Yuksel};
+
+/// A technique and its parameters, written `name` or `name:key=value,key=value` (e.g.
+/// `yuksel:n=15,m=14`, `yuksel-gather`).
+#[derive(Clone, Debug)]
+pub struct Spec {
+    pub label: String,
+    pub name: String,
+    pub params: toml::Table,
+    /// `yuksel-gather`: our compute variant.
+    pub gather: bool,
+}
+
+impl std::str::FromStr for Spec {
+    type Err = anyhow::Error;
+    fn from_str(s: &str) -> Result<Self> {
+        let (name, rest) = s.split_once(':').unwrap_or((s, ""));
+        let (base, gather) = match name.strip_suffix("-gather") {
+            Some(b) => (b, true),
+            None => (name, false),
+        };
+        if techniques::info(base).is_none() {
+            bail!(
+                "unknown technique `{name}` (known: {})",
+                techniques::names().join(", ")
+            );
+        }
+        if gather && base != "yuksel" {
+            bail!("only yuksel has a `-gather` variant");
+        }
+        let mut table = toml::Table::new();
+        for kv in rest.split(',').filter(|p| !p.is_empty()) {
+            let (k, v) = kv
+                .split_once('=')
+                .with_context(|| format!("`{kv}` in `{s}`: expected key=value"))?;
+            let value: toml::Value = format!("v = {v}")
+                .parse::<toml::Table>()
+                .ok()
+                .and_then(|t| t.get("v").cloned())
+                .unwrap_or_else(|| toml::Value::String(v.to_string()));
+            table.insert(k.trim().to_string(), value);
+        }
+        let mut params = toml::Table::new();
+        params.insert(base.to_string(), toml::Value::Table(table));
+        Ok(Spec {
+            label: s.to_string(),
+            name: base.to_string(),
+            params,
+            gather,
+        })
+    }
+}
+
+/// The inputs every technique needs.
+pub struct Job<'a> {
+    pub water: &'a Water,
+    pub floor: &'a Floor,
+    pub surface: &'a dyn Surface,
+    pub light: DVec3,
+    pub width: usize,
+    pub height: usize,
+    pub cells_per_texel: u32,
+}
+
+pub struct Outcome {
+    pub map: CausticsMap,
+    /// "GPU" or "CPU".
+    pub backend: &'static str,
+}
+
+/// Runs techniques, keeping their GPU pipelines between runs.
+pub struct Runner {
+    pub gpu: Option<GpuContext>,
+    yuksel: Option<Yuksel>,
+}
+
+impl Runner {
+    pub fn new(gpu: Option<GpuContext>) -> Self {
+        Runner { gpu, yuksel: None }
+    }
+
+    pub fn run(&mut self, spec: &Spec, job: &Job) -> Result<Outcome> {
+        match spec.name.as_str() {
+            "reference" => {
+                let input = ReferenceInput {
+                    surface: job.surface,
+                    water: job.water,
+                    floor: job.floor,
+                    light: job.light,
+                    width: job.width,
+                    height: job.height,
+                };
+                let options = ReferenceOptions {
+                    cells_per_texel: job.cells_per_texel,
+                    ..Default::default()
+                };
+                Ok(Outcome {
+                    map: reference(&input, &options, &|_, _| {})?,
+                    backend: "CPU",
+                })
+            }
+            "yuksel" => {
+                if job.floor.terrain.is_some() {
+                    bail!(
+                        "technique `yuksel` computes caustics on a flat floor (paper 1, §3); this scene has a terrain"
+                    );
+                }
+                let params = yuksel::YukselParams::from_table(&spec.params)?;
+                let w = job.water;
+                let setup = yuksel::YukselSetup::new(
+                    &params,
+                    job.width,
+                    job.height,
+                    w.size,
+                    w.depth,
+                    w.ior,
+                    w.absorption,
+                    w.wrap,
+                    job.light,
+                )?;
+                let heights = heights_for(w, job.surface, job.width, job.height);
+                match &self.gpu {
+                    Some(ctx) => {
+                        if self.yuksel.is_none() {
+                            self.yuksel = Some(Yuksel::new(ctx)?);
+                        }
+                        let y = self.yuksel.as_ref().expect("just made");
+                        let variant = if spec.gather {
+                            Variant::Gather
+                        } else {
+                            Variant::RenderTargets
+                        };
+                        Ok(Outcome {
+                            map: y.caustics(ctx, &setup, &heights, variant)?,
+                            backend: "GPU",
+                        })
+                    }
+                    None => Ok(Outcome {
+                        map: yuksel::caustics(&setup, &heights),
+                        backend: "CPU",
+                    }),
+                }
+            }
+            other => bail!(
+                "technique `{other}` is not implemented yet; `caustics techniques` lists what is"
+            ),
+        }
+    }
+}
+
+/// The height field a grid-based technique reads: the file's own samples, or the surface sampled on
+/// the map's lattice.
+pub fn heights_for(water: &Water, surface: &dyn Surface, width: usize, height: usize) -> Grid {
+    match &water.source {
+        WaterSource::HeightField(g) => g.clone(),
+        _ => sample_grid(surface, width, height, water.size),
+    }
+}

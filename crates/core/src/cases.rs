@@ -1,0 +1,118 @@
+//! The generated, seeded test surfaces on which every technique is measured against the reference
+//! (`caustics compare`): four kinds of water, three suns, shallow and deep water.
+
+use std::f64::consts::TAU;
+
+use glam::{DVec2, DVec3};
+
+use crate::grid::Grid;
+use crate::scene::{Albedo, Floor, FloorPattern, Water, WaterSource};
+use crate::water::ocean::OceanParams;
+use crate::water::ripple::{Drop, RippleParams};
+use crate::water::waves::Wave;
+
+/// One comparison case: water over a flat floor under a sun.
+#[derive(Clone, Debug)]
+pub struct Case {
+    pub name: String,
+    pub water: Water,
+    pub floor: Floor,
+    pub light: DVec3,
+    pub time: f64,
+}
+
+/// The kinds of water the cases use.
+pub const SURFACES: &[&str] = &["waves", "lens", "ocean", "ripples"];
+/// Sun angles from the zenith, degrees.
+pub const SUNS: &[(&str, f64)] = &[("overhead", 0.0), ("mid", 30.0), ("low", 60.0)];
+/// Rest depths on the unit square.
+pub const DEPTHS: &[(&str, f64)] = &[("shallow", 0.15), ("deep", 0.5)];
+
+fn source(kind: &str) -> WaterSource {
+    match kind {
+        "waves" => {
+            let w = |a, l, d: [f64; 2], phase| Wave {
+                amplitude: a,
+                wavelength: l,
+                direction: d,
+                phase,
+            };
+            WaterSource::Waves(vec![
+                w(0.0020, 0.25, [1.0, 0.3], 0.0),
+                w(0.0015, 0.17, [-0.4, 1.0], 1.3),
+                w(0.0010, 0.12, [0.8, -0.6], 2.2),
+            ])
+        }
+        "lens" => {
+            // A Gaussian bump, 0.5 % of the square high and 0.06 wide: a converging lens.
+            let n = 256;
+            WaterSource::HeightField(Grid::from_fn(n, n, |i, j| {
+                let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) / n as f64 - 0.5;
+                (0.005 * (-p.length_squared() / (2.0 * 0.06 * 0.06)).exp()) as f32
+            }))
+        }
+        "ocean" => WaterSource::Ocean(Box::new(
+            crate::water::ocean::Ocean::new(
+                &OceanParams {
+                    resolution: 128,
+                    wind_speed: 4.0,
+                    rms_height: Some(0.0015),
+                    seed: 11,
+                    ..Default::default()
+                },
+                1.0,
+            )
+            .expect("valid ocean"),
+        )),
+        "ripples" => WaterSource::Ripple(RippleParams {
+            resolution: 256,
+            drops: (0..5)
+                .map(|k| {
+                    let a = k as f64 * TAU / 5.0;
+                    Drop {
+                        position: [0.5 + 0.28 * a.cos(), 0.5 + 0.28 * a.sin()],
+                        radius: 0.05,
+                        strength: -0.004,
+                    }
+                })
+                .collect(),
+            ..Default::default()
+        }),
+        other => panic!("unknown case surface {other}"),
+    }
+}
+
+/// All cases (`quick`: the mid sun and the deep water only).
+pub fn cases(quick: bool) -> Vec<Case> {
+    let mut out = Vec::new();
+    for &surface in SURFACES {
+        for &(sun, zenith) in SUNS {
+            for &(depth_name, depth) in DEPTHS {
+                if quick && (sun != "mid" || depth_name != "deep") {
+                    continue;
+                }
+                let z = zenith.to_radians();
+                // The sun's azimuth is off the axes so that nothing lines up with the texel grid.
+                let light = DVec3::new(z.sin() * 0.8, z.sin() * 0.6, -z.cos()).normalize();
+                out.push(Case {
+                    name: format!("{surface}-{sun}-{depth_name}"),
+                    water: Water {
+                        source: source(surface),
+                        size: 1.0,
+                        depth,
+                        ior: 1.333,
+                        wrap: true,
+                        absorption: DVec3::ZERO,
+                    },
+                    floor: Floor {
+                        terrain: None,
+                        albedo: Albedo::Pattern(FloorPattern::Plain),
+                    },
+                    light,
+                    time: 0.0,
+                });
+            }
+        }
+    }
+    out
+}
