@@ -37,6 +37,9 @@ pub struct CompareArgs {
     /// Write a picture for every row (by default only for the first resolution).
     #[arg(long)]
     all_pictures: bool,
+    /// Only these cases (comma-separated names, e.g. `waves-mid-deep`) get pictures; default: all.
+    #[arg(long, value_delimiter = ',')]
+    picture_cases: Vec<String>,
     #[command(flatten)]
     gpu: crate::GpuArgs,
 }
@@ -91,7 +94,8 @@ pub fn run(args: CompareArgs) -> Result<()> {
                     .run(spec, &job)
                     .with_context(|| format!("{} on {}", spec.label, case.name))?;
                 let metrics = compare(&out.map, &truth);
-                let (picture, diff_range) = if k == 0 || args.all_pictures {
+                let wanted = args.picture_cases.is_empty() || args.picture_cases.contains(&case.name);
+                let (picture, diff_range) = if wanted && (k == 0 || args.all_pictures) {
                     let name = format!("{}-{}-{}.png", case.name, file_safe(&spec.label), res);
                     let range = write_triptych(&args.out.join(&name), &out.map, &truth)?;
                     (Some(name), range)

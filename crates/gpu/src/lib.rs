@@ -9,6 +9,7 @@ pub mod shaders;
 pub mod timing;
 mod transfer;
 pub mod water;
+pub mod yuksel;
 
 pub use context::{GpuContext, GpuOptions};
 pub use timing::{GpuTimer, PassTime};

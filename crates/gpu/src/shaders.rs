@@ -79,6 +79,9 @@ pub const RIPPLE_DROP: PassSource = PassSource {
 /// Every pass shader of the crate.
 pub const ALL_PASSES: &[&PassSource] = &[
     &PROBE,
+    &crate::yuksel::PREPASS,
+    &crate::yuksel::PASS2,
+    &crate::yuksel::GATHER,
     &OCEAN_SPECTRUM,
     &OCEAN_FFT,
     &OCEAN_OUTPUT,

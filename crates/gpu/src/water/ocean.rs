@@ -11,10 +11,11 @@
 //! for every resolution the CPU ocean accepts (up to 4096), needs no shared memory or workgroup size
 //! beyond WebGPU's defaults, and keeps each stage a dozen lines that read like the textbook
 //! butterfly. A one-workgroup-per-row shared-memory FFT saves the passes' memory traffic but stops
-//! at the workgroup limits (N ≤ 1024 here, less with two signals per element in 32 KiB), and at the
-//! resolutions a caustics scene uses (≤ 512) the 2 log2 N small dispatches are cheap. The Stockham
-//! form sorts itself, so there is no bit-reversal pass; the twiddles come from a table computed in
-//! f64, so the f32 error grows only with the `log2 N` roundings of the data.
+//! at the workgroup limits: a row of N elements of 16 bytes (two complex signals) must fit the
+//! 16 KiB of workgroup memory WebGPU guarantees, so N ≤ 1024. At the resolutions a caustics scene
+//! uses (≤ 512) the 2 log2 N small dispatches are cheap. The Stockham form sorts itself, so there is
+//! no bit-reversal pass; the twiddles come from a table computed in f64, so the f32 error grows only
+//! with the `log2 N` roundings of the data.
 
 use wgpu::util::DeviceExt;
 
@@ -243,9 +244,9 @@ impl GpuOcean {
     /// (four passes: spectrum, FFT rows, FFT columns, output).
     ///
     /// `t` travels by `queue.write_buffer`, which lands before the next submission: record one
-    /// update per submission. It is an `f32`, so `ω t` loses precision as `t` grows (about 1e-4 rad
-    /// for the fastest modes of a 256 grid after a minute): wrap long-running times by the repeat
-    /// period where one is set.
+    /// update per submission. It is an `f32`, so `ω t` loses precision as `t` grows (a few 1e-4 rad
+    /// for the fastest, faintest modes of a 256 grid on a unit tile after a minute): wrap
+    /// long-running times by the repeat period where one is set.
     pub fn update(
         &self,
         ctx: &GpuContext,
