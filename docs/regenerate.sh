@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Regenerates docs/compare (quality), docs/bench (speed) and docs/results.md from them, on whatever
 # adapter this machine has (set WGPU_BACKEND / WGPU_ADAPTER_NAME to choose). One command:
-#   docs/regenerate.sh
+#   docs/regenerate.sh [bench flags]     (docs/regenerate.sh --assemble-only rebuilds results.md alone)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q
 bin=target/release/caustics
+if [ "${1:-}" != "--assemble-only" ]; then
 rm -rf docs/compare docs/bench
 $bin compare \
   --technique yuksel:n=3,m=2 --technique yuksel --technique yuksel:n=15,m=14 --technique yuksel:n=31,m=30 \
@@ -14,6 +15,7 @@ $bin compare \
   --picture-cases waves-mid-deep,lens-low-deep,ocean-overhead-shallow,ripples-low-shallow \
   --out docs/compare
 $bin bench --out docs/bench "$@"
+fi
 {
   cat docs/results-intro.md
   echo
