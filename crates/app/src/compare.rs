@@ -94,7 +94,8 @@ pub fn run(args: CompareArgs) -> Result<()> {
                     .run(spec, &job)
                     .with_context(|| format!("{} on {}", spec.label, case.name))?;
                 let metrics = compare(&out.map, &truth);
-                let wanted = args.picture_cases.is_empty() || args.picture_cases.contains(&case.name);
+                let wanted =
+                    args.picture_cases.is_empty() || args.picture_cases.contains(&case.name);
                 let (picture, diff_range) = if wanted && (k == 0 || args.all_pictures) {
                     let name = format!("{}-{}-{}.png", case.name, file_safe(&spec.label), res);
                     let range = write_triptych(&args.out.join(&name), &out.map, &truth)?;

@@ -1,4 +1,6 @@
-//! `caustics render`.
+//! `caustics render`. The caustics map comes from the CPU reference; the final image is rendered
+//! on the GPU (`caustics_gpu::final_image`, the twin of `caustics_core::render`) when an adapter
+//! can be had, else, or with `--cpu`, on the CPU.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -10,6 +12,9 @@ use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::render::{RenderOptions, render};
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques;
+use caustics_core::water::Surface;
+use caustics_gpu::final_image::FinalImage;
+use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
 
 use crate::progress;
 
@@ -42,6 +47,17 @@ pub struct RenderArgs {
     /// Samples per pixel along each axis of the final image.
     #[arg(long, default_value_t = 2)]
     supersampling: u32,
+    /// Render the final image on the CPU even when a GPU is present.
+    #[arg(long, conflicts_with_all = ["backend", "adapter"])]
+    cpu: bool,
+    /// GPU backend for the final image: vulkan, metal, dx12 or gl (comma-separated list allowed;
+    /// default: WGPU_BACKEND, else any).
+    #[arg(long)]
+    backend: Option<String>,
+    /// Render on the GPU adapter whose name contains this (case-insensitive; default:
+    /// WGPU_ADAPTER_NAME, else the high-performance one).
+    #[arg(long)]
+    adapter: Option<String>,
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
@@ -152,6 +168,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
         bail!("--out {}: expected a .png file name", o.display());
     }
 
+    // The device for the final image, set up before the caustics so that a bad --backend fails
+    // at once and the adapter is named first.
+    let gpu = match &out {
+        Some(_) if !args.cpu => gpu_renderer(&args)?,
+        _ => None,
+    };
+
     let surface = match &scene.water {
         Some(w) => {
             if matches!(w.source, WaterSource::Ripple(_)) {
@@ -196,18 +219,36 @@ pub fn run(args: RenderArgs) -> Result<()> {
     }
     if let Some(out) = &out {
         let started = Instant::now();
-        let bar = progress::bar("image");
-        let image = render(
-            &scene,
-            surface.as_deref(),
-            map.as_ref(),
-            &RenderOptions {
-                supersampling: args.supersampling.max(1),
-                ..Default::default()
-            },
-            &progress::callback(&bar),
-        );
-        bar.finish_and_clear();
+        let options = RenderOptions {
+            supersampling: args.supersampling.max(1),
+            ..Default::default()
+        };
+        let from_gpu = gpu.as_ref().and_then(|(ctx, final_image)| {
+            render_on_gpu(
+                ctx,
+                final_image,
+                &scene,
+                surface.as_deref(),
+                map.as_ref(),
+                &options,
+            )
+        });
+        let on = if from_gpu.is_some() { "GPU" } else { "CPU" };
+        let image = match from_gpu {
+            Some(image) => image,
+            None => {
+                let bar = progress::bar("image");
+                let image = render(
+                    &scene,
+                    surface.as_deref(),
+                    map.as_ref(),
+                    &options,
+                    &progress::callback(&bar),
+                );
+                bar.finish_and_clear();
+                image
+            }
+        };
         image::save_buffer(
             out,
             &image.rgb,
@@ -217,7 +258,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         )
         .with_context(|| format!("cannot write {}", out.display()))?;
         eprintln!(
-            "wrote {} ({} x {}, {:.2} s)",
+            "wrote {} ({} x {}, {:.2} s on the {on})",
             out.display(),
             image.width,
             image.height,
@@ -225,6 +266,75 @@ pub fn run(args: RenderArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The GPU device and the final-image pipeline, or `None` (after one line on stderr saying why)
+/// when no adapter can be had here: the image is then rendered on the CPU. A backend name that
+/// does not exist is the user's mistake and an error, not a reason to fall back.
+fn gpu_renderer(args: &RenderArgs) -> Result<Option<(GpuContext, FinalImage)>> {
+    let options = GpuOptions {
+        backend: args.backend.clone(),
+        adapter_name: args.adapter.clone(),
+    };
+    let ctx = match GpuContext::headless(&options) {
+        Ok(ctx) => ctx,
+        Err(e @ GpuError::BadOption(_)) => return Err(anyhow::Error::new(e).context("--backend")),
+        Err(e) => {
+            let reason = match e {
+                GpuError::NoAdapter { wanted, seen } if seen.is_empty() => {
+                    format!("wanted {wanted}; none present")
+                }
+                GpuError::NoAdapter { wanted, seen } => {
+                    format!("wanted {wanted}; present: {}", seen.join(", "))
+                }
+                other => other.to_string(),
+            };
+            eprintln!("no GPU adapter ({reason}): rendering on the CPU");
+            return Ok(None);
+        }
+    };
+    // A software adapter (lavapipe, WARP) runs the pass on the CPU's cores, more slowly than the
+    // CPU renderer does; say so rather than choose for the user.
+    let hint = if FinalImage::software_adapter(&ctx) {
+        " (a software adapter: --cpu may be faster)"
+    } else {
+        ""
+    };
+    eprintln!("GPU: {}{hint}", ctx.describe());
+    match FinalImage::new(&ctx) {
+        Ok(final_image) => Ok(Some((ctx, final_image))),
+        Err(e) => {
+            eprintln!("the GPU cannot build the final-image pass ({e}): rendering on the CPU");
+            Ok(None)
+        }
+    }
+}
+
+/// The final image from the GPU twin of `caustics_core::render::render`, or `None` (after one line
+/// on stderr) when the GPU fails at it, e.g. an image larger than its textures may be.
+fn render_on_gpu(
+    ctx: &GpuContext,
+    final_image: &FinalImage,
+    scene: &Scene,
+    surface: Option<&dyn Surface>,
+    map: Option<&caustics_core::map::CausticsMap>,
+    options: &RenderOptions,
+) -> Option<caustics_core::render::Image> {
+    let mut timer = GpuTimer::new(ctx, 1);
+    match final_image.render(ctx, scene, surface, map, options, Some(&mut timer)) {
+        Ok(image) => {
+            if let Ok(times) = timer.read(ctx) {
+                for t in times {
+                    tracing::info!("GPU pass `{}`: {:.1} ms", t.label, t.ms);
+                }
+            }
+            Some(image)
+        }
+        Err(e) => {
+            eprintln!("the GPU render failed ({e}): rendering on the CPU");
+            None
+        }
+    }
 }
 
 fn check_size(flag: &str, w: u32, h: u32) -> Result<()> {

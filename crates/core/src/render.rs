@@ -45,7 +45,7 @@ pub struct Image {
     pub rgb: Vec<u8>,
 }
 
-const AMBIENT: f64 = 0.12;
+pub const AMBIENT: f64 = 0.12;
 
 struct Tracer<'a> {
     scene: &'a Scene,
@@ -216,6 +216,11 @@ impl Tracer<'_> {
 
     /// Radiance arriving along `d` at point `o` under the water.
     fn trace_under(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+        // The same bound as `trace`: a ray reflected inside a glass object under water would
+        // otherwise recurse until the stack overflows.
+        if depth > 6 {
+            return DVec3::ZERO;
+        }
         let scene = self.scene;
         let water = scene.water.as_ref().expect("under water");
         let size = water.size;

@@ -4,6 +4,7 @@
 //! `caustics-core`.
 
 pub mod context;
+pub mod final_image;
 pub mod probe;
 pub mod shaders;
 pub mod timing;

@@ -87,4 +87,5 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &OCEAN_OUTPUT,
     &RIPPLE_STEP,
     &RIPPLE_DROP,
+    &crate::final_image::FINAL_IMAGE,
 ];

@@ -74,3 +74,47 @@ fn water_uniform_structs_match_their_wgsl_size() {
         size_of::<RippleDrop>()
     );
 }
+
+#[test]
+fn yuksel_pass1_validates_for_every_target_count() {
+    for targets in 1..=8 {
+        let source = caustics_gpu::yuksel::pass1_source(targets);
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{targets} targets: {}", e.emit_to_string(&source)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{targets} targets: {}", e.emit_to_string(&source)));
+    }
+    let source = caustics_gpu::yuksel::PASS2.composed();
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("Yuksel"))
+        .unwrap();
+    assert_eq!(
+        ty.inner.size(module.to_ctx()) as usize,
+        std::mem::size_of::<caustics_gpu::yuksel::YukselUniform>()
+    );
+}
+
+#[test]
+fn final_image_structs_match_their_wgsl_size() {
+    use caustics_gpu::final_image::{
+        FINAL_IMAGE, FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject,
+    };
+    use std::mem::size_of;
+    assert_eq!(
+        wgsl_size(&FINAL_IMAGE, "FinalImage"),
+        size_of::<FinalImageUniform>()
+    );
+    assert_eq!(wgsl_size(&FINAL_IMAGE, "Object"), size_of::<GpuObject>());
+    assert_eq!(wgsl_size(&FINAL_IMAGE, "BvhNode"), size_of::<GpuBvhNode>());
+    assert_eq!(
+        wgsl_size(&FINAL_IMAGE, "BvhTriangle"),
+        size_of::<GpuBvhTriangle>()
+    );
+}

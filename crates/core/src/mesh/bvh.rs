@@ -49,6 +49,20 @@ pub struct MeshBvh {
     triangles: Vec<Triangle>,
 }
 
+/// One node of a [`MeshBvh`] as [`MeshBvh::flatten`] hands it out for upload (e.g. to a GPU storage
+/// buffer): the same layout the traversal reads, so a GPU twin of [`MeshBvh::intersect`] can walk it
+/// node for node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatNode {
+    pub min: DVec3,
+    pub max: DVec3,
+    /// A leaf's first slot in the triangle order, or an interior node's left child (the right
+    /// child follows it).
+    pub start: u32,
+    /// The number of triangles in a leaf; 0 marks an interior node.
+    pub count: u32,
+}
+
 impl MeshBvh {
     pub(super) fn build(mesh: &TriangleMesh) -> MeshBvh {
         let boxes: Vec<(DVec3, DVec3)> = mesh
@@ -112,6 +126,23 @@ impl MeshBvh {
             })
             .collect();
         MeshBvh { nodes, triangles }
+    }
+
+    /// The tree as plain data, for a GPU twin of [`MeshBvh::intersect`]: the nodes (root first), and
+    /// for each triangle slot a leaf refers to, the index of the mesh triangle in it. The slot's
+    /// `p0, e1, e2` are that triangle's first vertex and its edges to the other two, as here.
+    pub fn flatten(&self) -> (Vec<FlatNode>, Vec<u32>) {
+        let nodes = self
+            .nodes
+            .iter()
+            .map(|n| FlatNode {
+                min: n.min,
+                max: n.max,
+                start: n.start,
+                count: n.count,
+            })
+            .collect();
+        (nodes, self.triangles.iter().map(|t| t.index).collect())
     }
 
     /// Nearest hit of the ray `origin + t·dir` with `0 < t < t_max`, the same one

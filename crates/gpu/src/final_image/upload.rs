@@ -1,0 +1,303 @@
+//! What the final-image pass reads, laid out as the structs of `shaders/final_image.wgsl` and
+//! `shaders/bvh.wgsl`: the frame's uniform (camera, sun, water, flags), the objects with their
+//! flattened trees, and the frozen water surface as a height grid.
+//!
+//! Everything the CPU renderer derives once per image (`render.rs`, `render`: the slab bound
+//! `h_max`, the refracted sun and its flat-water transmittance, the camera basis) is derived here
+//! in f64 the same way and handed to the shader rounded to f32, so the two sides start from the
+//! same numbers.
+
+use caustics_core::grid::{Edge, Grid};
+use caustics_core::map::CausticsMap;
+use caustics_core::optics::{fresnel_transmittance, refract};
+use caustics_core::render::{AMBIENT, RenderOptions};
+use caustics_core::scene::{Albedo, FloorPattern, Material, Scene};
+use caustics_core::water::{GridSurface, Surface, sample_grid};
+use glam::{DVec2, DVec3};
+
+/// Mirrors `FinalImage` in `shaders/final_image.wgsl` (uniform layout: each `vec3` is padded by the
+/// scalar after it).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FinalImageUniform {
+    pub camera_position: [f32; 3],
+    pub exposure: f32,
+    pub camera_forward: [f32; 3],
+    pub ambient: f32,
+    /// The camera's right vector times `tan(fov_y / 2)` times the aspect ratio.
+    pub camera_right: [f32; 3],
+    pub water_size: f32,
+    /// The camera's up vector times `tan(fov_y / 2)`.
+    pub camera_up: [f32; 3],
+    pub water_level: f32,
+    pub sun: [f32; 3],
+    pub sun_intensity: f32,
+    pub sun_water: [f32; 3],
+    pub t_flat: f32,
+    pub light_color: [f32; 3],
+    pub ior: f32,
+    pub absorption: [f32; 3],
+    pub h_max: f32,
+    pub scene_size: f32,
+    pub map_size: f32,
+    pub width: u32,
+    pub height: u32,
+    pub supersampling: u32,
+    pub object_count: u32,
+    pub flags: u32,
+    pub albedo: u32,
+}
+
+/// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image.wgsl`.
+pub mod flags {
+    pub const WATER: u32 = 1;
+    pub const SURFACE: u32 = 2;
+    pub const CAUSTICS: u32 = 4;
+    pub const TERRAIN: u32 = 8;
+    pub const WRAP_SURFACE: u32 = 16;
+    pub const WRAP_CAUSTICS: u32 = 32;
+}
+
+/// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
+pub mod albedo {
+    pub const TILES: u32 = 0;
+    pub const SAND: u32 = 1;
+    pub const PLAIN: u32 = 2;
+    pub const IMAGE: u32 = 3;
+}
+
+/// Mirrors `Object` in `shaders/final_image.wgsl` (storage layout).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuObject {
+    /// Diffuse colour, or glass tint.
+    pub color: [f32; 3],
+    pub ior: f32,
+    /// The object's root in the node buffer.
+    pub root: u32,
+    pub glass: u32,
+    pub _pad: [u32; 2],
+}
+
+/// Mirrors `BvhNode` in `shaders/bvh.wgsl`; `start` is global (node or triangle-slot buffer).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuBvhNode {
+    pub min: [f32; 3],
+    pub start: u32,
+    pub max: [f32; 3],
+    pub count: u32,
+}
+
+/// Mirrors `BvhTriangle` in `shaders/bvh.wgsl`: `p0`, the edges, the vertex normals (`w` unused).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuBvhTriangle {
+    pub p0: [f32; 4],
+    pub e1: [f32; 4],
+    pub e2: [f32; 4],
+    pub n0: [f32; 4],
+    pub n1: [f32; 4],
+    pub n2: [f32; 4],
+}
+
+fn f3(v: DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+fn f4(v: DVec3) -> [f32; 4] {
+    v.as_vec3().extend(0.0).to_array()
+}
+
+/// Side of the square grid the water surface is sampled on for the GPU: the caustics map's
+/// resolution (the detail the scene asks the caustics to resolve), at least 256 so that small maps
+/// still give the view rays a smooth surface, and at most 4096 (a 64 MiB texture, within every
+/// adapter's limits with its border).
+pub fn water_grid_resolution(scene: &Scene) -> usize {
+    scene
+        .caustics
+        .width
+        .max(scene.caustics.height)
+        .clamp(256, 4096) as usize
+}
+
+/// The frozen water surface as the GPU sees it: `surface` sampled on the lattice of
+/// [`water_grid_resolution`] over the water's square and read back through the same bicubic
+/// interpolant, with the water's edge rule. `None` without water. Render on the CPU with this
+/// surface to get the image the GPU renders.
+pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
+    let water = scene.water.as_ref()?;
+    let n = water_grid_resolution(scene);
+    Some(GridSurface {
+        grid: sample_grid(surface, n, n, water.size),
+        size: water.size,
+        edge: water.edge(),
+    })
+}
+
+/// Texels of border around the water's height grid on the GPU: the reach of the bicubic's taps
+/// (`WATER_BORDER` in `final_image.wgsl`).
+pub const WATER_BORDER: usize = 2;
+
+/// `grid` with [`WATER_BORDER`] texels added on every side, taken across the edge by `edge` (the
+/// neighbours on the far side for a periodic surface, the edge texel for a clamped one). Every tap
+/// the bicubic makes for a point of the square, wrapped into it if periodic, then lies inside the
+/// texture, and reads what the CPU's `Grid::sample` reads for that tap.
+pub fn bordered_grid(grid: &Grid, edge: Edge) -> Grid {
+    let b = WATER_BORDER as i64;
+    let (cols, rows) = (grid.cols as i64, grid.rows as i64);
+    let source = |k: i64, n: i64| match edge {
+        Edge::Wrap => k.rem_euclid(n),
+        Edge::Clamp => k.clamp(0, n - 1),
+    } as usize;
+    Grid::from_fn(
+        grid.cols + 2 * WATER_BORDER,
+        grid.rows + 2 * WATER_BORDER,
+        |i, j| grid.at(source(i as i64 - b, rows), source(j as i64 - b, cols)),
+    )
+}
+
+/// Bound on |h| of the water, for the slab the surface lies in: computed as `render.rs` `render`
+/// does (the largest |h| on a 128² lattice, times 1.5), so both sides search the same slab and
+/// put the deck at the same height.
+pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
+    let n = 128;
+    let mut m: f64 = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) * (size / n as f64);
+            m = m.max(surface.height(p).abs());
+        }
+    }
+    m * 1.5 + 1e-6
+}
+
+/// The frame's uniform. `h_max` is [`slab_half_height`] of the surface the shader reads (0 without
+/// one); `object_count` the number of objects uploaded.
+pub(super) fn uniform(
+    scene: &Scene,
+    surface: bool,
+    h_max: f64,
+    caustics: Option<&CausticsMap>,
+    options: &RenderOptions,
+    object_count: u32,
+) -> FinalImageUniform {
+    let cam = &scene.camera;
+    // `Camera::ray`'s basis, with the field of view and the aspect ratio folded in.
+    let forward = (cam.target - cam.position).normalize();
+    let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
+    let up = right.cross(forward);
+    let half = (cam.fov_y.to_radians() * 0.5).tan();
+    let aspect = cam.width as f64 / cam.height as f64;
+
+    let water = scene.water.as_ref();
+    let ior = water.map_or(1.0, |w| w.ior);
+    let sun = scene.light.direction;
+    let sun_water = refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun);
+    let t_flat = fresnel_transmittance(-sun.z, 1.0, ior);
+
+    let mut f = 0;
+    if let Some(w) = water {
+        f |= flags::WATER;
+        if surface {
+            f |= flags::SURFACE;
+        }
+        if w.wrap {
+            f |= flags::WRAP_SURFACE;
+        }
+        if caustics.is_some() {
+            f |= flags::CAUSTICS;
+        }
+        if w.wrap && scene.floor.terrain.is_none() {
+            f |= flags::WRAP_CAUSTICS;
+        }
+    }
+    if scene.floor.terrain.is_some() {
+        f |= flags::TERRAIN;
+    }
+    FinalImageUniform {
+        camera_position: f3(cam.position),
+        exposure: options.exposure as f32,
+        camera_forward: f3(forward),
+        ambient: AMBIENT as f32,
+        camera_right: f3(right * (half * aspect)),
+        water_size: water.map_or(scene.size, |w| w.size) as f32,
+        camera_up: f3(up * half),
+        water_level: water.map_or(0.0, |w| w.level()) as f32,
+        sun: f3(sun),
+        sun_intensity: scene.light.intensity as f32,
+        sun_water: f3(sun_water),
+        t_flat: t_flat as f32,
+        light_color: f3(scene.light.color),
+        ior: ior as f32,
+        absorption: f3(water.map_or(DVec3::ZERO, |w| w.absorption)),
+        h_max: h_max as f32,
+        scene_size: scene.size as f32,
+        map_size: caustics.map_or(scene.size, |m| m.size) as f32,
+        width: cam.width,
+        height: cam.height,
+        supersampling: options.supersampling.max(1),
+        object_count,
+        flags: f,
+        albedo: match &scene.floor.albedo {
+            Albedo::Pattern(FloorPattern::Tiles) => albedo::TILES,
+            Albedo::Pattern(FloorPattern::Sand) => albedo::SAND,
+            Albedo::Pattern(FloorPattern::Plain) => albedo::PLAIN,
+            Albedo::Image { .. } => albedo::IMAGE,
+        },
+    }
+}
+
+/// The scene's objects for the GPU: one entry each, and every object's tree appended to shared
+/// node and triangle-slot buffers with its indices made global.
+pub struct Meshes {
+    pub objects: Vec<GpuObject>,
+    pub nodes: Vec<GpuBvhNode>,
+    pub triangles: Vec<GpuBvhTriangle>,
+}
+
+/// Build each object's [`caustics_core::mesh::MeshBvh`] (the same tree the CPU builds, so both
+/// sides visit the same nodes) and flatten it.
+pub fn meshes(scene: &Scene) -> Meshes {
+    let mut m = Meshes {
+        objects: Vec::with_capacity(scene.objects.len()),
+        nodes: Vec::new(),
+        triangles: Vec::new(),
+    };
+    for obj in &scene.objects {
+        let mesh = &obj.mesh;
+        let (nodes, order) = mesh.bvh().flatten();
+        let node_base = m.nodes.len() as u32;
+        let slot_base = m.triangles.len() as u32;
+        m.nodes.extend(nodes.iter().map(|n| GpuBvhNode {
+            min: f3(n.min),
+            max: f3(n.max),
+            start: n.start + if n.count > 0 { slot_base } else { node_base },
+            count: n.count,
+        }));
+        m.triangles.extend(order.iter().map(|&t| {
+            let [a, b, c] = mesh.indices[t as usize].map(|i| i as usize);
+            let p0 = mesh.positions[a];
+            GpuBvhTriangle {
+                p0: f4(p0),
+                e1: f4(mesh.positions[b] - p0),
+                e2: f4(mesh.positions[c] - p0),
+                n0: f4(mesh.normals[a]),
+                n1: f4(mesh.normals[b]),
+                n2: f4(mesh.normals[c]),
+            }
+        }));
+        let (color, ior, glass) = match &obj.material {
+            Material::Diffuse { color } => (*color, 1.0, 0),
+            Material::Glass { ior, tint } => (*tint, *ior, 1),
+        };
+        m.objects.push(GpuObject {
+            color: f3(color),
+            ior: ior as f32,
+            root: node_base,
+            glass,
+            _pad: [0; 2],
+        });
+    }
+    m
+}

@@ -1,0 +1,533 @@
+// The final image, one invocation per pixel: the GPU twin of caustics-core/src/render.rs, function
+// for function (`render`, `Tracer::trace`, `trace_under`, `shade_floor`, `shade_object`,
+// `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`). The light
+// transport is documented there. Composed after optics.wgsl, water.wgsl, shading.wgsl and bvh.wgsl.
+//
+// WGSL has no recursion, and the CPU's recursion is linear in what it returns: `trace` returns the
+// reflected sky plus `t_view` times what `trace_under` returns, a glass object returns
+// `(1 - T)` times one trace plus `T tint` times another, and `trace_under` multiplies all it gets by
+// `exp(-K d)`. So each function here takes the weight `w` its CPU twin's result would be multiplied
+// by, adds `w * colour` for what it would return directly (`emit`), and pushes the rays it would
+// recurse into with their weights on a small stack (`push_ray`) that `radiance` drains. The sum is
+// the CPU's up to the order of the additions.
+
+// Mirrors `FinalImageUniform` in crates/gpu/src/final_image/upload.rs.
+struct FinalImage {
+    camera_position: vec3<f32>,
+    exposure: f32,
+    camera_forward: vec3<f32>,
+    // render.rs `AMBIENT`.
+    ambient: f32,
+    // The camera's right vector times tan(fov_y / 2) times the aspect ratio.
+    camera_right: vec3<f32>,
+    // The water's square (the scene's without water).
+    water_size: f32,
+    // The camera's up vector times tan(fov_y / 2).
+    camera_up: vec3<f32>,
+    // The water's rest level, `water.depth`.
+    water_level: f32,
+    // Unit direction the sunlight travels.
+    sun: vec3<f32>,
+    sun_intensity: f32,
+    // The sun refracted by flat water, and that water's transmittance for it.
+    sun_water: vec3<f32>,
+    t_flat: f32,
+    light_color: vec3<f32>,
+    // The water's index of refraction (1 without water).
+    ior: f32,
+    absorption: vec3<f32>,
+    // Bound on |h| of the water: the slab the surface lies in.
+    h_max: f32,
+    // `scene.size`: the terrain's square and the floor's without water.
+    scene_size: f32,
+    // The square the caustics map covers.
+    map_size: f32,
+    width: u32,
+    height: u32,
+    supersampling: u32,
+    object_count: u32,
+    flags: u32,
+    // ALBEDO_* of shading.wgsl.
+    albedo: u32,
+}
+
+// `FinalImageUniform::flags`.
+const FLAG_WATER: u32 = 1u;
+const FLAG_SURFACE: u32 = 2u;
+const FLAG_CAUSTICS: u32 = 4u;
+const FLAG_TERRAIN: u32 = 8u;
+const FLAG_WRAP_SURFACE: u32 = 16u;
+const FLAG_WRAP_CAUSTICS: u32 = 32u;
+
+// One object: its material and the root of its tree in bvh_nodes. Mirrors `GpuObject`.
+struct Object {
+    // Diffuse colour, or glass tint.
+    color: vec3<f32>,
+    ior: f32,
+    root: u32,
+    glass: u32,
+    _pad: vec2<u32>,
+}
+
+@group(0) @binding(0) var<uniform> params: FinalImage;
+// The water's displacement on the scene square (R32Float, with a border: see
+// water_height_gradient), read through grid_sample.
+@group(0) @binding(1) var water_height: texture_2d<f32>;
+// The terrain's height (R32Float), clamped at its edges.
+@group(0) @binding(2) var terrain_height: texture_2d<f32>;
+// The caustics map (Rgba32Float, rgb used), filtered by hand as `CausticsMap::sample` does.
+@group(0) @binding(3) var caustics_map: texture_2d<f32>;
+// The floor's albedo image (Rgba32Float, linear), when there is one.
+@group(0) @binding(4) var albedo_image: texture_2d<f32>;
+@group(0) @binding(5) var<storage, read> objects: array<Object>;
+@group(0) @binding(6) var image: texture_storage_2d<rgba8unorm, write>;
+
+// Stands for the CPU's f64::INFINITY as a ray's range.
+const FAR: f32 = 3.0e38;
+// render.rs gives up past this recursion depth (`if depth > 6`).
+const MAX_DEPTH: u32 = 6u;
+// Pending rays: each level of glass leaves at most one ray waiting, so 7 levels need 8 slots.
+const RAY_STACK: u32 = 16u;
+// Steps of the slab search for the water and the terrain, and bisection steps after it.
+const WATER_STEPS: u32 = 24u;
+const FLOOR_STEPS: u32 = 64u;
+const BISECTIONS: u32 = 30u;
+
+struct Ray {
+    o: vec3<f32>,
+    d: vec3<f32>,
+    // What the CPU would multiply this ray's radiance by on the way back to the pixel.
+    weight: vec3<f32>,
+    depth: u32,
+    // Traced by `trace_under` (else by `trace`).
+    under: bool,
+}
+
+var<private> rays: array<Ray, RAY_STACK>;
+var<private> ray_count: u32;
+var<private> pixel_radiance: vec3<f32>;
+
+fn push_ray(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, under: bool) {
+    if ray_count < RAY_STACK {
+        rays[ray_count] = Ray(o, d, weight, depth, under);
+        ray_count++;
+    }
+}
+
+fn emit(weight: vec3<f32>, colour: vec3<f32>) {
+    pixel_radiance += weight * colour;
+}
+
+fn has(flag: u32) -> bool {
+    return (params.flags & flag) != 0u;
+}
+
+// A pool (a flat floor) is sunk into a deck; a terrain is open water.
+fn is_pool() -> bool {
+    return !has(FLAG_TERRAIN);
+}
+
+fn sun_radiance() -> vec3<f32> {
+    return params.light_color * params.sun_intensity;
+}
+
+fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
+    return sky(d, params.sun, sun_radiance());
+}
+
+fn albedo_at(p: vec2<f32>, size: f32) -> vec3<f32> {
+    return floor_albedo(params.albedo, albedo_image, p, size);
+}
+
+fn absorbed(distance: f32) -> vec3<f32> {
+    return exp(-params.absorption * distance);
+}
+
+// The water's height grid arrives with a border of WATER_BORDER texels on every side, copied across
+// the edge by the water's rule (`bordered_grid` in final_image/upload.rs), so that the shared
+// `grid_sample` can run with clamping and still read the surface exactly: a periodic surface is
+// wrapped here once per sample, in floating point, instead of twice per tap with integer
+// remainders, which CPU adapters such as lavapipe cannot vectorise (it halves the pass there).
+const WATER_BORDER: f32 = 2.0;
+
+fn water_height_gradient(p: vec2<f32>) -> vec3<f32> {
+    let dims = f32(textureDimensions(water_height).x);
+    let n = dims - 2.0 * WATER_BORDER;
+    let size = params.water_size;
+    var q = p;
+    if has(FLAG_WRAP_SURFACE) {
+        q = p - size * floor(p / size);
+    }
+    return grid_sample(water_height, q + WATER_BORDER * (size / n), size * (dims / n), false);
+}
+
+fn floor_height(p: vec2<f32>) -> f32 {
+    if !has(FLAG_TERRAIN) {
+        return 0.0;
+    }
+    return grid_sample(terrain_height, p, params.scene_size, false).x;
+}
+
+// `CausticsMap::sample`: bilinear between texel centres, clamped or wrapped at the edges, by hand
+// with textureLoad (an Rgba32Float texture need not be filterable).
+fn caustics_texel(i: i32, j: i32, wrap: bool) -> vec3<f32> {
+    let dims = vec2<i32>(textureDimensions(caustics_map));
+    var c = vec2<i32>(j, i);
+    if wrap {
+        c = ((c % dims) + dims) % dims;
+    } else {
+        c = clamp(c, vec2<i32>(0), dims - 1);
+    }
+    return textureLoad(caustics_map, c, 0).rgb;
+}
+
+fn sample_caustics(x: f32, y: f32, wrap: bool) -> vec3<f32> {
+    let dims = vec2<f32>(textureDimensions(caustics_map));
+    let u = x / params.map_size * dims.x - 0.5;
+    let v = y / params.map_size * dims.y - 0.5;
+    let j0 = floor(u);
+    let i0 = floor(v);
+    let fu = u - j0;
+    let fv = v - i0;
+    let i = i32(i0);
+    let j = i32(j0);
+    let a = caustics_texel(i, j, wrap);
+    let b = caustics_texel(i, j + 1, wrap);
+    let c = caustics_texel(i + 1, j, wrap);
+    let d = caustics_texel(i + 1, j + 1, wrap);
+    return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
+}
+
+struct ObjectHit {
+    t: f32,
+    normal: vec3<f32>,
+    k: u32,
+    found: bool,
+}
+
+fn nearest_object(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> ObjectHit {
+    var best: ObjectHit;
+    best.found = false;
+    best.t = t_max;
+    for (var k = 0u; k < params.object_count; k++) {
+        let h = bvh_intersect(objects[k].root, o, d, best.t, false);
+        if h.found {
+            best = ObjectHit(h.t, h.normal, k, true);
+        }
+    }
+    return best;
+}
+
+// Only diffuse objects cast shadows.
+fn occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
+    for (var k = 0u; k < params.object_count; k++) {
+        if objects[k].glass == 0u && bvh_intersect(objects[k].root, o, d, t_max, true).found {
+            return true;
+        }
+    }
+    return false;
+}
+
+fn inside(p: vec2<f32>, size: f32) -> bool {
+    return p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size;
+}
+
+// Distance along the ray to the wall of the pool square it leaves through.
+fn wall_distance(o: vec3<f32>, d: vec3<f32>, size: f32) -> f32 {
+    var t = FAR;
+    for (var a = 0; a < 2; a++) {
+        if d[a] > 0.0 {
+            t = min(t, (size - o[a]) / d[a]);
+        } else if d[a] < 0.0 {
+            t = min(t, -o[a] / d[a]);
+        }
+    }
+    return max(t, 0.0);
+}
+
+// Height of the ray above the water surface at distance t.
+fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
+    let p = o + d * t;
+    return p.z - params.water_level - water_height_gradient(p.xy).x;
+}
+
+// The first crossing of the ray with z = level + h(x, y): xyz the point, w the distance (-1: none).
+fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    let top = params.water_level + params.h_max;
+    let bottom = params.water_level - params.h_max;
+    if o.z < bottom || d.z >= 0.0 {
+        return vec4<f32>(o, -1.0);
+    }
+    let t0 = max((top - o.z) / d.z, 0.0);
+    let t1 = (bottom - o.z) / d.z;
+    let dt = (t1 - t0) / f32(WATER_STEPS);
+    var a = t0;
+    for (var k = 1u; k <= WATER_STEPS; k++) {
+        let b = t0 + dt * f32(k);
+        if water_gap(o, d, b) <= 0.0 {
+            var lo = a;
+            var hi = b;
+            for (var s = 0u; s < BISECTIONS; s++) {
+                let m = 0.5 * (lo + hi);
+                if water_gap(o, d, m) > 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            return vec4<f32>(o + d * t, t);
+        }
+        a = b;
+    }
+    return vec4<f32>(o, -1.0);
+}
+
+// Height of the ray above the floor or terrain at distance t.
+fn floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
+    let p = o + d * t;
+    return p.z - floor_height(p.xy);
+}
+
+// Where an underwater ray meets the floor or terrain: xyz the point, w the distance (FAR, at `o`,
+// for a ray going up).
+fn hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    if d.z >= 0.0 {
+        return vec4<f32>(o, FAR);
+    }
+    let t_end = -o.z / d.z;
+    if !has(FLAG_TERRAIN) {
+        return vec4<f32>(o + d * t_end, t_end);
+    }
+    var a = 0.0;
+    for (var k = 1u; k <= FLOOR_STEPS; k++) {
+        let b = t_end * f32(k) / f32(FLOOR_STEPS);
+        if floor_gap(o, d, b) <= 0.0 {
+            var lo = a;
+            var hi = b;
+            for (var s = 0u; s < BISECTIONS; s++) {
+                let m = 0.5 * (lo + hi);
+                if floor_gap(o, d, m) > 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            return vec4<f32>(o + d * t, t);
+        }
+        a = b;
+    }
+    return vec4<f32>(o + d * t_end, t_end);
+}
+
+fn shade_floor(p: vec3<f32>) -> vec3<f32> {
+    let size = params.water_size;
+    let albedo = albedo_at(p.xy, size);
+    let e_h = params.sun_intensity * -params.sun.z;
+    var relative: vec3<f32>;
+    if has(FLAG_CAUSTICS) {
+        relative = sample_caustics(p.x, p.y, has(FLAG_WRAP_CAUSTICS));
+    } else {
+        let d = (params.water_level - p.z) / -params.sun_water.z;
+        relative = absorbed(d);
+    }
+    var shadow = 1.0;
+    if occluded(p + vec3<f32>(0.0, 0.0, 1e-4), -params.sun_water, FAR) {
+        shadow = 0.0;
+    }
+    let direct = relative * (e_h * params.t_flat * shadow);
+    let ambient = params.ambient * absorbed(params.water_level);
+    return albedo * (direct + ambient) * params.light_color;
+}
+
+fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32, under: bool, w: vec3<f32>) {
+    let obj = objects[k];
+    // Closed meshes with outward normals: the ray enters where it meets the outside.
+    let entering = dot(n_out, d) < 0.0;
+    let n = select(-n_out, n_out, entering);
+    if obj.glass == 0u {
+        var sun_dir = params.sun;
+        var t = 1.0;
+        if under {
+            sun_dir = params.sun_water;
+            t = params.t_flat;
+        }
+        let lambert = max(dot(n, -sun_dir), 0.0);
+        var lit = 0.0;
+        if lambert > 0.0 && !occluded(p + n * 1e-4, -sun_dir, FAR) {
+            lit = 1.0;
+        }
+        var water_path = vec3<f32>(1.0);
+        if has(FLAG_WATER) && under {
+            water_path = absorbed(max(params.water_level - p.z, 0.0) / -sun_dir.z);
+        }
+        emit(w, obj.color * (water_path * (params.sun_intensity * lambert * lit * t) + vec3<f32>(params.ambient)) * params.light_color);
+        return;
+    }
+    var outside_ior = 1.0;
+    if under {
+        outside_ior = params.ior;
+    }
+    var n1 = outside_ior;
+    var n2 = obj.ior;
+    if !entering {
+        n1 = obj.ior;
+        n2 = outside_ior;
+    }
+    let cos_i = -dot(d, n);
+    let t = fresnel_transmittance(cos_i, n1, n2);
+    push_ray(p + n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, under);
+    let r = refract_dir(d, n, n1 / n2);
+    if r.w != 0.0 {
+        push_ray(p - n * 1e-5, r.xyz, w * t * obj.color, depth + 1u, under);
+    }
+}
+
+// Above the water, outside the pool: the deck, or the sky.
+fn shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    if is_pool() && d.z < 0.0 {
+        let deck = params.water_level + 0.1 * min(params.water_size, 1.0) + params.h_max;
+        let t = (deck - o.z) / d.z;
+        if t > 0.0 {
+            let p = o + d * t;
+            let s = floor(p.x * 3.0) + floor(p.y * 3.0);
+            let v = s - 2.0 * floor(s / 2.0);
+            let albedo = vec3<f32>(0.32 + 0.04 * v);
+            return albedo * (params.sun_intensity * -params.sun.z + params.ambient) * params.light_color;
+        }
+    }
+    if !is_pool() && d.z < 0.0 {
+        // Beyond the surface's slab the open sea: the flat-water Fresnel reflection of the sky.
+        let r = fresnel_transmittance(-d.z, 1.0, params.ior);
+        return sky_radiance(reflect(d, vec3<f32>(0.0, 0.0, 1.0))) * (1.0 - r);
+    }
+    return sky_radiance(d);
+}
+
+// No water in the scene: objects over the floor plane in open air.
+fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+    var t_floor = FAR;
+    if d.z < 0.0 {
+        t_floor = -o.z / d.z;
+    }
+    let obj = nearest_object(o, d, t_floor);
+    if obj.found {
+        shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
+        return;
+    }
+    if t_floor < FAR {
+        let p = o + d * t_floor;
+        let albedo = albedo_at(p.xy, params.scene_size);
+        var lit = 1.0;
+        if occluded(p + vec3<f32>(0.0, 0.0, 1e-5), -params.sun, FAR) {
+            lit = 0.0;
+        }
+        let e = params.sun_intensity * -params.sun.z * lit + params.ambient;
+        emit(w, albedo * e * params.light_color);
+        return;
+    }
+    emit(w, sky_radiance(d));
+}
+
+fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+    if !has(FLAG_WATER) {
+        trace_air(o, d, depth, w);
+        return;
+    }
+    let size = params.water_size;
+    // Water surface hit, searched in the slab |z - level| <= h_max.
+    var water = vec4<f32>(o, -1.0);
+    if has(FLAG_SURFACE) {
+        water = hit_water(o, d);
+    }
+    let hit = water.w >= 0.0;
+    let obj = nearest_object(o, d, select(FAR, water.w, hit));
+    if obj.found {
+        shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
+        return;
+    }
+    if !hit {
+        // A pool is sunk into a deck around it; beyond the terrain's square the world goes on.
+        emit(w, shade_above(o, d));
+        return;
+    }
+    let p = water.xyz;
+    if is_pool() && !inside(p.xy, size) {
+        emit(w, shade_above(o, d));
+        return;
+    }
+    let n = height_field_normal(water_height_gradient(p.xy).yz);
+    let cos_v = -dot(d, n);
+    let t_view = fresnel_transmittance(cos_v, 1.0, params.ior);
+    emit(w, sky_radiance(reflect(d, n)) * (1.0 - t_view));
+    let r = refract_dir(d, n, 1.0 / params.ior);
+    if r.w == 0.0 {
+        return;
+    }
+    push_ray(p, r.xyz, w * t_view, depth, true);
+}
+
+// Radiance arriving along `d` at point `o` under the water.
+fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+    let size = params.water_size;
+    let floor_hit = hit_floor(o, d);
+    let t_floor = floor_hit.w;
+    let obj = nearest_object(o, d, t_floor);
+    if obj.found {
+        shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, true, w * absorbed(obj.t));
+    } else if is_pool() && !inside(floor_hit.xy, size) {
+        // The ray meets a pool wall first: tiles lit by the ambient light only.
+        let t = wall_distance(o, d, size);
+        let p = o + d * t;
+        let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size);
+        emit(w * absorbed(t), a * params.ambient * sun_radiance());
+    } else {
+        emit(w * absorbed(t_floor), shade_floor(floor_hit.xyz));
+    }
+}
+
+// Everything a primary ray brings back: `Tracer::trace(o, d, 0)` unrolled.
+fn radiance(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    pixel_radiance = vec3<f32>(0.0);
+    ray_count = 0u;
+    push_ray(o, d, vec3<f32>(1.0), 0u, false);
+    while ray_count > 0u {
+        ray_count--;
+        let r = rays[ray_count];
+        if r.depth > MAX_DEPTH {
+            continue;
+        }
+        if r.under {
+            trace_under(r.o, r.d, r.depth, r.weight);
+        } else {
+            trace(r.o, r.d, r.depth, r.weight);
+        }
+    }
+    return pixel_radiance;
+}
+
+// `Camera::ray`: the primary ray through image point (x + 0.5, y + 0.5), y down the image.
+fn camera_ray(x: f32, y: f32) -> vec3<f32> {
+    let sx = 2.0 * (x + 0.5) / f32(params.width) - 1.0;
+    let sy = 1.0 - 2.0 * (y + 0.5) / f32(params.height);
+    return normalize(params.camera_forward + params.camera_right * sx + params.camera_up * sy);
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= params.width || id.y >= params.height {
+        return;
+    }
+    let n = max(params.supersampling, 1u);
+    var c = vec3<f32>(0.0);
+    for (var sy = 0u; sy < n; sy++) {
+        for (var sx = 0u; sx < n; sx++) {
+            let x = f32(id.x) + (f32(sx) + 0.5) / f32(n) - 0.5;
+            let y = f32(id.y) + (f32(sy) + 0.5) / f32(n) - 0.5;
+            c += radiance(params.camera_position, camera_ray(x, y));
+        }
+    }
+    c = c / f32(n * n) * params.exposure;
+    textureStore(image, id.xy, vec4<f32>(tone_map(c), 1.0));
+}
