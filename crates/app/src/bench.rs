@@ -175,7 +175,7 @@ fn bench_gpu(
     for k in 0..args.warmup + args.frames {
         let started = Instant::now();
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        y.encode(ctx, &frame, &mut encoder, Some(&mut timer));
+        y.encode(&frame, &mut encoder, Some(&mut timer));
         timer.resolve(&mut encoder);
         ctx.queue.submit([encoder.finish()]);
         ctx.wait()?;

@@ -5,6 +5,7 @@
 
 pub mod context;
 pub mod final_image;
+pub mod pass;
 pub mod probe;
 pub mod shaders;
 pub mod timing;

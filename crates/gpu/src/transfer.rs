@@ -105,23 +105,24 @@ impl GpuContext {
         grid: &caustics_core::grid::Grid,
     ) -> Result<wgpu::Texture, GpuError> {
         self.check_texture_size(what, grid.cols as u32, grid.rows as u32)?;
-        let size = wgpu::Extent3d {
-            width: grid.cols as u32,
-            height: grid.rows as u32,
-            depth_or_array_layers: 1,
-        };
-        let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(what),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING
+        let texture = self.texture_2d(
+            what,
+            (grid.cols as u32, grid.rows as u32, 1),
+            wgpu::TextureFormat::R32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_DST
                 | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        );
+        self.write_grid(&texture, grid);
+        Ok(texture)
+    }
+
+    /// Overwrite an `R32Float` texture of the grid's size with the grid.
+    pub fn write_grid(&self, texture: &wgpu::Texture, grid: &caustics_core::grid::Grid) {
+        debug_assert_eq!(
+            (texture.width(), texture.height()),
+            (grid.cols as u32, grid.rows as u32)
+        );
         self.queue.write_texture(
             texture.as_image_copy(),
             bytemuck::cast_slice(&grid.data),
@@ -130,8 +131,7 @@ impl GpuContext {
                 bytes_per_row: Some(grid.cols as u32 * 4),
                 rows_per_image: Some(grid.rows as u32),
             },
-            size,
+            texture.size(),
         );
-        Ok(texture)
     }
 }

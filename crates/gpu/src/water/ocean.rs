@@ -21,6 +21,7 @@ use wgpu::util::DeviceExt;
 
 use caustics_core::water::ocean::Ocean;
 
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::timing::GpuTimer;
 use crate::{GpuContext, GpuError, shaders};
 
@@ -170,7 +171,7 @@ impl GpuOcean {
                 .copy_from_slice(bytemuck::bytes_of(stage));
         }
         let table = buffer("ocean FFT stages", &table, wgpu::BufferUsages::UNIFORM);
-        let fft_pipeline = pipeline(ctx, &shaders::OCEAN_FFT);
+        let fft_pipeline = compute_pipeline(ctx, &shaders::OCEAN_FFT);
         let fft = (0..stages.len())
             .map(|s| {
                 let (src, dst) = if s % 2 == 0 {
@@ -181,7 +182,7 @@ impl GpuOcean {
                 bind_group(
                     ctx,
                     "ocean FFT stage",
-                    &fft_pipeline,
+                    &fft_pipeline.get_bind_group_layout(0),
                     &[
                         wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &table,
@@ -264,7 +265,7 @@ impl GpuOcean {
             .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         let (n, half) = (self.n, self.n / 2);
         {
-            let mut pass = begin(encoder, &mut timer, "ocean spectrum");
+            let mut pass = begin_compute(encoder, &mut timer, "ocean spectrum");
             self.spectrum.bind(&mut pass);
             pass.dispatch_workgroups(n.div_ceil(8), n.div_ceil(8), 1);
         }
@@ -273,7 +274,7 @@ impl GpuOcean {
             ("ocean FFT rows", &self.fft[..stages]),
             ("ocean FFT columns", &self.fft[stages..]),
         ] {
-            let mut pass = begin(encoder, &mut timer, label);
+            let mut pass = begin_compute(encoder, &mut timer, label);
             pass.set_pipeline(&self.fft_pipeline);
             for group in groups {
                 pass.set_bind_group(0, group, &[]);
@@ -281,7 +282,7 @@ impl GpuOcean {
             }
         }
         {
-            let mut pass = begin(encoder, &mut timer, "ocean output");
+            let mut pass = begin_compute(encoder, &mut timer, "ocean output");
             self.output.bind(&mut pass);
             pass.dispatch_workgroups(n.div_ceil(8), n.div_ceil(8), 1);
         }
@@ -313,8 +314,13 @@ impl Pass {
         source: &shaders::PassSource,
         entries: &[wgpu::BindingResource],
     ) -> Self {
-        let pipeline = pipeline(ctx, source);
-        let bind = bind_group(ctx, source.name, &pipeline, entries);
+        let pipeline = compute_pipeline(ctx, source);
+        let bind = bind_group(
+            ctx,
+            source.name,
+            &pipeline.get_bind_group_layout(0),
+            entries,
+        );
         Pass { pipeline, bind }
     }
 
@@ -322,52 +328,4 @@ impl Pass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind, &[]);
     }
-}
-
-/// A compute pass named `label`, timed when there is a timer.
-pub(crate) fn begin<'e>(
-    encoder: &'e mut wgpu::CommandEncoder,
-    timer: &mut Option<&mut GpuTimer>,
-    label: &str,
-) -> wgpu::ComputePass<'e> {
-    encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-        label: Some(label),
-        timestamp_writes: timer.as_deref_mut().and_then(|t| t.compute_pass(label)),
-    })
-}
-
-/// A compute pipeline of a pass's `main`, its layout derived from the shader.
-pub(crate) fn pipeline(ctx: &GpuContext, source: &shaders::PassSource) -> wgpu::ComputePipeline {
-    let module = source.module(&ctx.device);
-    ctx.device
-        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(source.name),
-            layout: None,
-            module: &module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        })
-}
-
-/// Group 0 of `pipeline`, binding `k` to `resources[k]`.
-pub(crate) fn bind_group(
-    ctx: &GpuContext,
-    label: &str,
-    pipeline: &wgpu::ComputePipeline,
-    resources: &[wgpu::BindingResource],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .enumerate()
-        .map(|(k, resource)| wgpu::BindGroupEntry {
-            binding: k as u32,
-            resource: resource.clone(),
-        })
-        .collect();
-    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
 }

@@ -7,7 +7,7 @@
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
-use super::ocean::{bind_group, pipeline};
+use crate::pass::{bind_group, compute_pipeline};
 use crate::{GpuContext, GpuError, shaders};
 
 /// Mirrors `RippleStep` in `shaders/ripple_step.wgsl`.
@@ -109,12 +109,12 @@ impl GpuRipples {
                 usage: wgpu::BufferUsages::UNIFORM,
             },
         );
-        let step_pipeline = pipeline(ctx, &shaders::RIPPLE_STEP);
+        let step_pipeline = compute_pipeline(ctx, &shaders::RIPPLE_STEP);
         let step_group = |c: usize| {
             bind_group(
                 ctx,
                 "ripple step",
-                &step_pipeline,
+                &step_pipeline.get_bind_group_layout(0),
                 &[
                     step_params.as_entire_binding(),
                     wgpu::BindingResource::TextureView(&views[c]),
@@ -130,11 +130,11 @@ impl GpuRipples {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let drop_pipeline = pipeline(ctx, &shaders::RIPPLE_DROP);
+        let drop_pipeline = compute_pipeline(ctx, &shaders::RIPPLE_DROP);
         let drop_group = bind_group(
             ctx,
             "ripple drop",
-            &drop_pipeline,
+            &drop_pipeline.get_bind_group_layout(0),
             &[
                 drop_params.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[0]),

@@ -22,6 +22,7 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::yuksel::YukselSetup;
 use wgpu::util::DeviceExt;
 
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{self, OPTICS, PassSource, WATER};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -147,18 +148,6 @@ pub struct Yuksel {
 
 const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-fn compute_pipeline(ctx: &GpuContext, pass: &PassSource) -> wgpu::ComputePipeline {
-    ctx.device
-        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(pass.name),
-            layout: None,
-            module: &pass.module(&ctx.device),
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        })
-}
-
 fn render_pipeline(
     ctx: &GpuContext,
     label: &str,
@@ -195,31 +184,44 @@ fn render_pipeline(
         })
 }
 
-/// One frame's resources for a given map and height-field size.
+/// One frame's resources for a given map and height-field size, bind groups included: a frame is
+/// built once and encoded every time the water moves (upload new heights with
+/// [`Frame::update_heights`]).
 pub struct Frame {
-    uniform: wgpu::Buffer,
     heights: wgpu::Texture,
-    /// The paper's intermediate textures; the fused variant needs neither.
-    pre: Option<wgpu::Texture>,
-    channels: Option<wgpu::Texture>,
     pub map: wgpu::Texture,
-    layers: u32,
     setup: YukselSetup,
     pub variant: Variant,
+    passes: FramePasses,
+    bytes: u64,
+}
+
+enum FramePasses {
+    Gather {
+        bind: wgpu::BindGroup,
+    },
+    RenderTargets {
+        prepass: wgpu::BindGroup,
+        /// Per pass-1 draw: its pipeline, bind group (with its own channel base) and target views.
+        draws: Vec<(
+            wgpu::RenderPipeline,
+            wgpu::BindGroup,
+            Vec<wgpu::TextureView>,
+        )>,
+        pass2: wgpu::BindGroup,
+        map_view: wgpu::TextureView,
+    },
 }
 
 impl Frame {
     /// GPU memory this frame's textures and buffers take, bytes.
     pub fn bytes(&self) -> u64 {
-        let texels = |t: &wgpu::Texture| {
-            t.width() as u64 * t.height() as u64 * t.depth_or_array_layers() as u64
-        };
-        let rgba = |t: &Option<wgpu::Texture>| t.as_ref().map_or(0, |t| texels(t) * 16);
-        texels(&self.map) * 16
-            + texels(&self.heights) * 4
-            + rgba(&self.pre)
-            + rgba(&self.channels)
-            + self.uniform.size()
+        self.bytes
+    }
+
+    /// Replace the height field (same size) for the next encode.
+    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
+        ctx.write_grid(&self.heights, heights);
     }
 }
 
@@ -257,7 +259,7 @@ impl Yuksel {
             .clone()
     }
 
-    /// Allocate a frame's textures and upload the height field.
+    /// Allocate a frame's textures and bind groups for `variant` and upload the height field.
     pub fn frame(
         &self,
         ctx: &GpuContext,
@@ -265,150 +267,88 @@ impl Yuksel {
         heights: &Grid,
         variant: Variant,
     ) -> Result<Frame, GpuError> {
+        use wgpu::BindingResource::TextureView as View;
+        use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         let (pw, ph) = setup.prepass_size();
         let (p1w, p1h) = setup.pass1_size();
         ctx.check_texture_size("yuksel caustics map", w, h)?;
         ctx.check_texture_size("yuksel pre-pass texture", pw as u32, ph as u32)?;
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
-        let layers = (setup.m as u32 + 1).div_ceil(4);
-        let tex = |label: &str, w: u32, h: u32, layers: u32, usage: wgpu::TextureUsages| {
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: layers,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: MAP_FORMAT,
-                usage,
-                view_formats: &[],
-            })
-        };
-        use wgpu::TextureUsages as U;
-        let frame = Frame {
-            uniform: ctx
-                .device
+        let uniform_for = |channel_base: u32| {
+            ctx.device
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("yuksel uniform"),
-                    contents: bytemuck::bytes_of(&YukselUniform::new(setup, 0)),
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                }),
-            heights: ctx.upload_grid("yuksel height field", heights)?,
-            pre: (variant == Variant::RenderTargets).then(|| {
-                tex(
-                    "yuksel pre-pass",
-                    pw as u32,
-                    ph as u32,
-                    1,
-                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
-                )
-            }),
-            channels: (variant == Variant::RenderTargets).then(|| {
-                tex(
-                    "yuksel pass-1 channels",
-                    p1w as u32,
-                    p1h as u32,
-                    layers,
-                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-                )
-            }),
-            map: tex(
-                "yuksel map",
-                w,
-                h,
-                1,
-                U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
-            ),
-            layers,
-            setup: setup.clone(),
-            variant,
+                    contents: bytemuck::bytes_of(&YukselUniform::new(setup, channel_base)),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                })
         };
-        ctx.check()?;
-        Ok(frame)
-    }
-
-    /// Record the technique's passes for `frame`. Returns the texture the map ends in.
-    pub fn encode<'f>(
-        &self,
-        ctx: &GpuContext,
-        frame: &'f Frame,
-        encoder: &mut wgpu::CommandEncoder,
-        mut timer: Option<&mut GpuTimer>,
-    ) -> &'f wgpu::Texture {
-        let device = &ctx.device;
-        let heights_view = frame.heights.create_view(&Default::default());
-        let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
-        match frame.variant {
-            Variant::Gather => {
-                let out = frame.map.create_view(&Default::default());
-                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("yuksel gather"),
-                    layout: &self.gather.get_bind_group_layout(0),
-                    entries: &[
-                        entry(0, frame.uniform.as_entire_binding()),
-                        entry(1, wgpu::BindingResource::TextureView(&heights_view)),
-                        entry(2, wgpu::BindingResource::TextureView(&out)),
+        let uniform = uniform_for(0);
+        let heights_texture = ctx.upload_grid("yuksel height field", heights)?;
+        let heights_view = heights_texture.create_view(&Default::default());
+        let map = ctx.texture_2d(
+            "yuksel map",
+            (w, h, 1),
+            MAP_FORMAT,
+            U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
+        );
+        let map_view = map.create_view(&Default::default());
+        let mut bytes =
+            (w * h) as u64 * 16 + (heights.cols * heights.rows) as u64 * 4 + uniform.size();
+        let passes = match variant {
+            Variant::Gather => FramePasses::Gather {
+                bind: bind_group(
+                    ctx,
+                    "yuksel gather",
+                    &self.gather.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        View(&heights_view),
+                        View(&map_view),
                     ],
-                });
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("yuksel gather"),
-                    timestamp_writes: timer.as_mut().and_then(|t| t.compute_pass("yuksel gather")),
-                });
-                pass.set_pipeline(&self.gather);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups(w.div_ceil(16), h.div_ceil(16), 1);
-                &frame.map
-            }
+                ),
+            },
             Variant::RenderTargets => {
-                let (Some(pre), Some(channels)) = (&frame.pre, &frame.channels) else {
-                    unreachable!("a render-target frame holds its intermediate textures");
-                };
+                let layers = (setup.m as u32 + 1).div_ceil(4);
+                let pre = ctx.texture_2d(
+                    "yuksel pre-pass",
+                    (pw as u32, ph as u32, 1),
+                    MAP_FORMAT,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                );
+                let channels = ctx.texture_2d(
+                    "yuksel pass-1 channels",
+                    (p1w as u32, p1h as u32, layers),
+                    MAP_FORMAT,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                );
+                bytes += (pw * ph) as u64 * 16 + (p1w * p1h) as u64 * layers as u64 * 16;
                 let pre_view = pre.create_view(&Default::default());
-                {
-                    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("yuksel pre-pass"),
-                        layout: &self.prepass.get_bind_group_layout(0),
-                        entries: &[
-                            entry(0, frame.uniform.as_entire_binding()),
-                            entry(1, wgpu::BindingResource::TextureView(&heights_view)),
-                            entry(2, wgpu::BindingResource::TextureView(&pre_view)),
-                        ],
-                    });
-                    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                        label: Some("yuksel pre-pass"),
-                        timestamp_writes: timer
-                            .as_mut()
-                            .and_then(|t| t.compute_pass("yuksel pre-pass")),
-                    });
-                    pass.set_pipeline(&self.prepass);
-                    pass.set_bind_group(0, &bind, &[]);
-                    let (pw, ph) = frame.setup.prepass_size();
-                    pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
-                }
+                let prepass = bind_group(
+                    ctx,
+                    "yuksel pre-pass",
+                    &self.prepass.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        View(&heights_view),
+                        View(&pre_view),
+                    ],
+                );
                 // Pass 1: as many layers per draw as the device allows.
-                let per_draw = self.targets_per_draw.min(frame.layers);
+                let per_draw = self.targets_per_draw.min(layers);
+                let mut draws = Vec::new();
                 let mut first = 0;
-                while first < frame.layers {
-                    let count = per_draw.min(frame.layers - first);
+                while first < layers {
+                    let count = per_draw.min(layers - first);
                     let pipeline = self.pass1_pipeline(ctx, count);
-                    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("yuksel pass-1 uniform"),
-                        contents: bytemuck::bytes_of(&YukselUniform::new(&frame.setup, 4 * first)),
-                        usage: wgpu::BufferUsages::UNIFORM,
-                    });
-                    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("yuksel pass 1"),
-                        layout: &pipeline.get_bind_group_layout(0),
-                        entries: &[
-                            entry(0, uniform.as_entire_binding()),
-                            entry(1, wgpu::BindingResource::TextureView(&pre_view)),
-                        ],
-                    });
-                    let views: Vec<wgpu::TextureView> = (first..first + count)
+                    let draw_uniform = uniform_for(4 * first);
+                    let bind = bind_group(
+                        ctx,
+                        "yuksel pass 1",
+                        &pipeline.get_bind_group_layout(0),
+                        &[draw_uniform.as_entire_binding(), View(&pre_view)],
+                    );
+                    let views = (first..first + count)
                         .map(|layer| {
                             channels.create_view(&wgpu::TextureViewDescriptor {
                                 dimension: Some(wgpu::TextureViewDimension::D2),
@@ -418,6 +358,67 @@ impl Yuksel {
                             })
                         })
                         .collect();
+                    draws.push((pipeline, bind, views));
+                    first += count;
+                }
+                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                });
+                let pass2 = bind_group(
+                    ctx,
+                    "yuksel pass 2",
+                    &self.pass2.get_bind_group_layout(0),
+                    &[uniform.as_entire_binding(), View(&channels_view)],
+                );
+                FramePasses::RenderTargets {
+                    prepass,
+                    draws,
+                    pass2,
+                    map_view,
+                }
+            }
+        };
+        ctx.check()?;
+        Ok(Frame {
+            heights: heights_texture,
+            map,
+            setup: setup.clone(),
+            variant,
+            passes,
+            bytes,
+        })
+    }
+
+    /// Record the technique's passes for `frame`. Returns the texture the map ends in.
+    pub fn encode<'f>(
+        &self,
+        frame: &'f Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> &'f wgpu::Texture {
+        let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
+        match &frame.passes {
+            FramePasses::Gather { bind } => {
+                let mut pass = begin_compute(encoder, &mut timer, "yuksel gather");
+                pass.set_pipeline(&self.gather);
+                pass.set_bind_group(0, bind, &[]);
+                pass.dispatch_workgroups(w.div_ceil(16), h.div_ceil(16), 1);
+            }
+            FramePasses::RenderTargets {
+                prepass,
+                draws,
+                pass2,
+                map_view,
+            } => {
+                {
+                    let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
+                    pass.set_pipeline(&self.prepass);
+                    pass.set_bind_group(0, prepass, &[]);
+                    let (pw, ph) = frame.setup.prepass_size();
+                    pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
+                }
+                for (pipeline, bind, views) in draws {
                     let attachments: Vec<_> = views.iter().map(color_attachment).collect();
                     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                         label: Some("yuksel pass 1"),
@@ -429,38 +430,24 @@ impl Yuksel {
                         occlusion_query_set: None,
                         multiview_mask: None,
                     });
-                    pass.set_pipeline(&pipeline);
-                    pass.set_bind_group(0, &bind, &[]);
+                    pass.set_pipeline(pipeline);
+                    pass.set_bind_group(0, bind, &[]);
                     pass.draw(0..3, 0..1);
-                    first += count;
                 }
-                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
-                let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("yuksel pass 2"),
-                    layout: &self.pass2.get_bind_group_layout(0),
-                    entries: &[
-                        entry(0, frame.uniform.as_entire_binding()),
-                        entry(1, wgpu::BindingResource::TextureView(&channels_view)),
-                    ],
-                });
-                let map_view = frame.map.create_view(&Default::default());
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("yuksel pass 2"),
-                    color_attachments: &[color_attachment(&map_view)],
+                    color_attachments: &[color_attachment(map_view)],
                     depth_stencil_attachment: None,
                     timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("yuksel pass 2")),
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
                 pass.set_pipeline(&self.pass2);
-                pass.set_bind_group(0, &bind, &[]);
+                pass.set_bind_group(0, pass2, &[]);
                 pass.draw(0..3, 0..1);
-                &frame.map
             }
         }
+        &frame.map
     }
 
     /// Run the technique once and read the map back.
@@ -473,7 +460,7 @@ impl Yuksel {
     ) -> Result<CausticsMap, GpuError> {
         let frame = self.frame(ctx, setup, heights, variant)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let texture = self.encode(ctx, &frame, &mut encoder, None);
+        let texture = self.encode(&frame, &mut encoder, None);
         ctx.queue.submit([encoder.finish()]);
         let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
         Ok(CausticsMap {
@@ -483,10 +470,6 @@ impl Yuksel {
             texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
         })
     }
-}
-
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
 }
 
 fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {

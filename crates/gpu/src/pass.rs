@@ -1,0 +1,81 @@
+//! The few lines every pass repeats: a compute pipeline from a [`PassSource`] with the layout the
+//! shader implies, a bind group whose binding `k` is the `k`-th resource, a (timed) compute pass, and a
+//! 2-D texture.
+
+use crate::shaders::PassSource;
+use crate::{GpuContext, GpuTimer};
+
+/// A compute pipeline of a pass's `main`, its layout derived from the shader.
+pub fn compute_pipeline(ctx: &GpuContext, source: &PassSource) -> wgpu::ComputePipeline {
+    let module = source.module(&ctx.device);
+    ctx.device
+        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(source.name),
+            layout: None,
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+}
+
+/// A bind group for `layout`, binding `k` to `resources[k]`.
+pub fn bind_group(
+    ctx: &GpuContext,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = resources
+        .iter()
+        .enumerate()
+        .map(|(k, resource)| wgpu::BindGroupEntry {
+            binding: k as u32,
+            resource: resource.clone(),
+        })
+        .collect();
+    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// A compute pass named `label`, timed when there is a timer.
+pub fn begin_compute<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    timer: &mut Option<&mut GpuTimer>,
+    label: &str,
+) -> wgpu::ComputePass<'e> {
+    encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(label),
+        timestamp_writes: timer.as_deref_mut().and_then(|t| t.compute_pass(label)),
+    })
+}
+
+impl GpuContext {
+    /// A 2-D texture (or array of `layers`) of one mip level, refused with a named error by the
+    /// caller's size check beforehand.
+    pub fn texture_2d(
+        &self,
+        label: &str,
+        (width, height, layers): (u32, u32, u32),
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> wgpu::Texture {
+        self.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+    }
+}
