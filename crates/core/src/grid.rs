@@ -324,6 +324,27 @@ mod tests {
     }
 
     #[test]
+    fn sixteen_bit_png_maps_onto_its_range() {
+        let dir = std::env::temp_dir().join(format!("caustics-grid-png-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("h.png");
+        let img = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_fn(4, 3, |x, y| {
+            image::Luma([(x * 20000 + y * 1000) as u16])
+        });
+        img.save(&p).unwrap();
+        let g = Grid::load(&p, [-0.1, 0.1]).unwrap();
+        assert_eq!((g.cols, g.rows), (4, 3));
+        let expected = |x: u32, y: u32| -0.1 + 0.2 * (x * 20000 + y * 1000) as f32 / 65535.0;
+        assert!((g.at(2, 3) - expected(3, 2)).abs() < 1e-6);
+        assert!((g.at(0, 0) + 0.1).abs() < 1e-6);
+        // An 8-bit PNG is refused: it cannot hold a height field's precision.
+        let p8 = dir.join("h8.png");
+        image::GrayImage::new(2, 2).save(&p8).unwrap();
+        let e = Grid::load(&p8, [0.0, 1.0]).unwrap_err().to_string();
+        assert!(e.contains("16-bit"), "{e}");
+    }
+
+    #[test]
     fn bad_files_are_named() {
         let dir = std::env::temp_dir().join(format!("caustics-grid-bad-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
