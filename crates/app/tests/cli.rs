@@ -253,3 +253,61 @@ fn scene_check_and_techniques() {
         assert!(out.contains(t), "{t} missing from:\n{out}");
     }
 }
+
+/// A small `caustics compare`: the files appear, the reference against itself scores exactly zero
+/// error and SSIM 1 (a known difference, none, gives the known numbers), and yuksel on the smooth
+/// lens bump is close to the reference with its flux conserved.
+#[test]
+fn a_small_compare_writes_its_tables_and_scores_correctly() {
+    let d = tmpdir("compare");
+    let o = caustics(
+        &[
+            "compare",
+            "--quick",
+            "--cpu",
+            "--resolution",
+            "48",
+            "--cells-per-texel",
+            "2",
+            "--technique",
+            "reference",
+            "--technique",
+            "yuksel:n=15,m=14",
+            "--out",
+            "cmp",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(d.join("cmp/compare.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 4 * 2, "4 quick cases x 2 techniques:\n{csv}");
+    // The technique label may hold commas (quoted): read the four metrics from the end.
+    let num = |r: &Vec<&str>, k: usize| r[r.len() - 8 + k].parse::<f64>().unwrap();
+    for r in &rows {
+        if r[1] == "\"reference\"" {
+            assert_eq!(
+                (num(r, 4), num(r, 5), num(r, 6), num(r, 7)),
+                (0.0, 0.0, 0.0, 1.0),
+                "{r:?}"
+            );
+        }
+    }
+    let lens = rows
+        .iter()
+        .find(|r| r[0].starts_with("lens") && r[1].contains("yuksel"))
+        .unwrap();
+    assert!(num(lens, 4) < 0.05 && num(lens, 6).abs() < 0.01, "{lens:?}");
+    assert!(d.join("cmp/compare.md").exists());
+    assert!(
+        std::fs::read_dir(d.join("cmp")).unwrap().any(|e| e
+            .unwrap()
+            .path()
+            .extension()
+            .is_some_and(|x| x == "png"))
+    );
+}
