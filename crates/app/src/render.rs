@@ -1,4 +1,5 @@
-//! `caustics render`. The caustics map comes from the CPU reference; the final image is rendered
+//! `caustics render`. The caustics map comes from the chosen technique (on the GPU where it has a
+//! GPU path and an adapter exists, else its CPU twin); the final image is rendered
 //! on the GPU (`caustics_gpu::final_image`, the twin of `caustics_core::render`) when an adapter
 //! can be had, else, or with `--cpu`, on the CPU.
 
@@ -8,7 +9,6 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
-use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::render::{RenderOptions, render};
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques;
@@ -17,6 +17,7 @@ use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
 
 use crate::progress;
+use crate::techniques::{Job, Runner, Spec};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -110,16 +111,11 @@ fn same_file(a: &Path, b: &Path) -> bool {
 
 pub fn run(args: RenderArgs) -> Result<()> {
     let mut scene = Scene::load_or_builtin(&args.scene)?;
-    if let Some(t) = &args.technique {
-        let info = techniques::info(t).with_context(|| {
-            format!(
-                "unknown technique `{t}` (known: {})",
-                techniques::names().join(", ")
-            )
-        })?;
-        scene.caustics.technique = info.name.to_string();
-    }
-    let info = techniques::info(&scene.caustics.technique).expect("validated");
+    let spec = match &args.technique {
+        Some(t) => t.parse::<Spec>()?.over(&scene.caustics.params),
+        None => Spec::from_scene(&scene.caustics)?,
+    };
+    let info = techniques::info(&spec.name).expect("parsed");
     if !info.implemented {
         bail!(
             "technique `{}` (paper {}) is not implemented yet; `caustics techniques` lists what is",
@@ -168,12 +164,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
         bail!("--out {}: expected a .png file name", o.display());
     }
 
-    // The device for the final image, set up before the caustics so that a bad --backend fails
-    // at once and the adapter is named first.
-    let gpu = match &out {
-        Some(_) if !args.cpu => gpu_renderer(&args)?,
-        _ => None,
-    };
+    // The device, set up before the caustics so that a bad --backend fails at once and the
+    // adapter is named first; the technique and the final image share it.
+    let ctx = if args.cpu { None } else { gpu_context(&args)? };
+    let mut runner = Runner::new(ctx);
 
     let surface = match &scene.water {
         Some(w) => {
@@ -185,23 +179,29 @@ pub fn run(args: RenderArgs) -> Result<()> {
         None => None,
     };
     let map = match (&surface, &scene.water) {
-        (Some(s), Some(_)) => {
+        (Some(s), Some(water)) => {
             let started = Instant::now();
             let bar = progress::bar("caustics");
-            let input = ReferenceInput::from_scene(&scene, s.as_ref())?;
-            let options = ReferenceOptions {
+            let job = Job {
+                water,
+                floor: &scene.floor,
+                surface: s.as_ref(),
+                light: scene.light.direction,
+                width: scene.caustics.width as usize,
+                height: scene.caustics.height as usize,
                 cells_per_texel: args.cells_per_texel,
-                ..Default::default()
             };
-            let map = reference(&input, &options, &progress::callback(&bar))?;
+            let outcome = runner.run_with_progress(&spec, &job, &progress::callback(&bar))?;
             bar.finish_and_clear();
             eprintln!(
-                "caustics: reference {} x {} in {:.2} s",
-                map.width,
-                map.height,
-                started.elapsed().as_secs_f64()
+                "caustics: {} {} x {} in {:.2} s on the {}",
+                spec.label,
+                outcome.map.width,
+                outcome.map.height,
+                started.elapsed().as_secs_f64(),
+                outcome.backend
             );
-            Some(map)
+            Some(outcome.map)
         }
         _ => {
             if args.raw.is_some() {
@@ -223,7 +223,19 @@ pub fn run(args: RenderArgs) -> Result<()> {
             supersampling: args.supersampling.max(1),
             ..Default::default()
         };
-        let from_gpu = gpu.as_ref().and_then(|(ctx, final_image)| {
+        let final_image = runner
+            .gpu
+            .as_ref()
+            .and_then(|ctx| match FinalImage::new(ctx) {
+                Ok(f) => Some((ctx, f)),
+                Err(e) => {
+                    eprintln!(
+                        "the GPU cannot build the final-image pass ({e}): rendering on the CPU"
+                    );
+                    None
+                }
+            });
+        let from_gpu = final_image.as_ref().and_then(|(ctx, final_image)| {
             render_on_gpu(
                 ctx,
                 final_image,
@@ -268,10 +280,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// The GPU device and the final-image pipeline, or `None` (after one line on stderr saying why)
-/// when no adapter can be had here: the image is then rendered on the CPU. A backend name that
-/// does not exist is the user's mistake and an error, not a reason to fall back.
-fn gpu_renderer(args: &RenderArgs) -> Result<Option<(GpuContext, FinalImage)>> {
+/// The GPU device, or `None` (after one line on stderr saying why) when no adapter can be had
+/// here: the technique then runs on its CPU twin and the image on the CPU. A backend name that does
+/// not exist is the user's mistake and an error, not a reason to fall back.
+fn gpu_context(args: &RenderArgs) -> Result<Option<GpuContext>> {
     let options = GpuOptions {
         backend: args.backend.clone(),
         adapter_name: args.adapter.clone(),
@@ -289,11 +301,11 @@ fn gpu_renderer(args: &RenderArgs) -> Result<Option<(GpuContext, FinalImage)>> {
                 }
                 other => other.to_string(),
             };
-            eprintln!("no GPU adapter ({reason}): rendering on the CPU");
+            eprintln!("no GPU adapter ({reason}): using the CPU path");
             return Ok(None);
         }
     };
-    // A software adapter (lavapipe, WARP) runs the pass on the CPU's cores, more slowly than the
+    // A software adapter (lavapipe, WARP) runs the passes on the CPU's cores, more slowly than the
     // CPU renderer does; say so rather than choose for the user.
     let hint = if FinalImage::software_adapter(&ctx) {
         " (a software adapter: --cpu may be faster)"
@@ -301,13 +313,7 @@ fn gpu_renderer(args: &RenderArgs) -> Result<Option<(GpuContext, FinalImage)>> {
         ""
     };
     eprintln!("GPU: {}{hint}", ctx.describe());
-    match FinalImage::new(&ctx) {
-        Ok(final_image) => Ok(Some((ctx, final_image))),
-        Err(e) => {
-            eprintln!("the GPU cannot build the final-image pass ({e}): rendering on the CPU");
-            Ok(None)
-        }
-    }
+    Ok(Some(ctx))
 }
 
 /// The final image from the GPU twin of `caustics_core::render::render`, or `None` (after one line

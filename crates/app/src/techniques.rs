@@ -23,6 +23,32 @@ pub struct Spec {
     pub gather: bool,
 }
 
+impl Spec {
+    /// The technique a scene file names, with its `[caustics.<name>]` table.
+    pub fn from_scene(caustics: &caustics_core::scene::CausticsSettings) -> Result<Self> {
+        let mut spec: Spec = caustics.technique.parse()?;
+        spec.params = caustics.params.clone();
+        Ok(spec)
+    }
+
+    /// This spec's parameters laid over `base` (a scene's tables): the command line wins.
+    pub fn over(mut self, base: &toml::Table) -> Self {
+        let mut merged = base.clone();
+        for (name, table) in &self.params {
+            match (merged.get_mut(name), table) {
+                (Some(toml::Value::Table(into)), toml::Value::Table(from)) => {
+                    into.extend(from.iter().map(|(k, v)| (k.clone(), v.clone())));
+                }
+                _ => {
+                    merged.insert(name.clone(), table.clone());
+                }
+            }
+        }
+        self.params = merged;
+        self
+    }
+}
+
 impl std::str::FromStr for Spec {
     type Err = anyhow::Error;
     fn from_str(s: &str) -> Result<Self> {
@@ -92,6 +118,17 @@ impl Runner {
     }
 
     pub fn run(&mut self, spec: &Spec, job: &Job) -> Result<Outcome> {
+        self.run_with_progress(spec, job, &|_, _| {})
+    }
+
+    /// As [`run`](Self::run), reporting `progress(done, total)` where the technique is long (the
+    /// reference).
+    pub fn run_with_progress(
+        &mut self,
+        spec: &Spec,
+        job: &Job,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Outcome> {
         match spec.name.as_str() {
             "reference" => {
                 let input = ReferenceInput {
@@ -107,7 +144,7 @@ impl Runner {
                     ..Default::default()
                 };
                 Ok(Outcome {
-                    map: reference(&input, &options, &|_, _| {})?,
+                    map: reference(&input, &options, progress)?,
                     backend: "CPU",
                 })
             }

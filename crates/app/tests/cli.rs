@@ -311,3 +311,58 @@ fn a_small_compare_writes_its_tables_and_scores_correctly() {
             .is_some_and(|x| x == "png"))
     );
 }
+
+/// `--technique` runs the technique on the scene: yuksel's map of a gentle swell is close to the
+/// reference's, and a technique that needs a flat floor refuses a terrain.
+#[test]
+fn render_uses_the_chosen_technique() {
+    let n = 64;
+    let g = Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        (0.002 * (std::f64::consts::TAU * (2.0 * x + y)).sin()) as f32
+    });
+    let d = contract_dir("chosen-technique", &g, CONTRACT);
+    for (args, name) in [
+        (vec!["--raw", "ref.npy"], "ref.npy"),
+        (
+            vec!["--technique", "yuksel:n=15,m=14", "--raw", "yuk.npy"],
+            "yuk.npy",
+        ),
+    ] {
+        let mut all = vec!["render", "--scene", "scene.toml", "--cpu"];
+        all.extend(args);
+        let o = caustics(&all, &d);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(d.join(name).exists());
+    }
+    let r = Grid::load(&d.join("ref.npy"), [0.0, 1.0]).unwrap();
+    let y = Grid::load(&d.join("yuk.npy"), [0.0, 1.0]).unwrap();
+    let l1: f32 = r
+        .data
+        .iter()
+        .zip(&y.data)
+        .map(|(a, b)| (a - b).abs())
+        .sum::<f32>()
+        / r.data.iter().sum::<f32>();
+    assert!(l1 < 0.05, "yuksel against the reference: relative L1 {l1}");
+    assert!(r != y, "a different technique gives a different map");
+    let o = caustics(
+        &[
+            "render",
+            "--scene",
+            "shore",
+            "--technique",
+            "yuksel",
+            "--cpu",
+            "--raw",
+            "s.npy",
+        ],
+        &d,
+    );
+    assert!(
+        !o.status.success() && stderr(&o).contains("flat floor"),
+        "{}",
+        stderr(&o)
+    );
+}

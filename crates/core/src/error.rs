@@ -4,17 +4,14 @@ use std::path::PathBuf;
 
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    #[error("cannot read {path}: {source}")]
-    Io {
-        path: PathBuf,
-        #[source]
-        source: std::io::Error,
-    },
-    #[error("{path}: malformed scene file: {message}")]
+    /// Reading or writing a file failed; the message names the file and the system's reason.
+    #[error("{}: {err}", path.display())]
+    Io { path: PathBuf, err: std::io::Error },
+    #[error("{}: malformed scene file: {message}", path.display())]
     SceneSyntax { path: PathBuf, message: String },
     #[error("invalid scene: `{field}` {problem}")]
     InvalidField { field: String, problem: String },
-    #[error("{path}: {problem}")]
+    #[error("{}: {problem}", path.display())]
     BadFile { path: PathBuf, problem: String },
     #[error("unknown built-in scene `{0}` (known: pool, shore, objects, glass)")]
     UnknownScene(String),
@@ -39,10 +36,10 @@ impl Error {
         }
     }
 
-    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+    pub fn io(path: impl Into<PathBuf>, err: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
-            source,
+            err,
         }
     }
 }
