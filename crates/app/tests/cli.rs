@@ -366,3 +366,45 @@ fn render_uses_the_chosen_technique() {
         stderr(&o)
     );
 }
+
+/// `caustics bench` writes its table, CSV and plot, and reports one row per technique and size.
+#[test]
+fn a_small_bench_writes_its_outputs() {
+    let d = tmpdir("bench");
+    let o = caustics(
+        &[
+            "bench",
+            "--cpu",
+            "--frames",
+            "1",
+            "--warmup",
+            "0",
+            "--resolution",
+            "40x30,80x60",
+            "--out",
+            "b",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(d.join("b/bench.md")).unwrap();
+    for t in [
+        "| yuksel | 40 x 30 |",
+        "| yuksel | 80 x 60 |",
+        "| yuksel-gather | 80 x 60 |",
+    ] {
+        assert!(md.contains(t), "{t} missing from:\n{md}");
+    }
+    assert!(
+        std::fs::read_to_string(d.join("b/bench.svg"))
+            .unwrap()
+            .contains("<svg")
+    );
+    assert!(
+        std::fs::read_to_string(d.join("b/bench.csv"))
+            .unwrap()
+            .lines()
+            .count()
+            > 4
+    );
+}
