@@ -11,16 +11,20 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 
 use caustics_core::cases::cases;
+use caustics_core::techniques::procedural::{self, ProceduralCausticsParams, ProceduralSetup};
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
+use caustics_gpu::procedural::ProceduralCaustics;
 use caustics_gpu::yuksel::{Variant, Yuksel};
 use caustics_gpu::{GpuContext, GpuTimer};
 
 use crate::progress;
-use crate::techniques::{Spec, heights_for};
+use crate::techniques::{Spec, heights_for, procedural_heights};
 
 #[derive(Args)]
 pub struct BenchArgs {
-    /// Techniques, `name` or `name:key=value,...`; repeat the flag. Default: yuksel and yuksel-gather.
+    /// Techniques, `name` or `name:key=value,...` (yuksel, yuksel-gather, procedural,
+    /// procedural-vertex, procedural-screen, procedural-texture); repeat the flag. Default: yuksel
+    /// and yuksel-gather.
     #[arg(long = "technique")]
     techniques: Vec<Spec>,
     /// Map resolutions WIDTHxHEIGHT, comma-separated (the paper's sizes first).
@@ -101,9 +105,45 @@ pub fn run(args: BenchArgs) -> Result<()> {
     bar.set_length((specs.len() * sizes.len()) as u64);
     let mut results = Vec::new();
     for spec in &specs {
+        if spec.name == "procedural" {
+            let params = ProceduralCausticsParams::from_table(&spec.params)?;
+            let pipelines = gpu.as_ref().map(ProceduralCaustics::new).transpose()?;
+            for &(w, h) in &sizes {
+                let wt = &case.water;
+                let setup = ProceduralSetup::new(
+                    &params,
+                    w as usize,
+                    h as usize,
+                    wt.size,
+                    wt.depth,
+                    wt.absorption,
+                    wt.wrap,
+                    case.light,
+                )?;
+                let heights = procedural_heights(wt, surface.as_ref(), &setup);
+                let water = procedural::SurfaceInput::Grid(&heights);
+                let m = match (&gpu, &pipelines) {
+                    (Some(ctx), Some(p)) => {
+                        let frame = p.frame(ctx, &setup, &water)?;
+                        time_frames(ctx, &args, &spec.label, (w, h), frame.bytes(), |timer| {
+                            let mut encoder =
+                                ctx.device.create_command_encoder(&Default::default());
+                            p.encode(&frame, &mut encoder, Some(timer));
+                            timer.resolve(&mut encoder);
+                            ctx.queue.submit([encoder.finish()]);
+                        })?
+                    }
+                    _ => bench_cpu_procedural(&setup, &water, &args, &spec.label),
+                };
+                report(&m);
+                results.push(m);
+                bar.inc(1);
+            }
+            continue;
+        }
         if spec.name != "yuksel" {
             bail!(
-                "`caustics bench` measures yuksel so far; `{}` has no GPU path yet",
+                "`caustics bench` measures yuksel and procedural so far; `{}` has no GPU path yet",
                 spec.label
             );
         }
@@ -134,16 +174,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 }
                 _ => bench_cpu(&setup, &heights, &args, &spec.label),
             };
-            println!(
-                "{:<24} {:>5} x {:<5} {} {:>9.3} ms  (CPU {:.3} ms, {:.1} MiB)",
-                m.technique,
-                m.width,
-                m.height,
-                m.backend,
-                m.total_ms,
-                m.cpu_ms,
-                m.gpu_bytes as f64 / (1 << 20) as f64
-            );
+            report(&m);
             results.push(m);
             bar.inc(1);
         }
@@ -159,6 +190,19 @@ pub fn run(args: BenchArgs) -> Result<()> {
     Ok(())
 }
 
+fn report(m: &Measurement) {
+    println!(
+        "{:<24} {:>5} x {:<5} {} {:>9.3} ms  (CPU {:.3} ms, {:.1} MiB)",
+        m.technique,
+        m.width,
+        m.height,
+        m.backend,
+        m.total_ms,
+        m.cpu_ms,
+        m.gpu_bytes as f64 / (1 << 20) as f64
+    );
+}
+
 fn bench_gpu(
     ctx: &GpuContext,
     y: &Yuksel,
@@ -169,15 +213,39 @@ fn bench_gpu(
     label: &str,
 ) -> Result<Measurement> {
     let frame = y.frame(ctx, setup, heights, variant)?;
-    let mut timer = GpuTimer::new(ctx, 16);
+    time_frames(
+        ctx,
+        args,
+        label,
+        (setup.width as u32, setup.height as u32),
+        frame.bytes(),
+        |timer| {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            y.encode(&frame, &mut encoder, Some(timer));
+            timer.resolve(&mut encoder);
+            ctx.queue.submit([encoder.finish()]);
+        },
+    )
+}
+
+/// Warm-up then timed frames of whatever `submit` encodes (with the timer's timestamps, resolved)
+/// and submits: GPU time per pass label (passes recorded more than once in a frame under one label,
+/// such as one downsample per mip level, are summed per frame), and the CPU wall time of encoding,
+/// submitting and waiting.
+fn time_frames(
+    ctx: &GpuContext,
+    args: &BenchArgs,
+    label: &str,
+    (width, height): (u32, u32),
+    gpu_bytes: u64,
+    mut submit: impl FnMut(&mut GpuTimer),
+) -> Result<Measurement> {
+    let mut timer = GpuTimer::new(ctx, 32);
     let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
     let mut cpu = Vec::new();
     for k in 0..args.warmup + args.frames {
         let started = Instant::now();
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        y.encode(&frame, &mut encoder, Some(&mut timer));
-        timer.resolve(&mut encoder);
-        ctx.queue.submit([encoder.finish()]);
+        submit(&mut timer);
         ctx.wait()?;
         let wall = started.elapsed().as_secs_f64() * 1e3;
         let passes = timer.read(ctx)?;
@@ -185,10 +253,17 @@ fn bench_gpu(
             continue;
         }
         cpu.push(wall);
+        let mut frame: Vec<(String, f64)> = Vec::new();
         for p in passes {
-            match per_pass.iter_mut().find(|(l, _)| *l == p.label) {
-                Some((_, v)) => v.push(p.ms),
-                None => per_pass.push((p.label, vec![p.ms])),
+            match frame.iter_mut().find(|(l, _)| *l == p.label) {
+                Some((_, ms)) => *ms += p.ms,
+                None => frame.push((p.label, p.ms)),
+            }
+        }
+        for (l, ms) in frame {
+            match per_pass.iter_mut().find(|(x, _)| *x == l) {
+                Some((_, v)) => v.push(ms),
+                None => per_pass.push((l, vec![ms])),
             }
         }
     }
@@ -212,14 +287,84 @@ fn bench_gpu(
     };
     Ok(Measurement {
         technique: label.to_string(),
-        width: setup.width as u32,
-        height: setup.height as u32,
+        width,
+        height,
         backend: "GPU",
         passes,
         total_ms: total,
         cpu_ms: percentile(&cpu, 0.5),
-        gpu_bytes: frame.bytes(),
+        gpu_bytes,
     })
+}
+
+/// The procedural CPU twin, stage by stage (wall time, at most 5 frames).
+fn bench_cpu_procedural(
+    setup: &ProceduralSetup,
+    water: &procedural::SurfaceInput,
+    args: &BenchArgs,
+    label: &str,
+) -> Measurement {
+    let frames = args.frames.min(5);
+    let mut stages: Vec<(String, Vec<f64>)> = Vec::new();
+    let mut total = Vec::new();
+    for _ in 0..frames {
+        let mut times: Vec<(&str, f64)> = Vec::new();
+        let mut lap = Instant::now();
+        let mut mark = |name: &'static str, times: &mut Vec<(&str, f64)>| {
+            times.push((name, lap.elapsed().as_secs_f64() * 1e3));
+            lap = Instant::now();
+        };
+        match setup.variant {
+            procedural::Variant::Vertex => {
+                let values = procedural::vertex_values(setup, water);
+                mark("vertex values", &mut times);
+                let _ = procedural::rasterise(setup, &values);
+                mark("rasterise", &mut times);
+            }
+            procedural::Variant::Screen => {
+                let _ = procedural::per_pixel(setup, water, setup.width, setup.height);
+                mark("per pixel", &mut times);
+            }
+            procedural::Variant::Texture => {
+                let level0 = procedural::per_pixel(setup, water, setup.target, setup.target);
+                mark("target", &mut times);
+                let levels = procedural::mip_chain(level0, setup.target);
+                mark("mips", &mut times);
+                let _ = procedural::resample(setup, &levels);
+                mark("resample", &mut times);
+            }
+        }
+        total.push(times.iter().map(|t| t.1).sum::<f64>());
+        for (name, ms) in times {
+            let name = format!("procedural {name} (CPU twin)");
+            match stages.iter_mut().find(|(l, _)| *l == name) {
+                Some((_, v)) => v.push(ms),
+                None => stages.push((name, vec![ms])),
+            }
+        }
+    }
+    total.sort_by(f64::total_cmp);
+    Measurement {
+        technique: label.to_string(),
+        width: setup.width as u32,
+        height: setup.height as u32,
+        backend: "CPU",
+        passes: stages
+            .into_iter()
+            .map(|(l, mut v)| {
+                v.sort_by(f64::total_cmp);
+                (
+                    l,
+                    percentile(&v, 0.5),
+                    percentile(&v, 0.1),
+                    percentile(&v, 0.9),
+                )
+            })
+            .collect(),
+        total_ms: percentile(&total, 0.5),
+        cpu_ms: percentile(&total, 0.5),
+        gpu_bytes: 0,
+    }
 }
 
 fn bench_cpu(

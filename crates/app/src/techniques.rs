@@ -7,13 +7,14 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::{Floor, Water, WaterSource};
-use caustics_core::techniques::{self, yuksel};
+use caustics_core::techniques::{self, procedural, yuksel};
 use caustics_core::water::{Surface, sample_grid};
 use caustics_gpu::GpuContext;
+use caustics_gpu::procedural::ProceduralCaustics;
 use caustics_gpu::yuksel::{Variant, Yuksel};
 
 /// A technique and its parameters, written `name` or `name:key=value,key=value` (e.g.
-/// `yuksel:n=15,m=14`, `yuksel-gather`).
+/// `yuksel:n=15,m=14`, `yuksel-gather`, `procedural-texture:target_resolution=512`).
 #[derive(Clone, Debug)]
 pub struct Spec {
     pub label: String,
@@ -57,6 +58,17 @@ impl std::str::FromStr for Spec {
             Some(b) => (b, true),
             None => (name, false),
         };
+        // `procedural-vertex`, `procedural-screen`, `procedural-texture`: paper 2's three variants,
+        // the `variant` parameter of `[caustics.procedural]`.
+        let (base, variant) = match base.strip_prefix("procedural-") {
+            Some(v) => match procedural::Variant::parse(v) {
+                Some(v) => ("procedural", Some(v)),
+                None => bail!(
+                    "unknown variant `{v}` of `procedural` in `{name}` (known: procedural-vertex, procedural-screen, procedural-texture)"
+                ),
+            },
+            None => (base, None),
+        };
         if techniques::info(base).is_none() {
             bail!(
                 "unknown technique `{name}` (known: {})",
@@ -77,6 +89,17 @@ impl std::str::FromStr for Spec {
                 .and_then(|t| t.get("v").cloned())
                 .unwrap_or_else(|| toml::Value::String(v.to_string()));
             table.insert(k.trim().to_string(), value);
+        }
+        if let Some(v) = variant {
+            if let Some(given) = table.get("variant")
+                && given.as_str() != Some(v.name())
+            {
+                bail!(
+                    "`{s}`: the name says variant `{}`, the parameters {given}",
+                    v.name()
+                );
+            }
+            table.insert("variant".into(), toml::Value::String(v.name().into()));
         }
         let mut params = toml::Table::new();
         params.insert(base.to_string(), toml::Value::Table(table));
@@ -110,11 +133,16 @@ pub struct Outcome {
 pub struct Runner {
     pub gpu: Option<GpuContext>,
     yuksel: Option<Yuksel>,
+    procedural: Option<ProceduralCaustics>,
 }
 
 impl Runner {
     pub fn new(gpu: Option<GpuContext>) -> Self {
-        Runner { gpu, yuksel: None }
+        Runner {
+            gpu,
+            yuksel: None,
+            procedural: None,
+        }
     }
 
     pub fn run(&mut self, spec: &Spec, job: &Job) -> Result<Outcome> {
@@ -190,6 +218,43 @@ impl Runner {
                     }),
                 }
             }
+            "procedural" => {
+                if job.floor.terrain.is_some() {
+                    bail!(
+                        "technique `procedural` lights a flat floor at a constant depth (paper 2, \"Our Approach\"); this scene has a terrain"
+                    );
+                }
+                let params = procedural::ProceduralCausticsParams::from_table(&spec.params)?;
+                let w = job.water;
+                let setup = procedural::ProceduralSetup::new(
+                    &params,
+                    job.width,
+                    job.height,
+                    w.size,
+                    w.depth,
+                    w.absorption,
+                    w.wrap,
+                    job.light,
+                )?;
+                let heights = procedural_heights(w, job.surface, &setup);
+                let water = procedural::SurfaceInput::Grid(&heights);
+                match &self.gpu {
+                    Some(ctx) => {
+                        if self.procedural.is_none() {
+                            self.procedural = Some(ProceduralCaustics::new(ctx)?);
+                        }
+                        let p = self.procedural.as_ref().expect("just made");
+                        Ok(Outcome {
+                            map: p.caustics(ctx, &setup, &water)?,
+                            backend: "GPU",
+                        })
+                    }
+                    None => Ok(Outcome {
+                        map: procedural::caustics(&setup, &water),
+                        backend: "CPU",
+                    }),
+                }
+            }
             other => bail!(
                 "technique `{other}` is not implemented yet; `caustics techniques` lists what is"
             ),
@@ -203,5 +268,25 @@ pub fn heights_for(water: &Water, surface: &dyn Surface, width: usize, height: u
     match &water.source {
         WaterSource::HeightField(g) => g.clone(),
         _ => sample_grid(surface, width, height, water.size),
+    }
+}
+
+/// The height grid technique `procedural` reads (the job carries the frozen surface, not its time,
+/// so the paper's wave function too is read through a grid): the file's own samples, or the surface
+/// sampled at least as finely as the lattice the variant evaluates on (the map, the mesh's vertices,
+/// or the texture-space target).
+pub fn procedural_heights(
+    water: &Water,
+    surface: &dyn Surface,
+    setup: &procedural::ProceduralSetup,
+) -> Grid {
+    let n = match setup.variant {
+        procedural::Variant::Vertex => setup.mesh + 1,
+        procedural::Variant::Screen => 0,
+        procedural::Variant::Texture => setup.target,
+    };
+    match &water.source {
+        WaterSource::HeightField(g) => g.clone(),
+        _ => sample_grid(surface, setup.width.max(n), setup.height.max(n), water.size),
     }
 }

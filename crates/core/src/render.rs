@@ -179,6 +179,15 @@ impl Tracer<'_> {
         })
     }
 
+    /// Any object, glass included, between `o` and the sun.
+    fn occluded_by_any(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
+        self.scene
+            .objects
+            .iter()
+            .zip(&self.bvhs)
+            .any(|(obj, bvh)| bvh.intersect(&obj.mesh, o, d, t_max).is_some())
+    }
+
     fn trace(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
         if depth > 6 {
             return DVec3::ZERO;
@@ -344,12 +353,26 @@ impl Tracer<'_> {
         if t_floor.is_finite() {
             let p = o + d * t_floor;
             let albedo = self.scene.floor.albedo.at(p.truncate(), self.scene.size);
-            let lit = if self.occluded(p + DVec3::Z * 1e-5, -self.sun, f64::INFINITY) {
-                0.0
-            } else {
-                1.0
+            let from = p + DVec3::Z * 1e-5;
+            // With a caustics map of the light through the glass (relative to the unobstructed
+            // sun), every object shadows the direct sun and the map brings back what the glass
+            // transmitted; without one, glass lets the sun through unchanged.
+            let (lit, caustic) = match self.caustics {
+                Some(m) => {
+                    let c = m.sample(p.x, p.y, false);
+                    let blocked = self.occluded_by_any(from, -self.sun, f64::INFINITY);
+                    (
+                        if blocked { 0.0 } else { 1.0 },
+                        DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64),
+                    )
+                }
+                None => {
+                    let blocked = self.occluded(from, -self.sun, f64::INFINITY);
+                    (if blocked { 0.0 } else { 1.0 }, DVec3::ZERO)
+                }
             };
-            let e = self.scene.light.intensity * -self.sun.z * lit + AMBIENT;
+            let e = (DVec3::splat(lit) + caustic) * (self.scene.light.intensity * -self.sun.z)
+                + DVec3::splat(AMBIENT);
             return albedo * e * self.scene.light.color;
         }
         self.sky(d)

@@ -3,10 +3,13 @@
 //! Each technique lives in its own module with one WGSL file per pass; its CPU twin lives in
 //! `caustics-core`.
 
+pub mod cascaded;
+pub mod caustic_triangles;
 pub mod context;
 pub mod final_image;
 pub mod pass;
 pub mod probe;
+pub mod procedural;
 pub mod shaders;
 pub mod timing;
 mod transfer;

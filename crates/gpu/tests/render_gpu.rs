@@ -105,7 +105,23 @@ fn inputs(scene: &Scene) -> (Option<GridSurface>, Option<CausticsMap>) {
 fn check(ctx: &GpuContext, what: &str, scene: &Scene, caustics: bool) -> Difference {
     let (surface, map) = inputs(scene);
     let map = map.filter(|_| caustics);
-    let surface = surface.as_ref().map(|s| s as &dyn Surface);
+    check_map(
+        ctx,
+        what,
+        scene,
+        surface.as_ref().map(|s| s as &dyn Surface),
+        map,
+    )
+}
+
+/// As [`check`], with the caustics map given.
+fn check_map(
+    ctx: &GpuContext,
+    what: &str,
+    scene: &Scene,
+    surface: Option<&dyn Surface>,
+    map: Option<CausticsMap>,
+) -> Difference {
     let options = RenderOptions {
         supersampling: 1,
         ..Default::default()
@@ -219,6 +235,22 @@ fn albedo_image_without_a_map_matches_the_cpu() {
 
 /// Glass under water: the reflected and refracted branches under the surface, up to the CPU's
 /// recursion depth.
+/// No water, a map of the light through the glass (as caustic-triangles makes it): every object
+/// shadows the sun and the map adds the transmitted light, on both sides alike.
+#[test]
+fn glass_with_an_air_caustics_map_matches_the_cpu() {
+    let Some(ctx) = test_context() else { return };
+    let scene = small("glass");
+    let n = 64;
+    let grid = caustics_core::grid::Grid::from_fn(n, n, |i, j| {
+        let p = glam::DVec2::new(j as f64 + 0.5, i as f64 + 0.5) / n as f64
+            - glam::DVec2::new(0.45, 0.55);
+        (3.0 * (-p.length_squared() / 0.004).exp()) as f32
+    });
+    let map = CausticsMap::from_grid(&grid, scene.size);
+    check_map(&ctx, "glass-air-caustics", &scene, None, Some(map));
+}
+
 #[test]
 fn glass_under_water_matches_the_cpu() {
     let Some(ctx) = test_context() else { return };

@@ -118,3 +118,16 @@ fn final_image_structs_match_their_wgsl_size() {
         size_of::<GpuBvhTriangle>()
     );
 }
+
+#[test]
+fn procedural_uniform_matches_its_wgsl_size() {
+    use caustics_gpu::procedural::{ProceduralUniform, RESAMPLE, SCREEN, TARGET, VERTEX};
+    for pass in [&VERTEX, &SCREEN, &TARGET, &RESAMPLE] {
+        assert_eq!(
+            wgsl_size(pass, "Procedural"),
+            std::mem::size_of::<ProceduralUniform>(),
+            "{}",
+            pass.name
+        );
+    }
+}

@@ -2,6 +2,9 @@
 //! every technique takes, and the CPU twin of each (the oracle of its GPU implementation's tests and
 //! the fallback where no GPU adapter exists).
 
+pub mod cascaded;
+pub mod caustic_triangles;
+pub mod procedural;
 pub mod yuksel;
 
 pub struct TechniqueInfo {
@@ -29,7 +32,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         name: "procedural",
         paper: "2",
         summary: "aesthetic procedural caustics: vertical ray to the waves, refract, look up a sun map (Sanchez-Crespo)",
-        implemented: false,
+        implemented: true,
     },
     TechniqueInfo {
         name: "volumes",
@@ -41,13 +44,13 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         name: "caustic-triangles",
         paper: "4",
         summary: "layered distance maps, photon hit image, caustic triangles into a light cube map (Umenhoffer et al.)",
-        implemented: false,
+        implemented: true,
     },
     TechniqueInfo {
         name: "cascaded",
         paper: "5",
         summary: "cascaded caustic maps for oceans: four light-view cascades, photons splatted in eye space, dispersion (Backlund)",
-        implemented: false,
+        implemented: true,
     },
 ];
 

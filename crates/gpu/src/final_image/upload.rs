@@ -56,6 +56,7 @@ pub mod flags {
     pub const TERRAIN: u32 = 8;
     pub const WRAP_SURFACE: u32 = 16;
     pub const WRAP_CAUSTICS: u32 = 32;
+    pub const AIR_CAUSTICS: u32 = 64;
 }
 
 /// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
@@ -211,6 +212,9 @@ pub(super) fn uniform(
         if w.wrap && scene.floor.terrain.is_none() {
             f |= flags::WRAP_CAUSTICS;
         }
+    }
+    if water.is_none() && caustics.is_some() {
+        f |= flags::AIR_CAUSTICS;
     }
     if scene.floor.terrain.is_some() {
         f |= flags::TERRAIN;

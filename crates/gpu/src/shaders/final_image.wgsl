@@ -58,6 +58,8 @@ const FLAG_CAUSTICS: u32 = 4u;
 const FLAG_TERRAIN: u32 = 8u;
 const FLAG_WRAP_SURFACE: u32 = 16u;
 const FLAG_WRAP_CAUSTICS: u32 = 32u;
+// No water, and a map of the light through the glass objects (caustic-triangles).
+const FLAG_AIR_CAUSTICS: u32 = 64u;
 
 // One object: its material and the root of its tree in bvh_nodes. Mirrors `GpuObject`.
 struct Object {
@@ -222,6 +224,16 @@ fn nearest_object(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> ObjectHit {
 fn occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
     for (var k = 0u; k < params.object_count; k++) {
         if objects[k].glass == 0u && bvh_intersect(objects[k].root, o, d, t_max, true).found {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Any object, glass included.
+fn occluded_by_any(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
+    for (var k = 0u; k < params.object_count; k++) {
+        if bvh_intersect(objects[k].root, o, d, t_max, true).found {
             return true;
         }
     }
@@ -419,11 +431,18 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if t_floor < FAR {
         let p = o + d * t_floor;
         let albedo = albedo_at(p.xy, params.scene_size);
+        let start = p + vec3<f32>(0.0, 0.0, 1e-5);
         var lit = 1.0;
-        if occluded(p + vec3<f32>(0.0, 0.0, 1e-5), -params.sun, FAR) {
+        var caustic = vec3<f32>(0.0);
+        if has(FLAG_AIR_CAUSTICS) {
+            caustic = sample_caustics(p.x, p.y, false);
+            if occluded_by_any(start, -params.sun, FAR) {
+                lit = 0.0;
+            }
+        } else if occluded(start, -params.sun, FAR) {
             lit = 0.0;
         }
-        let e = params.sun_intensity * -params.sun.z * lit + params.ambient;
+        let e = (vec3<f32>(lit) + caustic) * (params.sun_intensity * -params.sun.z) + params.ambient;
         emit(w, albedo * e * params.light_color);
         return;
     }

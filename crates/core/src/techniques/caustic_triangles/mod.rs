@@ -1,0 +1,584 @@
+//! Technique `caustic-triangles`: "Caustic Triangles on the GPU" (Umenhoffer, Patow &
+//! Szirmay-Kalos), the CPU twin of `caustics-gpu`'s `caustic_triangles` module, pass for pass.
+//!
+//! # The method
+//! - **Layered distance map** (§3, [`distance_map`]): a cube map around the caustic generator with
+//!   distance, normal and material per texel in several layers; rays are traced in it by a linear
+//!   search then a secant search (`linear_steps`, `secant_iterations`).
+//! - **Photon tracing pass** (§4.1, [`photon_pass`]): a `P x P` photon image over the generator's
+//!   light-space bounding rectangle. The light ray of each texel is traced through the distance map,
+//!   refracted at every glass surface it meets (weight `T`, the Fresnel transmittance, "the complement
+//!   of the Fresnel factor if refraction happens"; total internal reflection reflects with weight 1)
+//!   up to `depth` events, until it leaves the object, then to the floor. The texel stores the
+//!   *photon hit location* and power, `(x, y, Φ, 0)`; texels whose ray misses the generator, is
+//!   stopped by a diffuse surface of the distance map (an occluder: the paper's distance test,
+//!   which keeps light from leaking through walls), leaves upwards or runs out of depth hold power
+//!   `−1`, the paper's "negative power" marker of invalid texels.
+//! - **Caustic reconstruction** (§4.2 with the §5 optimisation): a separate pass at the photon
+//!   image's resolution ([`irradiance_pass`]) computes each vertex's irradiance `E = ΔΦ / ΔA` once;
+//!   the caustic triangles ([`triangles_pass`]) are two triangles per photon-image quad whose four
+//!   corners are valid, Gouraud shaded between their vertices' `E` and added into the floor map.
+//!
+//! # Power and area
+//! A photon-image texel spans `a⊥ = Δu Δv` across the light, so the sun puts `a⊥ E⊥` through it;
+//! relative to the unobstructed sun on the floor (`E⊥ |L_z|`) the photon carries
+//! `ΔΦ = a⊥ / |L_z| · Π T` "floor-area units", and a floor area `A` that receives it uniformly has
+//! relative irradiance `ΔΦ / A` (1 where the sun falls unobstructed).
+//!
+//! The paper's `ΔA` is "half of the total areas of triangles attached to this vertex" (its Fig. 5 is
+//! lost). Read with the four triangles a vertex spans with consecutive pairs of its 4-neighbours
+//! (right-up, up-left, left-down, down-right), their union is the diamond around the vertex, whose
+//! half is exactly one photon cell when the hits form a regular grid: each vertex then owns the
+//! area one photon covers, which is what `E = ΔΦ / ΔA` needs. Where some neighbours are invalid we
+//! take twice the mean of the triangles present (the same value on a regular grid). This is
+//! [`AreaRule::Paper`].
+//!
+//! It is not exactly flux conserving once the hits are distorted: Gouraud shading integrates to
+//! `Σ_v E_v ∫ φ_v`, and the hat function `φ_v` of vertex `v` integrates to a third of the area of the
+//! drawn triangles around it. [`AreaRule::Hat`] takes that, `ΔA = ⅓ Σ_{drawn t ∋ v} A_t`, so the
+//! drawn triangles carry every photon's power exactly (up to rasterisation at texel centres).
+//!
+//! # Departures from the paper
+//! - The paper draws the caustic triangles into a *light cube map* around the generator and
+//!   projects it onto the receivers in the camera pass, with the distance test against the cube map
+//!   as the shadow test. Our receiver is the floor plane `z = 0`, so the triangles are drawn straight
+//!   into the floor's caustics map; the photon stores its floor position instead of a cube-map
+//!   direction and distance, and the distance test happens while tracing (a photon whose ray meets a
+//!   diffuse surface in the distance map ends there and reaches no floor texel).
+//! - The first hit is found by the same distance-map search as the others, from a point behind the
+//!   generator along the light, instead of by rasterising the generator from the light: one
+//!   compute pass traces the whole path.
+//! - The floor plane is intersected analytically (it is the receiver, not stored in the map).
+//! - The map holds the light transmitted through the generator (the caustic); the direct sun and
+//!   the generator's shadow are the shadow-mapped sun's job, as in the paper.
+//!
+//! # Splatting baseline
+//! [`splat_pass`]: each valid photon adds its power as a square splat of fixed side `splat_size`
+//! texels, `ΔΦ / (s² A_texel)` over the texel centres it covers: the method the paper argues
+//! against (Fig. 1), for comparison.
+
+pub mod distance_map;
+pub mod reference;
+pub mod scene;
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::map::CausticsMap;
+use crate::optics::{fresnel_transmittance, reflect, refract};
+pub use distance_map::DistanceMap;
+pub use scene::{FloorWindow, GlassScene, Occluder, Shape, light_frame};
+
+/// How a vertex's area `ΔA` is taken from the triangles around it (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AreaRule {
+    /// Half the area of the triangles spanned with the 4-neighbours (the paper, §4.2).
+    #[default]
+    Paper,
+    /// A third of the area of the drawn triangles around the vertex (exact flux).
+    Hat,
+}
+
+impl AreaRule {
+    pub fn code(self) -> u32 {
+        match self {
+            AreaRule::Paper => 0,
+            AreaRule::Hat => 1,
+        }
+    }
+}
+
+/// The technique's parameters, `[caustics.caustic-triangles]` in a scene file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CausticTrianglesParams {
+    /// Side of the photon hit location image, `P` (the paper: 128).
+    pub photon_image: u32,
+    /// Texels per cube-map face side (the paper: 512).
+    pub cube_resolution: u32,
+    /// Layers of the distance map.
+    pub layers: u32,
+    /// Linear search steps per ray segment.
+    pub linear_steps: u32,
+    /// Secant search iterations per hit.
+    pub secant_iterations: u32,
+    /// Most refractions / total internal reflections along a photon path.
+    pub depth: u32,
+    pub fresnel: bool,
+    pub area_rule: AreaRule,
+    /// Side of the baseline's square splats, in map texels.
+    pub splat_size: f64,
+}
+
+impl Default for CausticTrianglesParams {
+    fn default() -> Self {
+        CausticTrianglesParams {
+            photon_image: 128,
+            cube_resolution: 256,
+            layers: 4,
+            linear_steps: 64,
+            secant_iterations: 8,
+            depth: 6,
+            fresnel: true,
+            area_rule: AreaRule::Paper,
+            splat_size: 2.0,
+        }
+    }
+}
+
+pub const MAX_LAYERS: u32 = 8;
+
+impl CausticTrianglesParams {
+    pub fn from_table(table: &toml::Table) -> Result<Self> {
+        let p: CausticTrianglesParams = match table.get("caustic-triangles") {
+            Some(v) => v
+                .clone()
+                .try_into()
+                .map_err(|e| Error::field("caustics.caustic-triangles", e.to_string()))?,
+            None => CausticTrianglesParams::default(),
+        };
+        p.validate()?;
+        Ok(p)
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        let f = |name: &str, msg: String| {
+            Err(Error::field(
+                format!("caustics.caustic-triangles.{name}"),
+                msg,
+            ))
+        };
+        if !(2..=4096).contains(&self.photon_image) {
+            return f(
+                "photon_image",
+                format!("must be 2 to 4096, got {}", self.photon_image),
+            );
+        }
+        if !(2..=2048).contains(&self.cube_resolution) {
+            return f(
+                "cube_resolution",
+                format!("must be 2 to 2048, got {}", self.cube_resolution),
+            );
+        }
+        if !(1..=MAX_LAYERS).contains(&self.layers) {
+            return f(
+                "layers",
+                format!("must be 1 to {MAX_LAYERS}, got {}", self.layers),
+            );
+        }
+        if !(1..=4096).contains(&self.linear_steps) {
+            return f(
+                "linear_steps",
+                format!("must be 1 to 4096, got {}", self.linear_steps),
+            );
+        }
+        if self.secant_iterations > 64 {
+            return f(
+                "secant_iterations",
+                format!("must be at most 64, got {}", self.secant_iterations),
+            );
+        }
+        if !(1..=32).contains(&self.depth) {
+            return f("depth", format!("must be 1 to 32, got {}", self.depth));
+        }
+        if !(self.splat_size > 0.0 && self.splat_size <= 64.0) {
+            return f(
+                "splat_size",
+                format!("must be in (0, 64] texels, got {}", self.splat_size),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Everything the passes share (the GPU side uploads the same numbers as its uniform block).
+#[derive(Clone, Debug)]
+pub struct CausticTrianglesSetup {
+    pub p: usize,
+    pub u: DVec3,
+    pub v: DVec3,
+    pub w: DVec3,
+    /// Light-space rectangle of the photon image: its lower corner and the size of one texel.
+    pub rect_lo: DVec2,
+    pub cell: DVec2,
+    /// Power of one photon before the Fresnel factors, floor-area units.
+    pub flux: f64,
+    pub ior: f64,
+    pub depth: u32,
+    pub fresnel: bool,
+    pub linear_steps: u32,
+    pub secant_iterations: u32,
+    pub area_rule: AreaRule,
+    pub splat_size: f64,
+    pub floor: FloorWindow,
+}
+
+impl CausticTrianglesSetup {
+    pub fn new(params: &CausticTrianglesParams, scene: &GlassScene) -> Result<Self> {
+        params.validate()?;
+        let (u, v, w) = light_frame(scene.light);
+        let (lo, hi) = scene.generator.light_rect(u, v);
+        let p = params.photon_image as usize;
+        let cell = (hi - lo) / p as f64;
+        Ok(CausticTrianglesSetup {
+            p,
+            u,
+            v,
+            w,
+            rect_lo: lo,
+            cell,
+            flux: cell.x * cell.y / -scene.light.z,
+            ior: scene.ior,
+            depth: params.depth,
+            fresnel: params.fresnel,
+            linear_steps: params.linear_steps,
+            secant_iterations: params.secant_iterations,
+            area_rule: params.area_rule,
+            splat_size: params.splat_size,
+            floor: scene.floor,
+        })
+    }
+
+    /// Where the light ray of photon-image texel `(i, j)` starts: behind the distance map's sphere.
+    pub fn photon_origin(&self, dm: &DistanceMap, i: usize, j: usize) -> DVec3 {
+        let q = self.rect_lo + self.cell * DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
+        let c = dm.centre;
+        c + self.u * (q.x - c.dot(self.u)) + self.v * (q.y - c.dot(self.v)) - self.w * dm.radius
+    }
+}
+
+/// The marker of an invalid photon-image texel.
+pub const INVALID: [f32; 4] = [0.0, 0.0, -1.0, 0.0];
+
+/// Photon tracing pass (§4.1) for texel `(i, j)`: `(x, y, Φ, 0)` of its floor hit, or [`INVALID`].
+pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usize) -> [f32; 4] {
+    let mut x = setup.photon_origin(dm, i, j);
+    let mut r = setup.w;
+    let mut inside = false;
+    let mut hit_glass = false;
+    let mut power = setup.flux;
+    let mut d0 = 0.0;
+    let eps = 1e-4 * dm.radius;
+    for event in 0..=setup.depth {
+        let d_floor = if r.z < 0.0 { -x.z / r.z } else { f64::INFINITY };
+        // Where the ray leaves the sphere holding the map's surfaces.
+        let oc = x - dm.centre;
+        let b = oc.dot(r);
+        let disc = b * b - (oc.length_squared() - dm.radius * dm.radius);
+        let d_out = if disc > 0.0 { -b + disc.sqrt() } else { 0.0 };
+        let d1 = d_out.min(d_floor);
+        match dm.trace(
+            x,
+            r,
+            d0,
+            d1,
+            inside,
+            setup.linear_steps,
+            setup.secant_iterations,
+        ) {
+            None => {
+                if !hit_glass || inside || !d_floor.is_finite() {
+                    return INVALID;
+                }
+                let p = x + r * d_floor;
+                return [p.x as f32, p.y as f32, power as f32, 0.0];
+            }
+            Some((_, s)) if !s.glass => return INVALID,
+            Some((d, s)) => {
+                if event == setup.depth {
+                    return INVALID;
+                }
+                hit_glass = true;
+                x += r * d;
+                let (n, n1, n2) = if inside {
+                    (-s.normal, setup.ior, 1.0)
+                } else {
+                    (s.normal, 1.0, setup.ior)
+                };
+                let cos_i = -r.dot(n);
+                match refract(r, n, n1 / n2) {
+                    Some(t) => {
+                        if setup.fresnel {
+                            power *= fresnel_transmittance(cos_i, n1, n2);
+                        }
+                        r = t.normalize();
+                        inside = !inside;
+                    }
+                    None => r = reflect(r, n).normalize(),
+                }
+                d0 = eps;
+            }
+        }
+    }
+    INVALID
+}
+
+/// The photon hit location image, row `i` (light-space `v`) major.
+pub fn photon_pass(setup: &CausticTrianglesSetup, dm: &DistanceMap) -> Vec<[f32; 4]> {
+    let p = setup.p;
+    (0..p * p)
+        .into_par_iter()
+        .map(|k| photon(setup, dm, k / p, k % p))
+        .collect()
+}
+
+fn valid(t: &[f32; 4]) -> bool {
+    t[2] >= 0.0
+}
+
+fn pos(t: &[f32; 4]) -> DVec2 {
+    DVec2::new(t[0] as f64, t[1] as f64)
+}
+
+fn tri_area(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    0.5 * (b - a).perp_dot(c - a).abs()
+}
+
+/// Whether all four corners of quad `(qi, qj)` (corners `(qi..=qi+1, qj..=qj+1)`) are valid.
+fn quad_valid(photons: &[[f32; 4]], p: usize, qi: i64, qj: i64) -> bool {
+    if qi < 0 || qj < 0 || qi + 1 >= p as i64 || qj + 1 >= p as i64 {
+        return false;
+    }
+    let (qi, qj) = (qi as usize, qj as usize);
+    [(0, 0), (0, 1), (1, 0), (1, 1)]
+        .iter()
+        .all(|&(a, b)| valid(&photons[(qi + a) * p + qj + b]))
+}
+
+/// Vertex irradiance of texel `(i, j)` (the §5 pass): `ΔΦ / ΔA`, or −1 where invalid.
+pub fn vertex_irradiance(
+    setup: &CausticTrianglesSetup,
+    photons: &[[f32; 4]],
+    i: usize,
+    j: usize,
+) -> f32 {
+    let p = setup.p;
+    let me = photons[i * p + j];
+    if !valid(&me) {
+        return -1.0;
+    }
+    let at = |di: i64, dj: i64| -> Option<DVec2> {
+        let (a, b) = (i as i64 + di, j as i64 + dj);
+        if a < 0 || b < 0 || a >= p as i64 || b >= p as i64 {
+            return None;
+        }
+        let t = photons[a as usize * p + b as usize];
+        valid(&t).then(|| pos(&t))
+    };
+    let v = pos(&me);
+    let (mut sum, mut count) = (0.0, 0u32);
+    match setup.area_rule {
+        AreaRule::Paper => {
+            // Right, up, left, down: consecutive pairs span the four corner triangles.
+            let ring = [at(0, 1), at(1, 0), at(0, -1), at(-1, 0)];
+            for k in 0..4 {
+                if let (Some(a), Some(b)) = (ring[k], ring[(k + 1) % 4]) {
+                    sum += tri_area(v, a, b);
+                    count += 1;
+                }
+            }
+            if count == 0 {
+                return -1.0;
+            }
+            let da = 2.0 * sum / count as f64;
+            (me[2] as f64 / da.max(1e-30)) as f32
+        }
+        AreaRule::Hat => {
+            // The quads around the vertex; in quad (qi, qj) the vertex is corner (ci, cj).
+            for (ci, cj) in [(0i64, 0i64), (0, 1), (1, 0), (1, 1)] {
+                let (qi, qj) = (i as i64 - ci, j as i64 - cj);
+                if !quad_valid(photons, p, qi, qj) {
+                    continue;
+                }
+                let c = |a: i64, b: i64| pos(&photons[((qi + a) as usize) * p + (qj + b) as usize]);
+                let (c00, c01, c10, c11) = (c(0, 0), c(0, 1), c(1, 0), c(1, 1));
+                // Triangle 1: 00, 01, 11; triangle 2: 00, 11, 10.
+                let in1 = (ci, cj) != (1, 0);
+                let in2 = (ci, cj) != (0, 1);
+                if in1 {
+                    sum += tri_area(c00, c01, c11);
+                    count += 1;
+                }
+                if in2 {
+                    sum += tri_area(c00, c11, c10);
+                    count += 1;
+                }
+            }
+            if count == 0 {
+                return -1.0;
+            }
+            let da = sum / 3.0;
+            (me[2] as f64 / da.max(1e-30)) as f32
+        }
+    }
+}
+
+pub fn irradiance_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> Vec<f32> {
+    let p = setup.p;
+    (0..p * p)
+        .into_par_iter()
+        .map(|k| vertex_irradiance(setup, photons, k / p, k % p))
+        .collect()
+}
+
+/// Add the Gouraud-shaded triangle `v` (map pixel coordinates) with vertex values `e` at every texel
+/// centre inside it: what the rasteriser does.
+pub fn raster_triangle(acc: &mut [f32], width: usize, height: usize, v: [DVec2; 3], e: [f64; 3]) {
+    let area2 = (v[1] - v[0]).perp_dot(v[2] - v[0]);
+    if area2 == 0.0 || !area2.is_finite() {
+        return;
+    }
+    let lo = v[0].min(v[1]).min(v[2]);
+    let hi = v[0].max(v[1]).max(v[2]);
+    let j0 = ((lo.x - 0.5).ceil().max(0.0)) as i64;
+    let j1 = ((hi.x - 0.5).floor()).min(width as f64 - 1.0) as i64;
+    let i0 = ((lo.y - 0.5).ceil().max(0.0)) as i64;
+    let i1 = ((hi.y - 0.5).floor()).min(height as f64 - 1.0) as i64;
+    for i in i0..=i1 {
+        for j in j0..=j1 {
+            let c = DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
+            let b0 = (v[2] - v[1]).perp_dot(c - v[1]) / area2;
+            let b1 = (v[0] - v[2]).perp_dot(c - v[2]) / area2;
+            let b2 = 1.0 - b0 - b1;
+            if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
+                acc[i as usize * width + j as usize] += (b0 * e[0] + b1 * e[1] + b2 * e[2]) as f32;
+            }
+        }
+    }
+}
+
+fn to_map(floor: &FloorWindow, acc: Vec<f32>) -> CausticsMap {
+    let mut map = floor.empty_map();
+    for (t, e) in map.texels.iter_mut().zip(acc) {
+        *t = [e; 3];
+    }
+    map
+}
+
+/// Caustic triangles (§4.2): two per quad of four valid photon-image texels, `(i, j) (i, j+1)
+/// (i+1, j+1)` and `(i, j) (i+1, j+1) (i+1, j)`, Gouraud shaded, added.
+pub fn triangles_pass(
+    setup: &CausticTrianglesSetup,
+    photons: &[[f32; 4]],
+    irradiance: &[f32],
+) -> CausticsMap {
+    let f = &setup.floor;
+    let p = setup.p;
+    let mut acc = vec![0.0f32; f.width * f.height];
+    for qi in 0..p.saturating_sub(1) {
+        for qj in 0..p - 1 {
+            if !quad_valid(photons, p, qi as i64, qj as i64) {
+                continue;
+            }
+            let k = |a: usize, b: usize| (qi + a) * p + qj + b;
+            let vert = |k: usize| (f.to_pixel(pos(&photons[k])), irradiance[k] as f64);
+            let (a, b, c, d) = (vert(k(0, 0)), vert(k(0, 1)), vert(k(1, 1)), vert(k(1, 0)));
+            raster_triangle(
+                &mut acc,
+                f.width,
+                f.height,
+                [a.0, b.0, c.0],
+                [a.1, b.1, c.1],
+            );
+            raster_triangle(
+                &mut acc,
+                f.width,
+                f.height,
+                [a.0, c.0, d.0],
+                [a.1, c.1, d.1],
+            );
+        }
+    }
+    to_map(f, acc)
+}
+
+/// The splatting baseline: each valid photon as a square of `splat_size` texels.
+pub fn splat_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> CausticsMap {
+    let f = &setup.floor;
+    let s = setup.splat_size;
+    let mut acc = vec![0.0f32; f.width * f.height];
+    for t in photons.iter().filter(|t| valid(t)) {
+        let c = f.to_pixel(pos(t));
+        let value = t[2] as f64 / (s * s * f.texel_area());
+        // Texel centres in [c − s/2, c + s/2).
+        let j0 = ((c.x - s / 2.0 - 0.5).ceil().max(0.0)) as i64;
+        let j1 = ((c.x + s / 2.0 - 0.5).ceil() - 1.0).min(f.width as f64 - 1.0) as i64;
+        let i0 = ((c.y - s / 2.0 - 0.5).ceil().max(0.0)) as i64;
+        let i1 = ((c.y + s / 2.0 - 0.5).ceil() - 1.0).min(f.height as f64 - 1.0) as i64;
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                acc[i as usize * f.width + j as usize] += value as f32;
+            }
+        }
+    }
+    to_map(f, acc)
+}
+
+/// Everything one run produces.
+pub struct Output {
+    pub photons: Vec<[f32; 4]>,
+    pub irradiance: Vec<f32>,
+    pub map: CausticsMap,
+}
+
+/// The whole technique on the CPU for a built distance map.
+pub fn caustics(setup: &CausticTrianglesSetup, dm: &DistanceMap) -> Output {
+    let photons = photon_pass(setup, dm);
+    let irradiance = irradiance_pass(setup, &photons);
+    let map = triangles_pass(setup, &photons, &irradiance);
+    Output {
+        photons,
+        irradiance,
+        map,
+    }
+}
+
+/// Total power of the valid photons, floor-area units.
+pub fn photon_power(photons: &[[f32; 4]]) -> f64 {
+    photons
+        .iter()
+        .filter(|t| valid(t))
+        .map(|t| t[2] as f64)
+        .sum()
+}
+
+/// The technique for a whole scene: every glass object of it as a generator (a distance map each,
+/// as the paper does for generators far apart), their caustic maps added, over the scene square
+/// at the scene's caustics resolution.
+pub fn render(scene: &crate::scene::Scene, params: &CausticTrianglesParams) -> Result<CausticsMap> {
+    let count = scene
+        .objects
+        .iter()
+        .filter(|o| matches!(o.material, crate::scene::Material::Glass { .. }))
+        .count();
+    if count == 0 {
+        return Err(Error::InvalidParameter(format!(
+            "scene `{}` has no glass object: caustic-triangles needs a glass caustic generator",
+            scene.name
+        )));
+    }
+    let mut total: Option<CausticsMap> = None;
+    for k in 0..count {
+        let gs = GlassScene::from_scene(scene, k)?;
+        let dm = DistanceMap::build(&gs, params.cube_resolution as usize, params.layers as usize);
+        let setup = CausticTrianglesSetup::new(params, &gs)?;
+        let map = caustics(&setup, &dm).map;
+        total = Some(match total {
+            None => map,
+            Some(mut t) => {
+                t.texels
+                    .iter_mut()
+                    .zip(&map.texels)
+                    .for_each(|(a, b)| a.iter_mut().zip(b).for_each(|(x, y)| *x += y));
+                t
+            }
+        });
+    }
+    Ok(total.expect("at least one generator"))
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,223 @@
+//! What technique `caustic-triangles` and its reference see of a scene: one glass caustic generator
+//! (an exact sphere or any closed mesh), diffuse occluders (walls) that stop light, the floor plane
+//! `z = 0` as the receiver, and the scene's directional sun. The floor map covers the square
+//! `[origin, origin + size]²` of the floor (the whole scene square when made from a [`Scene`]).
+
+use glam::{DVec2, DVec3};
+
+use crate::error::{Error, Result};
+use crate::map::CausticsMap;
+use crate::mesh::{MeshBvh, TriangleMesh, cuboid};
+use crate::scene::{Material, Scene};
+
+/// The generator's geometry: exact where it can be.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    Sphere { centre: DVec3, radius: f64 },
+    Mesh { mesh: TriangleMesh, bvh: MeshBvh },
+}
+
+impl Shape {
+    pub fn mesh(mesh: TriangleMesh) -> Shape {
+        let bvh = mesh.bvh();
+        Shape::Mesh { mesh, bvh }
+    }
+
+    /// Nearest hit of `origin + t dir` (unit `dir`) with `0 < t < t_max`: `t` and the outward normal.
+    pub fn intersect(&self, origin: DVec3, dir: DVec3, t_max: f64) -> Option<(f64, DVec3)> {
+        match self {
+            Shape::Sphere { centre, radius } => {
+                let oc = origin - *centre;
+                let b = oc.dot(dir);
+                let c = oc.length_squared() - radius * radius;
+                let disc = b * b - c;
+                if disc < 0.0 {
+                    return None;
+                }
+                let s = disc.sqrt();
+                // A relative epsilon keeps a ray that starts on the surface from hitting it again.
+                let eps = 1e-9 * radius;
+                [-b - s, -b + s]
+                    .into_iter()
+                    .find(|&t| t > eps && t < t_max)
+                    .map(|t| (t, (origin + t * dir - *centre) / *radius))
+            }
+            Shape::Mesh { mesh, bvh } => {
+                let eps = 1e-9 * (mesh.bounds().1 - mesh.bounds().0).length();
+                bvh.intersect(mesh, origin + eps * dir, dir, t_max - eps)
+                    .map(|(t, n)| (t + eps, n))
+            }
+        }
+    }
+
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        match self {
+            Shape::Sphere { centre, radius } => (*centre - *radius, *centre + *radius),
+            Shape::Mesh { mesh, .. } => mesh.bounds(),
+        }
+    }
+
+    /// The rectangle `[min, max]` the shape covers in the light-space coordinates `(p·u, p·v)`.
+    pub fn light_rect(&self, u: DVec3, v: DVec3) -> (DVec2, DVec2) {
+        match self {
+            Shape::Sphere { centre, radius } => {
+                let c = DVec2::new(centre.dot(u), centre.dot(v));
+                (c - *radius, c + *radius)
+            }
+            Shape::Mesh { mesh, .. } => {
+                mesh.positions
+                    .iter()
+                    .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                        let q = DVec2::new(p.dot(u), p.dot(v));
+                        (lo.min(q), hi.max(q))
+                    })
+            }
+        }
+    }
+}
+
+/// A diffuse object that stops light (a wall): a mesh and its BVH.
+#[derive(Clone, Debug)]
+pub struct Occluder {
+    pub mesh: TriangleMesh,
+    pub bvh: MeshBvh,
+}
+
+impl Occluder {
+    pub fn new(mesh: TriangleMesh) -> Self {
+        let bvh = mesh.bvh();
+        Occluder { mesh, bvh }
+    }
+
+    /// An axis-aligned box wall from `min` to `max`.
+    pub fn wall(min: DVec3, max: DVec3) -> Self {
+        let m = cuboid(0.5 * (max - min))
+            .transformed(glam::DAffine3::from_translation(0.5 * (min + max)));
+        Occluder::new(m)
+    }
+}
+
+/// The floor square the map covers and its resolution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FloorWindow {
+    pub origin: DVec2,
+    pub size: f64,
+    pub width: usize,
+    pub height: usize,
+}
+
+impl FloorWindow {
+    pub fn texel_area(&self) -> f64 {
+        (self.size / self.width as f64) * (self.size / self.height as f64)
+    }
+
+    /// Floor point to map pixel coordinates (texel `(i, j)` spans `[j, j+1) x [i, i+1)`).
+    pub fn to_pixel(&self, p: DVec2) -> DVec2 {
+        (p - self.origin) / self.size * DVec2::new(self.width as f64, self.height as f64)
+    }
+
+    pub fn empty_map(&self) -> CausticsMap {
+        CausticsMap::new(self.width, self.height, self.size)
+    }
+}
+
+/// Everything the technique and the reference need.
+#[derive(Clone, Debug)]
+pub struct GlassScene {
+    pub generator: Shape,
+    pub ior: f64,
+    pub occluders: Vec<Occluder>,
+    /// Unit direction the sunlight travels, `z < 0`.
+    pub light: DVec3,
+    pub floor: FloorWindow,
+}
+
+/// The light's frame: `w` the direction of travel, `u`, `v` spanning the plane across it.
+pub fn light_frame(light: DVec3) -> (DVec3, DVec3, DVec3) {
+    let w = light.normalize();
+    let u = w.cross(DVec3::Y).try_normalize().unwrap_or(DVec3::X);
+    let v = w.cross(u);
+    (u, v, w)
+}
+
+impl GlassScene {
+    pub fn new(
+        generator: Shape,
+        ior: f64,
+        light: DVec3,
+        floor: FloorWindow,
+        occluders: Vec<Occluder>,
+    ) -> Result<Self> {
+        if light.z >= 0.0 || !light.is_finite() {
+            return Err(Error::InvalidParameter(format!(
+                "the light direction {light} must point down (z < 0)"
+            )));
+        }
+        if ior.is_nan() || ior <= 1.0 {
+            return Err(Error::InvalidParameter(format!(
+                "the generator's index of refraction must exceed 1, got {ior}"
+            )));
+        }
+        if floor.width == 0 || floor.height == 0 || floor.size.is_nan() || floor.size <= 0.0 {
+            return Err(Error::InvalidParameter(format!(
+                "the floor map must be at least 1 x 1 over a positive size, got {} x {} over {}",
+                floor.width, floor.height, floor.size
+            )));
+        }
+        Ok(GlassScene {
+            generator,
+            ior,
+            occluders,
+            light: light.normalize(),
+            floor,
+        })
+    }
+
+    /// The scene's `index`-th glass object as the generator (its mesh), its diffuse objects as
+    /// occluders, the caustics resolution over the scene square.
+    pub fn from_scene(scene: &Scene, index: usize) -> Result<Self> {
+        let glass: Vec<_> = scene
+            .objects
+            .iter()
+            .filter(|o| matches!(o.material, Material::Glass { .. }))
+            .collect();
+        let obj = glass.get(index).ok_or_else(|| {
+            Error::InvalidParameter(format!(
+                "scene `{}` has {} glass objects; caustic-triangles needs glass object {index}",
+                scene.name,
+                glass.len()
+            ))
+        })?;
+        let Material::Glass { ior, .. } = obj.material else {
+            unreachable!()
+        };
+        let occluders = scene
+            .objects
+            .iter()
+            .filter(|o| matches!(o.material, Material::Diffuse { .. }))
+            .map(|o| Occluder::new(o.mesh.clone()))
+            .collect();
+        GlassScene::new(
+            Shape::mesh(obj.mesh.clone()),
+            ior,
+            scene.light.direction,
+            FloorWindow {
+                origin: DVec2::ZERO,
+                size: scene.size,
+                width: scene.caustics.width as usize,
+                height: scene.caustics.height as usize,
+            },
+            occluders,
+        )
+    }
+
+    /// Nearest occluder hit before `t_max`.
+    pub fn occluder_hit(&self, origin: DVec3, dir: DVec3, t_max: f64) -> Option<f64> {
+        self.occluders
+            .iter()
+            .filter_map(|o| o.bvh.intersect(&o.mesh, origin, dir, t_max).map(|h| h.0))
+            .fold(None, |best: Option<f64>, t| {
+                Some(best.map_or(t, |b| b.min(t)))
+            })
+    }
+}

@@ -1,0 +1,537 @@
+//! Technique `cascaded` on the GPU: cascaded caustic maps (Bäcklund, paper 5). The method, the
+//! passes and the choices made where the paper's copy stops are documented with its CPU twin,
+//! `caustics_core::techniques::cascaded`, which these passes mirror one for one:
+//!
+//! | pass | WGSL | CPU twin | runs |
+//! |---|---|---|---|
+//! | eye depth (compute) | `shaders/cascaded/eye.wgsl` | `eye_pass` | once |
+//! | water G-buffer (compute) | `shaders/cascaded/water.wgsl` | `water_gbuffer` | per cascade |
+//! | terrain G-buffer (compute) | `shaders/cascaded/terrain.wgsl` | `terrain_gbuffer` | per cascade, optional |
+//! | photons + splat (compute, atomics) | `shaders/cascaded/photons.wgsl` | `photons` | per cascade |
+//! | composition (compute) | `shaders/cascaded/compose.wgsl` | `compose` | once |
+//! | post-process dispersion (compute) | `shaders/cascaded/disperse.wgsl` | `disperse` | once, optional |
+//!
+//! **Why compute for the G-buffers.** The paper rasterises the water and terrain meshes from the
+//! sun. Our water and terrain are height fields, not meshes: one invocation per light texel
+//! intersects its sun ray with them exactly as the CPU twin does (Newton on the water, a march plus
+//! bisection on the terrain), with no tessellation to choose and no mesh to build per frame, and the
+//! two twins agree to f32 rounding. A rasterised mesh would agree only to its tessellation.
+//!
+//! **Why atomics for the splat.** Every photon adds `round(w · 2^14)` to its pixel with `atomicAdd` on
+//! `u32` in a storage buffer (one per cascade, pixel and channel). Integer sums are exact and do not
+//! depend on the order the photons arrive in, so the GPU agrees with the CPU twin bit for bit wherever
+//! both place a photon in the same pixel, on every adapter; it needs neither `FLOAT32_BLENDABLE`
+//! (without which additive blending into `Rgba32Float` is refused) nor a lossy `Rgba16Float` target
+//! (~0.2 % lost, GPU-NOTES), and the photon pass stays a compute pass that reads the G-buffers
+//! directly, with no vertex buffer of points. A pixel holds up to 2^18 photons of full weight before
+//! it wraps.
+//!
+//! The G-buffers are transient: one water and one terrain G-buffer serve the four cascades in turn;
+//! only the screen-space caustic maps are kept per cascade.
+
+use caustics_core::grid::Grid;
+use caustics_core::techniques::cascaded::{
+    Brightness, CASCADES, CascadedSetup, Dispersion, FIXED_SCALE, Placement, screen_buffer_len,
+};
+use wgpu::util::DeviceExt;
+
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+const COMMON: &str = include_str!("../shaders/cascaded/common.wgsl");
+
+pub const EYE: PassSource = PassSource {
+    name: "cascaded eye depth",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/cascaded/eye.wgsl"),
+};
+pub const WATER_GBUFFER: PassSource = PassSource {
+    name: "cascaded water G-buffer",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/cascaded/water.wgsl"),
+};
+pub const TERRAIN_GBUFFER: PassSource = PassSource {
+    name: "cascaded terrain G-buffer",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/cascaded/terrain.wgsl"),
+};
+pub const PHOTONS: PassSource = PassSource {
+    name: "cascaded photons",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/cascaded/photons.wgsl"),
+};
+pub const COMPOSE: PassSource = PassSource {
+    name: "cascaded composition",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/cascaded/compose.wgsl"),
+};
+pub const DISPERSE: PassSource = PassSource {
+    name: "cascaded dispersion",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/cascaded/disperse.wgsl"),
+};
+
+/// Mirrors `Cascaded` in `shaders/cascaded/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CascadedUniform {
+    pub light: [f32; 4],
+    pub e_u: [f32; 4],
+    pub e_v: [f32; 4],
+    pub view: [f32; 4],
+    pub view2: [f32; 4],
+    pub eye_pos: [f32; 4],
+    pub eye_fwd: [f32; 4],
+    pub eye_right: [f32; 4],
+    pub eye_up: [f32; 4],
+    pub ior: [f32; 4],
+    pub absorption: [f32; 4],
+    pub ramps: [f32; 4],
+    pub terrain: [f32; 4],
+    pub post: [f32; 4],
+    pub fars: [f32; 4],
+    pub fluxes: [f32; 4],
+    pub width: u32,
+    pub height: u32,
+    pub res: u32,
+    pub cascade: u32,
+    pub flags: u32,
+    pub wrap: u32,
+    pub _pad: [u32; 2],
+}
+
+fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+impl CascadedUniform {
+    pub fn new(s: &CascadedSetup, k: usize) -> Self {
+        let p = &s.params;
+        let c = &s.cascades[k];
+        let e = &s.eye;
+        let (lo, hi, has) = s
+            .terrain_range
+            .map_or((0.0, 0.0, 0.0), |(a, b)| (a, b, 1.0));
+        let mut flags = 0;
+        if p.placement == Placement::Plane {
+            flags |= 1;
+        }
+        if p.brightness == Brightness::Physical {
+            flags |= 2;
+        }
+        if p.dispersion == Dispersion::Wavelength {
+            flags |= 4;
+        }
+        CascadedUniform {
+            light: v4(s.light, s.level),
+            e_u: v4(s.e_u, s.size),
+            e_v: v4(s.e_v, s.t_flat),
+            view: [c.u0 as f32, c.v0 as f32, c.du as f32, c.dv as f32],
+            view2: [c.w0 as f32, c.far as f32, s.photon_flux(k) as f32, 0.0],
+            eye_pos: v4(e.position, e.half),
+            eye_fwd: v4(e.forward, e.aspect),
+            eye_right: v4(e.right, p.near),
+            eye_up: v4(e.up, p.blend),
+            ior: [
+                s.ior[0] as f32,
+                s.ior[1] as f32,
+                s.ior[2] as f32,
+                s.ior_mono as f32,
+            ],
+            absorption: v4(s.absorption, p.c),
+            ramps: [
+                p.min_depth as f32,
+                p.max_depth as f32,
+                p.shallow_ramp as f32,
+                FIXED_SCALE as f32,
+            ],
+            terrain: [lo as f32, hi as f32, has as f32, 0.0],
+            post: [
+                s.post_shift[0].x as f32,
+                s.post_shift[0].y as f32,
+                s.post_shift[2].x as f32,
+                s.post_shift[2].y as f32,
+            ],
+            fars: std::array::from_fn(|n| s.cascades[n].far as f32),
+            fluxes: std::array::from_fn(|n| s.photon_flux(n) as f32),
+            width: e.width as u32,
+            height: e.height as u32,
+            res: s.res as u32,
+            cascade: k as u32,
+            flags,
+            wrap: s.wrap as u32,
+            _pad: [0; 2],
+        }
+    }
+}
+
+/// The technique's pipelines, built once per device.
+pub struct Cascaded {
+    eye: wgpu::ComputePipeline,
+    water: wgpu::ComputePipeline,
+    terrain: wgpu::ComputePipeline,
+    photons: wgpu::ComputePipeline,
+    compose: wgpu::ComputePipeline,
+    disperse: wgpu::ComputePipeline,
+}
+
+/// One frame's resources for a setup, bind groups included: built once, encoded every frame (the
+/// water texture bound at creation is read afresh by every encode).
+pub struct Frame {
+    pub setup: CascadedSetup,
+    pub eye: wgpu::Texture,
+    pub gwater: wgpu::Texture,
+    pub gterrain: wgpu::Texture,
+    pub acc: wgpu::Buffer,
+    pub image: wgpu::Texture,
+    pub dispersed: Option<wgpu::Texture>,
+    eye_bind: wgpu::BindGroup,
+    /// Per cascade: water, terrain, photon bind groups.
+    cascades: Vec<[wgpu::BindGroup; 3]>,
+    compose_bind: wgpu::BindGroup,
+    disperse_bind: Option<wgpu::BindGroup>,
+    _terrain: wgpu::Texture,
+    /// Bytes of GPU memory: G-buffers (shared by the cascades), one cascade's screen map, the rest.
+    pub gbuffer_bytes: u64,
+    pub cascade_map_bytes: u64,
+    pub other_bytes: u64,
+}
+
+impl Frame {
+    pub fn bytes(&self) -> u64 {
+        self.gbuffer_bytes + CASCADES as u64 * self.cascade_map_bytes + self.other_bytes
+    }
+}
+
+/// One pass of a frame, for [`Cascaded::encode_pass`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    Eye,
+    Water(usize),
+    Terrain(usize),
+    Photons(usize),
+    Compose,
+    Disperse,
+}
+
+impl Pass {
+    /// The label its timestamps carry.
+    pub fn label(&self) -> String {
+        match self {
+            Pass::Eye => "eye depth".into(),
+            Pass::Water(k) => format!("water G-buffer {k}"),
+            Pass::Terrain(k) => format!("terrain G-buffer {k}"),
+            Pass::Photons(k) => format!("photons {k}"),
+            Pass::Compose => "composition".into(),
+            Pass::Disperse => "dispersion".into(),
+        }
+    }
+}
+
+/// What a frame read back: the eye pass, the fixed-point maps, the final image.
+pub struct GpuCascadedFrame {
+    pub eye: Vec<[f32; 4]>,
+    pub acc: Vec<u32>,
+    pub image: Vec<[f32; 4]>,
+}
+
+impl Cascaded {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let c = Cascaded {
+            eye: compute_pipeline(ctx, &EYE),
+            water: compute_pipeline(ctx, &WATER_GBUFFER),
+            terrain: compute_pipeline(ctx, &TERRAIN_GBUFFER),
+            photons: compute_pipeline(ctx, &PHOTONS),
+            compose: compute_pipeline(ctx, &COMPOSE),
+            disperse: compute_pipeline(ctx, &DISPERSE),
+        };
+        ctx.check()?;
+        Ok(c)
+    }
+
+    /// Allocate a frame. `water` is a texture whose red channel holds the water's heights over the
+    /// scene square (an `R32Float` grid, or `GpuOcean`'s `Rgba32Float` height-and-slopes texture),
+    /// read through `grid_sample`; `terrain` the floor's heights (`None`: the plane z = 0).
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &CascadedSetup,
+        water: &wgpu::TextureView,
+        terrain: Option<&Grid>,
+    ) -> Result<Frame, GpuError> {
+        use wgpu::BindingResource::TextureView as View;
+        use wgpu::TextureUsages as U;
+        let res = setup.res as u32;
+        let (w, h) = (setup.eye.width as u32, setup.eye.height as u32);
+        ctx.check_texture_size("cascaded caustic map (light-view G-buffer)", res, res)?;
+        ctx.check_texture_size("cascaded screen image", w, h)?;
+        let acc_bytes = screen_buffer_len(setup) as u64 * 4;
+        ctx.check_buffer_size("cascaded screen-space caustic maps", acc_bytes)?;
+        let storage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+        let f32x4 = wgpu::TextureFormat::Rgba32Float;
+        let eye = ctx.texture_2d("cascaded eye depth", (w, h, 1), f32x4, storage);
+        let gwater = ctx.texture_2d("cascaded water G-buffer", (res, res, 1), f32x4, storage);
+        let gterrain = ctx.texture_2d(
+            "cascaded terrain G-buffer",
+            (res, res, 1),
+            wgpu::TextureFormat::R32Float,
+            storage,
+        );
+        let image = ctx.texture_2d("cascaded image", (w, h, 1), f32x4, storage);
+        let dispersed = (setup.params.dispersion == Dispersion::Post)
+            .then(|| ctx.texture_2d("cascaded dispersed image", (w, h, 1), f32x4, storage));
+        let acc = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cascaded screen-space caustic maps"),
+            size: acc_bytes,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let terrain_grid = match (terrain, setup.terrain_range) {
+            (Some(g), Some(_)) => g.clone(),
+            _ => Grid::new(1, 1),
+        };
+        let terrain_tex = ctx.upload_grid("cascaded terrain heights", &terrain_grid)?;
+        let terrain_view = terrain_tex.create_view(&Default::default());
+        let uniforms: Vec<wgpu::Buffer> = (0..CASCADES)
+            .map(|k| {
+                ctx.device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("cascaded uniform"),
+                        contents: bytemuck::bytes_of(&CascadedUniform::new(setup, k)),
+                        usage: wgpu::BufferUsages::UNIFORM,
+                    })
+            })
+            .collect();
+        let eye_view = eye.create_view(&Default::default());
+        let gwater_view = gwater.create_view(&Default::default());
+        let gterrain_view = gterrain.create_view(&Default::default());
+        let image_view = image.create_view(&Default::default());
+        let eye_bind = bind_group(
+            ctx,
+            EYE.name,
+            &self.eye.get_bind_group_layout(0),
+            &[
+                uniforms[0].as_entire_binding(),
+                View(&terrain_view),
+                View(&eye_view),
+            ],
+        );
+        let cascades = uniforms
+            .iter()
+            .map(|u| {
+                [
+                    bind_group(
+                        ctx,
+                        WATER_GBUFFER.name,
+                        &self.water.get_bind_group_layout(0),
+                        &[u.as_entire_binding(), View(water), View(&gwater_view)],
+                    ),
+                    bind_group(
+                        ctx,
+                        TERRAIN_GBUFFER.name,
+                        &self.terrain.get_bind_group_layout(0),
+                        &[
+                            u.as_entire_binding(),
+                            View(&terrain_view),
+                            View(&gterrain_view),
+                        ],
+                    ),
+                    bind_group(
+                        ctx,
+                        PHOTONS.name,
+                        &self.photons.get_bind_group_layout(0),
+                        &[
+                            u.as_entire_binding(),
+                            View(&gwater_view),
+                            View(&gterrain_view),
+                            acc.as_entire_binding(),
+                        ],
+                    ),
+                ]
+            })
+            .collect();
+        let compose_bind = bind_group(
+            ctx,
+            COMPOSE.name,
+            &self.compose.get_bind_group_layout(0),
+            &[
+                uniforms[0].as_entire_binding(),
+                View(&eye_view),
+                acc.as_entire_binding(),
+                View(&image_view),
+            ],
+        );
+        let disperse_bind = dispersed.as_ref().map(|d| {
+            bind_group(
+                ctx,
+                DISPERSE.name,
+                &self.disperse.get_bind_group_layout(0),
+                &[
+                    uniforms[0].as_entire_binding(),
+                    View(&eye_view),
+                    View(&image_view),
+                    View(&d.create_view(&Default::default())),
+                ],
+            )
+        });
+        ctx.check()?;
+        let screen = w as u64 * h as u64;
+        Ok(Frame {
+            setup: setup.clone(),
+            eye,
+            gwater,
+            gterrain,
+            acc,
+            image,
+            dispersed,
+            eye_bind,
+            cascades,
+            compose_bind,
+            disperse_bind,
+            _terrain: terrain_tex,
+            gbuffer_bytes: res as u64 * res as u64 * (16 + 4),
+            cascade_map_bytes: screen * 12,
+            other_bytes: screen * 16 * (2 + (setup.params.dispersion == Dispersion::Post) as u64)
+                + terrain_grid.data.len() as u64 * 4
+                + CASCADES as u64 * std::mem::size_of::<CascadedUniform>() as u64,
+        })
+    }
+
+    fn dispatch(
+        encoder: &mut wgpu::CommandEncoder,
+        timer: &mut Option<&mut GpuTimer>,
+        label: &str,
+        pipeline: &wgpu::ComputePipeline,
+        bind: &wgpu::BindGroup,
+        (w, h): (u32, u32),
+    ) {
+        let mut pass = begin_compute(encoder, timer, label);
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, bind, &[]);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+    }
+
+    /// The passes of one frame, in order (the terrain G-buffer only when the setup has it, the
+    /// dispersion only under post-process dispersion).
+    pub fn passes(setup: &CascadedSetup) -> Vec<Pass> {
+        let mut v = vec![Pass::Eye];
+        for k in 0..CASCADES {
+            v.push(Pass::Water(k));
+            if setup.terrain_range.is_some() {
+                v.push(Pass::Terrain(k));
+            }
+            v.push(Pass::Photons(k));
+        }
+        v.push(Pass::Compose);
+        if setup.params.dispersion == Dispersion::Post {
+            v.push(Pass::Disperse);
+        }
+        v
+    }
+
+    /// Record one pass (the screen-space maps are cleared before the eye pass).
+    pub fn encode_pass(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        pass: Pass,
+        timer: &mut Option<&mut GpuTimer>,
+    ) {
+        let res = frame.setup.res as u32;
+        let screen = (frame.setup.eye.width as u32, frame.setup.eye.height as u32);
+        let label = pass.label();
+        let (pipeline, bind, size) = match pass {
+            Pass::Eye => {
+                encoder.clear_buffer(&frame.acc, 0, None);
+                (&self.eye, &frame.eye_bind, screen)
+            }
+            Pass::Water(k) => (&self.water, &frame.cascades[k][0], (res, res)),
+            Pass::Terrain(k) => (&self.terrain, &frame.cascades[k][1], (res, res)),
+            Pass::Photons(k) => (&self.photons, &frame.cascades[k][2], (res, res)),
+            Pass::Compose => (&self.compose, &frame.compose_bind, screen),
+            Pass::Disperse => match &frame.disperse_bind {
+                Some(b) => (&self.disperse, b, screen),
+                None => return,
+            },
+        };
+        Self::dispatch(encoder, timer, &label, pipeline, bind, size);
+    }
+
+    /// Record cascade `k`'s G-buffer passes (water, then terrain when the setup has the pass).
+    pub fn encode_gbuffers(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        k: usize,
+        timer: &mut Option<&mut GpuTimer>,
+    ) {
+        self.encode_pass(frame, encoder, Pass::Water(k), timer);
+        if frame.setup.terrain_range.is_some() {
+            self.encode_pass(frame, encoder, Pass::Terrain(k), timer);
+        }
+    }
+
+    /// The texture a frame's image ends in (`Rgba32Float`: `[r, g, b, cascade]`, as the CPU twin's
+    /// `CascadedFrame::image`).
+    pub fn output<'f>(&self, frame: &'f Frame) -> &'f wgpu::Texture {
+        frame.dispersed.as_ref().unwrap_or(&frame.image)
+    }
+
+    /// Record the whole technique. Returns the texture the image ends in.
+    pub fn encode<'f>(
+        &self,
+        frame: &'f Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> &'f wgpu::Texture {
+        for pass in Self::passes(&frame.setup) {
+            self.encode_pass(frame, encoder, pass, &mut timer);
+        }
+        self.output(frame)
+    }
+
+    /// Run cascade `k`'s G-buffer passes alone and read them back (water, terrain).
+    pub fn gbuffers(
+        &self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        k: usize,
+    ) -> Result<(Vec<[f32; 4]>, Vec<f32>), GpuError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode_gbuffers(frame, &mut encoder, k, &mut None);
+        ctx.queue.submit([encoder.finish()]);
+        Ok((
+            ctx.read_texture(&frame.gwater)?,
+            ctx.read_texture(&frame.gterrain)?,
+        ))
+    }
+
+    /// Run the technique once on `frame` and read everything back.
+    pub fn run(&self, ctx: &GpuContext, frame: &Frame) -> Result<GpuCascadedFrame, GpuError> {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let out = self.encode(frame, &mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+        Ok(GpuCascadedFrame {
+            eye: ctx.read_texture(&frame.eye)?,
+            acc: ctx.read_buffer(&frame.acc)?,
+            image: ctx.read_texture(out)?,
+        })
+    }
+
+    /// The whole technique from height grids: upload the water, build a frame, run it.
+    pub fn caustics(
+        &self,
+        ctx: &GpuContext,
+        setup: &CascadedSetup,
+        water: &Grid,
+        terrain: Option<&Grid>,
+    ) -> Result<GpuCascadedFrame, GpuError> {
+        let tex = ctx.upload_grid("cascaded water heights", water)?;
+        let view = tex.create_view(&Default::default());
+        let frame = self.frame(ctx, setup, &view, terrain)?;
+        self.run(ctx, &frame)
+    }
+}

@@ -1,0 +1,438 @@
+//! Technique `caustic-triangles` on the GPU: "Caustic Triangles on the GPU" (Umenhoffer, Patow &
+//! Szirmay-Kalos). The method, the area rules and where it departs from the paper are documented
+//! with its CPU twin, `caustics_core::techniques::caustic_triangles`, which these passes mirror one
+//! for one:
+//!
+//! | pass | WGSL | CPU twin |
+//! |---|---|---|
+//! | photon tracing (compute, §4.1) | `shaders/caustic_triangles/photon.wgsl` + `distance_map.wgsl` | `photon_pass` |
+//! | vertex irradiance (compute, §5) | `shaders/caustic_triangles/irradiance.wgsl` | `irradiance_pass` |
+//! | caustic triangles (render, §4.2) | `shaders/caustic_triangles/triangles.wgsl` | `triangles_pass` |
+//! | splatting baseline (render) | `shaders/caustic_triangles/splat.wgsl` | `splat_pass` |
+//!
+//! The layered distance map is built on the CPU ([`DistanceMap::build`]) and uploaded as a storage
+//! buffer; the photon hit location image and the vertex irradiances are storage buffers that the
+//! vertex shaders read (no vertex buffers: 6 vertices per photon-image quad, 6 per splat). The floor
+//! map is drawn with additive blending into `Rgba32Float` where the adapter has
+//! `FLOAT32_BLENDABLE`, otherwise into `Rgba16Float` (blendable everywhere; about 3 significant
+//! digits, ~0.2 % of the total lost to rounding in accumulation).
+
+use caustics_core::map::CausticsMap;
+use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
+use wgpu::util::DeviceExt;
+
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::shaders::{OPTICS, PassSource};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+const COMMON: &str = include_str!("../shaders/caustic_triangles/common.wgsl");
+const DISTANCE_MAP: &str = include_str!("../shaders/caustic_triangles/distance_map.wgsl");
+
+pub const PHOTON: PassSource = PassSource {
+    name: "caustic-triangles photon tracing",
+    shared: &[OPTICS, COMMON, DISTANCE_MAP],
+    source: include_str!("../shaders/caustic_triangles/photon.wgsl"),
+};
+pub const IRRADIANCE: PassSource = PassSource {
+    name: "caustic-triangles vertex irradiance",
+    shared: &[COMMON],
+    source: include_str!("../shaders/caustic_triangles/irradiance.wgsl"),
+};
+pub const TRIANGLES: PassSource = PassSource {
+    name: "caustic-triangles triangles",
+    shared: &[COMMON],
+    source: include_str!("../shaders/caustic_triangles/triangles.wgsl"),
+};
+pub const SPLAT: PassSource = PassSource {
+    name: "caustic-triangles splats",
+    shared: &[COMMON],
+    source: include_str!("../shaders/caustic_triangles/splat.wgsl"),
+};
+
+/// Mirrors `CausticTriangles` in `shaders/caustic_triangles/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CausticTrianglesUniform {
+    pub centre: [f32; 4],
+    pub u: [f32; 4],
+    pub v: [f32; 4],
+    pub w: [f32; 4],
+    pub rect: [f32; 4],
+    pub floor: [f32; 4],
+    pub p: u32,
+    pub cube: u32,
+    pub layers: u32,
+    pub depth: u32,
+    pub linear_steps: u32,
+    pub secant_iterations: u32,
+    pub fresnel: u32,
+    pub area_rule: u32,
+    pub width: u32,
+    pub height: u32,
+    pub _pad: [u32; 2],
+}
+
+impl CausticTrianglesUniform {
+    pub fn new(s: &CausticTrianglesSetup, dm: &DistanceMap) -> Self {
+        let v4 = |v: glam::DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
+        CausticTrianglesUniform {
+            centre: v4(dm.centre, dm.radius),
+            u: v4(s.u, s.ior),
+            v: v4(s.v, s.flux),
+            w: v4(s.w, s.splat_size),
+            rect: [
+                s.rect_lo.x as f32,
+                s.rect_lo.y as f32,
+                s.cell.x as f32,
+                s.cell.y as f32,
+            ],
+            floor: [
+                s.floor.origin.x as f32,
+                s.floor.origin.y as f32,
+                s.floor.size as f32,
+                s.floor.texel_area() as f32,
+            ],
+            p: s.p as u32,
+            cube: dm.resolution as u32,
+            layers: dm.layers as u32,
+            depth: s.depth,
+            linear_steps: s.linear_steps,
+            secant_iterations: s.secant_iterations,
+            fresnel: s.fresnel as u32,
+            area_rule: s.area_rule.code(),
+            width: s.floor.width as u32,
+            height: s.floor.height as u32,
+            _pad: [0; 2],
+        }
+    }
+}
+
+/// How the photon hits become the floor map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reconstruction {
+    /// The paper's caustic triangles.
+    Triangles,
+    /// The fixed-size splatting baseline.
+    Splats,
+}
+
+/// The technique's pipelines, built once per device for one floor-map format.
+pub struct CausticTriangles {
+    photon: wgpu::ComputePipeline,
+    irradiance: wgpu::ComputePipeline,
+    triangles: wgpu::RenderPipeline,
+    splat: wgpu::RenderPipeline,
+    /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float`.
+    pub map_format: wgpu::TextureFormat,
+}
+
+fn additive_pipeline(
+    ctx: &GpuContext,
+    source: &PassSource,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let module = source.module(&ctx.device);
+    let add = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    };
+    ctx.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(source.name),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            // Triangle list, no culling: folded caustic triangles face either way.
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: Some(wgpu::BlendState {
+                        color: add,
+                        alpha: add,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}
+
+/// One generator's resources: the distance map, the photon image, the vertex irradiances, the
+/// floor map, and the bind groups. Built once; encode it every frame the light or object moves
+/// (the uniform and distance map can be rewritten in place for the same sizes).
+pub struct Frame {
+    pub setup: CausticTrianglesSetup,
+    pub uniform: wgpu::Buffer,
+    pub photons: wgpu::Buffer,
+    pub irradiance: wgpu::Buffer,
+    pub map: wgpu::Texture,
+    map_view: wgpu::TextureView,
+    photon_bind: wgpu::BindGroup,
+    irradiance_bind: wgpu::BindGroup,
+    triangles_bind: wgpu::BindGroup,
+    splat_bind: wgpu::BindGroup,
+    bytes: u64,
+}
+
+impl Frame {
+    /// GPU memory this frame's buffers and map take, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+}
+
+/// What one GPU run reads back.
+pub struct GpuOutput {
+    pub photons: Vec<[f32; 4]>,
+    pub irradiance: Vec<f32>,
+    pub map: CausticsMap,
+}
+
+impl CausticTriangles {
+    /// Pipelines for the best floor-map format this device blends.
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let format = if ctx
+            .device
+            .features()
+            .contains(wgpu::Features::FLOAT32_BLENDABLE)
+        {
+            wgpu::TextureFormat::Rgba32Float
+        } else {
+            wgpu::TextureFormat::Rgba16Float
+        };
+        Self::with_format(ctx, format)
+    }
+
+    /// Pipelines for a given floor-map format (`Rgba32Float` needs `FLOAT32_BLENDABLE`).
+    pub fn with_format(
+        ctx: &GpuContext,
+        map_format: wgpu::TextureFormat,
+    ) -> Result<Self, GpuError> {
+        let t = CausticTriangles {
+            photon: compute_pipeline(ctx, &PHOTON),
+            irradiance: compute_pipeline(ctx, &IRRADIANCE),
+            triangles: additive_pipeline(ctx, &TRIANGLES, map_format),
+            splat: additive_pipeline(ctx, &SPLAT, map_format),
+            map_format,
+        };
+        ctx.check()?;
+        Ok(t)
+    }
+
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+    ) -> Result<Frame, GpuError> {
+        use wgpu::BufferUsages as B;
+        let (w, h) = (setup.floor.width as u32, setup.floor.height as u32);
+        ctx.check_texture_size("caustic-triangles floor map", w, h)?;
+        let p = setup.p as u64;
+        let dm_bytes = dm.texels.len() as u64 * 16;
+        ctx.check_buffer_size("caustic-triangles distance map", dm_bytes)?;
+        ctx.check_buffer_size("caustic-triangles photon image", p * p * 16)?;
+        let uniform = ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("caustic-triangles uniform"),
+                contents: bytemuck::bytes_of(&CausticTrianglesUniform::new(setup, dm)),
+                usage: B::UNIFORM | B::COPY_DST,
+            });
+        let dm_buffer = ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("caustic-triangles distance map"),
+                contents: bytemuck::cast_slice(&dm.texels),
+                usage: B::STORAGE | B::COPY_DST,
+            });
+        let photons = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles photon image"),
+            size: p * p * 16,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let irradiance = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles vertex irradiance"),
+            size: p * p * 4,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let map = ctx.texture_2d(
+            "caustic-triangles floor map",
+            (w, h, 1),
+            self.map_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+        );
+        let map_view = map.create_view(&Default::default());
+        let photon_bind = bind_group(
+            ctx,
+            "caustic-triangles photon tracing",
+            &self.photon.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                dm_buffer.as_entire_binding(),
+                photons.as_entire_binding(),
+            ],
+        );
+        let irradiance_bind = bind_group(
+            ctx,
+            "caustic-triangles vertex irradiance",
+            &self.irradiance.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                photons.as_entire_binding(),
+                irradiance.as_entire_binding(),
+            ],
+        );
+        let triangles_bind = bind_group(
+            ctx,
+            "caustic-triangles triangles",
+            &self.triangles.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                photons.as_entire_binding(),
+                irradiance.as_entire_binding(),
+            ],
+        );
+        let splat_bind = bind_group(
+            ctx,
+            "caustic-triangles splats",
+            &self.splat.get_bind_group_layout(0),
+            &[uniform.as_entire_binding(), photons.as_entire_binding()],
+        );
+        ctx.check()?;
+        let texel = self.map_format.block_copy_size(None).unwrap_or(16) as u64;
+        Ok(Frame {
+            setup: setup.clone(),
+            uniform,
+            photons,
+            irradiance,
+            map,
+            map_view,
+            photon_bind,
+            irradiance_bind,
+            triangles_bind,
+            splat_bind,
+            bytes: dm_bytes + p * p * 20 + (w * h) as u64 * texel + 160,
+        })
+    }
+
+    /// Record the photon tracing pass, then the reconstruction into the floor map (cleared first).
+    pub fn encode(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+    ) {
+        let p = frame.setup.p as u32;
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles photon tracing");
+            pass.set_pipeline(&self.photon);
+            pass.set_bind_group(0, &frame.photon_bind, &[]);
+            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        if reconstruction == Reconstruction::Triangles {
+            let mut pass =
+                begin_compute(encoder, &mut timer, "caustic-triangles vertex irradiance");
+            pass.set_pipeline(&self.irradiance);
+            pass.set_bind_group(0, &frame.irradiance_bind, &[]);
+            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        let label = match reconstruction {
+            Reconstruction::Triangles => "caustic-triangles triangles",
+            Reconstruction::Splats => "caustic-triangles splats",
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &frame.map_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        match reconstruction {
+            Reconstruction::Triangles => {
+                pass.set_pipeline(&self.triangles);
+                pass.set_bind_group(0, &frame.triangles_bind, &[]);
+                pass.draw(0..6 * (p - 1) * (p - 1), 0..1);
+            }
+            Reconstruction::Splats => {
+                pass.set_pipeline(&self.splat);
+                pass.set_bind_group(0, &frame.splat_bind, &[]);
+                pass.draw(0..6 * p * p, 0..1);
+            }
+        }
+    }
+
+    /// Read the floor map back (either format) as a caustics map.
+    pub fn read_map(&self, ctx: &GpuContext, frame: &Frame) -> Result<CausticsMap, GpuError> {
+        let f = &frame.setup.floor;
+        let texels: Vec<[f32; 4]> = if self.map_format == wgpu::TextureFormat::Rgba16Float {
+            let raw: Vec<[u16; 4]> = ctx.read_texture(&frame.map)?;
+            raw.into_iter().map(|t| t.map(f16_to_f32)).collect()
+        } else {
+            ctx.read_texture(&frame.map)?
+        };
+        Ok(CausticsMap {
+            width: f.width,
+            height: f.height,
+            size: f.size,
+            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+        })
+    }
+
+    /// Run the technique once and read everything back.
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+        reconstruction: Reconstruction,
+    ) -> Result<GpuOutput, GpuError> {
+        let frame = self.frame(ctx, setup, dm)?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode(&frame, &mut encoder, None, reconstruction);
+        ctx.queue.submit([encoder.finish()]);
+        let map = self.read_map(ctx, &frame)?;
+        Ok(GpuOutput {
+            photons: ctx.read_buffer(&frame.photons)?,
+            irradiance: ctx.read_buffer(&frame.irradiance)?,
+            map,
+        })
+    }
+}
+
+/// IEEE half to single precision.
+pub fn f16_to_f32(h: u16) -> f32 {
+    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
+    let exp = ((h >> 10) & 0x1f) as i32;
+    let frac = (h & 0x3ff) as f32;
+    sign * match exp {
+        0 => frac * 2f32.powi(-24),
+        31 if frac == 0.0 => f32::INFINITY,
+        31 => f32::NAN,
+        e => (1.0 + frac / 1024.0) * 2f32.powi(e - 15),
+    }
+}

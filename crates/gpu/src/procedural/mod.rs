@@ -1,0 +1,538 @@
+//! Technique `procedural` on the GPU: "Inexpensive Underwater Caustics Using Cg" (Sánchez-Crespo
+//! Dalmau). The method, its light map, its options and where it departs from the reference are
+//! documented with its CPU twin, `caustics_core::techniques::procedural`, which these passes mirror
+//! one for one:
+//!
+//! | variant | pass | WGSL | CPU twin |
+//! |---|---|---|---|
+//! | vertex | caustic per mesh vertex (vertex shader), linear over the triangles (rasteriser) | `shaders/procedural/vertex.wgsl` | `vertex_values` + `rasterise` |
+//! | screen | caustic per map pixel, no filtering (fragment) | `screen.wgsl` | `per_pixel` |
+//! | texture | caustic per texel of the fixed-size target, mip level 0 (fragment) | `target.wgsl` | `per_pixel` |
+//! | texture | one 2 x 2 box downsample per mip level (fragment) | `downsample.wgsl` | `mip_chain` |
+//! | texture | the map reads the chain: trilinear, `anisotropy_clamp` 16 (fragment) | `resample.wgsl` | `resample` |
+//!
+//! Every evaluating pass shares `common.wgsl` (`procedural_caustic`), which reuses the shared
+//! `refract_dir`, `height_field_normal`, `procedural_wave` and `grid_sample`. The map and the target
+//! are `Rgba32Float`; the target falls back to `Rgba16Float` where the adapter cannot filter 32-bit
+//! floats (`FLOAT32_FILTERABLE`), at half-float precision.
+
+use caustics_core::grid::Grid;
+use caustics_core::map::CausticsMap;
+use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
+use wgpu::util::DeviceExt;
+
+use crate::pass::bind_group;
+use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::water::GpuProceduralWave;
+use crate::{GpuContext, GpuError, GpuTimer};
+
+const COMMON: &str = include_str!("../shaders/procedural/common.wgsl");
+
+pub const VERTEX: PassSource = PassSource {
+    name: "procedural vertex",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/procedural/vertex.wgsl"),
+};
+pub const SCREEN: PassSource = PassSource {
+    name: "procedural screen",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/procedural/screen.wgsl"),
+};
+pub const TARGET: PassSource = PassSource {
+    name: "procedural target",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/procedural/target.wgsl"),
+};
+pub const DOWNSAMPLE: PassSource = PassSource {
+    name: "procedural downsample",
+    shared: &[],
+    source: include_str!("../shaders/procedural/downsample.wgsl"),
+};
+pub const RESAMPLE: PassSource = PassSource {
+    name: "procedural resample",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/procedural/resample.wgsl"),
+};
+
+/// Mirrors `Procedural` in `shaders/procedural/common.wgsl` and `ProceduralSetup` in
+/// caustics-core/src/techniques/procedural.rs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ProceduralUniform {
+    pub sun_x: [f32; 4],
+    pub sun_y: [f32; 4],
+    pub sun_z: [f32; 4],
+    pub up: [f32; 4],
+    pub absorption: [f32; 4],
+    pub wave: GpuProceduralWave,
+    pub size: f32,
+    pub depth: f32,
+    pub ior: f32,
+    pub extent: f32,
+    pub width: u32,
+    pub height: u32,
+    pub target_size: u32,
+    pub mesh: u32,
+    pub source: u32,
+    pub wrap: u32,
+    pub _pad: [u32; 2],
+}
+
+fn v4(v: glam::DVec3) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, 0.0]
+}
+
+impl ProceduralUniform {
+    pub fn new(s: &ProceduralSetup, water: &SurfaceInput) -> Self {
+        let (source, wave) = match water {
+            SurfaceInput::Wave(w) => (1, GpuProceduralWave::from(*w)),
+            SurfaceInput::Grid(_) => (0, GpuProceduralWave::default()),
+        };
+        ProceduralUniform {
+            sun_x: v4(s.sun_frame[0]),
+            sun_y: v4(s.sun_frame[1]),
+            sun_z: v4(s.sun_frame[2]),
+            up: v4(s.up),
+            absorption: v4(s.absorption),
+            wave,
+            size: s.size as f32,
+            depth: s.depth as f32,
+            ior: s.ior as f32,
+            extent: s.light.extent as f32,
+            width: s.width as u32,
+            height: s.height as u32,
+            target_size: s.target as u32,
+            mesh: s.mesh as u32,
+            source,
+            wrap: s.wrap as u32,
+            _pad: [0; 2],
+        }
+    }
+}
+
+const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// The technique's pipelines, built once per device.
+pub struct ProceduralCaustics {
+    vertex: wgpu::RenderPipeline,
+    screen: wgpu::RenderPipeline,
+    target: wgpu::RenderPipeline,
+    downsample: wgpu::RenderPipeline,
+    resample: wgpu::RenderPipeline,
+    /// The texture variant's target and mip chain: `Rgba32Float` where the adapter filters it,
+    /// `Rgba16Float` otherwise.
+    pub chain_format: wgpu::TextureFormat,
+}
+
+fn render_pipeline(
+    ctx: &GpuContext,
+    pass: &PassSource,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let module = pass.module(&ctx.device);
+    ctx.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(pass.name),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}
+
+/// One frame's resources for a given setup and water, bind groups included: a frame is built once
+/// and encoded every time the water moves ([`Frame::update_water`]).
+pub struct Frame {
+    uniform: wgpu::Buffer,
+    heights: wgpu::Texture,
+    pub map: wgpu::Texture,
+    map_view: wgpu::TextureView,
+    setup: ProceduralSetup,
+    passes: FramePasses,
+    bytes: u64,
+}
+
+enum FramePasses {
+    Vertex {
+        bind: wgpu::BindGroup,
+        /// The mesh's triangle-list indices and their count.
+        indices: wgpu::Buffer,
+        count: u32,
+    },
+    Screen {
+        bind: wgpu::BindGroup,
+    },
+    Texture {
+        target: wgpu::BindGroup,
+        /// One view per mip level of the target.
+        levels: Vec<wgpu::TextureView>,
+        /// Per level k >= 1: level k - 1 bound as the source.
+        downsample: Vec<wgpu::BindGroup>,
+        resample: wgpu::BindGroup,
+    },
+}
+
+impl Frame {
+    /// GPU memory this frame's textures and buffers take, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+
+    pub fn setup(&self) -> &ProceduralSetup {
+        &self.setup
+    }
+
+    /// Replace the water for the next encode: a height grid of the frame's grid size, or the wave
+    /// function at another time (the frame must have been made with the same kind of input).
+    pub fn update_water(&self, ctx: &GpuContext, water: &SurfaceInput) -> Result<(), GpuError> {
+        if let SurfaceInput::Grid(g) = water {
+            if (g.cols as u32, g.rows as u32) != (self.heights.width(), self.heights.height()) {
+                return Err(GpuError::BadOption(format!(
+                    "procedural: the frame holds a {} x {} height grid, not {} x {}",
+                    self.heights.width(),
+                    self.heights.height(),
+                    g.cols,
+                    g.rows
+                )));
+            }
+            ctx.write_grid(&self.heights, g);
+        }
+        ctx.queue.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&ProceduralUniform::new(&self.setup, water)),
+        );
+        Ok(())
+    }
+}
+
+/// Triangle-list indices of a mesh of `n`² quads, `(n + 1)²` vertices row-major over `l`; each quad
+/// split along its diagonal from vertex `(k, l)` to `(k + 1, l + 1)`, as `rasterise` assumes.
+pub fn mesh_indices(n: u32) -> Vec<u32> {
+    let mut out = Vec::with_capacity(6 * (n * n) as usize);
+    for l in 0..n {
+        for k in 0..n {
+            let v00 = l * (n + 1) + k;
+            let (v10, v01) = (v00 + 1, v00 + n + 1);
+            let v11 = v01 + 1;
+            out.extend([v00, v10, v11, v00, v11, v01]);
+        }
+    }
+    out
+}
+
+impl ProceduralCaustics {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let chain_format = if ctx
+            .device
+            .features()
+            .contains(wgpu::Features::FLOAT32_FILTERABLE)
+        {
+            wgpu::TextureFormat::Rgba32Float
+        } else {
+            wgpu::TextureFormat::Rgba16Float
+        };
+        let p = ProceduralCaustics {
+            vertex: render_pipeline(ctx, &VERTEX, MAP_FORMAT),
+            screen: render_pipeline(ctx, &SCREEN, MAP_FORMAT),
+            target: render_pipeline(ctx, &TARGET, chain_format),
+            downsample: render_pipeline(ctx, &DOWNSAMPLE, chain_format),
+            resample: render_pipeline(ctx, &RESAMPLE, MAP_FORMAT),
+            chain_format,
+        };
+        ctx.check()?;
+        Ok(p)
+    }
+
+    /// Allocate a frame's textures, buffers and bind groups for the setup's variant, and upload the
+    /// water and the light map.
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &ProceduralSetup,
+        water: &SurfaceInput,
+    ) -> Result<Frame, GpuError> {
+        use wgpu::BindingResource::TextureView as View;
+        use wgpu::TextureUsages as U;
+        let (w, h) = (setup.width as u32, setup.height as u32);
+        ctx.check_texture_size("procedural caustics map", w, h)?;
+        let uniform = ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("procedural uniform"),
+                contents: bytemuck::bytes_of(&ProceduralUniform::new(setup, water)),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+        let lm = &setup.light;
+        let light = ctx.upload_grid(
+            "procedural light map",
+            &Grid {
+                cols: lm.width,
+                rows: lm.height,
+                data: lm.texels.clone(),
+            },
+        )?;
+        let heights = match water {
+            SurfaceInput::Grid(g) => ctx.upload_grid("procedural height field", g)?,
+            // The wave is evaluated in the shader; the binding still needs a texture.
+            SurfaceInput::Wave(_) => {
+                ctx.upload_grid("procedural (unused heights)", &Grid::new(1, 1))?
+            }
+        };
+        let (heights_view, light_view) = (
+            heights.create_view(&Default::default()),
+            light.create_view(&Default::default()),
+        );
+        let water_bind = |pipeline: &wgpu::RenderPipeline, label: &str| {
+            bind_group(
+                ctx,
+                label,
+                &pipeline.get_bind_group_layout(0),
+                &[
+                    uniform.as_entire_binding(),
+                    View(&heights_view),
+                    View(&light_view),
+                ],
+            )
+        };
+        let map = ctx.texture_2d(
+            "procedural map",
+            (w, h, 1),
+            MAP_FORMAT,
+            U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
+        );
+        let map_view = map.create_view(&Default::default());
+        let mut bytes = (w * h) as u64 * 16
+            + (heights.width() * heights.height()) as u64 * 4
+            + (lm.width * lm.height) as u64 * 4
+            + uniform.size();
+        let passes = match setup.variant {
+            Variant::Vertex => {
+                let indices = mesh_indices(setup.mesh as u32);
+                ctx.check_buffer_size("procedural mesh indices", indices.len() as u64 * 4)?;
+                bytes += indices.len() as u64 * 4;
+                FramePasses::Vertex {
+                    bind: water_bind(&self.vertex, "procedural vertex"),
+                    indices: ctx
+                        .device
+                        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                            label: Some("procedural mesh indices"),
+                            contents: bytemuck::cast_slice(&indices),
+                            usage: wgpu::BufferUsages::INDEX,
+                        }),
+                    count: indices.len() as u32,
+                }
+            }
+            Variant::Screen => FramePasses::Screen {
+                bind: water_bind(&self.screen, "procedural screen"),
+            },
+            Variant::Texture => {
+                let t = setup.target as u32;
+                ctx.check_texture_size("procedural texture-space target", t, t)?;
+                let mips = setup.mip_levels() as u32;
+                let target = ctx.device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some("procedural target"),
+                    size: wgpu::Extent3d {
+                        width: t,
+                        height: t,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: mips,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: self.chain_format,
+                    usage: U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                    view_formats: &[],
+                });
+                let texel = self.chain_format.block_copy_size(None).unwrap_or(16) as u64;
+                bytes += (0..mips)
+                    .map(|k| ((t >> k) as u64).pow(2) * texel)
+                    .sum::<u64>();
+                let levels: Vec<wgpu::TextureView> = (0..mips)
+                    .map(|k| {
+                        target.create_view(&wgpu::TextureViewDescriptor {
+                            base_mip_level: k,
+                            mip_level_count: Some(1),
+                            ..Default::default()
+                        })
+                    })
+                    .collect();
+                let downsample = (1..mips as usize)
+                    .map(|k| {
+                        bind_group(
+                            ctx,
+                            "procedural downsample",
+                            &self.downsample.get_bind_group_layout(0),
+                            &[View(&levels[k - 1])],
+                        )
+                    })
+                    .collect();
+                let address = if setup.wrap {
+                    wgpu::AddressMode::Repeat
+                } else {
+                    wgpu::AddressMode::ClampToEdge
+                };
+                let sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+                    label: Some("procedural mips"),
+                    address_mode_u: address,
+                    address_mode_v: address,
+                    address_mode_w: address,
+                    mag_filter: wgpu::FilterMode::Linear,
+                    min_filter: wgpu::FilterMode::Linear,
+                    mipmap_filter: wgpu::MipmapFilterMode::Linear,
+                    // The paper's anisotropic filtering: 16 by default (all filters linear).
+                    anisotropy_clamp: setup.anisotropy as u16,
+                    ..Default::default()
+                });
+                let all = target.create_view(&Default::default());
+                let resample = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("procedural resample"),
+                    layout: &self.resample.get_bind_group_layout(0),
+                    entries: &[
+                        entry(0, uniform.as_entire_binding()),
+                        entry(3, View(&all)),
+                        entry(4, wgpu::BindingResource::Sampler(&sampler)),
+                    ],
+                });
+                FramePasses::Texture {
+                    target: water_bind(&self.target, "procedural target"),
+                    levels,
+                    downsample,
+                    resample,
+                }
+            }
+        };
+        ctx.check()?;
+        Ok(Frame {
+            uniform,
+            heights,
+            map,
+            map_view,
+            setup: setup.clone(),
+            passes,
+            bytes,
+        })
+    }
+
+    /// Record the variant's passes for `frame`. Returns the texture the map ends in.
+    pub fn encode<'f>(
+        &self,
+        frame: &'f Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> &'f wgpu::Texture {
+        match &frame.passes {
+            FramePasses::Vertex {
+                bind,
+                indices,
+                count,
+            } => {
+                let mut pass = begin(encoder, &frame.map_view, &mut timer, "procedural vertex");
+                pass.set_pipeline(&self.vertex);
+                pass.set_bind_group(0, bind, &[]);
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..*count, 0, 0..1);
+            }
+            FramePasses::Screen { bind } => {
+                let mut pass = begin(encoder, &frame.map_view, &mut timer, "procedural screen");
+                pass.set_pipeline(&self.screen);
+                pass.set_bind_group(0, bind, &[]);
+                pass.draw(0..3, 0..1);
+            }
+            FramePasses::Texture {
+                target,
+                levels,
+                downsample,
+                resample,
+            } => {
+                {
+                    let mut pass = begin(encoder, &levels[0], &mut timer, "procedural target");
+                    pass.set_pipeline(&self.target);
+                    pass.set_bind_group(0, target, &[]);
+                    pass.draw(0..3, 0..1);
+                }
+                for (k, bind) in downsample.iter().enumerate() {
+                    let mut pass =
+                        begin(encoder, &levels[k + 1], &mut timer, "procedural downsample");
+                    pass.set_pipeline(&self.downsample);
+                    pass.set_bind_group(0, bind, &[]);
+                    pass.draw(0..3, 0..1);
+                }
+                let mut pass = begin(encoder, &frame.map_view, &mut timer, "procedural resample");
+                pass.set_pipeline(&self.resample);
+                pass.set_bind_group(0, resample, &[]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+        &frame.map
+    }
+
+    /// Run the technique once and read the map back.
+    pub fn caustics(
+        &self,
+        ctx: &GpuContext,
+        setup: &ProceduralSetup,
+        water: &SurfaceInput,
+    ) -> Result<CausticsMap, GpuError> {
+        let frame = self.frame(ctx, setup, water)?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        let texture = self.encode(&frame, &mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+        let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
+        Ok(CausticsMap {
+            width: setup.width,
+            height: setup.height,
+            size: setup.size,
+            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+        })
+    }
+}
+
+fn begin<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    timer: &mut Option<&mut GpuTimer>,
+    label: &str,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
+fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource }
+}

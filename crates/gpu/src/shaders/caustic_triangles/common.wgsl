@@ -1,0 +1,37 @@
+// Technique `caustic-triangles` (paper 4): the uniform block every pass shares. Mirrors
+// `CausticTrianglesUniform` in caustic_triangles/mod.rs and `CausticTrianglesSetup` in
+// caustics-core/src/techniques/caustic_triangles/mod.rs.
+struct CausticTriangles {
+    centre: vec4<f32>,  // xyz: the distance map's reference point; w: radius holding its surfaces
+    u: vec4<f32>,       // xyz: light-space u; w: index of refraction of the generator
+    v: vec4<f32>,       // xyz: light-space v; w: power of one photon before Fresnel (floor-area units)
+    w: vec4<f32>,       // xyz: direction the light travels; w: splat side, texels
+    rect: vec4<f32>,    // xy: photon image's light-space lower corner; zw: one texel's size
+    floor: vec4<f32>,   // xy: floor window origin; z: its side; w: map texel area
+    p: u32,             // photon image side
+    cube: u32,          // distance map face side
+    layers: u32,
+    depth: u32,
+    linear_steps: u32,
+    secant_iterations: u32,
+    fresnel: u32,
+    area_rule: u32,     // 0: paper (half the 4-neighbour triangles), 1: hat (a third of the drawn ones)
+    width: u32,         // floor map
+    height: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+// Floor point to map pixel coordinates.
+fn to_pixel(c: CausticTriangles, p: vec2<f32>) -> vec2<f32> {
+    return (p - c.floor.xy) / c.floor.z * vec2<f32>(f32(c.width), f32(c.height));
+}
+
+// Map pixel coordinates to clip space: row 0 of the map (y = floor origin) is framebuffer row 0.
+fn pixel_to_clip(c: CausticTriangles, px: vec2<f32>) -> vec4<f32> {
+    let ndc = vec2<f32>(2.0 * px.x / f32(c.width) - 1.0, 1.0 - 2.0 * px.y / f32(c.height));
+    return vec4<f32>(ndc, 0.0, 1.0);
+}
+
+// A vertex every invalid primitive collapses to, outside the clip volume (the paper's trick).
+const CULLED: vec4<f32> = vec4<f32>(-4.0, -4.0, 0.0, 1.0);

@@ -1,0 +1,78 @@
+// Technique `caustic-triangles`, photon tracing pass (paper §4.1): the light ray of each photon-image
+// texel traced through the distance map, refracted (Fresnel weighted) or totally internally
+// reflected up to `depth` events, then to the floor. Writes the photon hit location image:
+// (x, y, power, 0), power -1 where invalid. CPU twin: `photon` in
+// caustics-core/src/techniques/caustic_triangles/mod.rs.
+
+@group(0) @binding(2) var<storage, read_write> photons: array<vec4<f32>>;
+
+const INVALID: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 0.0);
+
+fn trace_photon(i: u32, j: u32) -> vec4<f32> {
+    let q = u.rect.xy + u.rect.zw * vec2<f32>(f32(j) + 0.5, f32(i) + 0.5);
+    let c = u.centre.xyz;
+    let radius = u.centre.w;
+    var x = c + u.u.xyz * (q.x - dot(c, u.u.xyz)) + u.v.xyz * (q.y - dot(c, u.v.xyz)) - u.w.xyz * radius;
+    var r = u.w.xyz;
+    var inside = false;
+    var hit_glass = false;
+    var power = u.v.w;
+    var d0 = 0.0;
+    let eps = 1e-4 * radius;
+    let ior = u.u.w;
+    for (var event = 0u; event <= u.depth; event++) {
+        var d_floor = 3.0e38;
+        if r.z < 0.0 {
+            d_floor = -x.z / r.z;
+        }
+        let oc = x - c;
+        let b = dot(oc, r);
+        let disc = b * b - (dot(oc, oc) - radius * radius);
+        var d_out = 0.0;
+        if disc > 0.0 {
+            d_out = -b + sqrt(disc);
+        }
+        let h = dm_trace(x, r, d0, min(d_out, d_floor), inside);
+        if !h.found {
+            if !hit_glass || inside || r.z >= 0.0 {
+                return INVALID;
+            }
+            let p = x + r * d_floor;
+            return vec4<f32>(p.xy, power, 0.0);
+        }
+        if h.surface.w < 0.0 || event == u.depth {
+            return INVALID; // a diffuse surface stops the photon, or the path is too long
+        }
+        hit_glass = true;
+        x += r * h.d;
+        var n = h.surface.xyz;
+        var n1 = 1.0;
+        var n2 = ior;
+        if inside {
+            n = -n;
+            n1 = ior;
+            n2 = 1.0;
+        }
+        let cos_i = -dot(r, n);
+        let t = refract_dir(r, n, n1 / n2);
+        if t.w != 0.0 {
+            if u.fresnel != 0u {
+                power *= fresnel_transmittance(cos_i, n1, n2);
+            }
+            r = normalize(t.xyz);
+            inside = !inside;
+        } else {
+            r = normalize(r - 2.0 * dot(r, n) * n);
+        }
+        d0 = eps;
+    }
+    return INVALID;
+}
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= u.p || id.y >= u.p {
+        return;
+    }
+    photons[id.y * u.p + id.x] = trace_photon(id.y, id.x);
+}

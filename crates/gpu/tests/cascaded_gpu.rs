@@ -1,0 +1,248 @@
+//! Technique `cascaded`: the GPU passes against their CPU twin (G-buffers of every cascade and the
+//! final screen-space caustics), the uniform block against its WGSL twin, and (ignored by default) the
+//! per-pass timings of docs/benchmarks.md.
+
+use caustics_core::scene::Scene;
+use caustics_core::techniques::cascaded::{
+    self, CASCADES, CascadedParams, CascadedSetup, Dispersion, Placement,
+};
+use caustics_gpu::GpuTimer;
+use caustics_gpu::cascaded::{Cascaded, CascadedUniform};
+use caustics_gpu::context::test_context;
+
+fn shore(width: u32, height: u32) -> Scene {
+    let mut s = Scene::builtin("shore").unwrap();
+    s.camera.width = width;
+    s.camera.height = height;
+    s
+}
+
+#[test]
+fn uniform_matches_its_wgsl_size() {
+    let source = caustics_gpu::cascaded::PHOTONS.composed();
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("Cascaded"))
+        .unwrap();
+    assert_eq!(
+        ty.inner.size(module.to_ctx()) as usize,
+        std::mem::size_of::<CascadedUniform>()
+    );
+}
+
+#[test]
+fn gbuffers_match_the_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    let cascaded = Cascaded::new(&ctx).unwrap();
+    let scene = shore(96, 54);
+    let params = CascadedParams {
+        resolution: 96,
+        ..Default::default()
+    };
+    let setup = CascadedSetup::from_scene(&scene, &params).unwrap();
+    let water = cascaded::water_grid(&scene, 128).unwrap();
+    let terrain = scene.floor.terrain.as_ref();
+    let tex = ctx.upload_grid("water", &water).unwrap();
+    let frame = cascaded
+        .frame(&ctx, &setup, &tex.create_view(&Default::default()), terrain)
+        .unwrap();
+    for k in 0..CASCADES {
+        let (gw, gt) = cascaded.gbuffers(&ctx, &frame, k).unwrap();
+        let cw = cascaded::water_gbuffer(&setup, k, &water);
+        let ct = cascaded::terrain_gbuffer(&setup, k, terrain);
+        let (mut depth, mut normal, mut ground) = (0f32, 0f32, 0f32);
+        for t in 0..cw.len() {
+            depth = depth.max((gw[t][0] - cw[t][0]).abs());
+            normal = normal.max(
+                (1..4)
+                    .map(|c| (gw[t][c] - cw[t][c]).abs())
+                    .fold(0.0, f32::max),
+            );
+            ground = ground.max((gt[t] - ct[t]).abs());
+        }
+        eprintln!(
+            "cascade {k}: max |Δ| water depth {depth:.2e}, normal {normal:.2e}, terrain depth {ground:.2e}"
+        );
+        // World units on a 32 m scene (measured: below 6e-6).
+        assert!(depth < 5e-5, "cascade {k}: water depth {depth}");
+        assert!(normal < 5e-5, "cascade {k}: normal {normal}");
+        assert!(ground < 5e-5, "cascade {k}: terrain depth {ground}");
+    }
+}
+
+/// Agreement of two screen images over the pixels the CPU lights: the difference of the totals, and
+/// the mean absolute per-pixel difference, both relative to the CPU's mean.
+fn agreement(cpu: &[[f32; 4]], gpu: &[[f32; 4]]) -> (f64, f64, usize) {
+    let (mut sc, mut sg, mut diff, mut n, mut moved) = (0.0, 0.0, 0.0, 0usize, 0usize);
+    for (a, b) in cpu.iter().zip(gpu) {
+        if a[3] < 0.0 {
+            continue;
+        }
+        for c in 0..3 {
+            sc += a[c] as f64;
+            sg += b[c] as f64;
+            let d = (a[c] - b[c]).abs() as f64;
+            diff += d;
+            if d > 1e-3 * (a[c].abs() as f64).max(1e-3) {
+                moved += 1;
+            }
+        }
+        n += 3;
+    }
+    let mean = sc / n as f64;
+    (((sg - sc) / sc).abs(), diff / n as f64 / mean, moved)
+}
+
+#[test]
+fn screen_caustics_match_the_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    let cascaded = Cascaded::new(&ctx).unwrap();
+    let scene = shore(240, 135);
+    let water = cascaded::water_grid(&scene, 128).unwrap();
+    let terrain = scene.floor.terrain.as_ref();
+    for (placement, dispersion, terrain_pass) in [
+        (Placement::Eq33, Dispersion::None, true),
+        (Placement::Plane, Dispersion::Wavelength, true),
+        (Placement::Eq33, Dispersion::Post, false),
+    ] {
+        let params = CascadedParams {
+            resolution: 192,
+            placement,
+            dispersion,
+            dispersion_scale: 20.0,
+            terrain_pass,
+            ..Default::default()
+        };
+        let setup = CascadedSetup::from_scene(&scene, &params).unwrap();
+        let cpu = cascaded::caustics(&setup, &water, terrain);
+        let gpu = cascaded.caustics(&ctx, &setup, &water, terrain).unwrap();
+        let eye = cpu
+            .eye
+            .iter()
+            .zip(&gpu.eye)
+            .map(|(a, b)| ((a[0] - b[0]).abs() / a[0].max(1.0)) as f64)
+            .fold(0.0, f64::max);
+        let same = cpu.acc.iter().zip(&gpu.acc).filter(|(a, b)| a == b).count();
+        let (total, mean_abs, moved) = agreement(&cpu.image, &gpu.image);
+        eprintln!(
+            "{placement:?} {dispersion:?} terrain pass {terrain_pass}: eye depth max rel {eye:.1e}; \
+             fixed-point sums identical {:.3} %; image total {total:.2e}, mean |Δ| / mean {mean_abs:.2e}, \
+             channels differing > 0.1 %: {moved}",
+            100.0 * same as f64 / cpu.acc.len() as f64,
+        );
+        assert!(eye < 1e-4, "eye depth {eye}");
+        // A photon that f32 and f64 put on different sides of a pixel edge moves its weight to the
+        // neighbour: totals agree closely, single pixels differ by whole photons.
+        assert!(total < 1e-4, "total {total}");
+        assert!(mean_abs < 1e-3, "mean |Δ| {mean_abs}");
+    }
+}
+
+/// `cargo test --release -p caustics-gpu --test cascaded_gpu -- --ignored --nocapture timings`:
+/// per-pass GPU time (`GpuTimer`) and wall time (each pass submitted alone and waited for) and
+/// memory, for docs/benchmarks.md. Medians over `frames` frames after one warm-up frame.
+#[test]
+#[ignore]
+fn timings() {
+    use caustics_gpu::cascaded::Pass;
+    use std::collections::BTreeMap;
+    let Some(ctx) = test_context() else { return };
+    let cascaded = Cascaded::new(&ctx).unwrap();
+    let scene = Scene::builtin("shore").unwrap();
+    let water = cascaded::water_grid(&scene, 128).unwrap();
+    let terrain = scene.floor.terrain.as_ref();
+    let tex = ctx.upload_grid("water", &water).unwrap();
+    let view = tex.create_view(&Default::default());
+    println!("adapter: {}", ctx.describe());
+    println!("screen {} x {}", scene.camera.width, scene.camera.height);
+    for res in [512u32, 1024, 2048] {
+        let frames = if res == 2048 { 3 } else { 5 };
+        let params = CascadedParams {
+            resolution: res,
+            ..Default::default()
+        };
+        let setup = CascadedSetup::from_scene(&scene, &params).unwrap();
+        let frame = cascaded.frame(&ctx, &setup, &view, terrain).unwrap();
+        let passes = Cascaded::passes(&setup);
+        let mut timer = GpuTimer::new(&ctx, passes.len() as u32);
+        let mut stamp: BTreeMap<String, Vec<f64>> = Default::default();
+        let mut wall: BTreeMap<String, Vec<f64>> = Default::default();
+        let mut whole = Vec::new();
+        for f in 0..frames + 1 {
+            for &pass in &passes {
+                let t0 = std::time::Instant::now();
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                cascaded.encode_pass(&frame, &mut encoder, pass, &mut Some(&mut timer));
+                ctx.queue.submit([encoder.finish()]);
+                ctx.wait().unwrap();
+                if f > 0 {
+                    wall.entry(pass.label())
+                        .or_default()
+                        .push(t0.elapsed().as_secs_f64() * 1e3);
+                }
+            }
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            timer.resolve(&mut encoder);
+            ctx.queue.submit([encoder.finish()]);
+            for t in timer.read(&ctx).unwrap() {
+                if f > 0 {
+                    stamp.entry(t.label).or_default().push(t.ms);
+                }
+            }
+            // The whole frame in one submission.
+            let t0 = std::time::Instant::now();
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            cascaded.encode(&frame, &mut encoder, None);
+            ctx.queue.submit([encoder.finish()]);
+            ctx.wait().unwrap();
+            if f > 0 {
+                whole.push(t0.elapsed().as_secs_f64() * 1e3);
+            }
+        }
+        let median = |v: &[f64]| {
+            let mut v = v.to_vec();
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        };
+        let get = |m: &BTreeMap<String, Vec<f64>>, p: Pass| {
+            m.get(&p.label()).map_or(f64::NAN, |v| median(v))
+        };
+        println!("| res | pass | GpuTimer ms | wall ms |");
+        let (mut st, mut wt, mut st_t, mut wt_t) = (0.0, 0.0, 0.0, 0.0);
+        for &pass in &passes {
+            let (a, b) = (get(&stamp, pass), get(&wall, pass));
+            st += a;
+            wt += b;
+            if matches!(pass, Pass::Terrain(_)) {
+                st_t += a;
+                wt_t += b;
+            }
+            println!("| {res} | {} | {a:.2} | {b:.1} |", pass.label());
+        }
+        for k in 0..CASCADES {
+            let sum = |m: &BTreeMap<String, Vec<f64>>| {
+                [Pass::Water(k), Pass::Terrain(k), Pass::Photons(k)]
+                    .iter()
+                    .map(|&p| get(m, p))
+                    .sum::<f64>()
+            };
+            println!(
+                "| {res} | cascade {k} total | {:.2} | {:.1} | without terrain: {:.1} ms wall |",
+                sum(&stamp),
+                sum(&wall),
+                sum(&wall) - get(&wall, Pass::Terrain(k))
+            );
+        }
+        println!(
+            "| {res} | frame | {st:.2} (without terrain {:.2}) | {wt:.1} (without terrain {:.1}); one submission {:.1} | G-buffers {:.1} MiB (shared), per-cascade screen map {:.1} MiB, total {:.1} MiB |",
+            st - st_t,
+            wt - wt_t,
+            median(&whole),
+            frame.gbuffer_bytes as f64 / 1048576.0,
+            frame.cascade_map_bytes as f64 / 1048576.0,
+            frame.bytes() as f64 / 1048576.0
+        );
+    }
+}

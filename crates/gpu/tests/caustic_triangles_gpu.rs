@@ -1,0 +1,231 @@
+//! Technique `caustic-triangles`: the GPU passes against their CPU twin (photon hit location image,
+//! vertex irradiances, floor maps of both reconstructions), the no-light-leak property on the GPU,
+//! the `Rgba16Float` fallback, and the uniform block against its WGSL twin.
+
+use caustics_core::metrics::compare;
+use caustics_core::techniques::caustic_triangles::{
+    self as ct, AreaRule, CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, FloorWindow,
+    GlassScene, Occluder, Shape,
+};
+use caustics_gpu::caustic_triangles::{CausticTriangles, CausticTrianglesUniform, Reconstruction};
+use caustics_gpu::context::test_context;
+use glam::{DVec2, DVec3};
+
+fn ball_scene(res: usize, window: f64) -> GlassScene {
+    let centre = DVec3::new(0.0, 0.0, 0.35);
+    let light = DVec3::new(0.3, 0.2, -1.0).normalize();
+    let foot = centre.truncate() + light.truncate() * (centre.z / -light.z);
+    GlassScene::new(
+        Shape::Sphere {
+            centre,
+            radius: 0.2,
+        },
+        1.5,
+        light,
+        FloorWindow {
+            origin: foot - DVec2::splat(window / 2.0),
+            size: window,
+            width: res,
+            height: res,
+        },
+        vec![],
+    )
+    .unwrap()
+}
+
+/// Share of texels whose validity differs, and the largest position difference (world units) and
+/// relative power difference among those valid on both sides, at the 99th percentile.
+fn photon_agreement(a: &[[f32; 4]], b: &[[f32; 4]]) -> (f64, f64, f64) {
+    let mut flips = 0usize;
+    let mut dpos = Vec::new();
+    let mut dpow = Vec::new();
+    for (x, y) in a.iter().zip(b) {
+        match (x[2] >= 0.0, y[2] >= 0.0) {
+            (true, true) => {
+                dpos.push(((x[0] - y[0]).hypot(x[1] - y[1])) as f64);
+                dpow.push(((x[2] - y[2]).abs() / x[2].max(1e-30)) as f64);
+            }
+            (false, false) => {}
+            _ => flips += 1,
+        }
+    }
+    let p99 = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[((v.len() - 1) as f64 * 0.99) as usize]
+    };
+    (
+        flips as f64 / a.len() as f64,
+        p99(&mut dpos),
+        p99(&mut dpow),
+    )
+}
+
+#[test]
+fn gpu_matches_the_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    eprintln!(
+        "adapter: {}, map format {:?}",
+        ctx.describe(),
+        ct_gpu.map_format
+    );
+    let scene = ball_scene(128, 0.6);
+    for rule in [AreaRule::Paper, AreaRule::Hat] {
+        let params = CausticTrianglesParams {
+            photon_image: 96,
+            cube_resolution: 128,
+            area_rule: rule,
+            ..Default::default()
+        };
+        let dm = DistanceMap::build(&scene, 128, 2);
+        let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+        let cpu = ct::caustics(&setup, &dm);
+        let gpu = ct_gpu
+            .run(&ctx, &setup, &dm, Reconstruction::Triangles)
+            .expect("gpu run");
+        let (flips, dpos, dpow) = photon_agreement(&cpu.photons, &gpu.photons);
+        eprintln!(
+            "{rule:?}: photon validity flips {flips:.5}, p99 position {dpos:.2e}, p99 power {dpow:.2e}"
+        );
+        // f32 on the GPU against f64 on the CPU: a grazing photon may change validity, positions
+        // agree to a few micrometres of a 0.6-unit window.
+        assert!(flips < 0.002, "validity flips {flips}");
+        assert!(dpos < 1e-4, "positions {dpos}");
+        assert!(dpow < 1e-4, "powers {dpow}");
+        // Maps: both reconstructions of the GPU photons against the CPU ones.
+        let m = compare(&gpu.map, &cpu.map);
+        eprintln!("{rule:?}: triangles map GPU vs CPU {m:?}");
+        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        let splat_gpu = ct_gpu
+            .run(&ctx, &setup, &dm, Reconstruction::Splats)
+            .expect("gpu splats");
+        let splat_cpu = ct::splat_pass(&setup, &cpu.photons);
+        let s = compare(&splat_gpu.map, &splat_cpu);
+        eprintln!("{rule:?}: splat map GPU vs CPU {s:?}");
+        // Splat edges fall on texel centres more often (ties decided differently).
+        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-5, "{s:?}");
+    }
+}
+
+/// Vertex irradiance and triangles from the very same photon image: only the rasteriser differs.
+#[test]
+fn reconstruction_of_gpu_photons_matches_the_cpu_reconstruction() {
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let scene = ball_scene(128, 0.6);
+    let params = CausticTrianglesParams {
+        photon_image: 64,
+        cube_resolution: 64,
+        ..Default::default()
+    };
+    let dm = DistanceMap::build(&scene, 64, 2);
+    let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+    let gpu = ct_gpu
+        .run(&ctx, &setup, &dm, Reconstruction::Triangles)
+        .unwrap();
+    let irr = ct::irradiance_pass(&setup, &gpu.photons);
+    let worst = irr
+        .iter()
+        .zip(&gpu.irradiance)
+        .map(|(a, b)| ((a - b).abs() / a.abs().max(1e-6)) as f64)
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-4, "vertex irradiance {worst}");
+    let cpu_map = ct::triangles_pass(&setup, &gpu.photons, &gpu.irradiance);
+    let m = compare(&gpu.map, &cpu_map);
+    eprintln!("same photons, triangles GPU vs CPU {m:?}");
+    assert!(m.relative_l1 < 2e-3 && m.flux_error.abs() < 1e-3, "{m:?}");
+}
+
+#[test]
+fn no_light_leaks_through_a_wall_on_the_gpu() {
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let mut scene = ball_scene(64, 0.6);
+    let c = DVec3::new(0.0, 0.0, 0.35);
+    scene.occluders.push(Occluder::wall(
+        DVec3::new(c.x + 0.05, -1.0, 0.06),
+        DVec3::new(c.x + 1.0, 1.0, 0.1),
+    ));
+    let params = CausticTrianglesParams {
+        photon_image: 64,
+        cube_resolution: 128,
+        ..Default::default()
+    };
+    let dm = DistanceMap::build(&scene, 128, 4);
+    let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+    let l = scene.light;
+    let edge = c.x + 0.05 + l.x * (0.06 / -l.z);
+    for rec in [Reconstruction::Triangles, Reconstruction::Splats] {
+        let out = ct_gpu.run(&ctx, &setup, &dm, rec).unwrap();
+        let mut lit = 0.0;
+        for (k, t) in out.map.texels.iter().enumerate() {
+            let x = scene.floor.origin.x + ((k % 64) as f64 + 0.5) * scene.floor.size / 64.0;
+            if x > edge + 2.0 * scene.floor.size / 64.0 {
+                assert_eq!(
+                    t[0], 0.0,
+                    "{rec:?}: texel {k} at x = {x} is lit behind the wall"
+                );
+            }
+            lit += t[0] as f64;
+        }
+        assert!(
+            lit > 0.0,
+            "{rec:?}: the caustic in front of the wall is drawn"
+        );
+    }
+}
+
+#[test]
+fn the_half_float_fallback_gives_the_same_map() {
+    let Some(ctx) = test_context() else { return };
+    let full = CausticTriangles::new(&ctx).unwrap();
+    let half = CausticTriangles::with_format(&ctx, wgpu::TextureFormat::Rgba16Float).unwrap();
+    let scene = ball_scene(96, 0.6);
+    let params = CausticTrianglesParams {
+        photon_image: 64,
+        cube_resolution: 64,
+        ..Default::default()
+    };
+    let dm = DistanceMap::build(&scene, 64, 2);
+    let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+    let a = full
+        .run(&ctx, &setup, &dm, Reconstruction::Triangles)
+        .unwrap();
+    let b = half
+        .run(&ctx, &setup, &dm, Reconstruction::Triangles)
+        .unwrap();
+    let m = compare(&b.map, &a.map);
+    eprintln!("Rgba16Float vs {:?}: {m:?}", full.map_format);
+    assert!(m.relative_l1 < 5e-3 && m.flux_error.abs() < 5e-3, "{m:?}");
+}
+
+#[test]
+fn the_uniform_matches_its_wgsl_size() {
+    let source = caustics_gpu::caustic_triangles::IRRADIANCE.composed();
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("CausticTriangles"))
+        .unwrap();
+    assert_eq!(
+        ty.inner.size(module.to_ctx()) as usize,
+        std::mem::size_of::<CausticTrianglesUniform>()
+    );
+    for pass in [
+        &caustics_gpu::caustic_triangles::PHOTON,
+        &caustics_gpu::caustic_triangles::IRRADIANCE,
+        &caustics_gpu::caustic_triangles::TRIANGLES,
+        &caustics_gpu::caustic_triangles::SPLAT,
+    ] {
+        let src = pass.composed();
+        let m = naga::front::wgsl::parse_str(&src)
+            .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&src)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&m)
+        .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&src)));
+    }
+}
