@@ -5,6 +5,7 @@ mod compare;
 mod progress;
 mod render;
 mod techniques;
+mod view;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -39,6 +40,9 @@ enum Command {
     Compare(compare::CompareArgs),
     /// GPU time per pass and CPU time of each technique over resolutions: Markdown, CSV, a plot.
     Bench(bench::BenchArgs),
+    /// An interactive window: any scene, any technique, beside another, with the sun, the water and
+    /// ripples under the mouse (needs a display; under Xvfb for headless runs).
+    View(view::ViewArgs),
     /// Scene files: check one, list the built-in ones, or print one as TOML.
     #[command(subcommand)]
     Scene(SceneCommand),
@@ -88,15 +92,26 @@ fn run(cli: Cli) -> Result<()> {
         Command::Render(args) => render::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::View(args) => view::run(args),
         Command::Techniques => {
-            println!("{:<18} {:<6} description", "technique", "paper");
+            println!(
+                "{:<18} {:<6} {:<20} description",
+                "technique", "paper", "input -> output"
+            );
             for t in TECHNIQUES {
                 let status = if t.implemented {
                     ""
                 } else {
                     " [not yet implemented]"
                 };
-                println!("{:<18} {:<6} {}{}", t.name, t.paper, t.summary, status);
+                println!(
+                    "{:<18} {:<6} {:<20} {}{}",
+                    t.name,
+                    t.paper,
+                    t.input.describe(),
+                    t.summary,
+                    status
+                );
             }
             Ok(())
         }

@@ -17,7 +17,7 @@ use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
 
 use crate::progress;
-use crate::techniques::{Job, Runner, Spec};
+use crate::techniques::{Runner, Spec};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -178,40 +178,37 @@ pub fn run(args: RenderArgs) -> Result<()> {
         }
         None => None,
     };
-    let map = match (&surface, &scene.water) {
-        (Some(s), Some(water)) => {
-            let started = Instant::now();
-            let bar = progress::bar("caustics");
-            let job = Job {
-                water,
-                floor: &scene.floor,
-                surface: s.as_ref(),
-                light: scene.light.direction,
-                width: scene.caustics.width as usize,
-                height: scene.caustics.height as usize,
-                cells_per_texel: args.cells_per_texel,
-            };
-            let outcome = runner.run_with_progress(&spec, &job, &progress::callback(&bar))?;
-            bar.finish_and_clear();
-            eprintln!(
-                "caustics: {} {} x {} in {:.2} s on the {}",
-                spec.label,
-                outcome.map.width,
-                outcome.map.height,
-                started.elapsed().as_secs_f64(),
-                outcome.backend
+    // A map when the scene has a caustic generator the technique handles: water, or glass objects.
+    let has_generator = scene.water.is_some() || spec.name == "caustic-triangles";
+    let map = if has_generator {
+        let started = Instant::now();
+        let bar = progress::bar("caustics");
+        let outcome = runner.run_scene(
+            &spec,
+            &scene,
+            surface.as_deref(),
+            args.cells_per_texel,
+            &progress::callback(&bar),
+        )?;
+        bar.finish_and_clear();
+        eprintln!(
+            "caustics: {} {} x {} in {:.2} s on the {}",
+            spec.label,
+            outcome.map.width,
+            outcome.map.height,
+            started.elapsed().as_secs_f64(),
+            outcome.backend
+        );
+        Some(outcome.map)
+    } else {
+        if args.raw.is_some() {
+            bail!(
+                "scene `{}` has no water, so there is no caustics map to write with --raw (its glass \
+                 objects make one with --technique caustic-triangles)",
+                scene.name
             );
-            Some(outcome.map)
         }
-        _ => {
-            if args.raw.is_some() {
-                bail!(
-                    "scene `{}` has no water, so there is no caustics map to write with --raw",
-                    scene.name
-                );
-            }
-            None
-        }
+        None
     };
     if let (Some(raw), Some(map)) = (&args.raw, &map) {
         map.write_raw(raw)?;

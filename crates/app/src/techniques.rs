@@ -145,6 +145,100 @@ impl Runner {
         }
     }
 
+    /// Run `spec` on a whole scene: the techniques whose generator is the scene's glass objects
+    /// (caustic-triangles) as well as those of its water surface.
+    pub fn run_scene(
+        &mut self,
+        spec: &Spec,
+        scene: &caustics_core::scene::Scene,
+        surface: Option<&dyn Surface>,
+        cells_per_texel: u32,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Outcome> {
+        use caustics_core::techniques::caustic_triangles as ct;
+        match spec.name.as_str() {
+            "caustic-triangles" => {
+                let params = ct::CausticTrianglesParams::from_table(&spec.params)?;
+                let Some(ctx) = &self.gpu else {
+                    return Ok(Outcome {
+                        map: ct::render(scene, &params)?,
+                        backend: "CPU",
+                    });
+                };
+                let gpu = caustics_gpu::caustic_triangles::CausticTriangles::new(ctx)?;
+                let glass = scene
+                    .objects
+                    .iter()
+                    .filter(|o| matches!(o.material, caustics_core::scene::Material::Glass { .. }))
+                    .count();
+                if glass == 0 {
+                    bail!(
+                        "scene `{}` has no glass object: caustic-triangles needs a glass caustic generator",
+                        scene.name
+                    );
+                }
+                let mut total: Option<CausticsMap> = None;
+                for k in 0..glass {
+                    let gs = ct::GlassScene::from_scene(scene, k)?;
+                    let dm = ct::DistanceMap::build(
+                        &gs,
+                        params.cube_resolution as usize,
+                        params.layers as usize,
+                    );
+                    let setup = ct::CausticTrianglesSetup::new(&params, &gs)?;
+                    let map = gpu
+                        .run(
+                            ctx,
+                            &setup,
+                            &dm,
+                            caustics_gpu::caustic_triangles::Reconstruction::Triangles,
+                        )?
+                        .map;
+                    total = Some(match total {
+                        None => map,
+                        Some(mut t) => {
+                            for (a, b) in t.texels.iter_mut().zip(&map.texels) {
+                                for c in 0..3 {
+                                    a[c] += b[c];
+                                }
+                            }
+                            t
+                        }
+                    });
+                    progress(k + 1, glass);
+                }
+                Ok(Outcome {
+                    map: total.expect("one glass object at least"),
+                    backend: "GPU",
+                })
+            }
+            "cascaded" => bail!(
+                "technique `cascaded` (paper 5) computes caustics in the eye camera's screen space, not \
+                 as a map of the floor square; `cargo run --release -p caustics-core --example \
+                 cascaded_pictures` renders it (see docs/cascaded.md)"
+            ),
+            _ => {
+                let (Some(water), Some(surface)) = (&scene.water, surface) else {
+                    bail!(
+                        "scene `{}` has no water: technique `{}` computes caustics from a water surface",
+                        scene.name,
+                        spec.name
+                    );
+                };
+                let job = Job {
+                    water,
+                    floor: &scene.floor,
+                    surface,
+                    light: scene.light.direction,
+                    width: scene.caustics.width as usize,
+                    height: scene.caustics.height as usize,
+                    cells_per_texel,
+                };
+                self.run_with_progress(spec, &job, progress)
+            }
+        }
+    }
+
     pub fn run(&mut self, spec: &Spec, job: &Job) -> Result<Outcome> {
         self.run_with_progress(spec, job, &|_, _| {})
     }

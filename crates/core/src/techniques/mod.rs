@@ -7,12 +7,34 @@ pub mod caustic_triangles;
 pub mod procedural;
 pub mod yuksel;
 
+/// What a technique reads and what it makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// A map of the floor square from the water surface (the minimum scene contract's case).
+    Water,
+    /// A map of the floor square from the scene's glass objects.
+    Glass,
+    /// Caustics from the water in the eye camera's screen space, not a floor map.
+    EyeSpace,
+}
+
+impl Input {
+    pub fn describe(self) -> &'static str {
+        match self {
+            Input::Water => "water -> floor map",
+            Input::Glass => "glass -> floor map",
+            Input::EyeSpace => "water -> eye space",
+        }
+    }
+}
+
 pub struct TechniqueInfo {
     pub name: &'static str,
     pub paper: &'static str,
     pub summary: &'static str,
     /// Whether this build renders it; the others are accepted in scene files but not yet implemented.
     pub implemented: bool,
+    pub input: Input,
 }
 
 pub const TECHNIQUES: &[TechniqueInfo] = &[
@@ -21,36 +43,42 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         paper: "-",
         summary: "physically based forward flux tracing: exact Snell + Fresnel at a fine triangulation of the surface, exact area deposit (CPU, the ground truth)",
         implemented: true,
+        input: Input::Water,
     },
     TechniqueInfo {
         name: "yuksel",
         paper: "1",
         summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser)",
         implemented: true,
+        input: Input::Water,
     },
     TechniqueInfo {
         name: "procedural",
         paper: "2",
         summary: "aesthetic procedural caustics: vertical ray to the waves, refract, look up a sun map (Sanchez-Crespo)",
         implemented: true,
+        input: Input::Water,
     },
     TechniqueInfo {
         name: "volumes",
         paper: "3",
         summary: "illumination volumes against colour + depth textures and reference planes, caustics on underwater objects",
         implemented: false,
+        input: Input::Water,
     },
     TechniqueInfo {
         name: "caustic-triangles",
         paper: "4",
         summary: "layered distance maps, photon hit image, caustic triangles into a light cube map (Umenhoffer et al.)",
         implemented: true,
+        input: Input::Glass,
     },
     TechniqueInfo {
         name: "cascaded",
         paper: "5",
         summary: "cascaded caustic maps for oceans: four light-view cascades, photons splatted in eye space, dispersion (Backlund)",
         implemented: true,
+        input: Input::EyeSpace,
     },
 ];
 

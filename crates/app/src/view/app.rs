@@ -1,0 +1,967 @@
+//! The window and the frame loop: winit for the window and input, egui (through egui-winit and
+//! egui-wgpu, on our own wgpu device) for the panel and for drawing the images, and the smoke
+//! mode that scripts a run for tests.
+//!
+//! A frame: run the UI (it edits the [`Model`] and says where the views are), drop the clicked
+//! ripples, advance the water, render the scene if anything it depends on changed, refresh the
+//! map and buffer pictures if their windows are open, then draw egui (which draws the images) to
+//! the window. The images are wgpu textures registered with egui once and rewritten in place, so
+//! an image rendered in a frame is shown in that same frame.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, Result, bail};
+use glam::DVec2;
+use winit::application::ApplicationHandler;
+use winit::event::WindowEvent;
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::window::{Window, WindowId};
+
+use caustics_core::render::Image;
+use caustics_core::scene::Scene;
+use caustics_gpu::final_image::FinalImage;
+use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
+
+use super::buffers::{self, Buffer, BufferInput};
+use super::camera::{OrbitCamera, Sun};
+use super::frame::{Quality, SceneRenderer, Slot, TechniqueChoice, technique_names};
+use super::ui::{self, Model, Shown, Stats, TextureIds};
+use super::water::{SurfaceKey, WaterState};
+use super::{ImageOn, ViewArgs};
+use crate::techniques::Runner;
+
+pub fn run(args: ViewArgs) -> Result<()> {
+    let event_loop = EventLoop::new().context("cannot connect to the display")?;
+    event_loop.set_control_flow(ControlFlow::Wait);
+    let mut app = ViewApp {
+        args,
+        viewer: None,
+        error: None,
+    };
+    event_loop
+        .run_app(&mut app)
+        .context("the window's event loop failed")?;
+    match app.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+struct ViewApp {
+    args: ViewArgs,
+    viewer: Option<Viewer>,
+    error: Option<anyhow::Error>,
+}
+
+impl ApplicationHandler for ViewApp {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.viewer.is_some() || self.error.is_some() {
+            return;
+        }
+        match Viewer::new(event_loop, &self.args) {
+            Ok(v) => {
+                v.window.request_redraw();
+                self.viewer = Some(v);
+            }
+            Err(e) => {
+                self.error = Some(e);
+                event_loop.exit();
+            }
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(v) = self.viewer.as_mut() else {
+            return;
+        };
+        let response = v.egui_state.on_window_event(&v.window, &event);
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => v.resize(size.width, size.height),
+            WindowEvent::RedrawRequested => match v.frame() {
+                Ok(Flow::Continue) => {}
+                Ok(Flow::Exit) => event_loop.exit(),
+                Err(e) => {
+                    self.error = Some(e);
+                    event_loop.exit();
+                }
+            },
+            _ => {}
+        }
+        if response.repaint {
+            v.window.request_redraw();
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(v) = self.viewer.as_ref() else {
+            return;
+        };
+        if v.continuous() {
+            v.window.request_redraw();
+            event_loop.set_control_flow(ControlFlow::Wait);
+        } else if let Some(at) = v.repaint_at {
+            event_loop.set_control_flow(ControlFlow::WaitUntil(at));
+            if Instant::now() >= at {
+                v.window.request_redraw();
+            }
+        } else {
+            event_loop.set_control_flow(ControlFlow::Wait);
+        }
+    }
+}
+
+enum Flow {
+    Continue,
+    Exit,
+}
+
+/// The smoke mode's script.
+struct Script {
+    frames: u64,
+    screenshot: Option<PathBuf>,
+    cycle: bool,
+    resize_every: Option<u64>,
+    drop_every: Option<u64>,
+    /// The window size asked for at the start, which resizes vary around.
+    base_size: [u32; 2],
+    /// Wall time of each frame, ms, and whether it rendered the scene.
+    times: Vec<(f64, bool)>,
+}
+
+/// An image egui draws from a texture of ours: registered once, rewritten in place, replaced
+/// (under the same id) only when its size changes.
+struct GpuImage {
+    texture: wgpu::Texture,
+    id: egui::TextureId,
+}
+
+impl GpuImage {
+    fn new(ctx: &GpuContext, renderer: &mut egui_wgpu::Renderer) -> Self {
+        let texture = image_texture(ctx, 1, 1);
+        write_rgba(ctx, &texture, &[24, 26, 30, 255]);
+        let id = renderer.register_native_texture(
+            &ctx.device,
+            &texture.create_view(&Default::default()),
+            wgpu::FilterMode::Linear,
+        );
+        GpuImage { texture, id }
+    }
+
+    fn set(
+        &mut self,
+        ctx: &GpuContext,
+        renderer: &mut egui_wgpu::Renderer,
+        width: u32,
+        height: u32,
+        rgba: &[u8],
+    ) {
+        if (self.texture.width(), self.texture.height()) != (width, height) {
+            self.texture = image_texture(ctx, width, height);
+            renderer.update_egui_texture_from_wgpu_texture(
+                &ctx.device,
+                &self.texture.create_view(&Default::default()),
+                wgpu::FilterMode::Linear,
+                self.id,
+            );
+        }
+        write_rgba(ctx, &self.texture, rgba);
+    }
+}
+
+/// egui-wgpu reads a native texture as gamma-encoded `Rgba8Unorm`, which is what the final
+/// image's sRGB bytes are.
+fn image_texture(ctx: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
+    ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("viewer image"),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    })
+}
+
+fn write_rgba(ctx: &GpuContext, texture: &wgpu::Texture, rgba: &[u8]) {
+    let (w, h) = (texture.width(), texture.height());
+    debug_assert_eq!(rgba.len(), (w * h * 4) as usize);
+    ctx.queue.write_texture(
+        texture.as_image_copy(),
+        rgba,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * w),
+            rows_per_image: Some(h),
+        },
+        texture.size(),
+    );
+}
+
+fn rgba_of(image: &Image) -> Vec<u8> {
+    image
+        .rgb
+        .chunks_exact(3)
+        .flat_map(|p| [p[0], p[1], p[2], 255])
+        .collect()
+}
+
+/// Everything the frame compares to decide whether to render the scene again.
+#[derive(Clone, Debug, PartialEq)]
+struct RenderKey {
+    camera: OrbitCamera,
+    sun: Sun,
+    size: (u32, u32),
+    sides: usize,
+    quality: Quality,
+    choices: Vec<TechniqueChoice>,
+    water: Option<SurfaceKey>,
+}
+
+/// What the buffer picture was computed from.
+#[derive(Clone, Debug, PartialEq)]
+struct BufferKey {
+    buffer: Buffer,
+    choice: TechniqueChoice,
+    render: RenderKey,
+}
+
+struct Viewer {
+    // Declared before the window so that they are dropped before it.
+    images: [GpuImage; 2],
+    map_images: [GpuImage; 2],
+    difference_image: GpuImage,
+    buffer_image: GpuImage,
+    egui_renderer: egui_wgpu::Renderer,
+    egui_state: egui_winit::State,
+    egui_ctx: egui::Context,
+    surface: wgpu::Surface<'static>,
+    config: wgpu::SurfaceConfiguration,
+    renderer: SceneRenderer,
+    ui_timer: Option<GpuTimer>,
+    model: Model,
+    script: Option<Script>,
+    report_memory: bool,
+    frame: u64,
+    last_frame: Instant,
+    last_render: Option<RenderKey>,
+    last_buffer: Option<BufferKey>,
+    /// When egui asked to be drawn again, if it did.
+    repaint_at: Option<Instant>,
+    window: Arc<Window>,
+}
+
+impl Viewer {
+    fn new(event_loop: &ActiveEventLoop, args: &ViewArgs) -> Result<Self> {
+        let scene = Scene::load_or_builtin(&args.scene)?;
+        let [w, h] = args.size;
+        let attributes = Window::default_attributes()
+            .with_title(format!("caustics view: {}", scene.name))
+            .with_inner_size(winit::dpi::PhysicalSize::new(w, h));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .context("cannot open a window")?,
+        );
+        let options = GpuOptions {
+            backend: args.backend.clone(),
+            adapter_name: args.adapter.clone(),
+        };
+        let instance = GpuContext::instance(&options)?;
+        let surface = instance
+            .create_surface(window.clone())
+            .context("cannot make a wgpu surface for the window")?;
+        let ctx = pollster::block_on(GpuContext::create(&options, Some((&instance, &surface))))
+            .context("the viewer needs a GPU adapter that can draw to the window")?;
+        let software = FinalImage::software_adapter(&ctx);
+        eprintln!("GPU: {}", ctx.describe());
+
+        let size = window.inner_size();
+        let caps = surface.get_capabilities(&ctx.adapter);
+        // egui blends in gamma space and wants a non-sRGB target.
+        let format = caps
+            .formats
+            .iter()
+            .copied()
+            .find(|f| {
+                matches!(
+                    f,
+                    wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Rgba8Unorm
+                )
+            })
+            .or_else(|| caps.formats.first().copied())
+            .context("the window's surface offers no format")?;
+        let present_mode = if args.frames.is_some() {
+            // A scripted run measures frames, not the display's refresh.
+            wgpu::PresentMode::AutoNoVsync
+        } else {
+            wgpu::PresentMode::AutoVsync
+        };
+        let config = wgpu::SurfaceConfiguration {
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            format,
+            width: size.width.max(1),
+            height: size.height.max(1),
+            present_mode,
+            desired_maximum_frame_latency: 2,
+            alpha_mode: caps
+                .alpha_modes
+                .first()
+                .copied()
+                .unwrap_or(wgpu::CompositeAlphaMode::Auto),
+            view_formats: vec![],
+            color_space: wgpu::SurfaceColorSpace::Auto,
+        };
+        surface.configure(&ctx.device, &config);
+
+        let egui_ctx = egui::Context::default();
+        let egui_state = egui_winit::State::new(
+            egui_ctx.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(ctx.limits().max_texture_dimension_2d as usize),
+        );
+        let mut egui_renderer =
+            egui_wgpu::Renderer::new(&ctx.device, format, egui_wgpu::RendererOptions::default());
+        let images = [
+            GpuImage::new(&ctx, &mut egui_renderer),
+            GpuImage::new(&ctx, &mut egui_renderer),
+        ];
+        let map_images = [
+            GpuImage::new(&ctx, &mut egui_renderer),
+            GpuImage::new(&ctx, &mut egui_renderer),
+        ];
+        let difference_image = GpuImage::new(&ctx, &mut egui_renderer);
+        let buffer_image = GpuImage::new(&ctx, &mut egui_renderer);
+        let textures = TextureIds {
+            main: [images[0].id, images[1].id],
+            map: [map_images[0].id, map_images[1].id],
+            difference: difference_image.id,
+            buffer: buffer_image.id,
+        };
+        let ui_timer = ctx.timestamps.then(|| GpuTimer::new(&ctx, 1));
+        let timestamps = ctx.timestamps;
+        let adapter = format!(
+            "{} ({:?}){}",
+            ctx.info.name,
+            ctx.info.backend,
+            if software { ", software" } else { "" }
+        );
+
+        let model = initial_model(args, &scene, software, adapter, textures, timestamps)?;
+        let renderer = SceneRenderer::new(Runner::new(Some(ctx)), scene);
+        if let Some(n) = &renderer.final_note {
+            eprintln!("{n}");
+        }
+        let script = args.frames.map(|frames| Script {
+            frames,
+            screenshot: args.screenshot.clone(),
+            cycle: args.cycle_techniques,
+            resize_every: args.resize_every,
+            drop_every: args.drop_every,
+            base_size: args.size,
+            times: Vec::new(),
+        });
+        Ok(Viewer {
+            images,
+            map_images,
+            difference_image,
+            buffer_image,
+            egui_renderer,
+            egui_state,
+            egui_ctx,
+            surface,
+            config,
+            renderer,
+            ui_timer,
+            model,
+            script,
+            report_memory: args.report_memory,
+            frame: 0,
+            last_frame: Instant::now(),
+            last_render: None,
+            last_buffer: None,
+            repaint_at: None,
+            window,
+        })
+    }
+
+    fn ctx(&self) -> &GpuContext {
+        self.renderer.gpu().expect("the viewer always has a device")
+    }
+
+    /// Whether to draw again at once: the water moves, or a script is running.
+    fn continuous(&self) -> bool {
+        self.script.is_some() || self.model.water.as_ref().is_some_and(|w| w.animating())
+    }
+
+    fn resize(&mut self, width: u32, height: u32) {
+        if width == 0 || height == 0 {
+            return;
+        }
+        self.config.width = width;
+        self.config.height = height;
+        self.surface.configure(&self.ctx().device, &self.config);
+        self.window.request_redraw();
+    }
+
+    fn frame(&mut self) -> Result<Flow> {
+        let started = Instant::now();
+        let dt = started.duration_since(self.last_frame).as_secs_f64();
+        self.last_frame = started;
+        // A script advances the water by a fixed step, so its frames are repeatable.
+        let sim_dt = if self.script.is_some() {
+            1.0 / 30.0
+        } else {
+            dt.min(0.25)
+        };
+        self.model.frame_dt = dt;
+        self.model.stats.frame_ms = if self.model.stats.frame_ms == 0.0 {
+            dt * 1e3
+        } else {
+            0.9 * self.model.stats.frame_ms + 0.1 * dt * 1e3
+        };
+        self.scripted();
+
+        let input = self.egui_state.take_egui_input(&self.window);
+        let egui_ctx = self.egui_ctx.clone();
+        let mut full = egui_ctx.run_ui(input, |ui| ui::show(ui, &mut self.model));
+        self.egui_state
+            .handle_platform_output(&self.window, std::mem::take(&mut full.platform_output));
+        self.repaint_at = full
+            .viewport_output
+            .get(&egui::ViewportId::ROOT)
+            .and_then(|v| {
+                (v.repaint_delay < Duration::from_secs(3600)).then(|| started + v.repaint_delay)
+            });
+
+        self.scripted_drops();
+        let drops: Vec<DVec2> = self.model.pending_drops.drain(..).collect();
+        let gpu = self.renderer.gpu();
+        if let Some(w) = self.model.water.as_mut() {
+            for p in drops {
+                tracing::info!("ripple dropped at ({:.3}, {:.3})", p.x, p.y);
+                w.drop_at(gpu, p)?;
+            }
+            w.advance(gpu, sim_dt)?;
+        }
+
+        let rendered = self.render_scene()?;
+        self.update_pictures()?;
+        let capture = match &self.script {
+            Some(s) if self.frame + 1 == s.frames => s.screenshot.clone(),
+            _ => None,
+        }
+        .or_else(|| {
+            std::mem::take(&mut self.model.screenshot_requested).then(|| {
+                let secs = std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(0, |d| d.as_secs());
+                PathBuf::from(format!("caustics-view-{secs}.png"))
+            })
+        });
+        self.paint(full, capture.as_deref())?;
+        self.frame += 1;
+
+        if self.report_memory
+            && (self.frame == 50
+                || self.frame.is_multiple_of(100)
+                || self.script.as_ref().is_some_and(|s| self.frame == s.frames))
+        {
+            match super::resident_kib() {
+                Some(kib) => println!("memory: frame {} VmRSS {kib} kB", self.frame),
+                None => println!("memory: frame {} VmRSS unknown", self.frame),
+            }
+        }
+        if let Some(s) = self.script.as_mut() {
+            s.times.push((super::frame::ms(started), rendered));
+            if self.frame >= s.frames {
+                print_summary(&s.times);
+                return Ok(Flow::Exit);
+            }
+        }
+        Ok(Flow::Continue)
+    }
+
+    /// Render the scene if its inputs changed; returns whether it did.
+    fn render_scene(&mut self) -> Result<bool> {
+        let m = &mut self.model;
+        let key = RenderKey {
+            camera: m.camera.clone(),
+            sun: m.sun,
+            size: m.internal_size(),
+            sides: m.sides(),
+            quality: m.quality,
+            choices: m.slots[..m.sides()]
+                .iter()
+                .map(|s| s.choice.clone())
+                .collect(),
+            water: m.water.as_ref().map(|w| w.key()),
+        };
+        if self.last_render.as_ref() == Some(&key) {
+            m.stats.rendered = false;
+            return Ok(false);
+        }
+        let sides = m.sides();
+        let (images, stats) = self.renderer.render(
+            m.water.as_mut(),
+            &m.camera,
+            m.sun.direction(),
+            key.size,
+            &mut m.slots[..sides],
+            m.quality,
+        )?;
+        m.stats = Stats {
+            frame_ms: m.stats.frame_ms,
+            water_ms: stats.water_ms,
+            technique_ms: [
+                m.slots[0].technique_ms,
+                if sides > 1 {
+                    m.slots[1].technique_ms
+                } else {
+                    None
+                },
+            ],
+            image_ms: stats.image_ms,
+            rendered: true,
+            gpu: stats.gpu,
+            ui_gpu_ms: m.stats.ui_gpu_ms,
+            timestamps: m.stats.timestamps,
+        };
+        let ctx = self.renderer.gpu().expect("the viewer always has a device");
+        for (k, image) in images.iter().enumerate() {
+            self.images[k].set(
+                ctx,
+                &mut self.egui_renderer,
+                image.width,
+                image.height,
+                &rgba_of(image),
+            );
+        }
+        self.last_render = Some(key);
+        Ok(true)
+    }
+
+    /// Refresh the map and buffer pictures whose windows are open and whose inputs changed.
+    fn update_pictures(&mut self) -> Result<()> {
+        let m = &mut self.model;
+        let ctx = self.renderer.gpu().expect("the viewer always has a device");
+        if m.show_map {
+            for k in 0..m.sides() {
+                let slot = &m.slots[k];
+                if !slot.map_changed && m.maps[k].size.is_some() {
+                    continue;
+                }
+                m.maps[k] = match (&slot.map, &slot.error) {
+                    (Some(map), _) => {
+                        let p = buffers::map_picture(map);
+                        self.map_images[k].set(
+                            ctx,
+                            &mut self.egui_renderer,
+                            p.width,
+                            p.height,
+                            &p.rgba,
+                        );
+                        Shown {
+                            size: Some([p.width, p.height]),
+                            legend: p.legend,
+                            error: None,
+                        }
+                    }
+                    (None, Some(e)) => Shown {
+                        error: Some(e.clone()),
+                        ..Shown::default()
+                    },
+                    (None, None) => Shown {
+                        error: Some("no water, no map".into()),
+                        ..Shown::default()
+                    },
+                };
+            }
+            if m.split
+                && (m.slots[0].map_changed || m.slots[1].map_changed || m.difference.size.is_none())
+            {
+                m.difference = match (&m.slots[0].map, &m.slots[1].map) {
+                    (Some(a), Some(b)) => match buffers::difference_picture(a, b) {
+                        Some(p) => {
+                            self.difference_image.set(
+                                ctx,
+                                &mut self.egui_renderer,
+                                p.width,
+                                p.height,
+                                &p.rgba,
+                            );
+                            Shown {
+                                size: Some([p.width, p.height]),
+                                legend: p.legend,
+                                error: None,
+                            }
+                        }
+                        None => Shown {
+                            error: Some("the maps differ in size".into()),
+                            ..Shown::default()
+                        },
+                    },
+                    _ => Shown {
+                        error: Some("needs both maps".into()),
+                        ..Shown::default()
+                    },
+                };
+            }
+        }
+        if m.show_buffers
+            && let (Some(water), Some(surface), Some(render)) = (
+                m.water.as_ref(),
+                self.renderer.surface.as_deref(),
+                self.last_render.as_ref(),
+            )
+        {
+            let key = BufferKey {
+                buffer: m.buffer,
+                choice: m.slots[0].choice.clone(),
+                render: render.clone(),
+            };
+            if self.last_buffer.as_ref() != Some(&key) {
+                let input = BufferInput {
+                    choice: &m.slots[0].choice,
+                    water: water.technique_water(),
+                    surface,
+                    light: m.sun.direction(),
+                    map_size: m.quality.map_size as usize,
+                };
+                m.buffer_shown = match buffers::buffer_picture(m.buffer, &input) {
+                    Ok(p) => {
+                        self.buffer_image.set(
+                            ctx,
+                            &mut self.egui_renderer,
+                            p.width,
+                            p.height,
+                            &p.rgba,
+                        );
+                        Shown {
+                            size: Some([p.width, p.height]),
+                            legend: p.legend,
+                            error: None,
+                        }
+                    }
+                    Err(e) => Shown {
+                        error: Some(format!("{e:#}")),
+                        ..Shown::default()
+                    },
+                };
+                self.last_buffer = Some(key);
+            }
+        }
+        Ok(())
+    }
+
+    /// Draw the UI to the window, and to a texture read back into `capture` if asked.
+    fn paint(&mut self, full: egui::FullOutput, capture: Option<&Path>) -> Result<()> {
+        let ctx = self.renderer.gpu().expect("the viewer always has a device");
+        let ppp = full.pixels_per_point;
+        let jobs = self.egui_ctx.tessellate(full.shapes, ppp);
+        for (id, deltas) in &full.textures_delta.set {
+            for delta in deltas {
+                self.egui_renderer
+                    .update_texture(&ctx.device, &ctx.queue, *id, delta);
+            }
+        }
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: [self.config.width, self.config.height],
+            pixels_per_point: ppp,
+        };
+        let frame = match self.surface.get_current_texture() {
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => Some(t),
+            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => None,
+            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.surface.configure(&ctx.device, &self.config);
+                None
+            }
+            wgpu::CurrentSurfaceTexture::Validation => {
+                bail!("the window's surface refused a frame: {:?}", ctx.check())
+            }
+        };
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("viewer panel"),
+            });
+        let user = self.egui_renderer.update_buffers(
+            &ctx.device,
+            &ctx.queue,
+            &mut encoder,
+            &jobs,
+            &screen,
+        );
+        let offscreen = capture.map(|_| {
+            ctx.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("viewer screenshot"),
+                size: wgpu::Extent3d {
+                    width: self.config.width,
+                    height: self.config.height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: self.config.format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        });
+        let mut targets: Vec<wgpu::TextureView> = Vec::new();
+        if let Some(f) = &frame {
+            targets.push(f.texture.create_view(&Default::default()));
+        }
+        if let Some(t) = &offscreen {
+            targets.push(t.create_view(&Default::default()));
+        }
+        let mut timer = self.ui_timer.as_mut();
+        for (k, view) in targets.iter().enumerate() {
+            let timestamp_writes = if k == 0 {
+                timer
+                    .as_deref_mut()
+                    .and_then(|t| t.render_pass("panel + blit"))
+            } else {
+                None
+            };
+            let mut pass = encoder
+                .begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("viewer panel"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color {
+                                r: 0.09,
+                                g: 0.1,
+                                b: 0.12,
+                                a: 1.0,
+                            }),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                })
+                .forget_lifetime();
+            self.egui_renderer.render(&mut pass, &jobs, &screen);
+        }
+        let timed = !targets.is_empty();
+        if let Some(t) = &self.ui_timer {
+            t.resolve(&mut encoder);
+        }
+        ctx.queue.submit(user.into_iter().chain([encoder.finish()]));
+        if let Some(f) = frame {
+            ctx.queue.present(f);
+        }
+        for id in &full.textures_delta.free {
+            self.egui_renderer.free_texture(id);
+        }
+        if let (Some(t), true) = (self.ui_timer.as_mut(), timed) {
+            self.model.stats.ui_gpu_ms = t.read(ctx)?.first().map(|p| p.ms);
+        }
+        if let (Some(path), Some(texture)) = (capture, &offscreen) {
+            let texels: Vec<[u8; 4]> = ctx.read_texture(texture)?;
+            let bgra = matches!(
+                self.config.format,
+                wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
+            );
+            let rgb: Vec<u8> = texels
+                .iter()
+                .flat_map(|t| {
+                    if bgra {
+                        [t[2], t[1], t[0]]
+                    } else {
+                        [t[0], t[1], t[2]]
+                    }
+                })
+                .collect();
+            image::save_buffer(
+                path,
+                &rgb,
+                texture.width(),
+                texture.height(),
+                image::ExtendedColorType::Rgb8,
+            )
+            .with_context(|| format!("cannot write {}", path.display()))?;
+            let views: Vec<String> = self
+                .model
+                .view_rects
+                .iter()
+                .map(|[x, y, w, h]| format!("{x},{y},{w},{h}"))
+                .collect();
+            println!(
+                "screenshot: {} ({} x {}); views (x,y,w,h): {}",
+                path.display(),
+                texture.width(),
+                texture.height(),
+                views.join(" ")
+            );
+            self.model.status = Some(format!("saved {}", path.display()));
+        }
+        ctx.check()?;
+        Ok(())
+    }
+
+    /// The script's technique switches and resizes, before the UI sees the frame.
+    fn scripted(&mut self) {
+        let Some(s) = &self.script else {
+            return;
+        };
+        let k = self.frame;
+        if s.cycle {
+            let names = technique_names();
+            let n = names.len() as u64;
+            let m = &mut self.model;
+            let cells = m.slots[0].choice.cells_per_texel;
+            if let Ok(c) = TechniqueChoice::parse(&names[(k % n) as usize], cells) {
+                m.slots[0].choice = c;
+            }
+            m.split = (k / n) % 2 == 1;
+            if let Ok(c) = TechniqueChoice::parse(&names[((k + 1) % n) as usize], cells) {
+                m.slots[1].choice = c;
+            }
+        }
+        if let Some(every) = s.resize_every
+            && k > 0
+            && k.is_multiple_of(every)
+        {
+            let [w, h] = s.base_size;
+            // Narrower, wider, taller, each frame size a new swap chain and new image textures;
+            // never narrower than the panel and a view.
+            let f = [1.0, 0.8, 1.3, 0.9][((k / every) % 4) as usize];
+            let g = [1.0, 1.2, 0.85, 0.7][((k / every) % 4) as usize];
+            let size = winit::dpi::PhysicalSize::new(
+                ((w as f64 * f) as u32).max(400),
+                ((h as f64 * g) as u32).max(200),
+            );
+            if let Some(now) = self.window.request_inner_size(size) {
+                self.resize(now.width, now.height);
+            }
+        }
+    }
+
+    /// The script's drops, as a click a little below the centre of the first view.
+    fn scripted_drops(&mut self) {
+        if let Some(every) = self.script.as_ref().and_then(|s| s.drop_every)
+            && self.frame.is_multiple_of(every)
+            && let Some(p) = ui::pick(&self.model, 0.5, 0.6)
+        {
+            self.model.pending_drops.push(p);
+        }
+    }
+}
+
+fn initial_model(
+    args: &ViewArgs,
+    scene: &Scene,
+    software: bool,
+    adapter: String,
+    textures: TextureIds,
+    timestamps: bool,
+) -> Result<Model> {
+    let cells = args.cells_per_texel.max(1);
+    let first = TechniqueChoice::parse(
+        args.technique
+            .as_deref()
+            .unwrap_or(&scene.caustics.technique),
+        cells,
+    )
+    .context("--technique")?;
+    let second = TechniqueChoice::parse(args.compare.as_deref().unwrap_or("reference"), cells)
+        .context("--compare")?;
+    let water = match &scene.water {
+        Some(w) => {
+            let mut state = WaterState::new(w, scene.time, args.ripple);
+            state.amplitude = args.amplitude.max(0.0);
+            state.time_scale = args.time_scale.max(0.0);
+            state.paused = args.paused;
+            Some(state)
+        }
+        None => None,
+    };
+    let camera = OrbitCamera::from_scene(&scene.camera, scene.size);
+    // Defaults that keep a frame well under a second on a software adapter, full quality on a
+    // GPU. The map's side follows the scene's (its larger side) on a GPU.
+    let (scale, map_size, supersampling) = if software {
+        (0.25, 128, 1)
+    } else {
+        (1.0, scene.caustics.width.max(scene.caustics.height), 2)
+    };
+    Ok(Model {
+        scene_name: scene.name.clone(),
+        adapter,
+        home: camera.clone(),
+        camera,
+        sun: Sun::from_direction(scene.light.direction),
+        water,
+        slots: [Slot::new(first), Slot::new(second)],
+        split: args.compare.is_some(),
+        quality: Quality {
+            map_size: args.map_size.unwrap_or(map_size).clamp(8, 4096),
+            supersampling: args.supersampling.unwrap_or(supersampling).clamp(1, 8),
+            exposure: 0.85,
+            cpu_image: match args.final_image {
+                ImageOn::Cpu => true,
+                ImageOn::Gpu => false,
+                ImageOn::Auto => software,
+            },
+        },
+        scale: args.scale.unwrap_or(scale),
+        show_panel: !args.no_panel,
+        show_overlay: true,
+        show_map: args.show_map,
+        show_buffers: args.show_buffers,
+        buffer: Buffer::Heights,
+        textures,
+        maps: Default::default(),
+        difference: Shown::default(),
+        buffer_shown: Shown::default(),
+        stats: Stats {
+            timestamps,
+            ..Stats::default()
+        },
+        view_px: [args.size[0], args.size[1]],
+        view_rects: Vec::new(),
+        frame_dt: 0.0,
+        pending_drops: Vec::new(),
+        screenshot_requested: false,
+        status: None,
+    })
+}
+
+/// One line of frame times for a scripted run: the first frames compile shaders and build
+/// pipelines, so the statistics skip them.
+fn print_summary(times: &[(f64, bool)]) {
+    let warm = 3.min(times.len().saturating_sub(1));
+    let mut ms: Vec<f64> = times[warm..].iter().map(|t| t.0).collect();
+    let rendered = times[warm..].iter().filter(|t| t.1).count();
+    if ms.is_empty() {
+        return;
+    }
+    ms.sort_by(|a, b| a.total_cmp(b));
+    let mean = ms.iter().sum::<f64>() / ms.len() as f64;
+    println!(
+        "frames: {} (first {warm} skipped): mean {mean:.1} ms, median {:.1} ms, max {:.1} ms; \
+         first frame {:.1} ms; scene rendered in {rendered} of {}",
+        times.len(),
+        ms[ms.len() / 2],
+        ms[ms.len() - 1],
+        times[0].0,
+        ms.len()
+    );
+}

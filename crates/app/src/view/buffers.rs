@@ -1,0 +1,291 @@
+//! The raw caustics map and the intermediate buffers as pictures: what the views beside the final
+//! image show, so a technique's stages can be watched as the water moves.
+//!
+//! The GPU passes keep their intermediate textures to themselves, so the intermediates are
+//! recomputed by the technique's CPU twin (for `yuksel`: `prepass` and `pass1`, which the GPU
+//! passes match to rounding) from the same surface, only while their view is open.
+//!
+//! Every picture is drawn as seen from above: +x to the right, +y up (row 0 of a map, at y = 0,
+//! is the bottom row).
+
+use glam::DVec3;
+
+use caustics_core::grid::Grid;
+use caustics_core::map::CausticsMap;
+use caustics_core::scene::Water;
+use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
+use caustics_core::water::Surface;
+
+use super::frame::TechniqueChoice;
+use crate::techniques::heights_for;
+
+/// A buffer the view can show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Buffer {
+    /// The water's heights on the map's lattice, as the grid-based techniques read them.
+    Heights,
+    /// `yuksel` pre-pass: where each sample's refracted ray lands, as offsets from its pixel.
+    YukselOffset,
+    /// `yuksel` pre-pass: the flux each sample carries, relative to flat water.
+    YukselFlux,
+    /// `yuksel` pass 1: channel `k` of the `M + 1`, what each sample row gave the row `k - M/2`
+    /// away.
+    YukselChannel(u32),
+}
+
+impl Buffer {
+    pub fn name(&self) -> String {
+        match self {
+            Buffer::Heights => "water heights".into(),
+            Buffer::YukselOffset => "yuksel pre-pass: hit offset".into(),
+            Buffer::YukselFlux => "yuksel pre-pass: flux".into(),
+            Buffer::YukselChannel(k) => format!("yuksel pass 1: channel {k}"),
+        }
+    }
+
+    /// The buffers a technique has.
+    pub fn available(choice: &TechniqueChoice) -> Vec<Buffer> {
+        let mut v = vec![Buffer::Heights];
+        if choice.base() == "yuksel" {
+            v.extend([
+                Buffer::YukselOffset,
+                Buffer::YukselFlux,
+                Buffer::YukselChannel(0),
+            ]);
+        }
+        v
+    }
+}
+
+/// An RGBA8 picture with a line saying how its colours read.
+pub struct Picture {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+    pub legend: String,
+}
+
+/// The caustics map: relative irradiance through a heat ramp, 0 black, 1 (flat water) a dull
+/// orange, the map's maximum (at least 2) white.
+pub fn map_picture(map: &CausticsMap) -> Picture {
+    let g = map.mean_channel();
+    let (_, max) = g.min_max();
+    let top = max.max(2.0);
+    Picture {
+        legend: format!("relative irradiance: black 0, white {top:.2} (max {max:.2})"),
+        ..scalar_picture(&g, |v| heat(v / top))
+    }
+}
+
+/// `a - b` of two maps of one size: blue where `a` is darker, red where brighter.
+pub fn difference_picture(a: &CausticsMap, b: &CausticsMap) -> Option<Picture> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return None;
+    }
+    let (ga, gb) = (a.mean_channel(), b.mean_channel());
+    let d = Grid {
+        cols: ga.cols,
+        rows: ga.rows,
+        data: ga.data.iter().zip(&gb.data).map(|(x, y)| x - y).collect(),
+    };
+    let (lo, hi) = d.min_max();
+    let r = lo.abs().max(hi.abs()).max(1e-6);
+    let mean_abs = d.data.iter().map(|v| v.abs() as f64).sum::<f64>() / d.data.len().max(1) as f64;
+    Some(Picture {
+        legend: format!("left - right: blue -{r:.2}, red +{r:.2}; mean |difference| {mean_abs:.3}"),
+        ..scalar_picture(&d, |v| diverging(v / r))
+    })
+}
+
+/// The inputs of a buffer computation.
+pub struct BufferInput<'a> {
+    pub choice: &'a TechniqueChoice,
+    pub water: &'a Water,
+    pub surface: &'a dyn Surface,
+    pub light: DVec3,
+    pub map_size: usize,
+}
+
+/// Compute `buffer` for `input`; an error names what stood in the way (e.g. invalid `N`).
+pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Picture> {
+    let n = input.map_size;
+    let heights = heights_for(input.water, input.surface, n, n);
+    if buffer == Buffer::Heights {
+        let (lo, hi) = heights.min_max();
+        let r = lo.abs().max(hi.abs()).max(1e-9);
+        return Ok(Picture {
+            legend: format!("height: blue -{r:.4}, red +{r:.4} (world units)"),
+            ..scalar_picture(&heights, |v| diverging(v / r))
+        });
+    }
+    let spec = input.choice.spec()?;
+    let params = YukselParams::from_table(&spec.params)?;
+    let w = input.water;
+    let setup = YukselSetup::new(
+        &params,
+        n,
+        n,
+        w.size,
+        w.depth,
+        w.ior,
+        w.absorption,
+        w.wrap,
+        input.light,
+    )?;
+    let pre = yuksel::prepass(&setup, &heights);
+    let (pw, ph) = setup.prepass_size();
+    match buffer {
+        Buffer::YukselOffset => {
+            // δ in pixels: red for x, green for y, mid-grey at no offset, saturating at N/2.
+            let reach = (setup.n / 2).max(1) as f32;
+            let rgba = flip_rows(pw, ph, |t| {
+                let p = pre[t];
+                let c = |d: f32| ((0.5 + 0.5 * d / reach).clamp(0.0, 1.0) * 255.0) as u8;
+                [c(p[0]), c(p[1]), 128, 255]
+            });
+            Ok(Picture {
+                width: pw as u32,
+                height: ph as u32,
+                rgba,
+                legend: format!("hit offset: red x, green y, grey 0, saturated at ±{reach} px"),
+            })
+        }
+        Buffer::YukselFlux => {
+            let g = Grid {
+                cols: pw,
+                rows: ph,
+                data: pre.iter().map(|p| p[2]).collect(),
+            };
+            let (_, max) = g.min_max();
+            let top = max.max(1.5);
+            Ok(Picture {
+                legend: format!("sample flux: black 0, white {top:.2}"),
+                ..scalar_picture(&g, |v| heat(v / top))
+            })
+        }
+        Buffer::YukselChannel(k) => {
+            let p1 = yuksel::pass1(&setup, &pre);
+            let (w1, h1) = setup.pass1_size();
+            let ch = setup.m + 1;
+            let k = (k as usize).min(setup.m);
+            let g = Grid {
+                cols: w1,
+                rows: h1,
+                data: (0..w1 * h1).map(|t| p1[t * ch + k]).collect(),
+            };
+            let (_, max) = g.min_max();
+            let top = max.max(1e-6);
+            Ok(Picture {
+                legend: format!(
+                    "channel {k} of {ch} (row offset {}): black 0, white {top:.2}",
+                    k as i64 - setup.m as i64 / 2
+                ),
+                ..scalar_picture(&g, |v| heat(v / top))
+            })
+        }
+        Buffer::Heights => unreachable!("handled above"),
+    }
+}
+
+/// A grid through a colour map, drawn with y up.
+fn scalar_picture(g: &Grid, colour: impl Fn(f32) -> [u8; 3]) -> Picture {
+    let rgba = flip_rows(g.cols, g.rows, |t| {
+        let [r, gr, b] = colour(g.data[t]);
+        [r, gr, b, 255]
+    });
+    Picture {
+        width: g.cols as u32,
+        height: g.rows as u32,
+        rgba,
+        legend: String::new(),
+    }
+}
+
+/// RGBA rows of a row-major `cols x rows` buffer (row 0 at y = 0), top row first.
+fn flip_rows(cols: usize, rows: usize, texel: impl Fn(usize) -> [u8; 4]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(cols * rows * 4);
+    for i in (0..rows).rev() {
+        for j in 0..cols {
+            out.extend(texel(i * cols + j));
+        }
+    }
+    out
+}
+
+/// Black, red, orange, yellow, white over [0, 1].
+fn heat(t: f32) -> [u8; 3] {
+    const STOPS: [[f32; 3]; 5] = [
+        [0.0, 0.0, 0.0],
+        [0.55, 0.05, 0.1],
+        [0.95, 0.45, 0.05],
+        [1.0, 0.85, 0.25],
+        [1.0, 1.0, 1.0],
+    ];
+    ramp(&STOPS, t)
+}
+
+/// Blue at -1, white at 0, red at +1.
+fn diverging(t: f32) -> [u8; 3] {
+    const STOPS: [[f32; 3]; 3] = [[0.15, 0.3, 0.85], [0.97, 0.97, 0.97], [0.85, 0.15, 0.1]];
+    ramp(&STOPS, 0.5 + 0.5 * t)
+}
+
+fn ramp(stops: &[[f32; 3]], t: f32) -> [u8; 3] {
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let x = t * (stops.len() - 1) as f32;
+    let k = (x.floor() as usize).min(stops.len() - 2);
+    let f = x - k as f32;
+    std::array::from_fn(|c| ((stops[k][c] * (1.0 - f) + stops[k + 1][c] * f) * 255.0).round() as u8)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use caustics_core::scene::Scene;
+
+    #[test]
+    fn ramps_span_their_ends() {
+        assert_eq!(heat(0.0), [0, 0, 0]);
+        assert_eq!(heat(1.0), [255, 255, 255]);
+        assert_eq!(heat(f32::NAN), [0, 0, 0]);
+        assert_eq!(diverging(0.0), [247, 247, 247]);
+    }
+
+    #[test]
+    fn pictures_are_drawn_with_y_up() {
+        let g = Grid::from_fn(2, 2, |i, _| i as f32);
+        let p = scalar_picture(&g, |v| [(v * 255.0) as u8, 0, 0]);
+        // Row 1 (y high) comes first.
+        assert_eq!(&p.rgba[..4], &[255, 0, 0, 255]);
+        assert_eq!(&p.rgba[8..12], &[0, 0, 0, 255]);
+    }
+
+    #[test]
+    fn every_yuksel_buffer_is_computed() {
+        let scene = Scene::builtin("pool").unwrap();
+        let water = scene.water.as_ref().unwrap();
+        let surface = water.surface_at(0.0).unwrap();
+        let choice = TechniqueChoice::parse("yuksel:n=5,m=4", 1).unwrap();
+        for b in Buffer::available(&choice) {
+            let input = BufferInput {
+                choice: &choice,
+                water,
+                surface: surface.as_ref(),
+                light: scene.light.direction,
+                map_size: 32,
+            };
+            let p = buffer_picture(b, &input).unwrap();
+            assert_eq!(
+                p.rgba.len(),
+                (p.width * p.height * 4) as usize,
+                "{}",
+                b.name()
+            );
+            assert!(p.width >= 32 && p.height >= 32);
+        }
+    }
+}

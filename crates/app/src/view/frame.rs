@@ -1,0 +1,387 @@
+//! One frame of the scene: the water's surface, each shown technique's caustics map (through
+//! [`Runner`], so every technique the CLI runs appears here as it lands), and the final image of
+//! each side traced by [`FinalImage`] from the orbit camera.
+//!
+//! A technique runs again only when its input changed (surface, sun, map size, its parameters):
+//! orbiting the camera re-traces the image and leaves the maps alone, which on a software
+//! adapter is the difference between a fluid and a sluggish viewer.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use glam::DVec3;
+
+use caustics_core::map::CausticsMap;
+use caustics_core::render::{Image, RenderOptions, render};
+use caustics_core::scene::Scene;
+use caustics_core::techniques::yuksel::YukselParams;
+use caustics_core::water::Surface;
+use caustics_gpu::final_image::FinalImage;
+use caustics_gpu::{GpuContext, GpuTimer, PassTime};
+
+use super::camera::OrbitCamera;
+use super::water::{SurfaceKey, WaterState};
+use crate::techniques::{Job, Runner, Spec};
+
+/// A technique with its parameters as the panel edits them: a name (`yuksel`, `yuksel-gather`,
+/// ...) and the technique's own table (`n`, `m`, ...), turned into a [`Spec`] when run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TechniqueChoice {
+    pub name: String,
+    pub params: toml::Table,
+    /// The reference's triangulation cells per map texel along each axis (its quality knob, a
+    /// `Job` field rather than a technique parameter).
+    pub cells_per_texel: u32,
+}
+
+/// The parameters a technique starts with in the panel: its defaults where the core has them, so
+/// every knob shows (a technique without a parameter table shows none).
+fn default_params(base: &str) -> toml::Table {
+    match base {
+        "yuksel" => toml::Table::try_from(YukselParams::default()).unwrap_or_default(),
+        _ => toml::Table::new(),
+    }
+}
+
+impl TechniqueChoice {
+    /// From the CLI's spelling, `name` or `name:key=value,...`, with the defaults filled in.
+    pub fn parse(s: &str, cells_per_texel: u32) -> Result<Self> {
+        let spec: Spec = s.parse()?;
+        let name = if spec.gather {
+            format!("{}-gather", spec.name)
+        } else {
+            spec.name.clone()
+        };
+        let mut params = default_params(&spec.name);
+        if let Some(toml::Value::Table(given)) = spec.params.get(&spec.name) {
+            for (k, v) in given {
+                params.insert(k.clone(), v.clone());
+            }
+        }
+        Ok(TechniqueChoice {
+            name,
+            params,
+            cells_per_texel,
+        })
+    }
+
+    /// The technique's name without a variant suffix: the key of its parameter table.
+    pub fn base(&self) -> &str {
+        self.name.strip_suffix("-gather").unwrap_or(&self.name)
+    }
+
+    /// `name:key=value,...`, as `--technique` takes it.
+    pub fn label(&self) -> String {
+        if self.params.is_empty() {
+            return self.name.clone();
+        }
+        let kv: Vec<String> = self
+            .params
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect();
+        format!("{}:{}", self.name, kv.join(","))
+    }
+
+    pub fn spec(&self) -> Result<Spec> {
+        self.label().parse()
+    }
+}
+
+/// The technique names the panel offers: every implemented technique of the registry that maps the
+/// floor from the water (what the view shows), and its variants, as far as [`Spec`] accepts them.
+pub fn technique_names() -> Vec<String> {
+    caustics_core::techniques::TECHNIQUES
+        .iter()
+        .filter(|t| t.implemented && t.input == caustics_core::techniques::Input::Water)
+        .flat_map(|t| [t.name.to_string(), format!("{}-gather", t.name)])
+        .filter(|n| n.parse::<Spec>().is_ok())
+        .collect()
+}
+
+/// What a map was computed from: while it holds, the map is reused.
+#[derive(Clone, Debug, PartialEq)]
+struct MapKey {
+    label: String,
+    cells_per_texel: u32,
+    surface: SurfaceKey,
+    sun: [u64; 3],
+    map_size: u32,
+}
+
+/// Maps kept for reuse: switching back to a technique, or showing the same one on both sides,
+/// while the water stands still costs no run (and the memory is bounded: 8 maps of 1024² are
+/// 100 MB).
+const MAP_CACHE: usize = 8;
+
+struct CachedMap {
+    key: MapKey,
+    map: CausticsMap,
+    backend: &'static str,
+}
+
+/// One side of the view: a technique, its latest map, and what running it said.
+pub struct Slot {
+    pub choice: TechniqueChoice,
+    pub map: Option<CausticsMap>,
+    key: Option<MapKey>,
+    pub error: Option<String>,
+    /// "GPU" or "CPU", and milliseconds, of the last run that happened.
+    pub backend: &'static str,
+    pub technique_ms: Option<f64>,
+    /// Whether the map changed in the last frame (the map and buffer views refresh then).
+    pub map_changed: bool,
+}
+
+impl Slot {
+    pub fn new(choice: TechniqueChoice) -> Self {
+        Slot {
+            choice,
+            map: None,
+            key: None,
+            error: None,
+            backend: "",
+            technique_ms: None,
+            map_changed: false,
+        }
+    }
+}
+
+/// What the quality controls set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quality {
+    /// Side of the square caustics map, texels.
+    pub map_size: u32,
+    /// Samples per pixel along each axis of the final image.
+    pub supersampling: u32,
+    pub exposure: f64,
+    /// Trace the final image with `caustics_core::render` rather than [`FinalImage`]: on a
+    /// software adapter the CPU renderer is measured at about 2.5 times faster (it needs no
+    /// texture fetches, and no SIMD lane waits on another).
+    pub cpu_image: bool,
+}
+
+/// Where the time of a frame went.
+#[derive(Clone, Debug, Default)]
+pub struct FrameStats {
+    pub water_ms: f64,
+    pub image_ms: f64,
+    /// GPU time per timed pass, where the adapter has timestamps.
+    pub gpu: Vec<PassTime>,
+}
+
+/// Renders the view's images; owns the device through its [`Runner`].
+pub struct SceneRenderer {
+    pub runner: Runner,
+    final_image: Option<FinalImage>,
+    /// Why the final image is traced on the CPU, when it is.
+    pub final_note: Option<String>,
+    timer: Option<GpuTimer>,
+    /// The scene as loaded, with the camera, sun and map size of the latest frame.
+    pub scene: Scene,
+    /// The latest frame's surface, for the buffer views.
+    pub surface: Option<Box<dyn Surface>>,
+    /// Recent maps, oldest first.
+    maps: Vec<CachedMap>,
+}
+
+impl SceneRenderer {
+    pub fn new(runner: Runner, scene: Scene) -> Self {
+        let ctx = runner.gpu.as_ref();
+        let (final_image, final_note) = match ctx.map(FinalImage::new) {
+            Some(Ok(f)) => (Some(f), None),
+            Some(Err(e)) => (None, Some(format!("final image on the CPU: {e}"))),
+            None => (None, Some("final image on the CPU: no GPU".to_string())),
+        };
+        // Two sides, one final-image pass each.
+        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 2));
+        SceneRenderer {
+            runner,
+            final_image,
+            final_note,
+            timer,
+            scene,
+            surface: None,
+            maps: Vec::new(),
+        }
+    }
+
+    pub fn gpu(&self) -> Option<&GpuContext> {
+        self.runner.gpu.as_ref()
+    }
+
+    /// Render every slot at `size` pixels each: run its technique if its inputs changed, then
+    /// trace its final image. Returns one image per slot and the frame's timings. A technique
+    /// that fails leaves its slot's error set and its image lit as if through flat water.
+    pub fn render(
+        &mut self,
+        mut water: Option<&mut WaterState>,
+        camera: &OrbitCamera,
+        sun: DVec3,
+        size: (u32, u32),
+        slots: &mut [Slot],
+        quality: Quality,
+    ) -> Result<(Vec<Image>, FrameStats)> {
+        let mut stats = FrameStats::default();
+        let started = Instant::now();
+        let surface = match water.as_deref_mut() {
+            Some(w) if self.scene.water.is_some() => Some(w.surface(self.runner.gpu.as_ref())?),
+            _ => None,
+        };
+        stats.water_ms = ms(started);
+
+        for slot in slots.iter_mut() {
+            slot.map_changed = false;
+            let (Some(surface), Some(water)) = (surface.as_deref(), water.as_deref()) else {
+                slot.map = None;
+                slot.error = None;
+                continue;
+            };
+            let key = MapKey {
+                label: slot.choice.label(),
+                cells_per_texel: slot.choice.cells_per_texel,
+                surface: water.key(),
+                sun: sun.to_array().map(f64::to_bits),
+                map_size: quality.map_size,
+            };
+            if slot.key.as_ref() == Some(&key) {
+                slot.technique_ms = None;
+                continue;
+            }
+            slot.map_changed = true;
+            if let Some(k) = self.maps.iter().position(|c| c.key == key) {
+                // Seen a moment ago (the other side, or before a switch): most recent last.
+                let cached = self.maps.remove(k);
+                slot.map = Some(cached.map.clone());
+                slot.backend = cached.backend;
+                slot.error = None;
+                slot.technique_ms = None;
+                slot.key = Some(key);
+                self.maps.push(cached);
+                continue;
+            }
+            let started = Instant::now();
+            let outcome = slot.choice.spec().and_then(|spec| {
+                let job = Job {
+                    water: water.technique_water(),
+                    floor: &self.scene.floor,
+                    surface,
+                    light: sun,
+                    width: quality.map_size as usize,
+                    height: quality.map_size as usize,
+                    cells_per_texel: slot.choice.cells_per_texel.max(1),
+                };
+                self.runner.run(&spec, &job)
+            });
+            slot.technique_ms = Some(ms(started));
+            slot.key = Some(key.clone());
+            match outcome {
+                Ok(o) => {
+                    if self.maps.len() >= MAP_CACHE {
+                        self.maps.remove(0);
+                    }
+                    self.maps.push(CachedMap {
+                        key,
+                        map: o.map.clone(),
+                        backend: o.backend,
+                    });
+                    slot.map = Some(o.map);
+                    slot.backend = o.backend;
+                    slot.error = None;
+                }
+                Err(e) => {
+                    let e = format!("{e:#}");
+                    if slot.error.as_ref() != Some(&e) {
+                        // Once per new error: the panel shows it, a scripted run's log too.
+                        eprintln!("technique `{}`: {e}", slot.choice.label());
+                    }
+                    slot.map = None;
+                    slot.error = Some(e);
+                }
+            }
+        }
+
+        let started = Instant::now();
+        self.scene.camera = camera.camera(size.0, size.1);
+        self.scene.light.direction = sun;
+        // The final image samples the water on a grid of the map's resolution (at least 256).
+        self.scene.caustics.width = quality.map_size;
+        self.scene.caustics.height = quality.map_size;
+        let options = RenderOptions {
+            supersampling: quality.supersampling.max(1),
+            exposure: quality.exposure,
+        };
+        let mut images = Vec::with_capacity(slots.len());
+        for slot in slots.iter() {
+            let map = slot.map.as_ref();
+            images.push(if quality.cpu_image {
+                render(&self.scene, surface.as_deref(), map, &options, &|_, _| {})
+            } else {
+                self.final_image(surface.as_deref(), map, &options)?
+            });
+        }
+        if let (Some(timer), Some(ctx)) = (self.timer.as_mut(), self.runner.gpu.as_ref()) {
+            stats.gpu = timer.read(ctx).context("reading the GPU timestamps")?;
+        }
+        stats.image_ms = ms(started);
+        self.surface = surface;
+        Ok((images, stats))
+    }
+
+    fn final_image(
+        &mut self,
+        surface: Option<&dyn Surface>,
+        map: Option<&CausticsMap>,
+        options: &RenderOptions,
+    ) -> Result<Image> {
+        if let (Some(f), Some(ctx)) = (&self.final_image, self.runner.gpu.as_ref()) {
+            match f.render(ctx, &self.scene, surface, map, options, self.timer.as_mut()) {
+                Ok(image) => return Ok(image),
+                Err(e) => {
+                    // E.g. an image beyond the device's texture limits: say why once, carry on.
+                    self.final_note = Some(format!("final image on the CPU: {e}"));
+                    self.final_image = None;
+                }
+            }
+        }
+        Ok(render(&self.scene, surface, map, options, &|_, _| {}))
+    }
+}
+
+pub fn ms(since: Instant) -> f64 {
+    since.elapsed().as_secs_f64() * 1e3
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn choices_round_trip_through_specs() {
+        let c = TechniqueChoice::parse("yuksel:n=15", 2).unwrap();
+        assert_eq!(c.name, "yuksel");
+        assert_eq!(c.params.get("n").and_then(|v| v.as_integer()), Some(15));
+        // The defaults fill the rest.
+        assert_eq!(c.params.get("m").and_then(|v| v.as_integer()), Some(6));
+        let spec = c.spec().unwrap();
+        assert_eq!(spec.name, "yuksel");
+        assert!(!spec.gather);
+        let g = TechniqueChoice::parse("yuksel-gather", 2).unwrap();
+        assert_eq!(g.base(), "yuksel");
+        assert!(g.spec().unwrap().gather);
+        assert_eq!(
+            TechniqueChoice::parse("reference", 2).unwrap().label(),
+            "reference"
+        );
+        assert!(TechniqueChoice::parse("no-such", 2).is_err());
+    }
+
+    #[test]
+    fn the_picker_lists_the_runnable_techniques() {
+        let names = technique_names();
+        for n in ["reference", "yuksel", "yuksel-gather"] {
+            assert!(names.iter().any(|x| x == n), "{n} missing from {names:?}");
+        }
+        assert!(!names.iter().any(|x| x == "reference-gather"));
+    }
+}

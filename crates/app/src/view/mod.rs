@@ -1,0 +1,187 @@
+//! `caustics view`: an interactive window on any scene and any technique.
+//!
+//! The window shows the final image of the scene ([`caustics_gpu::final_image::FinalImage`], the
+//! same pass `caustics render` uses) lit by the chosen technique's caustics map, from an orbit
+//! camera, beside a second technique (the reference by default) when the view is split. An egui
+//! panel sets the sun, the water (the scene's source or a ripple simulation that clicks drop
+//! into), the technique and its parameters, and the quality; windows show the raw map and the
+//! technique's intermediate buffers; an overlay gives the time of each stage and the GPU time of
+//! each timed pass.
+//!
+//! Why the image is traced at a reduced internal resolution and scaled up: on a software adapter
+//! (lavapipe) the final-image pass runs on the CPU's cores, and a full-window trace takes seconds.
+//! The default scale keeps a frame well under a second there and is 1 on a hardware GPU.
+//!
+//! The final image comes back to the CPU and goes up again into the texture egui draws
+//! (`FinalImage::render` returns an image): a copy per frame that a real GPU does not notice and
+//! that keeps the viewer on the public API of the GPU crate.
+//!
+//! Module map: [`app`] the window, egui and the frame loop (and the scripted smoke mode);
+//! [`frame`] what one frame renders; [`camera`] the orbit camera, sun and picking; [`water`] the
+//! water sources; [`ui`] the panel, views and overlay; [`buffers`] the map and intermediate
+//! buffers as pictures.
+
+mod app;
+mod buffers;
+mod camera;
+mod frame;
+mod ui;
+mod water;
+
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+use clap::Args;
+
+#[derive(Args, Clone, Debug)]
+pub struct ViewArgs {
+    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass.
+    #[arg(long, default_value = "pool")]
+    pub scene: String,
+    /// The technique shown, with parameters as `caustics compare` spells them
+    /// (`yuksel:n=15,m=14`, `yuksel-gather`); the scene's own by default.
+    #[arg(long)]
+    pub technique: Option<String>,
+    /// Split the view: this technique beside the first (`reference` if the panel turns the split
+    /// on without it).
+    #[arg(long)]
+    pub compare: Option<String>,
+    /// Window size WIDTHxHEIGHT in physical pixels.
+    #[arg(long, value_parser = parse_size, default_value = "1280x720")]
+    pub size: [u32; 2],
+    /// Internal resolution as a fraction of the image's size on screen (default: 1 on a hardware
+    /// GPU, 0.25 on a software adapter such as lavapipe).
+    #[arg(long)]
+    pub scale: Option<f32>,
+    /// Caustics map resolution (square; default: the scene's on a hardware GPU, 128 on a software
+    /// adapter).
+    #[arg(long)]
+    pub map_size: Option<u32>,
+    /// Final-image samples per pixel along each axis (default: 2 on a hardware GPU, 1 on a
+    /// software adapter).
+    #[arg(long)]
+    pub supersampling: Option<u32>,
+    /// Reference quality: triangulation cells per map texel along each axis.
+    #[arg(long, default_value_t = 2)]
+    pub cells_per_texel: u32,
+    /// Start with the interactive ripple simulation as the water (clicks drop ripples in any mode).
+    #[arg(long)]
+    pub ripple: bool,
+    /// Wave amplitude scale (0: flat water).
+    #[arg(long, default_value_t = 1.0)]
+    pub amplitude: f64,
+    /// Simulated seconds per real second.
+    #[arg(long, default_value_t = 1.0)]
+    pub time_scale: f64,
+    /// Start with the water's clock stopped.
+    #[arg(long)]
+    pub paused: bool,
+    /// Open the caustics-map window at the start.
+    #[arg(long)]
+    pub show_map: bool,
+    /// Open the intermediate-buffers window at the start.
+    #[arg(long)]
+    pub show_buffers: bool,
+    /// Where the final image is traced: `gpu` (the `FinalImage` pass), `cpu` (the CPU renderer,
+    /// its twin), or `auto`: the GPU pass on a hardware GPU, the CPU renderer on a software adapter,
+    /// where it is measured 2.5 times faster (and where the GPU pass also grows the process's
+    /// memory by megabytes per frame on lavapipe, see the module docs).
+    #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
+    pub final_image: ImageOn,
+    /// Hide the control panel (toggle with F2).
+    #[arg(long)]
+    pub no_panel: bool,
+    /// Smoke mode: render this many frames, then exit. The water's clock then advances 1/30 s
+    /// per frame, so a run is repeatable.
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Save the last frame of the window, panel included, as PNG (with --frames).
+    #[arg(long, requires = "frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Smoke mode: switch the technique every frame, through every technique, splitting the view
+    /// every other round.
+    #[arg(long, requires = "frames")]
+    pub cycle_techniques: bool,
+    /// Smoke mode: resize the window every K frames.
+    #[arg(long, requires = "frames")]
+    pub resize_every: Option<u64>,
+    /// Smoke mode: drop a ripple as a click near the image's centre would, every K frames.
+    #[arg(long, requires = "frames")]
+    pub drop_every: Option<u64>,
+    /// Print the resident memory (VmRSS) at frames 50 and every 100 after, and at the last.
+    #[arg(long)]
+    pub report_memory: bool,
+    /// GPU backend: vulkan, metal, dx12 (default: WGPU_BACKEND, else any).
+    #[arg(long)]
+    pub backend: Option<String>,
+    /// A substring of the adapter's name (default: WGPU_ADAPTER_NAME, else the best one).
+    #[arg(long)]
+    pub adapter: Option<String>,
+}
+
+/// Where the final image is traced.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ImageOn {
+    Auto,
+    Gpu,
+    Cpu,
+}
+
+pub fn run(args: ViewArgs) -> Result<()> {
+    check_display()?;
+    if let Some(0) = args.frames {
+        bail!("--frames must be at least 1");
+    }
+    if args.resize_every == Some(0) || args.drop_every == Some(0) {
+        bail!("--resize-every and --drop-every take a number of frames, at least 1");
+    }
+    if let Some(s) = args.scale
+        && !(s > 0.0 && s <= 1.0)
+    {
+        bail!("--scale {s}: expected a fraction in (0, 1]");
+    }
+    if let Some(p) = &args.screenshot
+        && p.extension().and_then(|e| e.to_str()) != Some("png")
+    {
+        bail!("--screenshot {}: expected a .png file name", p.display());
+    }
+    app::run(args)
+}
+
+fn parse_size(s: &str) -> Result<[u32; 2], String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got `{s}`"))?;
+    let side = |v: &str| match v.trim().parse::<u32>() {
+        Ok(n) if (64..=8192).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "`{s}`: each side must be a whole number from 64 to 8192"
+        )),
+    };
+    Ok([side(w)?, side(h)?])
+}
+
+/// winit panics or fails obscurely without a display server: say what is missing first.
+fn check_display() -> Result<()> {
+    if cfg!(all(unix, not(target_os = "macos"), not(target_os = "ios"))) {
+        let set = |v: &str| std::env::var_os(v).is_some_and(|s| !s.is_empty());
+        if !set("DISPLAY") && !set("WAYLAND_DISPLAY") && !set("WAYLAND_SOCKET") {
+            bail!(
+                "`caustics view` opens a window, but neither DISPLAY nor WAYLAND_DISPLAY is set. \
+                 On a machine without a screen run it under a virtual X server, e.g. \
+                 `Xvfb :99 -screen 0 1024x768x24 -nolisten tcp & DISPLAY=:99 caustics view ...`, \
+                 or use `caustics render` for images"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The resident set size of this process, KiB (Linux; `None` elsewhere).
+pub fn resident_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmRSS:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+}

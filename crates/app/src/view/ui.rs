@@ -1,0 +1,614 @@
+//! The viewer's state as the user edits it ([`Model`]) and the egui code that edits it: the
+//! control panel, the image views with their pointer and keyboard handling, the map and buffer
+//! windows, and the timing overlay.
+//!
+//! Nothing here renders: the frame loop compares what the UI left in the model with what it last
+//! rendered and renders again only when that differs.
+
+use egui::{Color32, Pos2, Rect, Sense, Vec2};
+use glam::DVec2;
+
+use caustics_gpu::PassTime;
+
+use super::buffers::Buffer;
+use super::camera::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
+use super::frame::{Quality, Slot, TechniqueChoice, technique_names};
+use super::water::{Mode, WaterState};
+
+/// Texture ids of everything the UI draws, registered once and updated in place.
+#[derive(Clone, Copy, Debug)]
+pub struct TextureIds {
+    /// The final image of each side.
+    pub main: [egui::TextureId; 2],
+    /// Each side's caustics map, and their difference.
+    pub map: [egui::TextureId; 2],
+    pub difference: egui::TextureId,
+    pub buffer: egui::TextureId,
+}
+
+/// How a picture in a window is to be drawn: its size and what its colours mean, or why there
+/// is none.
+#[derive(Clone, Debug, Default)]
+pub struct Shown {
+    pub size: Option<[u32; 2]>,
+    pub legend: String,
+    pub error: Option<String>,
+}
+
+/// Timings for the overlay.
+#[derive(Clone, Debug, Default)]
+pub struct Stats {
+    /// Wall time between frames, smoothed.
+    pub frame_ms: f64,
+    pub water_ms: f64,
+    /// Per side: the technique's wall time when it ran this frame.
+    pub technique_ms: [Option<f64>; 2],
+    pub image_ms: f64,
+    /// Whether the scene was rendered this frame (else only the UI was drawn).
+    pub rendered: bool,
+    pub gpu: Vec<PassTime>,
+    pub ui_gpu_ms: Option<f64>,
+    pub timestamps: bool,
+}
+
+/// Everything the user can change, and what the views need to draw.
+pub struct Model {
+    pub scene_name: String,
+    pub adapter: String,
+    pub camera: OrbitCamera,
+    /// The scene's own camera, for "reset view".
+    pub home: OrbitCamera,
+    pub sun: Sun,
+    pub water: Option<WaterState>,
+    /// The left side, and the right side of a split view.
+    pub slots: [Slot; 2],
+    pub split: bool,
+    pub quality: Quality,
+    /// Internal resolution as a fraction of the view's pixels.
+    pub scale: f32,
+    pub show_panel: bool,
+    pub show_overlay: bool,
+    pub show_map: bool,
+    pub show_buffers: bool,
+    pub buffer: Buffer,
+    pub textures: TextureIds,
+    pub maps: [Shown; 2],
+    pub difference: Shown,
+    pub buffer_shown: Shown,
+    pub stats: Stats,
+    /// Size of one image view on screen, physical pixels.
+    pub view_px: [u32; 2],
+    /// Where each image view lies in the window, physical pixels.
+    pub view_rects: Vec<[u32; 4]>,
+    /// Seconds since the previous frame (for flying).
+    pub frame_dt: f64,
+    /// Water points clicked this frame, for the frame loop to drop ripples at.
+    pub pending_drops: Vec<DVec2>,
+    pub screenshot_requested: bool,
+    /// A line of news for the panel (a saved screenshot, an error).
+    pub status: Option<String>,
+}
+
+impl Model {
+    /// The internal image size of one side.
+    pub fn internal_size(&self) -> (u32, u32) {
+        let s = self.scale as f64;
+        let px = |v: u32| ((v as f64 * s).round() as u32).max(8);
+        (px(self.view_px[0]), px(self.view_px[1]))
+    }
+
+    /// The sides shown.
+    pub fn sides(&self) -> usize {
+        if self.split { 2 } else { 1 }
+    }
+}
+
+/// The whole UI for one frame.
+pub fn show(ui: &mut egui::Ui, m: &mut Model) {
+    let ctx = ui.ctx().clone();
+    if ctx.input(|i| i.key_pressed(egui::Key::F2)) {
+        m.show_panel = !m.show_panel;
+    }
+    if ctx.input(|i| i.key_pressed(egui::Key::F1)) {
+        m.show_overlay = !m.show_overlay;
+    }
+    if ctx.input(|i| i.key_pressed(egui::Key::F12)) {
+        m.screenshot_requested = true;
+    }
+    if m.show_panel {
+        egui::Panel::left("controls")
+            .resizable(false)
+            .exact_size(290.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| controls(ui, m));
+            });
+    }
+    egui::CentralPanel::no_frame().show(ui, |ui| views(ui, m));
+    windows(&ctx, m);
+}
+
+fn controls(ui: &mut egui::Ui, m: &mut Model) {
+    ui.heading("caustics view");
+    ui.label(format!("scene `{}`", m.scene_name));
+    ui.small(&m.adapter);
+    ui.separator();
+
+    let names = technique_names();
+    egui::CollapsingHeader::new("Technique")
+        .default_open(true)
+        .show(ui, |ui| {
+            technique_picker(ui, "left", &names, &mut m.slots[0]);
+            ui.checkbox(&mut m.split, "split view: beside it");
+            if m.split {
+                technique_picker(ui, "right", &names, &mut m.slots[1]);
+            }
+        });
+
+    egui::CollapsingHeader::new("Sun")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.add(egui::Slider::new(&mut m.sun.azimuth, -180.0..=180.0).text("azimuth °"));
+            ui.add(
+                egui::Slider::new(&mut m.sun.elevation, MIN_ELEVATION..=90.0).text("elevation °"),
+            );
+            ui.small("or Ctrl+drag on the image");
+        });
+
+    if let Some(w) = m.water.as_mut() {
+        egui::CollapsingHeader::new("Water")
+            .default_open(true)
+            .show(ui, |ui| water_controls(ui, w));
+    }
+
+    egui::CollapsingHeader::new("Quality")
+        .default_open(true)
+        .show(ui, |ui| {
+            let (w, h) = m.internal_size();
+            ui.add(
+                egui::Slider::new(&mut m.scale, 0.05..=1.0)
+                    .text("internal scale")
+                    .fixed_decimals(2),
+            );
+            ui.small(format!(
+                "{w} x {h} traced per side, {} x {} on screen",
+                m.view_px[0], m.view_px[1]
+            ));
+            egui::ComboBox::from_label("map size")
+                .selected_text(format!("{0} x {0}", m.quality.map_size))
+                .show_ui(ui, |ui| {
+                    for s in [32, 64, 128, 256, 512, 1024] {
+                        ui.selectable_value(&mut m.quality.map_size, s, format!("{s} x {s}"));
+                    }
+                });
+            ui.add(egui::Slider::new(&mut m.quality.supersampling, 1..=4).text("supersampling"));
+            ui.add(egui::Slider::new(&mut m.quality.exposure, 0.2..=3.0).text("exposure"));
+            ui.checkbox(&mut m.quality.cpu_image, "trace the image on the CPU")
+                .on_hover_text(
+                    "caustics_core::render instead of the GPU pass: faster on a software adapter",
+                );
+        });
+
+    egui::CollapsingHeader::new("Views")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.checkbox(&mut m.show_overlay, "timings overlay (F1)");
+            ui.checkbox(&mut m.show_map, "caustics map");
+            ui.checkbox(&mut m.show_buffers, "intermediate buffers");
+            ui.horizontal(|ui| {
+                if ui.button("reset view").clicked() {
+                    m.camera = m.home.clone();
+                }
+                if ui.button("save screenshot").clicked() {
+                    m.screenshot_requested = true;
+                }
+            });
+        });
+    if let Some(s) = &m.status {
+        ui.label(s);
+    }
+    ui.separator();
+    ui.small(
+        "drag: orbit · right-drag or Shift+drag: pan · wheel: zoom · W A S D, Q E: fly · \
+         Ctrl+drag: sun · click the water: ripple · F2: panel · F12: screenshot",
+    );
+}
+
+/// A technique menu and its parameters. Switching keeps the parameters when the base technique
+/// stays (`yuksel` to `yuksel-gather`).
+fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Slot) {
+    let mut name = slot.choice.name.clone();
+    egui::ComboBox::from_id_salt(id)
+        .selected_text(&name)
+        .show_ui(ui, |ui| {
+            for n in names {
+                ui.selectable_value(&mut name, n.clone(), n);
+            }
+        });
+    if name != slot.choice.name
+        && let Ok(mut next) = TechniqueChoice::parse(&name, slot.choice.cells_per_texel)
+    {
+        if next.base() == slot.choice.base() {
+            next.params = slot.choice.params.clone();
+        }
+        slot.choice = next;
+    }
+    let base = slot.choice.base().to_string();
+    let mut keys: Vec<String> = slot.choice.params.keys().cloned().collect();
+    keys.sort_by_key(|k| param_order(&base, k));
+    for k in keys {
+        let Some(v) = slot.choice.params.get_mut(&k) else {
+            continue;
+        };
+        let (label, hint) = param_label(&base, &k);
+        let response = match v {
+            toml::Value::Integer(i) => {
+                let (lo, hi, parity) = integer_range(&base, &k);
+                let r = ui.add(egui::Slider::new(i, lo..=hi).text(label));
+                if let Some(p) = parity
+                    && i.rem_euclid(2) != p
+                {
+                    // Odd N, even M: step to the nearest allowed value in range.
+                    *i = if *i < hi { *i + 1 } else { *i - 1 };
+                }
+                r
+            }
+            toml::Value::Float(f) => ui.add(
+                egui::DragValue::new(f)
+                    .speed(0.01)
+                    .prefix(format!("{label} ")),
+            ),
+            toml::Value::Boolean(b) => ui.checkbox(b, label),
+            other => ui.label(format!("{label} = {other}")),
+        };
+        if !hint.is_empty() {
+            response.on_hover_text(hint);
+        }
+    }
+    if base == "reference" {
+        ui.add(egui::Slider::new(&mut slot.choice.cells_per_texel, 1..=8).text("cells per texel"));
+    }
+    match (&slot.error, slot.technique_ms) {
+        (Some(e), _) => {
+            ui.colored_label(Color32::from_rgb(230, 90, 80), e);
+        }
+        (None, Some(ms)) => {
+            ui.small(format!("{ms:.1} ms on the {}", slot.backend));
+        }
+        _ => {}
+    }
+}
+
+/// Where a parameter stands in the panel: the paper's order where we know it, then the rest.
+fn param_order(technique: &str, key: &str) -> (usize, String) {
+    let known: &[&str] = match technique {
+        "yuksel" => &["n", "m", "fresnel", "absorption"],
+        _ => &[],
+    };
+    let rank = known.iter().position(|k| *k == key).unwrap_or(known.len());
+    (rank, key.to_string())
+}
+
+/// A parameter's label and hover text: the paper's names where it has them.
+fn param_label(technique: &str, key: &str) -> (String, &'static str) {
+    match (technique, key) {
+        ("yuksel", "n") => (
+            "N".into(),
+            "samples along x per pixel (odd): region R is N pixels wide",
+        ),
+        ("yuksel", "m") => (
+            "M".into(),
+            "neighbouring rows (even): M + 1 channels in pass 1",
+        ),
+        ("yuksel", "fresnel") => (
+            "Fresnel".into(),
+            "each sample carries its Fresnel transmittance",
+        ),
+        ("yuksel", "absorption") => ("absorption".into(), "exp(-K d) along the flat-water path"),
+        _ => (key.to_string(), ""),
+    }
+}
+
+/// The range of an integer parameter and the parity it must have, where the technique's checks
+/// want one (yuksel: `N` odd, `M` even).
+fn integer_range(technique: &str, key: &str) -> (i64, i64, Option<i64>) {
+    match (technique, key) {
+        ("yuksel", "n") => (1, 31, Some(1)),
+        ("yuksel", "m") => (0, 30, Some(0)),
+        _ => (0, 64, None),
+    }
+}
+
+fn water_controls(ui: &mut egui::Ui, w: &mut WaterState) {
+    ui.horizontal(|ui| {
+        ui.radio_value(&mut w.mode, Mode::Scene, "scene source");
+        ui.radio_value(&mut w.mode, Mode::Ripple, "ripples");
+    });
+    ui.add(
+        egui::Slider::new(&mut w.amplitude, 0.0..=4.0)
+            .text("amplitude ×")
+            .fixed_decimals(2),
+    );
+    ui.add(
+        egui::Slider::new(&mut w.time_scale, 0.0..=4.0)
+            .text("time scale")
+            .fixed_decimals(2),
+    );
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut w.paused, "pause");
+        ui.small(format!("t = {:.2} s", w.clock()));
+    });
+    if w.mode == Mode::Ripple {
+        let size = w.water().size;
+        ui.add(
+            egui::Slider::new(&mut w.drop_radius, size * 0.01..=size * 0.3)
+                .text("drop radius")
+                .fixed_decimals(3),
+        );
+        ui.add(
+            egui::Slider::new(&mut w.drop_strength, -size * 0.05..=size * 0.05)
+                .text("drop height")
+                .fixed_decimals(3),
+        );
+        ui.horizontal(|ui| {
+            if ui.button("calm").clicked() {
+                w.calm();
+            }
+            if let Some(b) = w.simulation_backend() {
+                ui.small(format!("simulated on the {b}"));
+            }
+        });
+        if let Some(n) = &w.sim_note {
+            ui.small(n);
+        }
+    }
+}
+
+/// The image views: one, or two side by side, each taking the pointer.
+fn views(ui: &mut egui::Ui, m: &mut Model) {
+    let rect = ui.available_rect_before_wrap();
+    let ppp = ui.ctx().pixels_per_point();
+    let sides = m.sides();
+    let w = rect.width() / sides as f32;
+    m.view_px = [
+        ((w * ppp).round() as u32).max(1),
+        ((rect.height() * ppp).round() as u32).max(1),
+    ];
+    m.view_rects.clear();
+    let full_uv = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
+    for k in 0..sides {
+        let r = Rect::from_min_size(
+            rect.min + Vec2::new(k as f32 * w, 0.0),
+            Vec2::new(w, rect.height()),
+        );
+        m.view_rects.push([
+            (r.min.x * ppp).round() as u32,
+            (r.min.y * ppp).round() as u32,
+            (r.width() * ppp).round() as u32,
+            (r.height() * ppp).round() as u32,
+        ]);
+        let response = ui.interact(r, ui.scope_id().with(("view", k)), Sense::click_and_drag());
+        ui.painter()
+            .image(m.textures.main[k], r, full_uv, Color32::WHITE);
+        if sides == 2 {
+            let label = m.slots[k].choice.name.clone();
+            ui.painter().text(
+                r.center_top() + Vec2::new(0.0, 6.0),
+                egui::Align2::CENTER_TOP,
+                label,
+                egui::FontId::proportional(15.0),
+                Color32::WHITE,
+            );
+        }
+        pointer(ui, m, &response, r);
+    }
+    keyboard(ui, m);
+    if m.show_overlay {
+        overlay(ui.ctx(), m, rect.min);
+    }
+}
+
+/// Orbit, pan, zoom, sun and ripple drops from the pointer over a view.
+fn pointer(ui: &egui::Ui, m: &mut Model, response: &egui::Response, r: Rect) {
+    let modifiers = ui.input(|i| i.modifiers);
+    let d = response.drag_delta();
+    let (dx, dy) = (d.x as f64, d.y as f64);
+    let height = m.view_px[1] as f64 / ui.ctx().pixels_per_point() as f64;
+    if response.dragged_by(egui::PointerButton::Primary) {
+        if modifiers.ctrl || modifiers.alt || modifiers.command {
+            m.sun.drag(dx, dy);
+        } else if modifiers.shift {
+            m.camera.pan(dx, dy, height);
+        } else {
+            m.camera.orbit(dx, dy);
+        }
+    } else if response.dragged_by(egui::PointerButton::Secondary)
+        || response.dragged_by(egui::PointerButton::Middle)
+    {
+        m.camera.pan(dx, dy, height);
+    }
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y) as f64;
+        if scroll != 0.0 {
+            m.camera.zoom(scroll / 50.0);
+        }
+    }
+    if response.clicked()
+        && let Some(p) = response.interact_pointer_pos()
+    {
+        let uv = (p - r.min) / r.size();
+        m.pending_drops.extend(pick(m, uv.x as f64, uv.y as f64));
+    }
+}
+
+/// The water point under a view's fractional position `(u, v)`, if any.
+pub fn pick(m: &Model, u: f64, v: f64) -> Option<DVec2> {
+    let w = m.water.as_ref()?.water();
+    let [vw, vh] = m.view_px;
+    let cam = m.camera.camera(vw, vh);
+    pick_water(
+        &cam,
+        u * vw as f64 - 0.5,
+        v * vh as f64 - 0.5,
+        w.level(),
+        w.size,
+    )
+}
+
+/// WASD (and Q, E for down and up) fly while no text field has the keyboard.
+fn keyboard(ui: &egui::Ui, m: &mut Model) {
+    if ui.ctx().egui_wants_keyboard_input() {
+        return;
+    }
+    use egui::Key;
+    let (f, r, u) = ui.input(|i| {
+        let axis = |plus: Key, minus: Key| {
+            i.key_down(plus) as i32 as f64 - i.key_down(minus) as i32 as f64
+        };
+        (
+            axis(Key::W, Key::S),
+            axis(Key::D, Key::A),
+            axis(Key::E, Key::Q),
+        )
+    });
+    if f != 0.0 || r != 0.0 || u != 0.0 {
+        m.camera.fly(f, r, u, m.frame_dt.min(0.25));
+        ui.ctx().request_repaint();
+    }
+}
+
+fn overlay(ctx: &egui::Context, m: &Model, at: Pos2) {
+    let s = &m.stats;
+    egui::Area::new(egui::Id::unique("timings"))
+        .fixed_pos(at + Vec2::new(8.0, 28.0))
+        .interactable(false)
+        .show(ctx, |ui| {
+            egui::Frame::popup(ui.style())
+                .fill(Color32::from_black_alpha(170))
+                .show(ui, |ui| {
+                    let fps = if s.frame_ms > 0.0 {
+                        1e3 / s.frame_ms
+                    } else {
+                        0.0
+                    };
+                    let mono = |ui: &mut egui::Ui, t: String| {
+                        ui.label(egui::RichText::new(t).monospace().color(Color32::WHITE));
+                    };
+                    mono(
+                        ui,
+                        format!("frame      {:7.1} ms  {fps:5.1} fps", s.frame_ms),
+                    );
+                    if s.rendered {
+                        mono(ui, format!("water      {:7.1} ms", s.water_ms));
+                        for k in 0..m.sides() {
+                            let slot = &m.slots[k];
+                            let t = match s.technique_ms[k] {
+                                Some(ms) => format!("{ms:7.1} ms {}", slot.backend),
+                                None => "  (unchanged)".into(),
+                            };
+                            mono(ui, format!("{:<10} {t}", short(&slot.choice.name)));
+                        }
+                        mono(ui, format!("image      {:7.1} ms", s.image_ms));
+                    } else {
+                        mono(ui, "scene unchanged: not re-rendered".into());
+                    }
+                    if s.timestamps {
+                        for p in &s.gpu {
+                            mono(ui, format!("GPU {:<14} {:6.2} ms", short(&p.label), p.ms));
+                        }
+                        if let Some(ms) = s.ui_gpu_ms {
+                            mono(ui, format!("GPU {:<14} {ms:6.2} ms", "panel + blit"));
+                        }
+                    } else {
+                        mono(ui, "GPU times: no timestamps on this adapter".into());
+                    }
+                    let (w, h) = m.internal_size();
+                    mono(
+                        ui,
+                        format!("{w}x{h} per side, map {0}x{0}", m.quality.map_size),
+                    );
+                });
+        });
+}
+
+fn short(s: &str) -> &str {
+    &s[..s.len().min(14)]
+}
+
+/// The map and buffer windows.
+fn windows(ctx: &egui::Context, m: &mut Model) {
+    // Down the right edge, clear of the overlay at the top left of the view.
+    let right = ctx.content_rect().right();
+    let mut open = m.show_map;
+    egui::Window::new("Caustics map")
+        .open(&mut open)
+        .default_pos(Pos2::new(right - 2.0 * (WINDOW_WIDTH + 24.0), 10.0))
+        .default_width(WINDOW_WIDTH)
+        .show(ctx, |ui| {
+            for k in 0..m.sides() {
+                ui.label(format!("{} map", m.slots[k].choice.name));
+                picture(ui, m.textures.map[k], &m.maps[k]);
+            }
+            if m.split {
+                ui.label("difference");
+                picture(ui, m.textures.difference, &m.difference);
+            }
+        });
+    m.show_map = open;
+
+    let mut open = m.show_buffers;
+    egui::Window::new("Buffers")
+        .open(&mut open)
+        .default_pos(Pos2::new(right - WINDOW_WIDTH - 12.0, 10.0))
+        .default_width(WINDOW_WIDTH)
+        .show(ctx, |ui| {
+            let choice = &m.slots[0].choice;
+            let available = Buffer::available(choice);
+            if !available.iter().any(|b| same_kind(*b, m.buffer)) {
+                m.buffer = Buffer::Heights;
+            }
+            egui::ComboBox::from_id_salt("buffer")
+                .selected_text(m.buffer.name())
+                .show_ui(ui, |ui| {
+                    for b in available {
+                        let selected = same_kind(b, m.buffer);
+                        if ui.selectable_label(selected, b.name()).clicked() && !selected {
+                            m.buffer = b;
+                        }
+                    }
+                });
+            if let Buffer::YukselChannel(k) = &mut m.buffer {
+                let channels = choice
+                    .params
+                    .get("m")
+                    .and_then(|v| v.as_integer())
+                    .unwrap_or(0)
+                    .max(0) as u32;
+                ui.add(egui::Slider::new(k, 0..=channels).text("channel"));
+            }
+            ui.small(format!("of the left side's technique, `{}`", choice.name));
+            picture(ui, m.textures.buffer, &m.buffer_shown);
+        });
+    m.show_buffers = open;
+}
+
+/// Width of the map and buffer windows, points.
+const WINDOW_WIDTH: f32 = 210.0;
+
+fn same_kind(a: Buffer, b: Buffer) -> bool {
+    std::mem::discriminant(&a) == std::mem::discriminant(&b)
+}
+
+fn picture(ui: &mut egui::Ui, id: egui::TextureId, shown: &Shown) {
+    if let Some(e) = &shown.error {
+        ui.colored_label(Color32::from_rgb(230, 90, 80), e);
+        return;
+    }
+    let Some([w, h]) = shown.size else {
+        ui.small("(not computed yet)");
+        return;
+    };
+    let width = ui.available_width().clamp(120.0, 400.0);
+    let size = Vec2::new(width, width * h as f32 / w.max(1) as f32);
+    ui.image((id, size));
+    ui.small(&shown.legend);
+}
