@@ -160,6 +160,11 @@ pub struct ProceduralCausticsParams {
     /// Half-angle, degrees, that the PNG light map spans from its centre to its edges (default: the
     /// generated map's, 1.1 × the halo radius).
     pub light_map_extent: Option<f64>,
+    /// The paper blends its caustic *additively* over the ground as already lit ("color.rgb +=
+    /// tex2D(GroundMap)", Listing 2). In relative irradiance: `ground + (1 − ground) · caustic`, so
+    /// flat water still gives 1 and `ground` is the share of the floor's light that the sun map does
+    /// not modulate. 0 is the bare sun-map lookup.
+    pub ground: f64,
 }
 
 impl Default for ProceduralCausticsParams {
@@ -178,6 +183,7 @@ impl Default for ProceduralCausticsParams {
             light_map_resolution: 128,
             light_map: None,
             light_map_extent: None,
+            ground: 0.75,
         }
     }
 }
@@ -200,6 +206,12 @@ impl ProceduralCausticsParams {
     }
 
     pub fn validate(&self) -> Result<()> {
+        if !(0.0..=1.0).contains(&self.ground) {
+            return Err(field(
+                "ground",
+                format!("must be between 0 and 1, got {}", self.ground),
+            ));
+        }
         if self.mesh_resolution == 0 || self.mesh_resolution > MAX_MESH_RESOLUTION {
             return Err(field(
                 "mesh_resolution",
@@ -460,6 +472,8 @@ pub struct ProceduralSetup {
     pub up: DVec3,
     /// `K` per channel, zero without the absorption option.
     pub absorption: DVec3,
+    /// [`ProceduralCausticsParams::ground`].
+    pub ground: f64,
     pub light: LightMap,
 }
 
@@ -515,6 +529,7 @@ impl ProceduralSetup {
             } else {
                 DVec3::ZERO
             },
+            ground: params.ground,
             light: LightMap::from_params(params)?,
         })
     }
@@ -565,12 +580,9 @@ pub fn trace(setup: &ProceduralSetup, water: &SurfaceInput, p: DVec2) -> Trace {
 /// the absorption along the way (WGSL `procedural_caustic`).
 pub fn caustic_at(setup: &ProceduralSetup, water: &SurfaceInput, p: DVec2) -> [f32; 3] {
     let t = trace(setup, water, p);
-    let Some(uv) = t.uv else {
-        return [0.0; 3];
-    };
-    let e = setup.light.sample(uv);
+    let e = t.uv.map_or(0.0, |uv| setup.light.sample(uv));
     let d = (setup.depth + t.height) / setup.up.z;
-    let a = (-setup.absorption * d).exp() * e;
+    let a = (-setup.absorption * d).exp() * (setup.ground + (1.0 - setup.ground) * e);
     [a.x as f32, a.y as f32, a.z as f32]
 }
 
@@ -804,6 +816,41 @@ mod tests {
         })
     }
 
+    /// The additive blend is affine in the bare sun-map lookup: `ground + (1 − ground) · bare`.
+    #[test]
+    fn the_caustic_is_added_over_the_lit_ground() {
+        let g = waves(32);
+        let bare = ProceduralCausticsParams {
+            ground: 0.0,
+            absorption: false,
+            ..Default::default()
+        };
+        let blended = ProceduralCausticsParams {
+            ground: 0.6,
+            ..bare.clone()
+        };
+        let a = caustics(&setup(&bare, 24, DVec3::NEG_Z), &SurfaceInput::Grid(&g));
+        let b = caustics(&setup(&blended, 24, DVec3::NEG_Z), &SurfaceInput::Grid(&g));
+        for (x, y) in a.texels.iter().zip(&b.texels) {
+            assert!(
+                (0.6 + 0.4 * x[0] - y[0]).abs() < 1e-5,
+                "{} vs {}",
+                x[0],
+                y[0]
+            );
+        }
+        let e = ProceduralCausticsParams {
+            ground: 1.5,
+            ..Default::default()
+        }
+        .validate();
+        assert!(
+            e.unwrap_err()
+                .to_string()
+                .contains("caustics.procedural.ground")
+        );
+    }
+
     #[test]
     fn flat_water_gives_one_everywhere_in_every_variant() {
         let flat = Grid::new(16, 16);
@@ -910,9 +957,11 @@ mod tests {
         let steep = Grid::from_fn(8, 8, |_, j| (j as f64 / 8.0 * 1.5) as f32);
         let t = trace(&s, &SurfaceInput::Grid(&steep), DVec2::new(0.5, 0.5));
         assert!(t.refracted.is_none());
+        // Only the lit ground remains there (the paper's additive blend).
+        let ground = ProceduralCausticsParams::default().ground as f32;
         assert_eq!(
             caustic_at(&s, &SurfaceInput::Grid(&steep), DVec2::new(0.5, 0.5)),
-            [0.0; 3]
+            [ground; 3]
         );
     }
 
@@ -954,10 +1003,12 @@ mod tests {
                 }
             }
             assert!(worst < 1e-5, "{variant:?}: {worst}");
+            // Between the spots only the ground's share of the light remains.
+            let ground = s.ground as f32;
             let max = a.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
             let min = a.texels.iter().map(|t| t[0]).fold(1.0, f32::min);
             assert!(
-                max > 0.9 && min < 0.1,
+                max > ground + 0.9 * (1.0 - ground) && min < ground + 0.1 * (1.0 - ground),
                 "{variant:?}: a pattern, {min}..{max}"
             );
         }

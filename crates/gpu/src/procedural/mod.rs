@@ -93,7 +93,11 @@ impl ProceduralUniform {
             sun_y: v4(s.sun_frame[1]),
             sun_z: v4(s.sun_frame[2]),
             up: v4(s.up),
-            absorption: v4(s.absorption),
+            absorption: {
+                let mut a = v4(s.absorption);
+                a[3] = s.ground as f32;
+                a
+            },
             wave,
             size: s.size as f32,
             depth: s.depth as f32,

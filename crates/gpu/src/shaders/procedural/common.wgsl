@@ -6,7 +6,7 @@ struct Procedural {
     sun_y: vec4<f32>,      // xyz: e2
     sun_z: vec4<f32>,      // xyz: unit direction toward the sun
     up: vec4<f32>,         // xyz: unit gathering ray, floor to surface ((0, 0, 1): the paper's)
-    absorption: vec4<f32>, // rgb: K per channel (0 without the option)
+    absorption: vec4<f32>, // rgb: K per channel (0 without the option); w: `ground`
     wave: ProceduralWave,  // the paper's wave function (source 1)
     size: f32,             // the floor square's side
     depth: f32,            // rest depth
@@ -63,16 +63,16 @@ fn procedural_caustic(p: vec2<f32>) -> vec3<f32> {
     let hg = water_at(s);
     let n = height_field_normal(hg.yz);
     let r = refract_dir(up, -n, u.ior);
-    if r.w == 0.0 {
-        return vec3<f32>(0.0);
-    }
+    var e = 0.0;
     let z = dot(r.xyz, u.sun_z.xyz);
-    if z <= 0.0 {
-        return vec3<f32>(0.0);
+    if r.w != 0.0 && z > 0.0 {
+        let uv = vec2<f32>(dot(r.xyz, u.sun_x.xyz), dot(r.xyz, u.sun_y.xyz)) / z;
+        e = light_lookup(uv);
     }
-    let uv = vec2<f32>(dot(r.xyz, u.sun_x.xyz), dot(r.xyz, u.sun_y.xyz)) / z;
     let d = (u.depth + hg.x) / up.z;
-    return light_lookup(uv) * exp(-u.absorption.rgb * d);
+    // The paper's additive blend over the lit ground; `absorption.w` holds `ground`.
+    let ground = u.absorption.w;
+    return (ground + (1.0 - ground) * e) * exp(-u.absorption.rgb * d);
 }
 
 // One triangle covering the render target.
