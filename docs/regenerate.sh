@@ -11,10 +11,13 @@ rm -rf docs/compare docs/bench
 $bin compare \
   --technique yuksel:n=3,m=2 --technique yuksel --technique yuksel:n=15,m=14 --technique yuksel:n=31,m=30 \
   --technique yuksel-gather \
+  --technique procedural --technique procedural-vertex --technique procedural-texture \
   --resolution 256,128,512 \
   --picture-cases waves-mid-deep,lens-low-deep,ocean-overhead-shallow,ripples-low-shallow \
   --out docs/compare
-$bin bench --out docs/bench "$@"
+$bin bench --out docs/bench \
+  --technique yuksel --technique yuksel-gather \
+  --technique procedural-vertex --technique procedural-screen --technique procedural-texture "$@"
 fi
 {
   cat docs/results-intro.md
