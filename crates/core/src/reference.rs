@@ -108,22 +108,12 @@ pub fn reference(
         width,
         height,
     } = *input;
-    if width == 0 || height == 0 {
-        return Err(Error::InvalidParameter(format!(
-            "caustics map resolution must be at least 1 x 1, got {width} x {height}"
-        )));
-    }
+    let light = crate::techniques::check_inputs(width, height, light)?;
     if options.cells_per_texel == 0 {
         return Err(Error::InvalidParameter(
             "reference cells_per_texel must be at least 1".into(),
         ));
     }
-    if light.z >= 0.0 || !light.is_finite() {
-        return Err(Error::InvalidParameter(format!(
-            "the light direction {light} must point down (z < 0)"
-        )));
-    }
-    let light = light.normalize();
     let size = water.size;
     let wrap = water.wrap;
     let eta = 1.0 / water.ior;

@@ -82,6 +82,22 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     },
 ];
 
+/// The checks every technique makes of its inputs, with one wording: a map of at least one texel and
+/// a light that travels down. Returns the unit light direction.
+pub fn check_inputs(width: usize, height: usize, light: glam::DVec3) -> crate::Result<glam::DVec3> {
+    if width == 0 || height == 0 {
+        return Err(crate::Error::InvalidParameter(format!(
+            "caustics map resolution must be at least 1 x 1, got {width} x {height}"
+        )));
+    }
+    if light.z >= 0.0 || !light.is_finite() {
+        return Err(crate::Error::InvalidParameter(format!(
+            "the light direction {light} must point down (z < 0)"
+        )));
+    }
+    Ok(light.normalize())
+}
+
 pub fn is_known(name: &str) -> bool {
     TECHNIQUES.iter().any(|t| t.name == name)
 }

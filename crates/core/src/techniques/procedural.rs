@@ -491,17 +491,7 @@ impl ProceduralSetup {
         light: DVec3,
     ) -> Result<Self> {
         params.validate()?;
-        if width == 0 || height == 0 {
-            return Err(Error::InvalidParameter(format!(
-                "caustics map resolution must be at least 1 x 1, got {width} x {height}"
-            )));
-        }
-        if light.z >= 0.0 || !light.is_finite() {
-            return Err(Error::InvalidParameter(format!(
-                "the light direction {light} must point down (z < 0)"
-            )));
-        }
-        let light = light.normalize();
+        let light = super::check_inputs(width, height, light)?;
         let (sun, up) = if params.follow_sun {
             let t0 = refract(light, DVec3::Z, 1.0 / params.ior)
                 .expect("air to water never reflects totally");

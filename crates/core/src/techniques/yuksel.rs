@@ -157,17 +157,7 @@ impl YukselSetup {
         light: DVec3,
     ) -> Result<Self> {
         params.validate()?;
-        if width == 0 || height == 0 {
-            return Err(Error::InvalidParameter(format!(
-                "caustics map resolution must be at least 1 x 1, got {width} x {height}"
-            )));
-        }
-        if light.z >= 0.0 || !light.is_finite() {
-            return Err(Error::InvalidParameter(format!(
-                "the light direction {light} must point down (z < 0)"
-            )));
-        }
-        let light = light.normalize();
+        let light = super::check_inputs(width, height, light)?;
         let eta = 1.0 / ior;
         let t0 = refract(light, DVec3::Z, eta).expect("air to water never reflects totally");
         let d0 = depth / -t0.z;
