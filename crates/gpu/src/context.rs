@@ -109,7 +109,6 @@ impl GpuContext {
                     seen: names.clone(),
                 })?,
         };
-        let info = adapter.get_info();
         let available = adapter.features();
         let wanted_features = wgpu::Features::TIMESTAMP_QUERY
             | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
@@ -126,6 +125,22 @@ impl GpuContext {
             .await
             .map_err(|e| GpuError::RequestDevice(e.to_string()))?;
 
+        Ok(Self::from_parts(instance, adapter, device, queue))
+    }
+
+    /// Wrap a device the application already owns (an engine's, a game's), so that the techniques
+    /// record into its queue and command encoders. The features and limits are the device's own:
+    /// timestamps are used only where it was created with `TIMESTAMP_QUERY`, and techniques that need
+    /// more than it has say so when they are built. This installs the uncaptured-error and
+    /// device-lost handlers that turn wgpu's failures into [`GpuError`]s (see [`check`](Self::check)),
+    /// replacing any the application had set.
+    pub fn from_parts(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> Self {
+        let info = adapter.get_info();
         let errors = Arc::new(Mutex::new(Vec::new()));
         let sink = errors.clone();
         device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
@@ -143,16 +158,17 @@ impl GpuContext {
             info.backend,
             info.device_type
         );
-        Ok(GpuContext {
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        GpuContext {
             instance,
             adapter,
             device,
             queue,
             info,
-            timestamps: features.contains(wgpu::Features::TIMESTAMP_QUERY),
+            timestamps,
             errors,
             lost,
-        })
+        }
     }
 
     /// One line naming the adapter, for logs and benchmark tables.
