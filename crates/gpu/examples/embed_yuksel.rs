@@ -48,7 +48,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         direction: d,
         phase: 0.0,
     };
-    let mut frame = None;
+    let mut frame: Option<caustics_gpu::yuksel::Frame> = None;
     let mut timer = GpuTimer::new(&ctx, 8);
     for step in 0..4 {
         // 3. Every frame: new heights (here sampled on the CPU; `Frame::update_heights`), then the
