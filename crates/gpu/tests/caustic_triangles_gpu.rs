@@ -229,3 +229,72 @@ fn the_uniform_matches_its_wgsl_size() {
         .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&src)));
     }
 }
+
+/// A regular 8 x 8 photon image over the 64-texel map (photon `(i, j)` at map pixel
+/// `(8 j + 4, 8 i + 4)`), all of signature 2, except photon (3, 3): another path (one total internal
+/// reflection), landing far away at map pixel (62, 62). The CPU twin's test uses the same image.
+fn split_path_photons(s: &GlassScene) -> Vec<[f32; 4]> {
+    let f = &s.floor;
+    let px = f.size / f.width as f64;
+    let pitch = f.size / 8.0;
+    let mut photons: Vec<[f32; 4]> = (0..64)
+        .map(|k| {
+            let (i, j) = (k / 8, k % 8);
+            let x = f.origin.x + (j as f64 + 0.5) * pitch;
+            let y = f.origin.y + (i as f64 + 0.5) * pitch;
+            [x as f32, y as f32, 1e-3, ct::signature(2, 0)]
+        })
+        .collect();
+    photons[3 * 8 + 3] = [
+        (f.origin.x + 62.0 * px) as f32,
+        (f.origin.y + 62.0 * px) as f32,
+        1e-3,
+        ct::signature(2, 1),
+    ];
+    photons
+}
+
+#[test]
+fn quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu() {
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let scene = ball_scene(64, 0.6);
+    let dm = DistanceMap::build(&scene, 16, 1);
+    let photons = split_path_photons(&scene);
+    for rule in [AreaRule::Paper, AreaRule::Hat] {
+        let params = CausticTrianglesParams {
+            photon_image: 8,
+            cube_resolution: 16,
+            layers: 1,
+            area_rule: rule,
+            ..Default::default()
+        };
+        let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+        let gpu = ct_gpu
+            .reconstruct(&ctx, &setup, &dm, &photons, Reconstruction::Triangles)
+            .unwrap();
+        let irr = ct::irradiance_pass(&setup, &photons);
+        for (k, (a, b)) in irr.iter().zip(&gpu.irradiance).enumerate() {
+            assert!(
+                (a - b).abs() <= 1e-5 * a.abs().max(1e-6),
+                "{rule:?}: vertex {k}: CPU {a} GPU {b}"
+            );
+        }
+        let cpu = ct::triangles_pass(&setup, &photons, &irr);
+        let m = compare(&gpu.map, &cpu);
+        eprintln!("{rule:?}: split-path image, GPU vs CPU {m:?}");
+        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        let at = |x: usize, y: usize| gpu.map.texels[y * 64 + x][0];
+        // The four quads around photon (3, 3) (map pixels 20..36) and the way from the grid's
+        // corner to where the odd photon landed stay dark; the rest of the grid is lit.
+        for y in 20..36 {
+            for x in 20..36 {
+                assert_eq!(at(x, y), 0.0, "{rule:?}: ({x}, {y}) drawn");
+            }
+        }
+        for t in 60..64 {
+            assert_eq!(at(t, t), 0.0, "{rule:?}: ({t}, {t}) drawn");
+        }
+        assert!(at(48, 48) > 0.0 && at(10, 10) > 0.0);
+    }
+}

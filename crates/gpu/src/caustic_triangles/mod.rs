@@ -261,7 +261,7 @@ impl CausticTriangles {
         let photons = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles photon image"),
             size: p * p * 16,
-            usage: B::STORAGE | B::COPY_SRC,
+            usage: B::STORAGE | B::COPY_SRC | B::COPY_DST,
             mapped_at_creation: false,
         });
         let irradiance = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -345,6 +345,19 @@ impl CausticTriangles {
             pass.set_bind_group(0, &frame.photon_bind, &[]);
             pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
         }
+        self.encode_reconstruction(frame, encoder, timer, reconstruction);
+    }
+
+    /// Record the reconstruction only (vertex irradiance and triangles, or splats) from the photon
+    /// image already in `frame.photons`, into the floor map (cleared first).
+    pub fn encode_reconstruction(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+    ) {
+        let p = frame.setup.p as u32;
         if reconstruction == Reconstruction::Triangles {
             let mut pass =
                 begin_compute(encoder, &mut timer, "caustic-triangles vertex irradiance");
@@ -414,6 +427,33 @@ impl CausticTriangles {
         let frame = self.frame(ctx, setup, dm)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode(&frame, &mut encoder, None, reconstruction);
+        ctx.queue.submit([encoder.finish()]);
+        let map = self.read_map(ctx, &frame)?;
+        Ok(GpuOutput {
+            photons: ctx.read_buffer(&frame.photons)?,
+            irradiance: ctx.read_buffer(&frame.irradiance)?,
+            map,
+        })
+    }
+}
+
+impl CausticTriangles {
+    /// The reconstruction alone from a given photon hit location image (`setup.p²` texels,
+    /// `(x, y, Φ, σ)`), e.g. a synthetic one in a test; `dm` only has to fit the frame.
+    pub fn reconstruct(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+        photons: &[[f32; 4]],
+        reconstruction: Reconstruction,
+    ) -> Result<GpuOutput, GpuError> {
+        assert_eq!(photons.len(), setup.p * setup.p, "photon image size");
+        let frame = self.frame(ctx, setup, dm)?;
+        ctx.queue
+            .write_buffer(&frame.photons, 0, bytemuck::cast_slice(photons));
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode_reconstruction(&frame, &mut encoder, None, reconstruction);
         ctx.queue.submit([encoder.finish()]);
         let map = self.read_map(ctx, &frame)?;
         Ok(GpuOutput {

@@ -10,7 +10,8 @@
 //!   refracted at every glass surface it meets (weight `T`, the Fresnel transmittance, "the complement
 //!   of the Fresnel factor if refraction happens"; total internal reflection reflects with weight 1)
 //!   up to `depth` events, until it leaves the object, then to the floor. The texel stores the
-//!   *photon hit location* and power, `(x, y, Φ, 0)`; texels whose ray misses the generator, is
+//!   *photon hit location*, power and path signature, `(x, y, Φ, σ)` with
+//!   `σ = refractions + 64 · total internal reflections` ([`signature`]); texels whose ray misses the generator, is
 //!   stopped by a diffuse surface of the distance map (an occluder: the paper's distance test,
 //!   which keeps light from leaking through walls), leaves upwards or runs out of depth hold power
 //!   `−1`, the paper's "negative power" marker of invalid texels.
@@ -18,6 +19,15 @@
 //!   image's resolution ([`irradiance_pass`]) computes each vertex's irradiance `E = ΔΦ / ΔA` once;
 //!   the caustic triangles ([`triangles_pass`]) are two triangles per photon-image quad whose four
 //!   corners are valid, Gouraud shaded between their vertices' `E` and added into the floor map.
+//!
+//! # Path signatures (a departure: the paper connects every valid quad)
+//! Neighbouring photons that took different paths through the generator (one through a teapot's
+//! spout, its neighbour past it; one refracted out, its neighbour totally internally reflected) land
+//! on unrelated, often far apart, floor points: a triangle between them is no wavefront patch, and
+//! Gouraud shading smeared a bright vertex's `E` over a long sliver (a streak across the map). So a
+//! quad is drawn only when its four corners are valid *and* have the same signature `σ`, and the
+//! area sums of a vertex use only neighbours of its own signature ([`same_path`]); a quad whose
+//! corners disagree is treated like one with an invalid corner.
 //!
 //! # Power and area
 //! A photon-image texel spans `a⊥ = Δu Δv` across the light, so the sun puts `a⊥ E⊥` through it;
@@ -253,7 +263,14 @@ impl CausticTrianglesSetup {
 /// The marker of an invalid photon-image texel.
 pub const INVALID: [f32; 4] = [0.0, 0.0, -1.0, 0.0];
 
-/// Photon tracing pass (§4.1) for texel `(i, j)`: `(x, y, Φ, 0)` of its floor hit, or [`INVALID`].
+/// Path signature of a photon that refracted `refractions` times and was totally internally
+/// reflected `tir` times: `refractions + 64 tir`, exact in f32 (`depth` ≤ 32).
+pub fn signature(refractions: u32, tir: u32) -> f32 {
+    (refractions + 64 * tir) as f32
+}
+
+/// Photon tracing pass (§4.1) for texel `(i, j)`: `(x, y, Φ, σ)` of its floor hit ([`signature`]),
+/// or [`INVALID`].
 pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usize) -> [f32; 4] {
     let mut x = setup.photon_origin(dm, i, j);
     let mut r = setup.w;
@@ -261,6 +278,7 @@ pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usiz
     let mut hit_glass = false;
     let mut power = setup.flux;
     let mut d0 = 0.0;
+    let (mut refractions, mut tir) = (0u32, 0u32);
     let eps = 1e-4 * dm.radius;
     for event in 0..=setup.depth {
         let d_floor = if r.z < 0.0 { -x.z / r.z } else { f64::INFINITY };
@@ -284,7 +302,12 @@ pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usiz
                     return INVALID;
                 }
                 let p = x + r * d_floor;
-                return [p.x as f32, p.y as f32, power as f32, 0.0];
+                return [
+                    p.x as f32,
+                    p.y as f32,
+                    power as f32,
+                    signature(refractions, tir),
+                ];
             }
             Some((_, s)) if !s.glass => return INVALID,
             Some((d, s)) => {
@@ -306,8 +329,12 @@ pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usiz
                         }
                         r = t.normalize();
                         inside = !inside;
+                        refractions += 1;
                     }
-                    None => r = reflect(r, n).normalize(),
+                    None => {
+                        r = reflect(r, n).normalize();
+                        tir += 1;
+                    }
                 }
                 d0 = eps;
             }
@@ -329,6 +356,11 @@ fn valid(t: &[f32; 4]) -> bool {
     t[2] >= 0.0
 }
 
+/// Whether photon `t` is valid and took the same path (signature) as the valid photon `me`.
+pub fn same_path(me: &[f32; 4], t: &[f32; 4]) -> bool {
+    valid(t) && t[3] == me[3]
+}
+
 fn pos(t: &[f32; 4]) -> DVec2 {
     DVec2::new(t[0] as f64, t[1] as f64)
 }
@@ -337,15 +369,18 @@ fn tri_area(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     0.5 * (b - a).perp_dot(c - a).abs()
 }
 
-/// Whether all four corners of quad `(qi, qj)` (corners `(qi..=qi+1, qj..=qj+1)`) are valid.
+/// Whether all four corners of quad `(qi, qj)` (corners `(qi..=qi+1, qj..=qj+1)`) are valid and
+/// share one path signature.
 fn quad_valid(photons: &[[f32; 4]], p: usize, qi: i64, qj: i64) -> bool {
     if qi < 0 || qj < 0 || qi + 1 >= p as i64 || qj + 1 >= p as i64 {
         return false;
     }
     let (qi, qj) = (qi as usize, qj as usize);
-    [(0, 0), (0, 1), (1, 0), (1, 1)]
-        .iter()
-        .all(|&(a, b)| valid(&photons[(qi + a) * p + qj + b]))
+    let first = photons[qi * p + qj];
+    valid(&first)
+        && [(0, 1), (1, 0), (1, 1)]
+            .iter()
+            .all(|&(a, b)| same_path(&first, &photons[(qi + a) * p + qj + b]))
 }
 
 /// Vertex irradiance of texel `(i, j)` (the §5 pass): `ΔΦ / ΔA`, or −1 where invalid.
@@ -366,7 +401,7 @@ pub fn vertex_irradiance(
             return None;
         }
         let t = photons[a as usize * p + b as usize];
-        valid(&t).then(|| pos(&t))
+        same_path(&me, &t).then(|| pos(&t))
     };
     let v = pos(&me);
     let (mut sum, mut count) = (0.0, 0u32);
@@ -458,8 +493,8 @@ fn to_map(floor: &FloorWindow, acc: Vec<f32>) -> CausticsMap {
     map
 }
 
-/// Caustic triangles (§4.2): two per quad of four valid photon-image texels, `(i, j) (i, j+1)
-/// (i+1, j+1)` and `(i, j) (i+1, j+1) (i+1, j)`, Gouraud shaded, added.
+/// Caustic triangles (§4.2): two per quad of four valid photon-image texels of one path signature,
+/// `(i, j) (i, j+1) (i+1, j+1)` and `(i, j) (i+1, j+1) (i+1, j)`, Gouraud shaded, added.
 pub fn triangles_pass(
     setup: &CausticTrianglesSetup,
     photons: &[[f32; 4]],

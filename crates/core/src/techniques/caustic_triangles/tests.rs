@@ -167,3 +167,91 @@ fn bad_parameters_are_named() {
     let p = CausticTrianglesParams::from_table(&t).unwrap();
     assert_eq!((p.photon_image, p.area_rule), (64, AreaRule::Hat));
 }
+
+/// A regular `p x p` photon image over the floor window of `s` (photon `(i, j)` at map pixel
+/// `(8 j + 4, 8 i + 4)` for a 64-texel map and `p = 8`), all of signature 2 (refracted in and out),
+/// except photon `(3, 3)`: totally internally reflected once (another path) and landing far away at
+/// map pixel (62, 62). The caustic-triangle twins of `caustics-gpu` use the same image.
+pub(crate) fn split_path_photons(s: &GlassScene, p: usize) -> Vec<[f32; 4]> {
+    let f = &s.floor;
+    let px = f.size / f.width as f64;
+    let pitch = f.size / p as f64;
+    let mut photons: Vec<[f32; 4]> = (0..p * p)
+        .map(|k| {
+            let (i, j) = (k / p, k % p);
+            let x = f.origin.x + (j as f64 + 0.5) * pitch;
+            let y = f.origin.y + (i as f64 + 0.5) * pitch;
+            [x as f32, y as f32, 1e-3, signature(2, 0)]
+        })
+        .collect();
+    photons[3 * p + 3] = [
+        (f.origin.x + 62.0 * px) as f32,
+        (f.origin.y + 62.0 * px) as f32,
+        1e-3,
+        signature(2, 1),
+    ];
+    photons
+}
+
+#[test]
+fn quads_whose_corners_took_different_paths_are_not_drawn() {
+    let s = ball_scene(64);
+    for rule in [AreaRule::Paper, AreaRule::Hat] {
+        let setup = CausticTrianglesSetup::new(
+            &CausticTrianglesParams {
+                area_rule: rule,
+                ..params(8)
+            },
+            &s,
+        )
+        .unwrap();
+        let photons = split_path_photons(&s, 8);
+        let irr = irradiance_pass(&setup, &photons);
+        let map = triangles_pass(&setup, &photons, &irr);
+        let at = |x: usize, y: usize| map.texels[y * 64 + x][0];
+        // The four quads around photon (3, 3) span map pixels 20..36: nothing there, nor between
+        // the grid's corner (pixel 60) and where the odd photon landed.
+        for y in 20..36 {
+            for x in 20..36 {
+                assert_eq!(at(x, y), 0.0, "{rule:?}: ({x}, {y}) drawn");
+            }
+        }
+        for t in 60..64 {
+            assert_eq!(at(t, t), 0.0, "{rule:?}: ({t}, {t}) drawn");
+        }
+        // Quads away from the hole and the rim are drawn with the regular grid's irradiance,
+        // 1e-3 / pitch².
+        let e = 1e-3 / (s.floor.size / 8.0).powi(2);
+        for (x, y) in [(48, 48), (48, 16), (16, 48)] {
+            assert!(
+                (at(x, y) as f64 / e - 1.0).abs() < 1e-4,
+                "{rule:?}: ({x}, {y}) {}",
+                at(x, y)
+            );
+        }
+        // Neighbours of the odd photon take no area with it: with the paper's rule (twice the mean of
+        // the triangles present) they keep the regular grid's value.
+        if rule == AreaRule::Hat {
+            continue;
+        }
+        for k in [2 * 8 + 3, 3 * 8 + 4, 4 * 8 + 3, 3 * 8 + 2] {
+            assert!(
+                (irr[k] as f64 / e - 1.0).abs() < 1e-4,
+                "{rule:?}: vertex {k} {}",
+                irr[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn photons_record_their_path_signature() {
+    let s = ball_scene(64);
+    let dm = DistanceMap::build(&s, 128, 2);
+    let setup = CausticTrianglesSetup::new(&params(32), &s).unwrap();
+    let photons = photon_pass(&setup, &dm);
+    // Through a sphere every floor photon refracts in and out (no TIR inside a sphere).
+    let valid: Vec<_> = photons.iter().filter(|t| t[2] >= 0.0).collect();
+    assert!(!valid.is_empty());
+    assert!(valid.iter().all(|t| t[3] == signature(2, 0)));
+}

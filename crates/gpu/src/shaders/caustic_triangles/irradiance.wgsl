@@ -1,6 +1,7 @@
 // Technique `caustic-triangles`, the per-vertex irradiance pass (paper §5: "a separate pass ... at the
 // resolution of the photon hit location image ... computes the area of triangles adjacent to a
-// single vertex"): E = power / dA, -1 where invalid. CPU twin: `vertex_irradiance` in
+// single vertex"): E = power / dA, -1 where invalid. Only neighbours with the vertex's path
+// signature (w) count. CPU twin: `vertex_irradiance` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs, where both area rules are derived.
 
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
@@ -26,8 +27,12 @@ fn quad_valid(qi: i32, qj: i32) -> bool {
     if qi < 0 || qj < 0 || qi + 1 >= p || qj + 1 >= p {
         return false;
     }
-    return photon_at(qi, qj).z >= 0.0 && photon_at(qi, qj + 1).z >= 0.0
-        && photon_at(qi + 1, qj).z >= 0.0 && photon_at(qi + 1, qj + 1).z >= 0.0;
+    let a = photon_at(qi, qj);
+    let b = photon_at(qi, qj + 1);
+    let c = photon_at(qi + 1, qj);
+    let d = photon_at(qi + 1, qj + 1);
+    return a.z >= 0.0 && b.z >= 0.0 && c.z >= 0.0 && d.z >= 0.0 && b.w == a.w && c.w == a.w
+        && d.w == a.w;
 }
 
 fn vertex_irradiance(i: i32, j: i32) -> f32 {
@@ -44,7 +49,7 @@ fn vertex_irradiance(i: i32, j: i32) -> f32 {
         for (var k = 0u; k < 4u; k++) {
             let a = ring[k];
             let b = ring[(k + 1u) % 4u];
-            if a.z >= 0.0 && b.z >= 0.0 {
+            if a.z >= 0.0 && b.z >= 0.0 && a.w == me.w && b.w == me.w {
                 sum += tri_area(v, a.xy, b.xy);
                 count += 1u;
             }

@@ -1,7 +1,8 @@
 // Technique `caustic-triangles`, photon tracing pass (paper §4.1): the light ray of each photon-image
 // texel traced through the distance map, refracted (Fresnel weighted) or totally internally
 // reflected up to `depth` events, then to the floor. Writes the photon hit location image:
-// (x, y, power, 0), power -1 where invalid. CPU twin: `photon` in
+// (x, y, power, signature), power -1 where invalid; signature = refractions + 64 * total internal
+// reflections (quads whose corners took different paths are not drawn). CPU twin: `photon` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
 @group(0) @binding(2) var<storage, read_write> photons: array<vec4<f32>>;
@@ -18,6 +19,8 @@ fn trace_photon(i: u32, j: u32) -> vec4<f32> {
     var hit_glass = false;
     var power = u.v.w;
     var d0 = 0.0;
+    var refractions = 0u;
+    var tir = 0u;
     let eps = 1e-4 * radius;
     let ior = u.u.w;
     for (var event = 0u; event <= u.depth; event++) {
@@ -38,7 +41,7 @@ fn trace_photon(i: u32, j: u32) -> vec4<f32> {
                 return INVALID;
             }
             let p = x + r * d_floor;
-            return vec4<f32>(p.xy, power, 0.0);
+            return vec4<f32>(p.xy, power, f32(refractions + 64u * tir));
         }
         if h.surface.w < 0.0 || event == u.depth {
             return INVALID; // a diffuse surface stops the photon, or the path is too long
@@ -61,8 +64,10 @@ fn trace_photon(i: u32, j: u32) -> vec4<f32> {
             }
             r = normalize(t.xyz);
             inside = !inside;
+            refractions += 1u;
         } else {
             r = normalize(r - 2.0 * dot(r, n) * n);
+            tir += 1u;
         }
         d0 = eps;
     }

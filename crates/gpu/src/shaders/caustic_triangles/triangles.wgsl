@@ -1,6 +1,7 @@
 // Technique `caustic-triangles`, the caustic triangles (paper §4.2, Fig. 6): 2 (P-1)^2 triangles
 // sent with no vertex buffer; the vertex shader pulls its photon hit and vertex irradiance from the
-// photon image, collapses the triangles of quads with an invalid corner outside the clip volume,
+// photon image, collapses the triangles of quads with an invalid corner or corners of different
+// path signatures (photon w) outside the clip volume,
 // and the irradiance is Gouraud shaded and added into the floor map. CPU twin: `triangles_pass` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
@@ -27,8 +28,12 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> VsOut {
     out.e = 0.0;
     out.position = CULLED;
     let k00 = qi * u.p + qj;
-    let ok = photons[k00].z >= 0.0 && photons[k00 + 1u].z >= 0.0 && photons[k00 + u.p].z >= 0.0
-        && photons[k00 + u.p + 1u].z >= 0.0;
+    let p00 = photons[k00];
+    let p01 = photons[k00 + 1u];
+    let p10 = photons[k00 + u.p];
+    let p11 = photons[k00 + u.p + 1u];
+    let ok = p00.z >= 0.0 && p01.z >= 0.0 && p10.z >= 0.0 && p11.z >= 0.0 && p01.w == p00.w
+        && p10.w == p00.w && p11.w == p00.w;
     if !ok {
         return out;
     }
