@@ -266,7 +266,14 @@ fn every_technique_shows_caustics_in_the_window() {
     for t in techniques() {
         let png = dir.join(format!("{t}.png"));
         let mut args = common.to_vec();
-        args.extend(["--technique", &t, "--screenshot", png.to_str().unwrap()]);
+        // Paper 2's pattern is sparse (the 0.84° sun halo), and its default blend over the lit
+        // ground halves it; the bare lookup shows whether the view draws the technique's pattern.
+        let spec = if t == "procedural" {
+            "procedural:ground=0".to_string()
+        } else {
+            t.clone()
+        };
+        args.extend(["--technique", &spec, "--screenshot", png.to_str().unwrap()]);
         let started = Instant::now();
         let Some(o) = view(&display, &dir, &args) else {
             return;

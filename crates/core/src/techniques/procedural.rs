@@ -183,7 +183,7 @@ impl Default for ProceduralCausticsParams {
             light_map_resolution: 128,
             light_map: None,
             light_map_extent: None,
-            ground: 0.75,
+            ground: 0.5,
         }
     }
 }
