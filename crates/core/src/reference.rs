@@ -93,6 +93,9 @@ struct Hit {
     lit: bool,
 }
 
+/// The most memory the reference's per-thread accumulators may take.
+pub const MAX_ACCUMULATOR_BYTES: u64 = 8 << 30;
+
 /// Compute the reference caustics map. `progress(done, total)` is called as bands of the
 /// triangulation finish.
 pub fn reference(
@@ -204,11 +207,26 @@ pub fn reference(
         wrap,
     };
     let light_z = -light.z;
-    let acc = (0..bands)
+    // One accumulator per worker thread (bands interleaved between them) and one for the sum, fewer
+    // workers where memory would not hold them, and a clear refusal where not even two fit.
+    let map_bytes = (width * height) as u64 * std::mem::size_of::<DVec3>() as u64;
+    let by_memory = (MAX_ACCUMULATOR_BYTES / map_bytes).saturating_sub(1) as usize;
+    if by_memory == 0 {
+        return Err(Error::InvalidParameter(format!(
+            "a {width} x {height} reference map needs {:.1} GiB for two accumulators (at most {} \
+             GiB): choose a smaller resolution",
+            2.0 * map_bytes as f64 / (1u64 << 30) as f64,
+            MAX_ACCUMULATOR_BYTES >> 30
+        )));
+    }
+    let workers = rayon::current_num_threads()
+        .min(by_memory)
+        .clamp(1, bands.max(1));
+    let acc = (0..workers)
         .into_par_iter()
-        .fold(
-            || vec![DVec3::ZERO; width * height],
-            |mut acc, k| {
+        .map(|worker| {
+            let mut acc = vec![DVec3::ZERO; width * height];
+            for k in (worker..bands).step_by(workers) {
                 let a0 = k * band;
                 let a1 = ((k + 1) * band).min(ny);
                 let mut prev: Vec<Hit> = (0..=nx).map(|b| vertex(a0, b)).collect();
@@ -249,9 +267,9 @@ pub fn reference(
                 }
                 let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 progress(d, bands);
-                acc
-            },
-        )
+            }
+            acc
+        })
         .reduce(
             || vec![DVec3::ZERO; width * height],
             |mut a, b| {

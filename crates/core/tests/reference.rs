@@ -359,4 +359,14 @@ fn bad_parameters_are_errors() {
         ..input
     };
     assert!(reference(&input, &ReferenceOptions::default(), &|_, _| {}).is_err());
+    // A map whose accumulators would not fit is refused before anything is allocated.
+    let input = ReferenceInput {
+        width: 16384,
+        height: 16384,
+        ..input
+    };
+    let e = reference(&input, &ReferenceOptions::default(), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("16384 x 16384") && e.contains("GiB"), "{e}");
 }
