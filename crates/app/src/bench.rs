@@ -261,24 +261,10 @@ fn time_frames(
             }
         }
         for (l, ms) in frame {
-            match per_pass.iter_mut().find(|(x, _)| *x == l) {
-                Some((_, v)) => v.push(ms),
-                None => per_pass.push((l, vec![ms])),
-            }
+            record(&mut per_pass, l, ms);
         }
     }
-    let passes: Vec<(String, f64, f64, f64)> = per_pass
-        .into_iter()
-        .map(|(l, mut v)| {
-            v.sort_by(f64::total_cmp);
-            (
-                l,
-                percentile(&v, 0.5),
-                percentile(&v, 0.1),
-                percentile(&v, 0.9),
-            )
-        })
-        .collect();
+    let passes = summarise(per_pass);
     cpu.sort_by(f64::total_cmp);
     let total = if passes.is_empty() {
         percentile(&cpu, 0.5)
@@ -337,10 +323,7 @@ fn bench_cpu_procedural(
         total.push(times.iter().map(|t| t.1).sum::<f64>());
         for (name, ms) in times {
             let name = format!("procedural {name} (CPU twin)");
-            match stages.iter_mut().find(|(l, _)| *l == name) {
-                Some((_, v)) => v.push(ms),
-                None => stages.push((name, vec![ms])),
-            }
+            record(&mut stages, name, ms);
         }
     }
     total.sort_by(f64::total_cmp);
@@ -349,18 +332,7 @@ fn bench_cpu_procedural(
         width: setup.width as u32,
         height: setup.height as u32,
         backend: "CPU",
-        passes: stages
-            .into_iter()
-            .map(|(l, mut v)| {
-                v.sort_by(f64::total_cmp);
-                (
-                    l,
-                    percentile(&v, 0.5),
-                    percentile(&v, 0.1),
-                    percentile(&v, 0.9),
-                )
-            })
-            .collect(),
+        passes: summarise(stages),
         total_ms: percentile(&total, 0.5),
         cpu_ms: percentile(&total, 0.5),
         gpu_bytes: 0,
@@ -395,22 +367,40 @@ fn bench_cpu(
         width: setup.width as u32,
         height: setup.height as u32,
         backend: "CPU",
-        passes: names
-            .into_iter()
-            .map(|(l, mut v)| {
-                v.sort_by(f64::total_cmp);
-                (
-                    format!("yuksel {l} (CPU twin)"),
-                    percentile(&v, 0.5),
-                    percentile(&v, 0.1),
-                    percentile(&v, 0.9),
-                )
-            })
-            .collect(),
+        passes: summarise(
+            names
+                .into_iter()
+                .map(|(l, v)| (format!("yuksel {l} (CPU twin)"), v))
+                .collect(),
+        ),
         total_ms: percentile(&total, 0.5),
         cpu_ms: percentile(&total, 0.5),
         gpu_bytes: 0,
     }
+}
+
+/// Add a sample to the series of `label`, series kept in the order first seen.
+fn record(series: &mut Vec<(String, Vec<f64>)>, label: String, ms: f64) {
+    match series.iter_mut().find(|(l, _)| *l == label) {
+        Some((_, v)) => v.push(ms),
+        None => series.push((label, vec![ms])),
+    }
+}
+
+/// Each series as (label, median, 10th percentile, 90th percentile).
+fn summarise(series: Vec<(String, Vec<f64>)>) -> Vec<(String, f64, f64, f64)> {
+    series
+        .into_iter()
+        .map(|(l, mut v)| {
+            v.sort_by(f64::total_cmp);
+            let (median, lo, hi) = (
+                percentile(&v, 0.5),
+                percentile(&v, 0.1),
+                percentile(&v, 0.9),
+            );
+            (l, median, lo, hi)
+        })
+        .collect()
 }
 
 /// Least-squares slope of log(time) over log(pixels): 1 is linear in the pixel count.
