@@ -134,6 +134,7 @@ pub struct Runner {
     pub gpu: Option<GpuContext>,
     yuksel: Option<Yuksel>,
     procedural: Option<ProceduralCaustics>,
+    caustic_triangles: Option<caustics_gpu::caustic_triangles::CausticTriangles>,
 }
 
 impl Runner {
@@ -142,6 +143,7 @@ impl Runner {
             gpu,
             yuksel: None,
             procedural: None,
+            caustic_triangles: None,
         }
     }
 
@@ -165,7 +167,11 @@ impl Runner {
                         backend: "CPU",
                     });
                 };
-                let gpu = caustics_gpu::caustic_triangles::CausticTriangles::new(ctx)?;
+                if self.caustic_triangles.is_none() {
+                    self.caustic_triangles =
+                        Some(caustics_gpu::caustic_triangles::CausticTriangles::new(ctx)?);
+                }
+                let gpu = self.caustic_triangles.as_ref().expect("just made");
                 let glass = scene
                     .objects
                     .iter()
