@@ -408,3 +408,46 @@ fn a_small_bench_writes_its_outputs() {
             > 4
     );
 }
+
+/// The glass scene through `render`: caustic-triangles makes a floor map with a focus brighter than
+/// the unobstructed sun, and a water technique explains that the scene has no water.
+#[test]
+fn render_maps_glass_caustics() {
+    let d = tmpdir("glass");
+    let o = caustics(
+        &[
+            "render",
+            "--scene",
+            "glass",
+            "--cpu",
+            "--resolution",
+            "64x64",
+            "--technique",
+            "caustic-triangles:photon_image=32,cube_resolution=64",
+            "--raw",
+            "g.npy",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let map = Grid::load(&d.join("g.npy"), [0.0, 1.0]).unwrap();
+    assert!(map.min_max().1 > 2.0, "a focus: max {}", map.min_max().1);
+    let o = caustics(
+        &[
+            "render",
+            "--scene",
+            "glass",
+            "--cpu",
+            "--technique",
+            "yuksel",
+            "--raw",
+            "y.npy",
+        ],
+        &d,
+    );
+    assert!(
+        !o.status.success() && stderr(&o).contains("no water"),
+        "{}",
+        stderr(&o)
+    );
+}
