@@ -1,0 +1,301 @@
+//! The illumination volumes of §3.2: the refracted light at the water lattice's vertices, the slices
+//! of each triangle's volume by the reference planes drawn into an object's caustics map, the floor
+//! map, and Eq. 4. GPU twins: `shaders/volumes/{water,slices,floor,shade}.wgsl`.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::representation::{OrthoView, covered};
+use super::{CellRect, ObjectView, VolumesSetup};
+use crate::grid::{Edge, Grid};
+use crate::map::CausticsMap;
+use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+
+/// One lattice vertex after refraction: `[x, y, z, weight, tx, ty, tz, 0]`: the point on the surface,
+/// the Fresnel weight `T(θi) / T(θ0)` (0 where no light enters: the surface faces away from the sun)
+/// and the unit refracted direction.
+pub type WaterVertex = [f32; 8];
+
+/// Refraction at lattice vertex `(i, j)`; the surface is the bicubic interpolant of `heights`.
+pub fn water_vertex(
+    setup: &VolumesSetup,
+    heights: &Grid,
+    wrap: bool,
+    i: usize,
+    j: usize,
+) -> WaterVertex {
+    let p = setup.lattice.position(i, j);
+    let edge = if wrap { Edge::Wrap } else { Edge::Clamp };
+    let (h, grad) = heights.sample(p, setup.size, edge);
+    let n = height_field_normal(grad);
+    let l = setup.light;
+    let cos_i = -l.dot(n);
+    let z = setup.depth + h;
+    match refract(l, n, setup.eta) {
+        Some(t) if cos_i > 0.0 => {
+            let w = if setup.params.fresnel {
+                fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
+            } else {
+                1.0
+            };
+            [
+                p.x as f32, p.y as f32, z as f32, w as f32, t.x as f32, t.y as f32, t.z as f32, 0.0,
+            ]
+        }
+        _ => [p.x as f32, p.y as f32, z as f32, 0.0, 0.0, 0.0, -1.0, 0.0],
+    }
+}
+
+/// The water pass: every lattice vertex, row-major.
+pub fn water_pass(setup: &VolumesSetup, heights: &Grid, wrap: bool) -> Vec<WaterVertex> {
+    let lat = &setup.lattice;
+    (0..lat.vertex_count())
+        .into_par_iter()
+        .map(|k| water_vertex(setup, heights, wrap, k / (lat.nx + 1), k % (lat.nx + 1)))
+        .collect()
+}
+
+/// A triangle of an illumination volume cut by a plane: its vertices, their intensities `Ic` (Eq. 3,
+/// per channel) and their refracted directions.
+#[derive(Clone, Copy, Debug)]
+pub struct Slice {
+    pub points: [DVec3; 3],
+    pub intensity: [DVec3; 3],
+    pub dirs: [DVec3; 3],
+}
+
+fn v3(a: &[f32], k: usize) -> DVec3 {
+    DVec3::new(a[k] as f64, a[k + 1] as f64, a[k + 2] as f64)
+}
+
+/// The illumination volume of the water triangle `tri` cut by the plane `{x : n · x = c}`, `n` the
+/// side the light travels to. `None` where no light leaves the triangle, where the sun sees its back,
+/// where a ray runs parallel to the plane or meets it above the water, or where the slice is flat.
+///
+/// Eq. 3 per vertex: `Ic = Φ w exp(−K d) / (Ad (n · t))`, with `Φ` the triangle's area projected along
+/// the sun onto the horizontal (`Ii Aw cos θi` relative to the sun on a horizontal surface), `w` the
+/// Fresnel weight, `d` the vertex's path to the plane, `Ad` the slice's area and `n · t = cos θt`.
+pub fn slice(setup: &VolumesSetup, tri: [&WaterVertex; 3], n: DVec3, c: f64) -> Option<Slice> {
+    if tri.iter().any(|v| v[3] <= 0.0) {
+        return None;
+    }
+    let s = tri.map(|v| v3(v, 0));
+    let t = tri.map(|v| v3(v, 4));
+    let l = setup.light;
+    let flux = -l.dot((s[1] - s[0]).cross(s[2] - s[0])) / (2.0 * -l.z);
+    if flux <= 0.0 {
+        return None;
+    }
+    let mut points = [DVec3::ZERO; 3];
+    let mut path = [0.0; 3];
+    let mut cos_t = [0.0; 3];
+    for k in 0..3 {
+        cos_t[k] = n.dot(t[k]);
+        if cos_t[k] <= 1e-6 {
+            return None;
+        }
+        path[k] = (c - n.dot(s[k])) / cos_t[k];
+        if path[k] < 0.0 {
+            return None;
+        }
+        points[k] = s[k] + t[k] * path[k];
+    }
+    let area = 0.5
+        * (points[1] - points[0])
+            .cross(points[2] - points[0])
+            .length();
+    if !(area > 0.0 && area.is_finite()) {
+        return None;
+    }
+    let intensity = std::array::from_fn(|k| {
+        (-setup.absorption * path[k]).exp() * (flux * tri[k][3] as f64 / (area * cos_t[k]))
+    });
+    Some(Slice {
+        points,
+        intensity,
+        dirs: t,
+    })
+}
+
+/// Call `f(i, j, barycentrics)` for every texel centre inside the triangle `v` (pixel coordinates),
+/// edges included: what the rasteriser does, up to its tie rule on shared edges.
+pub fn raster(
+    width: usize,
+    height: usize,
+    v: [DVec2; 3],
+    mut f: impl FnMut(usize, usize, [f64; 3]),
+) {
+    let area2 = (v[1] - v[0]).perp_dot(v[2] - v[0]);
+    if area2 == 0.0 || !area2.is_finite() {
+        return;
+    }
+    let lo = v[0].min(v[1]).min(v[2]);
+    let hi = v[0].max(v[1]).max(v[2]);
+    let j0 = (lo.x - 0.5).ceil().max(0.0);
+    let j1 = (hi.x - 0.5).floor().min(width as f64 - 1.0);
+    let i0 = (lo.y - 0.5).ceil().max(0.0);
+    let i1 = (hi.y - 0.5).floor().min(height as f64 - 1.0);
+    if j1 < j0 || i1 < i0 {
+        return;
+    }
+    for i in i0 as usize..=i1 as usize {
+        for j in j0 as usize..=j1 as usize {
+            let c = DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
+            let b0 = (v[2] - v[1]).perp_dot(c - v[1]) / area2;
+            let b1 = (v[0] - v[2]).perp_dot(c - v[2]) / area2;
+            let b2 = 1.0 - b0 - b1;
+            if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
+                f(i, j, [b0, b1, b2]);
+            }
+        }
+    }
+}
+
+/// Whether world point `p` sees the refracted sun past the objects in the shadow map (always without
+/// one). The bias absorbs the map's texel quantisation on the surfaces it was rendered from.
+pub fn lit(view: Option<&OrthoView>, map: &[[f32; 4]], p: DVec3, bias: f64) -> bool {
+    let Some(view) = view else { return true };
+    let q = view.to_frame(p);
+    match view.lookup(map, q) {
+        Some(t) => t[0] as f64 >= q.z - bias,
+        None => true,
+    }
+}
+
+fn interpolate(values: &[DVec3; 3], b: [f64; 3]) -> DVec3 {
+    values[0] * b[0] + values[1] * b[1] + values[2] * b[2]
+}
+
+/// The slice pass (§3.2, Fig. 4a): every illumination volume of the object's cells cut by each of its
+/// reference planes, drawn additively into its caustics map; a fragment is kept where the depth test
+/// accepts it (the stored depth within `Δ/2` of the plane's) and the shadow map lets the sun through,
+/// and carries `Ic · max(0, −t · n)`.
+pub fn slice_pass(
+    setup: &VolumesSetup,
+    object: &ObjectView,
+    depth: &[[f32; 4]],
+    water: &[WaterVertex],
+    shadow: &[[f32; 4]],
+) -> Vec<[f32; 3]> {
+    let view = &object.view;
+    let res = view.res;
+    let half = 0.5 * object.spacing();
+    let cells = object.cells;
+    let shadow_view = setup.shadow.as_ref();
+    (0..object.planes)
+        .into_par_iter()
+        .fold(
+            || vec![DVec3::ZERO; res * res],
+            |mut acc, k| {
+                let zk = object.plane_depth(k);
+                let c = view.lo.z + zk;
+                for m in 0..cells.triangles() {
+                    let idx = cells.triangle(&setup.lattice, m);
+                    let tri = idx.map(|i| &water[i]);
+                    let Some(s) = slice(setup, tri, view.v, c) else {
+                        continue;
+                    };
+                    let px = s.points.map(|p| view.to_pixel(view.to_frame(p)));
+                    raster(res, res, px, |i, j, b| {
+                        let t = &depth[i * res + j];
+                        if !covered(t) || (t[0] as f64 - zk).abs() > half {
+                            return;
+                        }
+                        let normal = DVec3::new(t[1] as f64, t[2] as f64, t[3] as f64);
+                        let dir = interpolate(&s.dirs, b).normalize();
+                        let cos = -dir.dot(normal);
+                        if cos <= 0.0 {
+                            return;
+                        }
+                        let p = view.texel_point(i, j, t[0] as f64);
+                        if !lit(shadow_view, shadow, p, setup.shadow_bias) {
+                            return;
+                        }
+                        acc[i * res + j] += interpolate(&s.intensity, b) * cos;
+                    });
+                }
+                acc
+            },
+        )
+        .reduce(
+            || vec![DVec3::ZERO; res * res],
+            |mut a, b| {
+                a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
+                a
+            },
+        )
+        .into_iter()
+        .map(|e| [e.x as f32, e.y as f32, e.z as f32])
+        .collect()
+}
+
+/// The floor pass: every illumination volume of the water cut by the floor `z = 0` and drawn into the
+/// floor map, fragments kept where the shadow map lets the sun through. `Ic · cos θt` on the floor is
+/// `Φ w exp(−K d) / Ad`: the flux over the area it lands on.
+pub fn floor_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4]]) -> CausticsMap {
+    let (w, h) = (setup.width, setup.height);
+    let scale = DVec2::new(w as f64 / setup.size, h as f64 / setup.size);
+    let cells: CellRect = setup.all_cells();
+    let shadow_view = setup.shadow.as_ref();
+    let rows: Vec<usize> = (cells.i0..cells.i1).collect();
+    let acc = rows
+        .par_chunks(8)
+        .fold(
+            || vec![DVec3::ZERO; w * h],
+            |mut acc, band| {
+                for &ci in band {
+                    for cj in cells.j0..cells.j1 {
+                        for which in 0..2 {
+                            let idx = setup.lattice.triangle(ci, cj, which);
+                            let tri = idx.map(|i| &water[i]);
+                            let Some(s) = slice(setup, tri, DVec3::NEG_Z, 0.0) else {
+                                continue;
+                            };
+                            let px = s.points.map(|p| p.truncate() * scale);
+                            raster(w, h, px, |i, j, b| {
+                                let dir = interpolate(&s.dirs, b).normalize();
+                                let p = DVec3::new(
+                                    (j as f64 + 0.5) / scale.x,
+                                    (i as f64 + 0.5) / scale.y,
+                                    0.0,
+                                );
+                                if !lit(shadow_view, shadow, p, setup.shadow_bias) {
+                                    return;
+                                }
+                                acc[i * w + j] += interpolate(&s.intensity, b) * -dir.z;
+                            });
+                        }
+                    }
+                }
+                acc
+            },
+        )
+        .reduce(
+            || vec![DVec3::ZERO; w * h],
+            |mut a, b| {
+                a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
+                a
+            },
+        );
+    let mut map = CausticsMap::new(w, h, setup.size);
+    for (t, e) in map.texels.iter_mut().zip(acc) {
+        *t = [e.x as f32, e.y as f32, e.z as f32];
+    }
+    map
+}
+
+/// Eq. 4 over the diffuse map: `Io = Id (Ic + Ia)` where the object covers the texel.
+pub fn shade_pass(diffuse: &[[f32; 4]], caustics: &[[f32; 3]], ambient: f64) -> Vec<[f32; 3]> {
+    let a = ambient as f32;
+    diffuse
+        .iter()
+        .zip(caustics)
+        .map(|(d, e)| {
+            if d[3] > 0.0 {
+                [d[0] * (e[0] + a), d[1] * (e[1] + a), d[2] * (e[2] + a)]
+            } else {
+                [0.0; 3]
+            }
+        })
+        .collect()
+}

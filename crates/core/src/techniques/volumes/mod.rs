@@ -1,0 +1,578 @@
+//! Technique `volumes`: "Interactive rendering of caustics on underwater objects using illumination
+//! volumes, colour and depth textures" (paper 3), the CPU twin of `caustics-gpu`'s `volumes` module,
+//! pass for pass.
+//!
+//! # The method
+//! - **Representation** (§3.1, §3.2, Fig. 3): each object gets a bounding box whose front face is
+//!   perpendicular to the *refracted viewing ray* `v` (the ray from the camera to the object's centre,
+//!   refracted at the flat water surface). An orthographic projection along `v` gives its *depth
+//!   texture* (the depth of the nearest surface along `v` in every texel, with the surface normal
+//!   beside it) and its *diffuse map* (the object's colour as seen along `v`). `planes` *reference
+//!   planes* slice the box perpendicular to `v` at the centres of equal slabs of thickness `Δ`.
+//! - **Fast intersection test** (§3.1, Fig. 2): a point on a reference plane is moved to texture space
+//!   `(x', y', z')`; `(x', y')` indexes the depth texture and the point is accepted when the stored
+//!   depth lies within the plane's acceptance range, `|depth − z'| ≤ Δ/2`. The threshold is the
+//!   distance between planes: the ranges of neighbouring planes tile the box, so every surface point
+//!   is accepted by exactly one plane.
+//! - **Illumination volumes** (§3.2, Fig. 4): the water surface is a triangle lattice; the light
+//!   refracted at each vertex sweeps an illumination volume below each triangle. Its intersection
+//!   with a reference plane is a triangle whose vertex intensities follow Eq. 3,
+//!   `Ic = Ii (Aw cos θi) / (Ad cos θt) exp(−K d)`, with `Ad` the intersection triangle's area, `θt`
+//!   the angle between the vertex's refracted ray and the plane's normal and `d` the vertex's path in
+//!   the water. The triangle is drawn additively into the object's *caustics map*; a fragment is kept
+//!   only where the depth test accepts it, and then carries `Ic · max(0, −t · n)`, the irradiance on
+//!   the surface of normal `n` (the Lambert factor of `Id` in Eq. 4, applied per beam because every
+//!   beam has its own direction `t`). Finally `Io = Ic Id + Ia` over the diffuse map (Eq. 4), with
+//!   the ambient term modulated by the object's colour, as a diffuse surface reflects it.
+//!
+//! # Units and layout
+//! Every map holds relative irradiance, as the rest of the project: 1 is what the sun gives through
+//! flat, clear water onto a horizontal surface. `Ii Aw cos θi` is the flux crossing the water
+//! triangle, expressed as the triangle's area projected along the sun onto the horizontal
+//! (`−L · (e₁ × e₂) / (2 |L_z|)`, as in [`crate::reference`]), times the Fresnel transmittance
+//! relative to flat water `T(θi) / T(θ0)`. Under flat water a surface of normal `n` then receives
+//! `max(0, −t₀ · n) / |t₀_z|` (the cosine law), and the floor 1.
+//!
+//! - One *caustics map* per object: `texture x texture` texels in the object's frame `(a, b, v)`, texel
+//!   `(i, j)` centred at `a u + b w` with `u = u₀ + (j + ½) du`, `w = w₀ + (i + ½) dw`; the same texels
+//!   as its depth texture and diffuse map.
+//! - The *floor map*: the caustics-map square `[0, size]²` of the scene (like every other technique's),
+//!   drawn from the same illumination volumes cut by the floor plane `z = 0`.
+//!
+//! # Beyond the paper (stated)
+//! - Shadows: one orthographic depth texture of all objects along the flat-water refracted sun `t₀`
+//!   (a shadow map). Floor fragments behind an object, and object fragments behind another object or
+//!   another part of themselves, are rejected. The paper leaves occlusion out; without it the floor
+//!   under an object would be lit.
+//! - The illumination volumes drawn for an object are those of the lattice cells whose light can
+//!   reach its box (its footprint on the water widened by the waves' deflection), not the whole water.
+//!
+//! # Where it departs from the reference
+//! The acceptance range puts every beam slice up to `Δ/2` from the true surface along the view, so
+//! a caustic lands displaced by up to `Δ/2 · tan(angle between t and v)` in texture space; only the
+//! surface seen along `v` is represented (that is all the eye sees); fragments are point-sampled at
+//! texel centres, so a focused beam thinner than a texel can be missed or land whole in one texel.
+//!
+//! Passes (GPU twin in `caustics-gpu/src/volumes`): [`representation::depth_pass`] (depth texture,
+//! diffuse map, shadow map), [`illumination::water_pass`] (refracted rays at the lattice vertices),
+//! [`illumination::slice_pass`] (illumination volumes × reference planes → object caustics map),
+//! [`illumination::floor_pass`], [`illumination::shade_pass`] (Eq. 4).
+
+pub mod illumination;
+pub mod representation;
+#[cfg(test)]
+mod tests;
+
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::map::CausticsMap;
+use crate::mesh::{MeshBvh, TriangleMesh};
+use crate::optics::{fresnel_transmittance, refract};
+use crate::scene::{Material, Scene};
+
+pub use representation::OrthoView;
+
+/// The technique's parameters, `[caustics.volumes]` in a scene file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct VolumesParams {
+    /// Reference planes per object (the paper's Fig. 6 uses 5 and 50).
+    pub planes: u32,
+    /// Side of each object's depth texture, diffuse map and caustics map, texels.
+    pub texture: u32,
+    /// Water lattice cells along each side of the scene square; 0: the caustics map's width.
+    pub water_cells: u32,
+    /// Side of the shadow map along the refracted sun, texels; 0 turns shadows off.
+    pub shadow: u32,
+    pub fresnel: bool,
+    pub absorption: bool,
+    /// `Ia` of Eq. 4, relative to the sun through flat water.
+    pub ambient: f64,
+}
+
+impl Default for VolumesParams {
+    fn default() -> Self {
+        VolumesParams {
+            planes: 10,
+            texture: 256,
+            water_cells: 0,
+            shadow: 512,
+            fresnel: true,
+            absorption: true,
+            ambient: 0.2,
+        }
+    }
+}
+
+/// The most reference planes: beyond this the slabs are thinner than a texel of any useful texture.
+pub const MAX_PLANES: u32 = 512;
+/// The largest texture side.
+pub const MAX_TEXTURE: u32 = 4096;
+
+impl VolumesParams {
+    pub fn from_table(table: &toml::Table) -> Result<Self> {
+        let p: VolumesParams = match table.get("volumes") {
+            Some(v) => v
+                .clone()
+                .try_into()
+                .map_err(|e| Error::field("caustics.volumes", e.to_string()))?,
+            None => VolumesParams::default(),
+        };
+        p.validate()?;
+        Ok(p)
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        if self.planes == 0 || self.planes > MAX_PLANES {
+            return Err(Error::field(
+                "caustics.volumes.planes",
+                format!("must be between 1 and {MAX_PLANES}, got {}", self.planes),
+            ));
+        }
+        if self.texture < 2 || self.texture > MAX_TEXTURE {
+            return Err(Error::field(
+                "caustics.volumes.texture",
+                format!("must be between 2 and {MAX_TEXTURE}, got {}", self.texture),
+            ));
+        }
+        if self.water_cells > MAX_TEXTURE || self.shadow > MAX_TEXTURE {
+            return Err(Error::field(
+                "caustics.volumes",
+                format!("water_cells and shadow must be at most {MAX_TEXTURE}"),
+            ));
+        }
+        if !(self.ambient.is_finite() && self.ambient >= 0.0) {
+            return Err(Error::field(
+                "caustics.volumes.ambient",
+                format!("must be a finite number >= 0, got {}", self.ambient),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One underwater object as the technique sees it.
+#[derive(Clone, Debug)]
+pub struct VolumesObject {
+    pub mesh: TriangleMesh,
+    /// Linear RGB albedo: what the diffuse map holds where the object covers a texel.
+    pub albedo: DVec3,
+}
+
+/// What the technique needs from a scene.
+#[derive(Clone, Debug)]
+pub struct VolumesInput {
+    pub objects: Vec<VolumesObject>,
+    pub size: f64,
+    pub depth: f64,
+    pub ior: f64,
+    pub absorption: DVec3,
+    pub light: DVec3,
+    pub camera: DVec3,
+    /// Floor map resolution.
+    pub width: usize,
+    pub height: usize,
+}
+
+impl VolumesInput {
+    pub fn from_scene(scene: &Scene) -> Result<Self> {
+        let water = scene.water.as_ref().ok_or_else(|| {
+            Error::InvalidParameter(format!(
+                "scene `{}` has no water: technique volumes casts caustics from a water surface",
+                scene.name
+            ))
+        })?;
+        if scene.floor.terrain.is_some() {
+            return Err(Error::InvalidParameter(format!(
+                "scene `{}` has a terrain floor: technique volumes draws its floor map on the plane z = 0",
+                scene.name
+            )));
+        }
+        let mut objects = Vec::new();
+        for (k, o) in scene.objects.iter().enumerate() {
+            match &o.material {
+                Material::Diffuse { color } => objects.push(VolumesObject {
+                    mesh: o.mesh.clone(),
+                    albedo: *color,
+                }),
+                Material::Glass { .. } => {
+                    return Err(Error::field(
+                        format!("objects[{k}].material"),
+                        "is glass: technique volumes receives caustics on diffuse objects only",
+                    ));
+                }
+            }
+        }
+        Ok(VolumesInput {
+            objects,
+            size: water.size,
+            depth: water.depth,
+            ior: water.ior,
+            absorption: water.absorption,
+            light: scene.light.direction,
+            camera: scene.camera.position,
+            width: scene.caustics.width as usize,
+            height: scene.caustics.height as usize,
+        })
+    }
+}
+
+/// The water triangle lattice: vertex `(i, j)` at `origin + (j, i) cell` on the surface, cells
+/// `(i, j)` for `i < ny`, `j < nx`, two triangles each with diagonals alternating in a checkerboard
+/// (as the reference's), so the lattice is its own mirror image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lattice {
+    pub origin: DVec2,
+    pub cell: f64,
+    pub nx: usize,
+    pub ny: usize,
+}
+
+impl Lattice {
+    pub fn vertex_count(&self) -> usize {
+        (self.nx + 1) * (self.ny + 1)
+    }
+
+    pub fn position(&self, i: usize, j: usize) -> DVec2 {
+        self.origin + DVec2::new(j as f64, i as f64) * self.cell
+    }
+
+    /// Vertex indices of triangle `which` (0 or 1) of cell `(i, j)`.
+    pub fn triangle(&self, i: usize, j: usize, which: usize) -> [usize; 3] {
+        let w = self.nx + 1;
+        let (v00, v01, v10, v11) = (
+            i * w + j,
+            i * w + j + 1,
+            (i + 1) * w + j,
+            (i + 1) * w + j + 1,
+        );
+        match ((i + j).is_multiple_of(2), which) {
+            (true, 0) => [v00, v01, v11],
+            (true, _) => [v00, v11, v10],
+            (false, 0) => [v00, v01, v10],
+            (false, _) => [v01, v11, v10],
+        }
+    }
+}
+
+/// A rectangle of lattice cells, `i0..i1` by `j0..j1`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellRect {
+    pub i0: usize,
+    pub i1: usize,
+    pub j0: usize,
+    pub j1: usize,
+}
+
+impl CellRect {
+    pub fn cols(&self) -> usize {
+        self.j1 - self.j0
+    }
+    pub fn triangles(&self) -> usize {
+        2 * (self.i1 - self.i0) * self.cols()
+    }
+    /// Lattice triangle `k` of the rectangle (row-major cells, two triangles per cell).
+    pub fn triangle(&self, lattice: &Lattice, k: usize) -> [usize; 3] {
+        let cell = k / 2;
+        lattice.triangle(
+            self.i0 + cell / self.cols(),
+            self.j0 + cell % self.cols(),
+            k % 2,
+        )
+    }
+}
+
+/// One object's representation (§3.1-3.2): its view-aligned box and textures' frame, its reference
+/// planes, and the lattice cells whose illumination volumes can reach it.
+#[derive(Clone, Debug)]
+pub struct ObjectView {
+    pub view: OrthoView,
+    pub planes: usize,
+    pub albedo: DVec3,
+    pub cells: CellRect,
+}
+
+impl ObjectView {
+    /// Distance between reference planes, `Δ`: also the width of each plane's acceptance range.
+    pub fn spacing(&self) -> f64 {
+        self.view.extent().z / self.planes as f64
+    }
+
+    /// Depth of plane `k` below the box's front face, at the centre of its slab.
+    pub fn plane_depth(&self, k: usize) -> f64 {
+        (k as f64 + 0.5) * self.spacing()
+    }
+}
+
+/// Everything the passes share, derived once (the GPU uploads the same numbers).
+#[derive(Clone, Debug)]
+pub struct VolumesSetup {
+    pub params: VolumesParams,
+    pub size: f64,
+    pub depth: f64,
+    pub ior: f64,
+    pub eta: f64,
+    /// `K` per channel, zero without the absorption option.
+    pub absorption: DVec3,
+    pub light: DVec3,
+    /// The flat-water refracted sun.
+    pub t0: DVec3,
+    /// `T(θ0)`, or 1 without the Fresnel option.
+    pub t_flat: f64,
+    pub lattice: Lattice,
+    pub width: usize,
+    pub height: usize,
+    pub objects: Vec<ObjectView>,
+    /// The shadow map's frame (all objects along `t0`), `None` without shadows.
+    pub shadow: Option<OrthoView>,
+    /// Depth tolerance of the shadow test: three shadow-map texels.
+    pub shadow_bias: f64,
+}
+
+/// A mesh the technique can use: not empty, not larger than the pool, under the water. An open mesh
+/// is accepted (stated fallback): the depth texture needs only the surface seen along the view, and
+/// an open mesh shadows with the surface it has.
+pub fn check_mesh(mesh: &TriangleMesh, what: &str, size: f64, depth: f64) -> Result<()> {
+    mesh.validate(what)?;
+    let (lo, hi) = mesh.bounds();
+    let extent = (hi - lo).max_element();
+    if extent > size {
+        return Err(Error::field(
+            what,
+            format!(
+                "is {extent:.3} units across, larger than the pool of side {size}: its illumination volumes would cover more than the water"
+            ),
+        ));
+    }
+    if extent <= 0.0 {
+        return Err(Error::field(
+            what,
+            "has no extent (all its vertices coincide)",
+        ));
+    }
+    if hi.z >= depth {
+        return Err(Error::field(
+            what,
+            format!(
+                "reaches z = {:.3}, above the water level {depth}: technique volumes lights underwater objects",
+                hi.z
+            ),
+        ));
+    }
+    if !mesh.is_closed() {
+        tracing::warn!(
+            "{what} is not closed: technique volumes uses the surface it has (the side seen along the view)"
+        );
+    }
+    Ok(())
+}
+
+/// The refracted viewing direction towards `target` from a camera at `camera`: refracted at the flat
+/// surface when the camera is above the water, straight otherwise.
+pub fn refracted_view(camera: DVec3, target: DVec3, depth: f64, ior: f64) -> DVec3 {
+    let d = (target - camera).normalize_or(DVec3::NEG_Z);
+    if camera.z > depth && d.z < 0.0 {
+        refract(d, DVec3::Z, 1.0 / ior).unwrap_or(DVec3::NEG_Z)
+    } else {
+        d
+    }
+}
+
+impl VolumesSetup {
+    pub fn new(params: &VolumesParams, input: &VolumesInput) -> Result<Self> {
+        params.validate()?;
+        let light = super::check_inputs(input.width, input.height, input.light)?;
+        for (name, value) in [
+            ("water size", input.size),
+            ("water depth", input.depth),
+            ("ior", input.ior),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Error::InvalidParameter(format!(
+                    "technique volumes needs a positive {name}, got {value}"
+                )));
+            }
+        }
+        for (k, o) in input.objects.iter().enumerate() {
+            check_mesh(&o.mesh, &format!("objects[{k}]"), input.size, input.depth)?;
+        }
+        let eta = 1.0 / input.ior;
+        let t0 = refract(light, DVec3::Z, eta).expect("air to water never reflects totally");
+        let cells = if params.water_cells == 0 {
+            input.width
+        } else {
+            params.water_cells as usize
+        };
+        let cell = input.size / cells as f64;
+        // Shifted back by the mean travel of the refracted light, widened by the waves' deflection,
+        // as the reference's traced domain.
+        let travel = -t0.truncate() * (input.depth / -t0.z);
+        let margin = 0.3 * input.depth + 2.0 * cell;
+        let n = ((input.size + 2.0 * margin) / cell).ceil() as usize;
+        let lattice = Lattice {
+            origin: travel - DVec2::splat(margin),
+            cell,
+            nx: n,
+            ny: n,
+        };
+        let objects = input
+            .objects
+            .iter()
+            .map(|o| {
+                let (lo, hi) = o.mesh.bounds();
+                let v = refracted_view(input.camera, 0.5 * (lo + hi), input.depth, input.ior);
+                let view = OrthoView::around(&[&o.mesh], v, params.texture as usize);
+                ObjectView {
+                    view,
+                    planes: params.planes as usize,
+                    albedo: o.albedo,
+                    cells: footprint(&lattice, lo, hi, t0, input.depth),
+                }
+            })
+            .collect();
+        let meshes: Vec<&TriangleMesh> = input.objects.iter().map(|o| &o.mesh).collect();
+        let shadow = (params.shadow > 0 && !meshes.is_empty())
+            .then(|| OrthoView::around(&meshes, t0, params.shadow as usize));
+        let shadow_bias = shadow
+            .as_ref()
+            .map_or(0.0, |s| 3.0 * s.texel().max_element());
+        Ok(VolumesSetup {
+            params: params.clone(),
+            size: input.size,
+            depth: input.depth,
+            ior: input.ior,
+            eta,
+            absorption: if params.absorption {
+                input.absorption
+            } else {
+                DVec3::ZERO
+            },
+            light,
+            t0,
+            t_flat: if params.fresnel {
+                fresnel_transmittance(-light.z, 1.0, input.ior)
+            } else {
+                1.0
+            },
+            lattice,
+            width: input.width,
+            height: input.height,
+            objects,
+            shadow,
+            shadow_bias,
+        })
+    }
+
+    /// All cells of the lattice: what the floor pass draws.
+    pub fn all_cells(&self) -> CellRect {
+        CellRect {
+            i0: 0,
+            i1: self.lattice.ny,
+            j0: 0,
+            j1: self.lattice.nx,
+        }
+    }
+}
+
+/// The lattice cells through which light can reach the box `lo..hi`: the box's corners traced back
+/// up the flat-water refracted sun to the rest surface, widened by the waves' deflection.
+fn footprint(lattice: &Lattice, lo: DVec3, hi: DVec3, t0: DVec3, depth: f64) -> CellRect {
+    let mut a = DVec2::INFINITY;
+    let mut b = DVec2::NEG_INFINITY;
+    for k in 0..8 {
+        let c = DVec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        let s = c.truncate() - t0.truncate() * ((depth - c.z) / -t0.z);
+        a = a.min(s);
+        b = b.max(s);
+    }
+    let margin = 0.3 * (depth - lo.z) + 2.0 * lattice.cell;
+    let to_cell = |p: f64, o: f64| (p - o) / lattice.cell;
+    let clamp = |x: f64, n: usize| x.clamp(0.0, n as f64) as usize;
+    CellRect {
+        i0: clamp(to_cell(a.y - margin, lattice.origin.y).floor(), lattice.ny),
+        i1: clamp(to_cell(b.y + margin, lattice.origin.y).ceil(), lattice.ny),
+        j0: clamp(to_cell(a.x - margin, lattice.origin.x).floor(), lattice.nx),
+        j1: clamp(to_cell(b.x + margin, lattice.origin.x).ceil(), lattice.nx),
+    }
+}
+
+/// One object's results, all `texture x texture` texels of its frame.
+#[derive(Clone, Debug)]
+pub struct ObjectMaps {
+    /// `[depth, nx, ny, nz]`; a zero normal marks a texel the object does not cover.
+    pub depth: Vec<[f32; 4]>,
+    /// `[r, g, b, coverage]`.
+    pub diffuse: Vec<[f32; 4]>,
+    /// Relative irradiance on the surface, RGB.
+    pub caustics: Vec<[f32; 3]>,
+    /// `Io` of Eq. 4, RGB.
+    pub image: Vec<[f32; 3]>,
+}
+
+/// The whole technique's output.
+#[derive(Clone, Debug)]
+pub struct VolumesOutput {
+    pub objects: Vec<ObjectMaps>,
+    pub floor: CausticsMap,
+    /// The shadow map (`[depth, n]` as a depth texture), empty without shadows.
+    pub shadow: Vec<[f32; 4]>,
+}
+
+/// The whole technique on the CPU, the surface sampled as `heights` over the scene square (wrapped
+/// when `wrap`).
+pub fn caustics(
+    setup: &VolumesSetup,
+    input: &VolumesInput,
+    heights: &Grid,
+    wrap: bool,
+) -> VolumesOutput {
+    let bvhs: Vec<MeshBvh> = input.objects.iter().map(|o| o.mesh.bvh()).collect();
+    let meshes: Vec<(&TriangleMesh, &MeshBvh)> =
+        input.objects.iter().map(|o| &o.mesh).zip(&bvhs).collect();
+    let shadow = setup
+        .shadow
+        .as_ref()
+        .map_or_else(Vec::new, |v| representation::depth_pass(v, &meshes));
+    let water = illumination::water_pass(setup, heights, wrap);
+    let objects = setup
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(k, o)| {
+            let depth = representation::depth_pass(&o.view, &meshes[k..k + 1]);
+            let diffuse = representation::diffuse_map(&depth, o.albedo);
+            let caustics = illumination::slice_pass(setup, o, &depth, &water, &shadow);
+            let image = illumination::shade_pass(&diffuse, &caustics, setup.params.ambient);
+            ObjectMaps {
+                depth,
+                diffuse,
+                caustics,
+                image,
+            }
+        })
+        .collect();
+    let floor = illumination::floor_pass(setup, &water, &shadow);
+    VolumesOutput {
+        objects,
+        floor,
+        shadow,
+    }
+}
+
+/// The technique for a scene at its time, on the CPU.
+pub fn render(scene: &Scene, params: &VolumesParams) -> Result<VolumesOutput> {
+    let input = VolumesInput::from_scene(scene)?;
+    let setup = VolumesSetup::new(params, &input)?;
+    let water = scene.water.as_ref().expect("checked by from_scene");
+    let surface = water.surface_at(scene.time)?;
+    let n = (input.size / setup.lattice.cell).round() as usize;
+    let heights = crate::water::sample_grid(surface.as_ref(), n, n, water.size);
+    Ok(caustics(&setup, &input, &heights, water.wrap))
+}

@@ -1,0 +1,354 @@
+use glam::{DAffine3, DVec3};
+
+use super::illumination::{floor_pass, slice_pass, water_pass};
+use super::representation::{covered, depth_pass, diffuse_map};
+use super::*;
+use crate::mesh::{TriangleMesh, sphere};
+
+pub(super) fn ball(centre: DVec3, radius: f64) -> TriangleMesh {
+    sphere(radius, 48, 24).transformed(DAffine3::from_translation(centre))
+}
+
+pub(super) fn input(objects: Vec<VolumesObject>, light: DVec3, res: usize) -> VolumesInput {
+    VolumesInput {
+        objects,
+        size: 1.0,
+        depth: 0.5,
+        ior: 1.333,
+        absorption: DVec3::ZERO,
+        light: light.normalize(),
+        camera: DVec3::new(0.5, -0.3, 1.8),
+        width: res,
+        height: res,
+    }
+}
+
+pub(super) fn params(planes: u32, res: u32) -> VolumesParams {
+    VolumesParams {
+        planes,
+        texture: res,
+        water_cells: res,
+        shadow: 2 * res,
+        fresnel: false,
+        absorption: false,
+        ambient: 0.2,
+    }
+}
+
+fn flat(res: usize) -> Grid {
+    Grid::new(res, res)
+}
+
+fn one_ball() -> VolumesObject {
+    VolumesObject {
+        mesh: ball(DVec3::new(0.5, 0.5, 0.16), 0.15),
+        albedo: DVec3::new(0.9, 0.4, 0.3),
+    }
+}
+
+/// Under flat water every surface the sun sees gets the cosine law, `max(0, −t₀ · n) / |t₀_z|`,
+/// whatever the number of planes: the slices of the lattice tile each plane, and each surface texel
+/// is accepted by exactly one plane.
+#[test]
+fn flat_water_gives_the_cosine_law_on_the_object() {
+    let light = DVec3::new(0.3, 0.2, -1.0);
+    let inp = input(vec![one_ball()], light, 64);
+    for planes in [5, 50] {
+        let setup = VolumesSetup::new(&params(planes, 64), &inp).unwrap();
+        let out = caustics(&setup, &inp, &flat(64), true);
+        let o = &out.objects[0];
+        let (mut checked, mut bad) = (0, 0);
+        for (t, e) in o.depth.iter().zip(&o.caustics) {
+            if !covered(t) {
+                assert_eq!(e[0], 0.0);
+                continue;
+            }
+            let n = DVec3::new(t[1] as f64, t[2] as f64, t[3] as f64);
+            let cos = -setup.t0.dot(n);
+            if cos < 0.2 {
+                continue; // near the terminator the shadow map's bias decides
+            }
+            checked += 1;
+            let expected = cos / -setup.t0.z;
+            if (e[0] as f64 - expected).abs() > 1e-3 * expected {
+                bad += 1;
+            }
+        }
+        assert!(checked > 800, "{checked}");
+        // Texel centres exactly on a slice edge are drawn twice (edges inclusive), a handful.
+        assert!(
+            bad * 200 < checked,
+            "{planes} planes: {bad} of {checked} off"
+        );
+    }
+}
+
+/// With no objects, flat clear water gives 1 on the floor; a ball casts a shadow of the area of its
+/// projection along the refracted sun, `π r² / |t₀_z|`.
+#[test]
+fn floor_is_one_with_the_ball_shadow() {
+    let light = DVec3::new(0.2, -0.1, -1.0);
+    let res = 128;
+    let empty = input(vec![], light, res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &empty).unwrap();
+    let water = water_pass(&setup, &flat(res), true);
+    let floor = floor_pass(&setup, &water, &[]);
+    for t in &floor.texels {
+        assert!((t[0] - 1.0).abs() < 1e-4, "{}", t[0]);
+    }
+    let inp = input(vec![one_ball()], light, res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let out = caustics(&setup, &inp, &flat(res), true);
+    let texel = 1.0 / (res * res) as f64;
+    let dark = out.floor.texels.iter().filter(|t| t[0] < 0.5).count() as f64 * texel;
+    let expected = std::f64::consts::PI * 0.15 * 0.15 / -setup.t0.z;
+    assert!(
+        (dark - expected).abs() < 0.04 * expected,
+        "shadow {dark} vs {expected}"
+    );
+    let lit = out.floor.texels.iter().filter(|t| t[0] >= 0.5);
+    assert!(lit.clone().all(|t| (t[0] - 1.0).abs() < 1e-4));
+}
+
+fn waves(res: usize, along_x_only: bool) -> Grid {
+    Grid::from_fn(res, res, |i, j| {
+        let x = (j as f64 + 0.5) / res as f64;
+        let y = (i as f64 + 0.5) / res as f64;
+        let tau = std::f64::consts::TAU;
+        let h = 0.004 * (tau * 3.0 * x).sin();
+        if along_x_only {
+            h as f32
+        } else {
+            (h + 0.002 * (tau * (2.0 * x - 5.0 * y) + 1.0).sin()) as f32
+        }
+    })
+}
+
+/// Periodic waves redistribute the light without creating or losing any: the floor map's mean is 1
+/// (no Fresnel, no absorption), and the waves focus it.
+#[test]
+fn waves_conserve_the_floor_flux() {
+    let res = 96;
+    let inp = input(vec![], DVec3::new(0.2, 0.1, -1.0), res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let water = water_pass(&setup, &waves(res, false), true);
+    let floor = floor_pass(&setup, &water, &[]);
+    let mean = floor.texels.iter().map(|t| t[0] as f64).sum::<f64>() / floor.texels.len() as f64;
+    assert!((mean - 1.0).abs() < 0.01, "mean {mean}");
+    let max = floor.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+    assert!(max > 1.2, "focus {max}");
+}
+
+/// Waves along x only, sun in the xz plane: nothing varies along y, so neither does the floor map.
+#[test]
+fn waves_along_x_give_a_map_constant_along_y() {
+    let res = 64;
+    let inp = input(vec![], DVec3::new(0.3, 0.0, -1.0), res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let water = water_pass(&setup, &waves(res, true), true);
+    let floor = floor_pass(&setup, &water, &[]);
+    for i in 1..res {
+        for j in 0..res {
+            let (a, b) = (floor.texels[j][0], floor.texels[i * res + j][0]);
+            assert!((a - b).abs() < 2e-3 * a.max(1.0), "({i}, {j}): {a} vs {b}");
+        }
+    }
+}
+
+/// Fresnel and absorption scale the flat-water answer by `T(θi)/T(θ0) = 1` and `exp(−K d)`.
+#[test]
+fn absorption_follows_beer_lambert_on_the_floor() {
+    let res = 32;
+    let mut inp = input(vec![], DVec3::new(0.0, 0.3, -1.0), res);
+    inp.absorption = DVec3::new(0.5, 0.1, 0.0);
+    let mut p = params(5, res as u32);
+    p.absorption = true;
+    p.fresnel = true;
+    let setup = VolumesSetup::new(&p, &inp).unwrap();
+    let water = water_pass(&setup, &flat(res), true);
+    let floor = floor_pass(&setup, &water, &[]);
+    let d = 0.5 / -setup.t0.z;
+    for t in &floor.texels {
+        for (c, &value) in t.iter().enumerate() {
+            let expected = (-inp.absorption[c] * d).exp();
+            assert!(
+                (value as f64 - expected).abs() < 1e-5,
+                "{c}: {value} vs {expected}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_depth_texture_of_a_ball_is_its_front_hemisphere() {
+    let inp = input(vec![one_ball()], DVec3::NEG_Z, 32);
+    let setup = VolumesSetup::new(&params(5, 32), &inp).unwrap();
+    let o = &setup.objects[0];
+    let mesh = &inp.objects[0].mesh;
+    let bvh = mesh.bvh();
+    let depth = depth_pass(&o.view, &[(mesh, &bvh)]);
+    let centre = o.view.to_frame(DVec3::new(0.5, 0.5, 0.16));
+    let covered_count = depth.iter().filter(|t| covered(t)).count();
+    // The disc of radius r in a box a little wider than 2r: π/4 of the texels.
+    let frac = covered_count as f64 / depth.len() as f64;
+    assert!(
+        (frac - std::f64::consts::FRAC_PI_4 * 0.998f64.powi(2)).abs() < 0.03,
+        "{frac}"
+    );
+    for i in 0..32 {
+        for j in 0..32 {
+            let t = depth[i * 32 + j];
+            if !covered(&t) {
+                continue;
+            }
+            let p = o.view.texel_point(i, j, t[0] as f64);
+            let q = o.view.to_frame(p);
+            let r = (p - DVec3::new(0.5, 0.5, 0.16)).length();
+            assert!((r - 0.15).abs() < 2e-3, "on the sphere: {r}");
+            assert!(q.z <= centre.z + 1e-9, "front half");
+            let n = DVec3::new(t[1] as f64, t[2] as f64, t[3] as f64);
+            assert!(n.dot(o.view.v) < 1e-9, "faces the viewer");
+        }
+    }
+    let diffuse = diffuse_map(&depth, DVec3::new(0.9, 0.4, 0.3));
+    assert_eq!(
+        diffuse.iter().filter(|d| d[3] == 1.0).count(),
+        covered_count
+    );
+}
+
+/// More planes only move the accepted slice closer to the surface; with flat water every slice is the
+/// same, so the object's map is the same for any number of planes, and the plane ranges tile the box.
+#[test]
+fn every_covered_texel_is_accepted_by_exactly_one_plane() {
+    let inp = input(vec![one_ball()], DVec3::new(0.1, 0.1, -1.0), 48);
+    for planes in [1, 3, 7, 40] {
+        let setup = VolumesSetup::new(&params(planes, 48), &inp).unwrap();
+        let o = &setup.objects[0];
+        let mesh = &inp.objects[0].mesh;
+        let bvh = mesh.bvh();
+        let depth = depth_pass(&o.view, &[(mesh, &bvh)]);
+        let half = 0.5 * o.spacing();
+        for t in depth.iter().filter(|t| covered(t)) {
+            let n = (0..planes as usize)
+                .filter(|&k| (t[0] as f64 - o.plane_depth(k)).abs() <= half)
+                .count();
+            assert_eq!(n, 1, "depth {} with {planes} planes", t[0]);
+        }
+    }
+}
+
+#[test]
+fn slices_outside_the_footprint_add_nothing() {
+    // The object's cells hold all the light that reaches it: drawing every cell gives the same map.
+    let inp = input(vec![one_ball()], DVec3::new(0.3, -0.2, -1.0), 48);
+    let setup = VolumesSetup::new(&params(5, 48), &inp).unwrap();
+    let heights = waves(48, false);
+    let out = caustics(&setup, &inp, &heights, true);
+    let mut all = setup.objects[0].clone();
+    all.cells = setup.all_cells();
+    assert!(all.cells.triangles() > setup.objects[0].cells.triangles());
+    let water = water_pass(&setup, &heights, true);
+    let mesh = &inp.objects[0].mesh;
+    let bvh = mesh.bvh();
+    let depth = depth_pass(&all.view, &[(mesh, &bvh)]);
+    let whole = slice_pass(&setup, &all, &depth, &water, &out.shadow);
+    for (a, b) in whole.iter().zip(&out.objects[0].caustics) {
+        assert!(
+            (a[0] - b[0]).abs() <= 1e-4 * a[0].max(1.0),
+            "{} vs {}",
+            a[0],
+            b[0]
+        );
+    }
+}
+
+#[test]
+fn bad_meshes_are_named() {
+    let light = DVec3::new(0.1, 0.0, -1.0);
+    let with = |mesh: TriangleMesh| {
+        let inp = input(
+            vec![
+                one_ball(),
+                VolumesObject {
+                    mesh,
+                    albedo: DVec3::ONE,
+                },
+            ],
+            light,
+            16,
+        );
+        VolumesSetup::new(&params(5, 16), &inp)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    let e = with(TriangleMesh::default()).unwrap_err();
+    assert!(e.contains("objects[1]") && e.contains("empty"), "{e}");
+    let e = with(ball(DVec3::new(0.5, 0.5, 0.2), 0.8)).unwrap_err();
+    assert!(
+        e.contains("objects[1]") && e.contains("larger than the pool"),
+        "{e}"
+    );
+    let e = with(ball(DVec3::new(0.5, 0.5, 0.45), 0.1)).unwrap_err();
+    assert!(e.contains("above the water level"), "{e}");
+    // An open mesh (a hemisphere cap without its base) is the stated fallback: accepted.
+    let mut open = ball(DVec3::new(0.2, 0.2, 0.1), 0.08);
+    open.indices.truncate(open.indices.len() / 2);
+    assert!(!open.is_closed());
+    with(open).unwrap();
+}
+
+#[test]
+fn bad_parameters_are_named() {
+    for (p, field) in [
+        (
+            VolumesParams {
+                planes: 0,
+                ..Default::default()
+            },
+            "planes",
+        ),
+        (
+            VolumesParams {
+                texture: 1,
+                ..Default::default()
+            },
+            "texture",
+        ),
+        (
+            VolumesParams {
+                ambient: -1.0,
+                ..Default::default()
+            },
+            "ambient",
+        ),
+    ] {
+        let e = p.validate().unwrap_err().to_string();
+        assert!(e.contains(field), "{e}");
+    }
+    let table: toml::Table = toml::from_str("[volumes]\nplanes = 50\ntexture = 128").unwrap();
+    let p = VolumesParams::from_table(&table).unwrap();
+    assert_eq!((p.planes, p.texture), (50, 128));
+}
+
+#[test]
+fn the_objects_scene_runs() {
+    let scene = Scene::builtin("objects").unwrap();
+    let mut scene = scene;
+    scene.caustics.width = 64;
+    scene.caustics.height = 64;
+    let p = VolumesParams {
+        texture: 48,
+        planes: 5,
+        ..Default::default()
+    };
+    let out = render(&scene, &p).unwrap();
+    assert_eq!(out.objects.len(), 3);
+    for o in &out.objects {
+        let lit = o.caustics.iter().filter(|e| e[0] > 0.1).count();
+        assert!(lit > 100, "{lit}");
+        assert!(o.image.iter().all(|c| c.iter().all(|v| v.is_finite())));
+    }
+    let mean = out.floor.texels.iter().map(|t| t[2] as f64).sum::<f64>() / 4096.0;
+    assert!(mean > 0.5 && mean < 1.0, "{mean}");
+}
