@@ -59,6 +59,7 @@
 //! [`illumination::floor_pass`], [`illumination::shade_pass`] (Eq. 4).
 
 pub mod illumination;
+pub mod reference;
 pub mod representation;
 #[cfg(test)]
 mod tests;

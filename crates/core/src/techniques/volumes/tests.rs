@@ -352,3 +352,134 @@ fn the_objects_scene_runs() {
     let mean = out.floor.texels.iter().map(|t| t[2] as f64).sum::<f64>() / 4096.0;
     assert!(mean > 0.5 && mean < 1.0, "{mean}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// The reference with mesh receivers.
+
+use super::reference::{MeshReferenceOptions, comparable, mesh_reference};
+use crate::water::{Flat, GridSurface};
+
+#[test]
+fn reference_under_flat_water_gives_one_on_the_open_floor() {
+    let res = 48;
+    let inp = input(vec![], DVec3::new(0.3, 0.1, -1.0), res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let r = mesh_reference(
+        &setup,
+        &inp,
+        &Flat,
+        &MeshReferenceOptions::per_texel(&setup, 4.0),
+    );
+    let mean = r.floor.texels.iter().map(|t| t[0] as f64).sum::<f64>() / (res * res) as f64;
+    assert!((mean - 1.0).abs() < 2e-3, "mean {mean}");
+    // 16 jittered photons a texel, strata not aligned with the texels: a few photons either way.
+    let rms = (r
+        .floor
+        .texels
+        .iter()
+        .map(|t| (t[0] as f64 - 1.0).powi(2))
+        .sum::<f64>()
+        / (res * res) as f64)
+        .sqrt();
+    assert!(rms < 0.1, "rms {rms}");
+    assert!(r.floor.texels.iter().all(|t| (t[0] - 1.0).abs() < 0.4));
+}
+
+/// Closed form on a sphere: under flat water the irradiance is `max(0, −t₀ · n) / |t₀_z|`, and the
+/// ball's shadow on the floor has the area of its projection along `t₀`.
+#[test]
+fn reference_on_a_ball_follows_the_cosine_law() {
+    let res = 64;
+    let inp = input(vec![one_ball()], DVec3::new(0.3, 0.2, -1.0), res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let r = mesh_reference(
+        &setup,
+        &inp,
+        &Flat,
+        &MeshReferenceOptions::per_texel(&setup, 6.0),
+    );
+    let o = &setup.objects[0];
+    let mesh = &inp.objects[0].mesh;
+    let bvh = mesh.bvh();
+    let depth = depth_pass(&o.view, &[(mesh, &bvh)]);
+    let ok = comparable(&depth, o.view.v);
+    let (mut n_sum, mut err_sum, mut count) = (0.0, 0.0, 0);
+    for ((t, e), &use_it) in depth.iter().zip(&r.objects[0]).zip(&ok) {
+        let n = DVec3::new(t[1] as f64, t[2] as f64, t[3] as f64);
+        let expected = (-setup.t0.dot(n)).max(0.0) / -setup.t0.z;
+        if !use_it || expected < 0.2 {
+            continue;
+        }
+        err_sum += (e[0] as f64 - expected).abs();
+        n_sum += expected;
+        count += 1;
+    }
+    assert!(count > 800, "{count}");
+    assert!(err_sum / n_sum < 0.05, "relative L1 {}", err_sum / n_sum);
+    let texel = 1.0 / (res * res) as f64;
+    let dark = r.floor.texels.iter().filter(|t| t[0] < 0.5).count() as f64 * texel;
+    let expected = std::f64::consts::PI * 0.15 * 0.15 / -setup.t0.z;
+    assert!(
+        (dark - expected).abs() < 0.04 * expected,
+        "shadow {dark} vs {expected}"
+    );
+}
+
+/// Without objects the mesh reference is the project's reference: same floor map from the same
+/// surface, up to the photons' noise.
+#[test]
+fn reference_agrees_with_the_floor_reference() {
+    let res = 48;
+    let heights = waves(res, false);
+    let inp = input(vec![], DVec3::new(0.2, 0.1, -1.0), res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let surface = GridSurface {
+        grid: heights,
+        size: 1.0,
+        edge: crate::grid::Edge::Wrap,
+    };
+    let r = mesh_reference(
+        &setup,
+        &inp,
+        &surface,
+        &MeshReferenceOptions::per_texel(&setup, 6.0),
+    );
+    let water = crate::scene::Water {
+        source: crate::scene::WaterSource::Flat,
+        size: 1.0,
+        depth: 0.5,
+        ior: 1.333,
+        wrap: true,
+        absorption: DVec3::ZERO,
+    };
+    let floor = crate::scene::Floor {
+        terrain: None,
+        albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
+    };
+    let exact = crate::reference::reference(
+        &crate::reference::ReferenceInput {
+            surface: &surface,
+            water: &water,
+            floor: &floor,
+            light: inp.light,
+            width: res,
+            height: res,
+        },
+        &crate::reference::ReferenceOptions {
+            cells_per_texel: 6,
+            fresnel: false,
+            absorption: false,
+        },
+        &|_, _| {},
+    )
+    .unwrap();
+    let diff: f64 = r
+        .floor
+        .texels
+        .iter()
+        .zip(&exact.texels)
+        .map(|(a, b)| (a[0] - b[0]).abs() as f64)
+        .sum::<f64>()
+        / (res * res) as f64;
+    assert!(diff < 0.05, "mean |photons − exact| {diff}");
+}
