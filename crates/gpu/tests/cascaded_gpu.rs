@@ -4,7 +4,7 @@
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::cascaded::{
-    self, CASCADES, CascadedParams, CascadedSetup, Dispersion, Placement,
+    self, CASCADES, CascadedParams, CascadedSetup, Dispersion, Placement, Splat,
 };
 use caustics_gpu::GpuTimer;
 use caustics_gpu::cascaded::{Cascaded, CascadedUniform};
@@ -102,10 +102,16 @@ fn screen_caustics_match_the_cpu_twin() {
     let scene = shore(240, 135);
     let water = cascaded::water_grid(&scene, 128).unwrap();
     let terrain = scene.floor.terrain.as_ref();
-    for (placement, dispersion, terrain_pass) in [
-        (Placement::Eq33, Dispersion::None, true),
-        (Placement::Plane, Dispersion::Wavelength, true),
-        (Placement::Eq33, Dispersion::Post, false),
+    for (placement, dispersion, terrain_pass, splat) in [
+        (Placement::Eq33, Dispersion::None, true, Splat::Footprint),
+        (
+            Placement::Plane,
+            Dispersion::Wavelength,
+            true,
+            Splat::Footprint,
+        ),
+        (Placement::Eq33, Dispersion::Post, false, Splat::Footprint),
+        (Placement::Eq33, Dispersion::None, true, Splat::Point),
     ] {
         let params = CascadedParams {
             resolution: 192,
@@ -113,6 +119,7 @@ fn screen_caustics_match_the_cpu_twin() {
             dispersion,
             dispersion_scale: 20.0,
             terrain_pass,
+            splat,
             ..Default::default()
         };
         let setup = CascadedSetup::from_scene(&scene, &params).unwrap();
@@ -127,14 +134,15 @@ fn screen_caustics_match_the_cpu_twin() {
         let same = cpu.acc.iter().zip(&gpu.acc).filter(|(a, b)| a == b).count();
         let (total, mean_abs, moved) = agreement(&cpu.image, &gpu.image);
         eprintln!(
-            "{placement:?} {dispersion:?} terrain pass {terrain_pass}: eye depth max rel {eye:.1e}; \
+            "{placement:?} {dispersion:?} terrain pass {terrain_pass} {splat:?} splat: eye depth max rel {eye:.1e}; \
              fixed-point sums identical {:.3} %; image total {total:.2e}, mean |Δ| / mean {mean_abs:.2e}, \
              channels differing > 0.1 %: {moved}",
             100.0 * same as f64 / cpu.acc.len() as f64,
         );
         assert!(eye < 1e-4, "eye depth {eye}");
-        // A photon that f32 and f64 put on different sides of a pixel edge moves its weight to the
-        // neighbour: totals agree closely, single pixels differ by whole photons.
+        // A photon that f32 and f64 put on different sides of a pixel edge (or of a footprint's
+        // 1/64-pixel step) moves its weight to the neighbour: totals agree closely, single pixels
+        // differ by whole photons (point splat) or by a few units of a share (footprint).
         assert!(total < 1e-4, "total {total}");
         assert!(mean_abs < 1e-3, "mean |Δ| {mean_abs}");
     }

@@ -38,7 +38,10 @@
 //! Photons are summed as unsigned fixed point (`round(w · 2^14)`), per cascade, pixel and channel:
 //! on the GPU with `atomicAdd` into a storage buffer, here with plain adds. Integer sums do not depend
 //! on the order the photons arrive in, so the two twins differ only where f32 and f64 place a photon
-//! in different pixels.
+//! in different pixels (or footprint steps). By default each photon is spread over its footprint,
+//! the screen-space box of the floor its light texel lights ([`Splat::Footprint`], ours: the paper
+//! splats points, which near the eye, where a pixel sees less floor than a texel lights, leaves a
+//! dotted moiré); the integer shares add up to the photon's weight exactly.
 
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -55,6 +58,14 @@ pub const FIXED_SCALE: f64 = 16384.0;
 /// Steps of the terrain march before bisection, and bisection steps.
 pub const MARCH_STEPS: u32 = 64;
 pub const BISECTION_STEPS: u32 = 20;
+/// Sub-pixel steps of the footprint splat: a photon's position and its box's side are rounded to
+/// 1/64 pixel and its shares computed in integers, so both twins give the same shares wherever f32
+/// and f64 round the position to the same step.
+pub const FOOTPRINT_SUBPIXELS: i64 = 64;
+/// Largest side of a photon's footprint, pixels: its tent then spans 8 × 8 pixels (9 × 9 with the
+/// straddle). Where a texel lights more floor than 4 × 4 pixels see, the tents no longer overlap
+/// and the image shows the texels again.
+pub const FOOTPRINT_MAX: f64 = 4.0;
 /// Newton steps of the sun ray against the water surface.
 pub const WATER_STEPS: u32 = 4;
 /// Water's refractive index at 20 °C for the red, green and blue channels: the C (656.3 nm),
@@ -95,6 +106,23 @@ pub enum Brightness {
     /// Fresnel transmittance (relative to flat water) times Beer-Lambert `exp(−K s)` per RGB over the
     /// photon's path `s` under water.
     Physical,
+}
+
+/// How a photon is splatted into the eye's screen space (§3.4, "splat additively"; the footprint is
+/// ours).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Splat {
+    /// Over its footprint: a tent in screen space as wide as the photons' spacing there, the
+    /// footprint of its light texel on the floor ([`footprint_side`]: `photon_flux / (pixel floor
+    /// area)` pixels, both horizontal areas, the pixel's from the eye pass), capped at
+    /// [`FOOTPRINT_MAX`] pixels a side. Where a pixel sees
+    /// less floor than a texel lights, a point splat leaves most pixels with 0 or 1 photons (a dotted
+    /// moiré); the footprint spreads each photon's flux over the floor its texel actually lights,
+    /// conserving it exactly ([`splat_footprint`]).
+    Footprint,
+    /// Into the one pixel the photon projects into (the paper's points).
+    Point,
 }
 
 /// Light dispersion (§3.6; the copy stops before it, both variants are designed here).
@@ -138,6 +166,7 @@ pub struct CascadedParams {
     pub dispersion: Dispersion,
     /// Exaggeration of the dispersion (1: water's measured dispersion).
     pub dispersion_scale: f64,
+    pub splat: Splat,
 }
 
 impl Default for CascadedParams {
@@ -156,6 +185,7 @@ impl Default for CascadedParams {
             terrain_pass: true,
             dispersion: Dispersion::None,
             dispersion_scale: 1.0,
+            splat: Splat::Footprint,
         }
     }
 }
@@ -629,10 +659,12 @@ pub fn terrain_gbuffer(setup: &CascadedSetup, k: usize, terrain: Option<&Grid>) 
     out
 }
 
-/// Eye-depth pass: per screen pixel `[view depth, floor area seen, floor z, 1]` of the first terrain
-/// hit of its ray, zeros where it sees no floor. The area is that of the tilted floor:
-/// `z_v² dsx dsy / (|r| |r̂·N|)` with `r` the pixel's ray (forward component 1) and `dsx dsy` the
-/// pixel's size on the image plane at distance 1.
+/// Eye-depth pass: per screen pixel `[view depth, floor area seen, floor z, N_z]` of the first
+/// terrain hit of its ray, zeros where it sees no floor (`N_z > 0` on a height field, so `w == 0`
+/// marks "no floor"). The area is that of the tilted floor: `z_v² dsx dsy / (|r| |r̂·N|)` with `r`
+/// the pixel's ray (forward component 1) and `dsx dsy` the pixel's size on the image plane at
+/// distance 1; times `N_z` it is the horizontal area, which the footprint splat compares with a
+/// texel's.
 pub fn eye_pass(setup: &CascadedSetup, terrain: Option<&Grid>) -> Vec<[f32; 4]> {
     let e = &setup.eye;
     let (w, h) = (e.width, e.height);
@@ -648,12 +680,13 @@ pub fn eye_pass(setup: &CascadedSetup, terrain: Option<&Grid>) -> Vec<[f32; 4]> 
                     let zv = s / len;
                     let f = e.position + r * zv;
                     let g = setup.terrain_height(terrain, f.truncate()).1;
-                    let cos = d.dot(height_field_normal(g)).abs().max(1e-4);
+                    let n = height_field_normal(g);
+                    let cos = d.dot(n).abs().max(1e-4);
                     [
                         zv as f32,
                         (zv * zv * pixel / (len * cos)) as f32,
                         f.z as f32,
-                        1.0,
+                        n.z as f32,
                     ]
                 }
                 None => [0.0; 4],
@@ -723,12 +756,133 @@ pub fn screen_buffer_len(setup: &CascadedSetup) -> usize {
     CASCADES * setup.eye.width * setup.eye.height * 3
 }
 
+/// The sides `(x, y)`, in pixels, of the footprint of a photon of cascade `k` at world point `p`
+/// that projects to `px`. Its area is the number of pixels its texel's floor covers,
+/// `photon_flux(k) / (A N_z)` with `A N_z` the horizontal floor area of the pixel under `px`
+/// (clamped to the screen) from the eye pass; its aspect is that of the screen-space bounding box of
+/// the texel's floor parallelogram (edges `a = e_u du` and `b = (e_v − L e_v.z / L.z) dv`, both
+/// horizontal, projected from `p`), since at grazing views a texel's floor is several times wider
+/// than high on the screen. Each side is capped at [`FOOTPRINT_MAX`]; `(0, 0)` where that pixel sees
+/// no floor (a point splat).
+///
+/// `photon_flux(k)` is the horizontal area of the texel's beam under flat water (a parallel beam
+/// keeps its horizontal cross-section through a horizontal interface), so over flat water the boxes
+/// of neighbouring photons tile the floor; a tilted floor changes both areas by the same `N_z`.
+pub fn footprint_side(
+    setup: &CascadedSetup,
+    k: usize,
+    eye: &[[f32; 4]],
+    p: DVec3,
+    px: DVec2,
+) -> DVec2 {
+    let (w, h) = (setup.eye.width as i64, setup.eye.height as i64);
+    let x = (px.x.floor() as i64).clamp(0, w - 1) as usize;
+    let y = (px.y.floor() as i64).clamp(0, h - 1) as usize;
+    let e = eye[y * setup.eye.width + x];
+    if e[3] == 0.0 {
+        return DVec2::ZERO;
+    }
+    let pixels = setup.photon_flux(k) / (e[1] as f64 * e[3] as f64);
+    let c = &setup.cascades[k];
+    let a = setup.e_u * c.du;
+    let b = (setup.e_v - setup.light * (setup.e_v.z / setup.light.z)) * c.dv;
+    let (Some((pa, _)), Some((pb, _))) = (setup.eye.project(p + a), setup.eye.project(p + b))
+    else {
+        return DVec2::splat(pixels.sqrt().min(FOOTPRINT_MAX));
+    };
+    let (da, db) = (pa - px, pb - px);
+    let aspect = ((da.x.abs() + db.x.abs()) / (da.y.abs() + db.y.abs()).max(1e-6)).clamp(1e-3, 1e3);
+    DVec2::new((pixels * aspect).sqrt(), (pixels / aspect).sqrt()).min(DVec2::splat(FOOTPRINT_MAX))
+}
+
+/// Denominator of the tent's integer weights in [`splat_footprint`].
+pub const TENT_WEIGHT: u32 = 4096;
+
+/// `TENT_WEIGHT` times the integral of the unit-area tent of half-width `h` (sub-pixel steps) from
+/// its left end to `t` steps from its centre, rounded down: 0 at `−h`, `TENT_WEIGHT` at `h`.
+pub fn tent_cumulative(t: i64, h: i64) -> u32 {
+    let den = 2 * h * h;
+    let num = if t <= -h {
+        0
+    } else if t <= 0 {
+        (t + h) * (t + h)
+    } else if t < h {
+        den - (h - t) * (h - t)
+    } else {
+        den
+    };
+    (TENT_WEIGHT as i64 * num / den) as u32
+}
+
+/// Add the fixed-point weights `q[c0..c1]` of a photon at pixel point `centre` over a separable
+/// tent whose half-widths are `side` pixels, the footprint's sides from [`footprint_side`] (§3.4's
+/// additive splat, with a footprint). A tent as wide as the photons' spacing sums to a constant
+/// over a regular grid of photons (it is linear interpolation); a box of the spacing does so only
+/// when the grid is aligned with the pixels, and leaves a moiré where the sun's texel grid is
+/// rotated on the screen. The centre and half-widths are rounded to 1/[`FOOTPRINT_SUBPIXELS`]
+/// pixel; each row's (and each pixel's) share of the tent is a difference of
+/// [`tent_cumulative`]; the integer weight is split first over rows, then over each row's pixels,
+/// as differences of `⌊q · cumulative share / TENT_WEIGHT⌋`, so the shares add up to `q` exactly and
+/// both twins compute them in the same integers. Shares falling off the screen are dropped (as a
+/// point splat drops a photon off the screen). `base` is the cascade's offset in `acc`.
+#[allow(clippy::too_many_arguments)]
+pub fn splat_footprint(
+    width: usize,
+    height: usize,
+    base: usize,
+    centre: DVec2,
+    side: DVec2,
+    q: [u32; 3],
+    (c0, c1): (usize, usize),
+    acc: &mut [u32],
+) {
+    let sub = FOOTPRINT_SUBPIXELS;
+    let reach = FOOTPRINT_MAX + 1.0;
+    if !(centre.x > -reach
+        && centre.y > -reach
+        && centre.x < width as f64 + reach
+        && centre.y < height as f64 + reach)
+    {
+        return;
+    }
+    let steps =
+        |side: f64| ((side * sub as f64).round() as i64).clamp(1, FOOTPRINT_MAX as i64 * sub);
+    let (h_x, h_y) = (steps(side.x), steps(side.y));
+    let c_x = (centre.x * sub as f64).floor() as i64;
+    let c_y = (centre.y * sub as f64).floor() as i64;
+    let d = TENT_WEIGHT as u64;
+    let mut cum_y = 0u64;
+    for j in (c_y - h_y).div_euclid(sub)..=(c_y + h_y - 1).div_euclid(sub) {
+        let next_y = tent_cumulative(sub * (j + 1) - c_y, h_y) as u64;
+        let row: [u64; 3] =
+            std::array::from_fn(|c| q[c] as u64 * next_y / d - q[c] as u64 * cum_y / d);
+        cum_y = next_y;
+        if j < 0 || j >= height as i64 {
+            continue;
+        }
+        let mut cum_x = 0u64;
+        for i in (c_x - h_x).div_euclid(sub)..=(c_x + h_x - 1).div_euclid(sub) {
+            let next_x = tent_cumulative(sub * (i + 1) - c_x, h_x) as u64;
+            if i >= 0 && i < width as i64 {
+                let at = base + (j as usize * width + i as usize) * 3;
+                for c in c0..c1 {
+                    let share = row[c] * next_x / d - row[c] * cum_x / d;
+                    acc[at + c] = acc[at + c].wrapping_add(share as u32);
+                }
+            }
+            cum_x = next_x;
+        }
+    }
+}
+
 /// Photon pass (§3.4) of cascade `k`: every texel's photon (or three under
-/// [`Dispersion::Wavelength`]) is refracted, placed, weighted, projected into the eye and added to
-/// the pixel it falls in, in fixed point.
+/// [`Dispersion::Wavelength`]) is refracted, placed, weighted, projected into the eye and added in
+/// fixed point to the pixel it falls in ([`Splat::Point`]) or over its footprint
+/// ([`Splat::Footprint`], sized from the eye pass `eye`).
 pub fn photons(
     setup: &CascadedSetup,
     k: usize,
+    eye: &[[f32; 4]],
     gwater: &[[f32; 4]],
     gterrain: &[f32],
     acc: &mut [u32],
@@ -741,13 +895,24 @@ pub fn photons(
         let Some((px, _)) = setup.eye.project(ph.position) else {
             return;
         };
+        let q: [u32; 3] = std::array::from_fn(|c| {
+            if (c0..c1).contains(&c) {
+                (photon_weight(setup, ph, ior, c) * FIXED_SCALE + 0.5) as u32
+            } else {
+                0
+            }
+        });
+        if setup.params.splat == Splat::Footprint {
+            let side = footprint_side(setup, k, eye, ph.position, px);
+            splat_footprint(w, h, base, px, side, q, (c0, c1), acc);
+            return;
+        }
         if px.x < 0.0 || px.y < 0.0 || px.x >= w as f64 || px.y >= h as f64 {
             return;
         }
         let at = base + ((px.y as usize) * w + px.x as usize) * 3;
         for c in c0..c1 {
-            let q = (photon_weight(setup, ph, ior, c) * FIXED_SCALE + 0.5) as u32;
-            acc[at + c] = acc[at + c].wrapping_add(q);
+            acc[at + c] = acc[at + c].wrapping_add(q[c]);
         }
     };
     for i in 0..n {
@@ -903,7 +1068,7 @@ pub fn caustics(setup: &CascadedSetup, water: &Grid, terrain: Option<&Grid>) -> 
         } else {
             Vec::new()
         };
-        photons(setup, k, &gw, &gt, &mut acc);
+        photons(setup, k, &eye, &gw, &gt, &mut acc);
     }
     let mut image = compose(setup, &eye, &acc);
     if setup.params.dispersion == Dispersion::Post {
@@ -1051,6 +1216,140 @@ mod tests {
             // the same way), so the mean is 1 up to the edges.
             assert!((mean - 1.0).abs() < 0.03, "{placement:?}: mean {mean}");
         }
+    }
+
+    #[test]
+    fn footprint_splat_conserves_the_flux() {
+        let (w, h) = (40usize, 30usize);
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for n in 0..400 {
+            let mut acc = vec![0u32; w * h * 3];
+            let side = DVec2::new(rnd() * 10.0, rnd() * 10.0);
+            let q = [(rnd() * 40000.0) as u32, (rnd() * 40000.0) as u32, 16384];
+            // Inside the screen with its whole box, then straddling the edges.
+            let inside = n < 200;
+            let centre = if inside {
+                DVec2::new(
+                    5.0 + rnd() * (w as f64 - 10.0),
+                    5.0 + rnd() * (h as f64 - 10.0),
+                )
+            } else {
+                DVec2::new(-6.0 + rnd() * 12.0, h as f64 - 6.0 + rnd() * 12.0)
+            };
+            splat_footprint(w, h, 0, centre, side, q, (0, 3), &mut acc);
+            for (c, &qc) in q.iter().enumerate() {
+                let total: u64 = acc.iter().skip(c).step_by(3).map(|&v| v as u64).sum();
+                if inside {
+                    assert_eq!(total, qc as u64, "side {side} centre {centre}");
+                } else {
+                    assert!(total <= qc as u64);
+                }
+            }
+            // Each share is the pixel's integral of the tent, up to the integer split's rounding.
+            if inside {
+                let hw = (side * 64.0).round().clamp(DVec2::ONE, DVec2::splat(256.0)) / 64.0;
+                let c = (centre * 64.0).floor() / 64.0;
+                let cum = |t: f64, h: f64| {
+                    let t = t.clamp(-h, h);
+                    if t <= 0.0 {
+                        (t + h).powi(2) / (2.0 * h * h)
+                    } else {
+                        1.0 - (h - t).powi(2) / (2.0 * h * h)
+                    }
+                };
+                for (p, v) in acc.chunks(3).enumerate() {
+                    let (x, y) = ((p % w) as f64, (p / w) as f64);
+                    let ox = cum(x + 1.0 - c.x, hw.x) - cum(x - c.x, hw.x);
+                    let oy = cum(y + 1.0 - c.y, hw.y) - cum(y - c.y, hw.y);
+                    let expect = q[2] as f64 * ox * oy;
+                    assert!((v[2] as f64 - expect).abs() <= 8.0, "{} vs {expect}", v[2]);
+                }
+            }
+        }
+        // Channels outside c0..c1 are untouched (wavelength dispersion splats one at a time).
+        let mut acc = vec![0u32; w * h * 3];
+        splat_footprint(
+            w,
+            h,
+            0,
+            DVec2::new(20.0, 15.0),
+            DVec2::new(3.3, 1.7),
+            [7, 9000, 11],
+            (1, 2),
+            &mut acc,
+        );
+        assert!(acc.iter().step_by(3).all(|&v| v == 0));
+        assert_eq!(
+            acc.iter()
+                .skip(1)
+                .step_by(3)
+                .map(|&v| v as u64)
+                .sum::<u64>(),
+            9000
+        );
+    }
+
+    /// Flat, clear water over the plane z = 0, seen from 3 m up: near the eye a pixel sees a few
+    /// square centimetres, a light texel of cascade 0 lights several times that. Statistics over the
+    /// pixels read from cascade 0 alone; `near_field_stats` returns (mean, coefficient of variation).
+    fn near_field_stats(splat: Splat) -> (f64, f64, usize) {
+        let scene = Scene::from_toml(
+            r#"
+            [water]
+            size = 16.0
+            depth = 2.0
+            [light]
+            direction = [0.3, 0.2, -1.0]
+            [camera]
+            position = [8.0, 3.0, 3.0]
+            target = [8.0, 8.0, 0.0]
+            fov_y = 50.0
+            resolution = [160, 90]
+            "#,
+            std::path::Path::new("."),
+            "flat-near",
+        )
+        .unwrap();
+        let p = CascadedParams {
+            resolution: 128,
+            far: 24.0,
+            placement: Placement::Plane,
+            splat,
+            ..Default::default()
+        };
+        let s = CascadedSetup::from_scene(&scene, &p).unwrap();
+        let f = caustics(&s, &Grid::new(8, 8), None);
+        let v: Vec<f64> = f
+            .image
+            .iter()
+            .filter(|t| t[3] == 0.0)
+            .map(|t| t[1] as f64)
+            .collect();
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        let var = v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64;
+        (mean, var.sqrt() / mean, v.len())
+    }
+
+    #[test]
+    fn footprint_removes_the_dots_near_the_eye() {
+        let (pm, pcv, n) = near_field_stats(Splat::Point);
+        let (fm, fcv, _) = near_field_stats(Splat::Footprint);
+        eprintln!(
+            "near field under flat water, {n} pixels of cascade 0: point splat mean {pm:.4} CV \
+             {pcv:.3}; footprint mean {fm:.4} CV {fcv:.4}"
+        );
+        assert!(n > 3000, "{n}");
+        assert!(pcv > 0.5, "the point splat should be dotted here: CV {pcv}");
+        assert!((fm - 1.0).abs() < 0.01, "footprint mean {fm}");
+        // Measured 1.37 and 0.061: what is left is the moiré of the sun's texel grid, rotated on
+        // the screen, against the separable tents.
+        assert!(fcv < 0.08, "footprint CV {fcv}");
     }
 
     #[test]

@@ -17,8 +17,9 @@
 //! bisection on the terrain), with no tessellation to choose and no mesh to build per frame, and the
 //! two twins agree to f32 rounding. A rasterised mesh would agree only to its tessellation.
 //!
-//! **Why atomics for the splat.** Every photon adds `round(w · 2^14)` to its pixel with `atomicAdd` on
-//! `u32` in a storage buffer (one per cascade, pixel and channel). Integer sums are exact and do not
+//! **Why atomics for the splat.** Every photon adds `round(w · 2^14)` to its pixel, or split in
+//! integer shares over its footprint's pixels, with `atomicAdd` on `u32` in a storage buffer (one
+//! per cascade, pixel and channel). Integer sums are exact and do not
 //! depend on the order the photons arrive in, so the GPU agrees with the CPU twin bit for bit wherever
 //! both place a photon in the same pixel, on every adapter; it needs neither `FLOAT32_BLENDABLE`
 //! (without which additive blending into `Rgba32Float` is refused) nor a lossy `Rgba16Float` target
@@ -31,7 +32,8 @@
 
 use caustics_core::grid::Grid;
 use caustics_core::techniques::cascaded::{
-    Brightness, CASCADES, CascadedSetup, Dispersion, FIXED_SCALE, Placement, screen_buffer_len,
+    Brightness, CASCADES, CascadedSetup, Dispersion, FIXED_SCALE, Placement, Splat,
+    screen_buffer_len,
 };
 use wgpu::util::DeviceExt;
 
@@ -122,6 +124,9 @@ impl CascadedUniform {
         }
         if p.dispersion == Dispersion::Wavelength {
             flags |= 4;
+        }
+        if p.splat == Splat::Footprint {
+            flags |= 8;
         }
         CascadedUniform {
             light: v4(s.light, s.level),
@@ -348,6 +353,7 @@ impl Cascaded {
                             View(&gwater_view),
                             View(&gterrain_view),
                             acc.as_entire_binding(),
+                            View(&eye_view),
                         ],
                     ),
                 ]

@@ -22,7 +22,7 @@ struct Cascaded {
     height: u32,
     res: u32,
     cascade: u32,
-    flags: u32,            // bit 0: plane placement; bit 1: physical brightness; bit 2: wavelength dispersion
+    flags: u32,            // bit 0: plane placement; bit 1: physical brightness; bit 2: wavelength dispersion; bit 3: footprint splat
     wrap: u32,
     _pad0: u32,
     _pad1: u32,

@@ -1,5 +1,6 @@
 // Technique `cascaded`, eye-depth pass (what §3.5.1 samples): per screen pixel the view depth of the
-// terrain its ray meets, the floor area it sees and the floor's height. CPU twin: `eye_pass`.
+// terrain its ray meets, the floor area it sees, the floor's height and
+// its normal's z (0: no floor). CPU twin: `eye_pass`.
 
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var terrain: texture_2d<f32>;
@@ -20,9 +21,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if s >= 0.0 {
         let zv = s / len;
         let f = cfg.eye_pos.xyz + r * zv;
-        let g = terrain_height(cfg, terrain, f.xy).yz;
-        let cos_g = max(abs(dot(d, height_field_normal(g))), 1e-4);
-        out = vec4<f32>(zv, zv * zv * pixel / (len * cos_g), f.z, 1.0);
+        let n = height_field_normal(terrain_height(cfg, terrain, f.xy).yz);
+        let cos_g = max(abs(dot(d, n)), 1e-4);
+        out = vec4<f32>(zv, zv * zv * pixel / (len * cos_g), f.z, n.z);
     }
     textureStore(eye_out, vec2<i32>(id.xy), out);
 }
