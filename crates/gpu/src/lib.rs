@@ -13,6 +13,7 @@ pub mod procedural;
 pub mod shaders;
 pub mod timing;
 mod transfer;
+pub mod volumes;
 pub mod water;
 pub mod yuksel;
 

@@ -103,4 +103,12 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::caustic_triangles::IRRADIANCE,
     &crate::caustic_triangles::TRIANGLES,
     &crate::caustic_triangles::SPLAT,
+    &crate::caustic_triangles::CUBE,
+    &crate::caustic_triangles::SHADOW,
+    &crate::caustic_triangles::camera::CAMERA,
+    &crate::volumes::DEPTH,
+    &crate::volumes::WATER_PASS,
+    &crate::volumes::SLICES,
+    &crate::volumes::FLOOR,
+    &crate::volumes::SHADE,
 ];

@@ -1,0 +1,724 @@
+//! Technique `volumes` on the GPU: caustics on underwater objects from illumination volumes, colour
+//! and depth textures and reference planes (paper 3). The method, its units and where it departs
+//! from the reference are documented with its CPU twin, `caustics_core::techniques::volumes`, which
+//! these passes mirror one for one:
+//!
+//! | pass | WGSL | CPU twin |
+//! |---|---|---|
+//! | depth texture / shadow map (compute, BVH rays) | `shaders/volumes/depth.wgsl` + `bvh.wgsl` | `representation::depth_pass` |
+//! | water (compute) | `shaders/volumes/water.wgsl` | `illumination::water_pass` |
+//! | illumination volumes × reference planes (raster, additive) | `shaders/volumes/slices.wgsl` | `illumination::slice_pass` |
+//! | floor map (raster, additive) | `shaders/volumes/floor.wgsl` | `illumination::floor_pass` |
+//! | diffuse map and Eq. 4 (compute) | `shaders/volumes/shade.wgsl` | `diffuse_map`, `shade_pass` |
+//!
+//! The slices are rasterised with additive blending, as the paper draws them: one triangle per
+//! (reference plane, water triangle), pulled from the water buffer by the vertex shader, the depth
+//! test of §3.1 in the fragment shader. The caustics maps are `Rgba32Float` where the adapter has
+//! `FLOAT32_BLENDABLE`, otherwise `Rgba16Float` (blendable everywhere, about 3 significant digits).
+//! The depth textures are cast as one BVH ray per texel (the same trees the CPU walks) rather than
+//! rasterised: the same nearest surface at the same texel centres, and the CPU twin can follow it
+//! exactly.
+
+use caustics_core::grid::Grid;
+use caustics_core::map::CausticsMap;
+use caustics_core::mesh::TriangleMesh;
+use caustics_core::techniques::volumes::illumination::WaterVertex;
+use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, VolumesSetup};
+use wgpu::util::DeviceExt;
+
+use crate::final_image::{BVH, GpuBvhNode, GpuBvhTriangle};
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+const COMMON: &str = include_str!("../shaders/volumes/common.wgsl");
+
+pub const DEPTH: PassSource = PassSource {
+    name: "volumes depth",
+    shared: &[COMMON, BVH],
+    source: include_str!("../shaders/volumes/depth.wgsl"),
+};
+pub const WATER_PASS: PassSource = PassSource {
+    name: "volumes water",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/volumes/water.wgsl"),
+};
+pub const SLICES: PassSource = PassSource {
+    name: "volumes slices",
+    shared: &[COMMON],
+    source: include_str!("../shaders/volumes/slices.wgsl"),
+};
+pub const FLOOR: PassSource = PassSource {
+    name: "volumes floor",
+    shared: &[COMMON],
+    source: include_str!("../shaders/volumes/floor.wgsl"),
+};
+pub const SHADE: PassSource = PassSource {
+    name: "volumes shade",
+    shared: &[COMMON],
+    source: include_str!("../shaders/volumes/shade.wgsl"),
+};
+
+/// Mirrors `View` in `shaders/volumes/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ViewUniform {
+    pub a: [f32; 4],
+    pub b: [f32; 4],
+    pub v: [f32; 4],
+    pub lo: [f32; 4],
+    pub texel: [f32; 4],
+}
+
+impl ViewUniform {
+    /// `spacing`: the reference planes' `Δ` (0 for the shadow map).
+    pub fn new(view: &OrthoView, spacing: f64) -> Self {
+        let e = view.extent();
+        let t = view.texel();
+        let margin = caustics_core::techniques::volumes::representation::ray_margin(view);
+        ViewUniform {
+            a: [
+                view.a.x as f32,
+                view.a.y as f32,
+                view.a.z as f32,
+                view.res as f32,
+            ],
+            b: [
+                view.b.x as f32,
+                view.b.y as f32,
+                view.b.z as f32,
+                margin as f32,
+            ],
+            v: [
+                view.v.x as f32,
+                view.v.y as f32,
+                view.v.z as f32,
+                spacing as f32,
+            ],
+            lo: [view.lo.x as f32, view.lo.y as f32, view.lo.z as f32, 0.0],
+            texel: [t.x as f32, t.y as f32, e.z as f32, 0.0],
+        }
+    }
+}
+
+/// Mirrors `Volumes` in `shaders/volumes/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct VolumesUniform {
+    pub light: [f32; 4],
+    pub absorption: [f32; 4],
+    pub lattice: [f32; 4],
+    pub params: [f32; 4],
+    pub dims: [u32; 4],
+    pub flags: [u32; 4],
+    pub shadow: ViewUniform,
+}
+
+impl VolumesUniform {
+    pub fn new(s: &VolumesSetup, wrap: bool) -> Self {
+        VolumesUniform {
+            light: [
+                s.light.x as f32,
+                s.light.y as f32,
+                s.light.z as f32,
+                s.eta as f32,
+            ],
+            absorption: [
+                s.absorption.x as f32,
+                s.absorption.y as f32,
+                s.absorption.z as f32,
+                s.t_flat as f32,
+            ],
+            lattice: [
+                s.lattice.origin.x as f32,
+                s.lattice.origin.y as f32,
+                s.lattice.cell as f32,
+                s.size as f32,
+            ],
+            params: [
+                s.depth as f32,
+                s.ior as f32,
+                s.shadow_bias as f32,
+                if s.params.fresnel { 1.0 } else { 0.0 },
+            ],
+            dims: [
+                s.lattice.nx as u32,
+                s.lattice.ny as u32,
+                s.width as u32,
+                s.height as u32,
+            ],
+            flags: [wrap as u32, s.shadow.is_some() as u32, 0, 0],
+            shadow: s
+                .shadow
+                .as_ref()
+                .map_or_else(ViewUniform::default, |v| ViewUniform::new(v, 0.0)),
+        }
+    }
+}
+
+/// Mirrors `Pass` in `shaders/volumes/common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct PassUniform {
+    pub view: ViewUniform,
+    pub cells: [u32; 4],
+    pub planes: u32,
+    pub root_first: u32,
+    pub root_count: u32,
+    pub _pad: u32,
+    pub albedo: [f32; 4],
+}
+
+/// Every object's BVH (the very trees the CPU walks) in the shared buffers of `bvh.wgsl`, and each
+/// tree's root.
+fn flatten_meshes(meshes: &[&TriangleMesh]) -> (Vec<GpuBvhNode>, Vec<GpuBvhTriangle>, Vec<u32>) {
+    let f4 = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
+    let f3 = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32];
+    let (mut nodes, mut triangles, mut roots) = (Vec::new(), Vec::new(), Vec::new());
+    for mesh in meshes {
+        let (flat, order) = mesh.bvh().flatten();
+        let node_base = nodes.len() as u32;
+        let slot_base = triangles.len() as u32;
+        roots.push(node_base);
+        nodes.extend(flat.iter().map(|n| GpuBvhNode {
+            min: f3(n.min),
+            max: f3(n.max),
+            start: n.start + if n.count > 0 { slot_base } else { node_base },
+            count: n.count,
+        }));
+        triangles.extend(order.iter().map(|&t| {
+            let [a, b, c] = mesh.indices[t as usize].map(|i| i as usize);
+            let p0 = mesh.positions[a];
+            GpuBvhTriangle {
+                p0: f4(p0),
+                e1: f4(mesh.positions[b] - p0),
+                e2: f4(mesh.positions[c] - p0),
+                n0: f4(mesh.normals[a]),
+                n1: f4(mesh.normals[b]),
+                n2: f4(mesh.normals[c]),
+            }
+        }));
+    }
+    (nodes, triangles, roots)
+}
+
+/// The technique's pipelines, built once per device for one caustics-map format.
+pub struct Volumes {
+    depth: wgpu::ComputePipeline,
+    water: wgpu::ComputePipeline,
+    slices: wgpu::RenderPipeline,
+    floor: wgpu::RenderPipeline,
+    shade: wgpu::ComputePipeline,
+    /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float`.
+    pub map_format: wgpu::TextureFormat,
+}
+
+fn additive_pipeline(
+    ctx: &GpuContext,
+    source: &PassSource,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let module = source.module(&ctx.device);
+    let add = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    };
+    ctx.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(source.name),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            // No culling: slices of folded volumes face either way.
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: Some(wgpu::BlendState {
+                        color: add,
+                        alpha: add,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}
+
+struct ObjectFrame {
+    depth: wgpu::Texture,
+    caustics: wgpu::Texture,
+    caustics_view: wgpu::TextureView,
+    diffuse: wgpu::Texture,
+    image: wgpu::Texture,
+    depth_bind: wgpu::BindGroup,
+    slices_bind: wgpu::BindGroup,
+    shade_bind: wgpu::BindGroup,
+    vertices: u32,
+    res: u32,
+}
+
+/// One scene's resources: the BVH buffers, textures per object, the water buffer, the floor map and
+/// every bind group. Built once; encode it every frame (upload new heights with
+/// [`Frame::update_heights`]).
+pub struct Frame {
+    pub setup: VolumesSetup,
+    heights: wgpu::Texture,
+    pub water: wgpu::Buffer,
+    shadow: Option<(wgpu::Texture, wgpu::BindGroup)>,
+    objects: Vec<ObjectFrame>,
+    bvh_bind: wgpu::BindGroup,
+    water_bind: wgpu::BindGroup,
+    floor_bind: wgpu::BindGroup,
+    pub floor: wgpu::Texture,
+    floor_view: wgpu::TextureView,
+    bytes: u64,
+}
+
+impl Frame {
+    /// GPU memory the frame's buffers and textures take, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+
+    /// Replace the height field (same size) for the next encode.
+    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
+        ctx.write_grid(&self.heights, heights);
+    }
+
+    /// Triangles the slice pass draws per frame (all objects, all planes).
+    pub fn slice_triangles(&self) -> u64 {
+        self.objects.iter().map(|o| o.vertices as u64 / 3).sum()
+    }
+}
+
+/// What one GPU run reads back.
+pub struct GpuOutput {
+    pub objects: Vec<ObjectMaps>,
+    pub floor: CausticsMap,
+    pub shadow: Vec<[f32; 4]>,
+    pub water: Vec<WaterVertex>,
+}
+
+impl Volumes {
+    /// Pipelines for the best caustics-map format this device blends.
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let format = if ctx
+            .device
+            .features()
+            .contains(wgpu::Features::FLOAT32_BLENDABLE)
+        {
+            wgpu::TextureFormat::Rgba32Float
+        } else {
+            wgpu::TextureFormat::Rgba16Float
+        };
+        Self::with_format(ctx, format)
+    }
+
+    /// Pipelines for a given caustics-map format (`Rgba32Float` needs `FLOAT32_BLENDABLE`).
+    pub fn with_format(
+        ctx: &GpuContext,
+        map_format: wgpu::TextureFormat,
+    ) -> Result<Self, GpuError> {
+        let v = Volumes {
+            depth: compute_pipeline(ctx, &DEPTH),
+            water: compute_pipeline(ctx, &WATER_PASS),
+            slices: additive_pipeline(ctx, &SLICES, map_format),
+            floor: additive_pipeline(ctx, &FLOOR, map_format),
+            shade: compute_pipeline(ctx, &SHADE),
+            map_format,
+        };
+        ctx.check()?;
+        Ok(v)
+    }
+
+    /// Allocate a frame for `setup` (built from `input`) and upload the meshes and the heights.
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &VolumesSetup,
+        input: &VolumesInput,
+        heights: &Grid,
+        wrap: bool,
+    ) -> Result<Frame, GpuError> {
+        use wgpu::BindingResource::TextureView as View;
+        use wgpu::BufferUsages as B;
+        use wgpu::TextureUsages as U;
+        let (w, h) = (setup.width as u32, setup.height as u32);
+        ctx.check_texture_size("volumes floor map", w, h)?;
+        let meshes: Vec<&TriangleMesh> = input.objects.iter().map(|o| &o.mesh).collect();
+        let (mut nodes, mut triangles, roots) = flatten_meshes(&meshes);
+        // Bindings may not be empty: a scene without objects binds one unused node and slot.
+        if nodes.is_empty() {
+            nodes.push(GpuBvhNode::default());
+            triangles.push(GpuBvhTriangle::default());
+        }
+        let storage = |label: &str, bytes: &[u8]| {
+            ctx.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytes,
+                    usage: B::STORAGE,
+                })
+        };
+        ctx.check_buffer_size("volumes BVH triangles", triangles.len() as u64 * 96)?;
+        let node_buf = storage("volumes BVH nodes", bytemuck::cast_slice(&nodes));
+        let tri_buf = storage("volumes BVH triangles", bytemuck::cast_slice(&triangles));
+        let mut root_list: Vec<u32> = roots.clone();
+        root_list.push(0);
+        let root_buf = storage("volumes roots", bytemuck::cast_slice(&root_list));
+        let mut bytes = node_buf.size() + tri_buf.size() + root_buf.size();
+        let bvh_bind = bind_group(
+            ctx,
+            "volumes BVH",
+            &self.depth.get_bind_group_layout(1),
+            &[node_buf.as_entire_binding(), tri_buf.as_entire_binding()],
+        );
+        let uniform = ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("volumes uniform"),
+                contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
+                usage: B::UNIFORM,
+            });
+        let pass_uniform = |p: PassUniform| {
+            ctx.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("volumes pass uniform"),
+                    contents: bytemuck::bytes_of(&p),
+                    usage: B::UNIFORM,
+                })
+        };
+        let depth_texture = |label: &str, res: u32| -> Result<wgpu::Texture, GpuError> {
+            ctx.check_texture_size(label, res, res)?;
+            Ok(ctx.texture_2d(
+                label,
+                (res, res, 1),
+                wgpu::TextureFormat::Rgba32Float,
+                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+            ))
+        };
+        // The shadow map, or a 1 x 1 stand-in the shaders never read (flags.y = 0).
+        let (shadow_tex, shadow) = match &setup.shadow {
+            Some(view) => {
+                let res = view.res as u32;
+                let tex = depth_texture("volumes shadow map", res)?;
+                let u = pass_uniform(PassUniform {
+                    view: ViewUniform::new(view, 0.0),
+                    root_first: 0,
+                    root_count: roots.len() as u32,
+                    ..Default::default()
+                });
+                let bind = bind_group(
+                    ctx,
+                    "volumes shadow map",
+                    &self.depth.get_bind_group_layout(0),
+                    &[
+                        u.as_entire_binding(),
+                        root_buf.as_entire_binding(),
+                        View(&tex.create_view(&Default::default())),
+                    ],
+                );
+                bytes += (res * res) as u64 * 16;
+                (tex.clone(), Some((tex, bind)))
+            }
+            None => (depth_texture("volumes shadow stand-in", 1)?, None),
+        };
+        let shadow_view = shadow_tex.create_view(&Default::default());
+
+        let heights_tex = ctx.upload_grid("volumes height field", heights)?;
+        let lattice_vertices = setup.lattice.vertex_count() as u64;
+        ctx.check_buffer_size("volumes water vertices", lattice_vertices * 32)?;
+        let water = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("volumes water"),
+            size: lattice_vertices * 32,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        bytes += water.size() + (heights.cols * heights.rows) as u64 * 4;
+        let water_bind = bind_group(
+            ctx,
+            "volumes water",
+            &self.water.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                View(&heights_tex.create_view(&Default::default())),
+                water.as_entire_binding(),
+            ],
+        );
+        let map_texture = |label: &str, w: u32, h: u32| {
+            ctx.texture_2d(
+                label,
+                (w, h, 1),
+                self.map_format,
+                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+            )
+        };
+        let texel_bytes = if self.map_format == wgpu::TextureFormat::Rgba16Float {
+            8
+        } else {
+            16
+        };
+        let floor = map_texture("volumes floor map", w, h);
+        bytes += (w * h) as u64 * texel_bytes;
+        let floor_bind = bind_group(
+            ctx,
+            "volumes floor",
+            &self.floor.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                water.as_entire_binding(),
+                View(&shadow_view),
+            ],
+        );
+
+        let mut objects = Vec::new();
+        for (k, o) in setup.objects.iter().enumerate() {
+            let res = o.view.res as u32;
+            let c = o.cells;
+            let u = pass_uniform(PassUniform {
+                view: ViewUniform::new(&o.view, o.spacing()),
+                cells: [c.i0 as u32, c.i1 as u32, c.j0 as u32, c.j1 as u32],
+                planes: o.planes as u32,
+                root_first: k as u32,
+                root_count: 1,
+                _pad: 0,
+                albedo: [
+                    o.albedo.x as f32,
+                    o.albedo.y as f32,
+                    o.albedo.z as f32,
+                    setup.params.ambient as f32,
+                ],
+            });
+            let depth = depth_texture("volumes depth texture", res)?;
+            let depth_view = depth.create_view(&Default::default());
+            let caustics = map_texture("volumes caustics map", res, res);
+            let caustics_view = caustics.create_view(&Default::default());
+            let diffuse = depth_texture("volumes diffuse map", res)?;
+            let image = depth_texture("volumes image", res)?;
+            bytes += (res * res) as u64 * (16 * 3 + texel_bytes);
+            let depth_bind = bind_group(
+                ctx,
+                "volumes depth",
+                &self.depth.get_bind_group_layout(0),
+                &[
+                    u.as_entire_binding(),
+                    root_buf.as_entire_binding(),
+                    View(&depth_view),
+                ],
+            );
+            let slices_bind = bind_group(
+                ctx,
+                "volumes slices",
+                &self.slices.get_bind_group_layout(0),
+                &[
+                    uniform.as_entire_binding(),
+                    u.as_entire_binding(),
+                    water.as_entire_binding(),
+                    View(&depth_view),
+                    View(&shadow_view),
+                ],
+            );
+            let shade_bind = bind_group(
+                ctx,
+                "volumes shade",
+                &self.shade.get_bind_group_layout(0),
+                &[
+                    u.as_entire_binding(),
+                    View(&depth_view),
+                    View(&caustics_view),
+                    View(&diffuse.create_view(&Default::default())),
+                    View(&image.create_view(&Default::default())),
+                ],
+            );
+            let vertices = (c.triangles() * o.planes * 3) as u64;
+            if vertices > u32::MAX as u64 {
+                return Err(GpuError::TooLarge {
+                    what: format!("volumes slices of objects[{k}]"),
+                    size: format!("{vertices} vertices"),
+                    limit: format!("{} per draw", u32::MAX),
+                });
+            }
+            objects.push(ObjectFrame {
+                depth,
+                caustics,
+                caustics_view,
+                diffuse,
+                image,
+                depth_bind,
+                slices_bind,
+                shade_bind,
+                vertices: vertices as u32,
+                res,
+            });
+        }
+        ctx.check()?;
+        Ok(Frame {
+            setup: setup.clone(),
+            heights: heights_tex,
+            water,
+            shadow,
+            objects,
+            bvh_bind,
+            water_bind,
+            floor_bind,
+            floor_view: floor.create_view(&Default::default()),
+            floor,
+            bytes,
+        })
+    }
+
+    /// Record the technique's passes for `frame`.
+    pub fn encode(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "volumes depth textures");
+            pass.set_pipeline(&self.depth);
+            pass.set_bind_group(1, &frame.bvh_bind, &[]);
+            if let Some((tex, bind)) = &frame.shadow {
+                pass.set_bind_group(0, bind, &[]);
+                pass.dispatch_workgroups(tex.width().div_ceil(8), tex.height().div_ceil(8), 1);
+            }
+            for o in &frame.objects {
+                pass.set_bind_group(0, &o.depth_bind, &[]);
+                pass.dispatch_workgroups(o.res.div_ceil(8), o.res.div_ceil(8), 1);
+            }
+        }
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "volumes water");
+            pass.set_pipeline(&self.water);
+            pass.set_bind_group(0, &frame.water_bind, &[]);
+            let n = frame.setup.lattice.vertex_count() as u32;
+            pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
+        }
+        for (k, o) in frame.objects.iter().enumerate() {
+            let label = if k == 0 {
+                "volumes slices"
+            } else {
+                "volumes slices (more objects)"
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &[color_attachment(&o.caustics_view)],
+                depth_stencil_attachment: None,
+                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.slices);
+            pass.set_bind_group(0, &o.slices_bind, &[]);
+            pass.draw(0..o.vertices, 0..1);
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("volumes floor"),
+                color_attachments: &[color_attachment(&frame.floor_view)],
+                depth_stencil_attachment: None,
+                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("volumes floor")),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.floor);
+            pass.set_bind_group(0, &frame.floor_bind, &[]);
+            let triangles = 2 * frame.setup.lattice.nx * frame.setup.lattice.ny;
+            pass.draw(0..(3 * triangles) as u32, 0..1);
+        }
+        if !frame.objects.is_empty() {
+            let mut pass = begin_compute(encoder, &mut timer, "volumes shade");
+            pass.set_pipeline(&self.shade);
+            for o in &frame.objects {
+                pass.set_bind_group(0, &o.shade_bind, &[]);
+                pass.dispatch_workgroups(o.res.div_ceil(8), o.res.div_ceil(8), 1);
+            }
+        }
+    }
+
+    fn read_map(
+        &self,
+        ctx: &GpuContext,
+        texture: &wgpu::Texture,
+    ) -> Result<Vec<[f32; 3]>, GpuError> {
+        let texels: Vec<[f32; 4]> = if self.map_format == wgpu::TextureFormat::Rgba16Float {
+            let raw: Vec<[u16; 4]> = ctx.read_texture(texture)?;
+            raw.into_iter()
+                .map(|t| t.map(crate::caustic_triangles::f16_to_f32))
+                .collect()
+        } else {
+            ctx.read_texture(texture)?
+        };
+        Ok(texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect())
+    }
+
+    /// Read everything a frame made back.
+    pub fn read(&self, ctx: &GpuContext, frame: &Frame) -> Result<GpuOutput, GpuError> {
+        let mut objects = Vec::new();
+        for o in &frame.objects {
+            let image: Vec<[f32; 4]> = ctx.read_texture(&o.image)?;
+            objects.push(ObjectMaps {
+                depth: ctx.read_texture(&o.depth)?,
+                diffuse: ctx.read_texture(&o.diffuse)?,
+                caustics: self.read_map(ctx, &o.caustics)?,
+                image: image.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+            });
+        }
+        let s = &frame.setup;
+        Ok(GpuOutput {
+            objects,
+            floor: CausticsMap {
+                width: s.width,
+                height: s.height,
+                size: s.size,
+                texels: self.read_map(ctx, &frame.floor)?,
+            },
+            shadow: match &frame.shadow {
+                Some((tex, _)) => ctx.read_texture(tex)?,
+                None => Vec::new(),
+            },
+            water: ctx.read_buffer(&frame.water)?,
+        })
+    }
+
+    /// Run the technique once and read everything back.
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        setup: &VolumesSetup,
+        input: &VolumesInput,
+        heights: &Grid,
+        wrap: bool,
+    ) -> Result<GpuOutput, GpuError> {
+        let frame = self.frame(ctx, setup, input, heights, wrap)?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode(&frame, &mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        self.read(ctx, &frame)
+    }
+}
+
+fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            store: wgpu::StoreOp::Store,
+        },
+    })
+}

@@ -1,0 +1,238 @@
+//! Technique `volumes`: the GPU passes against their CPU twin. Each pass is compared twice: end to end
+//! (GPU pipeline against CPU pipeline), and from the very same inputs (the GPU's own depth textures,
+//! shadow map and water buffer handed to the CPU pass), where only the rasteriser and f32 rounding
+//! differ.
+
+use caustics_core::grid::Grid;
+use caustics_core::mesh::{cuboid, sphere};
+use caustics_core::techniques::volumes::illumination::{floor_pass, shade_pass, slice_pass};
+use caustics_core::techniques::volumes::representation::covered;
+use caustics_core::techniques::volumes::{
+    self, VolumesInput, VolumesObject, VolumesParams, VolumesSetup,
+};
+use caustics_gpu::context::test_context;
+use caustics_gpu::volumes::{PassUniform, ViewUniform, Volumes, VolumesUniform};
+use glam::{DAffine3, DVec3};
+
+fn heights(n: usize) -> Grid {
+    Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        let tau = std::f64::consts::TAU;
+        (0.004 * (tau * (3.0 * x + y)).sin() + 0.002 * (tau * (-2.0 * x + 5.0 * y) + 1.0).sin())
+            as f32
+    })
+}
+
+fn scene(res: usize) -> VolumesInput {
+    VolumesInput {
+        objects: vec![
+            VolumesObject {
+                mesh: sphere(0.12, 48, 24)
+                    .transformed(DAffine3::from_translation(DVec3::new(0.35, 0.6, 0.13))),
+                albedo: DVec3::new(0.9, 0.4, 0.3),
+            },
+            VolumesObject {
+                mesh: cuboid(DVec3::new(0.1, 0.15, 0.08)).transformed(
+                    DAffine3::from_translation(DVec3::new(0.65, 0.35, 0.08))
+                        * DAffine3::from_rotation_z(0.4),
+                ),
+                albedo: DVec3::new(0.3, 0.6, 0.85),
+            },
+        ],
+        size: 1.0,
+        depth: 0.45,
+        ior: 1.333,
+        absorption: DVec3::new(0.4, 0.1, 0.05),
+        light: DVec3::new(0.35, 0.2, -1.0).normalize(),
+        camera: DVec3::new(0.5, -0.6, 1.6),
+        width: res,
+        height: res,
+    }
+}
+
+/// `Σ |a − b| / Σ |b|` over all channels.
+fn relative_l1(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
+    let (mut d, mut n) = (0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        for c in 0..3 {
+            d += (x[c] - y[c]).abs() as f64;
+            n += y[c].abs() as f64;
+        }
+    }
+    d / n
+}
+
+fn depth_agreement(gpu: &[[f32; 4]], cpu: &[[f32; 4]]) -> (f64, f32) {
+    let mut flips = 0;
+    let mut worst = 0.0f32;
+    for (g, c) in gpu.iter().zip(cpu) {
+        if covered(g) != covered(c) {
+            flips += 1;
+        } else if covered(g) {
+            worst = worst.max((g[0] - c[0]).abs());
+            for k in 1..4 {
+                worst = worst.max((g[k] - c[k]).abs());
+            }
+        }
+    }
+    (flips as f64 / gpu.len() as f64, worst)
+}
+
+/// Tolerances: from the same inputs 5e-4 (measured 1e-6 .. 8e-5: texel centres on shared edges, f32);
+/// end to end 1e-3 (the depth textures and water in f32 against f64 add nothing measurable).
+#[test]
+fn gpu_passes_match_the_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    let volumes = Volumes::new(&ctx).expect("pipelines");
+    let res = 64;
+    let input = scene(res);
+    let h = heights(res);
+    for planes in [5u32, 24] {
+        let params = VolumesParams {
+            planes,
+            texture: 64,
+            water_cells: 64,
+            shadow: 128,
+            ..Default::default()
+        };
+        let setup = VolumesSetup::new(&params, &input).unwrap();
+        let cpu = volumes::caustics(&setup, &input, &h, true);
+        let gpu = volumes
+            .run(&ctx, &setup, &input, &h, true)
+            .expect("GPU run");
+
+        // Water: f32 bicubic and refraction against f64.
+        let cpu_water = volumes::illumination::water_pass(&setup, &h, true);
+        let worst = gpu
+            .water
+            .iter()
+            .zip(&cpu_water)
+            .flat_map(|(g, c)| (0..7).map(move |k| (g[k] - c[k]).abs()))
+            .fold(0.0f32, f32::max);
+        assert!(worst < 1e-5, "water vertices differ by {worst}");
+
+        // Depth textures and the shadow map: the same BVH rays in f32 against f64.
+        let (flips, worst) = depth_agreement(&gpu.shadow, &cpu.shadow);
+        assert!(
+            flips < 2e-3 && worst < 1e-3,
+            "shadow map: {flips} flips, {worst}"
+        );
+        for (g, c) in gpu.objects.iter().zip(&cpu.objects) {
+            let (flips, worst) = depth_agreement(&g.depth, &c.depth);
+            assert!(
+                flips < 2e-3 && worst < 1e-3,
+                "depth texture: {flips} flips, {worst}"
+            );
+            assert_eq!(
+                g.diffuse.iter().filter(|d| d[3] > 0.0).count(),
+                g.depth.iter().filter(|t| covered(t)).count()
+            );
+        }
+
+        // Slices from the GPU's own inputs: only the rasteriser's tie rule and f32 differ.
+        for (k, (g, o)) in gpu.objects.iter().zip(&setup.objects).enumerate() {
+            let same = slice_pass(&setup, o, &g.depth, &gpu.water, &gpu.shadow);
+            let e = relative_l1(&g.caustics, &same);
+            eprintln!("{planes} planes, object {k}: slices GPU vs CPU (same inputs) {e:.2e}");
+            assert!(e < 5e-4, "object {k}: {e}");
+            let lit = same.iter().filter(|t| t[0] > 0.05).count();
+            assert!(lit > 200, "object {k} is lit: {lit}");
+            // Eq. 4 from the GPU's own maps.
+            let image = shade_pass(&g.diffuse, &g.caustics, setup.params.ambient);
+            assert!(relative_l1(&g.image, &image) < 1e-6);
+            // End to end.
+            let e = relative_l1(&g.caustics, &cpu.objects[k].caustics);
+            eprintln!("{planes} planes, object {k}: slices GPU vs CPU (end to end) {e:.2e}");
+            assert!(e < 1e-3, "object {k} end to end: {e}");
+        }
+        let same = floor_pass(&setup, &gpu.water, &gpu.shadow);
+        let e = relative_l1(&gpu.floor.texels, &same.texels);
+        eprintln!("{planes} planes: floor GPU vs CPU (same inputs) {e:.2e}");
+        assert!(e < 5e-4, "floor: {e}");
+        let e = relative_l1(&gpu.floor.texels, &cpu.floor.texels);
+        eprintln!("{planes} planes: floor GPU vs CPU (end to end) {e:.2e}");
+        assert!(e < 1e-3, "floor end to end: {e}");
+    }
+}
+
+/// Without `FLOAT32_BLENDABLE` the maps are `Rgba16Float`: the same maps to half precision.
+#[test]
+fn half_float_maps_match_full_float() {
+    let Some(ctx) = test_context() else { return };
+    let full = Volumes::new(&ctx).expect("pipelines");
+    let half = Volumes::with_format(&ctx, wgpu::TextureFormat::Rgba16Float).expect("pipelines");
+    let input = scene(48);
+    let params = VolumesParams {
+        planes: 8,
+        texture: 48,
+        water_cells: 48,
+        shadow: 96,
+        ..Default::default()
+    };
+    let setup = VolumesSetup::new(&params, &input).unwrap();
+    let h = heights(48);
+    let a = full.run(&ctx, &setup, &input, &h, true).unwrap();
+    let b = half.run(&ctx, &setup, &input, &h, true).unwrap();
+    let e = relative_l1(&b.floor.texels, &a.floor.texels);
+    assert!(e < 5e-3, "floor {e}");
+    for (x, y) in b.objects.iter().zip(&a.objects) {
+        let e = relative_l1(&x.caustics, &y.caustics);
+        assert!(e < 5e-3, "object {e}");
+    }
+}
+
+#[test]
+fn uniform_structs_match_their_wgsl_size() {
+    let module = naga::front::wgsl::parse_str(&caustics_gpu::volumes::SLICES.composed()).unwrap();
+    let size_of = |name: &str| {
+        let (_, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
+        ty.inner.size(module.to_ctx()) as usize
+    };
+    assert_eq!(size_of("View"), std::mem::size_of::<ViewUniform>());
+    assert_eq!(size_of("Volumes"), std::mem::size_of::<VolumesUniform>());
+    assert_eq!(size_of("Pass"), std::mem::size_of::<PassUniform>());
+    assert_eq!(size_of("WaterVertex"), 32);
+}
+
+#[test]
+fn a_texture_beyond_the_device_limit_is_refused() {
+    let Some(ctx) = test_context() else { return };
+    let volumes = Volumes::new(&ctx).expect("pipelines");
+    let max = ctx.limits().max_texture_dimension_2d as usize;
+    let input = scene(max + 1);
+    let params = VolumesParams {
+        planes: 2,
+        texture: 16,
+        water_cells: 16,
+        shadow: 16,
+        ..Default::default()
+    };
+    let setup = VolumesSetup::new(&params, &input).unwrap();
+    let err = volumes
+        .frame(&ctx, &setup, &input, &heights(16), true)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(err.contains("volumes floor map"), "{err}");
+}
+
+#[test]
+fn every_volumes_pass_validates() {
+    use caustics_gpu::volumes::{DEPTH, FLOOR, SHADE, SLICES, WATER_PASS};
+    for pass in [&DEPTH, &WATER_PASS, &SLICES, &FLOOR, &SHADE] {
+        let source = pass.composed();
+        let module = naga::front::wgsl::parse_str(&source)
+            .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
+    }
+}
