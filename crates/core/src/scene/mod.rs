@@ -73,7 +73,18 @@ pub struct WaterSpec {
 #[serde(deny_unknown_fields)]
 pub struct LightSpec {
     /// The direction the sunlight travels; need not be normalised; must point down (z < 0).
-    pub direction: [f64; 3],
+    /// Required for the sun; with `position`, the axis of a spot light's cone (default straight
+    /// down).
+    #[serde(default)]
+    pub direction: Option<[f64; 3]>,
+    /// A point light at this position instead of the sun (above the floor, z > 0). Only technique
+    /// `caustic-triangles` renders it (paper 4, §4: the light cube map); the others refuse it.
+    #[serde(default)]
+    pub position: Option<[f64; 3]>,
+    /// With `position`: a spot light, lighting the cone of this half-angle (degrees, in (0, 90])
+    /// around `direction`.
+    #[serde(default)]
+    pub cone: Option<f64>,
     #[serde(default = "white")]
     pub color: [f64; 3],
     #[serde(default = "one")]
@@ -310,10 +321,23 @@ impl Water {
 
 #[derive(Clone, Debug)]
 pub struct Light {
-    /// Unit direction of travel, z < 0.
+    /// Unit direction of travel, z < 0 (the sun's; a spot light's axis; straight down for a bare
+    /// point light).
     pub direction: DVec3,
     pub color: DVec3,
     pub intensity: f64,
+    /// A point light here instead of the sun (z > 0).
+    pub position: Option<DVec3>,
+    /// A spot light's half-angle around `direction`, radians (with `position` only).
+    pub cone: Option<f64>,
+}
+
+impl Light {
+    /// Whether this is the directional sun (no `position`), the light every technique but
+    /// caustic-triangles needs.
+    pub fn is_sun(&self) -> bool {
+        self.position.is_none()
+    }
 }
 
 #[derive(Clone, Debug)]

@@ -164,8 +164,50 @@ fn default_camera(size: f64, depth: f64) -> Camera {
 }
 
 fn validate_light(l: &LightSpec) -> Result<Light> {
-    finite("light.direction", &l.direction)?;
-    let d = DVec3::from(l.direction);
+    let position = match l.position {
+        Some(p) => {
+            finite("light.position", &p)?;
+            if p[2] <= 0.0 {
+                return Err(Error::field(
+                    "light.position",
+                    format!("{p:?} is not above the floor: a point light needs z > 0"),
+                ));
+            }
+            Some(DVec3::from(p))
+        }
+        None => None,
+    };
+    let cone = match (l.cone, position) {
+        (None, _) => None,
+        (Some(_), None) => {
+            return Err(Error::field(
+                "light.cone",
+                "makes a spot light and needs light.position (the sun has no cone)",
+            ));
+        }
+        (Some(c), Some(_)) => {
+            finite("light.cone", &[c])?;
+            if !(c > 0.0 && c <= 90.0) {
+                return Err(Error::field(
+                    "light.cone",
+                    format!("is the spot's half-angle in degrees and must be in (0, 90], got {c}"),
+                ));
+            }
+            Some(c.to_radians())
+        }
+    };
+    let direction = match (l.direction, position) {
+        (Some(d), _) => d,
+        (None, Some(_)) => [0.0, 0.0, -1.0],
+        (None, None) => {
+            return Err(Error::field(
+                "light.direction",
+                "is required for the sun (give light.position for a point light)",
+            ));
+        }
+    };
+    finite("light.direction", &direction)?;
+    let d = DVec3::from(direction);
     if d.length() < 1e-12 {
         return Err(Error::field(
             "light.direction",
@@ -178,7 +220,7 @@ fn validate_light(l: &LightSpec) -> Result<Light> {
             "light.direction",
             format!(
                 "{:?} points up or along the horizon: it is the direction the sunlight travels, so its z must be negative",
-                l.direction
+                direction
             ),
         ));
     }
@@ -194,6 +236,8 @@ fn validate_light(l: &LightSpec) -> Result<Light> {
         direction: d,
         color: l.color.into(),
         intensity: l.intensity,
+        position,
+        cone,
     })
 }
 

@@ -99,6 +99,22 @@ pub fn check_inputs(width: usize, height: usize, light: glam::DVec3) -> crate::R
     Ok(light.normalize())
 }
 
+/// Whether technique `name` can light a scene with `light`: a point or spot light (`position` in
+/// `[light]`) is rendered by caustic-triangles alone (its light cube map, paper 4 §4); every other
+/// technique, and the general final image, needs the directional sun.
+pub fn check_light(name: &str, light: &crate::scene::Light) -> crate::Result<()> {
+    if light.is_sun() || name == "caustic-triangles" {
+        return Ok(());
+    }
+    Err(crate::Error::field(
+        "light.position",
+        format!(
+            "technique `{name}` needs the directional sun (light.direction without light.position); \
+             only caustic-triangles renders a point or spot light"
+        ),
+    ))
+}
+
 pub fn is_known(name: &str) -> bool {
     TECHNIQUES.iter().any(|t| t.name == name)
 }

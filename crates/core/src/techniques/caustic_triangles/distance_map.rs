@@ -39,6 +39,28 @@ pub struct DistanceMap {
     pub texels: Vec<[f32; 4]>,
 }
 
+/// Which glass crossings a traced ray stops at (diffuse surfaces always stop it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Crossing {
+    /// Entering the glass (a ray outside it).
+    Entering,
+    /// Leaving the glass (a ray inside it).
+    Leaving,
+    /// None: the glass is looked through (the camera pass's secondary rays).
+    DiffuseOnly,
+}
+
+impl Crossing {
+    /// The code the WGSL twin takes.
+    pub fn code(self) -> u32 {
+        match self {
+            Crossing::Entering => 0,
+            Crossing::Leaving => 1,
+            Crossing::DiffuseOnly => 2,
+        }
+    }
+}
+
 /// A surface found in the map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {
@@ -212,6 +234,26 @@ impl DistanceMap {
         linear_steps: u32,
         secant_iterations: u32,
     ) -> Option<(f64, Surface)> {
+        let mode = if inside {
+            Crossing::Leaving
+        } else {
+            Crossing::Entering
+        };
+        self.trace_mode(x, r, d0, d1, mode, linear_steps, secant_iterations)
+    }
+
+    /// [`trace`](Self::trace) with the glass crossings that count given by `mode`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn trace_mode(
+        &self,
+        x: DVec3,
+        r: DVec3,
+        d0: f64,
+        d1: f64,
+        mode: Crossing,
+        linear_steps: u32,
+        secant_iterations: u32,
+    ) -> Option<(f64, Surface)> {
         if d1 <= d0 {
             return None;
         }
@@ -234,7 +276,12 @@ impl DistanceMap {
                     && let Some(hit) =
                         self.secant(k, x, r, (d_lo, f_lo), (d_hi, f_hi), secant_iterations, tol)
                 {
-                    let crossing_ok = !hit.1.glass || ((r.dot(hit.1.normal) < 0.0) != inside);
+                    let crossing_ok = !hit.1.glass
+                        || match mode {
+                            Crossing::Entering => r.dot(hit.1.normal) < 0.0,
+                            Crossing::Leaving => r.dot(hit.1.normal) >= 0.0,
+                            Crossing::DiffuseOnly => false,
+                        };
                     if crossing_ok && best.is_none_or(|b| hit.0 < b.0) {
                         best = Some(hit);
                     }

@@ -67,6 +67,8 @@
 //! texels, `ΔΦ / (s² A_texel)` over the texel centres it covers: the method the paper argues
 //! against (Fig. 1), for comparison.
 
+pub mod camera;
+pub mod cube;
 pub mod distance_map;
 pub mod reference;
 pub mod scene;
@@ -79,7 +81,9 @@ use crate::error::{Error, Result};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, reflect, refract};
 pub use distance_map::DistanceMap;
-pub use scene::{FloorWindow, GlassScene, Occluder, Shape, light_frame};
+pub use scene::{
+    FloorWindow, GlassScene, Occluder, PointLight, Shape, bounding_sphere, light_frame,
+};
 
 /// How a vertex's area `ΔA` is taken from the triangles around it (see the module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -107,8 +111,11 @@ impl AreaRule {
 pub struct CausticTrianglesParams {
     /// Side of the photon hit location image, `P` (the paper: 128).
     pub photon_image: u32,
-    /// Texels per cube-map face side (the paper: 512).
+    /// Texels per face side of the generator's distance map.
     pub cube_resolution: u32,
+    /// Texels per face side of the light cube map a point light's caustic triangles are drawn
+    /// into (the paper: 512).
+    pub light_cube: u32,
     /// Layers of the distance map.
     pub layers: u32,
     /// Linear search steps per ray segment.
@@ -128,6 +135,7 @@ impl Default for CausticTrianglesParams {
         CausticTrianglesParams {
             photon_image: 128,
             cube_resolution: 256,
+            light_cube: 512,
             layers: 4,
             linear_steps: 64,
             secant_iterations: 8,
@@ -171,6 +179,12 @@ impl CausticTrianglesParams {
             return f(
                 "cube_resolution",
                 format!("must be 2 to 2048, got {}", self.cube_resolution),
+            );
+        }
+        if !(2..=4096).contains(&self.light_cube) {
+            return f(
+                "light_cube",
+                format!("must be 2 to 4096, got {}", self.light_cube),
             );
         }
         if !(1..=MAX_LAYERS).contains(&self.layers) {
@@ -224,15 +238,36 @@ pub struct CausticTrianglesSetup {
     pub area_rule: AreaRule,
     pub splat_size: f64,
     pub floor: FloorWindow,
+    /// A point light: the photon image spans the tangent plane of the directions from the light
+    /// to the generator's bounding sphere (`rect_lo`, `cell` in units of `tan`), `flux` is the
+    /// power through the texel straight along `w`.
+    pub point: Option<PointLight>,
+    /// Face side of the light cube map (point lights).
+    pub light_cube: usize,
 }
 
 impl CausticTrianglesSetup {
     pub fn new(params: &CausticTrianglesParams, scene: &GlassScene) -> Result<Self> {
         params.validate()?;
         let (u, v, w) = light_frame(scene.light);
-        let (lo, hi) = scene.generator.light_rect(u, v);
         let p = params.photon_image as usize;
+        let (lo, hi) = match scene.point {
+            None => scene.generator.light_rect(u, v),
+            Some(pl) => {
+                let (c, r) = bounding_sphere(&scene.generator);
+                let d2 = (c - pl.position).length_squared();
+                let tan = r / (d2 - r * r).max(1e-30).sqrt();
+                (DVec2::splat(-tan), DVec2::splat(tan))
+            }
+        };
         let cell = (hi - lo) / p as f64;
+        // The sun puts `a⊥ / |L_z|` floor-area units through a texel of area `a⊥`; a point light
+        // of intensity I puts `I dω` through a solid angle dω, and a tangent-plane cell of area a at
+        // q subtends `a / (1 + q²)^{3/2}`.
+        let flux = match scene.point {
+            None => cell.x * cell.y / -scene.light.z,
+            Some(pl) => pl.intensity() * cell.x * cell.y,
+        };
         Ok(CausticTrianglesSetup {
             p,
             u,
@@ -240,7 +275,7 @@ impl CausticTrianglesSetup {
             w,
             rect_lo: lo,
             cell,
-            flux: cell.x * cell.y / -scene.light.z,
+            flux,
             ior: scene.ior,
             depth: params.depth,
             fresnel: params.fresnel,
@@ -249,7 +284,32 @@ impl CausticTrianglesSetup {
             area_rule: params.area_rule,
             splat_size: params.splat_size,
             floor: scene.floor,
+            point: scene.point,
+            light_cube: params.light_cube as usize,
         })
+    }
+
+    /// The light ray of photon-image texel `(i, j)`: where it starts (outside the distance map's
+    /// sphere, on the way in), its unit direction and its power; `None` where the texel carries no
+    /// light into the map (outside a spot's cone, or missing the map's sphere).
+    pub fn photon_ray(&self, dm: &DistanceMap, i: usize, j: usize) -> Option<(DVec3, DVec3, f64)> {
+        let Some(pl) = self.point else {
+            return Some((self.photon_origin(dm, i, j), self.w, self.flux));
+        };
+        let q = self.rect_lo + self.cell * DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
+        let len2 = 1.0 + q.length_squared();
+        let d = (self.w + self.u * q.x + self.v * q.y) / len2.sqrt();
+        if !pl.lights(d) {
+            return None;
+        }
+        let oc = pl.position - dm.centre;
+        let b = oc.dot(d);
+        let disc = b * b - (oc.length_squared() - dm.radius * dm.radius);
+        if disc <= 0.0 {
+            return None;
+        }
+        let t = (-b - disc.sqrt()).max(0.0);
+        Some((pl.position + d * t, d, self.flux / (len2 * len2.sqrt())))
     }
 
     /// Where the light ray of photon-image texel `(i, j)` starts: behind the distance map's sphere.
@@ -272,11 +332,11 @@ pub fn signature(refractions: u32, tir: u32) -> f32 {
 /// Photon tracing pass (§4.1) for texel `(i, j)`: `(x, y, Φ, σ)` of its floor hit ([`signature`]),
 /// or [`INVALID`].
 pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usize) -> [f32; 4] {
-    let mut x = setup.photon_origin(dm, i, j);
-    let mut r = setup.w;
+    let Some((mut x, mut r, mut power)) = setup.photon_ray(dm, i, j) else {
+        return INVALID;
+    };
     let mut inside = false;
     let mut hit_glass = false;
-    let mut power = setup.flux;
     let mut d0 = 0.0;
     let (mut refractions, mut tir) = (0u32, 0u32);
     let eps = 1e-4 * dm.radius;

@@ -29,7 +29,7 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::scene::{GlassScene, light_frame};
+use super::scene::{GlassScene, bounding_sphere, light_frame};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, reflect, refract};
 
@@ -220,7 +220,19 @@ impl Tracer<'_> {
 /// where the power went.
 pub fn reference(scene: &GlassScene, opts: &ReferenceOptions) -> ReferenceResult {
     let (u, v, w) = light_frame(scene.light);
-    let (lo, hi) = scene.generator.light_rect(u, v);
+    // A point light: a jittered grid over the tangent plane (at distance 1 along `w`) of the cone
+    // of directions from the light to the generator's bounding sphere, a photon at q carrying
+    // `I a / (1 + q²)^{3/2}` (the solid angle of its cell); directions outside a spot's cone
+    // carry nothing.
+    let (lo, hi) = match scene.point {
+        None => scene.generator.light_rect(u, v),
+        Some(pl) => {
+            let (c, r) = bounding_sphere(&scene.generator);
+            let d2 = (c - pl.position).length_squared();
+            let tan = r / (d2 - r * r).max(1e-30).sqrt();
+            (DVec2::splat(-tan), DVec2::splat(tan))
+        }
+    };
     let n = opts.photons.max(1) as usize;
     let cell = (hi - lo) / n as f64;
     // Start every photon outside everything: behind the farthest point of the scene along L.
@@ -231,7 +243,10 @@ pub fn reference(scene: &GlassScene, opts: &ReferenceOptions) -> ReferenceResult
         reach = reach.max(a.length()).max(c.length());
     }
     let start = -2.0 * reach;
-    let flux = cell.x * cell.y / -scene.light.z / scene.floor.texel_area();
+    let flux = match scene.point {
+        None => cell.x * cell.y / -scene.light.z,
+        Some(pl) => pl.intensity() * cell.x * cell.y,
+    } / scene.floor.texel_area();
     let texels = scene.floor.width * scene.floor.height;
     let tracer = Tracer { scene, opts };
     let (acc, budget) = (0..n)
@@ -243,20 +258,30 @@ pub fn reference(scene: &GlassScene, opts: &ReferenceOptions) -> ReferenceResult
                     let k = (i * n + j) as u64 ^ opts.seed.wrapping_mul(0x2545_F491_4F6C_DD1D);
                     let q = lo
                         + cell * DVec2::new(j as f64 + hash01(2 * k), i as f64 + hash01(2 * k + 1));
-                    let origin = u * q.x + v * q.y + w * start;
-                    let first = scene.generator.intersect(origin, w, f64::INFINITY);
+                    let (origin, dir, power) = match scene.point {
+                        None => (u * q.x + v * q.y + w * start, w, flux),
+                        Some(pl) => {
+                            let len2 = 1.0 + q.length_squared();
+                            let d = (w + u * q.x + v * q.y) / len2.sqrt();
+                            if !pl.lights(d) {
+                                continue;
+                            }
+                            (pl.position, d, flux / (len2 * len2.sqrt()))
+                        }
+                    };
+                    let first = scene.generator.intersect(origin, dir, f64::INFINITY);
                     let Some((t, _)) = first else { continue };
-                    if scene.occluder_hit(origin, w, t).is_some() {
+                    if scene.occluder_hit(origin, dir, t).is_some() {
                         continue;
                     }
-                    if origin.z + w.z * t < 0.0 {
+                    if origin.z + dir.z * t < 0.0 {
                         continue; // the part of the generator under the floor
                     }
                     let mut pb = PowerBudget {
-                        incident: flux,
+                        incident: power,
                         ..Default::default()
                     };
-                    tracer.trace(origin, w, false, flux, 0, &mut map, &mut pb);
+                    tracer.trace(origin, dir, false, power, 0, &mut map, &mut pb);
                     b.add(&pb);
                 }
                 (map, b)

@@ -121,15 +121,61 @@ impl FloorWindow {
     }
 }
 
+/// A point light (paper 4, §4: the light the light cube map is centred at), optionally a spot.
+///
+/// Its radiant intensity is `position.z²` in the technique's floor units, so that it puts
+/// irradiance 1 on the floor straight below it, as the sun puts 1 on the floor anywhere: the maps
+/// and images of both lights read the same.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: DVec3,
+    /// Unit axis of the spot's cone.
+    pub axis: DVec3,
+    /// The spot's half-angle, radians; `None` lights every direction.
+    pub cone: Option<f64>,
+}
+
+impl PointLight {
+    /// Radiant intensity, floor units (irradiance 1 on the floor straight below the light).
+    pub fn intensity(&self) -> f64 {
+        self.position.z * self.position.z
+    }
+
+    /// Whether the unit direction `d` from the light lies in the spot's cone.
+    pub fn lights(&self, d: DVec3) -> bool {
+        self.cone.is_none_or(|c| d.dot(self.axis) >= c.cos())
+    }
+}
+
 /// Everything the technique and the reference need.
 #[derive(Clone, Debug)]
 pub struct GlassScene {
     pub generator: Shape,
     pub ior: f64,
     pub occluders: Vec<Occluder>,
-    /// Unit direction the sunlight travels, `z < 0`.
+    /// Unit direction the sunlight travels, `z < 0`; for a point light, the direction from the
+    /// light to the generator's bounding-sphere centre (the axis of its photon image).
     pub light: DVec3,
+    /// A point light instead of the sun.
+    pub point: Option<PointLight>,
     pub floor: FloorWindow,
+}
+
+/// The generator's bounding sphere: the centre of its bounding box and the farthest vertex.
+pub fn bounding_sphere(shape: &Shape) -> (DVec3, f64) {
+    match shape {
+        Shape::Sphere { centre, radius } => (*centre, *radius),
+        Shape::Mesh { mesh, .. } => {
+            let (lo, hi) = mesh.bounds();
+            let c = 0.5 * (lo + hi);
+            let r = mesh
+                .positions
+                .iter()
+                .map(|p| (*p - c).length())
+                .fold(0.0, f64::max);
+            (c, r)
+        }
+    }
 }
 
 /// The light's frame: `w` the direction of travel, `u`, `v` spanning the plane across it.
@@ -169,8 +215,43 @@ impl GlassScene {
             ior,
             occluders,
             light: light.normalize(),
+            point: None,
             floor,
         })
+    }
+
+    /// The same scene lit by the point (or spot) light `point` instead of the sun. The light must be
+    /// outside the generator's bounding sphere (its photon image spans the sphere's cone).
+    pub fn with_point_light(mut self, point: PointLight) -> Result<Self> {
+        let (c, r) = bounding_sphere(&self.generator);
+        let to = c - point.position;
+        if !point.position.is_finite() || point.position.z <= 0.0 {
+            return Err(Error::InvalidParameter(format!(
+                "the point light at {} must be above the floor (z > 0)",
+                point.position
+            )));
+        }
+        if to.length() <= r * 1.01 {
+            return Err(Error::InvalidParameter(format!(
+                "the point light at {} is inside the caustic generator's bounding sphere (centre {c}, \
+                 radius {r:.4}): caustic-triangles needs it outside",
+                point.position
+            )));
+        }
+        let axis = point.axis.try_normalize().ok_or_else(|| {
+            Error::InvalidParameter("the spot light's axis must not be the zero vector".into())
+        })?;
+        if let Some(cone) = point.cone
+            && !(cone > 0.0 && cone <= std::f64::consts::FRAC_PI_2)
+        {
+            return Err(Error::InvalidParameter(format!(
+                "the spot light's half-angle must be in (0, 90] degrees, got {}",
+                cone.to_degrees()
+            )));
+        }
+        self.light = to.normalize();
+        self.point = Some(PointLight { axis, ..point });
+        Ok(self)
     }
 
     /// The scene's `index`-th glass object as the generator (its mesh), its diffuse objects as
@@ -197,7 +278,7 @@ impl GlassScene {
             .filter(|o| matches!(o.material, Material::Diffuse { .. }))
             .map(|o| Occluder::new(o.mesh.clone()))
             .collect();
-        GlassScene::new(
+        let gs = GlassScene::new(
             Shape::mesh(obj.mesh.clone()),
             ior,
             scene.light.direction,
@@ -208,7 +289,15 @@ impl GlassScene {
                 height: scene.caustics.height as usize,
             },
             occluders,
-        )
+        )?;
+        match scene.light.position {
+            None => Ok(gs),
+            Some(position) => gs.with_point_light(PointLight {
+                position,
+                axis: scene.light.direction,
+                cone: scene.light.cone,
+            }),
+        }
     }
 
     /// Nearest occluder hit before `t_max`.

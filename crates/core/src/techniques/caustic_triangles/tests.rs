@@ -2,6 +2,7 @@ use glam::{DVec2, DVec3};
 
 use super::reference::{ReferenceOptions, reference};
 use super::*;
+use super::{cube, distance_map};
 use crate::metrics::compare;
 
 /// A glass ball above the floor lit from an angle, the floor window around its caustic.
@@ -254,4 +255,238 @@ fn photons_record_their_path_signature() {
     let valid: Vec<_> = photons.iter().filter(|t| t[2] >= 0.0).collect();
     assert!(!valid.is_empty());
     assert!(valid.iter().all(|t| t[3] == signature(2, 0)));
+}
+
+/// The ball of [`ball_scene`] lit by a point light (a spot when `cone` is given, axis at the
+/// ball's centre), the floor window around where the ray through the centre lands.
+/// The ball (r 0.2, n 1.5) at height 0.6 with the light 0.85 from its centre: the image of the
+/// light lies 0.47 from the centre, the floor ~0.65 beyond it: a spread caustic.
+pub(crate) fn lamp_scene(res: usize, window: f64, cone: Option<f64>) -> GlassScene {
+    let centre = DVec3::new(0.0, 0.0, 0.6);
+    let position = DVec3::new(-0.3, -0.2, 1.37);
+    let dir = (centre - position).normalize();
+    let foot = centre.truncate() + dir.truncate() * (centre.z / -dir.z);
+    let s = GlassScene::new(
+        Shape::Sphere {
+            centre,
+            radius: 0.2,
+        },
+        1.5,
+        DVec3::NEG_Z,
+        FloorWindow {
+            origin: foot - DVec2::splat(window / 2.0),
+            size: window,
+            width: res,
+            height: res,
+        },
+        vec![],
+    )
+    .unwrap();
+    s.with_point_light(PointLight {
+        position,
+        axis: dir,
+        cone,
+    })
+    .unwrap()
+}
+
+#[test]
+fn point_light_triangles_match_the_point_light_reference() {
+    let s = lamp_scene(128, 0.6, None);
+    let dm = DistanceMap::build(&s, 128, 2);
+    let r = reference(
+        &s,
+        &ReferenceOptions {
+            photons: 1024,
+            reflections: false,
+            ..Default::default()
+        },
+    );
+    let setup = CausticTrianglesSetup::new(&params(128), &s).unwrap();
+    let out = caustics(&setup, &dm);
+    let ours = photon_power(&out.photons);
+    let truth = r.budget.on_map + r.budget.off_map;
+    let m = compare(&out.map, &r.map);
+    eprintln!("point light: photons {ours} vs reference floor power {truth}; map {m:?}");
+    assert!((ours / truth - 1.0).abs() < 0.02, "{ours} vs {truth}");
+    assert!(m.relative_l1 < 0.06 && m.flux_error.abs() < 0.01, "{m:?}");
+}
+
+#[test]
+fn a_spot_lights_only_its_cone() {
+    // A cone of 4° around the axis through the ball's centre: a narrower pencil than the ball.
+    let s = lamp_scene(64, 0.6, Some(4f64.to_radians()));
+    let dm = DistanceMap::build(&s, 128, 2);
+    let setup = CausticTrianglesSetup::new(&params(64), &s).unwrap();
+    let photons = photon_pass(&setup, &dm);
+    let pl = s.point.unwrap();
+    let mut lit = 0;
+    for (k, t) in photons.iter().enumerate() {
+        let Some((_, d, _)) = setup.photon_ray(&dm, k / 64, k % 64) else {
+            assert!(t[2] < 0.0, "photon {k} outside the cone is valid");
+            continue;
+        };
+        assert!(d.dot(pl.axis) >= 4f64.to_radians().cos() - 1e-12);
+        lit += (t[2] >= 0.0) as usize;
+    }
+    assert!(lit > 100, "{lit} photons in the cone");
+    let r = reference(
+        &s,
+        &ReferenceOptions {
+            photons: 512,
+            reflections: false,
+            ..Default::default()
+        },
+    );
+    let truth = r.budget.on_map + r.budget.off_map;
+    let ours = photon_power(&photons);
+    assert!((ours / truth - 1.0).abs() < 0.03, "{ours} vs {truth}");
+}
+
+/// Floor area the light cube texel `k` sees: its solid angle times `d² / cos`.
+fn texel_floor_area(cube: &cube::LightCube, k: usize) -> f64 {
+    let c = cube.resolution;
+    let (face, row, col) = (k / (c * c), (k / c) % c, k % c);
+    let d = distance_map::texel_dir(face, row, col, c);
+    // Solid angle of a texel of side 2/C at face coordinates (s, t): (2/C)² / (1 + s² + t²)^{3/2}.
+    let l = cube::face_local(face, d);
+    let (s, t) = (l.x / l.z, l.y / l.z);
+    let omega = (2.0 / c as f64).powi(2) / (1.0 + s * s + t * t).powf(1.5);
+    let dist = cube.position.z / -d.z;
+    omega * dist * dist / -d.z
+}
+
+#[test]
+fn the_light_cube_map_carries_the_floor_caustic() {
+    // The hat rule draws every photon's power, and the floor map is wide enough for all of it.
+    let s = lamp_scene(512, 4.0, None);
+    let dm = DistanceMap::build(&s, 128, 2);
+    let setup = CausticTrianglesSetup::new(
+        &CausticTrianglesParams {
+            area_rule: AreaRule::Hat,
+            ..params(96)
+        },
+        &s,
+    )
+    .unwrap();
+    let out = caustics(&setup, &dm);
+    let pl = s.point.unwrap();
+    let mut cube = cube::LightCube::new(256, pl.position);
+    cube::cube_triangles_pass(&setup, &out.photons, &out.irradiance, &mut cube);
+    // Power: Σ E × the floor area of the texel, against the floor map's.
+    let mut cube_power = 0.0;
+    let (mut distance_error, mut weight) = (0.0f64, 0.0f64);
+    for (k, t) in cube.caustic.iter().enumerate() {
+        if t[0] <= 0.0 {
+            continue;
+        }
+        cube_power += t[0] as f64 * texel_floor_area(&cube, k);
+        // The receiver distance is the floor's along the texel centre.
+        let c = cube.resolution;
+        let d = distance_map::texel_dir(k / (c * c), (k / c) % c, k % c, c);
+        let floor = pl.position.z / -d.z;
+        distance_error += t[0] as f64 * ((t[1] / t[0]) as f64 / floor - 1.0).abs();
+        weight += t[0] as f64;
+    }
+    let map_power: f64 =
+        out.map.texels.iter().map(|t| t[0] as f64).sum::<f64>() * s.floor.texel_area();
+    let distance_error = distance_error / weight;
+    eprintln!("cube {cube_power} map {map_power} receiver distance error {distance_error:.2e}");
+    assert!(
+        (cube_power / map_power - 1.0).abs() < 0.02,
+        "{cube_power} vs {map_power}"
+    );
+    // Distances are interpolated linearly across a triangle, not exact inside it.
+    assert!(distance_error < 1e-3, "{distance_error}");
+}
+
+#[test]
+fn shadow_distances_are_the_first_surface() {
+    let s = lamp_scene(32, 0.6, None);
+    let dm = DistanceMap::build(&s, 128, 2);
+    let setup = CausticTrianglesSetup::new(&params(32), &s).unwrap();
+    let pl = s.point.unwrap();
+    let mut cube = cube::LightCube::new(64, pl.position);
+    cube::shadow_pass(&[(&setup, &dm)], &mut cube);
+    let (mut sphere, mut floor) = (0, 0);
+    for (k, &got) in cube.shadow.iter().enumerate() {
+        let d = distance_map::texel_dir(k / 4096, (k / 64) % 64, k % 64, 64);
+        let exact = s
+            .generator
+            .intersect(pl.position, d, f64::INFINITY)
+            .map(|h| h.0)
+            .or((d.z < 0.0).then(|| pl.position.z / -d.z));
+        match exact {
+            None => assert_eq!(got, cube::FAR, "texel {k}"),
+            Some(t) => {
+                // Texels at the sphere's silhouette may see the floor through the map's search.
+                let hit_sphere = s
+                    .generator
+                    .intersect(pl.position, d, f64::INFINITY)
+                    .is_some();
+                if hit_sphere {
+                    sphere += 1;
+                } else {
+                    floor += 1;
+                }
+                let err = (got as f64 / t - 1.0).abs();
+                assert!(
+                    err < 1e-3 || hit_sphere && err < 0.5,
+                    "texel {k}: {got} vs {t}"
+                );
+            }
+        }
+    }
+    assert!(sphere > 20 && floor > 1000, "{sphere} {floor}");
+}
+
+#[test]
+fn point_and_spot_lights_are_validated_and_refused_by_the_sun_techniques() {
+    let load = |light: &str| {
+        crate::scene::Scene::from_toml(
+            &format!(
+                "[[objects]]\nshape = {{ kind = \"sphere\" }}\nposition = [0.5, 0.5, 0.2]\nscale = 0.1\nmaterial = {{ kind = \"glass\", ior = 1.5 }}\n[light]\n{light}\n"
+            ),
+            std::path::Path::new("."),
+            "test",
+        )
+    };
+    let err = |light: &str| load(light).unwrap_err().to_string();
+    // The sun, as before.
+    let sun = load("direction = [0.3, 0.2, -1.0]").unwrap();
+    assert!(sun.light.is_sun());
+    assert!(crate::techniques::check_light("yuksel", &sun.light).is_ok());
+    assert!(err("color = [1.0, 1.0, 1.0]").contains("light.direction"));
+    // A point light, and a spot.
+    let lamp = load("position = [0.2, 0.3, 1.2]").unwrap();
+    assert_eq!(lamp.light.position, Some(DVec3::new(0.2, 0.3, 1.2)));
+    assert_eq!(lamp.light.direction, DVec3::NEG_Z);
+    let spot =
+        load("position = [0.2, 0.3, 1.2]\ndirection = [0.3, 0.2, -1.0]\ncone = 30.0").unwrap();
+    assert!((spot.light.cone.unwrap() - 30f64.to_radians()).abs() < 1e-12);
+    for (light, field) in [
+        ("position = [0.2, 0.3, -1.0]", "light.position"),
+        ("position = [0.2, 0.3, 1.0]\ncone = 0.0", "light.cone"),
+        ("position = [0.2, 0.3, 1.0]\ncone = 120.0", "light.cone"),
+        ("direction = [0.0, 0.0, -1.0]\ncone = 20.0", "light.cone"),
+        (
+            "position = [0.2, 0.3, 1.0]\ndirection = [0.0, 0.0, 1.0]",
+            "light.direction",
+        ),
+    ] {
+        let e = err(light);
+        assert!(e.contains(field), "{light}: {e}");
+    }
+    // Only caustic-triangles renders it.
+    for name in ["reference", "yuksel", "procedural", "cascaded"] {
+        let e = crate::techniques::check_light(name, &lamp.light)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("light.position") && e.contains(name), "{e}");
+    }
+    assert!(crate::techniques::check_light("caustic-triangles", &lamp.light).is_ok());
+    // A light inside the generator's bounding sphere is refused with the reason.
+    let inside = load("position = [0.5, 0.5, 0.25]").unwrap();
+    let e = GlassScene::from_scene(&inside, 0).unwrap_err().to_string();
+    assert!(e.contains("inside the caustic generator"), "{e}");
 }
