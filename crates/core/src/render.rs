@@ -10,6 +10,12 @@
 //! - On the way back to the eye, the view ray is attenuated by `exp(−K d)` in the water and
 //!   transmitted with `1 − R`, where `R` is the Fresnel reflectance of the surface for the view ray;
 //!   `R` weights the reflected sky.
+//! - The caustics come from a map of the floor square ([`Caustics::Floor`]), or, for a technique
+//!   that computes them in the eye camera's screen space (`cascaded`, paper 5), from an image made
+//!   for this camera ([`Caustics::EyeSpace`]): a floor point `F` reached by a view ray (refracted at
+//!   the water) reads that image where `F` projects through the camera, which is the pixel whose
+//!   straight ray the technique's eye pass followed to `F`. Where the image has nothing there (off
+//!   the image, no floor seen, beyond the last cascade), `F` is lit as under flat water.
 //! - Objects under water are lit by the flat-water refracted sun with their own shadow test; they
 //!   do not receive caustics from the reference (which knows only the floor) until a technique that
 //!   handles mesh receivers provides them.
@@ -20,8 +26,96 @@ use rayon::prelude::*;
 use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, reflect, refract};
-use crate::scene::{Material, Scene};
+use crate::scene::{Camera, Material, Scene};
+use crate::techniques::cascaded::EyeCamera;
 use crate::water::Surface;
+
+/// Caustics computed in the eye camera's screen space (technique `cascaded`): per pixel of an image
+/// made for the scene's camera, `[r, g, b, flag]` of relative irradiance (as a caustics map's texels)
+/// at the floor point the pixel's straight ray meets; `flag < 0` where the technique has none.
+#[derive(Clone, Debug)]
+pub struct EyeSpaceCaustics {
+    pub width: usize,
+    pub height: usize,
+    pub texels: Vec<[f32; 4]>,
+}
+
+/// Smallest total weight of the valid texels around a lookup for [`EyeSpaceCaustics::sample`] to
+/// answer (below it the point lies off the image's valid part).
+pub const EYE_SPACE_MIN_WEIGHT: f64 = 1e-3;
+
+impl EyeSpaceCaustics {
+    /// The camera's projection onto this image (its own size, the camera's aspect ratio).
+    pub fn eye(&self, camera: &Camera) -> EyeCamera {
+        let mut e = EyeCamera::new(camera);
+        e.width = self.width;
+        e.height = self.height;
+        e
+    }
+
+    /// Write the image raw, as `CausticsMap::write_raw` writes a map: the mean of the channels as
+    /// float32 `.npy` of shape (height, width) or single-channel `.exr`, by extension, row 0 at the
+    /// top of the image; NaN where the technique has no value.
+    pub fn write_raw(&self, path: &std::path::Path) -> crate::error::Result<()> {
+        let grid = crate::grid::Grid::from_fn(self.width, self.height, |i, j| {
+            let t = self.texels[i * self.width + j];
+            if t[3] < 0.0 {
+                f32::NAN
+            } else {
+                (t[0] + t[1] + t[2]) / 3.0
+            }
+        });
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("npy") => grid.write_npy(path),
+            Some("exr") => grid.write_exr(path),
+            _ => Err(crate::error::Error::bad_file(
+                path,
+                "the raw eye-space caustics are written as .npy or .exr; give one of those extensions",
+            )),
+        }
+    }
+
+    /// Relative irradiance at floor point `p`: bilinear between the centres of the valid texels
+    /// around the pixel point `p` projects to, their weights renormalised; `None` where `p` is
+    /// behind the eye or has (next to) no valid texel around it.
+    pub fn sample(&self, eye: &EyeCamera, p: DVec3) -> Option<DVec3> {
+        let (q, _) = eye.project(p)?;
+        let (u, v) = (q.x - 0.5, q.y - 0.5);
+        let (x0, y0) = (u.floor(), v.floor());
+        let (fu, fv) = (u - x0, v - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+        for (dy, wy) in [(0, 1.0 - fv), (1, fv)] {
+            for (dx, wx) in [(0, 1.0 - fu), (1, fu)] {
+                let (x, y) = (x0 + dx, y0 + dy);
+                if x < 0 || y < 0 || x >= self.width as i64 || y >= self.height as i64 {
+                    continue;
+                }
+                let t = self.texels[y as usize * self.width + x as usize];
+                if t[3] < 0.0 {
+                    continue;
+                }
+                sum += DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64) * (wx * wy);
+                weight += wx * wy;
+            }
+        }
+        (weight >= EYE_SPACE_MIN_WEIGHT).then(|| sum / weight)
+    }
+}
+
+/// Where the final image takes the floor's caustics from.
+#[derive(Clone, Copy)]
+pub enum Caustics<'a> {
+    /// A map of the floor square (every technique but `cascaded`).
+    Floor(&'a CausticsMap),
+    /// An image in the camera's screen space (`cascaded`).
+    EyeSpace(&'a EyeSpaceCaustics),
+}
 
 pub struct RenderOptions {
     /// Samples per pixel along each axis (n² rays per pixel).
@@ -51,6 +145,7 @@ struct Tracer<'a> {
     scene: &'a Scene,
     surface: Option<&'a dyn Surface>,
     caustics: Option<&'a CausticsMap>,
+    eye_space: Option<(&'a EyeSpaceCaustics, EyeCamera)>,
     bvhs: Vec<MeshBvh>,
     /// Bound on |h| of the water, for the slab the surface lies in.
     h_max: f64,
@@ -67,6 +162,23 @@ pub fn render(
     scene: &Scene,
     surface: Option<&dyn Surface>,
     caustics: Option<&CausticsMap>,
+    options: &RenderOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Image {
+    render_with(
+        scene,
+        surface,
+        caustics.map(Caustics::Floor),
+        options,
+        progress,
+    )
+}
+
+/// [`render`] with the caustics from either source: a floor map or an eye-space image.
+pub fn render_with(
+    scene: &Scene,
+    surface: Option<&dyn Surface>,
+    caustics: Option<Caustics>,
     options: &RenderOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Image {
@@ -90,7 +202,14 @@ pub fn render(
     let tracer = Tracer {
         scene,
         surface,
-        caustics,
+        caustics: match caustics {
+            Some(Caustics::Floor(m)) => Some(m),
+            _ => None,
+        },
+        eye_space: match caustics {
+            Some(Caustics::EyeSpace(e)) => Some((e, e.eye(cam))),
+            _ => None,
+        },
         bvhs: scene.objects.iter().map(|o| o.mesh.bvh()).collect(),
         h_max,
         sun,
@@ -255,15 +374,14 @@ impl Tracer<'_> {
         let size = water.size;
         let albedo = scene.floor.albedo.at(p.truncate(), size);
         let e_h = scene.light.intensity * -self.sun.z;
-        let relative = match self.caustics {
-            Some(m) => {
+        let flat = || (-water.absorption * ((water.depth - p.z) / -self.sun_water.z)).exp();
+        let relative = match (self.caustics, &self.eye_space) {
+            (Some(m), _) => {
                 let c = m.sample(p.x, p.y, water.wrap && scene.floor.terrain.is_none());
                 DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)
             }
-            None => {
-                let d = (water.depth - p.z) / -self.sun_water.z;
-                (-water.absorption * d).exp()
-            }
+            (None, Some((image, eye))) => image.sample(eye, p).unwrap_or_else(flat),
+            (None, None) => flat(),
         };
         let shadow = if self.occluded(p + DVec3::Z * 1e-4, -self.sun_water, f64::INFINITY) {
             0.0
@@ -495,4 +613,87 @@ fn wall_distance(o: DVec3, d: DVec3, size: f64) -> f64 {
         }
     }
     t.max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::{ReferenceInput, ReferenceOptions, reference};
+    use crate::techniques::cascaded::{CascadedParams, CascadedSetup, eye_pass};
+
+    /// A floor map projected to the eye (each pixel holds the map at its straight ray's floor
+    /// point, as `cascaded` makes its image) and read back as eye-space caustics lights the final
+    /// image as the map itself does: the two differ only where a refracted ray's floor point is
+    /// hidden from the eye's straight rays and by the extra bilinear read.
+    #[test]
+    fn eye_space_caustics_read_where_the_floor_projects() {
+        let mut scene = Scene::builtin("shore").unwrap();
+        scene.camera.width = 160;
+        scene.camera.height = 90;
+        scene.caustics.width = 128;
+        scene.caustics.height = 128;
+        let water = scene.water.as_ref().unwrap();
+        let surface = water.surface_at(scene.time).unwrap();
+        let input = ReferenceInput::from_scene(&scene, surface.as_ref()).unwrap();
+        let options = ReferenceOptions {
+            cells_per_texel: 2,
+            ..Default::default()
+        };
+        let map = reference(&input, &options, &|_, _| {}).unwrap();
+        let setup = CascadedSetup::from_scene(&scene, &CascadedParams::default()).unwrap();
+        let eye = eye_pass(&setup, scene.floor.terrain.as_ref());
+        let e = &setup.eye;
+        let texels = eye
+            .iter()
+            .enumerate()
+            .map(|(p, t)| {
+                if t[3] == 0.0 {
+                    return [0.0, 0.0, 0.0, -1.0];
+                }
+                let (x, y) = ((p % e.width) as f64 + 0.5, (p / e.width) as f64 + 0.5);
+                let f = e.position + e.ray(x, y) * t[0] as f64;
+                let c = map.sample(f.x, f.y, false);
+                [c[0], c[1], c[2], 0.0]
+            })
+            .collect();
+        let image = EyeSpaceCaustics {
+            width: e.width,
+            height: e.height,
+            texels,
+        };
+        let options = RenderOptions {
+            supersampling: 1,
+            ..Default::default()
+        };
+        let s = Some(surface.as_ref());
+        let a = render_with(&scene, s, Some(Caustics::Floor(&map)), &options, &|_, _| {});
+        let b = render_with(
+            &scene,
+            s,
+            Some(Caustics::EyeSpace(&image)),
+            &options,
+            &|_, _| {},
+        );
+        let flat = render_with(&scene, s, None, &options, &|_, _| {});
+        // The nearer half of the floor, where a pixel sees less than a map texel (in the distance
+        // the two sample the map's detail at different points: aliasing, not a misplaced read),
+        // without the last rows, whose refracted floor points project below the image.
+        let rows = (scene.camera.height as usize / 2) * 160 * 3
+            ..(scene.camera.height as usize - 3) * 160 * 3;
+        let mean = |x: &Image, y: &Image| {
+            x.rgb[rows.clone()]
+                .iter()
+                .zip(&y.rgb[rows.clone()])
+                .map(|(p, q)| p.abs_diff(*q) as f64)
+                .sum::<f64>()
+                / rows.len() as f64
+        };
+        let (same, caustics) = (mean(&a, &b), mean(&a, &flat));
+        eprintln!(
+            "map vs the same map through the eye: mean |Δ| {same:.3} steps; map vs flat-water \
+             lighting {caustics:.3} steps"
+        );
+        assert!(caustics > 0.5, "{caustics}");
+        assert!(same < 0.2 * caustics, "{same} vs {caustics}");
+    }
 }

@@ -1,7 +1,7 @@
 //! The final image on the GPU (`caustics_gpu::final_image`) against its CPU twin
 //! (`caustics_core::render::render`), scene by scene, from the same inputs: the same frozen water
-//! surface (the grid the GPU samples it on, `final_image::water_grid`), the same caustics map and
-//! the same options.
+//! surface (the grid the GPU samples it on, `final_image::water_grid`), the same caustics map (or
+//! eye-space caustics image, technique `cascaded`) and the same options.
 //!
 //! Tolerances, in 8-bit sRGB steps over every channel of every pixel:
 //! - mean absolute difference below 1 (1/255): rounding between f32 and f64 moves a few channels
@@ -20,7 +20,9 @@
 
 use caustics_core::map::CausticsMap;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
-use caustics_core::render::{Image, RenderOptions, render};
+use caustics_core::render::{
+    Caustics, EyeSpaceCaustics, Image, RenderOptions, render, render_with,
+};
 use caustics_core::scene::{Albedo, Material, Scene};
 use caustics_core::water::{GridSurface, Surface};
 use caustics_gpu::context::test_context;
@@ -122,22 +124,26 @@ fn check_map(
     surface: Option<&dyn Surface>,
     map: Option<CausticsMap>,
 ) -> Difference {
+    check_caustics(ctx, what, scene, surface, map.as_ref().map(Caustics::Floor))
+}
+
+/// As [`check_map`], with the caustics from either source.
+fn check_caustics(
+    ctx: &GpuContext,
+    what: &str,
+    scene: &Scene,
+    surface: Option<&dyn Surface>,
+    caustics: Option<Caustics>,
+) -> Difference {
     let options = RenderOptions {
         supersampling: 1,
         ..Default::default()
     };
-    let cpu = render(scene, surface, map.as_ref(), &options, &|_, _| {});
+    let cpu = render_with(scene, surface, caustics, &options, &|_, _| {});
     let final_image = FinalImage::new(ctx).expect("pipeline");
     let mut timer = GpuTimer::new(ctx, 1);
     let gpu = final_image
-        .render(
-            ctx,
-            scene,
-            surface,
-            map.as_ref(),
-            &options,
-            Some(&mut timer),
-        )
+        .render_with(ctx, scene, surface, caustics, &options, Some(&mut timer))
         .expect("GPU render");
     let times = timer.read(ctx).expect("timestamps");
     let d = difference(&cpu, &gpu);
@@ -208,6 +214,66 @@ fn glass_matches_the_cpu() {
 fn shore_matches_the_cpu() {
     let Some(ctx) = test_context() else { return };
     check(&ctx, "shore", &small("shore"), true);
+}
+
+/// Technique `cascaded`: caustics in the camera's screen space, read where each refracted view
+/// ray's floor point projects. The eye-space image is the CPU twin's (`cascaded_gpu.rs` holds the
+/// GPU's to it), made for the final image's camera and size.
+#[test]
+fn shore_with_cascaded_eye_space_caustics_matches_the_cpu() {
+    use caustics_core::techniques::cascaded::{self, CascadedParams, CascadedSetup};
+    let Some(ctx) = test_context() else { return };
+    let scene = small("shore");
+    let (surface, _) = inputs(&scene);
+    let params = CascadedParams {
+        resolution: 256,
+        ..Default::default()
+    };
+    let setup = CascadedSetup::from_scene(&scene, &params).expect("setup");
+    let water = cascaded::water_grid(&scene, 128).expect("water grid");
+    let frame = cascaded::caustics(&setup, &water, scene.floor.terrain.as_ref());
+    let eye = EyeSpaceCaustics {
+        width: setup.eye.width,
+        height: setup.eye.height,
+        texels: frame.image,
+    };
+    let surface = surface.as_ref().map(|s| s as &dyn Surface);
+    let d = check_caustics(
+        &ctx,
+        "shore-cascaded",
+        &scene,
+        surface,
+        Some(Caustics::EyeSpace(&eye)),
+    );
+    assert!(d.mean < MEAN_TOLERANCE);
+    // The caustics show: the image departs from the one lit as under flat water.
+    let options = RenderOptions {
+        supersampling: 1,
+        ..Default::default()
+    };
+    let with = render_with(
+        &scene,
+        surface,
+        Some(Caustics::EyeSpace(&eye)),
+        &options,
+        &|_, _| {},
+    );
+    let flat = render_with(&scene, surface, None, &options, &|_, _| {});
+    let changed = with
+        .rgb
+        .iter()
+        .zip(&flat.rgb)
+        .filter(|(a, b)| a.abs_diff(**b) > 4)
+        .count() as f64
+        / with.rgb.len() as f64;
+    eprintln!(
+        "shore-cascaded: {:.1} % of channels differ from flat-water lighting by > 4 steps",
+        100.0 * changed
+    );
+    assert!(
+        changed > 0.05,
+        "the eye-space caustics barely show: {changed}"
+    );
 }
 
 /// An albedo image on the floor, and no caustics map (the floor lit as under flat water).

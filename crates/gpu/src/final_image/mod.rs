@@ -17,7 +17,8 @@
 //!   The grid is uploaded with a border ([`bordered_grid`]) so that a periodic surface is wrapped
 //!   once per sample rather than per tap.
 //! - The terrain is an `R32Float` texture through the same `grid_sample`, clamped; the caustics
-//!   map an `Rgba32Float` texture filtered by hand like `CausticsMap::sample`; an albedo image an
+//!   map an `Rgba32Float` texture filtered by hand like `CausticsMap::sample`, or in its place an
+//!   eye-space image (`cascaded`) read like `EyeSpaceCaustics::sample`; an albedo image an
 //!   `Rgba32Float` texture read at the nearest texel like `Albedo::at`.
 //! - Each object's `MeshBvh` (the very tree the CPU traverses) is flattened into two storage
 //!   buffers shared by all objects (bind group 1, `bvh.wgsl`).
@@ -38,7 +39,7 @@ pub use upload::{
 };
 
 use caustics_core::map::CausticsMap;
-use caustics_core::render::{Image, RenderOptions};
+use caustics_core::render::{Caustics, Image, RenderOptions};
 use caustics_core::scene::{Albedo, Scene};
 use caustics_core::water::Surface;
 use wgpu::util::DeviceExt;
@@ -257,6 +258,28 @@ impl FinalImage {
         surface: Option<&dyn Surface>,
         caustics: Option<&CausticsMap>,
         options: &RenderOptions,
+        timer: Option<&mut GpuTimer>,
+    ) -> Result<Image, GpuError> {
+        self.render_with(
+            ctx,
+            scene,
+            surface,
+            caustics.map(Caustics::Floor),
+            options,
+            timer,
+        )
+    }
+
+    /// [`render`](Self::render) with the caustics from either source, the GPU counterpart of
+    /// `caustics_core::render::render_with`: a floor map, or an eye-space image made for the
+    /// scene's camera (`cascaded`), read at the pixel each floor point projects to.
+    pub fn render_with(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        surface: Option<&dyn Surface>,
+        caustics: Option<Caustics>,
+        options: &RenderOptions,
         mut timer: Option<&mut GpuTimer>,
     ) -> Result<Image, GpuError> {
         let device = &ctx.device;
@@ -289,13 +312,21 @@ impl FinalImage {
             None => None,
         };
         let map = match caustics {
-            Some(m) => Some(float_texture(
+            Some(Caustics::Floor(m)) => Some(float_texture(
                 ctx,
                 "caustics map",
                 wgpu::TextureFormat::Rgba32Float,
                 m.width as u32,
                 m.height as u32,
                 bytemuck::cast_slice(&rgba32(&m.texels)),
+            )?),
+            Some(Caustics::EyeSpace(e)) => Some(float_texture(
+                ctx,
+                "eye-space caustics",
+                wgpu::TextureFormat::Rgba32Float,
+                e.width as u32,
+                e.height as u32,
+                bytemuck::cast_slice(&e.texels),
             )?),
             None => None,
         };

@@ -10,7 +10,7 @@
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::map::CausticsMap;
 use caustics_core::optics::{fresnel_transmittance, refract};
-use caustics_core::render::{AMBIENT, RenderOptions};
+use caustics_core::render::{AMBIENT, Caustics, RenderOptions};
 use caustics_core::scene::{Albedo, FloorPattern, Material, Scene};
 use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::{DVec2, DVec3};
@@ -57,6 +57,8 @@ pub mod flags {
     pub const WRAP_SURFACE: u32 = 16;
     pub const WRAP_CAUSTICS: u32 = 32;
     pub const AIR_CAUSTICS: u32 = 64;
+    /// The caustics are an eye-space image of this camera (`cascaded`), bound where the map is.
+    pub const EYE_CAUSTICS: u32 = 128;
 }
 
 /// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
@@ -179,7 +181,7 @@ pub(super) fn uniform(
     scene: &Scene,
     surface: bool,
     h_max: f64,
-    caustics: Option<&CausticsMap>,
+    caustics: Option<Caustics>,
     options: &RenderOptions,
     object_count: u32,
 ) -> FinalImageUniform {
@@ -197,6 +199,10 @@ pub(super) fn uniform(
     let sun_water = refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun);
     let t_flat = fresnel_transmittance(-sun.z, 1.0, ior);
 
+    let map: Option<&CausticsMap> = match caustics {
+        Some(Caustics::Floor(m)) => Some(m),
+        _ => None,
+    };
     let mut f = 0;
     if let Some(w) = water {
         f |= flags::WATER;
@@ -206,14 +212,16 @@ pub(super) fn uniform(
         if w.wrap {
             f |= flags::WRAP_SURFACE;
         }
-        if caustics.is_some() {
-            f |= flags::CAUSTICS;
+        match caustics {
+            Some(Caustics::Floor(_)) => f |= flags::CAUSTICS,
+            Some(Caustics::EyeSpace(_)) => f |= flags::EYE_CAUSTICS,
+            None => {}
         }
         if w.wrap && scene.floor.terrain.is_none() {
             f |= flags::WRAP_CAUSTICS;
         }
     }
-    if water.is_none() && caustics.is_some() {
+    if water.is_none() && map.is_some() {
         f |= flags::AIR_CAUSTICS;
     }
     if scene.floor.terrain.is_some() {
@@ -237,7 +245,7 @@ pub(super) fn uniform(
         absorption: f3(water.map_or(DVec3::ZERO, |w| w.absorption)),
         h_max: h_max as f32,
         scene_size: scene.size as f32,
-        map_size: caustics.map_or(scene.size, |m| m.size) as f32,
+        map_size: map.map_or(scene.size, |m| m.size) as f32,
         width: cam.width,
         height: cam.height,
         supersampling: options.supersampling.max(1),

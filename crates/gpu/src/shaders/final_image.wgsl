@@ -60,6 +60,8 @@ const FLAG_WRAP_SURFACE: u32 = 16u;
 const FLAG_WRAP_CAUSTICS: u32 = 32u;
 // No water, and a map of the light through the glass objects (caustic-triangles).
 const FLAG_AIR_CAUSTICS: u32 = 64u;
+// The caustics are an eye-space image of this camera (cascaded), bound as caustics_map.
+const FLAG_EYE_CAUSTICS: u32 = 128u;
 
 // One object: its material and the root of its tree in bvh_nodes. Mirrors `GpuObject`.
 struct Object {
@@ -77,7 +79,8 @@ struct Object {
 @group(0) @binding(1) var water_height: texture_2d<f32>;
 // The terrain's height (R32Float), clamped at its edges.
 @group(0) @binding(2) var terrain_height: texture_2d<f32>;
-// The caustics map (Rgba32Float, rgb used), filtered by hand as `CausticsMap::sample` does.
+// The caustics map (Rgba32Float, rgb used), filtered by hand as `CausticsMap::sample` does; or the
+// eye-space caustics (rgb, w < 0 where none), read as `EyeSpaceCaustics::sample` does.
 @group(0) @binding(3) var caustics_map: texture_2d<f32>;
 // The floor's albedo image (Rgba32Float, linear), when there is one.
 @group(0) @binding(4) var albedo_image: texture_2d<f32>;
@@ -198,6 +201,51 @@ fn sample_caustics(x: f32, y: f32, wrap: bool) -> vec3<f32> {
     let c = caustics_texel(i + 1, j, wrap);
     let d = caustics_texel(i + 1, j + 1, wrap);
     return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
+}
+
+// `EyeSpaceCaustics::sample`: the floor point projected through the camera onto the eye-space
+// image, bilinear between the centres of the valid texels around it, renormalised; w = 0 where the
+// valid texels' weight is below EYE_SPACE_MIN_WEIGHT (the caller lights the point as under flat
+// water).
+const EYE_SPACE_MIN_WEIGHT: f32 = 1e-3;
+
+fn sample_eye_space(p: vec3<f32>) -> vec4<f32> {
+    let v = p - params.camera_position;
+    let z = dot(v, params.camera_forward);
+    if z <= 0.0 {
+        return vec4<f32>(0.0);
+    }
+    let dims = vec2<i32>(textureDimensions(caustics_map));
+    // camera_right and camera_up carry tan(fov / 2) (and the aspect): divide by their squared length.
+    let sx = dot(v, params.camera_right) / dot(params.camera_right, params.camera_right) / z;
+    let sy = dot(v, params.camera_up) / dot(params.camera_up, params.camera_up) / z;
+    let u = (sx + 1.0) * 0.5 * f32(dims.x) - 0.5;
+    let w = (1.0 - sy) * 0.5 * f32(dims.y) - 0.5;
+    let x0 = floor(u);
+    let y0 = floor(w);
+    let f = vec2<f32>(u - x0, w - y0);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var dy = 0; dy < 2; dy++) {
+        for (var dx = 0; dx < 2; dx++) {
+            let c = vec2<i32>(i32(x0) + dx, i32(y0) + dy);
+            if any(c < vec2<i32>(0)) || any(c >= dims) {
+                continue;
+            }
+            let t = textureLoad(caustics_map, c, 0);
+            if t.w < 0.0 {
+                continue;
+            }
+            let wx = select(1.0 - f.x, f.x, dx == 1);
+            let wy = select(1.0 - f.y, f.y, dy == 1);
+            sum += t.rgb * (wx * wy);
+            weight += wx * wy;
+        }
+    }
+    if weight < EYE_SPACE_MIN_WEIGHT {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(sum / weight, 1.0);
 }
 
 struct ObjectHit {
@@ -337,12 +385,14 @@ fn shade_floor(p: vec3<f32>) -> vec3<f32> {
     let size = params.water_size;
     let albedo = albedo_at(p.xy, size);
     let e_h = params.sun_intensity * -params.sun.z;
-    var relative: vec3<f32>;
+    var relative = absorbed((params.water_level - p.z) / -params.sun_water.z);
     if has(FLAG_CAUSTICS) {
         relative = sample_caustics(p.x, p.y, has(FLAG_WRAP_CAUSTICS));
-    } else {
-        let d = (params.water_level - p.z) / -params.sun_water.z;
-        relative = absorbed(d);
+    } else if has(FLAG_EYE_CAUSTICS) {
+        let e = sample_eye_space(p);
+        if e.w != 0.0 {
+            relative = e.rgb;
+        }
     }
     var shadow = 1.0;
     if occluded(p + vec3<f32>(0.0, 0.0, 1e-4), -params.sun_water, FAR) {
