@@ -607,11 +607,8 @@ impl Volumes {
             pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
         }
         for (k, o) in frame.objects.iter().enumerate() {
-            let label = if k == 0 {
-                "volumes slices"
-            } else {
-                "volumes slices (more objects)"
-            };
+            let label = format!("volumes slices, object {k}");
+            let label = label.as_str();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(label),
                 color_attachments: &[color_attachment(&o.caustics_view)],

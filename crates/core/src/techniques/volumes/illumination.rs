@@ -151,8 +151,15 @@ pub fn raster(
     }
 }
 
+/// The shadow test's bias for floor points: nothing lies below the floor, so any surface in the
+/// shadow map's column over a floor point occludes it (even an object's base resting on the floor at
+/// the point's own depth).
+pub const FLOOR_BIAS: f64 = -1e30;
+
 /// Whether world point `p` sees the refracted sun past the objects in the shadow map (always without
-/// one). The bias absorbs the map's texel quantisation on the surfaces it was rendered from.
+/// one): no stored surface lies more than `bias` in front of it. On an object's surface the bias
+/// absorbs the map's texel quantisation on the surfaces it was rendered from ([`FLOOR_BIAS`] on the
+/// floor).
 pub fn lit(view: Option<&OrthoView>, map: &[[f32; 4]], p: DVec3, bias: f64) -> bool {
     let Some(view) = view else { return true };
     let q = view.to_frame(p);
@@ -259,7 +266,7 @@ pub fn floor_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4
                                     (i as f64 + 0.5) / scale.y,
                                     0.0,
                                 );
-                                if !lit(shadow_view, shadow, p, setup.shadow_bias) {
+                                if !lit(shadow_view, shadow, p, FLOOR_BIAS) {
                                     return;
                                 }
                                 acc[i * w + j] += interpolate(&s.intensity, b) * -dir.z;

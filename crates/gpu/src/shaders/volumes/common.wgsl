@@ -46,8 +46,11 @@ fn covered(t: vec4<f32>) -> bool {
     return t.y != 0.0 || t.z != 0.0 || t.w != 0.0;
 }
 
-// Whether `p` sees the refracted sun past the objects of the shadow map.
-fn lit(c: Volumes, shadow: texture_2d<f32>, p: vec3<f32>) -> bool {
+// Whether `p` sees the refracted sun past the objects of the shadow map: no stored surface more
+// than `bias` in front of it (FLOOR_BIAS on the floor: any surface over it occludes it).
+const FLOOR_BIAS: f32 = -1e30;
+
+fn lit(c: Volumes, shadow: texture_2d<f32>, p: vec3<f32>, bias: f32) -> bool {
     if c.flags.y == 0u {
         return true;
     }
@@ -61,7 +64,7 @@ fn lit(c: Volumes, shadow: texture_2d<f32>, p: vec3<f32>) -> bool {
     if !covered(t) {
         return true;
     }
-    return t.x >= q.z - c.params.z;
+    return t.x >= q.z - bias;
 }
 
 // Vertex indices of triangle `which` of lattice cell (i, j): diagonals alternate in a checkerboard.

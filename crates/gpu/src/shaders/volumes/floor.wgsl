@@ -34,7 +34,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> SliceOut {
 fn fs_main(in: SliceOut) -> @location(0) vec4<f32> {
     let size = vec2<f32>(c.dims.zw);
     let p = vec3<f32>(in.position.xy * c.lattice.w / size, 0.0);
-    if !lit(c, shadow, p) {
+    if !lit(c, shadow, p, FLOOR_BIAS) {
         discard;
     }
     return vec4<f32>(in.intensity * -normalize(in.dir).z, 0.0);

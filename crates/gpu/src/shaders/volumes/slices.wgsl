@@ -52,7 +52,7 @@ fn fs_main(in: SliceOut) -> @location(0) vec4<f32> {
     if cos_n <= 0.0 {
         discard;
     }
-    if !lit(c, shadow, texel_point(view, ij.y, ij.x, t.x)) {
+    if !lit(c, shadow, texel_point(view, ij.y, ij.x, t.x), c.params.z) {
         discard;
     }
     return vec4<f32>(in.intensity * cos_n, 0.0);
