@@ -200,6 +200,21 @@ fn the_half_float_fallback_gives_the_same_map() {
 }
 
 #[test]
+fn the_camera_uniform_matches_its_wgsl_size() {
+    let source = caustics_gpu::caustic_triangles::camera::CAMERA.composed();
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("CameraPass"))
+        .unwrap();
+    assert_eq!(
+        ty.inner.size(module.to_ctx()) as usize,
+        std::mem::size_of::<caustics_gpu::caustic_triangles::camera::CameraUniform>()
+    );
+}
+
+#[test]
 fn the_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::IRRADIANCE.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -217,6 +232,9 @@ fn the_uniform_matches_its_wgsl_size() {
         &caustics_gpu::caustic_triangles::IRRADIANCE,
         &caustics_gpu::caustic_triangles::TRIANGLES,
         &caustics_gpu::caustic_triangles::SPLAT,
+        &caustics_gpu::caustic_triangles::CUBE,
+        &caustics_gpu::caustic_triangles::SHADOW,
+        &caustics_gpu::caustic_triangles::camera::CAMERA,
     ] {
         let src = pass.composed();
         let m = naga::front::wgsl::parse_str(&src)
@@ -297,4 +315,264 @@ fn quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu() {
         }
         assert!(at(48, 48) > 0.0 && at(10, 10) > 0.0);
     }
+}
+
+/// The ball (r 0.2) at height 0.6 lit by a point light 0.85 from its centre (a spot when `cone`
+/// is given), as in the CPU twin's tests, with optional occluders.
+fn lamp_scene(res: usize, window: f64, cone: Option<f64>, occluders: Vec<Occluder>) -> GlassScene {
+    let centre = DVec3::new(0.0, 0.0, 0.6);
+    let position = DVec3::new(-0.3, -0.2, 1.37);
+    let dir = (centre - position).normalize();
+    let foot = centre.truncate() + dir.truncate() * (centre.z / -dir.z);
+    GlassScene::new(
+        Shape::Sphere {
+            centre,
+            radius: 0.2,
+        },
+        1.5,
+        DVec3::NEG_Z,
+        FloorWindow {
+            origin: foot - DVec2::splat(window / 2.0),
+            size: window,
+            width: res,
+            height: res,
+        },
+        occluders,
+    )
+    .unwrap()
+    .with_point_light(ct::PointLight {
+        position,
+        axis: dir,
+        cone,
+    })
+    .unwrap()
+}
+
+#[test]
+fn point_light_photons_and_light_cube_match_the_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    for cone in [None, Some(6f64.to_radians())] {
+        let scene = lamp_scene(128, 1.2, cone, vec![]);
+        let params = CausticTrianglesParams {
+            photon_image: 96,
+            cube_resolution: 128,
+            light_cube: 128,
+            ..Default::default()
+        };
+        let dm = DistanceMap::build(&scene, 128, 2);
+        let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+        let cpu = ct::caustics(&setup, &dm);
+        let gpu = ct_gpu
+            .run(&ctx, &setup, &dm, Reconstruction::Triangles)
+            .expect("gpu run");
+        let (flips, dpos, dpow) = photon_agreement(&cpu.photons, &gpu.photons);
+        eprintln!("cone {cone:?}: flips {flips:.5}, p99 position {dpos:.2e}, p99 power {dpow:.2e}");
+        assert!(flips < 0.002 && dpos < 1e-4 && dpow < 1e-4);
+        // The light cube map from the GPU's own photons, against the CPU's from the same photons.
+        let light = scene.point.unwrap().position;
+        let target = ct_gpu.light_cube(&ctx, 128).unwrap();
+        let frame = ct_gpu.frame(&ctx, &setup, &dm).unwrap();
+        ctx.queue
+            .write_buffer(&frame.photons, 0, bytemuck::cast_slice(&gpu.photons));
+        ct_gpu.reset_cube(&ctx, &target);
+        let binds = ct_gpu.cube_binds(&ctx, &frame, &target);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        ct_gpu.encode_cube(&frame, &binds, &target, &mut encoder, None, true);
+        ctx.queue.submit([encoder.finish()]);
+        let g = ct_gpu.read_cube(&ctx, &target, light).unwrap();
+        let irr = ct::irradiance_pass(&setup, &gpu.photons);
+        let mut c = ct::cube::LightCube::new(128, light);
+        ct::cube::cube_triangles_pass(&setup, &gpu.photons, &irr, &mut c);
+        ct::cube::shadow_pass(&[(&setup, &dm)], &mut c);
+        let (mut diff, mut sum, mut dsum, mut ddiff) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for (a, b) in g.caustic.iter().zip(&c.caustic) {
+            diff += (a[0] - b[0]).abs() as f64;
+            sum += b[0] as f64;
+            ddiff += (a[1] - b[1]).abs() as f64;
+            dsum += b[1] as f64;
+        }
+        let (l1, l1d) = (diff / sum, ddiff / dsum);
+        // Shadow distances: f32 search against f64; texels at the sphere's silhouette may flip.
+        let n = g.shadow.len();
+        let off = g
+            .shadow
+            .iter()
+            .zip(&c.shadow)
+            .filter(|(a, b)| ((**a as f64) / (**b as f64) - 1.0).abs() > 1e-3)
+            .count();
+        eprintln!(
+            "cone {cone:?}: light cube ΣE rel L1 {l1:.2e}, ΣEd {l1d:.2e}, shadow texels off by > 0.1 % {off} of {n}"
+        );
+        assert!(sum > 0.0 && l1 < 1e-3 && l1d < 1e-3, "{l1} {l1d}");
+        assert!((off as f64) < 2e-3 * n as f64, "{off}");
+    }
+}
+
+fn test_camera(width: u32, height: u32) -> caustics_core::scene::Camera {
+    caustics_core::scene::Camera {
+        position: DVec3::new(0.9, -1.3, 1.3),
+        target: DVec3::new(0.1, 0.1, 0.2),
+        fov_y: 50.0,
+        width,
+        height,
+    }
+}
+
+/// Share of pixels whose linear RGB differ by more than `tol` (absolute, any channel), and the
+/// mean absolute difference.
+fn image_agreement(a: &[[f32; 3]], b: &[[f32; 3]], tol: f32) -> (f64, f64) {
+    let mut off = 0usize;
+    let mut mean = 0.0f64;
+    for (x, y) in a.iter().zip(b) {
+        let d = (0..3).map(|c| (x[c] - y[c]).abs()).fold(0.0f32, f32::max);
+        off += (d > tol) as usize;
+        mean += d as f64;
+    }
+    (off as f64 / a.len() as f64, mean / a.len() as f64)
+}
+
+/// A wall standing on the floor between the point light and part of the floor, beside the ball.
+fn wall() -> Occluder {
+    Occluder::wall(DVec3::new(0.25, -0.6, 0.0), DVec3::new(0.3, 0.0, 0.35))
+}
+
+#[test]
+fn camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark() {
+    use caustics_core::techniques::caustic_triangles::camera::{
+        self, CameraInput, CameraLight, CameraParams,
+    };
+    use caustics_gpu::caustic_triangles::camera::CameraRenderer;
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let renderer = CameraRenderer::new(&ctx).expect("camera pipeline");
+    let scene = lamp_scene(128, 1.2, None, vec![wall()]);
+    let params = CausticTrianglesParams {
+        photon_image: 64,
+        cube_resolution: 128,
+        light_cube: 128,
+        layers: 4,
+        ..Default::default()
+    };
+    let dm = DistanceMap::build(&scene, 128, 4);
+    let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+    let cam = test_camera(96, 72);
+    let cp = CameraParams::default();
+    let gpu = renderer
+        .render(&ctx, &ct_gpu, &[(&setup, &dm)], &cam, &cp, None)
+        .expect("camera pass");
+    // The CPU twin from the CPU photons.
+    let out = ct::caustics(&setup, &dm);
+    let light = scene.point.unwrap();
+    let mut cube = ct::cube::LightCube::new(128, light.position);
+    ct::cube::cube_triangles_pass(&setup, &out.photons, &out.irradiance, &mut cube);
+    ct::cube::shadow_pass(&[(&setup, &dm)], &mut cube);
+    let input = CameraInput {
+        camera: &cam,
+        generators: vec![(&setup, &dm)],
+        light: CameraLight::Point { light, cube: &cube },
+        params: cp.clone(),
+    };
+    let cpu = camera::camera_pass(&input);
+    let (off, mean) = image_agreement(&gpu.rgb, &cpu, 0.02);
+    eprintln!(
+        "camera pass GPU vs CPU (point light): {:.4} of pixels off by > 0.02, mean |d| {mean:.2e}",
+        off
+    );
+    assert!(off < 0.005 && mean < 5e-4, "{off} {mean}");
+    // The floor behind the wall, seen from the light (with a margin off the shadow's edges): only
+    // the ambient term, on both twins; the floor beside it is lit.
+    let ambient = (cp.floor_albedo * cp.ambient).as_vec3();
+    let (mut shadowed, mut lit) = (0, 0);
+    for y in 0..cam.height {
+        for x in 0..cam.width {
+            let (o, d) = cam.ray(x as f64, y as f64);
+            if d.z >= 0.0 {
+                continue;
+            }
+            let p = o + d * (-o.z / d.z);
+            // The first thing the eye ray meets must be this floor point.
+            let first = wall()
+                .bvh
+                .intersect(&wall().mesh, o, d, -o.z / d.z)
+                .is_some()
+                || scene.generator.intersect(o, d, -o.z / d.z).is_some();
+            if first {
+                continue;
+            }
+            let to = p - light.position;
+            let behind = |shrink: f64| {
+                let w = Occluder::wall(
+                    DVec3::new(0.25 + shrink, -0.6 + shrink, 0.0),
+                    DVec3::new(0.3 - shrink, 0.0 - shrink, 0.35 - shrink),
+                );
+                w.bvh
+                    .intersect(&w.mesh, light.position, to.normalize(), to.length())
+                    .is_some()
+            };
+            let k = (y * cam.width + x) as usize;
+            if behind(0.0)
+                && behind(0.02)
+                && scene
+                    .generator
+                    .intersect(light.position, to.normalize(), to.length())
+                    .is_none()
+            {
+                shadowed += 1;
+                for img in [&gpu.rgb[k], &cpu[k]] {
+                    for c in 0..3 {
+                        assert!(
+                            (img[c] - ambient[c]).abs() < 1e-4,
+                            "pixel ({x}, {y}) in the wall's shadow: {img:?}"
+                        );
+                    }
+                }
+            } else if !behind(-0.02) {
+                lit += 1;
+            }
+        }
+    }
+    eprintln!("{shadowed} pixels in the wall's shadow, {lit} lit");
+    assert!(shadowed > 50 && lit > 1000, "{shadowed} {lit}");
+}
+
+#[test]
+fn camera_pass_with_the_sun_matches_the_cpu_twin() {
+    use caustics_core::techniques::caustic_triangles::camera::{
+        self, CameraInput, CameraLight, CameraParams,
+    };
+    use caustics_gpu::caustic_triangles::camera::CameraRenderer;
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let renderer = CameraRenderer::new(&ctx).expect("camera pipeline");
+    let mut scene = ball_scene(128, 0.6);
+    scene.occluders.push(wall());
+    let params = CausticTrianglesParams {
+        photon_image: 64,
+        cube_resolution: 128,
+        ..Default::default()
+    };
+    let dm = DistanceMap::build(&scene, 128, 4);
+    let setup = CausticTrianglesSetup::new(&params, &scene).unwrap();
+    let cam = test_camera(96, 72);
+    let cp = CameraParams::default();
+    let gpu = renderer
+        .render(&ctx, &ct_gpu, &[(&setup, &dm)], &cam, &cp, None)
+        .expect("camera pass");
+    let out = ct::caustics(&setup, &dm);
+    let cpu = camera::camera_pass(&CameraInput {
+        camera: &cam,
+        generators: vec![(&setup, &dm)],
+        light: CameraLight::Sun {
+            direction: scene.light,
+            map: &out.map,
+            floor: scene.floor,
+        },
+        params: cp,
+    });
+    let (off, mean) = image_agreement(&gpu.rgb, &cpu, 0.02);
+    eprintln!(
+        "camera pass GPU vs CPU (sun): {off:.4} of pixels off by > 0.02, mean |d| {mean:.2e}"
+    );
+    assert!(off < 0.005 && mean < 5e-4, "{off} {mean}");
 }

@@ -17,7 +17,10 @@
 //! `FLOAT32_BLENDABLE`, otherwise into `Rgba16Float` (blendable everywhere; about 3 significant
 //! digits, ~0.2 % of the total lost to rounding in accumulation).
 
+pub mod camera;
+
 use caustics_core::map::CausticsMap;
+use caustics_core::techniques::caustic_triangles::cube::{FAR, LightCube};
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 use wgpu::util::DeviceExt;
 
@@ -42,6 +45,16 @@ pub const TRIANGLES: PassSource = PassSource {
     name: "caustic-triangles triangles",
     shared: &[COMMON],
     source: include_str!("../shaders/caustic_triangles/triangles.wgsl"),
+};
+pub const CUBE: PassSource = PassSource {
+    name: "caustic-triangles light cube map",
+    shared: &[COMMON],
+    source: include_str!("../shaders/caustic_triangles/cube.wgsl"),
+};
+pub const SHADOW: PassSource = PassSource {
+    name: "caustic-triangles light cube shadow distances",
+    shared: &[COMMON, DISTANCE_MAP],
+    source: include_str!("../shaders/caustic_triangles/shadow.wgsl"),
 };
 pub const SPLAT: PassSource = PassSource {
     name: "caustic-triangles splats",
@@ -69,7 +82,12 @@ pub struct CausticTrianglesUniform {
     pub area_rule: u32,
     pub width: u32,
     pub height: u32,
-    pub _pad: [u32; 2],
+    pub light_cube: u32,
+    /// Index of this generator's first texel in a buffer of several distance maps (the camera
+    /// pass's); 0 in the generator's own.
+    pub dm_base: u32,
+    pub light: [f32; 4],
+    pub spot: [f32; 4],
 }
 
 impl CausticTrianglesUniform {
@@ -102,7 +120,16 @@ impl CausticTrianglesUniform {
             area_rule: s.area_rule.code(),
             width: s.floor.width as u32,
             height: s.floor.height as u32,
-            _pad: [0; 2],
+            light_cube: s.light_cube as u32,
+            dm_base: 0,
+            light: match s.point {
+                Some(pl) => v4(pl.position, 1.0),
+                None => [0.0; 4],
+            },
+            spot: match s.point {
+                Some(pl) => v4(pl.axis, pl.cone.map_or(-2.0, f64::cos)),
+                None => [0.0, 0.0, 0.0, -2.0],
+            },
         }
     }
 }
@@ -118,11 +145,13 @@ pub enum Reconstruction {
 
 /// The technique's pipelines, built once per device for one floor-map format.
 pub struct CausticTriangles {
-    photon: wgpu::ComputePipeline,
-    irradiance: wgpu::ComputePipeline,
+    pub(crate) photon: wgpu::ComputePipeline,
+    pub(crate) irradiance: wgpu::ComputePipeline,
     triangles: wgpu::RenderPipeline,
     splat: wgpu::RenderPipeline,
-    /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float`.
+    cube: wgpu::RenderPipeline,
+    shadow: wgpu::ComputePipeline,
+    /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float` (floor and light cube maps).
     pub map_format: wgpu::TextureFormat,
 }
 
@@ -175,12 +204,13 @@ fn additive_pipeline(
 pub struct Frame {
     pub setup: CausticTrianglesSetup,
     pub uniform: wgpu::Buffer,
+    pub dm_buffer: wgpu::Buffer,
     pub photons: wgpu::Buffer,
     pub irradiance: wgpu::Buffer,
     pub map: wgpu::Texture,
-    map_view: wgpu::TextureView,
-    photon_bind: wgpu::BindGroup,
-    irradiance_bind: wgpu::BindGroup,
+    pub map_view: wgpu::TextureView,
+    pub(crate) photon_bind: wgpu::BindGroup,
+    pub(crate) irradiance_bind: wgpu::BindGroup,
     triangles_bind: wgpu::BindGroup,
     splat_bind: wgpu::BindGroup,
     bytes: u64,
@@ -225,6 +255,8 @@ impl CausticTriangles {
             irradiance: compute_pipeline(ctx, &IRRADIANCE),
             triangles: additive_pipeline(ctx, &TRIANGLES, map_format),
             splat: additive_pipeline(ctx, &SPLAT, map_format),
+            cube: additive_pipeline(ctx, &CUBE, map_format),
+            shadow: compute_pipeline(ctx, &SHADOW),
             map_format,
         };
         ctx.check()?;
@@ -274,7 +306,9 @@ impl CausticTriangles {
             "caustic-triangles floor map",
             (w, h, 1),
             self.map_format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
         let photon_bind = bind_group(
@@ -318,6 +352,7 @@ impl CausticTriangles {
         Ok(Frame {
             setup: setup.clone(),
             uniform,
+            dm_buffer,
             photons,
             irradiance,
             map,
@@ -365,6 +400,22 @@ impl CausticTriangles {
             pass.set_bind_group(0, &frame.irradiance_bind, &[]);
             pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
         }
+        self.draw_floor(frame, encoder, timer, reconstruction, &frame.map_view, true);
+    }
+
+    /// The floor-map render pass alone (triangles from the vertex irradiances already computed, or
+    /// splats) into `target` (a floor map of this frame's size), cleared first or added to
+    /// (several generators into one map).
+    pub fn draw_floor(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+        target: &wgpu::TextureView,
+        clear: bool,
+    ) {
+        let p = frame.setup.p as u32;
         let label = match reconstruction {
             Reconstruction::Triangles => "caustic-triangles triangles",
             Reconstruction::Splats => "caustic-triangles splats",
@@ -372,11 +423,15 @@ impl CausticTriangles {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &frame.map_view,
+                view: target,
                 depth_slice: None,
                 resolve_target: None,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    load: if clear {
+                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                    } else {
+                        wgpu::LoadOp::Load
+                    },
                     store: wgpu::StoreOp::Store,
                 },
             })],
@@ -460,6 +515,179 @@ impl CausticTriangles {
             photons: ctx.read_buffer(&frame.photons)?,
             irradiance: ctx.read_buffer(&frame.irradiance)?,
             map,
+        })
+    }
+}
+
+/// The light cube map of a point light on the GPU (paper 4, §4.2-4.3; CPU twin
+/// `caustics_core::techniques::caustic_triangles::cube`): the six `C x C` faces stacked in one
+/// `C x 6C` texture (face `f` in rows `f C .. (f + 1) C`, one viewport and scissor per face), `(Σ E,
+/// Σ E d)` in red and green, and the shadow distances in a storage buffer. Every generator adds
+/// into the same target.
+pub struct LightCubeTarget {
+    pub resolution: u32,
+    pub texture: wgpu::Texture,
+    pub view: wgpu::TextureView,
+    pub shadow: wgpu::Buffer,
+}
+
+/// One generator's bindings to a [`LightCubeTarget`].
+pub struct CubeBinds {
+    cube: wgpu::BindGroup,
+    shadow: wgpu::BindGroup,
+}
+
+impl CausticTriangles {
+    pub fn light_cube(
+        &self,
+        ctx: &GpuContext,
+        resolution: u32,
+    ) -> Result<LightCubeTarget, GpuError> {
+        ctx.check_texture_size(
+            "caustic-triangles light cube map",
+            resolution,
+            6 * resolution,
+        )?;
+        let n = 6 * resolution as u64 * resolution as u64;
+        ctx.check_buffer_size("caustic-triangles light cube shadow distances", n * 4)?;
+        let texture = ctx.texture_2d(
+            "caustic-triangles light cube map",
+            (resolution, 6 * resolution, 1),
+            self.map_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let view = texture.create_view(&Default::default());
+        let shadow = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles light cube shadow distances"),
+            size: n * 4,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        ctx.check()?;
+        Ok(LightCubeTarget {
+            resolution,
+            texture,
+            view,
+            shadow,
+        })
+    }
+
+    pub fn cube_binds(
+        &self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        target: &LightCubeTarget,
+    ) -> CubeBinds {
+        let cube = bind_group(
+            ctx,
+            "caustic-triangles light cube map",
+            &self.cube.get_bind_group_layout(0),
+            &[
+                frame.uniform.as_entire_binding(),
+                frame.photons.as_entire_binding(),
+                frame.irradiance.as_entire_binding(),
+            ],
+        );
+        let shadow = bind_group(
+            ctx,
+            "caustic-triangles light cube shadow distances",
+            &self.shadow.get_bind_group_layout(0),
+            &[
+                frame.uniform.as_entire_binding(),
+                frame.dm_buffer.as_entire_binding(),
+                target.shadow.as_entire_binding(),
+            ],
+        );
+        CubeBinds { cube, shadow }
+    }
+
+    /// Reset the shadow distances to "no surface" before the first generator's
+    /// [`encode_cube`](Self::encode_cube) (a queue write: it lands before the next submission).
+    pub fn reset_cube(&self, ctx: &GpuContext, target: &LightCubeTarget) {
+        let n = 6 * target.resolution as usize * target.resolution as usize;
+        ctx.queue
+            .write_buffer(&target.shadow, 0, bytemuck::cast_slice(&vec![FAR; n]));
+    }
+
+    /// Record one generator's reconstruction into the light cube map (§4.2): the vertex irradiance
+    /// pass, its caustic triangles drawn into each face (cleared first when `clear`), and its
+    /// surfaces into the shadow distances. The photon image must be in `frame.photons`.
+    pub fn encode_cube(
+        &self,
+        frame: &Frame,
+        binds: &CubeBinds,
+        target: &LightCubeTarget,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        clear: bool,
+    ) {
+        let p = frame.setup.p as u32;
+        let c = target.resolution;
+        {
+            let mut pass =
+                begin_compute(encoder, &mut timer, "caustic-triangles vertex irradiance");
+            pass.set_pipeline(&self.irradiance);
+            pass.set_bind_group(0, &frame.irradiance_bind, &[]);
+            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        {
+            let label = "caustic-triangles light cube map";
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &target.view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: if clear {
+                            wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                        } else {
+                            wgpu::LoadOp::Load
+                        },
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.cube);
+            pass.set_bind_group(0, &binds.cube, &[]);
+            for face in 0..6 {
+                pass.set_viewport(0.0, (face * c) as f32, c as f32, c as f32, 0.0, 1.0);
+                pass.set_scissor_rect(0, face * c, c, c);
+                pass.draw(0..6 * (p - 1) * (p - 1), face..face + 1);
+            }
+        }
+        let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles shadow distances");
+        pass.set_pipeline(&self.shadow);
+        pass.set_bind_group(0, &binds.shadow, &[]);
+        pass.dispatch_workgroups(c.div_ceil(8), (6 * c).div_ceil(8), 1);
+    }
+
+    /// Read a light cube map back as the CPU twin's [`LightCube`].
+    pub fn read_cube(
+        &self,
+        ctx: &GpuContext,
+        target: &LightCubeTarget,
+        position: glam::DVec3,
+    ) -> Result<LightCube, GpuError> {
+        let texels: Vec<[f32; 4]> = if self.map_format == wgpu::TextureFormat::Rgba16Float {
+            let raw: Vec<[u16; 4]> = ctx.read_texture(&target.texture)?;
+            raw.into_iter().map(|t| t.map(f16_to_f32)).collect()
+        } else {
+            ctx.read_texture(&target.texture)?
+        };
+        Ok(LightCube {
+            resolution: target.resolution as usize,
+            position,
+            caustic: texels.into_iter().map(|t| [t[0], t[1]]).collect(),
+            shadow: ctx.read_buffer(&target.shadow)?,
         })
     }
 }

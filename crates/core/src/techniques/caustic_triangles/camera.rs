@@ -165,7 +165,7 @@ impl CameraInput<'_> {
     }
 
     /// Irradiance (floor units) of the light at diffuse point `y` with unit normal `n`.
-    fn irradiance(&self, y: DVec3, n: DVec3, floor: bool) -> f64 {
+    pub fn irradiance(&self, y: DVec3, n: DVec3, floor: bool) -> f64 {
         let b = self.params.bias;
         match &self.light {
             CameraLight::Sun {

@@ -490,3 +490,64 @@ fn point_and_spot_lights_are_validated_and_refused_by_the_sun_techniques() {
     let e = GlassScene::from_scene(&inside, 0).unwrap_err().to_string();
     assert!(e.contains("inside the caustic generator"), "{e}");
 }
+
+/// The camera pass's distance test (§4.3): a point in the direction of a caustic texel but in front
+/// of where the photons landed gets the direct light only, not the caustic; the receiver point gets
+/// both.
+#[test]
+fn the_caustic_lights_only_its_receiver() {
+    let s = lamp_scene(64, 1.2, None);
+    let dm = DistanceMap::build(&s, 128, 2);
+    let setup = CausticTrianglesSetup::new(&params(64), &s).unwrap();
+    let out = caustics(&setup, &dm);
+    let pl = s.point.unwrap();
+    let mut cube = cube::LightCube::new(128, pl.position);
+    cube::cube_triangles_pass(&setup, &out.photons, &out.irradiance, &mut cube);
+    cube::shadow_pass(&[(&setup, &dm)], &mut cube);
+    let cam = crate::scene::Camera {
+        position: DVec3::new(0.0, -2.0, 2.0),
+        target: DVec3::ZERO,
+        fov_y: 40.0,
+        width: 4,
+        height: 4,
+    };
+    let input = camera::CameraInput {
+        camera: &cam,
+        generators: vec![(&setup, &dm)],
+        light: camera::CameraLight::Point {
+            light: pl,
+            cube: &cube,
+        },
+        params: camera::CameraParams::default(),
+    };
+    let (k, t) = cube
+        .caustic
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1[0].total_cmp(&b.1[0]))
+        .unwrap();
+    let c = cube.resolution;
+    let d = distance_map::texel_dir(k / (c * c), (k / c) % c, k % c, c);
+    let receiver = (t[1] / t[0]) as f64;
+    let on = pl.position + d * receiver;
+    assert!(
+        on.z.abs() < 1e-3 * receiver,
+        "the caustic lies on the floor: {on}"
+    );
+    let e_on = input.irradiance(on, DVec3::Z, true);
+    assert!(e_on >= t[0] as f64 * 0.999, "{e_on} vs {}", t[0]);
+    // Halfway to the glass the caustic went through (the first surface along d), facing the
+    // light: the direct light alone.
+    let first = cube.shadow[k] as f64;
+    assert!(
+        first < 0.8 * receiver,
+        "the caustic's direction passes the glass"
+    );
+    let front = pl.position + d * (0.5 * first);
+    let e_front = input.irradiance(front, -d, false);
+    let direct = pl.intensity() / (0.5 * first).powi(2);
+    assert!(
+        (e_front / direct - 1.0).abs() < 1e-9,
+        "{e_front} vs direct {direct}"
+    );
+}

@@ -18,8 +18,10 @@ struct CausticTriangles {
     area_rule: u32,     // 0: paper (half the 4-neighbour triangles), 1: hat (a third of the drawn ones)
     width: u32,         // floor map
     height: u32,
-    _pad0: u32,
-    _pad1: u32,
+    light_cube: u32,    // face side of the light cube map (point light)
+    dm_base: u32,       // first texel of this generator's distance map in a buffer of several
+    light: vec4<f32>,   // xyz: the point light; w: 0 the sun, 1 a point light
+    spot: vec4<f32>,    // xyz: spot axis; w: cos of its half-angle, -2 for a bare point light
 }
 
 // Floor point to map pixel coordinates.

@@ -2,8 +2,24 @@
 // linear then secant search. CPU twin: caustics-core/src/techniques/caustic_triangles/distance_map.rs
 // (layout, face convention and search documented there).
 
-@group(0) @binding(0) var<uniform> u: CausticTriangles;
-@group(0) @binding(1) var<storage, read> dm: array<vec4<f32>>;
+// The pass including this file declares `dm: array<vec4<f32>>` (one or several distance maps, one
+// after the other) and sets `dmg` to the map a ray is traced in before calling these functions.
+
+struct DistanceMapInfo {
+    centre: vec4<f32>,  // xyz: reference point; w: radius of the sphere holding its surfaces
+    cube: u32,          // face side
+    layers: u32,
+    base: u32,          // index of its first texel in `dm`
+    linear_steps: u32,
+    secant_iterations: u32,
+}
+
+var<private> dmg: DistanceMapInfo;
+
+// The distance map a generator's uniform describes, at `base` in `dm`.
+fn dm_info(c: CausticTriangles, base: u32) -> DistanceMapInfo {
+    return DistanceMapInfo(c.centre, c.cube, c.layers, base, c.linear_steps, c.secant_iterations);
+}
 
 const MAX_LAYERS: u32 = 8u;
 
@@ -20,18 +36,18 @@ fn face_st(d: vec3<f32>) -> vec3<f32> {
 }
 
 fn dm_texel(layer: u32, face: u32, row: u32, col: u32) -> vec4<f32> {
-    return dm[((layer * 6u + face) * u.cube + row) * u.cube + col];
+    return dm[dmg.base + ((layer * 6u + face) * dmg.cube + row) * dmg.cube + col];
 }
 
 // The surface of `layer` in direction d: (normal, signed distance), w = 0 where there is none.
 fn dm_sample(layer: u32, d: vec3<f32>) -> vec4<f32> {
-    let c = f32(u.cube);
+    let c = f32(dmg.cube);
     let fst = face_st(d);
     let face = u32(fst.x);
     let x = (fst.y + 1.0) * 0.5 * c - 0.5;
     let y = (fst.z + 1.0) * 0.5 * c - 0.5;
-    let x0 = u32(clamp(i32(floor(x)), 0, i32(u.cube) - 2));
-    let y0 = u32(clamp(i32(floor(y)), 0, i32(u.cube) - 2));
+    let x0 = u32(clamp(i32(floor(x)), 0, i32(dmg.cube) - 2));
+    let y0 = u32(clamp(i32(floor(y)), 0, i32(dmg.cube) - 2));
     let fx = clamp(x - f32(x0), 0.0, 1.0);
     let fy = clamp(y - f32(y0), 0.0, 1.0);
     let q0 = dm_texel(layer, face, y0, x0);
@@ -59,7 +75,7 @@ fn dm_sample(layer: u32, d: vec3<f32>) -> vec4<f32> {
 
 // |l| - |l'| of `layer` at p in x, the surface in y..: (f, valid); the surface via dm_sample.
 fn dm_offset(layer: u32, p: vec3<f32>) -> vec2<f32> {
-    let l = p - u.centre.xyz;
+    let l = p - dmg.centre.xyz;
     let len = length(l);
     let s = dm_sample(layer, l / max(len, 1e-30));
     if s.w == 0.0 {
@@ -82,7 +98,7 @@ fn secant(layer: u32, x: vec3<f32>, r: vec3<f32>, lo_in: vec2<f32>, hi_in: vec2<
     var d_hi = hi_in.x;
     var f_hi = hi_in.y;
     var d = d_lo + (d_hi - d_lo) * f_lo / (f_lo - f_hi);
-    for (var it = 0u; it < u.secant_iterations; it++) {
+    for (var it = 0u; it < dmg.secant_iterations; it++) {
         let o = dm_offset(layer, x + r * d);
         if o.y == 0.0 {
             return miss;
@@ -100,7 +116,7 @@ fn secant(layer: u32, x: vec3<f32>, r: vec3<f32>, lo_in: vec2<f32>, hi_in: vec2<
         d = d_lo + (d_hi - d_lo) * f_lo / (f_lo - f_hi);
     }
     let p = x + r * d;
-    let l = p - u.centre.xyz;
+    let l = p - dmg.centre.xyz;
     let len = length(l);
     let s = dm_sample(layer, l / max(len, 1e-30));
     if s.w == 0.0 || abs(len - abs(s.w)) > tol * abs(s.w) {
@@ -111,15 +127,21 @@ fn secant(layer: u32, x: vec3<f32>, r: vec3<f32>, lo_in: vec2<f32>, hi_in: vec2<
 
 // Trace x + R d, d in [d0, d1], against every layer; glass must be crossed the way `inside` says.
 fn dm_trace(x: vec3<f32>, r: vec3<f32>, d0: f32, d1: f32, inside: bool) -> Hit {
+    return dm_trace_mode(x, r, d0, d1, select(0u, 1u, inside));
+}
+
+// The glass crossings that stop the ray: mode 0 entering, 1 leaving, 2 none (diffuse only). CPU
+// twin: `DistanceMap::trace_mode` with `Crossing`.
+fn dm_trace_mode(x: vec3<f32>, r: vec3<f32>, d0: f32, d1: f32, mode: u32) -> Hit {
     var best: Hit;
     best.found = false;
     if d1 <= d0 {
         return best;
     }
-    let steps = max(u.linear_steps, 1u);
+    let steps = max(dmg.linear_steps, 1u);
     let dd = (d1 - d0) / f32(steps);
-    let tol = 8.0 / f32(u.cube);
-    let layers = min(u.layers, MAX_LAYERS);
+    let tol = 8.0 / f32(dmg.cube);
+    let layers = min(dmg.layers, MAX_LAYERS);
     var prev: array<vec2<f32>, MAX_LAYERS>;
     for (var k = 0u; k < layers; k++) {
         prev[k] = dm_offset(k, x + r * d0);
@@ -134,7 +156,8 @@ fn dm_trace(x: vec3<f32>, r: vec3<f32>, d0: f32, d1: f32, inside: bool) -> Hit {
                 let h = secant(k, x, r, vec2<f32>(d_lo, f_lo.x), vec2<f32>(d_hi, cur.x), tol);
                 if h.found {
                     let glass = h.surface.w > 0.0;
-                    let ok = !glass || ((dot(r, h.surface.xyz) < 0.0) != inside);
+                    let entering = dot(r, h.surface.xyz) < 0.0;
+                    let ok = !glass || (mode == 0u && entering) || (mode == 1u && !entering);
                     if ok && (!best.found || h.d < best.d) {
                         best = h;
                     }
@@ -147,4 +170,33 @@ fn dm_trace(x: vec3<f32>, r: vec3<f32>, d0: f32, d1: f32, inside: bool) -> Hit {
         }
     }
     return best;
+}
+
+// Unit direction through the centre of texel (row, col) of `face` of a cube map of side c (CPU
+// twin: `distance_map::texel_dir`).
+fn cube_texel_dir(face: u32, row: u32, col: u32, c: u32) -> vec3<f32> {
+    let s = (f32(col) + 0.5) / f32(c) * 2.0 - 1.0;
+    let t = (f32(row) + 0.5) / f32(c) * 2.0 - 1.0;
+    let sign = select(-1.0, 1.0, face % 2u == 0u);
+    let a = face / 2u;
+    var d = vec3<f32>(s, t, sign);
+    if a == 0u {
+        d = vec3<f32>(sign, s, t);
+    } else if a == 1u {
+        d = vec3<f32>(t, sign, s);
+    }
+    return normalize(d);
+}
+
+// Where o + t d (unit d) is inside the sphere of the map `dmg`: (t0 >= 0, t1), t1 <= 0 where the
+// ray misses it (CPU twin: `cube::sphere_span`).
+fn sphere_span(o: vec3<f32>, d: vec3<f32>) -> vec2<f32> {
+    let oc = o - dmg.centre.xyz;
+    let b = dot(oc, d);
+    let disc = b * b - (dot(oc, oc) - dmg.centre.w * dmg.centre.w);
+    if disc <= 0.0 {
+        return vec2<f32>(0.0, -1.0);
+    }
+    let s = sqrt(disc);
+    return vec2<f32>(max(-b - s, 0.0), -b + s);
 }

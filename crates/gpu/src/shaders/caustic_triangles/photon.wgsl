@@ -5,19 +5,55 @@
 // reflections (quads whose corners took different paths are not drawn). CPU twin: `photon` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
+@group(0) @binding(0) var<uniform> u: CausticTriangles;
+@group(0) @binding(1) var<storage, read> dm: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read_write> photons: array<vec4<f32>>;
 
 const INVALID: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 0.0);
 
-fn trace_photon(i: u32, j: u32) -> vec4<f32> {
+// The light ray of texel (i, j): origin (xyz) and power (w) in `start`, direction in `dir`; power
+// -1 where it carries no light into the map. CPU twin: `CausticTrianglesSetup::photon_ray`.
+struct PhotonRay {
+    start: vec4<f32>,
+    dir: vec3<f32>,
+}
+
+fn photon_ray(i: u32, j: u32) -> PhotonRay {
     let q = u.rect.xy + u.rect.zw * vec2<f32>(f32(j) + 0.5, f32(i) + 0.5);
     let c = u.centre.xyz;
     let radius = u.centre.w;
-    var x = c + u.u.xyz * (q.x - dot(c, u.u.xyz)) + u.v.xyz * (q.y - dot(c, u.v.xyz)) - u.w.xyz * radius;
-    var r = u.w.xyz;
+    if u.light.w == 0.0 {
+        let x = c + u.u.xyz * (q.x - dot(c, u.u.xyz)) + u.v.xyz * (q.y - dot(c, u.v.xyz)) - u.w.xyz * radius;
+        return PhotonRay(vec4<f32>(x, u.v.w), u.w.xyz);
+    }
+    let len2 = 1.0 + dot(q, q);
+    let d = (u.w.xyz + u.u.xyz * q.x + u.v.xyz * q.y) / sqrt(len2);
+    let none = PhotonRay(vec4<f32>(0.0, 0.0, 0.0, -1.0), d);
+    if u.spot.w > -2.0 && dot(d, u.spot.xyz) < u.spot.w {
+        return none;
+    }
+    let oc = u.light.xyz - c;
+    let b = dot(oc, d);
+    let disc = b * b - (dot(oc, oc) - radius * radius);
+    if disc <= 0.0 {
+        return none;
+    }
+    let t = max(-b - sqrt(disc), 0.0);
+    return PhotonRay(vec4<f32>(u.light.xyz + d * t, u.v.w / (len2 * sqrt(len2))), d);
+}
+
+fn trace_photon(i: u32, j: u32) -> vec4<f32> {
+    let ray = photon_ray(i, j);
+    if ray.start.w < 0.0 {
+        return INVALID;
+    }
+    let c = u.centre.xyz;
+    let radius = u.centre.w;
+    var x = ray.start.xyz;
+    var r = ray.dir;
     var inside = false;
     var hit_glass = false;
-    var power = u.v.w;
+    var power = ray.start.w;
     var d0 = 0.0;
     var refractions = 0u;
     var tir = 0u;
@@ -79,5 +115,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= u.p || id.y >= u.p {
         return;
     }
+    dmg = dm_info(u, 0u);
     photons[id.y * u.p + id.x] = trace_photon(id.y, id.x);
 }
