@@ -304,3 +304,32 @@ fn camera_uniform(
         _pad: [0; 2],
     }
 }
+
+/// The technique's final image of a whole scene (every glass object a generator, the scene's
+/// camera and light): on the GPU when `ctx` is given, else on the CPU twin; linear RGB, and which
+/// of the two made it.
+pub fn scene_image(
+    ctx: Option<&GpuContext>,
+    scene: &caustics_core::scene::Scene,
+    params: &caustics_core::techniques::caustic_triangles::CausticTrianglesParams,
+    camera_params: &CameraParams,
+) -> Result<(CameraImage, &'static str), GpuError> {
+    use caustics_core::techniques::caustic_triangles::camera;
+    let Some(ctx) = ctx else {
+        let rgb = camera::render_scene(scene, params, camera_params)?;
+        return Ok((
+            CameraImage {
+                width: scene.camera.width,
+                height: scene.camera.height,
+                rgb,
+            },
+            "CPU",
+        ));
+    };
+    let gens = camera::generators(scene, params)?;
+    let pairs: Vec<_> = gens.iter().map(|g| (&g.setup, &g.dm)).collect();
+    let ct = CausticTriangles::new(ctx)?;
+    let image =
+        CameraRenderer::new(ctx)?.render(ctx, &ct, &pairs, &scene.camera, camera_params, None)?;
+    Ok((image, "GPU"))
+}

@@ -411,3 +411,24 @@ pub fn render_scene(
         }
     })
 }
+
+/// Tone map linear radiance ([`to_rgb8`]) and write it as an sRGB PNG.
+pub fn write_png(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    linear: &[[f32; 3]],
+    exposure: f64,
+) -> crate::Result<()> {
+    image::save_buffer(
+        path,
+        &to_rgb8(linear, exposure),
+        width,
+        height,
+        image::ExtendedColorType::Rgb8,
+    )
+    .map_err(|e| crate::Error::BadFile {
+        path: path.to_path_buf(),
+        problem: e.to_string(),
+    })
+}
