@@ -64,7 +64,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         name: "volumes",
         paper: "3",
         summary: "illumination volumes against colour + depth textures and reference planes, caustics on underwater objects",
-        implemented: false,
+        implemented: true,
         input: Input::Water,
     },
     TechniqueInfo {
