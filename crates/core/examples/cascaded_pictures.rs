@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::cascaded::{
-    self, CASCADES, CascadedParams, CascadedSetup, Dispersion,
+    self, CASCADES, CascadedParams, CascadedSetup, Dispersion, Splat,
 };
 use glam::DVec3;
 
@@ -75,6 +75,15 @@ fn main() {
         println!("shore, {name}");
         let (setup, f) = run(scene, &params);
         save(&out.join(format!("shore-{name}.png")), w, h, show(&f), 0.5);
+        if name == "near" {
+            println!("shore, near, point splat");
+            let point = CascadedParams {
+                splat: Splat::Point,
+                ..params.clone()
+            };
+            let (_, f) = run(scene, &point);
+            save(&out.join("shore-near-point.png"), w, h, show(&f), 0.5);
+        }
         if name == "far" {
             for k in 0..CASCADES {
                 let m = f.cascade_map(&setup, k);

@@ -277,9 +277,15 @@ impl Cascaded {
         let f32x4 = wgpu::TextureFormat::Rgba32Float;
         let eye = ctx.texture_2d("cascaded eye depth", (w, h, 1), f32x4, storage);
         let gwater = ctx.texture_2d("cascaded water G-buffer", (res, res, 1), f32x4, storage);
+        // Without the terrain pass the photons take the plane z = 0 and never read it.
+        let tres = if setup.terrain_range.is_some() {
+            res
+        } else {
+            1
+        };
         let gterrain = ctx.texture_2d(
             "cascaded terrain G-buffer",
-            (res, res, 1),
+            (tres, tres, 1),
             wgpu::TextureFormat::R32Float,
             storage,
         );
@@ -398,7 +404,7 @@ impl Cascaded {
             compose_bind,
             disperse_bind,
             _terrain: terrain_tex,
-            gbuffer_bytes: res as u64 * res as u64 * (16 + 4),
+            gbuffer_bytes: res as u64 * res as u64 * 16 + tres as u64 * tres as u64 * 4,
             cascade_map_bytes: screen * 12,
             other_bytes: screen * 16 * (2 + (setup.params.dispersion == Dispersion::Post) as u64)
                 + terrain_grid.data.len() as u64 * 4
