@@ -1,14 +1,15 @@
 //! Frame time of technique `volumes` on the built-in scene `objects` at the paper's 512 x 512 (floor
-//! map and every object's textures 512 x 512, a 512 x 512 water lattice over the pool) for 5, 10 and
-//! 50 reference planes: GPU timestamps per pass and the wall clock of the whole submission, median
+//! map and every object's textures 512 x 512, a 512 x 512 water lattice over the pool, and the
+//! refracted view of §3.3 at 512 x 512) for 5, 10 and 50 reference planes: GPU timestamps per pass and the wall clock of the whole submission, median
 //! of 5 frames after a warm-up; and the memory the representation takes against a volumetric texture
 //! of the same resolution (the paper's claim, §4).
 //!
 //! `WGPU_BACKEND=vulkan cargo run --release -p caustics-gpu --example volumes_bench`
 
 use caustics_core::scene::Scene;
+use caustics_core::techniques::volumes::view::ViewCamera;
 use caustics_core::techniques::volumes::{VolumesInput, VolumesParams, VolumesSetup};
-use caustics_gpu::volumes::Volumes;
+use caustics_gpu::volumes::{ViewOptions, Volumes};
 use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -31,6 +32,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let water = scene.water.as_ref().expect("the objects scene has water");
     let surface = water.surface_at(scene.time)?;
     let heights = caustics_core::water::sample_grid(surface.as_ref(), 512, 512, water.size);
+    scene.camera.width = 512;
+    scene.camera.height = 512;
+    let view = ViewOptions {
+        camera: ViewCamera::new(&scene.camera),
+        floor_albedo: glam::DVec3::new(0.62, 0.78, 0.82),
+    };
     println!("\n| planes | pass | GPU ms (median of 5) |\n|---|---|---|");
     let mut summary = Vec::new();
     for planes in [5u32, 10, 50] {
@@ -42,11 +49,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ..Default::default()
         };
         let setup = VolumesSetup::new(&params, &input)?;
-        let frame = volumes.frame(&ctx, &setup, &input, &heights, water.wrap)?;
+        let frame = volumes.frame(&ctx, &setup, &input, &heights, water.wrap, Some(&view))?;
         let mut samples: Vec<Vec<(String, f64)>> = Vec::new();
         let mut walls = Vec::new();
         for run in 0..6 {
-            let mut timer = GpuTimer::new(&ctx, 8);
+            let mut timer = GpuTimer::new(&ctx, 9);
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             volumes.encode(&frame, &mut encoder, Some(&mut timer));
             timer.resolve(&mut encoder);

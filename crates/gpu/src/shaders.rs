@@ -111,4 +111,5 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::volumes::SLICES,
     &crate::volumes::FLOOR,
     &crate::volumes::SHADE,
+    &crate::volumes::VIEW,
 ];

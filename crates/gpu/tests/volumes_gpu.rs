@@ -7,11 +7,14 @@ use caustics_core::grid::Grid;
 use caustics_core::mesh::{cuboid, sphere};
 use caustics_core::techniques::volumes::illumination::{floor_pass, shade_pass, slice_pass};
 use caustics_core::techniques::volumes::representation::covered;
+use caustics_core::techniques::volumes::view::{ViewCamera, view_pass};
 use caustics_core::techniques::volumes::{
     self, VolumesInput, VolumesObject, VolumesParams, VolumesSetup,
 };
 use caustics_gpu::context::test_context;
-use caustics_gpu::volumes::{PassUniform, ViewUniform, Volumes, VolumesUniform};
+use caustics_gpu::volumes::{
+    CameraUniform, PassUniform, ViewOptions, ViewUniform, Volumes, VolumesUniform,
+};
 use glam::{DAffine3, DVec3};
 
 fn heights(n: usize) -> Grid {
@@ -98,8 +101,18 @@ fn gpu_passes_match_the_cpu_twin() {
         };
         let setup = VolumesSetup::new(&params, &input).unwrap();
         let cpu = volumes::caustics(&setup, &input, &h, true);
+        let view = ViewOptions {
+            camera: ViewCamera::new(&caustics_core::scene::Camera {
+                position: DVec3::new(0.5, -0.2, 1.3),
+                target: DVec3::new(0.5, 0.5, 0.1),
+                fov_y: 50.0,
+                width: 96,
+                height: 72,
+            }),
+            floor_albedo: DVec3::new(0.6, 0.7, 0.75),
+        };
         let gpu = volumes
-            .run(&ctx, &setup, &input, &h, true)
+            .run(&ctx, &setup, &input, &h, true, Some(&view))
             .expect("GPU run");
 
         // Water: f32 bicubic and refraction against f64.
@@ -146,6 +159,28 @@ fn gpu_passes_match_the_cpu_twin() {
             eprintln!("{planes} planes, object {k}: slices GPU vs CPU (end to end) {e:.2e}");
             assert!(e < 1e-3, "object {k} end to end: {e}");
         }
+        // The refracted view from the GPU's own maps: a pixel whose ray falls on a plane's
+        // acceptance boundary or a texel edge can flip between object and floor, a handful.
+        let same = view_pass(
+            &setup,
+            &view.camera,
+            &h,
+            true,
+            &gpu.objects,
+            &gpu.floor,
+            view.floor_albedo,
+        );
+        let e = relative_l1(&gpu.view, &same);
+        eprintln!("{planes} planes: refracted view GPU vs CPU (same inputs) {e:.2e}");
+        assert!(e < 1e-3, "view: {e}");
+        let objects_seen = same
+            .iter()
+            .filter(|c| c[0] > 1.3 * c[2] || c[2] > 1.3 * c[0])
+            .count();
+        assert!(
+            objects_seen > 200,
+            "the objects are in the picture: {objects_seen}"
+        );
         let same = floor_pass(&setup, &gpu.water, &gpu.shadow);
         let e = relative_l1(&gpu.floor.texels, &same.texels);
         eprintln!("{planes} planes: floor GPU vs CPU (same inputs) {e:.2e}");
@@ -172,8 +207,8 @@ fn half_float_maps_match_full_float() {
     };
     let setup = VolumesSetup::new(&params, &input).unwrap();
     let h = heights(48);
-    let a = full.run(&ctx, &setup, &input, &h, true).unwrap();
-    let b = half.run(&ctx, &setup, &input, &h, true).unwrap();
+    let a = full.run(&ctx, &setup, &input, &h, true, None).unwrap();
+    let b = half.run(&ctx, &setup, &input, &h, true, None).unwrap();
     let e = relative_l1(&b.floor.texels, &a.floor.texels);
     assert!(e < 5e-3, "floor {e}");
     for (x, y) in b.objects.iter().zip(&a.objects) {
@@ -197,6 +232,16 @@ fn uniform_structs_match_their_wgsl_size() {
     assert_eq!(size_of("Volumes"), std::mem::size_of::<VolumesUniform>());
     assert_eq!(size_of("Pass"), std::mem::size_of::<PassUniform>());
     assert_eq!(size_of("WaterVertex"), 32);
+    let module = naga::front::wgsl::parse_str(&caustics_gpu::volumes::VIEW.composed()).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("Camera"))
+        .unwrap();
+    assert_eq!(
+        ty.inner.size(module.to_ctx()) as usize,
+        std::mem::size_of::<CameraUniform>()
+    );
 }
 
 #[test]
@@ -214,7 +259,7 @@ fn a_texture_beyond_the_device_limit_is_refused() {
     };
     let setup = VolumesSetup::new(&params, &input).unwrap();
     let err = volumes
-        .frame(&ctx, &setup, &input, &heights(16), true)
+        .frame(&ctx, &setup, &input, &heights(16), true, None)
         .err()
         .expect("refused")
         .to_string();
@@ -223,8 +268,8 @@ fn a_texture_beyond_the_device_limit_is_refused() {
 
 #[test]
 fn every_volumes_pass_validates() {
-    use caustics_gpu::volumes::{DEPTH, FLOOR, SHADE, SLICES, WATER_PASS};
-    for pass in [&DEPTH, &WATER_PASS, &SLICES, &FLOOR, &SHADE] {
+    use caustics_gpu::volumes::{DEPTH, FLOOR, SHADE, SLICES, VIEW, WATER_PASS};
+    for pass in [&DEPTH, &WATER_PASS, &SLICES, &FLOOR, &SHADE, &VIEW] {
         let source = pass.composed();
         let module = naga::front::wgsl::parse_str(&source)
             .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));

@@ -10,6 +10,7 @@
 //! | illumination volumes × reference planes (raster, additive) | `shaders/volumes/slices.wgsl` | `illumination::slice_pass` |
 //! | floor map (raster, additive) | `shaders/volumes/floor.wgsl` | `illumination::floor_pass` |
 //! | diffuse map and Eq. 4 (compute) | `shaders/volumes/shade.wgsl` | `diffuse_map`, `shade_pass` |
+//! | refracted view, §3.3 (compute) | `shaders/volumes/view.wgsl` | `view::view_pass` |
 //!
 //! The slices are rasterised with additive blending, as the paper draws them: one triangle per
 //! (reference plane, water triangle), pulled from the water buffer by the vertex shader, the depth
@@ -23,6 +24,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::mesh::TriangleMesh;
 use caustics_core::techniques::volumes::illumination::WaterVertex;
+use caustics_core::techniques::volumes::view::ViewCamera;
 use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, VolumesSetup};
 use wgpu::util::DeviceExt;
 
@@ -52,6 +54,11 @@ pub const FLOOR: PassSource = PassSource {
     name: "volumes floor",
     shared: &[COMMON],
     source: include_str!("../shaders/volumes/floor.wgsl"),
+};
+pub const VIEW: PassSource = PassSource {
+    name: "volumes view",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/volumes/view.wgsl"),
 };
 pub const SHADE: PassSource = PassSource {
     name: "volumes shade",
@@ -169,6 +176,38 @@ pub struct PassUniform {
     pub albedo: [f32; 4],
 }
 
+/// Mirrors `Camera` in `shaders/volumes/view.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CameraUniform {
+    pub position: [f32; 4],
+    pub forward: [f32; 4],
+    pub right: [f32; 4],
+    pub up: [f32; 4],
+    pub floor_albedo: [f32; 4],
+}
+
+/// The refracted view (§3.3) to render with the caustics: the camera and the floor's albedo.
+#[derive(Clone, Copy, Debug)]
+pub struct ViewOptions {
+    pub camera: ViewCamera,
+    pub floor_albedo: glam::DVec3,
+}
+
+impl CameraUniform {
+    pub fn new(v: &ViewOptions, setup: &VolumesSetup) -> Self {
+        let c = &v.camera;
+        let f = |a: glam::DVec3, w: f64| [a.x as f32, a.y as f32, a.z as f32, w as f32];
+        CameraUniform {
+            position: f(c.position, setup.params.ambient),
+            forward: f(c.forward, setup.objects.len() as f64),
+            right: f(c.right, c.width as f64),
+            up: f(c.up, c.height as f64),
+            floor_albedo: f(v.floor_albedo, 1.0),
+        }
+    }
+}
+
 /// Every object's BVH (the very trees the CPU walks) in the shared buffers of `bvh.wgsl`, and each
 /// tree's root.
 fn flatten_meshes(meshes: &[&TriangleMesh]) -> (Vec<GpuBvhNode>, Vec<GpuBvhTriangle>, Vec<u32>) {
@@ -209,6 +248,7 @@ pub struct Volumes {
     slices: wgpu::RenderPipeline,
     floor: wgpu::RenderPipeline,
     shade: wgpu::ComputePipeline,
+    view: wgpu::ComputePipeline,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float`.
     pub map_format: wgpu::TextureFormat,
 }
@@ -257,11 +297,11 @@ fn additive_pipeline(
 }
 
 struct ObjectFrame {
-    depth: wgpu::Texture,
+    /// The object's layer of the frame's depth-texture and image arrays.
+    layer: u32,
     caustics: wgpu::Texture,
     caustics_view: wgpu::TextureView,
     diffuse: wgpu::Texture,
-    image: wgpu::Texture,
     depth_bind: wgpu::BindGroup,
     slices_bind: wgpu::BindGroup,
     shade_bind: wgpu::BindGroup,
@@ -283,6 +323,11 @@ pub struct Frame {
     floor_bind: wgpu::BindGroup,
     pub floor: wgpu::Texture,
     floor_view: wgpu::TextureView,
+    /// Every object's depth texture and final image (Eq. 4), one layer each.
+    depths: wgpu::Texture,
+    images: wgpu::Texture,
+    /// The refracted view's image and bind group, when one was asked for.
+    view: Option<(wgpu::Texture, wgpu::BindGroup)>,
     bytes: u64,
 }
 
@@ -309,6 +354,8 @@ pub struct GpuOutput {
     pub floor: CausticsMap,
     pub shadow: Vec<[f32; 4]>,
     pub water: Vec<WaterVertex>,
+    /// The refracted view, row 0 at the top (empty without one).
+    pub view: Vec<[f32; 3]>,
 }
 
 impl Volumes {
@@ -337,13 +384,15 @@ impl Volumes {
             slices: additive_pipeline(ctx, &SLICES, map_format),
             floor: additive_pipeline(ctx, &FLOOR, map_format),
             shade: compute_pipeline(ctx, &SHADE),
+            view: compute_pipeline(ctx, &VIEW),
             map_format,
         };
         ctx.check()?;
         Ok(v)
     }
 
-    /// Allocate a frame for `setup` (built from `input`) and upload the meshes and the heights.
+    /// Allocate a frame for `setup` (built from `input`), with the refracted view when `view` is
+    /// given, and upload the meshes and the heights.
     pub fn frame(
         &self,
         ctx: &GpuContext,
@@ -351,6 +400,7 @@ impl Volumes {
         input: &VolumesInput,
         heights: &Grid,
         wrap: bool,
+        view: Option<&ViewOptions>,
     ) -> Result<Frame, GpuError> {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::BufferUsages as B;
@@ -483,11 +533,35 @@ impl Volumes {
             ],
         );
 
+        // One layer per object (all objects share the texture size); one unused layer without any.
+        let res_all = setup.params.texture;
+        ctx.check_texture_size("volumes depth texture", res_all, res_all)?;
+        let layers = (setup.objects.len() as u32).max(1);
+        let array = |label: &str| {
+            ctx.texture_2d(
+                label,
+                (res_all, res_all, layers),
+                wgpu::TextureFormat::Rgba32Float,
+                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+            )
+        };
+        let depths = array("volumes depth textures");
+        let images = array("volumes images");
+        bytes += (res_all * res_all * layers) as u64 * 32;
+        let layer_view = |t: &wgpu::Texture, k: u32| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: k,
+                array_layer_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let mut pass_uniforms = Vec::new();
         let mut objects = Vec::new();
         for (k, o) in setup.objects.iter().enumerate() {
             let res = o.view.res as u32;
             let c = o.cells;
-            let u = pass_uniform(PassUniform {
+            let object_uniform = PassUniform {
                 view: ViewUniform::new(&o.view, o.spacing()),
                 cells: [c.i0 as u32, c.i1 as u32, c.j0 as u32, c.j1 as u32],
                 planes: o.planes as u32,
@@ -500,14 +574,14 @@ impl Volumes {
                     o.albedo.z as f32,
                     setup.params.ambient as f32,
                 ],
-            });
-            let depth = depth_texture("volumes depth texture", res)?;
-            let depth_view = depth.create_view(&Default::default());
+            };
+            pass_uniforms.push(object_uniform);
+            let u = pass_uniform(object_uniform);
+            let depth_view = layer_view(&depths, k as u32);
             let caustics = map_texture("volumes caustics map", res, res);
             let caustics_view = caustics.create_view(&Default::default());
             let diffuse = depth_texture("volumes diffuse map", res)?;
-            let image = depth_texture("volumes image", res)?;
-            bytes += (res * res) as u64 * (16 * 3 + texel_bytes);
+            bytes += (res * res) as u64 * (16 + texel_bytes);
             let depth_bind = bind_group(
                 ctx,
                 "volumes depth",
@@ -539,7 +613,7 @@ impl Volumes {
                     View(&depth_view),
                     View(&caustics_view),
                     View(&diffuse.create_view(&Default::default())),
-                    View(&image.create_view(&Default::default())),
+                    View(&layer_view(&images, k as u32)),
                 ],
             );
             let vertices = (c.triangles() * o.planes * 3) as u64;
@@ -551,11 +625,10 @@ impl Volumes {
                 });
             }
             objects.push(ObjectFrame {
-                depth,
+                layer: k as u32,
                 caustics,
                 caustics_view,
                 diffuse,
-                image,
                 depth_bind,
                 slices_bind,
                 shade_bind,
@@ -563,6 +636,53 @@ impl Volumes {
                 res,
             });
         }
+        let view = match view {
+            None => None,
+            Some(v) => {
+                let (w, h) = (v.camera.width as u32, v.camera.height as u32);
+                ctx.check_texture_size("volumes refracted view", w, h)?;
+                let image = ctx.texture_2d(
+                    "volumes refracted view",
+                    (w, h, 1),
+                    wgpu::TextureFormat::Rgba32Float,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                );
+                bytes += (w * h) as u64 * 16;
+                if pass_uniforms.is_empty() {
+                    pass_uniforms.push(PassUniform::default());
+                }
+                let camera = ctx
+                    .device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("volumes camera"),
+                        contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
+                        usage: B::UNIFORM,
+                    });
+                let object_buf = storage("volumes objects", bytemuck::cast_slice(&pass_uniforms));
+                let array_view = |t: &wgpu::Texture| {
+                    t.create_view(&wgpu::TextureViewDescriptor {
+                        dimension: Some(wgpu::TextureViewDimension::D2Array),
+                        ..Default::default()
+                    })
+                };
+                let bind = bind_group(
+                    ctx,
+                    "volumes view",
+                    &self.view.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        camera.as_entire_binding(),
+                        View(&heights_tex.create_view(&Default::default())),
+                        object_buf.as_entire_binding(),
+                        View(&array_view(&depths)),
+                        View(&array_view(&images)),
+                        View(&floor.create_view(&Default::default())),
+                        View(&image.create_view(&Default::default())),
+                    ],
+                );
+                Some((image, bind))
+            }
+        };
         ctx.check()?;
         Ok(Frame {
             setup: setup.clone(),
@@ -575,6 +695,9 @@ impl Volumes {
             floor_bind,
             floor_view: floor.create_view(&Default::default()),
             floor,
+            depths,
+            images,
+            view,
             bytes,
         })
     }
@@ -643,6 +766,12 @@ impl Volumes {
                 pass.dispatch_workgroups(o.res.div_ceil(8), o.res.div_ceil(8), 1);
             }
         }
+        if let Some((image, bind)) = &frame.view {
+            let mut pass = begin_compute(encoder, &mut timer, "volumes view");
+            pass.set_pipeline(&self.view);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(image.width().div_ceil(8), image.height().div_ceil(8), 1);
+        }
     }
 
     fn read_map(
@@ -665,9 +794,9 @@ impl Volumes {
     pub fn read(&self, ctx: &GpuContext, frame: &Frame) -> Result<GpuOutput, GpuError> {
         let mut objects = Vec::new();
         for o in &frame.objects {
-            let image: Vec<[f32; 4]> = ctx.read_texture(&o.image)?;
+            let image = read_layer(ctx, &frame.images, o.layer)?;
             objects.push(ObjectMaps {
-                depth: ctx.read_texture(&o.depth)?,
+                depth: read_layer(ctx, &frame.depths, o.layer)?,
                 diffuse: ctx.read_texture(&o.diffuse)?,
                 caustics: self.read_map(ctx, &o.caustics)?,
                 image: image.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
@@ -687,6 +816,13 @@ impl Volumes {
                 None => Vec::new(),
             },
             water: ctx.read_buffer(&frame.water)?,
+            view: match &frame.view {
+                Some((tex, _)) => {
+                    let texels: Vec<[f32; 4]> = ctx.read_texture(tex)?;
+                    texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect()
+                }
+                None => Vec::new(),
+            },
         })
     }
 
@@ -698,14 +834,51 @@ impl Volumes {
         input: &VolumesInput,
         heights: &Grid,
         wrap: bool,
+        view: Option<&ViewOptions>,
     ) -> Result<GpuOutput, GpuError> {
-        let frame = self.frame(ctx, setup, input, heights, wrap)?;
+        let frame = self.frame(ctx, setup, input, heights, wrap, view)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode(&frame, &mut encoder, None);
         ctx.queue.submit([encoder.finish()]);
         ctx.wait()?;
         self.read(ctx, &frame)
     }
+}
+
+/// Layer `layer` of a 2-D array texture (`Rgba32Float`, `COPY_SRC`), read back through a copy.
+fn read_layer(
+    ctx: &GpuContext,
+    array: &wgpu::Texture,
+    layer: u32,
+) -> Result<Vec<[f32; 4]>, GpuError> {
+    let (w, h) = (array.width(), array.height());
+    let one = ctx.texture_2d(
+        "volumes layer readback",
+        (w, h, 1),
+        array.format(),
+        wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::COPY_SRC,
+    );
+    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: array,
+            mip_level: 0,
+            origin: wgpu::Origin3d {
+                x: 0,
+                y: 0,
+                z: layer,
+            },
+            aspect: wgpu::TextureAspect::All,
+        },
+        one.as_image_copy(),
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    ctx.queue.submit([encoder.finish()]);
+    ctx.read_texture(&one)
 }
 
 fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {

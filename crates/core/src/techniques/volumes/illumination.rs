@@ -117,8 +117,12 @@ pub fn slice(setup: &VolumesSetup, tri: [&WaterVertex; 3], n: DVec3, c: f64) -> 
     })
 }
 
-/// Call `f(i, j, barycentrics)` for every texel centre inside the triangle `v` (pixel coordinates),
-/// edges included: what the rasteriser does, up to its tie rule on shared edges.
+/// Call `f(i, j, barycentrics)` for every texel centre inside the triangle `v` (pixel coordinates,
+/// y down as in the framebuffer), with the rasteriser's top-left rule for centres exactly on an edge:
+/// such a centre belongs to the triangle only if the edge is a left edge (the interior on its right,
+/// outward normal towards −x) or a top edge (horizontal, interior below it). Triangles that share an
+/// edge then draw each centre on it once, as the GPU does (flat water lines texel centres up on the
+/// lattice's diagonals).
 pub fn raster(
     width: usize,
     height: usize,
@@ -129,6 +133,17 @@ pub fn raster(
     if area2 == 0.0 || !area2.is_finite() {
         return;
     }
+    // Edge k is opposite vertex k; it owns the centres on it if it is top-left.
+    let owns = |k: usize| {
+        let (a, b, c) = (v[(k + 1) % 3], v[(k + 2) % 3], v[k]);
+        let e = b - a;
+        let mut n = DVec2::new(e.y, -e.x);
+        if n.dot(c - a) > 0.0 {
+            n = -n;
+        }
+        n.x < 0.0 || (n.x == 0.0 && n.y < 0.0)
+    };
+    let top_left = [owns(0), owns(1), owns(2)];
     let lo = v[0].min(v[1]).min(v[2]);
     let hi = v[0].max(v[1]).max(v[2]);
     let j0 = (lo.x - 0.5).ceil().max(0.0);
@@ -141,11 +156,19 @@ pub fn raster(
     for i in i0 as usize..=i1 as usize {
         for j in j0 as usize..=j1 as usize {
             let c = DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
-            let b0 = (v[2] - v[1]).perp_dot(c - v[1]) / area2;
-            let b1 = (v[0] - v[2]).perp_dot(c - v[2]) / area2;
-            let b2 = 1.0 - b0 - b1;
-            if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
-                f(i, j, [b0, b1, b2]);
+            let e = [
+                (v[2] - v[1]).perp_dot(c - v[1]),
+                (v[0] - v[2]).perp_dot(c - v[2]),
+                (v[1] - v[0]).perp_dot(c - v[0]),
+            ];
+            let inside = (0..3).all(|k| {
+                let s = e[k] * area2.signum();
+                s > 0.0 || (s == 0.0 && top_left[k])
+            });
+            if inside {
+                let b0 = e[0] / area2;
+                let b1 = e[1] / area2;
+                f(i, j, [b0, b1, 1.0 - b0 - b1]);
             }
         }
     }

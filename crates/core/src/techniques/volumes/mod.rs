@@ -56,13 +56,15 @@
 //! Passes (GPU twin in `caustics-gpu/src/volumes`): [`representation::depth_pass`] (depth texture,
 //! diffuse map, shadow map), [`illumination::water_pass`] (refracted rays at the lattice vertices),
 //! [`illumination::slice_pass`] (illumination volumes × reference planes → object caustics map),
-//! [`illumination::floor_pass`], [`illumination::shade_pass`] (Eq. 4).
+//! [`illumination::floor_pass`], [`illumination::shade_pass`] (Eq. 4), and the refracted view of §3.3,
+//! [`view::view_pass`].
 
 pub mod illumination;
 pub mod reference;
 pub mod representation;
 #[cfg(test)]
 mod tests;
+pub mod view;
 
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};

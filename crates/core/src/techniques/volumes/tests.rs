@@ -483,3 +483,76 @@ fn reference_agrees_with_the_floor_reference() {
         / (res * res) as f64;
     assert!(diff < 0.05, "mean |photons − exact| {diff}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// The refracted view (§3.3).
+
+use super::view::{SKY, ViewCamera, view_pass};
+
+fn camera_above(x: f64, y: f64, res: u32) -> crate::scene::Camera {
+    crate::scene::Camera {
+        position: DVec3::new(x, y, 1.5),
+        target: DVec3::new(x, y, 0.0),
+        fov_y: 40.0,
+        width: res,
+        height: res,
+    }
+}
+
+/// Flat water, no objects, a floor map of 1: every pixel is the floor through the water,
+/// `T (albedo (1 + Ia)) + (1 − T) sky`, with `T` the Fresnel transmittance of its viewing angle.
+#[test]
+fn the_view_through_flat_water_sees_the_lit_floor() {
+    let inp = input(vec![], DVec3::new(0.2, 0.1, -1.0), 16);
+    let setup = VolumesSetup::new(&params(5, 16), &inp).unwrap();
+    let cam = ViewCamera::new(&camera_above(0.5, 0.5, 24));
+    let mut floor = CausticsMap::new(16, 16, 1.0);
+    floor.texels.iter_mut().for_each(|t| *t = [1.0; 3]);
+    let albedo = DVec3::new(0.6, 0.7, 0.8);
+    let img = view_pass(&setup, &cam, &flat(16), true, &[], &floor, albedo);
+    for (k, c) in img.iter().enumerate() {
+        let d = cam.dir(k % 24, k / 24);
+        let t = crate::optics::fresnel_transmittance(-d.z, 1.0, 1.333);
+        for ch in 0..3 {
+            let expected = t * albedo[ch] * 1.2 + (1.0 - t) * SKY[ch];
+            assert!((c[ch] as f64 - expected).abs() < 1e-5, "{k}: {c:?}");
+        }
+    }
+}
+
+/// A red ball straight below the camera fills the middle of the picture (refraction bends the rays
+/// towards the vertical, so it looks smaller, never shifted sideways on the axis), and is lit.
+#[test]
+fn the_view_sees_the_ball_below_it() {
+    let inp = input(vec![one_ball()], DVec3::new(0.0, 0.0, -1.0), 32);
+    let mut p = params(10, 64);
+    p.water_cells = 32;
+    let setup = VolumesSetup::new(&p, &inp).unwrap();
+    let out = caustics(&setup, &inp, &flat(32), true);
+    let res = 33;
+    let cam = ViewCamera::new(&camera_above(0.5, 0.5, res as u32));
+    let grey = DVec3::splat(0.5);
+    let img = view_pass(
+        &setup,
+        &cam,
+        &flat(32),
+        true,
+        &out.objects,
+        &out.floor,
+        grey,
+    );
+    let centre = img[(res / 2) * res + res / 2];
+    assert!(
+        centre[0] > 1.5 * centre[1],
+        "red ball at the centre: {centre:?}"
+    );
+    // Mirror symmetry of the picture (the sun straight down, the ball on the axis).
+    for y in 0..res {
+        for x in 0..res {
+            let (a, b) = (img[y * res + x], img[y * res + res - 1 - x]);
+            assert!((a[0] - b[0]).abs() < 0.05, "({x}, {y}): {a:?} vs {b:?}");
+        }
+    }
+    let red = img.iter().filter(|c| c[0] > 1.5 * c[1]).count();
+    assert!(red > 20 && red < res * res / 2, "{red}");
+}

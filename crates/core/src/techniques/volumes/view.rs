@@ -1,0 +1,176 @@
+//! The refracted view of §3.3 (Fig. 5): the camera above the water sees the objects through the
+//! refracting surface. Each pixel's viewing ray meets the water, is refracted there, and is traced
+//! against every object's reference planes and depth texture with the same acceptance test as §3.1;
+//! the pixel takes the colour of the accepted texel of the object's final image (Eq. 4), or of the
+//! floor where the ray reaches it first. GPU twin: `shaders/volumes/view.wgsl`.
+//!
+//! Beyond the paper (stated): the water's Fresnel reflectance mixes in a constant sky colour, the view
+//! path is attenuated by `exp(−K d)`, and the floor is seen with one uniform albedo lit by its caustics
+//! map (`albedo (E + Ia)`), so the picture is whole.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::representation::covered;
+use super::{ObjectMaps, VolumesSetup};
+use crate::grid::{Edge, Grid};
+use crate::map::CausticsMap;
+use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::scene::Camera;
+
+/// The sky the water reflects.
+pub const SKY: [f64; 3] = [0.55, 0.7, 0.9];
+/// Fixed-point steps from the rest plane to the waved surface along a viewing ray.
+pub const SURFACE_STEPS: usize = 4;
+
+/// The camera as the view pass reads it: pixel `(x, y)` (y down) looks along
+/// `forward + right sx + up sy`, `sx = 2 (x + ½) / W − 1`, `sy = 1 − 2 (y + ½) / H`, with `right` and
+/// `up` scaled by the field of view (as [`Camera::ray`]).
+#[derive(Clone, Copy, Debug)]
+pub struct ViewCamera {
+    pub position: DVec3,
+    pub forward: DVec3,
+    pub right: DVec3,
+    pub up: DVec3,
+    pub width: usize,
+    pub height: usize,
+}
+
+impl ViewCamera {
+    pub fn new(c: &Camera) -> Self {
+        let forward = (c.target - c.position).normalize();
+        let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
+        let up = right.cross(forward);
+        let half = (c.fov_y.to_radians() * 0.5).tan();
+        let aspect = c.width as f64 / c.height as f64;
+        ViewCamera {
+            position: c.position,
+            forward,
+            right: right * half * aspect,
+            up: up * half,
+            width: c.width as usize,
+            height: c.height as usize,
+        }
+    }
+
+    pub fn dir(&self, x: usize, y: usize) -> DVec3 {
+        let sx = 2.0 * (x as f64 + 0.5) / self.width as f64 - 1.0;
+        let sy = 1.0 - 2.0 * (y as f64 + 0.5) / self.height as f64;
+        (self.forward + self.right * sx + self.up * sy).normalize()
+    }
+}
+
+/// What the refracted ray from `s` along `r` sees first: `(path, object, texel)` of the nearest
+/// accepted plane point over all objects (planes taken in the order the ray meets them).
+pub fn trace_objects(
+    setup: &VolumesSetup,
+    depths: &[&[[f32; 4]]],
+    s: DVec3,
+    r: DVec3,
+) -> Option<(f64, usize, usize)> {
+    let mut best: Option<(f64, usize, usize)> = None;
+    for (k, o) in setup.objects.iter().enumerate() {
+        let view = &o.view;
+        let vr = view.v.dot(r);
+        if vr <= 1e-6 {
+            continue;
+        }
+        let half = 0.5 * o.spacing();
+        let res = view.res;
+        for p in 0..o.planes {
+            let zk = o.plane_depth(p);
+            let u = (view.lo.z + zk - view.v.dot(s)) / vr;
+            if u < 0.0 || best.is_some_and(|b| b.0 <= u) {
+                continue;
+            }
+            let px = view.to_pixel(view.to_frame(s + r * u));
+            let (j, i) = (px.x.floor(), px.y.floor());
+            if !(j >= 0.0 && i >= 0.0 && j < res as f64 && i < res as f64) {
+                continue;
+            }
+            let texel = i as usize * res + j as usize;
+            let t = &depths[k][texel];
+            if covered(t) && (t[0] as f64 - zk).abs() <= half {
+                best = Some((u, k, texel));
+                // Later planes are further along the ray.
+                break;
+            }
+        }
+    }
+    best
+}
+
+/// Where the viewing ray `o + t d` (going down) meets the waved surface, and the surface's
+/// displacement gradient there.
+pub fn surface_hit(
+    setup: &VolumesSetup,
+    heights: &Grid,
+    wrap: bool,
+    o: DVec3,
+    d: DVec3,
+) -> (DVec3, DVec2) {
+    let edge = if wrap { Edge::Wrap } else { Edge::Clamp };
+    let mut t = (setup.depth - o.z) / d.z;
+    let mut hg = heights.sample((o + d * t).truncate(), setup.size, edge);
+    for _ in 0..SURFACE_STEPS {
+        t = (setup.depth + hg.0 - o.z) / d.z;
+        hg = heights.sample((o + d * t).truncate(), setup.size, edge);
+    }
+    (o + d * t, hg.1)
+}
+
+/// The view pass: one RGB per camera pixel, row 0 at the top.
+#[allow(clippy::too_many_arguments)]
+pub fn view_pass(
+    setup: &VolumesSetup,
+    camera: &ViewCamera,
+    heights: &Grid,
+    wrap: bool,
+    objects: &[ObjectMaps],
+    floor: &CausticsMap,
+    floor_albedo: DVec3,
+) -> Vec<[f32; 3]> {
+    let depths: Vec<&[[f32; 4]]> = objects.iter().map(|o| o.depth.as_slice()).collect();
+    let sky = DVec3::from(SKY);
+    let (w, h) = (camera.width, camera.height);
+    (0..w * h)
+        .into_par_iter()
+        .map(|k| {
+            let d = camera.dir(k % w, k / w);
+            let o = camera.position;
+            if d.z >= 0.0 || o.z <= setup.depth {
+                return sky.as_vec3().to_array();
+            }
+            let (s, grad) = surface_hit(setup, heights, wrap, o, d);
+            let n = height_field_normal(grad);
+            let cos_i = -d.dot(n);
+            let (Some(r), true) = (refract(d, n, setup.eta), cos_i > 0.0) else {
+                return sky.as_vec3().to_array();
+            };
+            let tr = fresnel_transmittance(cos_i, 1.0, setup.ior);
+            let t_floor = s.z / -r.z;
+            let (path, under) = match trace_objects(setup, &depths, s, r) {
+                Some((u, obj, texel)) if u < t_floor => {
+                    let c = objects[obj].image[texel];
+                    (u, DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64))
+                }
+                _ => {
+                    let p = (s + r * t_floor).truncate();
+                    let e = floor_texel(floor, p);
+                    (t_floor, floor_albedo * (e + setup.params.ambient))
+                }
+            };
+            let c = under * (-setup.absorption * path).exp() * tr + sky * (1.0 - tr);
+            c.as_vec3().to_array()
+        })
+        .collect()
+}
+
+/// The floor map's nearest texel at `p`, clamped at the edges.
+pub fn floor_texel(floor: &CausticsMap, p: DVec2) -> DVec3 {
+    let px = p / floor.size * DVec2::new(floor.width as f64, floor.height as f64);
+    let j = (px.x.floor().max(0.0) as usize).min(floor.width - 1);
+    let i = (px.y.floor().max(0.0) as usize).min(floor.height - 1);
+    let t = floor.texels[i * floor.width + j];
+    DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64)
+}
