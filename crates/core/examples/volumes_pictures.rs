@@ -8,13 +8,82 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use caustics_core::mesh::MeshBvh;
+use caustics_core::optics::{fresnel_transmittance, height_field_normal, refract};
 use caustics_core::scene::Scene;
 use caustics_core::techniques::volumes::reference::{
     MeshReference, MeshReferenceOptions, comparable, mesh_reference,
 };
 use caustics_core::techniques::volumes::representation::covered;
+use caustics_core::techniques::volumes::view::{
+    SKY, ViewCamera, floor_texel, surface_hit, view_pass,
+};
 use caustics_core::techniques::volumes::{self, VolumesInput, VolumesParams, VolumesSetup};
 use caustics_core::water::GridSurface;
+use glam::DVec3;
+
+/// The floor's albedo in the refracted view: the pool tiles' colour.
+const FLOOR_ALBEDO: DVec3 = DVec3::new(0.62, 0.78, 0.82);
+
+/// The refracted view as the reference sees it: each viewing ray refracted at the same surface and
+/// traced exactly (BVHs) to the first object or the floor, lit by the reference's irradiance there
+/// (the object map's texel the hit projects into), with the same Fresnel, sky and absorption as the
+/// technique's view pass.
+fn reference_view(
+    setup: &VolumesSetup,
+    input: &VolumesInput,
+    cam: &ViewCamera,
+    heights: &caustics_core::grid::Grid,
+    wrap: bool,
+    reference: &MeshReference,
+) -> Vec<[f32; 3]> {
+    let bvhs: Vec<MeshBvh> = input.objects.iter().map(|o| o.mesh.bvh()).collect();
+    let sky = DVec3::from(SKY);
+    let ambient = setup.params.ambient;
+    (0..cam.width * cam.height)
+        .map(|k| {
+            let d = cam.dir(k % cam.width, k / cam.width);
+            if d.z >= 0.0 {
+                return sky.as_vec3().to_array();
+            }
+            let (s, grad) = surface_hit(setup, heights, wrap, cam.position, d);
+            let n = height_field_normal(grad);
+            let cos_i = -d.dot(n);
+            let Some(r) = refract(d, n, setup.eta).filter(|_| cos_i > 0.0) else {
+                return sky.as_vec3().to_array();
+            };
+            let tr = fresnel_transmittance(cos_i, 1.0, setup.ior);
+            let t_floor = s.z / -r.z;
+            let mut best: Option<(usize, f64)> = None;
+            for (o, (obj, bvh)) in input.objects.iter().zip(&bvhs).enumerate() {
+                let limit = best.map_or(t_floor, |b| b.1);
+                if let Some((t, _)) = bvh.intersect(&obj.mesh, s, r, limit) {
+                    best = Some((o, t));
+                }
+            }
+            let (path, under) = match best {
+                Some((o, t)) => {
+                    let view = &setup.objects[o].view;
+                    let px = view.to_pixel(view.to_frame(s + r * t));
+                    let res = view.res as f64;
+                    let e = if px.x >= 0.0 && px.y >= 0.0 && px.x < res && px.y < res {
+                        let e = reference.objects[o][px.y as usize * view.res + px.x as usize];
+                        DVec3::new(e[0] as f64, e[1] as f64, e[2] as f64)
+                    } else {
+                        DVec3::ZERO
+                    };
+                    (t, input.objects[o].albedo * (e + ambient))
+                }
+                None => {
+                    let e = floor_texel(&reference.floor, (s + r * t_floor).truncate(), wrap);
+                    (t_floor, FLOOR_ALBEDO * (e + ambient))
+                }
+            };
+            let c = under * (-setup.absorption * path).exp() * tr + sky * (1.0 - tr);
+            c.as_vec3().to_array()
+        })
+        .collect()
+}
 
 const NAMES: [&str; 3] = ["teapot", "ball", "block"];
 
@@ -70,7 +139,10 @@ fn main() {
         .unwrap_or_else(|| "docs/images/volumes".into())
         .into();
     std::fs::create_dir_all(&out).unwrap();
-    let scene = Scene::builtin("objects").unwrap();
+    let mut scene = Scene::builtin("objects").unwrap();
+    scene.camera.width = 512;
+    scene.camera.height = 512;
+    let cam = ViewCamera::new(&scene.camera);
     let water = scene.water.as_ref().unwrap();
     let surface = water.surface_at(scene.time).unwrap();
     let input = VolumesInput::from_scene(&scene).unwrap();
@@ -115,6 +187,8 @@ fn main() {
     );
     report_convergence(&setup0, &reference, &coarse);
 
+    let ref_view = reference_view(&setup0, &input, &cam, &heights, water.wrap, &reference);
+    let mut views = Vec::new();
     println!("\n| planes | object | relative L1 | flux error |");
     println!("|---|---|---|---|");
     for planes in [5u32, 50] {
@@ -160,6 +234,18 @@ fn main() {
                 &[&tech, &refr, &diff],
             );
         }
+        let view = view_pass(
+            &setup,
+            &cam,
+            &heights,
+            water.wrap,
+            &result.objects,
+            &result.floor,
+            FLOOR_ALBEDO,
+        );
+        let (l1, flux) = errors(&view, &ref_view, |_| true);
+        println!("| {planes} | refracted view (§3.3) | {l1:.3} | {flux:+.3} |");
+        views.push(view);
         let (l1, flux) = errors(&result.floor.texels, &reference.floor.texels, |_| true);
         println!("| {planes} | floor | {l1:.3} | {flux:+.3} |");
         let res = setup.width;
@@ -183,6 +269,14 @@ fn main() {
             &[&|i| flip(&tech, i), &|i| flip(&refr, i)],
         );
     }
+    let show = |v: &[[f32; 3]], i: usize| Some(v[i].map(|c| 0.8 * c));
+    save_panels(
+        &out.join("view.png"),
+        512,
+        &[&|i| show(&views[0], i), &|i| show(&views[1], i), &|i| {
+            show(&ref_view, i)
+        }],
+    );
 }
 
 fn report_convergence(setup: &VolumesSetup, fine: &MeshReference, coarse: &MeshReference) {

@@ -156,7 +156,7 @@ pub fn view_pass(
                 }
                 _ => {
                     let p = (s + r * t_floor).truncate();
-                    let e = floor_texel(floor, p);
+                    let e = floor_texel(floor, p, wrap);
                     (t_floor, floor_albedo * (e + setup.params.ambient))
                 }
             };
@@ -166,11 +166,20 @@ pub fn view_pass(
         .collect()
 }
 
-/// The floor map's nearest texel at `p`, clamped at the edges.
-pub fn floor_texel(floor: &CausticsMap, p: DVec2) -> DVec3 {
-    let px = p / floor.size * DVec2::new(floor.width as f64, floor.height as f64);
-    let j = (px.x.floor().max(0.0) as usize).min(floor.width - 1);
-    let i = (px.y.floor().max(0.0) as usize).min(floor.height - 1);
+/// The floor map's nearest texel at `p`: wrapped for a periodic surface (the pool repeats beyond its
+/// square, as the water does), clamped at the edges otherwise.
+pub fn floor_texel(floor: &CausticsMap, p: DVec2, wrap: bool) -> DVec3 {
+    let px = (p / floor.size * DVec2::new(floor.width as f64, floor.height as f64)).floor();
+    let (w, h) = (floor.width as f64, floor.height as f64);
+    let (j, i) = if wrap {
+        (px.x.rem_euclid(w), px.y.rem_euclid(h))
+    } else {
+        (px.x.clamp(0.0, w - 1.0), px.y.clamp(0.0, h - 1.0))
+    };
+    let (j, i) = (
+        (j as usize).min(floor.width - 1),
+        (i as usize).min(floor.height - 1),
+    );
     let t = floor.texels[i * floor.width + j];
     DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64)
 }

@@ -92,7 +92,12 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             } else {
                 let size = vec2<f32>(textureDimensions(floor_map));
                 let px = (s + r.xyz * t_floor).xy / c.lattice.w * size;
-                let ij = vec2<i32>(clamp(floor(px), vec2<f32>(0.0), size - 1.0));
+                // Wrapped for a periodic surface (the pool repeats as the water does), else clamped.
+                var ij = vec2<i32>(clamp(floor(px), vec2<f32>(0.0), size - 1.0));
+                if wrap {
+                    let n = vec2<i32>(size);
+                    ij = ((vec2<i32>(floor(px)) % n) + n) % n;
+                }
                 under = cam.floor_albedo.xyz * (textureLoad(floor_map, ij, 0).xyz + cam.position.w);
             }
             colour = under * exp(-c.absorption.xyz * path) * tr + SKY * (1.0 - tr);
