@@ -1,5 +1,6 @@
 //! `caustics render`. The caustics map comes from the chosen technique (on the GPU where it has a
-//! GPU path and an adapter exists, else its CPU twin); the final image is rendered
+//! GPU path and an adapter exists, else its CPU twin), or, for `cascaded`, an image of the caustics
+//! in the camera's screen space made for the final image's camera and size; the final image is rendered
 //! on the GPU (`caustics_gpu::final_image`, the twin of `caustics_core::render`) when an adapter
 //! can be had, else, or with `--cpu`, on the CPU.
 
@@ -9,7 +10,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
-use caustics_core::render::{RenderOptions, render};
+use caustics_core::render::{Caustics, RenderOptions, render_with};
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques;
 use caustics_core::water::Surface;
@@ -17,7 +18,7 @@ use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
 
 use crate::progress;
-use crate::techniques::{Runner, Spec};
+use crate::techniques::{Runner, SceneCaustics, Spec};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -30,7 +31,9 @@ pub struct RenderArgs {
     /// The final image (PNG). Written to <scene>.png when neither --out nor --raw is given.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// The raw caustics map: float32 .npy of shape (height, width), or .exr.
+    /// The raw caustics map: float32 .npy of shape (height, width), or .exr. For `cascaded`, the
+    /// caustics in the final image's screen space: shape (image height, image width), row 0 at the
+    /// top, NaN where the technique has none (no floor seen, beyond its last cascade).
     #[arg(long)]
     raw: Option<PathBuf>,
     /// Caustics map resolution WIDTHxHEIGHT, overriding the scene's.
@@ -180,10 +183,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
     };
     // A map when the scene has a caustic generator the technique handles: water, or glass objects.
     let has_generator = scene.water.is_some() || spec.name == "caustic-triangles";
-    let map = if has_generator {
+    let caustics = if has_generator {
         let started = Instant::now();
         let bar = progress::bar("caustics");
-        let outcome = runner.run_scene(
+        let outcome = runner.run_scene_caustics(
             &spec,
             &scene,
             surface.as_deref(),
@@ -191,15 +194,17 @@ pub fn run(args: RenderArgs) -> Result<()> {
             &progress::callback(&bar),
         )?;
         bar.finish_and_clear();
+        let (w, h, what) = match &outcome.caustics {
+            SceneCaustics::Floor(m) => (m.width, m.height, "map"),
+            SceneCaustics::EyeSpace(e) => (e.width, e.height, "eye-space image"),
+        };
         eprintln!(
-            "caustics: {} {} x {} in {:.2} s on the {}",
+            "caustics: {} {what} {w} x {h} in {:.2} s on the {}",
             spec.label,
-            outcome.map.width,
-            outcome.map.height,
             started.elapsed().as_secs_f64(),
             outcome.backend
         );
-        Some(outcome.map)
+        Some(outcome.caustics)
     } else {
         if args.raw.is_some() {
             bail!(
@@ -210,10 +215,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
         }
         None
     };
-    if let (Some(raw), Some(map)) = (&args.raw, &map) {
-        map.write_raw(raw)?;
+    if let (Some(raw), Some(caustics)) = (&args.raw, &caustics) {
+        match caustics {
+            SceneCaustics::Floor(m) => m.write_raw(raw)?,
+            SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
+        }
         eprintln!("wrote {}", raw.display());
     }
+    let caustics = caustics.as_ref().map(SceneCaustics::caustics);
     if let Some(out) = &out {
         let started = Instant::now();
         let options = RenderOptions {
@@ -238,7 +247,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
                 final_image,
                 &scene,
                 surface.as_deref(),
-                map.as_ref(),
+                caustics,
                 &options,
             )
         });
@@ -247,10 +256,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
             Some(image) => image,
             None => {
                 let bar = progress::bar("image");
-                let image = render(
+                let image = render_with(
                     &scene,
                     surface.as_deref(),
-                    map.as_ref(),
+                    caustics,
                     &options,
                     &progress::callback(&bar),
                 );
@@ -320,11 +329,11 @@ fn render_on_gpu(
     final_image: &FinalImage,
     scene: &Scene,
     surface: Option<&dyn Surface>,
-    map: Option<&caustics_core::map::CausticsMap>,
+    caustics: Option<Caustics>,
     options: &RenderOptions,
 ) -> Option<caustics_core::render::Image> {
     let mut timer = GpuTimer::new(ctx, 1);
-    match final_image.render(ctx, scene, surface, map, options, Some(&mut timer)) {
+    match final_image.render_with(ctx, scene, surface, caustics, options, Some(&mut timer)) {
         Ok(image) => {
             if let Ok(times) = timer.read(ctx) {
                 for t in times {

@@ -129,12 +129,37 @@ pub struct Outcome {
     pub backend: &'static str,
 }
 
+/// What a technique made of a whole scene: a map of the floor square, or, for `cascaded` (paper 5),
+/// an image in the scene camera's screen space. Both light the final image
+/// (`caustics_core::render::render_with`, `FinalImage::render_with`) through
+/// [`caustics`](Self::caustics).
+pub enum SceneCaustics {
+    Floor(CausticsMap),
+    EyeSpace(caustics_core::render::EyeSpaceCaustics),
+}
+
+impl SceneCaustics {
+    pub fn caustics(&self) -> caustics_core::render::Caustics<'_> {
+        match self {
+            SceneCaustics::Floor(m) => caustics_core::render::Caustics::Floor(m),
+            SceneCaustics::EyeSpace(e) => caustics_core::render::Caustics::EyeSpace(e),
+        }
+    }
+}
+
+pub struct SceneOutcome {
+    pub caustics: SceneCaustics,
+    /// "GPU" or "CPU".
+    pub backend: &'static str,
+}
+
 /// Runs techniques, keeping their GPU pipelines between runs.
 pub struct Runner {
     pub gpu: Option<GpuContext>,
     yuksel: Option<Yuksel>,
     procedural: Option<ProceduralCaustics>,
     caustic_triangles: Option<caustics_gpu::caustic_triangles::CausticTriangles>,
+    cascaded: Option<caustics_gpu::cascaded::Cascaded>,
 }
 
 impl Runner {
@@ -144,7 +169,61 @@ impl Runner {
             yuksel: None,
             procedural: None,
             caustic_triangles: None,
+            cascaded: None,
         }
+    }
+
+    /// As [`run_scene`](Self::run_scene), for every technique, `cascaded` included: its eye-space
+    /// image is made for the scene's camera at the camera's resolution.
+    pub fn run_scene_caustics(
+        &mut self,
+        spec: &Spec,
+        scene: &caustics_core::scene::Scene,
+        surface: Option<&dyn Surface>,
+        cells_per_texel: u32,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<SceneOutcome> {
+        if spec.name != "cascaded" {
+            let o = self.run_scene(spec, scene, surface, cells_per_texel, progress)?;
+            return Ok(SceneOutcome {
+                caustics: SceneCaustics::Floor(o.map),
+                backend: o.backend,
+            });
+        }
+        use caustics_core::techniques::cascaded;
+        let params = cascaded::CascadedParams::from_table(&spec.params)?;
+        let setup = cascaded::CascadedSetup::from_scene(scene, &params)?;
+        let water = match (&scene.water, surface) {
+            (Some(w), Some(s))
+                if !matches!(
+                    w.source,
+                    WaterSource::Ocean(_) | WaterSource::HeightField(_)
+                ) =>
+            {
+                sample_grid(s, CASCADED_WATER_GRID, CASCADED_WATER_GRID, w.size)
+            }
+            _ => cascaded::water_grid(scene, CASCADED_WATER_GRID)?,
+        };
+        let terrain = scene.floor.terrain.as_ref();
+        let (texels, backend) = match &self.gpu {
+            Some(ctx) => {
+                if self.cascaded.is_none() {
+                    self.cascaded = Some(caustics_gpu::cascaded::Cascaded::new(ctx)?);
+                }
+                let gpu = self.cascaded.as_ref().expect("just made");
+                (gpu.caustics(ctx, &setup, &water, terrain)?.image, "GPU")
+            }
+            None => (cascaded::caustics(&setup, &water, terrain).image, "CPU"),
+        };
+        progress(1, 1);
+        Ok(SceneOutcome {
+            caustics: SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
+                width: setup.eye.width,
+                height: setup.eye.height,
+                texels,
+            }),
+            backend,
+        })
     }
 
     /// Run `spec` on a whole scene: the techniques whose generator is the scene's glass objects
@@ -220,8 +299,7 @@ impl Runner {
             }
             "cascaded" => bail!(
                 "technique `cascaded` (paper 5) computes caustics in the eye camera's screen space, not \
-                 as a map of the floor square; `cargo run --release -p caustics-core --example \
-                 cascaded_pictures` renders it (see docs/cascaded.md)"
+                 as a map of the floor square (`Runner::run_scene_caustics` returns its image)"
             ),
             _ => {
                 let (Some(water), Some(surface)) = (&scene.water, surface) else {
@@ -361,6 +439,10 @@ impl Runner {
         }
     }
 }
+
+/// Side of the height grid technique `cascaded` reads a water surface through when the scene gives
+/// neither an ocean's nor a file's own grid (the shore's ocean is 128²).
+const CASCADED_WATER_GRID: usize = 256;
 
 /// The height field a grid-based technique reads: the file's own samples, or the surface sampled on
 /// the map's lattice.
