@@ -9,6 +9,9 @@
 //! | vertex irradiance (compute, §5) | `shaders/caustic_triangles/irradiance.wgsl` | `irradiance_pass` |
 //! | caustic triangles (render, §4.2) | `shaders/caustic_triangles/triangles.wgsl` | `triangles_pass` |
 //! | splatting baseline (render) | `shaders/caustic_triangles/splat.wgsl` | `splat_pass` |
+//! | caustic triangles on the light cube map faces (render, §4.2, point light) | `shaders/caustic_triangles/cube.wgsl` | `cube::cube_triangles_pass` |
+//! | light cube shadow distances (compute, §4.3) | `shaders/caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
+//! | camera pass (compute, §4.3), [`camera`] | `shaders/caustic_triangles/camera.wgsl` | `camera::camera_pass` |
 //!
 //! The layered distance map is built on the CPU ([`DistanceMap::build`]) and uploaded as a storage
 //! buffer; the photon hit location image and the vertex irradiances are storage buffers that the

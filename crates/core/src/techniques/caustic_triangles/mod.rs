@@ -49,18 +49,26 @@
 //! drawn triangles carry every photon's power exactly (up to rasterisation at texel centres).
 //!
 //! # Departures from the paper
-//! - The paper draws the caustic triangles into a *light cube map* around the generator and
-//!   projects it onto the receivers in the camera pass, with the distance test against the cube map
-//!   as the shadow test. Our receiver is the floor plane `z = 0`, so the triangles are drawn straight
-//!   into the floor's caustics map; the photon stores its floor position instead of a cube-map
-//!   direction and distance, and the distance test happens while tracing (a photon whose ray meets a
-//!   diffuse surface in the distance map ends there and reaches no floor texel).
-//! - The first hit is found by the same distance-map search as the others, from a point behind the
-//!   generator along the light, instead of by rasterising the generator from the light: one
+//! - The receiver of the caustics is the floor plane `z = 0`: the photon stores its floor position,
+//!   and a photon whose ray meets a diffuse surface of the distance map (a wall) ends there and is
+//!   invalid (the paper's distance test, moved into the tracing: no light leaks through walls). For
+//!   the sun the triangles are drawn into the floor's caustics map (the light cube map of a light at
+//!   infinity degenerates); for a point light they are drawn onto the faces of the light cube map
+//!   as the paper does ([`cube`]), which the camera pass ([`camera`]) reads with its distance test
+//!   and as its shadow map.
+//! - The first hit is found by the same distance-map search as the others, from where the light
+//!   ray enters the map's sphere, instead of by rasterising the generator from the light: one
 //!   compute pass traces the whole path.
 //! - The floor plane is intersected analytically (it is the receiver, not stored in the map).
-//! - The map holds the light transmitted through the generator (the caustic); the direct sun and
-//!   the generator's shadow are the shadow-mapped sun's job, as in the paper.
+//! - The maps hold the light transmitted through the generator (the caustic); the direct light
+//!   and the shadows are the camera pass's, as in the paper.
+//!
+//! # Lights
+//! The sun's photons start on a grid over the generator's light-space rectangle. A point light's
+//! (a [`PointLight`], a spot with a cone) start at the light, one per texel of a grid over the
+//! tangent plane at distance 1 of the cone of directions to the generator's bounding sphere; the
+//! texel at `q` spans the solid angle `a / (1 + q²)^{3/2}` and carries `I` times it (texels outside
+//! a spot's cone carry nothing). Everything after the photon pass is the same for both.
 //!
 //! # Splatting baseline
 //! [`splat_pass`]: each valid photon adds its power as a square splat of fixed side `splat_size`
