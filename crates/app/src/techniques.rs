@@ -159,6 +159,7 @@ pub struct Runner {
     yuksel: Option<Yuksel>,
     procedural: Option<ProceduralCaustics>,
     caustic_triangles: Option<caustics_gpu::caustic_triangles::CausticTriangles>,
+    volumes: Option<caustics_gpu::volumes::Volumes>,
     cascaded: Option<caustics_gpu::cascaded::Cascaded>,
 }
 
@@ -169,6 +170,7 @@ impl Runner {
             yuksel: None,
             procedural: None,
             caustic_triangles: None,
+            volumes: None,
             cascaded: None,
         }
     }
@@ -296,6 +298,39 @@ impl Runner {
                     map: total.expect("one glass object at least"),
                     backend: "GPU",
                 })
+            }
+            // Paper 3: its floor map (the illumination volumes cut by the floor, the objects' shadows
+            // in it); the objects' own caustics maps and the refracted view are the technique's
+            // (caustics_gpu::volumes, docs/volumes.md).
+            "volumes" => {
+                use caustics_core::techniques::volumes;
+                let (Some(water), Some(surface)) = (&scene.water, surface) else {
+                    bail!(
+                        "scene `{}` has no water: technique `volumes` casts caustics from a water surface",
+                        scene.name
+                    );
+                };
+                let params = volumes::VolumesParams::from_table(&spec.params)?;
+                let input = volumes::VolumesInput::from_scene(scene)?;
+                let setup = volumes::VolumesSetup::new(&params, &input)?;
+                let n = (input.size / setup.lattice.cell).round() as usize;
+                let heights = sample_grid(surface, n, n, water.size);
+                let (map, backend) = match &self.gpu {
+                    Some(ctx) => {
+                        if self.volumes.is_none() {
+                            self.volumes = Some(caustics_gpu::volumes::Volumes::new(ctx)?);
+                        }
+                        let v = self.volumes.as_ref().expect("just made");
+                        let out = v.run(ctx, &setup, &input, &heights, water.wrap, None)?;
+                        (out.floor, "GPU")
+                    }
+                    None => (
+                        volumes::caustics(&setup, &input, &heights, water.wrap).floor,
+                        "CPU",
+                    ),
+                };
+                progress(1, 1);
+                Ok(Outcome { map, backend })
             }
             "cascaded" => bail!(
                 "technique `cascaded` (paper 5) computes caustics in the eye camera's screen space, not \
