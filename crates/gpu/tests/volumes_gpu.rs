@@ -281,3 +281,55 @@ fn every_volumes_pass_validates() {
         .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
     }
 }
+
+/// The edge cases of the frame: no shadow map (`shadow = 0`), and no objects at all (the BVH and the
+/// texture arrays get one unused entry), with the refracted view: GPU and CPU still agree.
+#[test]
+fn without_shadows_or_objects_gpu_matches_cpu() {
+    let Some(ctx) = test_context() else { return };
+    let volumes = Volumes::new(&ctx).expect("pipelines");
+    let h = heights(32);
+    let view = ViewOptions {
+        camera: ViewCamera::new(&caustics_core::scene::Camera {
+            position: DVec3::new(0.5, -0.1, 1.2),
+            target: DVec3::new(0.5, 0.5, 0.0),
+            fov_y: 50.0,
+            width: 40,
+            height: 30,
+        }),
+        floor_albedo: DVec3::splat(0.7),
+    };
+    let mut no_objects = scene(32);
+    no_objects.objects.clear();
+    for (input, shadow) in [(scene(32), 0u32), (no_objects, 64)] {
+        let params = VolumesParams {
+            planes: 6,
+            texture: 32,
+            water_cells: 32,
+            shadow,
+            ..Default::default()
+        };
+        let setup = VolumesSetup::new(&params, &input).unwrap();
+        let cpu = volumes::caustics(&setup, &input, &h, true);
+        let gpu = volumes
+            .run(&ctx, &setup, &input, &h, true, Some(&view))
+            .expect("GPU run");
+        assert!(gpu.shadow.is_empty() == setup.shadow.is_none());
+        let e = relative_l1(&gpu.floor.texels, &cpu.floor.texels);
+        assert!(e < 1e-3, "floor {e}");
+        for (g, c) in gpu.objects.iter().zip(&cpu.objects) {
+            let e = relative_l1(&g.caustics, &c.caustics);
+            assert!(e < 1e-3, "object {e}");
+        }
+        let same = view_pass(
+            &setup,
+            &view.camera,
+            &h,
+            true,
+            &gpu.objects,
+            &gpu.floor,
+            view.floor_albedo,
+        );
+        assert!(relative_l1(&gpu.view, &same) < 1e-3);
+    }
+}
