@@ -126,6 +126,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             info.paper
         );
     }
+    techniques::check_light(&spec.name, &scene.light)?;
     if let Some([w, h]) = args.resolution {
         check_size("--resolution", w, h)?;
         scene.caustics.width = w;
@@ -171,6 +172,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // adapter is named first; the technique and the final image share it.
     let ctx = if args.cpu { None } else { gpu_context(&args)? };
     let mut runner = Runner::new(ctx);
+    // Paper 4 ends in its own camera pass (§4.3): the technique's final image, lit through the
+    // light cube map of a point light or the floor map of the sun.
+    if let (Some(out), None, "caustic-triangles") = (&out, &args.raw, spec.name.as_str()) {
+        return caustic_triangles_image(&runner, &scene, &spec, out);
+    }
 
     let surface = match &scene.water {
         Some(w) => {
@@ -354,5 +360,34 @@ fn check_size(flag: &str, w: u32, h: u32) -> Result<()> {
     if w == 0 || h == 0 || w > max || h > max {
         bail!("{flag} {w}x{h}: each side must be between 1 and {max}");
     }
+    Ok(())
+}
+
+/// `caustics render` with technique caustic-triangles: its camera pass (paper 4, §4.3) as the final
+/// image, on the GPU where one is, else on its CPU twin.
+fn caustic_triangles_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Result<()> {
+    use caustics_core::techniques::caustic_triangles::{CausticTrianglesParams, camera};
+    let params = CausticTrianglesParams::from_table(&spec.params)?;
+    let started = Instant::now();
+    let (image, on) = caustics_gpu::caustic_triangles::camera::scene_image(
+        runner.gpu.as_ref(),
+        scene,
+        &params,
+        &camera::CameraParams::from_scene(scene),
+    )?;
+    camera::write_png(
+        out,
+        image.width,
+        image.height,
+        &image.rgb,
+        RenderOptions::default().exposure,
+    )?;
+    eprintln!(
+        "wrote {} ({} x {}, caustic-triangles through its camera pass, {:.2} s on the {on})",
+        out.display(),
+        image.width,
+        image.height,
+        started.elapsed().as_secs_f64()
+    );
     Ok(())
 }

@@ -239,6 +239,7 @@ impl Runner {
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Outcome> {
         use caustics_core::techniques::caustic_triangles as ct;
+        techniques::check_light(&spec.name, &scene.light)?;
         match spec.name.as_str() {
             "caustic-triangles" => {
                 let params = ct::CausticTrianglesParams::from_table(&spec.params)?;

@@ -533,3 +533,42 @@ fn render_shows_cascaded_caustics() {
         "the floor shows no caustics: row spread {spread:.1} steps"
     );
 }
+
+/// The glass scene under a lamp (docs/scenes/glass-lamp.toml, a spot light): caustic-triangles
+/// renders it through its own camera pass (light cube map, shadows), and a technique that needs
+/// the sun refuses it, naming the field.
+#[test]
+fn render_lights_glass_with_a_lamp() {
+    let d = tmpdir("glass-lamp");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/scenes/glass-lamp.toml");
+    let o = caustics(
+        &[
+            "render",
+            "--scene",
+            scene,
+            "--cpu",
+            "--image-size",
+            "48x32",
+            "--technique",
+            "caustic-triangles:photon_image=24,cube_resolution=48,light_cube=64",
+            "--out",
+            "lamp.png",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(d.join("lamp.png")).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (48, 32));
+    let lum: Vec<u32> = img.pixels().map(|p| p.0.iter().map(|&c| c as u32).sum()).collect();
+    let (lo, hi) = (lum.iter().min().unwrap(), lum.iter().max().unwrap());
+    assert!(hi - lo > 150, "lit and unlit parts: {lo} .. {hi}");
+    let o = caustics(
+        &["render", "--scene", scene, "--cpu", "--technique", "yuksel"],
+        &d,
+    );
+    assert!(
+        !o.status.success() && stderr(&o).contains("light.position"),
+        "{}",
+        stderr(&o)
+    );
+}
