@@ -164,7 +164,7 @@ fn main() {
         &setup0,
         &input,
         &sampled,
-        &MeshReferenceOptions::per_texel(&setup0, 12.0),
+        &MeshReferenceOptions::per_texel(&setup0, 24.0),
     );
     println!(
         "reference: {} photons in {:.1} s",
@@ -178,7 +178,7 @@ fn main() {
         &sampled,
         &MeshReferenceOptions {
             seed: 7,
-            ..MeshReferenceOptions::per_texel(&setup0, 6.0)
+            ..MeshReferenceOptions::per_texel(&setup0, 12.0)
         },
     );
     println!(
@@ -280,7 +280,7 @@ fn main() {
 }
 
 fn report_convergence(setup: &VolumesSetup, fine: &MeshReference, coarse: &MeshReference) {
-    println!("\nreference convergence (12 vs 6 photons per texel side):");
+    println!("\nreference convergence (24 vs 12 photons per texel side):");
     for (k, o) in setup.objects.iter().enumerate() {
         let (l1, _) = errors(&coarse.objects[k], &fine.objects[k], |i| {
             fine.objects[k][i][1] > 0.0
