@@ -1,6 +1,7 @@
 //! Technique `caustic-triangles` against its reference photon tracer: focus position and total
 //! power, the error of caustic triangles (both area rules) and of the splatting baseline at several
-//! photon-image sizes, and pictures (technique | reference | difference).
+//! photon-image sizes, under the sun and under the `glass-lamp` scene's point light, and pictures
+//! (technique | reference | difference).
 //!
 //! `cargo run --release -p caustics-core --example caustic_triangles_compare -- [out_dir]`
 
@@ -20,10 +21,21 @@ use image::{Rgb, RgbImage};
 /// The `glass` scene's sphere (radius 0.12, ior 1.5, its sun), optionally raised by `lift`, the
 /// floor window of side `window` centred where the ray through the centre meets the floor.
 fn glass_sphere(lift: f64, light: DVec3, window: f64, res: usize) -> GlassScene {
+    glass_sphere_lit(lift, light, None, window, res)
+}
+
+/// The same sphere lit by the point light at `lamp` instead of the sun when given.
+fn glass_sphere_lit(
+    lift: f64,
+    light: DVec3,
+    lamp: Option<DVec3>,
+    window: f64,
+    res: usize,
+) -> GlassScene {
     let centre = DVec3::new(0.35, 0.5, 0.12 + lift);
-    let light = light.normalize();
+    let light = lamp.map_or(light, |l| centre - l).normalize();
     let foot = centre.truncate() + light.truncate() * (centre.z / -light.z);
-    GlassScene::new(
+    let s = GlassScene::new(
         Shape::Sphere {
             centre,
             radius: 0.12,
@@ -38,7 +50,17 @@ fn glass_sphere(lift: f64, light: DVec3, window: f64, res: usize) -> GlassScene 
         },
         vec![],
     )
-    .unwrap()
+    .unwrap();
+    match lamp {
+        None => s,
+        Some(position) => s
+            .with_point_light(ct::PointLight {
+                position,
+                axis: light,
+                cone: None,
+            })
+            .unwrap(),
+    }
 }
 
 fn total(m: &CausticsMap, floor: &FloorWindow) -> f64 {
@@ -147,9 +169,16 @@ fn main() {
 
     // 2. The glass scene's sphere with its sun (resting on the floor: a concentrated spot), and the
     // same sphere raised by 0.25 (past the focus: a spread caustic), 256 x 256 over a 0.6 window.
-    for (label, lift) in [("resting", 0.0), ("raised", 0.25)] {
-        let s = glass_sphere(lift, sun, 0.6, 256);
-        println!("\n## {label} sphere (lift {lift})");
+    // 3. The same under the `glass-lamp` scene's light as a bare point light.
+    let lamp = DVec3::new(0.15, 0.25, 0.75);
+    for (label, lift, point) in [
+        ("resting", 0.0, None),
+        ("raised", 0.25, None),
+        ("lamp-resting", 0.0, Some(lamp)),
+        ("lamp-raised", 0.25, Some(lamp)),
+    ] {
+        let s = glass_sphere_lit(lift, sun, point, 0.6, 256);
+        println!("\n## {label} sphere (lift {lift}, point light {point:?})");
         let t = Instant::now();
         let r1 = reference(
             &s,
