@@ -660,11 +660,19 @@ pub fn terrain_gbuffer(setup: &CascadedSetup, k: usize, terrain: Option<&Grid>) 
 }
 
 /// Eye-depth pass: per screen pixel `[view depth, floor area seen, floor z, N_z]` of the first
-/// terrain hit of its ray, zeros where it sees no floor (`N_z > 0` on a height field, so `w == 0`
-/// marks "no floor"). The area is that of the tilted floor: `z_v² dsx dsy / (|r| |r̂·N|)` with `r`
-/// the pixel's ray (forward component 1) and `dsx dsy` the pixel's size on the image plane at
-/// distance 1; times `N_z` it is the horizontal area, which the footprint splat compares with a
-/// texel's.
+/// terrain hit of its ray, zeros where it sees no floor (`N_z > 0`, so `w == 0` marks "no floor").
+///
+/// The area is that of the floor at the pixel's own scale: `|(F_r − F_l) × (F_b − F_t)|` with
+/// `F_l, F_r, F_t, F_b` the floor hits of the rays through the midpoints of the pixel's four edges,
+/// and `N_z` that parallelogram's. The photons a pixel collects are all those landing inside its
+/// cone, on the dunes' far faces as well as on the near faces the eye sees; at grazing views the
+/// local normal of the face hit would give the area of that face alone, several times smaller than
+/// the floor inside the cone, and the pixel would read up to 42 % too bright (measured on `shore`,
+/// docs/cascaded.md). Where an edge ray misses the floor or meets it at less than half or more than
+/// twice the centre's depth (a silhouette), the area falls back to the local face's:
+/// `z_v² dsx dsy / (|r| |r̂·N|)` with `r` the pixel's ray (forward component 1) and `dsx dsy` the
+/// pixel's size on the image plane at distance 1. Times `N_z` the area is horizontal, which the
+/// footprint splat compares with a texel's.
 pub fn eye_pass(setup: &CascadedSetup, terrain: Option<&Grid>) -> Vec<[f32; 4]> {
     let e = &setup.eye;
     let (w, h) = (e.width, e.height);
@@ -679,15 +687,32 @@ pub fn eye_pass(setup: &CascadedSetup, terrain: Option<&Grid>) -> Vec<[f32; 4]> 
                 Some(s) => {
                     let zv = s / len;
                     let f = e.position + r * zv;
-                    let g = setup.terrain_height(terrain, f.truncate()).1;
-                    let n = height_field_normal(g);
-                    let cos = d.dot(n).abs().max(1e-4);
-                    [
-                        zv as f32,
-                        (zv * zv * pixel / (len * cos)) as f32,
-                        f.z as f32,
-                        n.z as f32,
-                    ]
+                    let (x, y) = (x as f64, y as f64);
+                    let edge = |px: f64, py: f64| {
+                        let r = e.ray(px, py);
+                        let s = setup.terrain_hit(terrain, e.position, r.normalize())?;
+                        let z = s / r.length();
+                        (z > 0.5 * zv && z < 2.0 * zv).then_some(e.position + r * z)
+                    };
+                    let sides = [
+                        edge(x, y + 0.5),
+                        edge(x + 1.0, y + 0.5),
+                        edge(x + 0.5, y),
+                        edge(x + 0.5, y + 1.0),
+                    ];
+                    let (area, nz) = match sides {
+                        [Some(l), Some(r), Some(t), Some(b)] => {
+                            let c = (r - l).cross(b - t);
+                            (c.length(), (c.z / c.length()).abs())
+                        }
+                        _ => {
+                            let n =
+                                height_field_normal(setup.terrain_height(terrain, f.truncate()).1);
+                            let cos = d.dot(n).abs().max(1e-4);
+                            (zv * zv * pixel / (len * cos), n.z)
+                        }
+                    };
+                    [zv as f32, area as f32, f.z as f32, nz.max(1e-6) as f32]
                 }
                 None => [0.0; 4],
             };
@@ -1547,10 +1572,10 @@ mod accuracy {
     }
 
     /// Flat water over `shore`'s beach seen from its camera: each cascade's mean against the
-    /// flat-water irradiance `exp(−K s)` at the floor points its pixels see. Without the dunes every
-    /// cascade is within 3 %; with the 4 cm dunes the grazing view sees only their near faces while
-    /// the photons that light their far faces are splatted into the same pixels (no visibility test),
-    /// so the middle cascades read too bright. Printed for docs/cascaded.md.
+    /// flat-water irradiance `exp(−K s)` at the floor points its pixels see, with and without the
+    /// 4 cm dunes. At grazing views the eye sees the dunes' near faces while the photons that light
+    /// their far faces land in the same pixels; the eye pass's area at the pixel's scale
+    /// ([`eye_pass`]) counts the floor they land on. Printed for docs/cascaded.md.
     #[test]
     fn far_cascades_on_the_beach_under_flat_water() {
         let shore = include_str!("../scene/scenes/shore.toml");
@@ -1587,9 +1612,10 @@ mod accuracy {
                 let ratio = ours / flat;
                 eprintln!("dunes {dunes}: cascade {k}, {n} pixels, mean / flat-water {ratio:.3}");
                 assert!(n > 1000, "{n}");
-                if !dunes {
-                    assert!((ratio - 1.0).abs() < 0.03, "cascade {k}: {ratio}");
-                }
+                // Measured within 2 % without dunes, within 3.3 % with them (1.42 in cascade 1
+                // before the eye pass measured the floor at the pixel's scale).
+                let tolerance = if dunes { 0.05 } else { 0.03 };
+                assert!((ratio - 1.0).abs() < tolerance, "cascade {k}: {ratio}");
             }
         }
     }
