@@ -572,3 +572,37 @@ fn render_lights_glass_with_a_lamp() {
         stderr(&o)
     );
 }
+
+/// Technique volumes (paper 3) through `render` on the objects scene, on its CPU twin: the floor map
+/// holds the three objects' shadows (about 6 % of the pool: their projections along the refracted
+/// sun) and the light the waves focus elsewhere.
+#[test]
+fn volumes_renders_the_objects_scene_with_their_shadows() {
+    let d = tmpdir("volumes");
+    let o = caustics(
+        &[
+            "render",
+            "--cpu",
+            "--scene",
+            "objects",
+            "--technique",
+            "volumes:planes=3,texture=32",
+            "--resolution",
+            "96x96",
+            "--image-size",
+            "64x36",
+            "--out",
+            "objects.png",
+            "--raw",
+            "objects.npy",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("objects.png").exists());
+    let g = Grid::load(&d.join("objects.npy"), [0.0, 1.0]).unwrap();
+    let dark = g.data.iter().filter(|&&v| v < 0.05).count() as f64 / g.data.len() as f64;
+    assert!(dark > 0.03 && dark < 0.1, "shadowed share {dark}");
+    let max = g.data.iter().cloned().fold(0.0, f32::max);
+    assert!(max > 1.5, "the waves focus the light: {max}");
+}
