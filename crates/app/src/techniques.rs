@@ -469,6 +469,48 @@ impl Runner {
                     }),
                 }
             }
+            // Paper 3 on a water job alone (no objects to receive it: `caustics compare`, the
+            // viewer's water): its floor pass, the illumination volumes cut by the floor.
+            "volumes" => {
+                use caustics_core::techniques::volumes;
+                if job.floor.terrain.is_some() {
+                    bail!(
+                        "technique `volumes` draws its floor map on the plane z = 0; this scene has a terrain"
+                    );
+                }
+                let params = volumes::VolumesParams::from_table(&spec.params)?;
+                let w = job.water;
+                let input = volumes::VolumesInput {
+                    objects: Vec::new(),
+                    size: w.size,
+                    depth: w.depth,
+                    ior: w.ior,
+                    absorption: w.absorption,
+                    light: job.light,
+                    camera: DVec3::new(0.5 * w.size, 0.5 * w.size, 2.0 * w.depth + w.size),
+                    width: job.width,
+                    height: job.height,
+                };
+                let setup = volumes::VolumesSetup::new(&params, &input)?;
+                let n = (input.size / setup.lattice.cell).round() as usize;
+                let heights = sample_grid(job.surface, n, n, w.size);
+                match &self.gpu {
+                    Some(ctx) => {
+                        if self.volumes.is_none() {
+                            self.volumes = Some(caustics_gpu::volumes::Volumes::new(ctx)?);
+                        }
+                        let v = self.volumes.as_ref().expect("just made");
+                        Ok(Outcome {
+                            map: v.run(ctx, &setup, &input, &heights, w.wrap, None)?.floor,
+                            backend: "GPU",
+                        })
+                    }
+                    None => Ok(Outcome {
+                        map: volumes::caustics(&setup, &input, &heights, w.wrap).floor,
+                        backend: "CPU",
+                    }),
+                }
+            }
             other => bail!(
                 "technique `{other}` is not implemented yet; `caustics techniques` lists what is"
             ),
