@@ -103,6 +103,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::caustic_triangles::IRRADIANCE,
     &crate::caustic_triangles::TRIANGLES,
     &crate::caustic_triangles::SPLAT,
+    &crate::caustic_triangles::PYRAMID,
     &crate::caustic_triangles::CUBE,
     &crate::caustic_triangles::SHADOW,
     &crate::caustic_triangles::camera::CAMERA,

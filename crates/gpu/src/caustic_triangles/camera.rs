@@ -164,17 +164,7 @@ impl CameraRenderer {
             }
             None => {
                 for (k, frame) in frames.iter().enumerate() {
-                    {
-                        let p = frame.setup.p as u32;
-                        let mut pass = begin_compute(
-                            &mut encoder,
-                            &mut timer,
-                            "caustic-triangles vertex irradiance",
-                        );
-                        pass.set_pipeline(&ct.irradiance);
-                        pass.set_bind_group(0, &frame.irradiance_bind, &[]);
-                        pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
-                    }
+                    ct.encode_irradiance(frame, &mut encoder, timer.as_deref_mut());
                     ct.draw_floor(
                         frame,
                         &mut encoder,

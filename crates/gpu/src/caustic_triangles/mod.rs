@@ -7,7 +7,8 @@
 //! |---|---|---|
 //! | photon tracing (compute, §4.1) | `shaders/caustic_triangles/photon.wgsl` + `distance_map.wgsl` | `photon_pass` |
 //! | vertex irradiance (compute, §5) | `shaders/caustic_triangles/irradiance.wgsl` | `irradiance_pass` |
-//! | caustic triangles (render, §4.2) | `shaders/caustic_triangles/triangles.wgsl` | `triangles_pass` |
+//! | caustic triangles (render, §4.2) | `shaders/caustic_triangles/triangles.wgsl` + `merge.wgsl` | `triangles_pass` |
+//! | merge pyramid (compute, §5, with `merge_levels`) | `shaders/caustic_triangles/pyramid.wgsl` | `merge::pyramid_pass` |
 //! | splatting baseline (render) | `shaders/caustic_triangles/splat.wgsl` | `splat_pass` |
 //! | caustic triangles on the light cube map faces (render, §4.2, point light) | `shaders/caustic_triangles/cube.wgsl` | `cube::cube_triangles_pass` |
 //! | light cube shadow distances (compute, §4.3) | `shaders/caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
@@ -33,6 +34,7 @@ use crate::{GpuContext, GpuError, GpuTimer};
 
 const COMMON: &str = include_str!("../shaders/caustic_triangles/common.wgsl");
 const DISTANCE_MAP: &str = include_str!("../shaders/caustic_triangles/distance_map.wgsl");
+const MERGE: &str = include_str!("../shaders/caustic_triangles/merge.wgsl");
 
 pub const PHOTON: PassSource = PassSource {
     name: "caustic-triangles photon tracing",
@@ -46,12 +48,17 @@ pub const IRRADIANCE: PassSource = PassSource {
 };
 pub const TRIANGLES: PassSource = PassSource {
     name: "caustic-triangles triangles",
-    shared: &[COMMON],
+    shared: &[COMMON, MERGE],
     source: include_str!("../shaders/caustic_triangles/triangles.wgsl"),
+};
+pub const PYRAMID: PassSource = PassSource {
+    name: "caustic-triangles merge pyramid",
+    shared: &[COMMON],
+    source: include_str!("../shaders/caustic_triangles/pyramid.wgsl"),
 };
 pub const CUBE: PassSource = PassSource {
     name: "caustic-triangles light cube map",
-    shared: &[COMMON],
+    shared: &[COMMON, MERGE],
     source: include_str!("../shaders/caustic_triangles/cube.wgsl"),
 };
 pub const SHADOW: PassSource = PassSource {
@@ -91,6 +98,9 @@ pub struct CausticTrianglesUniform {
     pub dm_base: u32,
     pub light: [f32; 4],
     pub spot: [f32; 4],
+    pub merge_levels: u32,
+    pub merge_small: f32,
+    pub _pad2: [u32; 2],
 }
 
 impl CausticTrianglesUniform {
@@ -133,6 +143,9 @@ impl CausticTrianglesUniform {
                 Some(pl) => v4(pl.axis, pl.cone.map_or(-2.0, f64::cos)),
                 None => [0.0, 0.0, 0.0, -2.0],
             },
+            merge_levels: s.merge_levels,
+            merge_small: (s.merge_texels * s.floor.texel_area()) as f32,
+            _pad2: [0; 2],
         }
     }
 }
@@ -150,6 +163,7 @@ pub enum Reconstruction {
 pub struct CausticTriangles {
     pub(crate) photon: wgpu::ComputePipeline,
     pub(crate) irradiance: wgpu::ComputePipeline,
+    pyramid: wgpu::ComputePipeline,
     triangles: wgpu::RenderPipeline,
     splat: wgpu::RenderPipeline,
     cube: wgpu::RenderPipeline,
@@ -214,6 +228,9 @@ pub struct Frame {
     pub map_view: wgpu::TextureView,
     pub(crate) photon_bind: wgpu::BindGroup,
     pub(crate) irradiance_bind: wgpu::BindGroup,
+    /// The merge pyramid (§5) and one bind group per level.
+    pub pyramid: wgpu::Buffer,
+    pyramid_binds: Vec<wgpu::BindGroup>,
     triangles_bind: wgpu::BindGroup,
     splat_bind: wgpu::BindGroup,
     bytes: u64,
@@ -256,6 +273,7 @@ impl CausticTriangles {
         let t = CausticTriangles {
             photon: compute_pipeline(ctx, &PHOTON),
             irradiance: compute_pipeline(ctx, &IRRADIANCE),
+            pyramid: compute_pipeline(ctx, &PYRAMID),
             triangles: additive_pipeline(ctx, &TRIANGLES, map_format),
             splat: additive_pipeline(ctx, &SPLAT, map_format),
             cube: additive_pipeline(ctx, &CUBE, map_format),
@@ -334,6 +352,44 @@ impl CausticTriangles {
                 irradiance.as_entire_binding(),
             ],
         );
+        let (sides, offsets) = caustics_core::techniques::caustic_triangles::merge::layout(
+            setup.p,
+            setup.merge_levels,
+        );
+        let pyramid_texels = (offsets.last().unwrap() + sides.last().unwrap().pow(2)) as u64;
+        ctx.check_buffer_size(
+            "caustic-triangles merge pyramid",
+            pyramid_texels.max(1) * 16,
+        )?;
+        let pyramid = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles merge pyramid"),
+            size: pyramid_texels.max(1) * 16,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let pyramid_binds = (0..=setup.merge_levels)
+            .map(|k| {
+                let level = ctx
+                    .device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("caustic-triangles merge level"),
+                        contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
+                        usage: B::UNIFORM,
+                    });
+                bind_group(
+                    ctx,
+                    "caustic-triangles merge pyramid",
+                    &self.pyramid.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        photons.as_entire_binding(),
+                        irradiance.as_entire_binding(),
+                        pyramid.as_entire_binding(),
+                        level.as_entire_binding(),
+                    ],
+                )
+            })
+            .collect();
         let triangles_bind = bind_group(
             ctx,
             "caustic-triangles triangles",
@@ -342,6 +398,7 @@ impl CausticTriangles {
                 uniform.as_entire_binding(),
                 photons.as_entire_binding(),
                 irradiance.as_entire_binding(),
+                pyramid.as_entire_binding(),
             ],
         );
         let splat_bind = bind_group(
@@ -362,6 +419,8 @@ impl CausticTriangles {
             map_view,
             photon_bind,
             irradiance_bind,
+            pyramid,
+            pyramid_binds,
             triangles_bind,
             splat_bind,
             bytes: dm_bytes + p * p * 20 + (w * h) as u64 * texel + 160,
@@ -395,15 +454,37 @@ impl CausticTriangles {
         mut timer: Option<&mut GpuTimer>,
         reconstruction: Reconstruction,
     ) {
-        let p = frame.setup.p as u32;
         if reconstruction == Reconstruction::Triangles {
+            self.encode_irradiance(frame, encoder, timer.as_deref_mut());
+        }
+        self.draw_floor(frame, encoder, timer, reconstruction, &frame.map_view, true);
+    }
+
+    /// The vertex irradiance pass (§5), then, with `merge_levels`, the merge pyramid level by level.
+    pub fn encode_irradiance(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let p = frame.setup.p as u32;
+        {
             let mut pass =
                 begin_compute(encoder, &mut timer, "caustic-triangles vertex irradiance");
             pass.set_pipeline(&self.irradiance);
             pass.set_bind_group(0, &frame.irradiance_bind, &[]);
             pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
         }
-        self.draw_floor(frame, encoder, timer, reconstruction, &frame.map_view, true);
+        if frame.setup.merge_levels == 0 {
+            return;
+        }
+        for (k, bind) in frame.pyramid_binds.iter().enumerate() {
+            let n = (p - 1) >> k;
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles merge pyramid");
+            pass.set_pipeline(&self.pyramid);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(n.div_ceil(8).max(1), n.div_ceil(8).max(1), 1);
+        }
     }
 
     /// The floor-map render pass alone (triangles from the vertex irradiances already computed, or
@@ -593,6 +674,7 @@ impl CausticTriangles {
                 frame.uniform.as_entire_binding(),
                 frame.photons.as_entire_binding(),
                 frame.irradiance.as_entire_binding(),
+                frame.pyramid.as_entire_binding(),
             ],
         );
         let shadow = bind_group(
@@ -630,13 +712,7 @@ impl CausticTriangles {
     ) {
         let p = frame.setup.p as u32;
         let c = target.resolution;
-        {
-            let mut pass =
-                begin_compute(encoder, &mut timer, "caustic-triangles vertex irradiance");
-            pass.set_pipeline(&self.irradiance);
-            pass.set_bind_group(0, &frame.irradiance_bind, &[]);
-            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
-        }
+        self.encode_irradiance(frame, encoder, timer.as_deref_mut());
         {
             let label = "caustic-triangles light cube map";
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

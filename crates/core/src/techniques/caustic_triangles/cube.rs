@@ -30,8 +30,8 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::CausticTrianglesSetup;
 use super::distance_map::{Crossing, DistanceMap, face_st, texel_dir};
-use super::{CausticTrianglesSetup, quad_valid};
 
 /// Marks "no surface" in the shadow distances.
 pub const FAR: f32 = f32::MAX;
@@ -147,24 +147,10 @@ pub fn cube_triangles_pass(
     irradiance: &[f32],
     cube: &mut LightCube,
 ) {
-    let p = setup.p;
-    for qi in 0..p.saturating_sub(1) {
-        for qj in 0..p - 1 {
-            if !quad_valid(photons, p, qi as i64, qj as i64) {
-                continue;
-            }
-            let k = |a: usize, b: usize| (qi + a) * p + qj + b;
-            let vert = |k: usize| {
-                let t = photons[k];
-                (
-                    DVec3::new(t[0] as f64, t[1] as f64, 0.0),
-                    irradiance[k] as f64,
-                )
-            };
-            let (a, b, c, d) = (vert(k(0, 0)), vert(k(0, 1)), vert(k(1, 1)), vert(k(1, 0)));
-            raster_cube_triangle(cube, [a.0, b.0, c.0], [a.1, b.1, c.1]);
-            raster_cube_triangle(cube, [a.0, c.0, d.0], [a.1, c.1, d.1]);
-        }
+    for (x, e) in super::merge::drawn_quads(setup, photons, irradiance) {
+        let [a, b, c, d] = x.map(|x| DVec3::new(x.x, x.y, 0.0));
+        raster_cube_triangle(cube, [a, b, c], [e[0], e[1], e[2]]);
+        raster_cube_triangle(cube, [a, c, d], [e[0], e[2], e[3]]);
     }
 }
 

@@ -78,6 +78,7 @@
 pub mod camera;
 pub mod cube;
 pub mod distance_map;
+pub mod merge;
 pub mod reference;
 pub mod scene;
 
@@ -136,6 +137,10 @@ pub struct CausticTrianglesParams {
     pub area_rule: AreaRule,
     /// Side of the baseline's square splats, in map texels.
     pub splat_size: f64,
+    /// Levels of the §5 hierarchical merging of small caustic triangles (0: off).
+    pub merge_levels: u32,
+    /// A block of quads is merged when its quad covers less than this many floor-map texels.
+    pub merge_texels: f64,
 }
 
 impl Default for CausticTrianglesParams {
@@ -151,11 +156,14 @@ impl Default for CausticTrianglesParams {
             fresnel: true,
             area_rule: AreaRule::Paper,
             splat_size: 2.0,
+            merge_levels: 0,
+            merge_texels: 2.0,
         }
     }
 }
 
 pub const MAX_LAYERS: u32 = 8;
+pub const MAX_MERGE_LEVELS: u32 = 6;
 
 impl CausticTrianglesParams {
     pub fn from_table(table: &toml::Table) -> Result<Self> {
@@ -216,6 +224,21 @@ impl CausticTrianglesParams {
         if !(1..=32).contains(&self.depth) {
             return f("depth", format!("must be 1 to 32, got {}", self.depth));
         }
+        if self.merge_levels > MAX_MERGE_LEVELS {
+            return f(
+                "merge_levels",
+                format!(
+                    "must be at most {MAX_MERGE_LEVELS}, got {}",
+                    self.merge_levels
+                ),
+            );
+        }
+        if !(self.merge_texels >= 0.0 && self.merge_texels <= 1e6) {
+            return f(
+                "merge_texels",
+                format!("must be in [0, 1e6] texels, got {}", self.merge_texels),
+            );
+        }
         if !(self.splat_size > 0.0 && self.splat_size <= 64.0) {
             return f(
                 "splat_size",
@@ -245,6 +268,8 @@ pub struct CausticTrianglesSetup {
     pub secant_iterations: u32,
     pub area_rule: AreaRule,
     pub splat_size: f64,
+    pub merge_levels: u32,
+    pub merge_texels: f64,
     pub floor: FloorWindow,
     /// A point light: the photon image spans the tangent plane of the directions from the light
     /// to the generator's bounding sphere (`rect_lo`, `cell` in units of `tan`), `flux` is the
@@ -291,6 +316,8 @@ impl CausticTrianglesSetup {
             secant_iterations: params.secant_iterations,
             area_rule: params.area_rule,
             splat_size: params.splat_size,
+            merge_levels: params.merge_levels,
+            merge_texels: params.merge_texels,
             floor: scene.floor,
             point: scene.point,
             light_cube: params.light_cube as usize,
@@ -562,38 +589,19 @@ fn to_map(floor: &FloorWindow, acc: Vec<f32>) -> CausticsMap {
 }
 
 /// Caustic triangles (§4.2): two per quad of four valid photon-image texels of one path signature,
-/// `(i, j) (i, j+1) (i+1, j+1)` and `(i, j) (i+1, j+1) (i+1, j)`, Gouraud shaded, added.
+/// `(i, j) (i, j+1) (i+1, j+1)` and `(i, j) (i+1, j+1) (i+1, j)`, Gouraud shaded, added; with
+/// `merge_levels`, merged blocks of small quads instead ([`merge`]).
 pub fn triangles_pass(
     setup: &CausticTrianglesSetup,
     photons: &[[f32; 4]],
     irradiance: &[f32],
 ) -> CausticsMap {
     let f = &setup.floor;
-    let p = setup.p;
     let mut acc = vec![0.0f32; f.width * f.height];
-    for qi in 0..p.saturating_sub(1) {
-        for qj in 0..p - 1 {
-            if !quad_valid(photons, p, qi as i64, qj as i64) {
-                continue;
-            }
-            let k = |a: usize, b: usize| (qi + a) * p + qj + b;
-            let vert = |k: usize| (f.to_pixel(pos(&photons[k])), irradiance[k] as f64);
-            let (a, b, c, d) = (vert(k(0, 0)), vert(k(0, 1)), vert(k(1, 1)), vert(k(1, 0)));
-            raster_triangle(
-                &mut acc,
-                f.width,
-                f.height,
-                [a.0, b.0, c.0],
-                [a.1, b.1, c.1],
-            );
-            raster_triangle(
-                &mut acc,
-                f.width,
-                f.height,
-                [a.0, c.0, d.0],
-                [a.1, c.1, d.1],
-            );
-        }
+    for (x, e) in merge::drawn_quads(setup, photons, irradiance) {
+        let [a, b, c, d] = x.map(|x| f.to_pixel(x));
+        raster_triangle(&mut acc, f.width, f.height, [a, b, c], [e[0], e[1], e[2]]);
+        raster_triangle(&mut acc, f.width, f.height, [a, c, d], [e[0], e[2], e[3]]);
     }
     to_map(f, acc)
 }

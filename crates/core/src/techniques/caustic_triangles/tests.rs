@@ -551,3 +551,72 @@ fn the_caustic_lights_only_its_receiver() {
         "{e_front} vs direct {direct}"
     );
 }
+
+/// §5 merging on the `glass` scene's resting sphere (the light collapses into a few texels): the
+/// merged quads carry exactly the power of the quads they replace, and the map loses less of it.
+#[test]
+fn merging_small_triangles_keeps_the_focus_power() {
+    let centre = DVec3::new(0.35, 0.5, 0.12);
+    let light = DVec3::new(0.45, 0.3, -0.8).normalize();
+    let foot = centre.truncate() + light.truncate() * (centre.z / -light.z);
+    let s = GlassScene::new(
+        Shape::Sphere {
+            centre,
+            radius: 0.12,
+        },
+        1.5,
+        light,
+        FloorWindow {
+            origin: foot - DVec2::splat(0.3),
+            size: 0.6,
+            width: 256,
+            height: 256,
+        },
+        vec![],
+    )
+    .unwrap();
+    let dm = DistanceMap::build(&s, 256, 2);
+    let r = reference(
+        &s,
+        &ReferenceOptions {
+            photons: 1024,
+            ..Default::default()
+        },
+    );
+    let run = |levels: u32| {
+        let setup = CausticTrianglesSetup::new(
+            &CausticTrianglesParams {
+                merge_levels: levels,
+                ..params(128)
+            },
+            &s,
+        )
+        .unwrap();
+        let out = caustics(&setup, &dm);
+        (setup, out)
+    };
+    let (_, plain) = run(0);
+    let (setup, merged) = run(4);
+    // Conservation: the drawn quads' power (flat Φ/A times A for merged blocks, the Gouraud
+    // integral for the others) equals the sum over the valid quads.
+    let pyr = merge::pyramid_pass(&setup, &merged.photons, &merged.irradiance);
+    let quads: f64 = pyr[..127 * 127].iter().map(|t| t[0] as f64).sum();
+    let drawn: f64 = merge::drawn_quads(&setup, &merged.photons, &merged.irradiance)
+        .iter()
+        .map(|(x, e)| {
+            let a1 = tri_area(x[0], x[1], x[2]);
+            let a2 = tri_area(x[0], x[2], x[3]);
+            a1 * (e[0] + e[1] + e[2]) / 3.0 + a2 * (e[0] + e[2] + e[3]) / 3.0
+        })
+        .sum();
+    assert!((drawn / quads - 1.0).abs() < 1e-5, "{drawn} vs {quads}");
+    let n_merged = pyr[127 * 127..].iter().filter(|t| t[2] > 0.0).count();
+    let mp = compare(&plain.map, &r.map);
+    let mm = compare(&merged.map, &r.map);
+    eprintln!("{n_merged} merged blocks; plain {mp:?}\nmerged {mm:?}");
+    assert!(n_merged > 0);
+    assert!(
+        mm.flux_error.abs() < 0.5 * mp.flux_error.abs(),
+        "{mm:?} vs {mp:?}"
+    );
+}

@@ -22,6 +22,24 @@ struct CausticTriangles {
     dm_base: u32,       // first texel of this generator's distance map in a buffer of several
     light: vec4<f32>,   // xyz: the point light; w: 0 the sun, 1 a point light
     spot: vec4<f32>,    // xyz: spot axis; w: cos of its half-angle, -2 for a bare point light
+    merge_levels: u32,  // levels of the merge pyramid (0: no merging)
+    merge_small: f32,   // a block merges below this floor area (merge_texels x texel area)
+    _pad2: u32,
+    _pad3: u32,
+}
+
+// Blocks per side of level k of the merge pyramid, and the level's offset (CPU twin: merge::layout).
+fn pyr_side(p: u32, k: u32) -> u32 {
+    return (p - 1u) >> k;
+}
+
+fn pyr_offset(p: u32, k: u32) -> u32 {
+    var off = 0u;
+    for (var j = 0u; j < k; j++) {
+        let n = pyr_side(p, j);
+        off += n * n;
+    }
+    return off;
 }
 
 // Floor point to map pixel coordinates.

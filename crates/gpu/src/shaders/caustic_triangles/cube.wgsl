@@ -42,21 +42,16 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) face: u32) -
     out.e = 0.0;
     out.d = 0.0;
     out.position = CULLED;
-    let k00 = qi * u.p + qj;
-    let p00 = photons[k00];
-    let p01 = photons[k00 + 1u];
-    let p10 = photons[k00 + u.p];
-    let p11 = photons[k00 + u.p + 1u];
-    let ok = p00.z >= 0.0 && p01.z >= 0.0 && p10.z >= 0.0 && p11.z >= 0.0 && p01.w == p00.w
-        && p10.w == p00.w && p11.w == p00.w;
-    if !ok {
+    let draw = quad_draw(qi, qj);
+    if draw.x < 0.0 {
         return out;
     }
-    let k = (qi + c.x) * u.p + qj + c.y;
+    let s = 1u << u32(draw.x);
+    let k = (qi + c.x * s) * u.p + qj + c.y * s;
     let x = vec3<f32>(photons[k].xy, 0.0) - u.light.xyz;
     let l = face_local(face, x);
     out.position = vec4<f32>(l.x, -l.y, 0.5 * l.z, l.z);
-    out.e = irradiance[k];
+    out.e = select(irradiance[k], draw.y, draw.x > 0.0);
     out.d = length(x);
     return out;
 }
