@@ -211,14 +211,20 @@ fn main() {
         );
         let dm = DistanceMap::build(&s, 256, 2);
         for p in [64u32, 128, 256] {
-            for (name, rule) in [
-                ("triangles (paper ΔA)", AreaRule::Paper),
-                ("triangles (hat ΔA)", AreaRule::Hat),
+            for (name, rule, merge_levels) in [
+                ("triangles (paper ΔA)", AreaRule::Paper, 0),
+                ("triangles (hat ΔA)", AreaRule::Hat, 0),
+                (
+                    "triangles (paper ΔA), §5 merging 4 levels",
+                    AreaRule::Paper,
+                    4,
+                ),
             ] {
                 let params = CausticTrianglesParams {
                     photon_image: p,
                     cube_resolution: 256,
                     area_rule: rule,
+                    merge_levels,
                     ..Default::default()
                 };
                 let setup = CausticTrianglesSetup::new(&params, &s).unwrap();
@@ -226,7 +232,7 @@ fn main() {
                 let o = ct::caustics(&setup, &dm);
                 let ms = t.elapsed().as_secs_f64() * 1e3;
                 row(name, p, &compare(&o.map, &r1.map), ms);
-                if p == 128 && rule == AreaRule::Paper {
+                if p == 128 && rule == AreaRule::Paper && merge_levels == 0 {
                     let range = write_triptych(
                         &Path::new(&out).join(format!("caustic-triangles-128-{label}.png")),
                         &o.map,
