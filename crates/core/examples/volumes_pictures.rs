@@ -16,7 +16,7 @@ use caustics_core::techniques::volumes::reference::{
 };
 use caustics_core::techniques::volumes::representation::covered;
 use caustics_core::techniques::volumes::view::{
-    SKY, ViewCamera, floor_texel, surface_hit, view_pass,
+    SKY, ViewCamera, flat_floor_light, floor_texel, surface_hit, view_pass,
 };
 use caustics_core::techniques::volumes::{self, VolumesInput, VolumesParams, VolumesSetup};
 use caustics_core::water::GridSurface;
@@ -75,7 +75,8 @@ fn reference_view(
                     (t, input.objects[o].albedo * (e + ambient))
                 }
                 None => {
-                    let e = floor_texel(&reference.floor, (s + r * t_floor).truncate(), wrap);
+                    let e = floor_texel(&reference.floor, (s + r * t_floor).truncate())
+                        .unwrap_or_else(|| flat_floor_light(setup));
                     (t_floor, FLOOR_ALBEDO * (e + ambient))
                 }
             };

@@ -6,7 +6,7 @@
 //!
 //! Beyond the paper (stated): the water's Fresnel reflectance mixes in a constant sky colour, the view
 //! path is attenuated by `exp(−K d)`, and the floor is seen with one uniform albedo lit by its caustics
-//! map (`albedo (E + Ia)`), so the picture is whole.
+//! map (`albedo (E + Ia)`; flat-water light beyond the map's square), so the picture is whole.
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -132,6 +132,7 @@ pub fn view_pass(
 ) -> Vec<[f32; 3]> {
     let depths: Vec<&[[f32; 4]]> = objects.iter().map(|o| o.depth.as_slice()).collect();
     let sky = DVec3::from(SKY);
+    let flat = flat_floor_light(setup);
     let (w, h) = (camera.width, camera.height);
     (0..w * h)
         .into_par_iter()
@@ -156,7 +157,7 @@ pub fn view_pass(
                 }
                 _ => {
                     let p = (s + r * t_floor).truncate();
-                    let e = floor_texel(floor, p, wrap);
+                    let e = floor_texel(floor, p).unwrap_or(flat);
                     (t_floor, floor_albedo * (e + setup.params.ambient))
                 }
             };
@@ -166,20 +167,19 @@ pub fn view_pass(
         .collect()
 }
 
-/// The floor map's nearest texel at `p`: wrapped for a periodic surface (the pool repeats beyond its
-/// square, as the water does), clamped at the edges otherwise.
-pub fn floor_texel(floor: &CausticsMap, p: DVec2, wrap: bool) -> DVec3 {
+/// The floor map's nearest texel at `p`; `None` beyond the map's square, where the view pass uses
+/// the light of flat water (as the project's final image does where a map has nothing): a periodic
+/// map wrapped there would repeat the objects' shadows without the objects.
+pub fn floor_texel(floor: &CausticsMap, p: DVec2) -> Option<DVec3> {
     let px = (p / floor.size * DVec2::new(floor.width as f64, floor.height as f64)).floor();
-    let (w, h) = (floor.width as f64, floor.height as f64);
-    let (j, i) = if wrap {
-        (px.x.rem_euclid(w), px.y.rem_euclid(h))
-    } else {
-        (px.x.clamp(0.0, w - 1.0), px.y.clamp(0.0, h - 1.0))
-    };
-    let (j, i) = (
-        (j as usize).min(floor.width - 1),
-        (i as usize).min(floor.height - 1),
-    );
-    let t = floor.texels[i * floor.width + j];
-    DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64)
+    if !(px.x >= 0.0 && px.y >= 0.0 && px.x < floor.width as f64 && px.y < floor.height as f64) {
+        return None;
+    }
+    let t = floor.texels[px.y as usize * floor.width + px.x as usize];
+    Some(DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64))
+}
+
+/// Relative irradiance on the floor under flat water: the absorption along the flat refracted sun.
+pub fn flat_floor_light(setup: &VolumesSetup) -> DVec3 {
+    (-setup.absorption * (setup.depth / -setup.t0.z)).exp()
 }

@@ -91,14 +91,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                 under = textureLoad(images, vec2<i32>(hit.zw), i32(hit.y), 0).xyz;
             } else {
                 let size = vec2<f32>(textureDimensions(floor_map));
-                let px = (s + r.xyz * t_floor).xy / c.lattice.w * size;
-                // Wrapped for a periodic surface (the pool repeats as the water does), else clamped.
-                var ij = vec2<i32>(clamp(floor(px), vec2<f32>(0.0), size - 1.0));
-                if wrap {
-                    let n = vec2<i32>(size);
-                    ij = ((vec2<i32>(floor(px)) % n) + n) % n;
+                let px = floor((s + r.xyz * t_floor).xy / c.lattice.w * size);
+                // Beyond the map's square: the light of flat water (absorbed along the flat
+                // refracted sun), not a wrapped copy of the objects' shadows.
+                let t0 = refract_dir(c.light.xyz, vec3<f32>(0.0, 0.0, 1.0), c.light.w).xyz;
+                var e = exp(-c.absorption.xyz * (c.params.x / -t0.z));
+                if px.x >= 0.0 && px.y >= 0.0 && px.x < size.x && px.y < size.y {
+                    e = textureLoad(floor_map, vec2<i32>(px), 0).xyz;
                 }
-                under = cam.floor_albedo.xyz * (textureLoad(floor_map, ij, 0).xyz + cam.position.w);
+                under = cam.floor_albedo.xyz * (e + cam.position.w);
             }
             colour = under * exp(-c.absorption.xyz * path) * tr + SKY * (1.0 - tr);
         }
