@@ -177,6 +177,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let (Some(out), None, "caustic-triangles") = (&out, &args.raw, spec.name.as_str()) {
         return caustic_triangles_image(&runner, &scene, &spec, out);
     }
+    // Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the
+    // water where refraction puts them, the floor lit by its map.
+    if let (Some(out), None, "volumes") = (&out, &args.raw, spec.name.as_str()) {
+        return volumes_image(&runner, &scene, &spec, out);
+    }
 
     let surface = match &scene.water {
         Some(w) => {
@@ -365,6 +370,70 @@ fn check_size(flag: &str, w: u32, h: u32) -> Result<()> {
 
 /// `caustics render` with technique caustic-triangles: its camera pass (paper 4, §4.3) as the final
 /// image, on the GPU where one is, else on its CPU twin.
+/// Technique `volumes` to its refracted view (paper 3, §3.3) at the camera's size, on the GPU or its
+/// CPU twin. The floor is seen with the mean albedo of its pattern (the view pass takes one albedo).
+fn volumes_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Result<()> {
+    use caustics_core::techniques::caustic_triangles::camera::write_png;
+    use caustics_core::techniques::volumes::{self, view};
+    let params = volumes::VolumesParams::from_table(&spec.params)?;
+    let input = volumes::VolumesInput::from_scene(scene)?;
+    let setup = volumes::VolumesSetup::new(&params, &input)?;
+    let water = scene.water.as_ref().context("checked by VolumesInput::from_scene")?;
+    let surface = water.surface_at(scene.time)?;
+    let n = (input.size / setup.lattice.cell).round() as usize;
+    let heights = caustics_core::water::sample_grid(surface.as_ref(), n, n, water.size);
+    let samples = 64;
+    let floor_albedo = (0..samples * samples)
+        .map(|k| {
+            let p = (glam::DVec2::new((k % samples) as f64, (k / samples) as f64) + 0.5)
+                * (scene.size / samples as f64);
+            scene.floor.albedo.at(p, scene.size)
+        })
+        .sum::<glam::DVec3>()
+        / (samples * samples) as f64;
+    let camera = view::ViewCamera::new(&scene.camera);
+    let started = Instant::now();
+    let (rgb, on) = match runner.gpu.as_ref() {
+        Some(ctx) => {
+            let v = caustics_gpu::volumes::Volumes::new(ctx)?;
+            let options = caustics_gpu::volumes::ViewOptions {
+                camera,
+                floor_albedo,
+            };
+            let o = v.run(ctx, &setup, &input, &heights, water.wrap, Some(&options))?;
+            (o.view, "GPU")
+        }
+        None => {
+            let o = volumes::caustics(&setup, &input, &heights, water.wrap);
+            let rgb = view::view_pass(
+                &setup,
+                &camera,
+                &heights,
+                water.wrap,
+                &o.objects,
+                &o.floor,
+                floor_albedo,
+            );
+            (rgb, "CPU")
+        }
+    };
+    write_png(
+        out,
+        scene.camera.width,
+        scene.camera.height,
+        &rgb,
+        RenderOptions::default().exposure,
+    )?;
+    eprintln!(
+        "wrote {} ({} x {}, volumes through its refracted view, {:.2} s on the {on})",
+        out.display(),
+        scene.camera.width,
+        scene.camera.height,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 fn caustic_triangles_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Result<()> {
     use caustics_core::techniques::caustic_triangles::{CausticTrianglesParams, camera};
     let params = CausticTrianglesParams::from_table(&spec.params)?;

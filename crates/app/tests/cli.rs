@@ -606,3 +606,34 @@ fn volumes_renders_the_objects_scene_with_their_shadows() {
     let max = g.data.iter().cloned().fold(0.0, f32::max);
     assert!(max > 1.5, "the waves focus the light: {max}");
 }
+
+/// Without `--raw`, technique volumes writes its own picture, the refracted view of §3.3 (the objects
+/// with their caustics seen through the water), at the camera's size.
+#[test]
+fn volumes_writes_its_refracted_view() {
+    let d = tmpdir("volumes-view");
+    let o = caustics(
+        &[
+            "render",
+            "--cpu",
+            "--scene",
+            "objects",
+            "--technique",
+            "volumes:planes=3,texture=32",
+            "--resolution",
+            "64x64",
+            "--image-size",
+            "80x60",
+            "--out",
+            "view.png",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("refracted view"), "{}", stderr(&o));
+    let img = image::open(d.join("view.png")).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (80, 60));
+    // The red ball and the blue block are in the picture, among the water's cyan.
+    let reddish = img.pixels().filter(|p| p[0] as u32 > p[2] as u32 + 30).count();
+    assert!(reddish > 5, "{reddish}");
+}
