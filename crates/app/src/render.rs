@@ -378,7 +378,10 @@ fn volumes_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Res
     let params = volumes::VolumesParams::from_table(&spec.params)?;
     let input = volumes::VolumesInput::from_scene(scene)?;
     let setup = volumes::VolumesSetup::new(&params, &input)?;
-    let water = scene.water.as_ref().context("checked by VolumesInput::from_scene")?;
+    let water = scene
+        .water
+        .as_ref()
+        .context("checked by VolumesInput::from_scene")?;
     let surface = water.surface_at(scene.time)?;
     let n = (input.size / setup.lattice.cell).round() as usize;
     let heights = caustics_core::water::sample_grid(surface.as_ref(), n, n, water.size);

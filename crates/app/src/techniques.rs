@@ -9,9 +9,9 @@ use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::{Floor, Water, WaterSource};
 use caustics_core::techniques::{self, procedural, yuksel};
 use caustics_core::water::{Surface, sample_grid};
-use caustics_gpu::GpuContext;
 use caustics_gpu::procedural::ProceduralCaustics;
 use caustics_gpu::yuksel::{Variant, Yuksel};
+use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 /// A technique and its parameters, written `name` or `name:key=value,key=value` (e.g.
 /// `yuksel:n=15,m=14`, `yuksel-gather`, `procedural-texture:target_resolution=512`).
@@ -153,9 +153,15 @@ pub struct SceneOutcome {
     pub backend: &'static str,
 }
 
+/// Passes one technique run can time (procedural's texture variant has the most: a target, one
+/// downsample per mip level, a resample).
+const TIMED_PASSES: u32 = 32;
+
 /// Runs techniques, keeping their GPU pipelines between runs.
 pub struct Runner {
     pub gpu: Option<GpuContext>,
+    /// Timestamps of the technique passes, once [`time_passes`](Self::time_passes) turned them on.
+    timer: Option<GpuTimer>,
     yuksel: Option<Yuksel>,
     procedural: Option<ProceduralCaustics>,
     caustic_triangles: Option<caustics_gpu::caustic_triangles::CausticTriangles>,
@@ -167,11 +173,28 @@ impl Runner {
     pub fn new(gpu: Option<GpuContext>) -> Self {
         Runner {
             gpu,
+            timer: None,
             yuksel: None,
             procedural: None,
             caustic_triangles: None,
             volumes: None,
             cascaded: None,
+        }
+    }
+
+    /// Time every GPU pass of the techniques run from now on, where the adapter has timestamp
+    /// queries (the viewer's overlay); [`take_gpu_times`](Self::take_gpu_times) reads them.
+    pub fn time_passes(&mut self) {
+        if let Some(ctx) = self.gpu.as_ref().filter(|c| c.timestamps) {
+            self.timer = Some(GpuTimer::new(ctx, TIMED_PASSES));
+        }
+    }
+
+    /// The GPU time of each technique pass run since the last call (empty without timestamps).
+    pub fn take_gpu_times(&mut self) -> Result<Vec<PassTime>> {
+        match (self.timer.as_mut(), self.gpu.as_ref()) {
+            (Some(t), Some(ctx)) => t.read(ctx).context("reading the technique timestamps"),
+            _ => Ok(Vec::new()),
         }
     }
 
@@ -274,14 +297,19 @@ impl Runner {
                         params.layers as usize,
                     );
                     let setup = ct::CausticTrianglesSetup::new(&params, &gs)?;
-                    let map = gpu
-                        .run(
-                            ctx,
-                            &setup,
-                            &dm,
-                            caustics_gpu::caustic_triangles::Reconstruction::Triangles,
-                        )?
-                        .map;
+                    let frame = gpu.frame(ctx, &setup, &dm)?;
+                    let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                    gpu.encode(
+                        &frame,
+                        &mut encoder,
+                        self.timer.as_mut(),
+                        caustics_gpu::caustic_triangles::Reconstruction::Triangles,
+                    );
+                    if let Some(t) = &self.timer {
+                        t.resolve(&mut encoder);
+                    }
+                    ctx.queue.submit([encoder.finish()]);
+                    let map = gpu.read_map(ctx, &frame)?;
                     total = Some(match total {
                         None => map,
                         Some(mut t) => {
@@ -298,6 +326,29 @@ impl Runner {
                 Ok(Outcome {
                     map: total.expect("one glass object at least"),
                     backend: "GPU",
+                })
+            }
+            "reference" if scene.water.is_none() => {
+                // A scene of glass objects: the reference is paper 4's photon tracer against the
+                // exact geometry, one generator at a time as the technique runs.
+                let generators = glass_count(scene)?;
+                let options = ct::reference::ReferenceOptions {
+                    photons: GLASS_REFERENCE_PHOTONS * cells_per_texel.clamp(1, 16),
+                    ..Default::default()
+                };
+                let mut total: Option<CausticsMap> = None;
+                for k in 0..generators {
+                    let gs = ct::GlassScene::from_scene(scene, k)?;
+                    let map = ct::reference::reference(&gs, &options).map;
+                    total = Some(match total {
+                        None => map,
+                        Some(t) => add_maps(t, &map),
+                    });
+                    progress(k + 1, generators);
+                }
+                Ok(Outcome {
+                    map: total.expect("one glass object at least"),
+                    backend: "CPU",
                 })
             }
             // Paper 3: its floor map (the illumination volumes cut by the floor, the objects' shadows
@@ -422,7 +473,13 @@ impl Runner {
                             Variant::RenderTargets
                         };
                         Ok(Outcome {
-                            map: y.caustics(ctx, &setup, &heights, variant)?,
+                            map: y.caustics_timed(
+                                ctx,
+                                &setup,
+                                &heights,
+                                variant,
+                                self.timer.as_mut(),
+                            )?,
                             backend: "GPU",
                         })
                     }
@@ -459,7 +516,7 @@ impl Runner {
                         }
                         let p = self.procedural.as_ref().expect("just made");
                         Ok(Outcome {
-                            map: p.caustics(ctx, &setup, &water)?,
+                            map: p.caustics_timed(ctx, &setup, &water, self.timer.as_mut())?,
                             backend: "GPU",
                         })
                     }
@@ -521,6 +578,35 @@ impl Runner {
 /// Side of the height grid technique `cascaded` reads a water surface through when the scene gives
 /// neither an ocean's nor a file's own grid (the shore's ocean is 128²).
 const CASCADED_WATER_GRID: usize = 256;
+
+/// Photons per side of the light rectangle of one glass generator, per cell per texel, in the
+/// glass reference: 128² (2 cells per texel, the viewer's default, gives 256² per glass object,
+/// about two seconds for the `glass` scene on two cores).
+const GLASS_REFERENCE_PHOTONS: u32 = 128;
+
+fn glass_count(scene: &caustics_core::scene::Scene) -> Result<usize> {
+    let n = scene
+        .objects
+        .iter()
+        .filter(|o| matches!(o.material, caustics_core::scene::Material::Glass { .. }))
+        .count();
+    if n == 0 {
+        bail!(
+            "scene `{}` has neither water nor a glass object: no caustics to compute",
+            scene.name
+        );
+    }
+    Ok(n)
+}
+
+fn add_maps(mut total: CausticsMap, map: &CausticsMap) -> CausticsMap {
+    for (a, b) in total.texels.iter_mut().zip(&map.texels) {
+        for c in 0..3 {
+            a[c] += b[c];
+        }
+    }
+    total
+}
 
 /// The height field a grid-based technique reads: the file's own samples, or the surface sampled on
 /// the map's lattice.

@@ -517,7 +517,10 @@ fn render_shows_cascaded_caustics() {
     let dark = band.iter().filter(|&&v| v < 0.6 * mean).count() as f32 / band.len() as f32;
     // Measured: mean 0.86, 2.3 % bright, 1.1 % dark (flat-water light: none of either).
     assert!(mean > 0.5 && mean < 1.5, "mean {mean}");
-    assert!(bright > 0.01 && dark > 0.005, "bright {bright}, dark {dark}");
+    assert!(
+        bright > 0.01 && dark > 0.005,
+        "bright {bright}, dark {dark}"
+    );
     // In the image the same rows vary along each row: 4.8 steps of green (measured), 2.5 where
     // the floor is lit as under flat water (a 4 x 4 reference map), from the sand and the view.
     let img = image::open(d.join("c.png")).unwrap().to_rgb8();
@@ -540,7 +543,10 @@ fn render_shows_cascaded_caustics() {
 #[test]
 fn render_lights_glass_with_a_lamp() {
     let d = tmpdir("glass-lamp");
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/scenes/glass-lamp.toml");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/scenes/glass-lamp.toml"
+    );
     let o = caustics(
         &[
             "render",
@@ -559,7 +565,10 @@ fn render_lights_glass_with_a_lamp() {
     assert!(o.status.success(), "{}", stderr(&o));
     let img = image::open(d.join("lamp.png")).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (48, 32));
-    let lum: Vec<u32> = img.pixels().map(|p| p.0.iter().map(|&c| c as u32).sum()).collect();
+    let lum: Vec<u32> = img
+        .pixels()
+        .map(|p| p.0.iter().map(|&c| c as u32).sum())
+        .collect();
     let (lo, hi) = (lum.iter().min().unwrap(), lum.iter().max().unwrap());
     assert!(hi - lo > 150, "lit and unlit parts: {lo} .. {hi}");
     let o = caustics(
@@ -634,6 +643,9 @@ fn volumes_writes_its_refracted_view() {
     let img = image::open(d.join("view.png")).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (80, 60));
     // The red ball and the blue block are in the picture, among the water's cyan.
-    let reddish = img.pixels().filter(|p| p[0] as u32 > p[2] as u32 + 30).count();
+    let reddish = img
+        .pixels()
+        .filter(|p| p[0] as u32 > p[2] as u32 + 30)
+        .count();
     assert!(reddish > 5, "{reddish}");
 }

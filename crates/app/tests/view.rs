@@ -423,3 +423,49 @@ fn switching_and_resizing_for_hundreds_of_frames_keeps_memory_flat() {
         growth * 100.0
     );
 }
+
+/// The `glass` scene has no water: the picker offers the techniques whose generators are its glass
+/// objects, and `caustic-triangles` beside the glass reference runs with its buffer view open.
+#[test]
+fn the_glass_scene_runs_caustic_triangles_beside_its_reference() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let Some(display) = display() else {
+        return;
+    };
+    let dir = tmpdir("glass");
+    let png = dir.join("glass.png");
+    let Some(o) = view(
+        &display,
+        &dir,
+        &[
+            "--scene",
+            "glass",
+            "--technique",
+            "caustic-triangles:photon_image=64,cube_resolution=64,light_cube=64",
+            "--compare",
+            "reference",
+            "--frames",
+            "3",
+            "--size",
+            "800x480",
+            "--scale",
+            "0.3",
+            "--map-size",
+            "96",
+            "--show-map",
+            "--show-buffers",
+            "--screenshot",
+            png.to_str().unwrap(),
+        ],
+    ) else {
+        return;
+    };
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !stderr.lines().any(|l| l.starts_with("technique `")),
+        "a technique failed on the glass scene:\n{stderr}"
+    );
+    let img = image::open(&png).unwrap().to_rgb8();
+    let (_, whole) = luminance_stats(&img, 0, 0, 800, 480);
+    assert!(whole > 10.0, "the window is blank (luminance sd {whole:.2})");
+}

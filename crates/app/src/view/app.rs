@@ -619,12 +619,13 @@ impl Viewer {
             }
         }
         if m.show_buffers
-            && let (Some(water), Some(surface), Some(render)) = (
-                m.water.as_ref(),
-                self.renderer.surface.as_deref(),
-                self.last_render.as_ref(),
-            )
+            && let Some(render) = self.last_render.as_ref()
         {
+            let water = m
+                .water
+                .as_ref()
+                .zip(self.renderer.surface.as_deref())
+                .map(|(w, s)| (w.technique_water(), s));
             let key = BufferKey {
                 buffer: m.buffer,
                 choice: m.slots[0].choice.clone(),
@@ -633,8 +634,8 @@ impl Viewer {
             if self.last_buffer.as_ref() != Some(&key) {
                 let input = BufferInput {
                     choice: &m.slots[0].choice,
-                    water: water.technique_water(),
-                    surface,
+                    scene: &self.renderer.scene,
+                    water,
                     light: m.sun.direction(),
                     map_size: m.quality.map_size as usize,
                 };
@@ -824,7 +825,10 @@ impl Viewer {
         };
         let k = self.frame;
         if s.cycle {
-            let names = technique_names();
+            let names = self.model.technique_names.clone();
+            if names.is_empty() {
+                return;
+            }
             let n = names.len() as u64;
             let m = &mut self.model;
             let cells = m.slots[0].choice.cells_per_texel;
@@ -902,8 +906,11 @@ fn initial_model(
     } else {
         (1.0, scene.caustics.width.max(scene.caustics.height), 2)
     };
+    let first_choice = first.clone();
     Ok(Model {
         scene_name: scene.name.clone(),
+        technique_names: technique_names(scene),
+        has_water: scene.water.is_some(),
         adapter,
         home: camera.clone(),
         camera,
@@ -926,7 +933,10 @@ fn initial_model(
         show_overlay: true,
         show_map: args.show_map,
         show_buffers: args.show_buffers,
-        buffer: Buffer::Heights,
+        buffer: Buffer::available(&first_choice, scene.water.is_some())
+            .first()
+            .copied()
+            .unwrap_or(Buffer::Heights),
         textures,
         maps: Default::default(),
         difference: Shown::default(),

@@ -2,8 +2,10 @@
 //! image show, so a technique's stages can be watched as the water moves.
 //!
 //! The GPU passes keep their intermediate textures to themselves, so the intermediates are
-//! recomputed by the technique's CPU twin (for `yuksel`: `prepass` and `pass1`, which the GPU
-//! passes match to rounding) from the same surface, only while their view is open.
+//! recomputed by the technique's CPU twin (for `yuksel`: `prepass` and `pass1`; for
+//! `caustic-triangles`: the layered distance map, the photon hit location image and the vertex
+//! irradiances; the GPU passes match them to rounding) from the same input, only while their view
+//! is open.
 //!
 //! Every picture is drawn as seen from above: +x to the right, +y up (row 0 of a map, at y = 0,
 //! is the bottom row).
@@ -12,7 +14,8 @@ use glam::DVec3;
 
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
-use caustics_core::scene::Water;
+use caustics_core::scene::{Scene, Water};
+use caustics_core::techniques::caustic_triangles as ct;
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
 use caustics_core::water::Surface;
 
@@ -31,6 +34,15 @@ pub enum Buffer {
     /// `yuksel` pass 1: channel `k` of the `M + 1`, what each sample row gave the row `k - M/2`
     /// away.
     YukselChannel(u32),
+    /// `caustic-triangles` §3: layer `k` of the generator's layered distance map, its six cube
+    /// faces side by side.
+    DistanceLayer(u32),
+    /// `caustic-triangles` §4.1: the photon hit location image, where each photon lands.
+    PhotonHits,
+    /// `caustic-triangles` §4.1: the power each photon carries to the floor.
+    PhotonPower,
+    /// `caustic-triangles` §5: the irradiance at each photon-image vertex (power over its area).
+    VertexIrradiance,
 }
 
 impl Buffer {
@@ -40,18 +52,32 @@ impl Buffer {
             Buffer::YukselOffset => "yuksel pre-pass: hit offset".into(),
             Buffer::YukselFlux => "yuksel pre-pass: flux".into(),
             Buffer::YukselChannel(k) => format!("yuksel pass 1: channel {k}"),
+            Buffer::DistanceLayer(k) => format!("distance map: layer {k}"),
+            Buffer::PhotonHits => "photon hit location image".into(),
+            Buffer::PhotonPower => "photon power".into(),
+            Buffer::VertexIrradiance => "vertex irradiance".into(),
         }
     }
 
-    /// The buffers a technique has.
-    pub fn available(choice: &TechniqueChoice) -> Vec<Buffer> {
-        let mut v = vec![Buffer::Heights];
-        if choice.base() == "yuksel" {
-            v.extend([
+    /// The buffers a technique has in a scene with or without water.
+    pub fn available(choice: &TechniqueChoice, water: bool) -> Vec<Buffer> {
+        let mut v = Vec::new();
+        if water {
+            v.push(Buffer::Heights);
+        }
+        match choice.base() {
+            "yuksel" => v.extend([
                 Buffer::YukselOffset,
                 Buffer::YukselFlux,
                 Buffer::YukselChannel(0),
-            ]);
+            ]),
+            "caustic-triangles" => v.extend([
+                Buffer::PhotonHits,
+                Buffer::PhotonPower,
+                Buffer::VertexIrradiance,
+                Buffer::DistanceLayer(0),
+            ]),
+            _ => {}
         }
         v
     }
@@ -100,16 +126,30 @@ pub fn difference_picture(a: &CausticsMap, b: &CausticsMap) -> Option<Picture> {
 /// The inputs of a buffer computation.
 pub struct BufferInput<'a> {
     pub choice: &'a TechniqueChoice,
-    pub water: &'a Water,
-    pub surface: &'a dyn Surface,
+    /// The scene with the frame's sun and map size (the glass generators' buffers read it).
+    pub scene: &'a Scene,
+    /// The water as the technique sees it and its surface this frame, in a scene with water.
+    pub water: Option<(&'a Water, &'a dyn Surface)>,
     pub light: DVec3,
     pub map_size: usize,
 }
 
 /// Compute `buffer` for `input`; an error names what stood in the way (e.g. invalid `N`).
 pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Picture> {
+    if matches!(
+        buffer,
+        Buffer::DistanceLayer(_)
+            | Buffer::PhotonHits
+            | Buffer::PhotonPower
+            | Buffer::VertexIrradiance
+    ) {
+        return glass_picture(buffer, input);
+    }
+    let Some((water, surface)) = input.water else {
+        anyhow::bail!("the scene has no water");
+    };
     let n = input.map_size;
-    let heights = heights_for(input.water, input.surface, n, n);
+    let heights = heights_for(water, surface, n, n);
     if buffer == Buffer::Heights {
         let (lo, hi) = heights.min_max();
         let r = lo.abs().max(hi.abs()).max(1e-9);
@@ -120,7 +160,7 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
     }
     let spec = input.choice.spec()?;
     let params = YukselParams::from_table(&spec.params)?;
-    let w = input.water;
+    let w = water;
     let setup = YukselSetup::new(
         &params,
         n,
@@ -183,7 +223,118 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
                 ..scalar_picture(&g, |v| heat(v / top))
             })
         }
-        Buffer::Heights => unreachable!("handled above"),
+        _ => unreachable!("the water's buffers only"),
+    }
+}
+
+/// The `caustic-triangles` buffers of the scene's first glass object, from the CPU twin's passes.
+fn glass_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Picture> {
+    let spec = input.choice.spec()?;
+    let params = ct::CausticTrianglesParams::from_table(&spec.params)?;
+    let gs = ct::GlassScene::from_scene(input.scene, 0)?;
+    let dm = ct::DistanceMap::build(&gs, params.cube_resolution as usize, params.layers as usize);
+    if let Buffer::DistanceLayer(k) = buffer {
+        return Ok(distance_picture(&dm, k as usize));
+    }
+    let setup = ct::CausticTrianglesSetup::new(&params, &gs)?;
+    let photons = ct::photon_pass(&setup, &dm);
+    let p = setup.p;
+    let valid = |t: &[f32; 4]| t[2] >= 0.0;
+    match buffer {
+        Buffer::PhotonHits => {
+            // The floor position each photon reached, as a colour: red along x, green along y
+            // over the floor square; black where the photon is invalid (missed the generator,
+            // left the floor, or ran out of events).
+            let size = input.scene.size as f32;
+            let rgba = flip_rows(p, p, |t| {
+                let h = &photons[t];
+                if !valid(h) {
+                    return [0, 0, 0, 255];
+                }
+                let c = |v: f32| ((v / size).clamp(0.0, 1.0) * 255.0) as u8;
+                [c(h[0]), c(h[1]), 96, 255]
+            });
+            let count = photons.iter().filter(|h| valid(h)).count();
+            Ok(Picture {
+                width: p as u32,
+                height: p as u32,
+                rgba,
+                legend: format!(
+                    "{count} of {} photons valid: red = floor x, green = floor y, black invalid",
+                    p * p
+                ),
+            })
+        }
+        Buffer::PhotonPower => {
+            let g = Grid {
+                cols: p,
+                rows: p,
+                data: photons.iter().map(|h| h[2].max(0.0)).collect(),
+            };
+            let (_, max) = g.min_max();
+            let top = max.max(1e-12);
+            Ok(Picture {
+                legend: format!(
+                    "photon power: black 0, white {top:.3e} floor-area units (total {:.4})",
+                    ct::photon_power(&photons)
+                ),
+                ..scalar_picture(&g, |v| heat(v / top))
+            })
+        }
+        Buffer::VertexIrradiance => {
+            let e = ct::irradiance_pass(&setup, &photons);
+            // Irradiance spans decades between the focus and the rim: a log scale.
+            let g = Grid {
+                cols: p,
+                rows: p,
+                data: e.iter().map(|v| (1.0 + v.max(0.0)).log10()).collect(),
+            };
+            let (_, max) = g.min_max();
+            let top = max.max(1e-6);
+            Ok(Picture {
+                legend: format!(
+                    "vertex irradiance, log scale: black 0, white {:.1} (relative to the unobstructed light)",
+                    10f32.powf(top) - 1.0
+                ),
+                ..scalar_picture(&g, |v| heat(v / top))
+            })
+        }
+        _ => unreachable!("the glass buffers only"),
+    }
+}
+
+/// The six faces of one layer of a layered distance map side by side (+x, −x, +y, −y, +z, −z):
+/// the glass's distance through a heat ramp (white at the map's radius), diffuse occluders in
+/// blue, no surface black.
+fn distance_picture(dm: &ct::DistanceMap, layer: usize) -> Picture {
+    let c = dm.resolution;
+    let layer = layer.min(dm.layers.saturating_sub(1));
+    let r = dm.radius.max(1e-9) as f32;
+    let mut rgba = Vec::with_capacity(6 * c * c * 4);
+    for row in (0..c).rev() {
+        for face in 0..6 {
+            for col in 0..c {
+                let s = dm.texels[((layer * 6 + face) * c + row) * c + col][3];
+                let [cr, cg, cb] = if s > 0.0 {
+                    heat(0.15 + 0.85 * (s / r))
+                } else if s < 0.0 {
+                    let t = (-s / r).clamp(0.0, 1.0);
+                    [40, (60.0 + 100.0 * t) as u8, (140.0 + 115.0 * t) as u8]
+                } else {
+                    [0, 0, 0]
+                };
+                rgba.extend([cr, cg, cb, 255]);
+            }
+        }
+    }
+    Picture {
+        width: 6 * c as u32,
+        height: c as u32,
+        rgba,
+        legend: format!(
+            "layer {layer} of {}, faces +x −x +y −y +z −z: glass by distance (white {r:.3}), occluders blue, none black",
+            dm.layers
+        ),
     }
 }
 
@@ -270,11 +421,11 @@ mod tests {
         let water = scene.water.as_ref().unwrap();
         let surface = water.surface_at(0.0).unwrap();
         let choice = TechniqueChoice::parse("yuksel:n=5,m=4", 1).unwrap();
-        for b in Buffer::available(&choice) {
+        for b in Buffer::available(&choice, true) {
             let input = BufferInput {
                 choice: &choice,
-                water,
-                surface: surface.as_ref(),
+                scene: &scene,
+                water: Some((water, surface.as_ref())),
                 light: scene.light.direction,
                 map_size: 32,
             };
@@ -286,6 +437,42 @@ mod tests {
                 b.name()
             );
             assert!(p.width >= 32 && p.height >= 32);
+        }
+    }
+
+    #[test]
+    fn every_caustic_triangles_buffer_is_computed_on_the_glass_scene() {
+        let scene = Scene::builtin("glass").unwrap();
+        let choice =
+            TechniqueChoice::parse("caustic-triangles:photon_image=32,cube_resolution=32", 1)
+                .unwrap();
+        let available = Buffer::available(&choice, false);
+        assert!(
+            !available.contains(&Buffer::Heights),
+            "no water, no heights"
+        );
+        for b in available {
+            let input = BufferInput {
+                choice: &choice,
+                scene: &scene,
+                water: None,
+                light: scene.light.direction,
+                map_size: 32,
+            };
+            let p = buffer_picture(b, &input).unwrap();
+            assert_eq!(
+                p.rgba.len(),
+                (p.width * p.height * 4) as usize,
+                "{}",
+                b.name()
+            );
+            // Not blank: the generator is in every buffer.
+            let lit = p
+                .rgba
+                .chunks(4)
+                .filter(|t| t[0] > 0 || t[1] > 0 || t[2] > 0)
+                .count();
+            assert!(lit > 0, "{} is blank", b.name());
         }
     }
 }

@@ -2,6 +2,11 @@
 //! [`Runner`], so every technique the CLI runs appears here as it lands), and the final image of
 //! each side traced by [`FinalImage`] from the orbit camera.
 //!
+//! A scene with water runs the techniques that map the floor from the water surface; a scene
+//! without water and with glass objects (`glass`) runs those whose caustic generators are the
+//! glass objects (`caustic-triangles`), beside the glass reference (paper 4's photon tracer
+//! against the exact geometry).
+//!
 //! A technique runs again only when its input changed (surface, sun, map size, its parameters):
 //! orbiting the camera re-traces the image and leaves the maps alone, which on a software
 //! adapter is the difference between a fluid and a sluggish viewer.
@@ -13,8 +18,10 @@ use glam::DVec3;
 
 use caustics_core::map::CausticsMap;
 use caustics_core::render::{Image, RenderOptions, render};
-use caustics_core::scene::Scene;
+use caustics_core::scene::{Material, Scene};
+use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
 use caustics_core::techniques::yuksel::YukselParams;
+use caustics_core::techniques::{Input, TECHNIQUES};
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
@@ -39,6 +46,9 @@ pub struct TechniqueChoice {
 fn default_params(base: &str) -> toml::Table {
     match base {
         "yuksel" => toml::Table::try_from(YukselParams::default()).unwrap_or_default(),
+        "caustic-triangles" => {
+            toml::Table::try_from(CausticTrianglesParams::default()).unwrap_or_default()
+        }
         _ => toml::Table::new(),
     }
 }
@@ -88,15 +98,31 @@ impl TechniqueChoice {
     }
 }
 
-/// The technique names the panel offers: every implemented technique of the registry that maps the
-/// floor from the water (what the view shows), and its variants, as far as [`Spec`] accepts them.
-pub fn technique_names() -> Vec<String> {
-    caustics_core::techniques::TECHNIQUES
+/// The technique names the panel offers for `scene`: every implemented technique of the registry
+/// that maps the floor from what the scene has (its water, else its glass objects), and its
+/// variants, as far as [`Spec`] accepts them; `reference` always (for glass, paper 4's photon
+/// tracer).
+pub fn technique_names(scene: &Scene) -> Vec<String> {
+    let input = if scene.water.is_some() {
+        Input::Water
+    } else if scene
+        .objects
         .iter()
-        .filter(|t| t.implemented && t.input == caustics_core::techniques::Input::Water)
+        .any(|o| matches!(o.material, Material::Glass { .. }))
+    {
+        Input::Glass
+    } else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = TECHNIQUES
+        .iter()
+        .filter(|t| t.implemented && (t.input == input || t.name == "reference"))
         .flat_map(|t| [t.name.to_string(), format!("{}-gather", t.name)])
         .filter(|n| n.parse::<Spec>().is_ok())
-        .collect()
+        .collect();
+    // The technique first, the reference it is judged against after.
+    names.sort_by_key(|n| n == "reference");
+    names
 }
 
 /// What a map was computed from: while it holds, the map is reused.
@@ -104,7 +130,8 @@ pub fn technique_names() -> Vec<String> {
 struct MapKey {
     label: String,
     cells_per_texel: u32,
-    surface: SurfaceKey,
+    /// The water's state; `None` in a scene without water.
+    surface: Option<SurfaceKey>,
     sun: [u64; 3],
     map_size: u32,
 }
@@ -195,6 +222,8 @@ impl SceneRenderer {
         };
         // Two sides, one final-image pass each.
         let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 2));
+        let mut runner = runner;
+        runner.time_passes();
         SceneRenderer {
             runner,
             final_image,
@@ -230,17 +259,25 @@ impl SceneRenderer {
         };
         stats.water_ms = ms(started);
 
+        // The techniques of a scene without water read the scene itself: its sun and map size.
+        self.scene.light.direction = sun;
+        self.scene.caustics.width = quality.map_size;
+        self.scene.caustics.height = quality.map_size;
         for slot in slots.iter_mut() {
             slot.map_changed = false;
-            let (Some(surface), Some(water)) = (surface.as_deref(), water.as_deref()) else {
-                slot.map = None;
-                slot.error = None;
-                continue;
+            let water_input = match (surface.as_deref(), water.as_deref()) {
+                (Some(surface), Some(water)) => Some((surface, water)),
+                _ if self.scene.water.is_none() => None,
+                _ => {
+                    slot.map = None;
+                    slot.error = None;
+                    continue;
+                }
             };
             let key = MapKey {
                 label: slot.choice.label(),
                 cells_per_texel: slot.choice.cells_per_texel,
-                surface: water.key(),
+                surface: water_input.map(|(_, w)| w.key()),
                 sun: sun.to_array().map(f64::to_bits),
                 map_size: quality.map_size,
             };
@@ -261,17 +298,23 @@ impl SceneRenderer {
                 continue;
             }
             let started = Instant::now();
-            let outcome = slot.choice.spec().and_then(|spec| {
-                let job = Job {
-                    water: water.technique_water(),
-                    floor: &self.scene.floor,
-                    surface,
-                    light: sun,
-                    width: quality.map_size as usize,
-                    height: quality.map_size as usize,
-                    cells_per_texel: slot.choice.cells_per_texel.max(1),
-                };
-                self.runner.run(&spec, &job)
+            let cells = slot.choice.cells_per_texel.max(1);
+            let outcome = slot.choice.spec().and_then(|spec| match water_input {
+                Some((surface, water)) => {
+                    let job = Job {
+                        water: water.technique_water(),
+                        floor: &self.scene.floor,
+                        surface,
+                        light: sun,
+                        width: quality.map_size as usize,
+                        height: quality.map_size as usize,
+                        cells_per_texel: cells,
+                    };
+                    self.runner.run(&spec, &job)
+                }
+                None => self
+                    .runner
+                    .run_scene(&spec, &self.scene, None, cells, &|_, _| {}),
             });
             slot.technique_ms = Some(ms(started));
             slot.key = Some(key.clone());
@@ -301,12 +344,10 @@ impl SceneRenderer {
             }
         }
 
+        stats.gpu = self.runner.take_gpu_times()?;
         let started = Instant::now();
-        self.scene.camera = camera.camera(size.0, size.1);
-        self.scene.light.direction = sun;
         // The final image samples the water on a grid of the map's resolution (at least 256).
-        self.scene.caustics.width = quality.map_size;
-        self.scene.caustics.height = quality.map_size;
+        self.scene.camera = camera.camera(size.0, size.1);
         let options = RenderOptions {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
@@ -321,7 +362,9 @@ impl SceneRenderer {
             });
         }
         if let (Some(timer), Some(ctx)) = (self.timer.as_mut(), self.runner.gpu.as_ref()) {
-            stats.gpu = timer.read(ctx).context("reading the GPU timestamps")?;
+            stats
+                .gpu
+                .extend(timer.read(ctx).context("reading the GPU timestamps")?);
         }
         stats.image_ms = ms(started);
         self.surface = surface;
@@ -378,10 +421,14 @@ mod tests {
 
     #[test]
     fn the_picker_lists_the_runnable_techniques() {
-        let names = technique_names();
-        for n in ["reference", "yuksel", "yuksel-gather"] {
+        let names = technique_names(&Scene::builtin("pool").unwrap());
+        for n in ["reference", "yuksel", "yuksel-gather", "procedural"] {
             assert!(names.iter().any(|x| x == n), "{n} missing from {names:?}");
         }
         assert!(!names.iter().any(|x| x == "reference-gather"));
+        assert!(!names.iter().any(|x| x == "caustic-triangles"));
+        // A scene of glass objects offers the techniques whose generators they are.
+        let glass = technique_names(&Scene::builtin("glass").unwrap());
+        assert_eq!(glass, ["caustic-triangles", "reference"]);
     }
 }

@@ -12,7 +12,7 @@ use caustics_gpu::PassTime;
 
 use super::buffers::Buffer;
 use super::camera::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
-use super::frame::{Quality, Slot, TechniqueChoice, technique_names};
+use super::frame::{Quality, Slot, TechniqueChoice};
 use super::water::{Mode, WaterState};
 
 /// Texture ids of everything the UI draws, registered once and updated in place.
@@ -54,6 +54,10 @@ pub struct Stats {
 /// Everything the user can change, and what the views need to draw.
 pub struct Model {
     pub scene_name: String,
+    /// The techniques the picker offers for this scene.
+    pub technique_names: Vec<String>,
+    /// Whether the scene has water (its buffers, the water controls).
+    pub has_water: bool,
     pub adapter: String,
     pub camera: OrbitCamera,
     /// The scene's own camera, for "reset view".
@@ -133,7 +137,7 @@ fn controls(ui: &mut egui::Ui, m: &mut Model) {
     ui.small(&m.adapter);
     ui.separator();
 
-    let names = technique_names();
+    let names = m.technique_names.clone();
     egui::CollapsingHeader::new("Technique")
         .default_open(true)
         .show(ui, |ui| {
@@ -243,6 +247,8 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
         let response = match v {
             toml::Value::Integer(i) => {
                 let (lo, hi, parity) = integer_range(&base, &k);
+                // A slider clamps what it shows: never let its range change a value it was given.
+                let (lo, hi) = (lo.min(*i), hi.max(*i));
                 let r = ui.add(egui::Slider::new(i, lo..=hi).text(label));
                 if let Some(p) = parity
                     && i.rem_euclid(2) != p
@@ -282,6 +288,16 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
 fn param_order(technique: &str, key: &str) -> (usize, String) {
     let known: &[&str] = match technique {
         "yuksel" => &["n", "m", "fresnel", "absorption"],
+        "caustic-triangles" => &[
+            "photon_image",
+            "cube_resolution",
+            "layers",
+            "linear_steps",
+            "secant_iterations",
+            "depth",
+            "fresnel",
+            "area_rule",
+        ],
         _ => &[],
     };
     let rank = known.iter().position(|k| *k == key).unwrap_or(known.len());
@@ -304,6 +320,27 @@ fn param_label(technique: &str, key: &str) -> (String, &'static str) {
             "each sample carries its Fresnel transmittance",
         ),
         ("yuksel", "absorption") => ("absorption".into(), "exp(-K d) along the flat-water path"),
+        ("caustic-triangles", "photon_image") => (
+            "photon image".into(),
+            "side of the photon hit location image (§4.1; the paper: 128)",
+        ),
+        ("caustic-triangles", "cube_resolution") => (
+            "cube map".into(),
+            "texels per face side of the layered distance map (§3; the paper: 512)",
+        ),
+        ("caustic-triangles", "layers") => ("layers".into(), "layers of the distance map (§3)"),
+        ("caustic-triangles", "linear_steps") => (
+            "linear steps".into(),
+            "linear search steps per ray in the distance map (§3)",
+        ),
+        ("caustic-triangles", "secant_iterations") => (
+            "secant steps".into(),
+            "secant search iterations after the linear search (§3)",
+        ),
+        ("caustic-triangles", "depth") => (
+            "depth".into(),
+            "most refractions / reflections along a photon path (§4.1)",
+        ),
         _ => (key.to_string(), ""),
     }
 }
@@ -314,6 +351,14 @@ fn integer_range(technique: &str, key: &str) -> (i64, i64, Option<i64>) {
     match (technique, key) {
         ("yuksel", "n") => (1, 31, Some(1)),
         ("yuksel", "m") => (0, 30, Some(0)),
+        ("caustic-triangles", "photon_image") => (2, 512, None),
+        ("caustic-triangles", "cube_resolution") => (16, 1024, None),
+        ("caustic-triangles", "layers") => (1, 8, None),
+        ("caustic-triangles", "linear_steps") => (1, 256, None),
+        ("caustic-triangles", "secant_iterations") => (0, 32, None),
+        ("caustic-triangles", "depth") => (1, 16, None),
+        ("caustic-triangles", "light_cube") => (2, 2048, None),
+        ("caustic-triangles", "merge_levels") => (0, 6, None),
         _ => (0, 64, None),
     }
 }
@@ -562,9 +607,11 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
         .default_width(WINDOW_WIDTH)
         .show(ctx, |ui| {
             let choice = &m.slots[0].choice;
-            let available = Buffer::available(choice);
-            if !available.iter().any(|b| same_kind(*b, m.buffer)) {
-                m.buffer = Buffer::Heights;
+            let available = Buffer::available(choice, m.has_water);
+            if !available.iter().any(|b| same_kind(*b, m.buffer))
+                && let Some(first) = available.first()
+            {
+                m.buffer = *first;
             }
             egui::ComboBox::from_id_salt("buffer")
                 .selected_text(m.buffer.name())
@@ -585,8 +632,21 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
                     .max(0) as u32;
                 ui.add(egui::Slider::new(k, 0..=channels).text("channel"));
             }
+            if let Buffer::DistanceLayer(k) = &mut m.buffer {
+                let layers = choice
+                    .params
+                    .get("layers")
+                    .and_then(|v| v.as_integer())
+                    .unwrap_or(1)
+                    .max(1) as u32;
+                ui.add(egui::Slider::new(k, 0..=layers - 1).text("layer"));
+            }
             ui.small(format!("of the left side's technique, `{}`", choice.name));
-            picture(ui, m.textures.buffer, &m.buffer_shown);
+            if Buffer::available(choice, m.has_water).is_empty() {
+                ui.small("it has no intermediate buffers to show");
+            } else {
+                picture(ui, m.textures.buffer, &m.buffer_shown);
+            }
         });
     m.show_buffers = open;
 }

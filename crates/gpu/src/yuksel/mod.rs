@@ -458,9 +458,25 @@ impl Yuksel {
         heights: &Grid,
         variant: Variant,
     ) -> Result<CausticsMap, GpuError> {
+        self.caustics_timed(ctx, setup, heights, variant, None)
+    }
+
+    /// As [`caustics`](Self::caustics), writing each pass's timestamps into `timer` (resolved in
+    /// the same submission; read them with [`GpuTimer::read`]).
+    pub fn caustics_timed(
+        &self,
+        ctx: &GpuContext,
+        setup: &YukselSetup,
+        heights: &Grid,
+        variant: Variant,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> Result<CausticsMap, GpuError> {
         let frame = self.frame(ctx, setup, heights, variant)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let texture = self.encode(&frame, &mut encoder, None);
+        let texture = self.encode(&frame, &mut encoder, timer.as_deref_mut());
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
         ctx.queue.submit([encoder.finish()]);
         let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
         Ok(CausticsMap {
