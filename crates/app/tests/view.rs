@@ -467,5 +467,8 @@ fn the_glass_scene_runs_caustic_triangles_beside_its_reference() {
     );
     let img = image::open(&png).unwrap().to_rgb8();
     let (_, whole) = luminance_stats(&img, 0, 0, 800, 480);
-    assert!(whole > 10.0, "the window is blank (luminance sd {whole:.2})");
+    assert!(
+        whole > 10.0,
+        "the window is blank (luminance sd {whole:.2})"
+    );
 }
