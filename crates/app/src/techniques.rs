@@ -312,14 +312,7 @@ impl Runner {
                     let map = gpu.read_map(ctx, &frame)?;
                     total = Some(match total {
                         None => map,
-                        Some(mut t) => {
-                            for (a, b) in t.texels.iter_mut().zip(&map.texels) {
-                                for c in 0..3 {
-                                    a[c] += b[c];
-                                }
-                            }
-                            t
-                        }
+                        Some(t) => add_maps(t, &map),
                     });
                     progress(k + 1, glass);
                 }

@@ -79,3 +79,50 @@ impl GpuContext {
         })
     }
 }
+
+/// A render pipeline without vertex buffers (`vs_main` pulls its vertices from storage buffers) that
+/// adds every fragment into one colour target: how caustic triangles (paper 4) and illumination
+/// volume slices (paper 3) accumulate irradiance.
+pub fn additive_pipeline(
+    ctx: &GpuContext,
+    source: &PassSource,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let module = source.module(&ctx.device);
+    let add = wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::One,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    };
+    ctx.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(source.name),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            // Triangle list, no culling: folded caustic triangles and slices of folded
+            // illumination volumes face either way.
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: Some(wgpu::BlendState {
+                        color: add,
+                        alpha: add,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}

@@ -29,7 +29,7 @@ use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, Vo
 use wgpu::util::DeviceExt;
 
 use crate::final_image::{BVH, GpuBvhNode, GpuBvhTriangle};
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -251,49 +251,6 @@ pub struct Volumes {
     view: wgpu::ComputePipeline,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float`.
     pub map_format: wgpu::TextureFormat,
-}
-
-fn additive_pipeline(
-    ctx: &GpuContext,
-    source: &PassSource,
-    format: wgpu::TextureFormat,
-) -> wgpu::RenderPipeline {
-    let module = source.module(&ctx.device);
-    let add = wgpu::BlendComponent {
-        src_factor: wgpu::BlendFactor::One,
-        dst_factor: wgpu::BlendFactor::One,
-        operation: wgpu::BlendOperation::Add,
-    };
-    ctx.device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(source.name),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            // No culling: slices of folded volumes face either way.
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: Some(wgpu::BlendState {
-                        color: add,
-                        alpha: add,
-                    }),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
 }
 
 struct ObjectFrame {
