@@ -147,7 +147,7 @@ pub fn cube_triangles_pass(
     irradiance: &[f32],
     cube: &mut LightCube,
 ) {
-    for (x, e) in super::merge::drawn_quads(setup, photons, irradiance) {
+    for (x, e, _) in super::merge::drawn_quads(setup, photons, irradiance) {
         let [a, b, c, d] = x.map(|x| DVec3::new(x.x, x.y, 0.0));
         raster_cube_triangle(cube, [a, b, c], [e[0], e[1], e[2]]);
         raster_cube_triangle(cube, [a, c, d], [e[0], e[2], e[3]]);

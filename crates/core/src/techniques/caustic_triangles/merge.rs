@@ -125,12 +125,13 @@ pub fn quad_draw(
     Some((level, t[0] as f64 / t[1] as f64))
 }
 
-/// Every drawn quad: its corner photons (00, 01, 11, 10) and their values.
+/// Every drawn quad: its corner photons' floor hits (00, 01, 11, 10), their values, and their
+/// indices in the photon image (what a water generator's path lengths are read by).
 pub fn drawn_quads(
     setup: &CausticTrianglesSetup,
     photons: &[[f32; 4]],
     irradiance: &[f32],
-) -> Vec<([DVec2; 4], [f64; 4])> {
+) -> Vec<([DVec2; 4], [f64; 4], [usize; 4])> {
     let p = setup.p;
     let pyr = (setup.merge_levels > 0).then(|| pyramid_pass(setup, photons, irradiance));
     let mut out = Vec::new();
@@ -151,7 +152,7 @@ pub fn drawn_quads(
                 Some(e) => [e; 4],
                 None => k.map(|k| irradiance[k] as f64),
             };
-            out.push((x, e));
+            out.push((x, e, k));
         }
     }
     out

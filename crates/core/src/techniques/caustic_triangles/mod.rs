@@ -81,6 +81,7 @@ pub mod distance_map;
 pub mod merge;
 pub mod reference;
 pub mod scene;
+pub mod water;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -277,6 +278,43 @@ pub struct CausticTrianglesSetup {
     pub point: Option<PointLight>,
     /// Face side of the light cube map (point lights).
     pub light_cube: usize,
+    /// A water surface as the generator ([`water`]): what the reconstruction passes add for it.
+    /// `None` for glass.
+    pub water: Option<WaterTransport>,
+}
+
+/// What the reconstruction passes do differently when the water surface is the generator
+/// ([`water`]): Beer-Lambert absorption along each photon's refracted path, the copies of a tiling
+/// surface, and which photons the splatting baseline splats.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WaterTransport {
+    /// Quads per side of the water lattice, `P`: the photon image is `(P + 1)²`, and its last row
+    /// and column repeat the first ones' cells (the baseline splats photon `(i, j)` for cell
+    /// `(i, j)`, `i, j < P`, only).
+    pub lattice: usize,
+    /// `K` per RGB channel: a point whose path length interpolates to `d` gets `exp(−K d)`.
+    pub absorption: DVec3,
+    /// A tiling surface: every primitive is drawn again shifted by `±size` in x and y.
+    pub wrap: bool,
+}
+
+impl CausticTrianglesSetup {
+    /// Floor offsets every triangle (splat) is drawn at: nine copies around the square for tiling
+    /// water, so light carried across an edge lands on the other side; one otherwise. Copy `k`
+    /// is offset `((k mod 3) − 1, (k div 3) − 1) · size`, the GPU's instance `k`.
+    pub fn copies(&self) -> Vec<DVec2> {
+        match self.water {
+            Some(w) if w.wrap => (0..9)
+                .map(|k| DVec2::new((k % 3) as f64 - 1.0, (k / 3) as f64 - 1.0) * self.floor.size)
+                .collect(),
+            _ => vec![DVec2::ZERO],
+        }
+    }
+
+    /// Beer-Lambert absorption per channel (zero for glass).
+    pub fn absorption(&self) -> DVec3 {
+        self.water.map_or(DVec3::ZERO, |w| w.absorption)
+    }
 }
 
 impl CausticTrianglesSetup {
@@ -321,6 +359,7 @@ impl CausticTrianglesSetup {
             floor: scene.floor,
             point: scene.point,
             light_cube: params.light_cube as usize,
+            water: None,
         })
     }
 
@@ -557,6 +596,19 @@ pub fn irradiance_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> V
 /// Add the Gouraud-shaded triangle `v` (map pixel coordinates) with vertex values `e` at every texel
 /// centre inside it: what the rasteriser does.
 pub fn raster_triangle(acc: &mut [f32], width: usize, height: usize, v: [DVec2; 3], e: [f64; 3]) {
+    raster_barycentric(width, height, v, |k, b| {
+        acc[k] += (b[0] * e[0] + b[1] * e[1] + b[2] * e[2]) as f32;
+    });
+}
+
+/// Every texel centre inside triangle `v` (map pixel coordinates): its index and barycentric
+/// coordinates, what the rasteriser interpolates with.
+fn raster_barycentric(
+    width: usize,
+    height: usize,
+    v: [DVec2; 3],
+    mut texel: impl FnMut(usize, [f64; 3]),
+) {
     let area2 = (v[1] - v[0]).perp_dot(v[2] - v[0]);
     if area2 == 0.0 || !area2.is_finite() {
         return;
@@ -574,18 +626,22 @@ pub fn raster_triangle(acc: &mut [f32], width: usize, height: usize, v: [DVec2; 
             let b1 = (v[0] - v[2]).perp_dot(c - v[2]) / area2;
             let b2 = 1.0 - b0 - b1;
             if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
-                acc[i as usize * width + j as usize] += (b0 * e[0] + b1 * e[1] + b2 * e[2]) as f32;
+                texel(i as usize * width + j as usize, [b0, b1, b2]);
             }
         }
     }
 }
 
-fn to_map(floor: &FloorWindow, acc: Vec<f32>) -> CausticsMap {
+fn to_map(floor: &FloorWindow, acc: Vec<[f32; 3]>) -> CausticsMap {
     let mut map = floor.empty_map();
-    for (t, e) in map.texels.iter_mut().zip(acc) {
-        *t = [e; 3];
-    }
+    map.texels = acc;
     map
+}
+
+/// One value per RGB channel: `e exp(−K d)` (the fragment shader's colour).
+fn attenuated(e: f64, d: f64, k: DVec3) -> [f32; 3] {
+    let a = (-k * d).exp() * e;
+    [a.x as f32, a.y as f32, a.z as f32]
 }
 
 /// Caustic triangles (§4.2): two per quad of four valid photon-image texels of one path signature,
@@ -596,24 +652,66 @@ pub fn triangles_pass(
     photons: &[[f32; 4]],
     irradiance: &[f32],
 ) -> CausticsMap {
+    triangles_pass_with_paths(setup, photons, irradiance, None)
+}
+
+/// [`triangles_pass`] with each photon's refracted path length (a water generator, [`water`]):
+/// the path length is interpolated over the triangle like the irradiance, and each texel gets
+/// `E exp(−K d)` per channel; the triangles are drawn at every offset of
+/// [`CausticTrianglesSetup::copies`].
+pub fn triangles_pass_with_paths(
+    setup: &CausticTrianglesSetup,
+    photons: &[[f32; 4]],
+    irradiance: &[f32],
+    paths: Option<&[f32]>,
+) -> CausticsMap {
     let f = &setup.floor;
-    let mut acc = vec![0.0f32; f.width * f.height];
-    for (x, e) in merge::drawn_quads(setup, photons, irradiance) {
-        let [a, b, c, d] = x.map(|x| f.to_pixel(x));
-        raster_triangle(&mut acc, f.width, f.height, [a, b, c], [e[0], e[1], e[2]]);
-        raster_triangle(&mut acc, f.width, f.height, [a, c, d], [e[0], e[2], e[3]]);
+    let k = setup.absorption();
+    let copies = setup.copies();
+    let mut acc = vec![[0.0f32; 3]; f.width * f.height];
+    for (x, e, idx) in merge::drawn_quads(setup, photons, irradiance) {
+        let d = paths.map_or([0.0; 4], |p| idx.map(|i| p[i] as f64));
+        for &off in &copies {
+            let [a, b, c, q] = x.map(|x| f.to_pixel(x + off));
+            for (v, t) in [([a, b, c], [0, 1, 2]), ([a, c, q], [0, 2, 3])] {
+                raster_barycentric(f.width, f.height, v, |texel, w| {
+                    let mix = |s: [f64; 4]| w[0] * s[t[0]] + w[1] * s[t[1]] + w[2] * s[t[2]];
+                    let rgb = attenuated(mix(e), mix(d), k);
+                    acc[texel].iter_mut().zip(rgb).for_each(|(a, v)| *a += v);
+                });
+            }
+        }
     }
     to_map(f, acc)
 }
 
 /// The splatting baseline: each valid photon as a square of `splat_size` texels.
 pub fn splat_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> CausticsMap {
+    splat_pass_with_paths(setup, photons, None)
+}
+
+/// [`splat_pass`] for a water generator: each splat attenuated by `exp(−K d)` of its own path,
+/// drawn at every offset of [`CausticTrianglesSetup::copies`], the lattice's repeated last row
+/// and column left out ([`WaterTransport::lattice`]).
+pub fn splat_pass_with_paths(
+    setup: &CausticTrianglesSetup,
+    photons: &[[f32; 4]],
+    paths: Option<&[f32]>,
+) -> CausticsMap {
     let f = &setup.floor;
     let s = setup.splat_size;
-    let mut acc = vec![0.0f32; f.width * f.height];
-    for t in photons.iter().filter(|t| valid(t)) {
-        let c = f.to_pixel(pos(t));
-        let value = t[2] as f64 / (s * s * f.texel_area());
+    let k = setup.absorption();
+    let lattice = setup.water.map_or(usize::MAX, |w| w.lattice);
+    let mut acc = vec![[0.0f32; 3]; f.width * f.height];
+    let splats = photons
+        .iter()
+        .enumerate()
+        .filter(|(n, t)| valid(t) && n / setup.p < lattice && n % setup.p < lattice);
+    let copies = setup.copies();
+    for ((n, t), &off) in splats.flat_map(|x| copies.iter().map(move |o| (x, o))) {
+        let c = f.to_pixel(pos(t) + off);
+        let d = paths.map_or(0.0, |p| p[n] as f64);
+        let value = attenuated(t[2] as f64 / (s * s * f.texel_area()), d, k);
         // Texel centres in [c − s/2, c + s/2).
         let j0 = ((c.x - s / 2.0 - 0.5).ceil().max(0.0)) as i64;
         let j1 = ((c.x + s / 2.0 - 0.5).ceil() - 1.0).min(f.width as f64 - 1.0) as i64;
@@ -621,7 +719,8 @@ pub fn splat_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> Causti
         let i1 = ((c.y + s / 2.0 - 0.5).ceil() - 1.0).min(f.height as f64 - 1.0) as i64;
         for i in i0..=i1 {
             for j in j0..=j1 {
-                acc[i as usize * f.width + j as usize] += value as f32;
+                let a = &mut acc[i as usize * f.width + j as usize];
+                a.iter_mut().zip(value).for_each(|(a, v)| *a += v);
             }
         }
     }
@@ -656,10 +755,14 @@ pub fn photon_power(photons: &[[f32; 4]]) -> f64 {
         .sum()
 }
 
-/// The technique for a whole scene: every glass object of it as a generator (a distance map each,
-/// as the paper does for generators far apart), their caustic maps added, over the scene square
-/// at the scene's caustics resolution.
+/// The technique for a whole scene, over the scene square at the scene's caustics resolution: a
+/// scene with water has its water surface as the generator ([`water::render`]); otherwise every
+/// glass object is one (a distance map each, as the paper does for generators far apart), their
+/// caustic maps added.
 pub fn render(scene: &crate::scene::Scene, params: &CausticTrianglesParams) -> Result<CausticsMap> {
+    if scene.water.is_some() {
+        return water::render(scene, params);
+    }
     let count = scene
         .objects
         .iter()

@@ -603,7 +603,7 @@ fn merging_small_triangles_keeps_the_focus_power() {
     let quads: f64 = pyr[..127 * 127].iter().map(|t| t[0] as f64).sum();
     let drawn: f64 = merge::drawn_quads(&setup, &merged.photons, &merged.irradiance)
         .iter()
-        .map(|(x, e)| {
+        .map(|(x, e, _)| {
             let a1 = tri_area(x[0], x[1], x[2]);
             let a2 = tri_area(x[0], x[2], x[3]);
             a1 * (e[0] + e[1] + e[2]) / 3.0 + a2 * (e[0] + e[2] + e[3]) / 3.0

@@ -1,0 +1,468 @@
+//! The water surface as the caustic generator of technique `caustic-triangles`: the photon pass of a
+//! height-field water surface under the sun, the CPU twin of
+//! `shaders/caustic_triangles/water_photon.wgsl`. Everything after it (vertex irradiance, caustic
+//! triangles, the splatting baseline, §5 merging) is the glass generator's code, told about the
+//! water by [`WaterTransport`].
+//!
+//! # Water photon pass (§4.1 with the water surface as the generator)
+//! The paper's photon image is the generator seen from the light. A height field is its own
+//! parameterisation as the sun sees it (up to the shear along `L`), so the photon image is a lattice
+//! over the water square: `(P + 1)²` photons at the corners `(jΔ, iΔ)`, `Δ = size / P`, so that the
+//! `P²` photon-image quads tile the square exactly (and the tiles of a wrapping surface meet edge to
+//! edge). Each photon is the surface point `(x, y, depth + h)` of the bicubic interpolant of the
+//! height grid ([`Grid::sample`]; the GPU's `grid_sample`), the sun refracted there by exact Snell
+//! through the true normal, and the floor `z = 0` met analytically; its texel is `(x, y, Φ, σ)` of
+//! the floor hit as for glass, `σ = 1` (one refraction).
+//!
+//! Power in the technique's floor-area units, the normalisation of `crate::reference`:
+//! `ΔΦ = Δ² (1 + L_xy · ∇h / |L_z|) · T(θi) / T(θ0)`, the cell's surface area projected along `L`
+//! onto the horizontal (the sun's flux through it over the flux through the flat cell) times the
+//! Fresnel transmittance relative to flat water. Flat water gives `ΔΦ = Δ²` per photon over a
+//! regular grid of hits `Δ` apart: relative irradiance 1. A photon whose surface faces away from the
+//! sun (`cos θi ≤ 0`, the projected area ≤ 0) is invalid (power `−1`), as the reference gives such
+//! triangles nothing.
+//!
+//! # Absorption (Beer-Lambert)
+//! The photon's power is one number; the water absorbs per channel along the refracted path. The
+//! pass writes each photon's path length `d` (surface to floor) into a second buffer, and the
+//! triangles pass interpolates `d` over each caustic triangle like the irradiance and multiplies by
+//! `exp(−K d)` per channel ([`super::triangles_pass_with_paths`]). Glass generators keep `K = 0`.
+//!
+//! # Wrap
+//! With `water.wrap` the refracted light that leaves the square re-enters it on the other side: every
+//! triangle is drawn at nine offsets `(±size | 0, ±size | 0)` ([`CausticTrianglesSetup::copies`];
+//! instanced draws on the GPU), and clipping keeps what falls in the square. Clamped water is drawn
+//! once.
+//!
+//! # Departures
+//! - Power and path length are sampled at the lattice corners and interpolated; the reference
+//!   integrates each fine triangle's projected area exactly. Both converge to the same map as `P`
+//!   grows (docs/caustic-triangles.md measures how fast).
+//! - Clamped water: only the square's own surface sends photons. The reference also traces the
+//!   clamped surface upwind of the square, so near the upwind edges (a strip as wide as the
+//!   refracted light's horizontal travel, `depth · |t_xy / t_z|`) this map is darker.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::{
+    CausticTrianglesParams, CausticTrianglesSetup, FloorWindow, INVALID, WaterTransport,
+    irradiance_pass, light_frame, signature, triangles_pass_with_paths,
+};
+use crate::error::{Error, Result};
+use crate::grid::{Edge, Grid};
+use crate::map::CausticsMap;
+use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::scene::{Scene, Water, WaterSource};
+use crate::water::{Surface, sample_grid};
+
+/// The water photon pass's inputs (the GPU uploads the same numbers, `WaterPhotonUniform`).
+#[derive(Clone, Debug)]
+pub struct WaterSetup {
+    /// The reconstruction's setup: photon image side `P + 1`, the floor window the water square,
+    /// `water` set.
+    pub setup: CausticTrianglesSetup,
+    /// Quads per side of the lattice, `P`.
+    pub lattice: usize,
+    /// Lattice spacing `Δ = size / P`.
+    pub spacing: f64,
+    /// Unit direction the sunlight travels, `z < 0`.
+    pub light: DVec3,
+    pub size: f64,
+    pub depth: f64,
+    pub ior: f64,
+    pub fresnel: bool,
+    /// `T(θ0)`, the Fresnel transmittance of flat water (1 without Fresnel).
+    pub t_flat: f64,
+}
+
+impl WaterSetup {
+    /// A `P = params.photon_image` lattice over `water`'s square, lit by the sun travelling along
+    /// `light`, into a `width x height` map of the square.
+    pub fn new(
+        params: &CausticTrianglesParams,
+        water: &Water,
+        light: DVec3,
+        width: usize,
+        height: usize,
+    ) -> Result<Self> {
+        params.validate()?;
+        let light = crate::techniques::check_inputs(width, height, light)?;
+        if !(water.size > 0.0 && water.size.is_finite() && water.depth.is_finite()) {
+            return Err(Error::InvalidParameter(format!(
+                "water size {} and depth {} must be finite, the size positive",
+                water.size, water.depth
+            )));
+        }
+        if !(water.ior >= 1.0 && water.ior.is_finite()) {
+            return Err(Error::InvalidParameter(format!(
+                "water ior must be at least 1, got {}",
+                water.ior
+            )));
+        }
+        let lattice = params.photon_image as usize;
+        let spacing = water.size / lattice as f64;
+        let (u, v, w) = light_frame(light);
+        let setup = CausticTrianglesSetup {
+            p: lattice + 1,
+            u,
+            v,
+            w,
+            rect_lo: DVec2::ZERO,
+            cell: DVec2::splat(spacing),
+            flux: spacing * spacing,
+            ior: water.ior,
+            depth: 1,
+            fresnel: params.fresnel,
+            linear_steps: params.linear_steps,
+            secant_iterations: params.secant_iterations,
+            area_rule: params.area_rule,
+            splat_size: params.splat_size,
+            merge_levels: params.merge_levels,
+            merge_texels: params.merge_texels,
+            floor: FloorWindow {
+                origin: DVec2::ZERO,
+                size: water.size,
+                width,
+                height,
+            },
+            point: None,
+            light_cube: params.light_cube as usize,
+            water: Some(WaterTransport {
+                lattice,
+                absorption: water.absorption,
+                wrap: water.wrap,
+            }),
+        };
+        let t_flat = if params.fresnel {
+            fresnel_transmittance(-light.z, 1.0, water.ior)
+        } else {
+            1.0
+        };
+        Ok(WaterSetup {
+            setup,
+            lattice,
+            spacing,
+            light,
+            size: water.size,
+            depth: water.depth,
+            ior: water.ior,
+            fresnel: params.fresnel,
+            t_flat,
+        })
+    }
+
+    pub fn wrap(&self) -> bool {
+        self.setup.water.is_some_and(|w| w.wrap)
+    }
+
+    pub fn edge(&self) -> Edge {
+        if self.wrap() { Edge::Wrap } else { Edge::Clamp }
+    }
+}
+
+/// Photon `(i, j)` of the water photon pass: its texel `(x, y, Φ, σ)` (or [`INVALID`]) and its
+/// refracted path length (0 where invalid).
+pub fn photon(ws: &WaterSetup, heights: &Grid, i: usize, j: usize) -> ([f32; 4], f32) {
+    let l = ws.light;
+    let p = DVec2::new(j as f64, i as f64) * ws.spacing;
+    let (h, grad) = heights.sample(p, ws.size, ws.edge());
+    let n = height_field_normal(grad);
+    let cos_i = -l.dot(n);
+    // The cell's area as the sun sees it, over the flat cell's.
+    let seen = 1.0 + l.truncate().dot(grad) / -l.z;
+    let Some(t) = refract(l, n, 1.0 / ws.ior).filter(|t| cos_i > 0.0 && seen > 0.0 && t.z < 0.0)
+    else {
+        return (INVALID, 0.0);
+    };
+    let z = ws.depth + h;
+    let d = z / -t.z;
+    let hit = p + t.truncate() * d;
+    let fresnel = if ws.fresnel {
+        fresnel_transmittance(cos_i, 1.0, ws.ior) / ws.t_flat
+    } else {
+        1.0
+    };
+    let power = ws.setup.flux * seen * fresnel;
+    (
+        [hit.x as f32, hit.y as f32, power as f32, signature(1, 0)],
+        d as f32,
+    )
+}
+
+/// The water photon image, row `i` major, and the path lengths.
+pub fn photon_pass(ws: &WaterSetup, heights: &Grid) -> (Vec<[f32; 4]>, Vec<f32>) {
+    let p = ws.setup.p;
+    (0..p * p)
+        .into_par_iter()
+        .map(|k| photon(ws, heights, k / p, k % p))
+        .unzip()
+}
+
+/// Everything one run produces.
+pub struct WaterOutput {
+    pub photons: Vec<[f32; 4]>,
+    pub paths: Vec<f32>,
+    pub irradiance: Vec<f32>,
+    pub map: CausticsMap,
+}
+
+fn check_heights(heights: &Grid) -> Result<()> {
+    if heights.cols == 0 || heights.rows == 0 || heights.data.len() != heights.cols * heights.rows {
+        return Err(Error::InvalidParameter(format!(
+            "the water height grid is {} x {} with {} samples",
+            heights.cols,
+            heights.rows,
+            heights.data.len()
+        )));
+    }
+    heights.check_finite("the water height grid")
+}
+
+/// The whole technique on the CPU with the water surface (its heights over the square) as the
+/// generator: water photon pass, vertex irradiance, caustic triangles with absorption.
+pub fn caustics(ws: &WaterSetup, heights: &Grid) -> Result<WaterOutput> {
+    check_heights(heights)?;
+    let (photons, paths) = photon_pass(ws, heights);
+    let irradiance = irradiance_pass(&ws.setup, &photons);
+    let map = triangles_pass_with_paths(&ws.setup, &photons, &irradiance, Some(&paths));
+    Ok(WaterOutput {
+        photons,
+        paths,
+        irradiance,
+        map,
+    })
+}
+
+/// The splatting baseline from the same water photons.
+pub fn splats(ws: &WaterSetup, heights: &Grid) -> Result<CausticsMap> {
+    check_heights(heights)?;
+    let (photons, paths) = photon_pass(ws, heights);
+    Ok(super::splat_pass_with_paths(
+        &ws.setup,
+        &photons,
+        Some(&paths),
+    ))
+}
+
+/// The height grid the water generator reads: a height-field file's own samples, or the surface
+/// sampled at the map's texel centres (what the other grid-based techniques read).
+pub fn heights(water: &Water, surface: &dyn Surface, width: usize, height: usize) -> Grid {
+    match &water.source {
+        WaterSource::HeightField(g) => g.clone(),
+        _ => sample_grid(surface, width, height, water.size),
+    }
+}
+
+/// The technique on a scene with water, the water as the generator, over the scene square at the
+/// scene's caustics resolution.
+pub fn render(scene: &Scene, params: &CausticTrianglesParams) -> Result<CausticsMap> {
+    let water = scene.water.as_ref().ok_or_else(|| {
+        Error::InvalidParameter(format!(
+            "scene `{}` has no water: no water surface to generate caustics",
+            scene.name
+        ))
+    })?;
+    check_flat_floor(scene)?;
+    if !scene.light.is_sun() {
+        return Err(Error::field(
+            "light.position",
+            "caustic-triangles lights a water surface with the directional sun only",
+        ));
+    }
+    let (w, h) = (
+        scene.caustics.width as usize,
+        scene.caustics.height as usize,
+    );
+    let ws = WaterSetup::new(params, water, scene.light.direction, w, h)?;
+    let surface = water.surface_at(scene.time)?;
+    Ok(caustics(&ws, &heights(water, surface.as_ref(), w, h))?.map)
+}
+
+/// The water generator's caustic triangles lie on the plane `z = 0`.
+pub fn check_flat_floor(scene: &Scene) -> Result<()> {
+    if scene.floor.terrain.is_some() {
+        return Err(Error::InvalidParameter(format!(
+            "technique `caustic-triangles` draws the water's caustics on the floor plane z = 0; scene `{}` has a terrain",
+            scene.name
+        )));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::metrics::compare;
+    use crate::reference::{ReferenceInput, ReferenceOptions, reference};
+
+    fn params(p: u32) -> CausticTrianglesParams {
+        CausticTrianglesParams {
+            photon_image: p,
+            ..Default::default()
+        }
+    }
+
+    fn flat_water(wrap: bool, absorption: DVec3) -> Water {
+        Water {
+            source: WaterSource::Flat,
+            size: 2.0,
+            depth: 0.7,
+            ior: 1.333,
+            wrap,
+            absorption,
+        }
+    }
+
+    /// Under flat water every texel gets the unobstructed sun's relative irradiance, 1, attenuated
+    /// by `exp(−K d0)` along the flat refracted path: the lattice shifted by the refraction wraps
+    /// around exactly, so no light is lost at the edges and none is counted twice.
+    #[test]
+    fn flat_water_gives_relative_irradiance_one_everywhere() {
+        let light = DVec3::new(0.3, 0.1, -1.0).normalize();
+        let k = DVec3::new(0.45, 0.09, 0.05);
+        let t0 = refract(light, DVec3::Z, 1.0 / 1.333).unwrap();
+        let d0 = 0.7 / -t0.z;
+        for (absorption, expect) in [(DVec3::ZERO, DVec3::ONE), (k, (-k * d0).exp())] {
+            let water = flat_water(true, absorption);
+            let ws = WaterSetup::new(&params(48), &water, light, 96, 96).unwrap();
+            let out = caustics(&ws, &Grid::new(16, 16)).unwrap();
+            assert!(out.paths.iter().all(|&d| (d as f64 - d0).abs() < 1e-6));
+            let mut worst: f64 = 0.0;
+            for t in &out.map.texels {
+                for c in 0..3 {
+                    worst = worst.max((t[c] as f64 / expect[c] - 1.0).abs());
+                }
+            }
+            eprintln!("flat water, K = {absorption}: worst texel {worst:.2e}");
+            assert!(worst < 1e-4, "worst texel off by {worst}");
+        }
+    }
+
+    /// Without wrap the light refracted past the far edges is gone and the upwind strip is dark:
+    /// one copy only, and the map's flux is the sun's flux through the square that lands in it.
+    #[test]
+    fn clamped_flat_water_draws_one_copy() {
+        let light = DVec3::new(0.3, 0.1, -1.0).normalize();
+        let water = flat_water(false, DVec3::ZERO);
+        let ws = WaterSetup::new(&params(48), &water, light, 96, 96).unwrap();
+        let out = caustics(&ws, &Grid::new(16, 16)).unwrap();
+        let t0 = refract(light, DVec3::Z, 1.0 / 1.333).unwrap();
+        let shift = t0.truncate() * (0.7 / -t0.z);
+        let inside = (2.0 - shift.x) * (2.0 - shift.y) / 4.0;
+        let mean = out.map.texels.iter().map(|t| t[0] as f64).sum::<f64>() / (96.0 * 96.0);
+        assert!((mean / inside - 1.0).abs() < 0.02, "{mean} vs {inside}");
+        // Texel (0, 0) lies upwind: no light reaches it.
+        assert_eq!(out.map.texels[0], [0.0; 3]);
+    }
+
+    /// A surface too steep for the sun (it faces away) gives invalid photons, as the reference
+    /// gives its triangles nothing.
+    #[test]
+    fn surface_facing_away_from_the_sun_is_invalid() {
+        let light = DVec3::new(0.8, 0.0, -0.6);
+        let water = flat_water(false, DVec3::ZERO);
+        let ws = WaterSetup::new(&params(8), &water, light, 16, 16).unwrap();
+        // h = −2x: seen = 1 + 0.8 · (−2) / 0.6 < 0.
+        let ramp = Grid::from_fn(16, 16, |_, j| (-2.0 * (j as f64 + 0.5) * 2.0 / 16.0) as f32);
+        let (photon, d) = photon(&ws, &ramp, 4, 4);
+        assert_eq!(photon[2], -1.0);
+        assert_eq!(d, 0.0);
+        let bad = Grid::from_fn(4, 4, |_, _| f32::NAN);
+        assert!(caustics(&ws, &bad).is_err());
+    }
+
+    /// The pool's waves against the reference (256² map, 4 cells per texel): relative L1, flux, and
+    /// the reference's six brightest foci each within 3 texels (4.7 cm of the 4 m pool; measured
+    /// at most 2.2) of one of ours.
+    #[test]
+    fn pool_waves_agree_with_the_reference() {
+        let scene = Scene::builtin("pool").unwrap();
+        let water = scene.water.as_ref().unwrap();
+        let surface = water.surface_at(scene.time).unwrap();
+        let res = 256;
+        let r = reference(
+            &ReferenceInput {
+                width: res,
+                height: res,
+                ..ReferenceInput::from_scene(&scene, surface.as_ref()).unwrap()
+            },
+            &ReferenceOptions::default(),
+            &|_, _| {},
+        )
+        .unwrap();
+        let heights = heights(water, surface.as_ref(), 512, 512);
+        let mut l1 = Vec::new();
+        for p in [128, 256] {
+            let ws = WaterSetup::new(&params(p), water, scene.light.direction, res, res).unwrap();
+            let out = caustics(&ws, &heights).unwrap();
+            let m = compare(&out.map, &r);
+            eprintln!("pool {res}², P = {p}: {m:?}");
+            l1.push(m.relative_l1);
+            assert!(m.flux_error.abs() < 0.01, "flux {m:?}");
+            if p == 256 {
+                // The six brightest foci of the reference are among our brightest (peaks of
+                // similar height swap ranks).
+                let (ours, truth) = (foci(&out.map, 18), foci(&r, 6));
+                eprintln!("foci: ours {ours:?}, reference {truth:?}");
+                for f in &truth {
+                    let near = ours
+                        .iter()
+                        .map(|o| torus_distance(*o, *f, res))
+                        .fold(f64::MAX, f64::min);
+                    assert!(
+                        near <= 3.0,
+                        "reference focus {f:?}: nearest of ours {near} texels away"
+                    );
+                }
+            }
+        }
+        // Measured: 0.070 and 0.022 (flux +0.24 % and +0.10 %).
+        assert!(l1[0] < 0.09, "P = 128: {}", l1[0]);
+        assert!(l1[1] < 0.035, "P = 256: {}", l1[1]);
+        assert!(l1[1] < l1[0], "converges: {l1:?}");
+    }
+
+    fn torus_distance(a: (usize, usize), b: (usize, usize), n: usize) -> f64 {
+        let d = |x: usize, y: usize| {
+            let d = x.abs_diff(y);
+            d.min(n - d) as f64
+        };
+        d(a.0, b.0).hypot(d(a.1, b.1))
+    }
+
+    /// The `count` brightest texels of the 3 x 3 box-filtered map that are the largest within 8
+    /// texels (periodic), as (row, column).
+    fn foci(map: &CausticsMap, count: usize) -> Vec<(usize, usize)> {
+        let n = map.width;
+        let at = |i: i64, j: i64| {
+            let t =
+                map.texels[(i.rem_euclid(n as i64) as usize) * n + j.rem_euclid(n as i64) as usize];
+            (t[0] + t[1] + t[2]) as f64
+        };
+        let blur: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let (i, j) = ((k / n) as i64, (k % n) as i64);
+                (-1..=1)
+                    .flat_map(|a| (-1..=1).map(move |b| (a, b)))
+                    .map(|(a, b)| at(i + a, j + b))
+                    .sum()
+            })
+            .collect();
+        let b = |i: i64, j: i64| {
+            blur[(i.rem_euclid(n as i64) as usize) * n + j.rem_euclid(n as i64) as usize]
+        };
+        let mut peaks: Vec<(f64, (usize, usize))> = (0..n * n)
+            .filter_map(|k| {
+                let (i, j) = ((k / n) as i64, (k % n) as i64);
+                let v = b(i, j);
+                let max = (-8..=8)
+                    .flat_map(|a| (-8..=8).map(move |c| (a, c)))
+                    .all(|(a, c)| (a, c) == (0, 0) || b(i + a, j + c) < v);
+                max.then_some((v, (k / n, k % n)))
+            })
+            .collect();
+        peaks.sort_by(|x, y| y.0.total_cmp(&x.0));
+        peaks.into_iter().take(count).map(|p| p.1).collect()
+    }
+}
