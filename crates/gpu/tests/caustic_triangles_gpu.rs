@@ -235,6 +235,7 @@ fn the_uniform_matches_its_wgsl_size() {
         &caustics_gpu::caustic_triangles::PYRAMID,
         &caustics_gpu::caustic_triangles::CUBE,
         &caustics_gpu::caustic_triangles::SHADOW,
+        &caustics_gpu::caustic_triangles::WATER_PHOTON,
         &caustics_gpu::caustic_triangles::camera::CAMERA,
     ] {
         let src = pass.composed();
@@ -695,4 +696,79 @@ fn merging_matches_the_cpu_twin() {
             assert!(sum > 0.0 && diff / sum < 1e-2, "{}", diff / sum);
         }
     }
+}
+
+/// The water surface as the generator: the pool's waves through the water photon pass, its
+/// photons, path lengths and maps (triangles and splats, wrapped, with absorption) against the CPU
+/// twin; and clamped water's single copy.
+#[test]
+fn water_generator_matches_the_cpu_twin() {
+    use caustics_core::scene::Scene;
+    use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
+    let Some(ctx) = test_context() else { return };
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let scene = Scene::builtin("pool").unwrap();
+    let mut w = scene.water.clone().unwrap();
+    let surface = w.surface_at(scene.time).unwrap();
+    let heights = water::heights(&w, surface.as_ref(), 256, 256);
+    for wrap in [true, false] {
+        w.wrap = wrap;
+        let params = CausticTrianglesParams {
+            photon_image: 96,
+            ..Default::default()
+        };
+        let ws = WaterSetup::new(&params, &w, scene.light.direction, 128, 128).unwrap();
+        let cpu = water::caustics(&ws, &heights).unwrap();
+        let gpu = ct_gpu
+            .run_water(&ctx, &ws, &heights, Reconstruction::Triangles)
+            .expect("gpu run");
+        let (flips, dpos, dpow) = photon_agreement(&cpu.photons, &gpu.photons);
+        let dpath = cpu
+            .paths
+            .iter()
+            .zip(&gpu.paths)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f32, f32::max);
+        eprintln!(
+            "wrap {wrap}: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}"
+        );
+        assert_eq!(flips, 0.0);
+        // f32 against f64 on a 4 m square: micrometres.
+        assert!(dpos < 5e-6, "positions {dpos}");
+        assert!(dpow < 1e-4, "powers {dpow}");
+        assert!(dpath < 1e-5, "paths {dpath}");
+        let m = compare(&gpu.map, &cpu.map);
+        eprintln!("wrap {wrap}: triangles GPU vs CPU {m:?}");
+        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        // Absorption per channel: red is absorbed most.
+        let sum = |c: usize| gpu.map.texels.iter().map(|t| t[c] as f64).sum::<f64>();
+        assert!(sum(0) < sum(1) && sum(1) < sum(2));
+        let gs = ct_gpu
+            .run_water(&ctx, &ws, &heights, Reconstruction::Splats)
+            .expect("gpu splats");
+        let cs = ct::splat_pass_with_paths(&ws.setup, &cpu.photons, Some(&cpu.paths));
+        let s = compare(&gs.map, &cs);
+        eprintln!("wrap {wrap}: splats GPU vs CPU {s:?}");
+        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-4, "{s:?}");
+        if wrap {
+            // Every photon cell's light lands in the square: the map holds the photons' power.
+            let mean = sum(2) / (128.0 * 128.0);
+            assert!(mean > 0.8, "mean blue {mean}");
+        }
+    }
+}
+
+#[test]
+fn the_water_photon_uniform_matches_its_wgsl_size() {
+    let source = caustics_gpu::caustic_triangles::WATER_PHOTON.composed();
+    let module = naga::front::wgsl::parse_str(&source).unwrap();
+    let (_, ty) = module
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some("WaterPhoton"))
+        .unwrap();
+    assert_eq!(
+        ty.inner.size(module.to_ctx()) as usize,
+        std::mem::size_of::<caustics_gpu::caustic_triangles::WaterPhotonUniform>()
+    );
 }

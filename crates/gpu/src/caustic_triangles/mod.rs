@@ -13,6 +13,12 @@
 //! | caustic triangles on the light cube map faces (render, §4.2, point light) | `shaders/caustic_triangles/cube.wgsl` | `cube::cube_triangles_pass` |
 //! | light cube shadow distances (compute, §4.3) | `shaders/caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
 //! | camera pass (compute, §4.3), [`camera`] | `shaders/caustic_triangles/camera.wgsl` | `camera::camera_pass` |
+//! | water photon pass (compute, the water surface as the generator) | `shaders/caustic_triangles/water_photon.wgsl` | `water::photon_pass` |
+//!
+//! With the water surface as the generator ([`WaterFrame`], `caustics_core::techniques::
+//! caustic_triangles::water`) the water photon pass replaces the photon tracing pass and also
+//! writes each photon's refracted path length; the triangles and splats read it for Beer-Lambert
+//! absorption and draw nine instances (offsets of `±size`) of each primitive for tiling water.
 //!
 //! The layered distance map is built on the CPU ([`DistanceMap::build`]) and uploaded as a storage
 //! buffer; the photon hit location image and the vertex irradiances are storage buffers that the
@@ -23,13 +29,15 @@
 
 pub mod camera;
 
+use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::caustic_triangles::cube::{FAR, LightCube};
+use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 use wgpu::util::DeviceExt;
 
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{OPTICS, PassSource};
+use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 const COMMON: &str = include_str!("../shaders/caustic_triangles/common.wgsl");
@@ -66,6 +74,11 @@ pub const SHADOW: PassSource = PassSource {
     shared: &[COMMON, DISTANCE_MAP],
     source: include_str!("../shaders/caustic_triangles/shadow.wgsl"),
 };
+pub const WATER_PHOTON: PassSource = PassSource {
+    name: "caustic-triangles water photons",
+    shared: &[OPTICS, WATER],
+    source: include_str!("../shaders/caustic_triangles/water_photon.wgsl"),
+};
 pub const SPLAT: PassSource = PassSource {
     name: "caustic-triangles splats",
     shared: &[COMMON],
@@ -100,7 +113,11 @@ pub struct CausticTrianglesUniform {
     pub spot: [f32; 4],
     pub merge_levels: u32,
     pub merge_small: f32,
-    pub _pad2: [u32; 2],
+    /// A water generator's lattice `P` (0 for glass).
+    pub lattice: u32,
+    pub wrap: u32,
+    /// xyz: the water's absorption `K` (0 for glass).
+    pub absorption: [f32; 4],
 }
 
 impl CausticTrianglesUniform {
@@ -145,7 +162,40 @@ impl CausticTrianglesUniform {
             },
             merge_levels: s.merge_levels,
             merge_small: (s.merge_texels * s.floor.texel_area()) as f32,
-            _pad2: [0; 2],
+            lattice: s.water.map_or(0, |w| w.lattice as u32),
+            wrap: s.water.is_some_and(|w| w.wrap) as u32,
+            absorption: v4(s.absorption(), 0.0),
+        }
+    }
+}
+
+/// Mirrors `WaterPhoton` in `shaders/caustic_triangles/water_photon.wgsl` (CPU twin: [`WaterSetup`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct WaterPhotonUniform {
+    pub light: [f32; 4],
+    pub water: [f32; 4],
+    pub lattice: u32,
+    pub wrap: u32,
+    pub fresnel: u32,
+    pub _pad: u32,
+}
+
+impl WaterPhotonUniform {
+    pub fn new(ws: &WaterSetup) -> Self {
+        let l = ws.light;
+        WaterPhotonUniform {
+            light: [l.x as f32, l.y as f32, l.z as f32, ws.ior as f32],
+            water: [
+                ws.depth as f32,
+                ws.size as f32,
+                ws.spacing as f32,
+                ws.t_flat as f32,
+            ],
+            lattice: ws.lattice as u32,
+            wrap: ws.wrap() as u32,
+            fresnel: ws.fresnel as u32,
+            _pad: 0,
         }
     }
 }
@@ -168,6 +218,7 @@ pub struct CausticTriangles {
     splat: wgpu::RenderPipeline,
     cube: wgpu::RenderPipeline,
     shadow: wgpu::ComputePipeline,
+    water_photon: wgpu::ComputePipeline,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float` (floor and light cube maps).
     pub map_format: wgpu::TextureFormat,
 }
@@ -180,6 +231,8 @@ pub struct Frame {
     pub uniform: wgpu::Buffer,
     pub dm_buffer: wgpu::Buffer,
     pub photons: wgpu::Buffer,
+    /// Refracted path length per photon (a water generator's; zeros for glass).
+    pub paths: wgpu::Buffer,
     pub irradiance: wgpu::Buffer,
     pub map: wgpu::Texture,
     pub map_view: wgpu::TextureView,
@@ -235,6 +288,7 @@ impl CausticTriangles {
             splat: additive_pipeline(ctx, &SPLAT, map_format),
             cube: additive_pipeline(ctx, &CUBE, map_format),
             shadow: compute_pipeline(ctx, &SHADOW),
+            water_photon: compute_pipeline(ctx, &WATER_PHOTON),
             map_format,
         };
         ctx.check()?;
@@ -272,6 +326,12 @@ impl CausticTriangles {
             label: Some("caustic-triangles photon image"),
             size: p * p * 16,
             usage: B::STORAGE | B::COPY_SRC | B::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let paths = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles photon path lengths"),
+            size: p * p * 4,
+            usage: B::STORAGE | B::COPY_SRC,
             mapped_at_creation: false,
         });
         let irradiance = ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -356,13 +416,18 @@ impl CausticTriangles {
                 photons.as_entire_binding(),
                 irradiance.as_entire_binding(),
                 pyramid.as_entire_binding(),
+                paths.as_entire_binding(),
             ],
         );
         let splat_bind = bind_group(
             ctx,
             "caustic-triangles splats",
             &self.splat.get_bind_group_layout(0),
-            &[uniform.as_entire_binding(), photons.as_entire_binding()],
+            &[
+                uniform.as_entire_binding(),
+                photons.as_entire_binding(),
+                paths.as_entire_binding(),
+            ],
         );
         ctx.check()?;
         let texel = self.map_format.block_copy_size(None).unwrap_or(16) as u64;
@@ -371,6 +436,7 @@ impl CausticTriangles {
             uniform,
             dm_buffer,
             photons,
+            paths,
             irradiance,
             map,
             map_view,
@@ -380,7 +446,7 @@ impl CausticTriangles {
             pyramid_binds,
             triangles_bind,
             splat_bind,
-            bytes: dm_bytes + p * p * 20 + (w * h) as u64 * texel + 160,
+            bytes: dm_bytes + p * p * 24 + (w * h) as u64 * texel + 176,
         })
     }
 
@@ -457,6 +523,7 @@ impl CausticTriangles {
         clear: bool,
     ) {
         let p = frame.setup.p as u32;
+        let copies = frame.setup.copies().len() as u32;
         let label = match reconstruction {
             Reconstruction::Triangles => "caustic-triangles triangles",
             Reconstruction::Splats => "caustic-triangles splats",
@@ -485,12 +552,12 @@ impl CausticTriangles {
             Reconstruction::Triangles => {
                 pass.set_pipeline(&self.triangles);
                 pass.set_bind_group(0, &frame.triangles_bind, &[]);
-                pass.draw(0..6 * (p - 1) * (p - 1), 0..1);
+                pass.draw(0..6 * (p - 1) * (p - 1), 0..copies);
             }
             Reconstruction::Splats => {
                 pass.set_pipeline(&self.splat);
                 pass.set_bind_group(0, &frame.splat_bind, &[]);
-                pass.draw(0..6 * p * p, 0..1);
+                pass.draw(0..6 * p * p, 0..copies);
             }
         }
     }
@@ -555,6 +622,159 @@ impl CausticTriangles {
         Ok(GpuOutput {
             photons: ctx.read_buffer(&frame.photons)?,
             irradiance: ctx.read_buffer(&frame.irradiance)?,
+            map,
+        })
+    }
+}
+
+/// The water surface as the generator: a [`Frame`] whose photon image the water photon pass
+/// writes from a height grid (no distance map). Built once per lattice, map and height-grid size;
+/// upload new heights every frame the water moves ([`update_heights`](Self::update_heights)).
+pub struct WaterFrame {
+    pub frame: Frame,
+    pub setup: WaterSetup,
+    pub heights: wgpu::Texture,
+    pub water_uniform: wgpu::Buffer,
+    water_bind: wgpu::BindGroup,
+}
+
+impl WaterFrame {
+    /// Overwrite the heights with a grid of the same size.
+    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) -> Result<(), GpuError> {
+        if (heights.cols as u32, heights.rows as u32)
+            != (self.heights.width(), self.heights.height())
+        {
+            return Err(GpuError::Validation(format!(
+                "caustic-triangles water heights: a {} x {} grid for a {} x {} frame",
+                heights.cols,
+                heights.rows,
+                self.heights.width(),
+                self.heights.height()
+            )));
+        }
+        ctx.write_grid(&self.heights, heights);
+        Ok(())
+    }
+
+    pub fn bytes(&self) -> u64 {
+        self.frame.bytes() + (self.heights.width() * self.heights.height()) as u64 * 4 + 48
+    }
+}
+
+/// What one water run reads back.
+pub struct WaterGpuOutput {
+    pub photons: Vec<[f32; 4]>,
+    pub paths: Vec<f32>,
+    pub irradiance: Vec<f32>,
+    pub map: CausticsMap,
+}
+
+impl CausticTriangles {
+    pub fn water_frame(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &Grid,
+    ) -> Result<WaterFrame, GpuError> {
+        // The frame's distance map is unused: one texel fills its binding.
+        let none = DistanceMap {
+            resolution: 1,
+            layers: 1,
+            centre: glam::DVec3::ZERO,
+            radius: 0.0,
+            texels: vec![[0.0; 4]],
+        };
+        let frame = self.frame(ctx, &ws.setup, &none)?;
+        let heights_texture = ctx.upload_grid("caustic-triangles water heights", heights)?;
+        let view = heights_texture.create_view(&Default::default());
+        let water_uniform = ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("caustic-triangles water photons"),
+                contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+        let water_bind = bind_group(
+            ctx,
+            "caustic-triangles water photons",
+            &self.water_photon.get_bind_group_layout(0),
+            &[
+                water_uniform.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&view),
+                frame.photons.as_entire_binding(),
+                frame.paths.as_entire_binding(),
+            ],
+        );
+        ctx.check()?;
+        Ok(WaterFrame {
+            frame,
+            setup: ws.clone(),
+            heights: heights_texture,
+            water_uniform,
+            water_bind,
+        })
+    }
+
+    /// Record the water photon pass, then the reconstruction into the floor map (cleared first).
+    pub fn encode_water(
+        &self,
+        wf: &WaterFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+    ) {
+        let p = wf.frame.setup.p as u32;
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles water photons");
+            pass.set_pipeline(&self.water_photon);
+            pass.set_bind_group(0, &wf.water_bind, &[]);
+            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        self.encode_reconstruction(&wf.frame, encoder, timer, reconstruction);
+    }
+
+    /// The water generator once, its floor map read back (the Runner's frame).
+    pub fn water_caustics(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &Grid,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> Result<CausticsMap, GpuError> {
+        let wf = self.water_frame(ctx, ws, heights)?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode_water(
+            &wf,
+            &mut encoder,
+            timer.as_deref_mut(),
+            Reconstruction::Triangles,
+        );
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        ctx.queue.submit([encoder.finish()]);
+        let map = self.read_map(ctx, &wf.frame)?;
+        ctx.check()?;
+        Ok(map)
+    }
+
+    /// The water generator once, everything read back.
+    pub fn run_water(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &Grid,
+        reconstruction: Reconstruction,
+    ) -> Result<WaterGpuOutput, GpuError> {
+        let wf = self.water_frame(ctx, ws, heights)?;
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        self.encode_water(&wf, &mut encoder, None, reconstruction);
+        ctx.queue.submit([encoder.finish()]);
+        let map = self.read_map(ctx, &wf.frame)?;
+        Ok(WaterGpuOutput {
+            photons: ctx.read_buffer(&wf.frame.photons)?,
+            paths: ctx.read_buffer(&wf.frame.paths)?,
+            irradiance: ctx.read_buffer(&wf.frame.irradiance)?,
             map,
         })
     }

@@ -24,8 +24,28 @@ struct CausticTriangles {
     spot: vec4<f32>,    // xyz: spot axis; w: cos of its half-angle, -2 for a bare point light
     merge_levels: u32,  // levels of the merge pyramid (0: no merging)
     merge_small: f32,   // a block merges below this floor area (merge_texels x texel area)
-    _pad2: u32,
-    _pad3: u32,
+    lattice: u32,       // a water generator's lattice P (photon image P + 1); 0 for glass
+    wrap: u32,          // 1: tiling water, every primitive drawn at nine offsets of +-size
+    absorption: vec4<f32>, // xyz: the water's K per channel (0 for glass)
+}
+
+// Offset of copy (instance) k of a primitive: ((k mod 3) - 1, (k div 3) - 1) size for tiling
+// water (CPU twin: `CausticTrianglesSetup::copies`).
+fn copy_offset(c: CausticTriangles, k: u32) -> vec2<f32> {
+    if c.wrap == 0u {
+        return vec2<f32>(0.0);
+    }
+    return vec2<f32>(f32(k % 3u) - 1.0, f32(k / 3u) - 1.0) * c.floor.z;
+}
+
+// Copies to draw of each primitive.
+fn copies(c: CausticTriangles) -> u32 {
+    return select(1u, 9u, c.wrap != 0u);
+}
+
+// Whether the floor box [lo, hi] meets the map's square.
+fn meets_square(c: CausticTriangles, lo: vec2<f32>, hi: vec2<f32>) -> bool {
+    return all(hi >= c.floor.xy) && all(lo <= c.floor.xy + c.floor.z);
 }
 
 // Blocks per side of level k of the merge pyramid, and the level's offset (CPU twin: merge::layout).

@@ -2,20 +2,25 @@
 // sent with no vertex buffer; the vertex shader pulls its photon hit and vertex irradiance from the
 // photon image, collapses the triangles of quads with an invalid corner or corners of different
 // path signatures (photon w) outside the clip volume,
-// and the irradiance is Gouraud shaded and added into the floor map. CPU twin: `triangles_pass` in
+// and the irradiance is Gouraud shaded and added into the floor map. A water generator's triangles
+// also interpolate their vertices' refracted path lengths and are attenuated by exp(-K d) per
+// channel, and tiling water draws each at nine offsets (instances; copies whose quad misses the
+// square are collapsed). CPU twin: `triangles_pass_with_paths` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> irradiance: array<f32>;
+@group(0) @binding(4) var<storage, read> paths: array<f32>;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
     @location(0) e: f32,
+    @location(1) d: f32,
 }
 
 @vertex
-fn vs_main(@builtin(vertex_index) vi: u32) -> VsOut {
+fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) copy: u32) -> VsOut {
     let quads = u.p - 1u;
     let quad = vi / 6u;
     let qi = quad / quads;
@@ -26,19 +31,30 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> VsOut {
     let c = corners[vi % 6u];
     var out: VsOut;
     out.e = 0.0;
+    out.d = 0.0;
     out.position = CULLED;
     let draw = quad_draw(qi, qj);
     if draw.x < 0.0 {
         return out;
     }
     let s = 1u << u32(draw.x);
+    let off = copy_offset(u, copy);
+    let k00 = qi * u.p + qj;
+    let q = array<vec2<f32>, 4>(photons[k00].xy, photons[k00 + s].xy, photons[k00 + s * u.p].xy,
+                                photons[k00 + s * u.p + s].xy);
+    let lo = min(min(q[0], q[1]), min(q[2], q[3])) + off;
+    let hi = max(max(q[0], q[1]), max(q[2], q[3])) + off;
+    if !meets_square(u, lo, hi) {
+        return out;
+    }
     let k = (qi + c.x * s) * u.p + qj + c.y * s;
-    out.position = pixel_to_clip(u, to_pixel(u, photons[k].xy));
+    out.position = pixel_to_clip(u, to_pixel(u, photons[k].xy + off));
     out.e = select(irradiance[k], draw.y, draw.x > 0.0);
+    out.d = paths[k];
     return out;
 }
 
 @fragment
 fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(in.e, in.e, in.e, 1.0);
+    return vec4<f32>(in.e * exp(-u.absorption.xyz * in.d), 1.0);
 }
