@@ -173,8 +173,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let ctx = if args.cpu { None } else { gpu_context(&args)? };
     let mut runner = Runner::new(ctx);
     // Paper 4 ends in its own camera pass (§4.3): the technique's final image, lit through the
-    // light cube map of a point light or the floor map of the sun.
-    if let (Some(out), None, "caustic-triangles") = (&out, &args.raw, spec.name.as_str()) {
+    // light cube map of a point light or the floor map of the sun. With water, the water surface
+    // is its generator and its floor map lights the general final image.
+    if let (Some(out), None, "caustic-triangles", None) =
+        (&out, &args.raw, spec.name.as_str(), &scene.water)
+    {
         return caustic_triangles_image(&runner, &scene, &spec, out);
     }
     // Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the

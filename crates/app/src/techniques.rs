@@ -264,6 +264,35 @@ impl Runner {
         use caustics_core::techniques::caustic_triangles as ct;
         techniques::check_light(&spec.name, &scene.light)?;
         match spec.name.as_str() {
+            // A scene with water: its surface is the generator (the water photon pass), as on a
+            // water job.
+            "caustic-triangles" if scene.water.is_some() => {
+                let water = scene.water.as_ref().expect("matched");
+                if !scene.light.is_sun() {
+                    bail!(
+                        "scene `{}`: caustic-triangles lights its water surface with the directional sun only (light.position is set)",
+                        scene.name
+                    );
+                }
+                let owned;
+                let surface = match surface {
+                    Some(s) => s,
+                    None => {
+                        owned = water.surface_at(scene.time)?;
+                        owned.as_ref()
+                    }
+                };
+                let job = Job {
+                    water,
+                    floor: &scene.floor,
+                    surface,
+                    light: scene.light.direction,
+                    width: scene.caustics.width as usize,
+                    height: scene.caustics.height as usize,
+                    cells_per_texel,
+                };
+                self.run_with_progress(spec, &job, progress)
+            }
             "caustic-triangles" => {
                 let params = ct::CausticTrianglesParams::from_table(&spec.params)?;
                 let Some(ctx) = &self.gpu else {
@@ -518,6 +547,34 @@ impl Runner {
                         backend: "CPU",
                     }),
                 }
+            }
+            // Paper 4 with the water surface as the caustic generator (the water photon pass, then
+            // the technique's vertex irradiance and caustic triangles; docs/caustic-triangles.md).
+            "caustic-triangles" => {
+                use caustics_core::techniques::caustic_triangles::{CausticTrianglesParams, water};
+                if job.floor.terrain.is_some() {
+                    bail!(
+                        "technique `caustic-triangles` draws the water's caustic triangles on the floor plane z = 0; this scene has a terrain"
+                    );
+                }
+                let params = CausticTrianglesParams::from_table(&spec.params)?;
+                let ws =
+                    water::WaterSetup::new(&params, job.water, job.light, job.width, job.height)?;
+                let heights = heights_for(job.water, job.surface, job.width, job.height);
+                let (map, backend) = match &self.gpu {
+                    Some(ctx) => {
+                        if self.caustic_triangles.is_none() {
+                            self.caustic_triangles =
+                                Some(caustics_gpu::caustic_triangles::CausticTriangles::new(ctx)?);
+                        }
+                        let gpu = self.caustic_triangles.as_ref().expect("just made");
+                        let map = gpu.water_caustics(ctx, &ws, &heights, self.timer.as_mut())?;
+                        (map, "GPU")
+                    }
+                    None => (water::caustics(&ws, &heights)?.map, "CPU"),
+                };
+                progress(1, 1);
+                Ok(Outcome { map, backend })
             }
             // Paper 3 on a water job alone (no objects to receive it: `caustics compare`, the
             // viewer's water): its floor pass, the illumination volumes cut by the floor.
