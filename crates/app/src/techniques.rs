@@ -133,6 +133,7 @@ pub struct Outcome {
 /// an image in the scene camera's screen space. Both light the final image
 /// (`caustics_core::render::render_with`, `FinalImage::render_with`) through
 /// [`caustics`](Self::caustics).
+#[derive(Clone)]
 pub enum SceneCaustics {
     Floor(CausticsMap),
     EyeSpace(caustics_core::render::EyeSpaceCaustics),
@@ -215,9 +216,6 @@ impl Runner {
                 backend: o.backend,
             });
         }
-        use caustics_core::techniques::cascaded;
-        let params = cascaded::CascadedParams::from_table(&spec.params)?;
-        let setup = cascaded::CascadedSetup::from_scene(scene, &params)?;
         let water = match (&scene.water, surface) {
             (Some(w), Some(s))
                 if !matches!(
@@ -227,8 +225,25 @@ impl Runner {
             {
                 sample_grid(s, CASCADED_WATER_GRID, CASCADED_WATER_GRID, w.size)
             }
-            _ => cascaded::water_grid(scene, CASCADED_WATER_GRID)?,
+            _ => caustics_core::techniques::cascaded::water_grid(scene, CASCADED_WATER_GRID)?,
         };
+        let outcome = self.run_cascaded(spec, scene, &water)?;
+        progress(1, 1);
+        Ok(outcome)
+    }
+
+    /// Technique `cascaded` (paper 5) on `scene` (its water's parameters, floor, sun and camera) with
+    /// the water surface given as a height grid over the scene square: the viewer passes the
+    /// surface it animates, [`run_scene_caustics`](Self::run_scene_caustics) the scene's own.
+    pub fn run_cascaded(
+        &mut self,
+        spec: &Spec,
+        scene: &caustics_core::scene::Scene,
+        water: &Grid,
+    ) -> Result<SceneOutcome> {
+        use caustics_core::techniques::cascaded;
+        let params = cascaded::CascadedParams::from_table(&spec.params)?;
+        let setup = cascaded::CascadedSetup::from_scene(scene, &params)?;
         let terrain = scene.floor.terrain.as_ref();
         let (texels, backend) = match &self.gpu {
             Some(ctx) => {
@@ -236,11 +251,14 @@ impl Runner {
                     self.cascaded = Some(caustics_gpu::cascaded::Cascaded::new(ctx)?);
                 }
                 let gpu = self.cascaded.as_ref().expect("just made");
-                (gpu.caustics(ctx, &setup, &water, terrain)?.image, "GPU")
+                (
+                    gpu.caustics_timed(ctx, &setup, water, terrain, self.timer.as_mut())?
+                        .image,
+                    "GPU",
+                )
             }
-            None => (cascaded::caustics(&setup, &water, terrain).image, "CPU"),
+            None => (cascaded::caustics(&setup, water, terrain).image, "CPU"),
         };
-        progress(1, 1);
         Ok(SceneOutcome {
             caustics: SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
                 width: setup.eye.width,

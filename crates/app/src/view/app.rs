@@ -24,7 +24,7 @@ use caustics_core::scene::Scene;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
 
-use super::buffers::{self, Buffer, BufferInput};
+use super::buffers::{self, Buffer, BufferInput, SceneHas};
 use super::camera::{OrbitCamera, Sun};
 use super::frame::{Quality, SceneRenderer, Slot, TechniqueChoice, technique_names};
 use super::ui::{self, Model, Shown, Stats, TextureIds};
@@ -122,7 +122,8 @@ enum Flow {
 struct Script {
     frames: u64,
     screenshot: Option<PathBuf>,
-    cycle: bool,
+    /// `--cycle-techniques`: the names to cycle through, empty for all the scene offers.
+    cycle: Option<Vec<String>>,
     resize_every: Option<u64>,
     drop_every: Option<u64>,
     /// The window size asked for at the start, which resizes vary around.
@@ -358,6 +359,10 @@ impl Viewer {
         );
 
         let model = initial_model(args, &scene, software, adapter, textures, timestamps)?;
+        for name in args.cycle_techniques.iter().flatten() {
+            TechniqueChoice::parse(name, 1)
+                .with_context(|| format!("--cycle-techniques `{name}`"))?;
+        }
         let renderer = SceneRenderer::new(Runner::new(Some(ctx)), scene);
         if let Some(n) = &renderer.final_note {
             eprintln!("{n}");
@@ -365,7 +370,7 @@ impl Viewer {
         let script = args.frames.map(|frames| Script {
             frames,
             screenshot: args.screenshot.clone(),
-            cycle: args.cycle_techniques,
+            cycle: args.cycle_techniques.clone(),
             resize_every: args.resize_every,
             drop_every: args.drop_every,
             base_size: args.size,
@@ -561,9 +566,9 @@ impl Viewer {
                 if !slot.map_changed && m.maps[k].size.is_some() {
                     continue;
                 }
-                m.maps[k] = match (&slot.map, &slot.error) {
-                    (Some(map), _) => {
-                        let p = buffers::map_picture(map);
+                m.maps[k] = match (&slot.caustics, &slot.error) {
+                    (Some(caustics), _) => {
+                        let p = buffers::caustics_picture(caustics);
                         self.map_images[k].set(
                             ctx,
                             &mut self.egui_renderer,
@@ -590,7 +595,7 @@ impl Viewer {
             if m.split
                 && (m.slots[0].map_changed || m.slots[1].map_changed || m.difference.size.is_none())
             {
-                m.difference = match (&m.slots[0].map, &m.slots[1].map) {
+                m.difference = match (m.slots[0].floor_map(), m.slots[1].floor_map()) {
                     (Some(a), Some(b)) => match buffers::difference_picture(a, b) {
                         Some(p) => {
                             self.difference_image.set(
@@ -612,7 +617,7 @@ impl Viewer {
                         },
                     },
                     _ => Shown {
-                        error: Some("needs both maps".into()),
+                        error: Some("needs two floor maps".into()),
                         ..Shown::default()
                     },
                 };
@@ -824,8 +829,12 @@ impl Viewer {
             return;
         };
         let k = self.frame;
-        if s.cycle {
-            let names = self.model.technique_names.clone();
+        if let Some(only) = &s.cycle {
+            let names: Vec<String> = if only.is_empty() {
+                self.model.technique_names.clone()
+            } else {
+                only.clone()
+            };
             if names.is_empty() {
                 return;
             }
@@ -910,7 +919,8 @@ fn initial_model(
     Ok(Model {
         scene_name: scene.name.clone(),
         technique_names: technique_names(scene),
-        has_water: scene.water.is_some(),
+        has: SceneHas::of(scene),
+        object_count: scene.objects.len() as u32,
         adapter,
         home: camera.clone(),
         camera,
@@ -933,7 +943,7 @@ fn initial_model(
         show_overlay: true,
         show_map: args.show_map,
         show_buffers: args.show_buffers,
-        buffer: Buffer::available(&first_choice, scene.water.is_some())
+        buffer: Buffer::available(&first_choice, SceneHas::of(scene))
             .first()
             .copied()
             .unwrap_or(Buffer::Heights),

@@ -3,24 +3,27 @@
 //!
 //! The GPU passes keep their intermediate textures to themselves, so the intermediates are
 //! recomputed by the technique's CPU twin (for `yuksel`: `prepass` and `pass1`; for
-//! `caustic-triangles`: the layered distance map, the photon hit location image and the vertex
-//! irradiances; the GPU passes match them to rounding) from the same input, only while their view
-//! is open.
+//! `caustic-triangles`: the layered distance map, the photon hit location image, the vertex
+//! irradiances and a point light's light cube map; for `volumes`: each object's caustics map; for
+//! `cascaded`: each cascade's own screen-space caustic map; the GPU passes match them to the
+//! tolerances their tests state) from the same input, only while their view is open.
 //!
-//! Every picture is drawn as seen from above: +x to the right, +y up (row 0 of a map, at y = 0,
-//! is the bottom row).
+//! Every map is drawn as seen from above: +x to the right, +y up (row 0 of a map, at y = 0, is the
+//! bottom row); eye-space images as the camera sees them.
 
 use glam::DVec3;
 
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
-use caustics_core::scene::{Scene, Water};
+use caustics_core::render::EyeSpaceCaustics;
+use caustics_core::scene::{Scene, Water, WaterSource};
 use caustics_core::techniques::caustic_triangles as ct;
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
-use caustics_core::water::Surface;
+use caustics_core::techniques::{cascaded, volumes};
+use caustics_core::water::{Surface, sample_grid};
 
 use super::frame::TechniqueChoice;
-use crate::techniques::heights_for;
+use crate::techniques::{SceneCaustics, heights_for};
 
 /// A buffer the view can show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,6 +46,13 @@ pub enum Buffer {
     PhotonPower,
     /// `caustic-triangles` §5: the irradiance at each photon-image vertex (power over its area).
     VertexIrradiance,
+    /// `caustic-triangles` §4.2: the light cube map a point light's caustic triangles are drawn
+    /// into, its six faces side by side.
+    LightCube,
+    /// `volumes` §3.2: object `k`'s caustics map, as its illumination volumes light it.
+    ObjectCaustics(u32),
+    /// `cascaded` §3.3: cascade `k`'s own screen-space caustic map, before the cascades blend.
+    CascadeMap(u32),
 }
 
 impl Buffer {
@@ -56,11 +66,15 @@ impl Buffer {
             Buffer::PhotonHits => "photon hit location image".into(),
             Buffer::PhotonPower => "photon power".into(),
             Buffer::VertexIrradiance => "vertex irradiance".into(),
+            Buffer::LightCube => "light cube map".into(),
+            Buffer::ObjectCaustics(k) => format!("object {k}: caustics map"),
+            Buffer::CascadeMap(k) => format!("cascade {k}: caustic map"),
         }
     }
 
-    /// The buffers a technique has in a scene with or without water.
-    pub fn available(choice: &TechniqueChoice, water: bool) -> Vec<Buffer> {
+    /// The buffers a technique has in a scene with what `has` says.
+    pub fn available(choice: &TechniqueChoice, has: SceneHas) -> Vec<Buffer> {
+        let water = has.water;
         let mut v = Vec::new();
         if water {
             v.push(Buffer::Heights);
@@ -71,15 +85,42 @@ impl Buffer {
                 Buffer::YukselFlux,
                 Buffer::YukselChannel(0),
             ]),
-            "caustic-triangles" => v.extend([
-                Buffer::PhotonHits,
-                Buffer::PhotonPower,
-                Buffer::VertexIrradiance,
-                Buffer::DistanceLayer(0),
-            ]),
+            "caustic-triangles" => {
+                v.extend([
+                    Buffer::PhotonHits,
+                    Buffer::PhotonPower,
+                    Buffer::VertexIrradiance,
+                    Buffer::DistanceLayer(0),
+                ]);
+                if has.point_light {
+                    v.push(Buffer::LightCube);
+                }
+            }
+            "volumes" if has.objects => v.push(Buffer::ObjectCaustics(0)),
+            "cascaded" => v.push(Buffer::CascadeMap(0)),
             _ => {}
         }
         v
+    }
+}
+
+/// What of a scene decides which buffers a technique has there.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneHas {
+    pub water: bool,
+    /// A point or spot light (a light cube map).
+    pub point_light: bool,
+    /// Objects under the water (receivers of paper 3's caustics).
+    pub objects: bool,
+}
+
+impl SceneHas {
+    pub fn of(scene: &Scene) -> Self {
+        SceneHas {
+            water: scene.water.is_some(),
+            point_light: scene.light.position.is_some(),
+            objects: !scene.objects.is_empty(),
+        }
     }
 }
 
@@ -100,6 +141,66 @@ pub fn map_picture(map: &CausticsMap) -> Picture {
     Picture {
         legend: format!("relative irradiance: black 0, white {top:.2} (max {max:.2})"),
         ..scalar_picture(&g, |v| heat(v / top))
+    }
+}
+
+/// A technique's caustics as the map view shows them: a floor map ([`map_picture`]) or an
+/// eye-space image ([`eye_picture`]).
+pub fn caustics_picture(caustics: &SceneCaustics) -> Picture {
+    match caustics {
+        SceneCaustics::Floor(m) => map_picture(m),
+        SceneCaustics::EyeSpace(e) => eye_picture(e),
+    }
+}
+
+/// An eye-space caustics image (`cascaded`) as the camera sees it, on the heat ramp of
+/// [`map_picture`]; blue where the technique has no value (sky, water seen from above the floor's
+/// reach).
+pub fn eye_picture(image: &EyeSpaceCaustics) -> Picture {
+    rgb_picture(
+        image.width,
+        image.height,
+        |t| {
+            let p = image.texels[t];
+            (p[3] >= 0.0).then(|| [p[0], p[1], p[2]])
+        },
+        "relative irradiance",
+    )
+}
+
+/// An RGB relative-irradiance image, row 0 at the top, on the heat ramp (0 black, the maximum,
+/// at least 2, white); `None` texels drawn dark blue.
+fn rgb_picture(
+    width: usize,
+    height: usize,
+    texel: impl Fn(usize) -> Option<[f32; 3]>,
+    what: &str,
+) -> Picture {
+    let values: Vec<Option<f32>> = (0..width * height)
+        .map(|t| texel(t).map(|c| (c[0] + c[1] + c[2]) / 3.0))
+        .collect();
+    let max = values
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0f32, f32::max);
+    let top = max.max(2.0);
+    let rgba = values
+        .iter()
+        .flat_map(|v| match v {
+            Some(v) => {
+                let [r, g, b] = heat(v / top);
+                [r, g, b, 255]
+            }
+            None => [20, 30, 70, 255],
+        })
+        .collect();
+    Picture {
+        width: width as u32,
+        height: height as u32,
+        rgba,
+        legend: format!("{what}: black 0, white {top:.2} (max {max:.2}); dark blue: no value"),
     }
 }
 
@@ -144,6 +245,15 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
             | Buffer::VertexIrradiance
     ) {
         return glass_picture(buffer, input);
+    }
+    if buffer == Buffer::LightCube {
+        return light_cube_picture(input);
+    }
+    if let Buffer::ObjectCaustics(k) = buffer {
+        return object_picture(k as usize, input);
+    }
+    if let Buffer::CascadeMap(k) = buffer {
+        return cascade_picture(k as usize, input);
     }
     let Some((water, surface)) = input.water else {
         anyhow::bail!("the scene has no water");
@@ -303,6 +413,119 @@ fn glass_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Picture>
     }
 }
 
+/// The scene as the water techniques see it this frame: the water as animated.
+fn scene_with_water<'a>(input: &BufferInput<'a>) -> anyhow::Result<(Scene, &'a dyn Surface)> {
+    let Some((water, surface)) = input.water else {
+        anyhow::bail!("the scene has no water");
+    };
+    let mut scene = input.scene.clone();
+    scene.water = Some(water.clone());
+    scene.light.direction = input.light;
+    Ok((scene, surface))
+}
+
+/// The light cube map of a point light (`caustic-triangles`, §4.2): every glass generator's caustic
+/// triangles drawn onto its six faces, as the CPU twin's `render_scene` does.
+fn light_cube_picture(input: &BufferInput) -> anyhow::Result<Picture> {
+    let spec = input.choice.spec()?;
+    let params = ct::CausticTrianglesParams::from_table(&spec.params)?;
+    let gens = ct::camera::generators(input.scene, &params)?;
+    let Some(light) = gens[0].setup.point else {
+        anyhow::bail!(
+            "the light cube map belongs to a point or spot light; this scene has the sun"
+        );
+    };
+    let mut cube = ct::cube::LightCube::new(params.light_cube as usize, light.position);
+    for g in &gens {
+        let out = ct::caustics(&g.setup, &g.dm);
+        ct::cube::cube_triangles_pass(&g.setup, &out.photons, &out.irradiance, &mut cube);
+    }
+    let c = cube.resolution;
+    // Irradiance spans decades between a focus and the rest: a log scale, as for the vertices.
+    let log: Vec<f32> = cube
+        .caustic
+        .iter()
+        .map(|t| (1.0 + t[0].max(0.0)).log10())
+        .collect();
+    let top = log.iter().copied().fold(1e-6f32, f32::max);
+    let mut rgba = Vec::with_capacity(6 * c * c * 4);
+    for row in (0..c).rev() {
+        for face in 0..6 {
+            for col in 0..c {
+                let [r, g, b] = heat(log[(face * c + row) * c + col] / top);
+                rgba.extend([r, g, b, 255]);
+            }
+        }
+    }
+    Ok(Picture {
+        width: 6 * c as u32,
+        height: c as u32,
+        rgba,
+        legend: format!(
+            "caustic irradiance on faces +x −x +y −y +z −z, log scale: black 0, white {:.1}",
+            10f32.powf(top) - 1.0
+        ),
+    })
+}
+
+/// Object `k`'s caustics map (`volumes`, §3.2), in its texture's own layout (the view along the
+/// refracted sun).
+fn object_picture(k: usize, input: &BufferInput) -> anyhow::Result<Picture> {
+    let (scene, surface) = scene_with_water(input)?;
+    let spec = input.choice.spec()?;
+    let params = volumes::VolumesParams::from_table(&spec.params)?;
+    let vin = volumes::VolumesInput::from_scene(&scene)?;
+    let count = vin.objects.len();
+    if k >= count {
+        anyhow::bail!(
+            "the scene has {count} objects (0 to {})",
+            count.saturating_sub(1)
+        );
+    }
+    let setup = volumes::VolumesSetup::new(&params, &vin)?;
+    let water = scene.water.as_ref().expect("set above");
+    let n = (vin.size / setup.lattice.cell).round() as usize;
+    let heights = sample_grid(surface, n, n, water.size);
+    let out = volumes::caustics(&setup, &vin, &heights, water.wrap);
+    let maps = &out.objects[k];
+    let side = (maps.caustics.len() as f64).sqrt() as usize;
+    Ok(rgb_picture(
+        side,
+        side,
+        |t| (maps.depth[t][1..].iter().any(|v| *v != 0.0)).then(|| maps.caustics[t]),
+        &format!("object {k} of {count}, relative irradiance"),
+    ))
+}
+
+/// Cascade `k`'s own screen-space caustic map (`cascaded`, §3.3), before the blend between
+/// cascades: where each cascade's photons land in the eye's image.
+fn cascade_picture(k: usize, input: &BufferInput) -> anyhow::Result<Picture> {
+    let (scene, surface) = scene_with_water(input)?;
+    if k >= cascaded::CASCADES {
+        anyhow::bail!(
+            "there are {} cascades (0 to {})",
+            cascaded::CASCADES,
+            cascaded::CASCADES - 1
+        );
+    }
+    let spec = input.choice.spec()?;
+    let params = cascaded::CascadedParams::from_table(&spec.params)?;
+    let setup = cascaded::CascadedSetup::from_scene(&scene, &params)?;
+    let water = scene.water.as_ref().expect("set above");
+    let grid = match &water.source {
+        WaterSource::HeightField(g) => g.clone(),
+        _ => sample_grid(surface, 256, 256, water.size),
+    };
+    let frame = cascaded::caustics(&setup, &grid, scene.floor.terrain.as_ref());
+    let map = frame.cascade_map(&setup, k);
+    Ok(rgb_picture(
+        setup.eye.width,
+        setup.eye.height,
+        |t| (frame.eye[t][3] != 0.0).then(|| map[t]),
+        &format!("cascade {k} of {}, relative irradiance", cascaded::CASCADES),
+    ))
+}
+
 /// The six faces of one layer of a layered distance map side by side (+x, −x, +y, −y, +z, −z):
 /// the glass's distance through a heat ramp (white at the map's radius), diffuse occluders in
 /// blue, no surface black.
@@ -421,7 +644,7 @@ mod tests {
         let water = scene.water.as_ref().unwrap();
         let surface = water.surface_at(0.0).unwrap();
         let choice = TechniqueChoice::parse("yuksel:n=5,m=4", 1).unwrap();
-        for b in Buffer::available(&choice, true) {
+        for b in Buffer::available(&choice, SceneHas::of(&scene)) {
             let input = BufferInput {
                 choice: &choice,
                 scene: &scene,
@@ -446,7 +669,7 @@ mod tests {
         let choice =
             TechniqueChoice::parse("caustic-triangles:photon_image=32,cube_resolution=32", 1)
                 .unwrap();
-        let available = Buffer::available(&choice, false);
+        let available = Buffer::available(&choice, SceneHas::of(&scene));
         assert!(
             !available.contains(&Buffer::Heights),
             "no water, no heights"
@@ -474,5 +697,101 @@ mod tests {
                 .count();
             assert!(lit > 0, "{} is blank", b.name());
         }
+    }
+
+    fn not_blank(p: &Picture) -> usize {
+        assert_eq!(p.rgba.len(), (p.width * p.height * 4) as usize);
+        p.rgba
+            .chunks(4)
+            .filter(|t| t[0] > 40 || t[1] > 40 || t[2] > 40)
+            .count()
+    }
+
+    fn input_for<'a>(
+        choice: &'a TechniqueChoice,
+        scene: &'a Scene,
+        surface: Option<&'a dyn Surface>,
+    ) -> BufferInput<'a> {
+        BufferInput {
+            choice,
+            scene,
+            water: scene.water.as_ref().zip(surface),
+            light: scene.light.direction,
+            map_size: 32,
+        }
+    }
+
+    #[test]
+    fn cascade_maps_show_caustics_in_the_cameras_view() {
+        let mut scene = Scene::builtin("pool").unwrap();
+        scene.camera.width = 64;
+        scene.camera.height = 36;
+        let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
+        let choice = TechniqueChoice::parse("cascaded:resolution=64", 1).unwrap();
+        let available = Buffer::available(&choice, SceneHas::of(&scene));
+        assert!(available.contains(&Buffer::CascadeMap(0)), "{available:?}");
+        let input = input_for(&choice, &scene, Some(surface.as_ref()));
+        // The pool is close to the camera: the nearest cascade holds it.
+        let p = buffer_picture(Buffer::CascadeMap(0), &input).unwrap();
+        assert_eq!((p.width, p.height), (64, 36), "the eye's image");
+        assert!(not_blank(&p) > 64 * 36 / 4, "cascade 0 is nearly blank");
+        let Err(err) = buffer_picture(Buffer::CascadeMap(4), &input) else {
+            panic!("cascade 4 of 0..3 drawn");
+        };
+        assert!(err.to_string().contains("4 cascades"), "{err}");
+    }
+
+    #[test]
+    fn volumes_shows_each_objects_caustics_map() {
+        let scene = Scene::builtin("objects").unwrap();
+        let surface = scene.water.as_ref().unwrap().surface_at(0.5).unwrap();
+        let choice = TechniqueChoice::parse("volumes:planes=3,texture=32,shadow=0", 1).unwrap();
+        assert!(
+            Buffer::available(&choice, SceneHas::of(&scene)).contains(&Buffer::ObjectCaustics(0))
+        );
+        let input = input_for(&choice, &scene, Some(surface.as_ref()));
+        for k in 0..scene.objects.len() as u32 {
+            let p = buffer_picture(Buffer::ObjectCaustics(k), &input).unwrap();
+            assert_eq!((p.width, p.height), (32, 32));
+            assert!(not_blank(&p) > 16, "object {k}'s map is blank");
+        }
+        let k = scene.objects.len() as u32;
+        assert!(buffer_picture(Buffer::ObjectCaustics(k), &input).is_err());
+        // Without objects there is no object map to offer.
+        let pool = Scene::builtin("pool").unwrap();
+        assert!(
+            !Buffer::available(&choice, SceneHas::of(&pool)).contains(&Buffer::ObjectCaustics(0))
+        );
+    }
+
+    #[test]
+    fn a_point_light_shows_its_light_cube_map() {
+        let mut scene = Scene::builtin("glass").unwrap();
+        let choice = TechniqueChoice::parse(
+            "caustic-triangles:photon_image=32,cube_resolution=32,light_cube=64",
+            1,
+        )
+        .unwrap();
+        assert!(!Buffer::available(&choice, SceneHas::of(&scene)).contains(&Buffer::LightCube));
+        let sun = buffer_picture(Buffer::LightCube, &input_for(&choice, &scene, None));
+        assert!(sun.is_err(), "the sun has no light cube map");
+        // docs/scenes/glass-lamp.toml's lamp.
+        scene.light.position = Some(DVec3::new(0.15, 0.25, 0.75));
+        assert!(Buffer::available(&choice, SceneHas::of(&scene)).contains(&Buffer::LightCube));
+        let p = buffer_picture(Buffer::LightCube, &input_for(&choice, &scene, None)).unwrap();
+        assert_eq!((p.width, p.height), (6 * 64, 64));
+        assert!(not_blank(&p) > 0, "no caustic on the light cube map");
+    }
+
+    #[test]
+    fn eye_space_images_mark_texels_without_a_value() {
+        let image = EyeSpaceCaustics {
+            width: 2,
+            height: 1,
+            texels: vec![[1.0, 1.0, 1.0, 1.0], [0.0, 0.0, 0.0, -1.0]],
+        };
+        let p = eye_picture(&image);
+        assert_eq!(&p.rgba[4..8], &[20, 30, 70, 255]);
+        assert_ne!(&p.rgba[..4], &[20, 30, 70, 255]);
     }
 }

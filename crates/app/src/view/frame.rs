@@ -17,18 +17,20 @@ use anyhow::{Context, Result};
 use glam::DVec3;
 
 use caustics_core::map::CausticsMap;
-use caustics_core::render::{Image, RenderOptions, render};
-use caustics_core::scene::{Material, Scene};
+use caustics_core::render::{Caustics, Image, RenderOptions, render_with};
+use caustics_core::scene::{Material, Scene, WaterSource};
+use caustics_core::techniques::cascaded::CascadedParams;
 use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
+use caustics_core::techniques::volumes::VolumesParams;
 use caustics_core::techniques::yuksel::YukselParams;
-use caustics_core::techniques::{Input, TECHNIQUES};
-use caustics_core::water::Surface;
+use caustics_core::techniques::{self, Input, TECHNIQUES};
+use caustics_core::water::{Surface, sample_grid};
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 use super::camera::OrbitCamera;
 use super::water::{SurfaceKey, WaterState};
-use crate::techniques::{Job, Runner, Spec};
+use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
 /// A technique with its parameters as the panel edits them: a name (`yuksel`, `yuksel-gather`,
 /// ...) and the technique's own table (`n`, `m`, ...), turned into a [`Spec`] when run.
@@ -49,6 +51,8 @@ fn default_params(base: &str) -> toml::Table {
         "caustic-triangles" => {
             toml::Table::try_from(CausticTrianglesParams::default()).unwrap_or_default()
         }
+        "volumes" => toml::Table::try_from(VolumesParams::default()).unwrap_or_default(),
+        "cascaded" => toml::Table::try_from(CascadedParams::default()).unwrap_or_default(),
         _ => toml::Table::new(),
     }
 }
@@ -99,30 +103,36 @@ impl TechniqueChoice {
 }
 
 /// The technique names the panel offers for `scene`: every implemented technique of the registry
-/// that maps the floor from what the scene has (its water, else its glass objects), and its
-/// variants, as far as [`Spec`] accepts them; `reference` always (for glass, paper 4's photon
-/// tracer).
+/// that computes caustics from what the scene has (its water: floor maps and `cascaded`'s eye-space
+/// image; else its glass objects), and its variants, as far as [`Spec`] accepts them; `reference`
+/// always (for glass, paper 4's photon tracer).
 pub fn technique_names(scene: &Scene) -> Vec<String> {
-    let input = if scene.water.is_some() {
-        Input::Water
+    let inputs: &[Input] = if scene.water.is_some() {
+        &[Input::Water, Input::EyeSpace]
     } else if scene
         .objects
         .iter()
         .any(|o| matches!(o.material, Material::Glass { .. }))
     {
-        Input::Glass
+        &[Input::Glass]
     } else {
         return Vec::new();
     };
     let mut names: Vec<String> = TECHNIQUES
         .iter()
-        .filter(|t| t.implemented && (t.input == input || t.name == "reference"))
+        .filter(|t| t.implemented && (inputs.contains(&t.input) || t.name == "reference"))
         .flat_map(|t| [t.name.to_string(), format!("{}-gather", t.name)])
         .filter(|n| n.parse::<Spec>().is_ok())
         .collect();
     // The technique first, the reference it is judged against after.
     names.sort_by_key(|n| n == "reference");
     names
+}
+
+/// Whether technique `name` (a base name) computes its caustics in the eye camera's screen space
+/// (`cascaded`): its image follows the camera and the view's size, not only the water and the sun.
+pub fn eye_space(name: &str) -> bool {
+    techniques::info(name).is_some_and(|t| t.input == Input::EyeSpace)
 }
 
 /// What a map was computed from: while it holds, the map is reused.
@@ -134,7 +144,13 @@ struct MapKey {
     surface: Option<SurfaceKey>,
     sun: [u64; 3],
     map_size: u32,
+    /// The camera and image size, for an eye-space technique (its image is made for them).
+    view: Option<String>,
 }
+
+/// Side of the height grid `cascaded` reads the animated water through (the scene's own grid where
+/// it is a height field).
+const EYE_SPACE_WATER_GRID: usize = 256;
 
 /// Maps kept for reuse: switching back to a technique, or showing the same one on both sides,
 /// while the water stands still costs no run (and the memory is bounded: 8 maps of 1024² are
@@ -143,14 +159,15 @@ const MAP_CACHE: usize = 8;
 
 struct CachedMap {
     key: MapKey,
-    map: CausticsMap,
+    caustics: SceneCaustics,
     backend: &'static str,
 }
 
-/// One side of the view: a technique, its latest map, and what running it said.
+/// One side of the view: a technique, its latest caustics (a floor map, or `cascaded`'s eye-space
+/// image), and what running it said.
 pub struct Slot {
     pub choice: TechniqueChoice,
-    pub map: Option<CausticsMap>,
+    pub caustics: Option<SceneCaustics>,
     key: Option<MapKey>,
     pub error: Option<String>,
     /// "GPU" or "CPU", and milliseconds, of the last run that happened.
@@ -164,12 +181,20 @@ impl Slot {
     pub fn new(choice: TechniqueChoice) -> Self {
         Slot {
             choice,
-            map: None,
+            caustics: None,
             key: None,
             error: None,
             backend: "",
             technique_ms: None,
             map_changed: false,
+        }
+    }
+
+    /// The floor map, for a technique that makes one.
+    pub fn floor_map(&self) -> Option<&CausticsMap> {
+        match &self.caustics {
+            Some(SceneCaustics::Floor(m)) => Some(m),
+            _ => None,
         }
     }
 }
@@ -263,23 +288,27 @@ impl SceneRenderer {
         self.scene.light.direction = sun;
         self.scene.caustics.width = quality.map_size;
         self.scene.caustics.height = quality.map_size;
+        // The camera the final images are traced from, which eye-space techniques are made for.
+        self.scene.camera = camera.camera(size.0, size.1);
         for slot in slots.iter_mut() {
             slot.map_changed = false;
             let water_input = match (surface.as_deref(), water.as_deref()) {
                 (Some(surface), Some(water)) => Some((surface, water)),
                 _ if self.scene.water.is_none() => None,
                 _ => {
-                    slot.map = None;
+                    slot.caustics = None;
                     slot.error = None;
                     continue;
                 }
             };
+            let eye = eye_space(slot.choice.base());
             let key = MapKey {
                 label: slot.choice.label(),
                 cells_per_texel: slot.choice.cells_per_texel,
                 surface: water_input.map(|(_, w)| w.key()),
                 sun: sun.to_array().map(f64::to_bits),
                 map_size: quality.map_size,
+                view: eye.then(|| format!("{:?}", self.scene.camera)),
             };
             if slot.key.as_ref() == Some(&key) {
                 slot.technique_ms = None;
@@ -289,7 +318,7 @@ impl SceneRenderer {
             if let Some(k) = self.maps.iter().position(|c| c.key == key) {
                 // Seen a moment ago (the other side, or before a switch): most recent last.
                 let cached = self.maps.remove(k);
-                slot.map = Some(cached.map.clone());
+                slot.caustics = Some(cached.caustics.clone());
                 slot.backend = cached.backend;
                 slot.error = None;
                 slot.technique_ms = None;
@@ -298,38 +327,34 @@ impl SceneRenderer {
                 continue;
             }
             let started = Instant::now();
-            let cells = slot.choice.cells_per_texel.max(1);
-            let outcome = slot.choice.spec().and_then(|spec| match water_input {
-                Some((surface, water)) => {
-                    let job = Job {
-                        water: water.technique_water(),
-                        floor: &self.scene.floor,
-                        surface,
-                        light: sun,
-                        width: quality.map_size as usize,
-                        height: quality.map_size as usize,
-                        cells_per_texel: cells,
-                    };
-                    self.runner.run(&spec, &job)
-                }
-                None => self
-                    .runner
-                    .run_scene(&spec, &self.scene, None, cells, &|_, _| {}),
+            let outcome = slot.choice.spec().and_then(|spec| {
+                self.run_technique(
+                    &spec,
+                    slot.choice.cells_per_texel,
+                    water_input,
+                    sun,
+                    quality,
+                )
             });
             slot.technique_ms = Some(ms(started));
             slot.key = Some(key.clone());
             match outcome {
-                Ok(o) => {
+                Ok((caustics, backend)) => {
+                    // An eye-space image made for another view of the same input is stale (the
+                    // camera rarely comes back to the same spot): replace it rather than push a
+                    // floor map that would be reused out of the cache.
+                    self.maps
+                        .retain(|c| !(c.key.view.is_some() && c.key.label == key.label));
                     if self.maps.len() >= MAP_CACHE {
                         self.maps.remove(0);
                     }
                     self.maps.push(CachedMap {
                         key,
-                        map: o.map.clone(),
-                        backend: o.backend,
+                        caustics: caustics.clone(),
+                        backend,
                     });
-                    slot.map = Some(o.map);
-                    slot.backend = o.backend;
+                    slot.caustics = Some(caustics);
+                    slot.backend = backend;
                     slot.error = None;
                 }
                 Err(e) => {
@@ -338,7 +363,7 @@ impl SceneRenderer {
                         // Once per new error: the panel shows it, a scripted run's log too.
                         eprintln!("technique `{}`: {e}", slot.choice.label());
                     }
-                    slot.map = None;
+                    slot.caustics = None;
                     slot.error = Some(e);
                 }
             }
@@ -346,19 +371,23 @@ impl SceneRenderer {
 
         stats.gpu = self.runner.take_gpu_times()?;
         let started = Instant::now();
-        // The final image samples the water on a grid of the map's resolution (at least 256).
-        self.scene.camera = camera.camera(size.0, size.1);
         let options = RenderOptions {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
         };
         let mut images = Vec::with_capacity(slots.len());
         for slot in slots.iter() {
-            let map = slot.map.as_ref();
+            let caustics = slot.caustics.as_ref().map(SceneCaustics::caustics);
             images.push(if quality.cpu_image {
-                render(&self.scene, surface.as_deref(), map, &options, &|_, _| {})
+                render_with(
+                    &self.scene,
+                    surface.as_deref(),
+                    caustics,
+                    &options,
+                    &|_, _| {},
+                )
             } else {
-                self.final_image(surface.as_deref(), map, &options)?
+                self.final_image(surface.as_deref(), caustics, &options)?
             });
         }
         if let (Some(timer), Some(ctx)) = (self.timer.as_mut(), self.runner.gpu.as_ref()) {
@@ -371,14 +400,71 @@ impl SceneRenderer {
         Ok((images, stats))
     }
 
+    /// Run one technique on this frame's input: a water job for the floor-map techniques of a
+    /// water scene (objects and all, for `volumes`, whose floor map holds their shadows), the
+    /// animated surface as a height grid for `cascaded`, the scene itself for glass generators.
+    fn run_technique(
+        &mut self,
+        spec: &Spec,
+        cells_per_texel: u32,
+        water_input: Option<(&dyn Surface, &WaterState)>,
+        sun: DVec3,
+        quality: Quality,
+    ) -> Result<(SceneCaustics, &'static str)> {
+        let cells = cells_per_texel.max(1);
+        let Some((surface, water)) = water_input else {
+            let o = self
+                .runner
+                .run_scene(spec, &self.scene, None, cells, &|_, _| {})?;
+            return Ok((SceneCaustics::Floor(o.map), o.backend));
+        };
+        let w = water.technique_water();
+        let with_objects = spec.name == "volumes" && !self.scene.objects.is_empty();
+        if eye_space(&spec.name) || with_objects {
+            // The scene as the technique sees it: the water as animated, not as loaded.
+            let mut scene = self.scene.clone();
+            scene.water = Some(w.clone());
+            if with_objects {
+                let o = self
+                    .runner
+                    .run_scene(spec, &scene, Some(surface), cells, &|_, _| {})?;
+                return Ok((SceneCaustics::Floor(o.map), o.backend));
+            }
+            let grid = match &w.source {
+                WaterSource::HeightField(g) => g.clone(),
+                _ => sample_grid(surface, EYE_SPACE_WATER_GRID, EYE_SPACE_WATER_GRID, w.size),
+            };
+            let o = self.runner.run_cascaded(spec, &scene, &grid)?;
+            return Ok((o.caustics, o.backend));
+        }
+        let job = Job {
+            water: w,
+            floor: &self.scene.floor,
+            surface,
+            light: sun,
+            width: quality.map_size as usize,
+            height: quality.map_size as usize,
+            cells_per_texel: cells,
+        };
+        let o = self.runner.run(spec, &job)?;
+        Ok((SceneCaustics::Floor(o.map), o.backend))
+    }
+
     fn final_image(
         &mut self,
         surface: Option<&dyn Surface>,
-        map: Option<&CausticsMap>,
+        caustics: Option<Caustics>,
         options: &RenderOptions,
     ) -> Result<Image> {
         if let (Some(f), Some(ctx)) = (&self.final_image, self.runner.gpu.as_ref()) {
-            match f.render(ctx, &self.scene, surface, map, options, self.timer.as_mut()) {
+            match f.render_with(
+                ctx,
+                &self.scene,
+                surface,
+                caustics,
+                options,
+                self.timer.as_mut(),
+            ) {
                 Ok(image) => return Ok(image),
                 Err(e) => {
                     // E.g. an image beyond the device's texture limits: say why once, carry on.
@@ -387,7 +473,13 @@ impl SceneRenderer {
                 }
             }
         }
-        Ok(render(&self.scene, surface, map, options, &|_, _| {}))
+        Ok(render_with(
+            &self.scene,
+            surface,
+            caustics,
+            options,
+            &|_, _| {},
+        ))
     }
 }
 
@@ -422,7 +514,14 @@ mod tests {
     #[test]
     fn the_picker_lists_the_runnable_techniques() {
         let names = technique_names(&Scene::builtin("pool").unwrap());
-        for n in ["reference", "yuksel", "yuksel-gather", "procedural"] {
+        for n in [
+            "reference",
+            "yuksel",
+            "yuksel-gather",
+            "procedural",
+            "volumes",
+            "cascaded",
+        ] {
             assert!(names.iter().any(|x| x == n), "{n} missing from {names:?}");
         }
         assert!(!names.iter().any(|x| x == "reference-gather"));
@@ -430,5 +529,45 @@ mod tests {
         // A scene of glass objects offers the techniques whose generators they are.
         let glass = technique_names(&Scene::builtin("glass").unwrap());
         assert_eq!(glass, ["caustic-triangles", "reference"]);
+        assert!(eye_space("cascaded") && !eye_space("yuksel") && !eye_space("no-such"));
+    }
+
+    #[test]
+    fn every_technique_starts_with_its_whole_parameter_table() {
+        for (name, key) in [
+            ("volumes", "planes"),
+            ("cascaded", "resolution"),
+            ("cascaded", "dispersion"),
+            ("caustic-triangles", "photon_image"),
+        ] {
+            let c = TechniqueChoice::parse(name, 1).unwrap();
+            assert!(
+                c.params.contains_key(key),
+                "{name}: no `{key}` in {:?}",
+                c.params
+            );
+            // What the panel shows runs: the table goes back through the CLI's spelling.
+            let spec = c.spec().unwrap();
+            assert_eq!(
+                spec.params.get(name),
+                Some(&toml::Value::Table(c.params.clone()))
+            );
+        }
+        CascadedParams::from_table(
+            &TechniqueChoice::parse("cascaded", 1)
+                .unwrap()
+                .spec()
+                .unwrap()
+                .params,
+        )
+        .unwrap();
+        VolumesParams::from_table(
+            &TechniqueChoice::parse("volumes", 1)
+                .unwrap()
+                .spec()
+                .unwrap()
+                .params,
+        )
+        .unwrap();
     }
 }

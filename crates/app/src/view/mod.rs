@@ -98,10 +98,10 @@ pub struct ViewArgs {
     /// Save the last frame of the window, panel included, as PNG (with --frames).
     #[arg(long, requires = "frames")]
     pub screenshot: Option<PathBuf>,
-    /// Smoke mode: switch the technique every frame, through every technique, splitting the view
-    /// every other round.
-    #[arg(long, requires = "frames")]
-    pub cycle_techniques: bool,
+    /// Smoke mode: switch the technique every frame, through every technique the scene offers (or
+    /// those listed, comma-separated), splitting the view every other round.
+    #[arg(long, requires = "frames", num_args = 0.., value_delimiter = ',', value_name = "TECHNIQUES")]
+    pub cycle_techniques: Option<Vec<String>>,
     /// Smoke mode: resize the window every K frames.
     #[arg(long, requires = "frames")]
     pub resize_every: Option<u64>,

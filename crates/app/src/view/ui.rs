@@ -10,7 +10,7 @@ use glam::DVec2;
 
 use caustics_gpu::PassTime;
 
-use super::buffers::Buffer;
+use super::buffers::{Buffer, SceneHas};
 use super::camera::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
 use super::frame::{Quality, Slot, TechniqueChoice};
 use super::water::{Mode, WaterState};
@@ -56,8 +56,10 @@ pub struct Model {
     pub scene_name: String,
     /// The techniques the picker offers for this scene.
     pub technique_names: Vec<String>,
-    /// Whether the scene has water (its buffers, the water controls).
-    pub has_water: bool,
+    /// What the scene has that decides the buffers its techniques show.
+    pub has: SceneHas,
+    /// Objects in the scene (`volumes`' object maps).
+    pub object_count: u32,
     pub adapter: String,
     pub camera: OrbitCamera,
     /// The scene's own camera, for "reset view".
@@ -264,6 +266,16 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
                     .prefix(format!("{label} ")),
             ),
             toml::Value::Boolean(b) => ui.checkbox(b, label),
+            toml::Value::String(text) if !choices(&base, &k).is_empty() => {
+                let r = egui::ComboBox::from_id_salt((id, k.as_str()))
+                    .selected_text(format!("{label}: {text}"))
+                    .show_ui(ui, |ui| {
+                        for c in choices(&base, &k) {
+                            ui.selectable_value(text, c.to_string(), *c);
+                        }
+                    });
+                r.response
+            }
             other => ui.label(format!("{label} = {other}")),
         };
         if !hint.is_empty() {
@@ -288,6 +300,14 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
 fn param_order(technique: &str, key: &str) -> (usize, String) {
     let known: &[&str] = match technique {
         "yuksel" => &["n", "m", "fresnel", "absorption"],
+        "volumes" => &["planes", "texture", "shadow", "fresnel", "absorption"],
+        "cascaded" => &[
+            "resolution",
+            "placement",
+            "dispersion",
+            "splat",
+            "brightness",
+        ],
         "caustic-triangles" => &[
             "photon_image",
             "cube_resolution",
@@ -341,7 +361,47 @@ fn param_label(technique: &str, key: &str) -> (String, &'static str) {
             "depth".into(),
             "most refractions / reflections along a photon path (§4.1)",
         ),
+        ("volumes", "planes") => (
+            "reference planes".into(),
+            "reference planes per object (§3.1; the paper's Fig. 6: 5 and 50)",
+        ),
+        ("volumes", "texture") => (
+            "object texture".into(),
+            "side of each object's depth, diffuse and caustics textures",
+        ),
+        ("cascaded", "resolution") => (
+            "cascade resolution".into(),
+            "caustic-map texels per side of each of the four cascades (§3.3)",
+        ),
+        ("cascaded", "placement") => (
+            "cascade placement".into(),
+            "eq33: the split of Eq. 3.3; plane: practical split planes",
+        ),
+        ("cascaded", "dispersion") => (
+            "dispersion".into(),
+            "none; wavelength: one IOR per channel (§3.5); post: a screen-space shift",
+        ),
+        ("cascaded", "splat") => (
+            "splat".into(),
+            "footprint: a tent the size of the photon's floor area; point: one pixel",
+        ),
+        ("cascaded", "brightness") => (
+            "brightness".into(),
+            "physical: relative irradiance; ramps: the paper's depth ramps (§3.4.3)",
+        ),
         _ => (key.to_string(), ""),
+    }
+}
+
+/// The values a text parameter takes (the serde names of the technique's enums).
+fn choices(technique: &str, key: &str) -> &'static [&'static str] {
+    match (technique, key) {
+        ("caustic-triangles", "area_rule") => &["paper", "hat"],
+        ("cascaded", "placement") => &["eq33", "plane"],
+        ("cascaded", "brightness") => &["physical", "ramps"],
+        ("cascaded", "dispersion") => &["none", "wavelength", "post"],
+        ("cascaded", "splat") => &["footprint", "point"],
+        _ => &[],
     }
 }
 
@@ -359,6 +419,11 @@ fn integer_range(technique: &str, key: &str) -> (i64, i64, Option<i64>) {
         ("caustic-triangles", "depth") => (1, 16, None),
         ("caustic-triangles", "light_cube") => (2, 2048, None),
         ("caustic-triangles", "merge_levels") => (0, 6, None),
+        ("volumes", "planes") => (1, 64, None),
+        ("volumes", "texture") => (16, 1024, None),
+        ("volumes", "water_cells") => (0, 1024, None),
+        ("volumes", "shadow") => (0, 2048, None),
+        ("cascaded", "resolution") => (16, 2048, None),
         _ => (0, 64, None),
     }
 }
@@ -607,7 +672,7 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
         .default_width(WINDOW_WIDTH)
         .show(ctx, |ui| {
             let choice = &m.slots[0].choice;
-            let available = Buffer::available(choice, m.has_water);
+            let available = Buffer::available(choice, m.has);
             if !available.iter().any(|b| same_kind(*b, m.buffer))
                 && let Some(first) = available.first()
             {
@@ -632,6 +697,14 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
                     .max(0) as u32;
                 ui.add(egui::Slider::new(k, 0..=channels).text("channel"));
             }
+            if let Buffer::CascadeMap(k) = &mut m.buffer {
+                let last = caustics_core::techniques::cascaded::CASCADES as u32 - 1;
+                ui.add(egui::Slider::new(k, 0..=last).text("cascade"));
+            }
+            if let Buffer::ObjectCaustics(k) = &mut m.buffer {
+                let last = m.object_count.saturating_sub(1);
+                ui.add(egui::Slider::new(k, 0..=last).text("object"));
+            }
             if let Buffer::DistanceLayer(k) = &mut m.buffer {
                 let layers = choice
                     .params
@@ -642,7 +715,7 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
                 ui.add(egui::Slider::new(k, 0..=layers - 1).text("layer"));
             }
             ui.small(format!("of the left side's technique, `{}`", choice.name));
-            if Buffer::available(choice, m.has_water).is_empty() {
+            if Buffer::available(choice, m.has).is_empty() {
                 ui.small("it has no intermediate buffers to show");
             } else {
                 picture(ui, m.textures.buffer, &m.buffer_shown);
@@ -671,4 +744,40 @@ fn picture(ui: &mut egui::Ui, id: egui::TextureId, shown: &Shown) {
     let size = Vec2::new(width, width * h as f32 / w.max(1) as f32);
     ui.image((id, size));
     ui.small(&shown.legend);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every value a text parameter's menu offers is one its technique accepts, and the technique
+    /// accepts no value the menu leaves out of its enum's names.
+    #[test]
+    fn text_parameter_menus_offer_what_the_techniques_accept() {
+        for (technique, key) in [
+            ("caustic-triangles", "area_rule"),
+            ("cascaded", "placement"),
+            ("cascaded", "brightness"),
+            ("cascaded", "dispersion"),
+            ("cascaded", "splat"),
+        ] {
+            let offered = choices(technique, key);
+            assert!(offered.len() >= 2, "{technique}.{key}");
+            for value in offered.iter().chain(&["no-such-value"]) {
+                let spec = format!("{technique}:{key}=\"{value}\"");
+                let spec: crate::techniques::Spec = spec.parse().unwrap();
+                let ok = match technique {
+                    "cascaded" => caustics_core::techniques::cascaded::CascadedParams::from_table(
+                        &spec.params,
+                    )
+                    .is_ok(),
+                    _ => caustics_core::techniques::caustic_triangles::CausticTrianglesParams::from_table(
+                        &spec.params,
+                    )
+                    .is_ok(),
+                };
+                assert_eq!(ok, *value != "no-such-value", "{technique}.{key} = {value}");
+            }
+        }
+    }
 }

@@ -523,8 +523,21 @@ impl Cascaded {
 
     /// Run the technique once on `frame` and read everything back.
     pub fn run(&self, ctx: &GpuContext, frame: &Frame) -> Result<GpuCascadedFrame, GpuError> {
+        self.run_timed(ctx, frame, None)
+    }
+
+    /// As [`run`](Self::run), each pass timed into `timer` (the viewer's overlay).
+    pub fn run_timed(
+        &self,
+        ctx: &GpuContext,
+        frame: &Frame,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> Result<GpuCascadedFrame, GpuError> {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let out = self.encode(frame, &mut encoder, None);
+        let out = self.encode(frame, &mut encoder, timer.as_deref_mut());
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
         ctx.queue.submit([encoder.finish()]);
         Ok(GpuCascadedFrame {
             eye: ctx.read_texture(&frame.eye)?,
@@ -541,9 +554,21 @@ impl Cascaded {
         water: &Grid,
         terrain: Option<&Grid>,
     ) -> Result<GpuCascadedFrame, GpuError> {
+        self.caustics_timed(ctx, setup, water, terrain, None)
+    }
+
+    /// As [`caustics`](Self::caustics), each pass timed into `timer`.
+    pub fn caustics_timed(
+        &self,
+        ctx: &GpuContext,
+        setup: &CascadedSetup,
+        water: &Grid,
+        terrain: Option<&Grid>,
+        timer: Option<&mut GpuTimer>,
+    ) -> Result<GpuCascadedFrame, GpuError> {
         let tex = ctx.upload_grid("cascaded water heights", water)?;
         let view = tex.create_view(&Default::default());
         let frame = self.frame(ctx, setup, &view, terrain)?;
-        self.run(ctx, &frame)
+        self.run_timed(ctx, &frame, timer)
     }
 }
