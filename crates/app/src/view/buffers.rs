@@ -90,8 +90,11 @@ impl Buffer {
                     Buffer::PhotonHits,
                     Buffer::PhotonPower,
                     Buffer::VertexIrradiance,
-                    Buffer::DistanceLayer(0),
                 ]);
+                // The water surface is traced as a height field, the glass through its map.
+                if !water {
+                    v.push(Buffer::DistanceLayer(0));
+                }
                 if has.point_light {
                     v.push(Buffer::LightCube);
                 }
@@ -337,17 +340,37 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
     }
 }
 
-/// The `caustic-triangles` buffers of the scene's first glass object, from the CPU twin's passes.
+/// The `caustic-triangles` buffers of the scene's generator, from the CPU twin's passes: its water
+/// surface where it has water, else its first glass object.
 fn glass_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Picture> {
     let spec = input.choice.spec()?;
     let params = ct::CausticTrianglesParams::from_table(&spec.params)?;
-    let gs = ct::GlassScene::from_scene(input.scene, 0)?;
-    let dm = ct::DistanceMap::build(&gs, params.cube_resolution as usize, params.layers as usize);
-    if let Buffer::DistanceLayer(k) = buffer {
-        return Ok(distance_picture(&dm, k as usize));
-    }
-    let setup = ct::CausticTrianglesSetup::new(&params, &gs)?;
-    let photons = ct::photon_pass(&setup, &dm);
+    let (setup, photons) = match input.water {
+        Some((water, surface)) => {
+            if let Buffer::DistanceLayer(_) = buffer {
+                anyhow::bail!("the water surface is traced as a height field, not a distance map");
+            }
+            let n = input.map_size;
+            let ws = ct::water::WaterSetup::new(&params, water, input.light, n, n)?;
+            let heights = ct::water::heights(water, surface, n, n);
+            let (photons, _) = ct::water::photon_pass(&ws, &heights);
+            (ws.setup, photons)
+        }
+        None => {
+            let gs = ct::GlassScene::from_scene(input.scene, 0)?;
+            let dm = ct::DistanceMap::build(
+                &gs,
+                params.cube_resolution as usize,
+                params.layers as usize,
+            );
+            if let Buffer::DistanceLayer(k) = buffer {
+                return Ok(distance_picture(&dm, k as usize));
+            }
+            let setup = ct::CausticTrianglesSetup::new(&params, &gs)?;
+            let photons = ct::photon_pass(&setup, &dm);
+            (setup, photons)
+        }
+    };
     let p = setup.p;
     let valid = |t: &[f32; 4]| t[2] >= 0.0;
     match buffer {
@@ -718,6 +741,31 @@ mod tests {
             water: scene.water.as_ref().zip(surface),
             light: scene.light.direction,
             map_size: 32,
+        }
+    }
+
+    #[test]
+    fn caustic_triangles_shows_the_water_generators_photons() {
+        let scene = Scene::builtin("pool").unwrap();
+        let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
+        let choice = TechniqueChoice::parse("caustic-triangles:photon_image=32", 1).unwrap();
+        let available = Buffer::available(&choice, SceneHas::of(&scene));
+        assert!(
+            !available.contains(&Buffer::DistanceLayer(0)),
+            "{available:?}"
+        );
+        let input = input_for(&choice, &scene, Some(surface.as_ref()));
+        for b in available {
+            let p = buffer_picture(b, &input).unwrap();
+            assert!(not_blank(&p) > 0, "{} is blank", b.name());
+            if b != Buffer::Heights {
+                assert_eq!(
+                    (p.width, p.height),
+                    (33, 33),
+                    "{}: the (P+1)² lattice",
+                    b.name()
+                );
+            }
         }
     }
 

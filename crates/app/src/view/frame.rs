@@ -103,18 +103,18 @@ impl TechniqueChoice {
 }
 
 /// The technique names the panel offers for `scene`: every implemented technique of the registry
-/// that computes caustics from what the scene has (its water: floor maps and `cascaded`'s eye-space
-/// image; else its glass objects), and its variants, as far as [`Spec`] accepts them; `reference`
+/// that computes caustics from what the scene has (its water: floor maps, `caustic-triangles` with
+/// the water surface as its generator, and `cascaded`'s eye-space image; else its glass objects), and its variants, as far as [`Spec`] accepts them; `reference`
 /// always (for glass, paper 4's photon tracer).
 pub fn technique_names(scene: &Scene) -> Vec<String> {
     let inputs: &[Input] = if scene.water.is_some() {
-        &[Input::Water, Input::EyeSpace]
+        &[Input::Water, Input::GlassOrWater, Input::EyeSpace]
     } else if scene
         .objects
         .iter()
         .any(|o| matches!(o.material, Material::Glass { .. }))
     {
-        &[Input::Glass]
+        &[Input::GlassOrWater]
     } else {
         return Vec::new();
     };
@@ -525,7 +525,8 @@ mod tests {
             assert!(names.iter().any(|x| x == n), "{n} missing from {names:?}");
         }
         assert!(!names.iter().any(|x| x == "reference-gather"));
-        assert!(!names.iter().any(|x| x == "caustic-triangles"));
+        // The water surface is a caustic generator of paper 4 too.
+        assert!(names.iter().any(|x| x == "caustic-triangles"));
         // A scene of glass objects offers the techniques whose generators they are.
         let glass = technique_names(&Scene::builtin("glass").unwrap());
         assert_eq!(glass, ["caustic-triangles", "reference"]);

@@ -13,8 +13,9 @@ pub mod yuksel;
 pub enum Input {
     /// A map of the floor square from the water surface (the minimum scene contract's case).
     Water,
-    /// A map of the floor square from the scene's glass objects.
-    Glass,
+    /// A map of the floor square from the scene's glass objects, or from its water surface where
+    /// it has water (caustic-triangles: paper 4's generator is any refracting surface).
+    GlassOrWater,
     /// Caustics from the water in the eye camera's screen space, not a floor map.
     EyeSpace,
 }
@@ -23,7 +24,7 @@ impl Input {
     pub fn describe(self) -> &'static str {
         match self {
             Input::Water => "water -> floor map",
-            Input::Glass => "glass -> floor map",
+            Input::GlassOrWater => "glass or water -> floor map",
             Input::EyeSpace => "water -> eye space",
         }
     }
@@ -72,7 +73,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         paper: "4",
         summary: "layered distance maps, photon hit image, caustic triangles into a light cube map (Umenhoffer et al.)",
         implemented: true,
-        input: Input::Glass,
+        input: Input::GlassOrWater,
     },
     TechniqueInfo {
         name: "cascaded",
