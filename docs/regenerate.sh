@@ -12,6 +12,8 @@ $bin compare \
   --technique yuksel:n=3,m=2 --technique yuksel --technique yuksel:n=15,m=14 --technique yuksel:n=31,m=30 \
   --technique yuksel-gather \
   --technique procedural --technique procedural-vertex --technique procedural-texture \
+  --technique volumes --technique volumes:planes=50 \
+  --technique caustic-triangles --technique caustic-triangles:photon_image=256 \
   --resolution 256,128,512 \
   --picture-cases waves-mid-deep,lens-low-deep,ocean-overhead-shallow,ripples-low-shallow \
   --out docs/compare
