@@ -118,6 +118,9 @@ pub struct CausticTrianglesUniform {
     pub wrap: u32,
     /// xyz: the water's absorption `K` (0 for glass).
     pub absorption: [f32; 4],
+    /// Quads from an edge a shifted copy is drawn for (`WaterTransport::band`).
+    pub band: u32,
+    pub _pad: [u32; 3],
 }
 
 impl CausticTrianglesUniform {
@@ -165,6 +168,8 @@ impl CausticTrianglesUniform {
             lattice: s.water.map_or(0, |w| w.lattice as u32),
             wrap: s.water.is_some_and(|w| w.wrap) as u32,
             absorption: v4(s.absorption(), 0.0),
+            band: s.water.map_or(0, |w| w.band as u32),
+            _pad: [0; 3],
         }
     }
 }
@@ -552,7 +557,24 @@ impl CausticTriangles {
             Reconstruction::Triangles => {
                 pass.set_pipeline(&self.triangles);
                 pass.set_bind_group(0, &frame.triangles_bind, &[]);
-                pass.draw(0..6 * (p - 1) * (p - 1), 0..copies);
+                let all = 6 * (p - 1) * (p - 1);
+                if copies == 1 {
+                    pass.draw(0..all, 0..1);
+                } else {
+                    // The unshifted copy (instance 4) over every quad, the eight shifted ones over
+                    // their bands only (`copy_rect`): an edge band is at most `band` quads deep.
+                    let area =
+                        |(i0, i1, j0, j1): (usize, usize, usize, usize)| (i1 - i0) * (j1 - j0);
+                    let most = (0..9)
+                        .filter(|&k| k != 4)
+                        .map(|k| area(frame.setup.copy_rect(k)))
+                        .max()
+                        .unwrap_or(0) as u32;
+                    let shifted = (6 * most).min(all);
+                    pass.draw(0..all, 4..5);
+                    pass.draw(0..shifted, 0..4);
+                    pass.draw(0..shifted, 5..9);
+                }
             }
             Reconstruction::Splats => {
                 pass.set_pipeline(&self.splat);
@@ -639,8 +661,9 @@ pub struct WaterFrame {
 }
 
 impl WaterFrame {
-    /// Overwrite the heights with a grid of the same size.
-    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) -> Result<(), GpuError> {
+    /// Overwrite the heights with a grid of the same size (and refit the band of quads the
+    /// shifted copies of tiling water are drawn for, `WaterSetup::fit_band`).
+    pub fn update_heights(&mut self, ctx: &GpuContext, heights: &Grid) -> Result<(), GpuError> {
         if (heights.cols as u32, heights.rows as u32)
             != (self.heights.width(), self.heights.height())
         {
@@ -653,11 +676,32 @@ impl WaterFrame {
             )));
         }
         ctx.write_grid(&self.heights, heights);
+        self.setup.fit_band(heights);
+        self.frame.setup = self.setup.setup.clone();
+        ctx.queue.write_buffer(
+            &self.frame.uniform,
+            0,
+            bytemuck::bytes_of(&CausticTrianglesUniform::new(
+                &self.frame.setup,
+                &no_distance_map(),
+            )),
+        );
         Ok(())
     }
 
     pub fn bytes(&self) -> u64 {
         self.frame.bytes() + (self.heights.width() * self.heights.height()) as u64 * 4 + 48
+    }
+}
+
+/// A water frame's distance map, unused: one texel fills its binding.
+fn no_distance_map() -> DistanceMap {
+    DistanceMap {
+        resolution: 1,
+        layers: 1,
+        centre: glam::DVec3::ZERO,
+        radius: 0.0,
+        texels: vec![[0.0; 4]],
     }
 }
 
@@ -676,22 +720,16 @@ impl CausticTriangles {
         ws: &WaterSetup,
         heights: &Grid,
     ) -> Result<WaterFrame, GpuError> {
-        // The frame's distance map is unused: one texel fills its binding.
-        let none = DistanceMap {
-            resolution: 1,
-            layers: 1,
-            centre: glam::DVec3::ZERO,
-            radius: 0.0,
-            texels: vec![[0.0; 4]],
-        };
-        let frame = self.frame(ctx, &ws.setup, &none)?;
+        let mut ws = ws.clone();
+        ws.fit_band(heights);
+        let frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
         let heights_texture = ctx.upload_grid("caustic-triangles water heights", heights)?;
         let view = heights_texture.create_view(&Default::default());
         let water_uniform = ctx
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("caustic-triangles water photons"),
-                contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
+                contents: bytemuck::bytes_of(&WaterPhotonUniform::new(&ws)),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
         let water_bind = bind_group(
@@ -708,7 +746,7 @@ impl CausticTriangles {
         ctx.check()?;
         Ok(WaterFrame {
             frame,
-            setup: ws.clone(),
+            setup: ws,
             heights: heights_texture,
             water_uniform,
             water_bind,

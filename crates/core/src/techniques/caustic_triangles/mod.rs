@@ -296,6 +296,10 @@ pub struct WaterTransport {
     pub absorption: DVec3,
     /// A tiling surface: every primitive is drawn again shifted by `±size` in x and y.
     pub wrap: bool,
+    /// Quads from an edge of the lattice whose light can cross that edge ([`water::copy_band`], a
+    /// bound from the surface's steepest slope): a copy shifted by `±size` is drawn for those
+    /// quads only ([`CausticTrianglesSetup::copy_rect`]), the others' copies would miss the square.
+    pub band: usize,
 }
 
 impl CausticTrianglesSetup {
@@ -309,6 +313,28 @@ impl CausticTrianglesSetup {
                 .collect(),
             _ => vec![DVec2::ZERO],
         }
+    }
+
+    /// The quads copy `k` of [`copies`](Self::copies) is drawn for, `(i0, i1, j0, j1)` (rows
+    /// `i0..i1`, columns `j0..j1`): every quad for the unshifted copy; for a copy shifted by `+size`
+    /// in x (light that left through `x = 0`) the first [`WaterTransport::band`] columns, for `−size`
+    /// the last ones, and the same in y. The band's ends fall on multiples of the largest merged
+    /// block (§5), so a block is wholly in or out. The GPU's `copy_rect`.
+    pub fn copy_rect(&self, k: usize) -> (usize, usize, usize, usize) {
+        let quads = self.p.saturating_sub(1);
+        let Some(w) = self.water.filter(|w| w.wrap) else {
+            return (0, quads, 0, quads);
+        };
+        let block = 1usize << self.merge_levels;
+        let band = w.band.div_ceil(block) * block;
+        let range = |c: usize| match c {
+            0 => (quads.saturating_sub(band) / block * block, quads),
+            2 => (0, band.min(quads)),
+            _ => (0, quads),
+        };
+        let (i0, i1) = range(k / 3);
+        let (j0, j1) = range(k % 3);
+        (i0, i1, j0, j1)
     }
 
     /// Beer-Lambert absorption per channel (zero for glass).
@@ -668,10 +694,15 @@ pub fn triangles_pass_with_paths(
     let f = &setup.floor;
     let k = setup.absorption();
     let copies = setup.copies();
+    let rects: Vec<_> = (0..copies.len()).map(|k| setup.copy_rect(k)).collect();
     let mut acc = vec![[0.0f32; 3]; f.width * f.height];
     for (x, e, idx) in merge::drawn_quads(setup, photons, irradiance) {
         let d = paths.map_or([0.0; 4], |p| idx.map(|i| p[i] as f64));
-        for &off in &copies {
+        let (qi, qj) = (idx[0] / setup.p, idx[0] % setup.p);
+        for (&off, &(i0, i1, j0, j1)) in copies.iter().zip(&rects) {
+            if !((i0..i1).contains(&qi) && (j0..j1).contains(&qj)) {
+                continue;
+            }
             let [a, b, c, q] = x.map(|x| f.to_pixel(x + off));
             for (v, t) in [([a, b, c], [0, 1, 2]), ([a, c, q], [0, 2, 3])] {
                 raster_barycentric(f.width, f.height, v, |texel, w| {

@@ -132,6 +132,8 @@ impl WaterSetup {
                 lattice,
                 absorption: water.absorption,
                 wrap: water.wrap,
+                // Every quad until the heights are known ([`WaterSetup::fit_band`]).
+                band: lattice,
             }),
         };
         let t_flat = if params.fresnel {
@@ -150,6 +152,15 @@ impl WaterSetup {
             fresnel: params.fresnel,
             t_flat,
         })
+    }
+
+    /// Narrow the copies of tiling water to the quads whose light can cross an edge of the square
+    /// under `heights` ([`copy_band`]); both twins call it before drawing.
+    pub fn fit_band(&mut self, heights: &Grid) {
+        let band = copy_band(self, heights);
+        if let Some(w) = self.setup.water.as_mut() {
+            w.band = band;
+        }
     }
 
     pub fn wrap(&self) -> bool {
@@ -219,10 +230,47 @@ fn check_heights(heights: &Grid) -> Result<()> {
     heights.check_finite("the water height grid")
 }
 
+/// Quads from an edge of the lattice whose refracted light can reach past that edge: the farthest
+/// the light travels sideways between the surface and the floor, `(depth + h_max) tan(θ_t + α)`,
+/// in lattice cells, plus one. `α = atan s` is the steepest tilt of the surface's normal (`s` the
+/// grid's largest finite-difference slope, times 1.25 · √2 for the bicubic interpolant's overshoot
+/// and the diagonal), the incidence angle is at most the sun's zenith angle plus `α`, `θ_t` its
+/// refraction, and the refracted ray leans from the vertical by at most `θ_t + α`. A bound, never
+/// an estimate: light it leaves out would be lost. Every quad where the bound reaches 89°.
+pub fn copy_band(ws: &WaterSetup, heights: &Grid) -> usize {
+    let (cols, rows) = (heights.cols.max(1), heights.rows.max(1));
+    let (dx, dy) = (ws.size / cols as f64, ws.size / rows as f64);
+    let at = |i: usize, j: usize| heights.at(i, j) as f64;
+    let mut slope: f64 = 0.0;
+    for i in 0..heights.rows {
+        for j in 0..heights.cols {
+            let (jn, i_n) = ((j + 1) % cols, (i + 1) % rows);
+            slope = slope
+                .max((at(i, jn) - at(i, j)).abs() / dx)
+                .max((at(i_n, j) - at(i, j)).abs() / dy);
+        }
+    }
+    let (lo, hi) = heights.min_max();
+    let h_max = hi as f64 + 0.25 * (hi - lo) as f64;
+    let tilt = (slope * 1.25 * std::f64::consts::SQRT_2).atan();
+    let zenith = (-ws.light.z).clamp(-1.0, 1.0).acos();
+    let incidence = (zenith + tilt).min(std::f64::consts::FRAC_PI_2);
+    let refracted = (incidence.sin() / ws.ior).asin();
+    let lean = refracted + tilt;
+    if !lean.is_finite() || lean >= 89f64.to_radians() || !h_max.is_finite() {
+        return ws.lattice;
+    }
+    let reach = (ws.depth + h_max).max(0.0) * lean.tan();
+    ((reach / ws.spacing).ceil() as usize + 1).min(ws.lattice)
+}
+
 /// The whole technique on the CPU with the water surface (its heights over the square) as the
 /// generator: water photon pass, vertex irradiance, caustic triangles with absorption.
 pub fn caustics(ws: &WaterSetup, heights: &Grid) -> Result<WaterOutput> {
     check_heights(heights)?;
+    let mut ws = ws.clone();
+    ws.fit_band(heights);
+    let ws = &ws;
     let (photons, paths) = photon_pass(ws, heights);
     let irradiance = irradiance_pass(&ws.setup, &photons);
     let map = triangles_pass_with_paths(&ws.setup, &photons, &irradiance, Some(&paths));
@@ -421,6 +469,60 @@ mod tests {
         assert!(l1[0] < 0.09, "P = 128: {}", l1[0]);
         assert!(l1[1] < 0.035, "P = 256: {}", l1[1]);
         assert!(l1[1] < l1[0], "converges: {l1:?}");
+    }
+
+    /// The band of quads the shifted copies are drawn for is a bound: the pool's waves with a low
+    /// sun (the most sideways travel) and merged blocks give the same map as drawing every copy of
+    /// every quad, and the band is much narrower than the lattice.
+    #[test]
+    fn copy_band_loses_no_light() {
+        let mut scene = Scene::builtin("pool").unwrap();
+        scene.light.direction = DVec3::new(0.8, 0.3, -0.5);
+        let mut water = scene.water.clone().unwrap();
+        let surface = water.surface_at(scene.time).unwrap();
+        let heights = heights(&water, surface.as_ref(), 256, 256);
+        // Shallow enough that the sideways travel stays a fraction of the square.
+        water.depth = 0.4;
+        for merge_levels in [0, 2] {
+            let p = CausticTrianglesParams {
+                merge_levels,
+                ..params(128)
+            };
+            let ws = WaterSetup::new(&p, &water, scene.light.direction, 128, 128).unwrap();
+            let band = copy_band(&ws, &heights);
+            eprintln!("band {band} of {} quads", ws.lattice);
+            assert!(band < ws.lattice / 2, "band {band} of {}", ws.lattice);
+            let (photons, paths) = photon_pass(&ws, &heights);
+            let irradiance = irradiance_pass(&ws.setup, &photons);
+            let draw = |band: usize| {
+                let mut setup = ws.setup.clone();
+                setup.water.as_mut().unwrap().band = band;
+                triangles_pass_with_paths(&setup, &photons, &irradiance, Some(&paths))
+            };
+            let (narrow, all) = (draw(band), draw(ws.lattice));
+            let worst = narrow
+                .texels
+                .iter()
+                .zip(&all.texels)
+                .map(|(a, b)| (a[1] - b[1]).abs())
+                .fold(0.0f32, f32::max);
+            assert!(
+                worst == 0.0,
+                "merge {merge_levels}: texels differ by {worst}"
+            );
+            // And the band is needed: a band of one quad loses the light that crosses the edges.
+            let thin = draw(1);
+            let lost = all
+                .texels
+                .iter()
+                .zip(&thin.texels)
+                .map(|(a, b)| a[1] - b[1])
+                .sum::<f32>();
+            assert!(
+                lost > 1.0,
+                "merge {merge_levels}: a one-quad band lost only {lost}"
+            );
+        }
     }
 
     fn torus_distance(a: (usize, usize), b: (usize, usize), n: usize) -> f64 {

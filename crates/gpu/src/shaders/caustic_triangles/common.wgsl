@@ -27,6 +27,24 @@ struct CausticTriangles {
     lattice: u32,       // a water generator's lattice P (photon image P + 1); 0 for glass
     wrap: u32,          // 1: tiling water, every primitive drawn at nine offsets of +-size
     absorption: vec4<f32>, // xyz: the water's K per channel (0 for glass)
+    band: u32,          // quads from an edge a shifted copy is drawn for (tiling water)
+}
+
+// The quads copy k is drawn for, (i0, i1, j0, j1): all for the unshifted copy, the `band` quads
+// along the edge its light crosses for a shifted one, the ends on multiples of the largest merged
+// block (CPU twin: `CausticTrianglesSetup::copy_rect`).
+fn copy_rect(c: CausticTriangles, k: u32) -> vec4<u32> {
+    let quads = c.p - 1u;
+    if c.wrap == 0u {
+        return vec4<u32>(0u, quads, 0u, quads);
+    }
+    let block = 1u << c.merge_levels;
+    let band = (c.band + block - 1u) / block * block;
+    var r = array<vec2<u32>, 3>(vec2<u32>((quads - min(band, quads)) / block * block, quads),
+                                vec2<u32>(0u, quads), vec2<u32>(0u, min(band, quads)));
+    let rows = r[k / 3u];
+    let cols = r[k % 3u];
+    return vec4<u32>(rows.x, rows.y, cols.x, cols.y);
 }
 
 // Offset of copy (instance) k of a primitive: ((k mod 3) - 1, (k div 3) - 1) size for tiling

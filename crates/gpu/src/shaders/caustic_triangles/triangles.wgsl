@@ -4,8 +4,9 @@
 // path signatures (photon w) outside the clip volume,
 // and the irradiance is Gouraud shaded and added into the floor map. A water generator's triangles
 // also interpolate their vertices' refracted path lengths and are attenuated by exp(-K d) per
-// channel, and tiling water draws each at nine offsets (instances; copies whose quad misses the
-// square are collapsed). CPU twin: `triangles_pass_with_paths` in
+// channel, and tiling water draws each at nine offsets (instances: the shifted ones over the
+// quads along the edge their light crosses, `copy_rect`; copies whose quad misses the square are
+// collapsed). CPU twin: `triangles_pass_with_paths` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
@@ -21,10 +22,12 @@ struct VsOut {
 
 @vertex
 fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) copy: u32) -> VsOut {
-    let quads = u.p - 1u;
+    // Copy `copy`'s quads, row-major over its rectangle (every quad for the unshifted copy).
+    let r = copy_rect(u, copy);
+    let cols = max(r.w - r.z, 1u);
     let quad = vi / 6u;
-    let qi = quad / quads;
-    let qj = quad % quads;
+    let qi = r.x + quad / cols;
+    let qj = r.z + quad % cols;
     // Triangle 1: 00, 01, 11; triangle 2: 00, 11, 10 (row offset, column offset).
     var corners = array<vec2<u32>, 6>(vec2<u32>(0u, 0u), vec2<u32>(0u, 1u), vec2<u32>(1u, 1u),
                                       vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(1u, 0u));
@@ -33,6 +36,9 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) copy: u32) -
     out.e = 0.0;
     out.d = 0.0;
     out.position = CULLED;
+    if qi >= r.y || qj >= r.w {
+        return out;
+    }
     let draw = quad_draw(qi, qj);
     if draw.x < 0.0 {
         return out;
