@@ -123,6 +123,26 @@ pub struct Job<'a> {
     pub cells_per_texel: u32,
 }
 
+impl<'a> Job<'a> {
+    /// A scene's water job: its floor, sun and caustics resolution, the surface as given.
+    pub fn of_scene(
+        scene: &'a caustics_core::scene::Scene,
+        water: &'a Water,
+        surface: &'a dyn Surface,
+        cells_per_texel: u32,
+    ) -> Self {
+        Job {
+            water,
+            floor: &scene.floor,
+            surface,
+            light: scene.light.direction,
+            width: scene.caustics.width as usize,
+            height: scene.caustics.height as usize,
+            cells_per_texel,
+        }
+    }
+}
+
 pub struct Outcome {
     pub map: CausticsMap,
     /// "GPU" or "CPU".
@@ -300,15 +320,7 @@ impl Runner {
                         owned.as_ref()
                     }
                 };
-                let job = Job {
-                    water,
-                    floor: &scene.floor,
-                    surface,
-                    light: scene.light.direction,
-                    width: scene.caustics.width as usize,
-                    height: scene.caustics.height as usize,
-                    cells_per_texel,
-                };
+                let job = Job::of_scene(scene, water, surface, cells_per_texel);
                 self.run_with_progress(spec, &job, progress)
             }
             "caustic-triangles" => {
@@ -436,15 +448,7 @@ impl Runner {
                         spec.name
                     );
                 };
-                let job = Job {
-                    water,
-                    floor: &scene.floor,
-                    surface,
-                    light: scene.light.direction,
-                    width: scene.caustics.width as usize,
-                    height: scene.caustics.height as usize,
-                    cells_per_texel,
-                };
+                let job = Job::of_scene(scene, water, surface, cells_per_texel);
                 self.run_with_progress(spec, &job, progress)
             }
         }
