@@ -916,6 +916,11 @@ fn initial_model(
         (1.0, scene.caustics.width.max(scene.caustics.height), 2)
     };
     let first_choice = first.clone();
+    let available = Buffer::available(&first_choice, SceneHas::of(scene));
+    let buffer = match &args.buffer {
+        Some(name) => Buffer::parse(name, &available).context("--buffer")?,
+        None => available.first().copied().unwrap_or(Buffer::Heights),
+    };
     Ok(Model {
         scene_name: scene.name.clone(),
         technique_names: technique_names(scene),
@@ -942,11 +947,8 @@ fn initial_model(
         show_panel: !args.no_panel,
         show_overlay: true,
         show_map: args.show_map,
-        show_buffers: args.show_buffers,
-        buffer: Buffer::available(&first_choice, SceneHas::of(scene))
-            .first()
-            .copied()
-            .unwrap_or(Buffer::Heights),
+        show_buffers: args.show_buffers || args.buffer.is_some(),
+        buffer,
         textures,
         maps: Default::default(),
         difference: Shown::default(),

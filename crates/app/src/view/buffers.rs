@@ -72,6 +72,55 @@ impl Buffer {
         }
     }
 
+    /// The short name `--buffer` takes: `heights`, `yuksel-offset`, `yuksel-flux`,
+    /// `yuksel-channel:K`, `distance-layer:K`, `photon-hits`, `photon-power`, `vertex-irradiance`,
+    /// `light-cube`, `object:K`, `cascade:K`.
+    pub fn key(&self) -> String {
+        match self {
+            Buffer::Heights => "heights".into(),
+            Buffer::YukselOffset => "yuksel-offset".into(),
+            Buffer::YukselFlux => "yuksel-flux".into(),
+            Buffer::YukselChannel(k) => format!("yuksel-channel:{k}"),
+            Buffer::DistanceLayer(k) => format!("distance-layer:{k}"),
+            Buffer::PhotonHits => "photon-hits".into(),
+            Buffer::PhotonPower => "photon-power".into(),
+            Buffer::VertexIrradiance => "vertex-irradiance".into(),
+            Buffer::LightCube => "light-cube".into(),
+            Buffer::ObjectCaustics(k) => format!("object:{k}"),
+            Buffer::CascadeMap(k) => format!("cascade:{k}"),
+        }
+    }
+
+    /// The buffer a [`key`](Self::key) names (`:K` may be left out for 0), if it is one of
+    /// `available`; else an error listing those.
+    pub fn parse(s: &str, available: &[Buffer]) -> anyhow::Result<Buffer> {
+        let (name, k) = match s.split_once(':') {
+            Some((n, k)) => (
+                n,
+                k.parse::<u32>()
+                    .map_err(|_| anyhow::anyhow!("`{s}`: `{k}` is not an index"))?,
+            ),
+            None => (s, 0),
+        };
+        let keys: Vec<String> = available.iter().map(Buffer::key).collect();
+        available
+            .iter()
+            .map(|b| match b {
+                Buffer::YukselChannel(_) => Buffer::YukselChannel(k),
+                Buffer::DistanceLayer(_) => Buffer::DistanceLayer(k),
+                Buffer::ObjectCaustics(_) => Buffer::ObjectCaustics(k),
+                Buffer::CascadeMap(_) => Buffer::CascadeMap(k),
+                other => *other,
+            })
+            .find(|b| b.key().split(':').next() == Some(name))
+            .ok_or_else(|| {
+                anyhow::anyhow!(
+                    "no buffer `{s}` for this technique here; it has: {}",
+                    keys.join(", ")
+                )
+            })
+    }
+
     /// The buffers a technique has in a scene with what `has` says.
     pub fn available(choice: &TechniqueChoice, has: SceneHas) -> Vec<Buffer> {
         let water = has.water;
@@ -741,6 +790,35 @@ mod tests {
             water: scene.water.as_ref().zip(surface),
             light: scene.light.direction,
             map_size: 32,
+        }
+    }
+
+    #[test]
+    fn buffers_are_named_on_the_command_line_by_their_keys() {
+        let scene = Scene::builtin("pool").unwrap();
+        let cascaded = TechniqueChoice::parse("cascaded", 1).unwrap();
+        let available = Buffer::available(&cascaded, SceneHas::of(&scene));
+        assert_eq!(
+            Buffer::parse("cascade:2", &available).unwrap(),
+            Buffer::CascadeMap(2)
+        );
+        assert_eq!(
+            Buffer::parse("cascade", &available).unwrap(),
+            Buffer::CascadeMap(0)
+        );
+        assert_eq!(
+            Buffer::parse("heights", &available).unwrap(),
+            Buffer::Heights
+        );
+        let err = Buffer::parse("photon-hits", &available)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("heights, cascade:0"), "{err}");
+        assert!(Buffer::parse("cascade:x", &available).is_err());
+        let yuksel = TechniqueChoice::parse("yuksel", 1).unwrap();
+        for b in Buffer::available(&yuksel, SceneHas::of(&scene)) {
+            let all = Buffer::available(&yuksel, SceneHas::of(&scene));
+            assert_eq!(Buffer::parse(&b.key(), &all).unwrap(), b);
         }
     }
 

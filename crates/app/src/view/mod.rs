@@ -82,6 +82,11 @@ pub struct ViewArgs {
     /// Open the intermediate-buffers window at the start.
     #[arg(long)]
     pub show_buffers: bool,
+    /// Open the intermediate-buffers window on this buffer of the first technique: `heights`,
+    /// `yuksel-offset`, `yuksel-flux`, `yuksel-channel:K`, `distance-layer:K`, `photon-hits`,
+    /// `photon-power`, `vertex-irradiance`, `light-cube`, `object:K`, `cascade:K`.
+    #[arg(long, value_name = "NAME")]
+    pub buffer: Option<String>,
     /// Where the final image is traced: `gpu` (the `FinalImage` pass), `cpu` (the CPU renderer,
     /// its twin), or `auto`: the GPU pass on a hardware GPU, the CPU renderer on a software adapter,
     /// where it is measured 2.5 times faster (and where the GPU pass also grows the process's

@@ -615,7 +615,7 @@ fn overlay(ctx: &egui::Context, m: &Model, at: Pos2) {
                                 Some(ms) => format!("{ms:7.1} ms {}", slot.backend),
                                 None => "  (unchanged)".into(),
                             };
-                            mono(ui, format!("{:<10} {t}", short(&slot.choice.name)));
+                            mono(ui, format!("{:<10} {t}", short(&slot.choice.name, 14)));
                         }
                         mono(ui, format!("image      {:7.1} ms", s.image_ms));
                     } else {
@@ -623,10 +623,11 @@ fn overlay(ctx: &egui::Context, m: &Model, at: Pos2) {
                     }
                     if s.timestamps {
                         for p in &s.gpu {
-                            mono(ui, format!("GPU {:<14} {:6.2} ms", short(&p.label), p.ms));
+                            let name = short(pass_name(&p.label), 16);
+                            mono(ui, format!("GPU {name:<16} {:6.2} ms", p.ms));
                         }
                         if let Some(ms) = s.ui_gpu_ms {
-                            mono(ui, format!("GPU {:<14} {ms:6.2} ms", "panel + blit"));
+                            mono(ui, format!("GPU {:<16} {ms:6.2} ms", "panel + blit"));
                         }
                     } else {
                         mono(ui, "GPU times: no timestamps on this adapter".into());
@@ -640,8 +641,18 @@ fn overlay(ctx: &egui::Context, m: &Model, at: Pos2) {
         });
 }
 
-fn short(s: &str) -> &str {
-    &s[..s.len().min(14)]
+/// A GPU pass's label without its technique's name in front (`caustic-triangles triangles` ->
+/// `triangles`): the overlay's column is narrow.
+fn pass_name(label: &str) -> &str {
+    caustics_core::techniques::names()
+        .iter()
+        .find_map(|t| label.strip_prefix(t).and_then(|r| r.strip_prefix(' ')))
+        .unwrap_or(label)
+}
+
+/// The first `n` characters of a label (never cutting a character in two).
+fn short(s: &str, n: usize) -> &str {
+    s.char_indices().nth(n).map_or(s, |(i, _)| &s[..i])
 }
 
 /// The map and buffer windows.
@@ -749,6 +760,22 @@ fn picture(ui: &mut egui::Ui, id: egui::TextureId, shown: &Shown) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn labels_are_shortened_by_characters() {
+        assert_eq!(
+            short("caustic-triangles water photons", 26),
+            "caustic-triangles water ph"
+        );
+        assert_eq!(short("map 512²", 8), "map 512²");
+        assert_eq!(short("map 512²", 7), "map 512");
+        assert_eq!(short("", 4), "");
+        assert_eq!(
+            pass_name("caustic-triangles water photons"),
+            "water photons"
+        );
+        assert_eq!(pass_name("eye depth"), "eye depth");
+    }
 
     /// Every value a text parameter's menu offers is one its technique accepts, and the technique
     /// accepts no value the menu leaves out of its enum's names.
