@@ -651,6 +651,20 @@ impl Runner {
 /// neither an ocean's nor a file's own grid (the shore's ocean is 128²).
 const CASCADED_WATER_GRID: usize = 256;
 
+/// The height grid technique `cascaded` reads an animated surface through (the viewer's water): a
+/// height-field file's own samples, or the surface sampled `CASCADED_WATER_GRID²` over the square.
+pub fn cascaded_heights(water: &Water, surface: &dyn Surface) -> Grid {
+    match &water.source {
+        WaterSource::HeightField(g) => g.clone(),
+        _ => sample_grid(
+            surface,
+            CASCADED_WATER_GRID,
+            CASCADED_WATER_GRID,
+            water.size,
+        ),
+    }
+}
+
 /// Photons per side of the light rectangle of one glass generator, per cell per texel, in the
 /// glass reference: 128² (2 cells per texel, the viewer's default, gives 256² per glass object,
 /// about two seconds for the `glass` scene on two cores).

@@ -16,14 +16,14 @@ use glam::DVec3;
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::render::EyeSpaceCaustics;
-use caustics_core::scene::{Scene, Water, WaterSource};
+use caustics_core::scene::{Scene, Water};
 use caustics_core::techniques::caustic_triangles as ct;
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
 use caustics_core::techniques::{cascaded, volumes};
 use caustics_core::water::{Surface, sample_grid};
 
 use super::frame::TechniqueChoice;
-use crate::techniques::{SceneCaustics, heights_for};
+use crate::techniques::{SceneCaustics, cascaded_heights, heights_for};
 
 /// A buffer the view can show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -584,10 +584,7 @@ fn cascade_picture(k: usize, input: &BufferInput) -> anyhow::Result<Picture> {
     let params = cascaded::CascadedParams::from_table(&spec.params)?;
     let setup = cascaded::CascadedSetup::from_scene(&scene, &params)?;
     let water = scene.water.as_ref().expect("set above");
-    let grid = match &water.source {
-        WaterSource::HeightField(g) => g.clone(),
-        _ => sample_grid(surface, 256, 256, water.size),
-    };
+    let grid = cascaded_heights(water, surface);
     let frame = cascaded::caustics(&setup, &grid, scene.floor.terrain.as_ref());
     let map = frame.cascade_map(&setup, k);
     Ok(rgb_picture(

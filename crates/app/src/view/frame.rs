@@ -18,19 +18,19 @@ use glam::DVec3;
 
 use caustics_core::map::CausticsMap;
 use caustics_core::render::{Caustics, Image, RenderOptions, render_with};
-use caustics_core::scene::{Material, Scene, WaterSource};
+use caustics_core::scene::{Material, Scene};
 use caustics_core::techniques::cascaded::CascadedParams;
 use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
 use caustics_core::techniques::volumes::VolumesParams;
 use caustics_core::techniques::yuksel::YukselParams;
 use caustics_core::techniques::{self, Input, TECHNIQUES};
-use caustics_core::water::{Surface, sample_grid};
+use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 use super::camera::OrbitCamera;
 use super::water::{SurfaceKey, WaterState};
-use crate::techniques::{Job, Runner, SceneCaustics, Spec};
+use crate::techniques::{Job, Runner, SceneCaustics, Spec, cascaded_heights};
 
 /// A technique with its parameters as the panel edits them: a name (`yuksel`, `yuksel-gather`,
 /// ...) and the technique's own table (`n`, `m`, ...), turned into a [`Spec`] when run.
@@ -147,10 +147,6 @@ struct MapKey {
     /// The camera and image size, for an eye-space technique (its image is made for them).
     view: Option<String>,
 }
-
-/// Side of the height grid `cascaded` reads the animated water through (the scene's own grid where
-/// it is a height field).
-const EYE_SPACE_WATER_GRID: usize = 256;
 
 /// Maps kept for reuse: switching back to a technique, or showing the same one on both sides,
 /// while the water stands still costs no run (and the memory is bounded: 8 maps of 1024² are
@@ -430,10 +426,7 @@ impl SceneRenderer {
                     .run_scene(spec, &scene, Some(surface), cells, &|_, _| {})?;
                 return Ok((SceneCaustics::Floor(o.map), o.backend));
             }
-            let grid = match &w.source {
-                WaterSource::HeightField(g) => g.clone(),
-                _ => sample_grid(surface, EYE_SPACE_WATER_GRID, EYE_SPACE_WATER_GRID, w.size),
-            };
+            let grid = cascaded_heights(w, surface);
             let o = self.runner.run_cascaded(spec, &scene, &grid)?;
             return Ok((o.caustics, o.backend));
         }
