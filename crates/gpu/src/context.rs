@@ -26,6 +26,7 @@ pub struct GpuContext {
     pub timestamps: bool,
     errors: Arc<Mutex<Vec<String>>>,
     lost: Arc<Mutex<Option<String>>>,
+    pub(crate) traffic: Arc<crate::traffic::Traffic>,
 }
 
 fn parse_backends(s: &str) -> Result<wgpu::Backends, GpuError> {
@@ -168,6 +169,7 @@ impl GpuContext {
             timestamps,
             errors,
             lost,
+            traffic: Default::default(),
         }
     }
 

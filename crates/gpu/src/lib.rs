@@ -11,14 +11,18 @@ pub mod pass;
 pub mod probe;
 pub mod procedural;
 pub mod shaders;
+pub mod technique;
 pub mod timing;
+pub mod traffic;
 mod transfer;
 pub mod volumes;
 pub mod water;
 pub mod yuksel;
 
 pub use context::{GpuContext, GpuOptions};
+pub use technique::{Output, Technique, WaterTextures};
 pub use timing::{GpuTimer, PassTime};
+pub use traffic::TrafficCounts;
 
 /// Everything that can go wrong on the GPU side, each naming the problem.
 #[derive(Debug, thiserror::Error)]

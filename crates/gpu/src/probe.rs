@@ -1,8 +1,6 @@
 //! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
-use wgpu::util::DeviceExt;
-
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError, shaders};
 
@@ -53,7 +51,7 @@ pub fn run(
 ) -> Result<Vec<ProbeOut>, GpuError> {
     let device = &ctx.device;
     let module = shaders::PROBE.module(device);
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+    let pipeline = ctx.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("probe"),
         layout: None,
         module: &module,
@@ -61,12 +59,12 @@ pub fn run(
         compilation_options: Default::default(),
         cache: None,
     });
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    let input = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("probe inputs"),
         contents: bytemuck::cast_slice(inputs),
         usage: wgpu::BufferUsages::STORAGE,
     });
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
+    let output = ctx.create_buffer(&wgpu::BufferDescriptor {
         label: Some("probe outputs"),
         size: (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
@@ -78,7 +76,7 @@ pub fn run(
     } else {
         setup.waves.to_vec()
     };
-    let waves = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    let waves = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("probe waves"),
         contents: bytemuck::cast_slice(&waves),
         usage: wgpu::BufferUsages::STORAGE,
@@ -90,14 +88,14 @@ pub fn run(
         wrap: setup.wrap as u32,
         _pad: 0,
     };
-    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    let params = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("probe params"),
         contents: bytemuck::bytes_of(&params),
         usage: wgpu::BufferUsages::UNIFORM,
     });
     let height = ctx.upload_grid("probe height field", setup.grid)?;
     let height_view = height.create_view(&Default::default());
-    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+    let bind = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("probe"),
         layout: &pipeline.get_bind_group_layout(0),
         entries: &[

@@ -24,12 +24,12 @@ impl GpuTimer {
         let capacity = passes * 2;
         let (query_set, resolve) = if ctx.timestamps {
             (
-                Some(ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                Some(ctx.create_query_set(&wgpu::QuerySetDescriptor {
                     label: Some("pass timestamps"),
                     ty: wgpu::QueryType::Timestamp,
                     count: capacity,
                 })),
-                Some(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                Some(ctx.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("timestamp resolve"),
                     size: capacity as u64 * 8,
                     usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,

@@ -7,7 +7,7 @@ impl GpuContext {
     /// Read a whole buffer (which must have `COPY_SRC` usage) as plain data.
     pub fn read_buffer<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Result<Vec<T>, GpuError> {
         let size = buffer.size();
-        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+        let staging = self.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
             size,
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -34,7 +34,7 @@ impl GpuContext {
         let row = w * texel;
         let padded =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+        let staging = self.create_buffer(&wgpu::BufferDescriptor {
             label: Some("texture readback"),
             size: padded as u64 * h as u64,
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -77,6 +77,7 @@ impl GpuContext {
         staging: &wgpu::Buffer,
         f: impl FnOnce(&[u8]) -> R,
     ) -> Result<R, GpuError> {
+        self.traffic.readback();
         let slice = staging.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -123,7 +124,7 @@ impl GpuContext {
             (texture.width(), texture.height()),
             (grid.cols as u32, grid.rows as u32)
         );
-        self.queue.write_texture(
+        self.write_texture(
             texture.as_image_copy(),
             bytemuck::cast_slice(&grid.data),
             wgpu::TexelCopyBufferLayout {

@@ -120,7 +120,7 @@ impl YukselParams {
 
 /// Everything the passes share, derived once from the scene (the GPU side uploads the same numbers
 /// as its uniform block).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct YukselSetup {
     pub width: usize,
     pub height: usize,

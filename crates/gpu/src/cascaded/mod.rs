@@ -35,7 +35,6 @@ use caustics_core::techniques::cascaded::{
     Brightness, CASCADES, CascadedSetup, Dispersion, FIXED_SCALE, Placement, Splat,
     screen_buffer_len,
 };
-use wgpu::util::DeviceExt;
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
@@ -292,7 +291,7 @@ impl Cascaded {
         let image = ctx.texture_2d("cascaded image", (w, h, 1), f32x4, storage);
         let dispersed = (setup.params.dispersion == Dispersion::Post)
             .then(|| ctx.texture_2d("cascaded dispersed image", (w, h, 1), f32x4, storage));
-        let acc = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let acc = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cascaded screen-space caustic maps"),
             size: acc_bytes,
             usage: wgpu::BufferUsages::STORAGE
@@ -308,12 +307,11 @@ impl Cascaded {
         let terrain_view = terrain_tex.create_view(&Default::default());
         let uniforms: Vec<wgpu::Buffer> = (0..CASCADES)
             .map(|k| {
-                ctx.device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("cascaded uniform"),
-                        contents: bytemuck::bytes_of(&CascadedUniform::new(setup, k)),
-                        usage: wgpu::BufferUsages::UNIFORM,
-                    })
+                ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("cascaded uniform"),
+                    contents: bytemuck::bytes_of(&CascadedUniform::new(setup, k)),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                })
             })
             .collect();
         let eye_view = eye.create_view(&Default::default());

@@ -11,7 +11,6 @@
 use caustics_core::scene::Camera;
 use caustics_core::techniques::caustic_triangles::camera::CameraParams;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
-use wgpu::util::DeviceExt;
 
 use super::{CausticTriangles, CausticTrianglesUniform, Frame, LightCubeTarget, Reconstruction};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
@@ -103,20 +102,16 @@ impl CameraRenderer {
             "caustic-triangles distance maps",
             dm_texels.len() as u64 * 16,
         )?;
-        let dm_buffer = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles camera distance maps"),
-                contents: bytemuck::cast_slice(&dm_texels),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
-        let gens_buffer = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles camera generators"),
-                contents: bytemuck::cast_slice(&uniforms),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
+        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles camera distance maps"),
+            contents: bytemuck::cast_slice(&dm_texels),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let gens_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles camera generators"),
+            contents: bytemuck::cast_slice(&uniforms),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         for frame in &frames {
             let p = frame.setup.p as u32;
@@ -175,7 +170,7 @@ impl CameraRenderer {
                     );
                 }
                 stand_in_map = one_texel("caustic-triangles light cube stand-in");
-                let shadow = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("caustic-triangles shadow stand-in"),
                     size: 16,
                     usage: wgpu::BufferUsages::STORAGE,
@@ -199,14 +194,12 @@ impl CameraRenderer {
             cube_res,
             map_size,
         );
-        let uniform = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles camera uniform"),
-                contents: bytemuck::bytes_of(&uniform),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-        let image = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles camera uniform"),
+            contents: bytemuck::bytes_of(&uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let image = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles camera image"),
             size: w as u64 * h as u64 * 16,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,

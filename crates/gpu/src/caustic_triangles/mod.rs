@@ -34,7 +34,6 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::caustic_triangles::cube::{FAR, LightCube};
 use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
-use wgpu::util::DeviceExt;
 
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
@@ -313,33 +312,29 @@ impl CausticTriangles {
         let dm_bytes = dm.texels.len() as u64 * 16;
         ctx.check_buffer_size("caustic-triangles distance map", dm_bytes)?;
         ctx.check_buffer_size("caustic-triangles photon image", p * p * 16)?;
-        let uniform = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles uniform"),
-                contents: bytemuck::bytes_of(&CausticTrianglesUniform::new(setup, dm)),
-                usage: B::UNIFORM | B::COPY_DST,
-            });
-        let dm_buffer = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles distance map"),
-                contents: bytemuck::cast_slice(&dm.texels),
-                usage: B::STORAGE | B::COPY_DST,
-            });
-        let photons = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles uniform"),
+            contents: bytemuck::bytes_of(&CausticTrianglesUniform::new(setup, dm)),
+            usage: B::UNIFORM | B::COPY_DST,
+        });
+        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles distance map"),
+            contents: bytemuck::cast_slice(&dm.texels),
+            usage: B::STORAGE | B::COPY_DST,
+        });
+        let photons = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles photon image"),
             size: p * p * 16,
             usage: B::STORAGE | B::COPY_SRC | B::COPY_DST,
             mapped_at_creation: false,
         });
-        let paths = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let paths = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles photon path lengths"),
             size: p * p * 4,
             usage: B::STORAGE | B::COPY_SRC,
             mapped_at_creation: false,
         });
-        let irradiance = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let irradiance = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles vertex irradiance"),
             size: p * p * 4,
             usage: B::STORAGE | B::COPY_SRC,
@@ -383,7 +378,7 @@ impl CausticTriangles {
             "caustic-triangles merge pyramid",
             pyramid_texels.max(1) * 16,
         )?;
-        let pyramid = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let pyramid = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles merge pyramid"),
             size: pyramid_texels.max(1) * 16,
             usage: B::STORAGE | B::COPY_SRC,
@@ -391,13 +386,11 @@ impl CausticTriangles {
         });
         let pyramid_binds = (0..=setup.merge_levels)
             .map(|k| {
-                let level = ctx
-                    .device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("caustic-triangles merge level"),
-                        contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
-                        usage: B::UNIFORM,
-                    });
+                let level = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("caustic-triangles merge level"),
+                    contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
+                    usage: B::UNIFORM,
+                });
                 bind_group(
                     ctx,
                     "caustic-triangles merge pyramid",
@@ -635,8 +628,7 @@ impl CausticTriangles {
     ) -> Result<GpuOutput, GpuError> {
         assert_eq!(photons.len(), setup.p * setup.p, "photon image size");
         let frame = self.frame(ctx, setup, dm)?;
-        ctx.queue
-            .write_buffer(&frame.photons, 0, bytemuck::cast_slice(photons));
+        ctx.write_buffer(&frame.photons, 0, bytemuck::cast_slice(photons));
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode_reconstruction(&frame, &mut encoder, None, reconstruction);
         ctx.queue.submit([encoder.finish()]);
@@ -678,7 +670,7 @@ impl WaterFrame {
         ctx.write_grid(&self.heights, heights);
         self.setup.fit_band(heights);
         self.frame.setup = self.setup.setup.clone();
-        ctx.queue.write_buffer(
+        ctx.write_buffer(
             &self.frame.uniform,
             0,
             bytemuck::bytes_of(&CausticTrianglesUniform::new(
@@ -725,13 +717,11 @@ impl CausticTriangles {
         let frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
         let heights_texture = ctx.upload_grid("caustic-triangles water heights", heights)?;
         let view = heights_texture.create_view(&Default::default());
-        let water_uniform = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles water photons"),
-                contents: bytemuck::bytes_of(&WaterPhotonUniform::new(&ws)),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+        let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles water photons"),
+            contents: bytemuck::bytes_of(&WaterPhotonUniform::new(&ws)),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
         let water_bind = bind_group(
             ctx,
             "caustic-triangles water photons",
@@ -858,7 +848,7 @@ impl CausticTriangles {
                 | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         let view = texture.create_view(&Default::default());
-        let shadow = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("caustic-triangles light cube shadow distances"),
             size: n * 4,
             usage: wgpu::BufferUsages::STORAGE
@@ -909,8 +899,7 @@ impl CausticTriangles {
     /// [`encode_cube`](Self::encode_cube) (a queue write: it lands before the next submission).
     pub fn reset_cube(&self, ctx: &GpuContext, target: &LightCubeTarget) {
         let n = 6 * target.resolution as usize * target.resolution as usize;
-        ctx.queue
-            .write_buffer(&target.shadow, 0, bytemuck::cast_slice(&vec![FAR; n]));
+        ctx.write_buffer(&target.shadow, 0, bytemuck::cast_slice(&vec![FAR; n]));
     }
 
     /// Record one generator's reconstruction into the light cube map (§4.2): the vertex irradiance

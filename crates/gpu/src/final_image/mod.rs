@@ -42,7 +42,6 @@ use caustics_core::map::CausticsMap;
 use caustics_core::render::{Caustics, Image, RenderOptions};
 use caustics_core::scene::{Albedo, Scene};
 use caustics_core::water::Surface;
-use wgpu::util::DeviceExt;
 
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -116,8 +115,7 @@ fn float_texture(
         .block_copy_size(None)
         .expect("an uncompressed format");
     debug_assert_eq!(texels.len(), (width * height * texel) as usize);
-    Ok(ctx.device.create_texture_with_data(
-        &ctx.queue,
+    Ok(ctx.create_texture_with_data(
         &wgpu::TextureDescriptor {
             label: Some(what),
             size,
@@ -152,13 +150,11 @@ fn storage_buffer<T: bytemuck::Pod + Default>(
     };
     let bytes: &[u8] = bytemuck::cast_slice(items);
     ctx.check_buffer_size(what, bytes.len() as u64)?;
-    Ok(ctx
-        .device
-        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(what),
-            contents: bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-        }))
+    Ok(ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(what),
+        contents: bytes,
+        usage: wgpu::BufferUsages::STORAGE,
+    }))
 }
 
 impl FinalImage {
@@ -205,7 +201,7 @@ impl FinalImage {
             bind_group_layouts: &[Some(&scene_layout), Some(&mesh_layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        let pipeline = ctx.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(FINAL_IMAGE.name),
             layout: Some(&layout),
             module: &FINAL_IMAGE.module(device),
@@ -348,12 +344,12 @@ impl FinalImage {
         let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
         let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.nodes)?;
         let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.triangles)?;
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("final image uniform"),
             contents: bytemuck::bytes_of(&params),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let output = device.create_texture(&wgpu::TextureDescriptor {
+        let output = ctx.create_texture(&wgpu::TextureDescriptor {
             label: Some("final image"),
             size: wgpu::Extent3d {
                 width,
@@ -380,7 +376,7 @@ impl FinalImage {
             view(albedo_image.as_ref(), &self.empty_rgba32),
         ];
         let output_view = output.create_view(&Default::default());
-        let scene_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let scene_group = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("final image scene"),
             layout: &self.scene_layout,
             entries: &[
@@ -393,7 +389,7 @@ impl FinalImage {
                 entry(6, wgpu::BindingResource::TextureView(&output_view)),
             ],
         });
-        let mesh_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let mesh_group = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene meshes"),
             layout: &self.mesh_layout,
             entries: &[

@@ -19,7 +19,6 @@
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
-use wgpu::util::DeviceExt;
 
 use crate::pass::bind_group;
 use crate::shaders::{OPTICS, PassSource, WATER};
@@ -134,35 +133,34 @@ fn render_pipeline(
     format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
     let module = pass.module(&ctx.device);
-    ctx.device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(pass.name),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
+    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(pass.name),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState {
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 /// One frame's resources for a given setup and water, bind groups included: a frame is built once
@@ -222,7 +220,7 @@ impl Frame {
             }
             ctx.write_grid(&self.heights, g);
         }
-        ctx.queue.write_buffer(
+        ctx.write_buffer(
             &self.uniform,
             0,
             bytemuck::bytes_of(&ProceduralUniform::new(&self.setup, water)),
@@ -281,13 +279,11 @@ impl ProceduralCaustics {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("procedural caustics map", w, h)?;
-        let uniform = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("procedural uniform"),
-                contents: bytemuck::bytes_of(&ProceduralUniform::new(setup, water)),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("procedural uniform"),
+            contents: bytemuck::bytes_of(&ProceduralUniform::new(setup, water)),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
         let lm = &setup.light;
         let light = ctx.upload_grid(
             "procedural light map",
@@ -338,13 +334,11 @@ impl ProceduralCaustics {
                 bytes += indices.len() as u64 * 4;
                 FramePasses::Vertex {
                     bind: water_bind(&self.vertex, "procedural vertex"),
-                    indices: ctx
-                        .device
-                        .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                            label: Some("procedural mesh indices"),
-                            contents: bytemuck::cast_slice(&indices),
-                            usage: wgpu::BufferUsages::INDEX,
-                        }),
+                    indices: ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("procedural mesh indices"),
+                        contents: bytemuck::cast_slice(&indices),
+                        usage: wgpu::BufferUsages::INDEX,
+                    }),
                     count: indices.len() as u32,
                 }
             }
@@ -355,7 +349,7 @@ impl ProceduralCaustics {
                 let t = setup.target as u32;
                 ctx.check_texture_size("procedural texture-space target", t, t)?;
                 let mips = setup.mip_levels() as u32;
-                let target = ctx.device.create_texture(&wgpu::TextureDescriptor {
+                let target = ctx.create_texture(&wgpu::TextureDescriptor {
                     label: Some("procedural target"),
                     size: wgpu::Extent3d {
                         width: t,
@@ -397,7 +391,7 @@ impl ProceduralCaustics {
                 } else {
                     wgpu::AddressMode::ClampToEdge
                 };
-                let sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+                let sampler = ctx.create_sampler(&wgpu::SamplerDescriptor {
                     label: Some("procedural mips"),
                     address_mode_u: address,
                     address_mode_v: address,
@@ -410,7 +404,7 @@ impl ProceduralCaustics {
                     ..Default::default()
                 });
                 let all = target.create_view(&Default::default());
-                let resample = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                let resample = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("procedural resample"),
                     layout: &self.resample.get_bind_group_layout(0),
                     entries: &[

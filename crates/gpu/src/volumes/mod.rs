@@ -26,7 +26,6 @@ use caustics_core::mesh::TriangleMesh;
 use caustics_core::techniques::volumes::illumination::WaterVertex;
 use caustics_core::techniques::volumes::view::ViewCamera;
 use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, VolumesSetup};
-use wgpu::util::DeviceExt;
 
 use crate::final_image::{BVH, GpuBvhNode, GpuBvhTriangle};
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
@@ -372,12 +371,11 @@ impl Volumes {
             triangles.push(GpuBvhTriangle::default());
         }
         let storage = |label: &str, bytes: &[u8]| {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents: bytes,
-                    usage: B::STORAGE,
-                })
+            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: B::STORAGE,
+            })
         };
         ctx.check_buffer_size("volumes BVH triangles", triangles.len() as u64 * 96)?;
         let node_buf = storage("volumes BVH nodes", bytemuck::cast_slice(&nodes));
@@ -392,20 +390,17 @@ impl Volumes {
             &self.depth.get_bind_group_layout(1),
             &[node_buf.as_entire_binding(), tri_buf.as_entire_binding()],
         );
-        let uniform = ctx
-            .device
-            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("volumes uniform"),
-                contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
-                usage: B::UNIFORM,
-            });
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("volumes uniform"),
+            contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
+            usage: B::UNIFORM,
+        });
         let pass_uniform = |p: PassUniform| {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes pass uniform"),
-                    contents: bytemuck::bytes_of(&p),
-                    usage: B::UNIFORM,
-                })
+            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("volumes pass uniform"),
+                contents: bytemuck::bytes_of(&p),
+                usage: B::UNIFORM,
+            })
         };
         let depth_texture = |label: &str, res: u32| -> Result<wgpu::Texture, GpuError> {
             ctx.check_texture_size(label, res, res)?;
@@ -447,7 +442,7 @@ impl Volumes {
         let heights_tex = ctx.upload_grid("volumes height field", heights)?;
         let lattice_vertices = setup.lattice.vertex_count() as u64;
         ctx.check_buffer_size("volumes water vertices", lattice_vertices * 32)?;
-        let water = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        let water = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("volumes water"),
             size: lattice_vertices * 32,
             usage: B::STORAGE | B::COPY_SRC,
@@ -608,13 +603,11 @@ impl Volumes {
                 if pass_uniforms.is_empty() {
                     pass_uniforms.push(PassUniform::default());
                 }
-                let camera = ctx
-                    .device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("volumes camera"),
-                        contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
-                        usage: B::UNIFORM,
-                    });
+                let camera = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("volumes camera"),
+                    contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
+                    usage: B::UNIFORM,
+                });
                 let object_buf = storage("volumes objects", bytemuck::cast_slice(&pass_uniforms));
                 let array_view = |t: &wgpu::Texture| {
                     t.create_view(&wgpu::TextureViewDescriptor {

@@ -17,8 +17,6 @@
 //! no bit-reversal pass; the twiddles come from a table computed in f64, so the f32 error grows only
 //! with the `log2 N` roundings of the data.
 
-use wgpu::util::DeviceExt;
-
 use caustics_core::water::ocean::Ocean;
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
@@ -86,10 +84,9 @@ impl GpuOcean {
     pub fn new(ctx: &GpuContext, ocean: &Ocean) -> Result<Self, GpuError> {
         let resolution = ocean.params().resolution;
         Self::check_size(ctx, resolution)?;
-        let device = &ctx.device;
         let n = resolution as u32;
         let buffer = |label: &str, contents: &[u8], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
                 contents,
                 usage,
@@ -119,7 +116,7 @@ impl GpuOcean {
             storage,
         );
         let field = |label| {
-            device.create_buffer(&wgpu::BufferDescriptor {
+            ctx.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: n as u64 * n as u64 * ELEMENT_BYTES,
                 usage: storage,
@@ -130,7 +127,7 @@ impl GpuOcean {
         let pong = field("ocean FFT pong");
 
         let dk = (std::f64::consts::TAU / ocean.size()) as f32;
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
+        let params = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ocean spectrum params"),
             size: std::mem::size_of::<SpectrumParams>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -197,7 +194,7 @@ impl GpuOcean {
             })
             .collect();
 
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
+        let texture = ctx.create_texture(&wgpu::TextureDescriptor {
             label: Some("ocean height and slopes"),
             size: wgpu::Extent3d {
                 width: n,
@@ -261,8 +258,7 @@ impl GpuOcean {
             dk: self.dk,
             _pad: 0,
         };
-        ctx.queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        ctx.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         let (n, half) = (self.n, self.n / 2);
         {
             let mut pass = begin_compute(encoder, &mut timer, "ocean spectrum");

@@ -72,7 +72,7 @@ impl GpuRipples {
         let device = &ctx.device;
         let n = side;
         let texture = |label| {
-            device.create_texture(&wgpu::TextureDescriptor {
+            ctx.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
                     width: n,
@@ -124,7 +124,7 @@ impl GpuRipples {
         };
         let step_groups = [step_group(0), step_group(1)];
 
-        let drop_params = device.create_buffer(&wgpu::BufferDescriptor {
+        let drop_params = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ripple drop params"),
             size: std::mem::size_of::<RippleDrop>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
@@ -186,8 +186,7 @@ impl GpuRipples {
             wrap: (self.edge == Edge::Wrap) as u32,
             _pad: 0,
         };
-        ctx.queue
-            .write_buffer(&self.drop_params, 0, bytemuck::bytes_of(&params));
+        ctx.write_buffer(&self.drop_params, 0, bytemuck::bytes_of(&params));
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {

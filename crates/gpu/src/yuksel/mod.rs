@@ -20,11 +20,12 @@ use std::sync::Mutex;
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::yuksel::YukselSetup;
-use wgpu::util::DeviceExt;
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{self, OPTICS, PassSource, WATER};
-use crate::{GpuContext, GpuError, GpuTimer};
+use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+
+pub mod technique;
 
 const COMMON: &str = include_str!("../shaders/yuksel/common.wgsl");
 const SAMPLE: &str = include_str!("../shaders/yuksel/sample.wgsl");
@@ -160,35 +161,38 @@ fn render_pipeline(
         write_mask: wgpu::ColorWrites::ALL,
     });
     let targets: Vec<_> = (0..targets).map(|_| target.clone()).collect();
-    ctx.device
-        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(label),
-            layout: None,
-            vertex: wgpu::VertexState {
-                module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        })
+    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 /// One frame's resources for a given map and height-field size, bind groups included: a frame is
 /// built once and encoded every time the water moves (upload new heights with
 /// [`Frame::update_heights`]).
 pub struct Frame {
-    heights: wgpu::Texture,
+    /// The heights it uploaded itself ([`Yuksel::frame`]); `None` when it reads the caller's
+    /// ([`Yuksel::frame_with_water`]).
+    heights: Option<wgpu::Texture>,
+    /// Every uniform buffer with the channel base it carries (one per pass-1 draw).
+    uniforms: Vec<(wgpu::Buffer, u32)>,
     pub map: wgpu::Texture,
     setup: YukselSetup,
     pub variant: Variant,
@@ -219,9 +223,46 @@ impl Frame {
         self.bytes
     }
 
-    /// Replace the height field (same size) for the next encode.
+    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
     pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
-        ctx.write_grid(&self.heights, heights);
+        if let Some(t) = &self.heights {
+            ctx.write_grid(t, heights);
+        }
+    }
+
+    pub fn setup(&self) -> &YukselSetup {
+        &self.setup
+    }
+
+    /// Whether `setup` fits this frame's textures (the same map, pre-pass and pass-1 sizes and
+    /// channel count), so that [`set_setup`](Self::set_setup) can take it.
+    pub fn fits(&self, setup: &YukselSetup) -> bool {
+        (
+            setup.width,
+            setup.height,
+            setup.prepass_size(),
+            setup.pass1_size(),
+            setup.m,
+        ) == (
+            self.setup.width,
+            self.setup.height,
+            self.setup.prepass_size(),
+            self.setup.pass1_size(),
+            self.setup.m,
+        )
+    }
+
+    /// Take a new sun, depth or N (a setup that [`fits`](Self::fits)): uniform writes only.
+    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
+        debug_assert!(self.fits(setup));
+        for (buffer, base) in &self.uniforms {
+            ctx.write_buffer(
+                buffer,
+                0,
+                bytemuck::bytes_of(&YukselUniform::new(setup, *base)),
+            );
+        }
+        self.setup = setup.clone();
     }
 }
 
@@ -267,6 +308,21 @@ impl Yuksel {
         heights: &Grid,
         variant: Variant,
     ) -> Result<Frame, GpuError> {
+        let texture = ctx.upload_grid("yuksel height field", heights)?;
+        let mut frame = self.frame_with_water(ctx, setup, &WaterTextures::of(&texture), variant)?;
+        frame.heights = Some(texture);
+        Ok(frame)
+    }
+
+    /// Allocate a frame's textures and bind groups for `variant`, reading the caller's heights
+    /// (any grid size: the passes sample it bicubically, as the CPU twin samples its grid).
+    pub fn frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        setup: &YukselSetup,
+        water: &WaterTextures,
+        variant: Variant,
+    ) -> Result<Frame, GpuError> {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
@@ -275,17 +331,18 @@ impl Yuksel {
         ctx.check_texture_size("yuksel caustics map", w, h)?;
         ctx.check_texture_size("yuksel pre-pass texture", pw as u32, ph as u32)?;
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
-        let uniform_for = |channel_base: u32| {
-            ctx.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("yuksel uniform"),
-                    contents: bytemuck::bytes_of(&YukselUniform::new(setup, channel_base)),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                })
+        let mut uniforms = Vec::new();
+        let mut uniform_for = |channel_base: u32| {
+            let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("yuksel uniform"),
+                contents: bytemuck::bytes_of(&YukselUniform::new(setup, channel_base)),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+            uniforms.push((buffer.clone(), channel_base));
+            buffer
         };
         let uniform = uniform_for(0);
-        let heights_texture = ctx.upload_grid("yuksel height field", heights)?;
-        let heights_view = heights_texture.create_view(&Default::default());
+        let heights_view = &water.heights;
         let map = ctx.texture_2d(
             "yuksel map",
             (w, h, 1),
@@ -293,8 +350,7 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        let mut bytes =
-            (w * h) as u64 * 16 + (heights.cols * heights.rows) as u64 * 4 + uniform.size();
+        let mut bytes = (w * h) as u64 * 16 + uniform.size();
         let passes = match variant {
             Variant::Gather => FramePasses::Gather {
                 bind: bind_group(
@@ -303,7 +359,7 @@ impl Yuksel {
                     &self.gather.get_bind_group_layout(0),
                     &[
                         uniform.as_entire_binding(),
-                        View(&heights_view),
+                        View(heights_view),
                         View(&map_view),
                     ],
                 ),
@@ -330,7 +386,7 @@ impl Yuksel {
                     &self.prepass.get_bind_group_layout(0),
                     &[
                         uniform.as_entire_binding(),
-                        View(&heights_view),
+                        View(heights_view),
                         View(&pre_view),
                     ],
                 );
@@ -381,7 +437,8 @@ impl Yuksel {
         };
         ctx.check()?;
         Ok(Frame {
-            heights: heights_texture,
+            heights: None,
+            uniforms,
             map,
             setup: setup.clone(),
             variant,

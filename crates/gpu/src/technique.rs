@@ -1,0 +1,146 @@
+//! One interface for every technique, in the spirit of wgpu's examples' framework: create once,
+//! [`configure`](Technique::configure) when sizes or the scene change, [`update`](Technique::update)
+//! every frame through small uniform writes, [`encode`](Technique::encode) into the caller's
+//! command encoder. The water comes in as GPU textures the caller owns ([`WaterTextures`]: our
+//! simulations' as much as an application's own), and the caustics go out as a texture the caller
+//! samples ([`Output`]). Nothing is read back on the way.
+//!
+//! Every technique registers itself once, in [`REGISTRY`]; the application finds it there by name
+//! (`caustics techniques` lists them) and never matches names itself.
+
+use caustics_core::scene::Scene;
+
+use crate::{GpuContext, GpuError, GpuTimer};
+
+/// The water surface as the techniques read it: an `R32Float` texture of heights above the rest
+/// level over the water square `[0, size]²`, texel `(i, j)` (row `i`) at `((j + ½) size / cols,
+/// (i + ½) size / rows)`, as `caustics_core::water::sample_grid` lays a grid out. The texture
+/// needs `TEXTURE_BINDING`; it is read with `textureLoad` (bicubic Catmull-Rom in `water.wgsl`'s
+/// `grid_sample`), wrapped or clamped at the edges as the scene's `water.wrap` says.
+///
+/// The caller owns it and may rewrite it every frame (our [`crate::water::field::GpuWater`]
+/// does); a technique keeps a clone of the view, so a new texture (a new size) needs a new
+/// [`configure`](Technique::configure).
+#[derive(Clone, Debug)]
+pub struct WaterTextures {
+    pub heights: wgpu::TextureView,
+    pub cols: u32,
+    pub rows: u32,
+}
+
+impl WaterTextures {
+    /// The view of a whole `R32Float` texture.
+    pub fn of(texture: &wgpu::Texture) -> Self {
+        WaterTextures {
+            heights: texture.create_view(&Default::default()),
+            cols: texture.width(),
+            rows: texture.height(),
+        }
+    }
+}
+
+/// What a technique makes, for the caller to sample.
+#[derive(Clone, Copy, Debug)]
+pub enum Output<'a> {
+    /// A map of the floor square: relative irradiance per channel (1 = what the sun gives through
+    /// flat, clear water), texel `(i, j)` centred at `((j + ½) size / width, (i + ½) size /
+    /// height)`, row 0 at y = 0; `Rgba32Float`, or `Rgba16Float` on devices that cannot blend
+    /// 32-bit floats.
+    Floor(&'a wgpu::Texture),
+    /// An image in the scene camera's screen space (paper 5): relative irradiance of the floor
+    /// point each pixel sees, alpha 1 where the pixel has a value and 0 where it has none.
+    EyeSpace(&'a wgpu::Texture),
+}
+
+impl<'a> Output<'a> {
+    pub fn texture(&self) -> &'a wgpu::Texture {
+        match self {
+            Output::Floor(t) | Output::EyeSpace(t) => t,
+        }
+    }
+}
+
+/// A caustics technique on the GPU. The scene gives the water's optics (`water`: size, depth,
+/// index, absorption, wrap; its `source` is ignored, the heights come from [`WaterTextures`]), the
+/// floor, the sun (`light`), the map size (`caustics.width`, `caustics.height`), the camera (for
+/// eye-space techniques) and the objects.
+pub trait Technique {
+    /// The name it is registered under, with its variant (`yuksel-gather`, `procedural-texture`).
+    fn name(&self) -> &str;
+
+    /// The height grid (cols, rows) this technique reads the water through for `scene`: the grid
+    /// its CPU twin samples, so that both see the same surface. A caller that evaluates the water
+    /// itself should write it at this size.
+    fn water_resolution(&self, scene: &Scene) -> (u32, u32);
+
+    /// Build the frame's textures, buffers and bind groups for `scene` and `water`. Called once, and
+    /// again when the water texture or a size changes.
+    fn configure(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: &WaterTextures,
+    ) -> Result<(), GpuError>;
+
+    /// Take this frame's sun, camera and parameters: uniform writes only while the sizes hold. A
+    /// change that needs new resources (a larger gather region, a new map size) configures again
+    /// with the water it was configured with, and says so in the log.
+    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError>;
+
+    /// Record the technique's passes into the caller's encoder (after the water's own passes).
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>);
+
+    /// The texture the passes end in (`None` before [`configure`](Self::configure)).
+    fn output(&self) -> Option<Output<'_>>;
+
+    /// GPU memory of the configured frame, bytes.
+    fn bytes(&self) -> u64;
+}
+
+/// How a registered technique is made: its pipelines for the device, its parameters from the
+/// technique tables of a scene file's `[caustics]` or the command line, keyed by technique
+/// (`{ yuksel = { n = 15 } }`; a missing table means the defaults).
+pub type Create = fn(&GpuContext, &toml::Table) -> Result<Box<dyn Technique>, GpuError>;
+
+/// One entry of the registry.
+pub struct Registered {
+    /// As the command line spells it: a variant's name is its own entry.
+    pub name: &'static str,
+    /// The key of its parameter table (`yuksel` for `yuksel-gather`).
+    pub params: &'static str,
+    pub create: Create,
+}
+
+/// Every GPU technique, in one place.
+pub const REGISTRY: &[Registered] = &[
+    Registered {
+        name: "yuksel",
+        params: "yuksel",
+        create: crate::yuksel::technique::create_render_targets,
+    },
+    Registered {
+        name: "yuksel-gather",
+        params: "yuksel",
+        create: crate::yuksel::technique::create_gather,
+    },
+];
+
+/// The registered technique `name` with the parameter tables `params` (keyed by technique, as in a
+/// scene file's `[caustics]`), its pipelines built for `ctx`.
+pub fn create(
+    ctx: &GpuContext,
+    name: &str,
+    params: &toml::Table,
+) -> Result<Box<dyn Technique>, GpuError> {
+    let Some(entry) = REGISTRY.iter().find(|r| r.name == name) else {
+        return Err(GpuError::BadOption(format!(
+            "no GPU technique `{name}` (registered: {})",
+            REGISTRY
+                .iter()
+                .map(|r| r.name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    };
+    (entry.create)(ctx, params)
+}

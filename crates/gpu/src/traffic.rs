@@ -1,0 +1,205 @@
+//! Counting what crosses the bus: every GPU resource this crate creates (textures, buffers, bind
+//! groups, pipelines, samplers, query sets), every byte it uploads through the queue, and every
+//! readback. A real-time frame should create nothing, upload a few uniforms and read nothing back;
+//! these counters are how the viewer (`caustics view --report-traffic`) and the tests show it.
+//!
+//! Every creation in `caustics-gpu` goes through the [`GpuContext`] methods below rather than
+//! `ctx.device` directly, so the counts are complete for this crate (an application's own
+//! resources, egui's, are not ours to count).
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use wgpu::util::DeviceExt;
+
+use crate::GpuContext;
+
+/// The running totals, shared by every clone of a context's handle.
+#[derive(Debug, Default)]
+pub struct Traffic {
+    textures: AtomicU64,
+    buffers: AtomicU64,
+    bind_groups: AtomicU64,
+    pipelines: AtomicU64,
+    samplers: AtomicU64,
+    query_sets: AtomicU64,
+    uploaded_bytes: AtomicU64,
+    readbacks: AtomicU64,
+}
+
+/// A snapshot of [`Traffic`]; subtract two with [`since`](Self::since) for what a span of frames
+/// did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TrafficCounts {
+    pub textures: u64,
+    pub buffers: u64,
+    pub bind_groups: u64,
+    pub pipelines: u64,
+    pub samplers: u64,
+    pub query_sets: u64,
+    pub uploaded_bytes: u64,
+    pub readbacks: u64,
+}
+
+impl TrafficCounts {
+    /// GPU resources created, of every kind.
+    pub fn created(&self) -> u64 {
+        self.textures
+            + self.buffers
+            + self.bind_groups
+            + self.pipelines
+            + self.samplers
+            + self.query_sets
+    }
+
+    /// What happened between `earlier` and `self`.
+    pub fn since(&self, earlier: &TrafficCounts) -> TrafficCounts {
+        TrafficCounts {
+            textures: self.textures - earlier.textures,
+            buffers: self.buffers - earlier.buffers,
+            bind_groups: self.bind_groups - earlier.bind_groups,
+            pipelines: self.pipelines - earlier.pipelines,
+            samplers: self.samplers - earlier.samplers,
+            query_sets: self.query_sets - earlier.query_sets,
+            uploaded_bytes: self.uploaded_bytes - earlier.uploaded_bytes,
+            readbacks: self.readbacks - earlier.readbacks,
+        }
+    }
+}
+
+impl Traffic {
+    fn add(counter: &AtomicU64, n: u64) {
+        counter.fetch_add(n, Ordering::Relaxed);
+    }
+
+    pub fn snapshot(&self) -> TrafficCounts {
+        let l = |c: &AtomicU64| c.load(Ordering::Relaxed);
+        TrafficCounts {
+            textures: l(&self.textures),
+            buffers: l(&self.buffers),
+            bind_groups: l(&self.bind_groups),
+            pipelines: l(&self.pipelines),
+            samplers: l(&self.samplers),
+            query_sets: l(&self.query_sets),
+            uploaded_bytes: l(&self.uploaded_bytes),
+            readbacks: l(&self.readbacks),
+        }
+    }
+
+    pub(crate) fn readback(&self) {
+        Self::add(&self.readbacks, 1);
+    }
+}
+
+/// The counted ways to create resources and upload data; same arguments as `wgpu::Device`'s and
+/// `wgpu::Queue`'s own.
+impl GpuContext {
+    /// Everything counted since the context was made.
+    pub fn traffic(&self) -> TrafficCounts {
+        self.traffic.snapshot()
+    }
+
+    pub fn create_buffer(&self, desc: &wgpu::BufferDescriptor) -> wgpu::Buffer {
+        Traffic::add(&self.traffic.buffers, 1);
+        self.device.create_buffer(desc)
+    }
+
+    /// A buffer created with its contents (counted as uploaded bytes).
+    pub fn create_buffer_init(&self, desc: &wgpu::util::BufferInitDescriptor) -> wgpu::Buffer {
+        Traffic::add(&self.traffic.buffers, 1);
+        Traffic::add(&self.traffic.uploaded_bytes, desc.contents.len() as u64);
+        self.device.create_buffer_init(desc)
+    }
+
+    pub fn create_texture(&self, desc: &wgpu::TextureDescriptor) -> wgpu::Texture {
+        Traffic::add(&self.traffic.textures, 1);
+        self.device.create_texture(desc)
+    }
+
+    /// A texture created with its texels (counted as uploaded bytes).
+    pub fn create_texture_with_data(
+        &self,
+        desc: &wgpu::TextureDescriptor,
+        order: wgpu::util::TextureDataOrder,
+        data: &[u8],
+    ) -> wgpu::Texture {
+        Traffic::add(&self.traffic.textures, 1);
+        Traffic::add(&self.traffic.uploaded_bytes, data.len() as u64);
+        self.device
+            .create_texture_with_data(&self.queue, desc, order, data)
+    }
+
+    pub fn create_bind_group(&self, desc: &wgpu::BindGroupDescriptor) -> wgpu::BindGroup {
+        Traffic::add(&self.traffic.bind_groups, 1);
+        self.device.create_bind_group(desc)
+    }
+
+    pub fn create_compute_pipeline(
+        &self,
+        desc: &wgpu::ComputePipelineDescriptor,
+    ) -> wgpu::ComputePipeline {
+        Traffic::add(&self.traffic.pipelines, 1);
+        self.device.create_compute_pipeline(desc)
+    }
+
+    pub fn create_render_pipeline(
+        &self,
+        desc: &wgpu::RenderPipelineDescriptor,
+    ) -> wgpu::RenderPipeline {
+        Traffic::add(&self.traffic.pipelines, 1);
+        self.device.create_render_pipeline(desc)
+    }
+
+    pub fn create_sampler(&self, desc: &wgpu::SamplerDescriptor) -> wgpu::Sampler {
+        Traffic::add(&self.traffic.samplers, 1);
+        self.device.create_sampler(desc)
+    }
+
+    pub fn create_query_set(&self, desc: &wgpu::QuerySetDescriptor) -> wgpu::QuerySet {
+        Traffic::add(&self.traffic.query_sets, 1);
+        self.device.create_query_set(desc)
+    }
+
+    pub fn write_buffer(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
+        Traffic::add(&self.traffic.uploaded_bytes, data.len() as u64);
+        self.queue.write_buffer(buffer, offset, data);
+    }
+
+    pub fn write_texture(
+        &self,
+        texture: wgpu::TexelCopyTextureInfo,
+        data: &[u8],
+        layout: wgpu::TexelCopyBufferLayout,
+        size: wgpu::Extent3d,
+    ) {
+        Traffic::add(&self.traffic.uploaded_bytes, data.len() as u64);
+        self.queue.write_texture(texture, data, layout, size);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_subtract_per_kind() {
+        let a = TrafficCounts {
+            textures: 2,
+            buffers: 3,
+            uploaded_bytes: 100,
+            readbacks: 1,
+            ..Default::default()
+        };
+        let b = TrafficCounts {
+            textures: 5,
+            buffers: 3,
+            bind_groups: 4,
+            uploaded_bytes: 164,
+            readbacks: 1,
+            ..Default::default()
+        };
+        let d = b.since(&a);
+        assert_eq!(d.created(), 7);
+        assert_eq!(d.uploaded_bytes, 64);
+        assert_eq!(d.readbacks, 0);
+    }
+}

@@ -1,0 +1,138 @@
+//! Paper 1 behind [`Technique`]: both variants, the caller's heights, sun and N changes as uniform
+//! writes.
+
+use caustics_core::scene::Scene;
+use caustics_core::techniques::yuksel::{YukselParams, YukselSetup};
+
+use super::{Frame, Variant, Yuksel};
+use crate::technique::{Output, Technique, WaterTextures};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+pub struct YukselTechnique {
+    name: &'static str,
+    pipelines: Yuksel,
+    params: YukselParams,
+    variant: Variant,
+    frame: Option<(Frame, WaterTextures)>,
+}
+
+pub fn create_render_targets(
+    ctx: &GpuContext,
+    params: &toml::Table,
+) -> Result<Box<dyn Technique>, GpuError> {
+    YukselTechnique::new(ctx, params, Variant::RenderTargets).map(|t| Box::new(t) as _)
+}
+
+pub fn create_gather(
+    ctx: &GpuContext,
+    params: &toml::Table,
+) -> Result<Box<dyn Technique>, GpuError> {
+    YukselTechnique::new(ctx, params, Variant::Gather).map(|t| Box::new(t) as _)
+}
+
+impl YukselTechnique {
+    pub fn new(ctx: &GpuContext, params: &toml::Table, variant: Variant) -> Result<Self, GpuError> {
+        Ok(YukselTechnique {
+            name: match variant {
+                Variant::RenderTargets => "yuksel",
+                Variant::Gather => "yuksel-gather",
+            },
+            pipelines: Yuksel::new(ctx)?,
+            params: YukselParams::from_table(params)?,
+            variant,
+            frame: None,
+        })
+    }
+
+    fn setup(&self, scene: &Scene) -> Result<YukselSetup, GpuError> {
+        if scene.floor.terrain.is_some() {
+            return Err(GpuError::BadOption(
+                "technique `yuksel` computes caustics on a flat floor (paper 1, §3); this scene has a terrain".into(),
+            ));
+        }
+        let w = water(scene, "yuksel")?;
+        Ok(YukselSetup::new(
+            &self.params,
+            scene.caustics.width as usize,
+            scene.caustics.height as usize,
+            w.size,
+            w.depth,
+            w.ior,
+            w.absorption,
+            w.wrap,
+            scene.light.direction,
+        )?)
+    }
+}
+
+/// The scene's water, or an error naming the technique that needs it.
+pub(crate) fn water<'s>(
+    scene: &'s Scene,
+    technique: &str,
+) -> Result<&'s caustics_core::scene::Water, GpuError> {
+    scene.water.as_ref().ok_or_else(|| {
+        GpuError::BadOption(format!(
+            "scene `{}` has no water: technique `{technique}` computes caustics from a water surface",
+            scene.name
+        ))
+    })
+}
+
+impl Technique for YukselTechnique {
+    fn name(&self) -> &str {
+        self.name
+    }
+
+    /// The map's own lattice, as the Runner samples the surface for the CPU twin.
+    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
+        (scene.caustics.width, scene.caustics.height)
+    }
+
+    fn configure(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: &WaterTextures,
+    ) -> Result<(), GpuError> {
+        let setup = self.setup(scene)?;
+        self.frame = None;
+        let frame = self
+            .pipelines
+            .frame_with_water(ctx, &setup, water, self.variant)?;
+        self.frame = Some((frame, water.clone()));
+        Ok(())
+    }
+
+    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+        let setup = self.setup(scene)?;
+        let Some((frame, water)) = &mut self.frame else {
+            return Err(GpuError::BadOption(
+                "yuksel: update before configure".into(),
+            ));
+        };
+        if *frame.setup() == setup {
+            return Ok(());
+        }
+        if frame.fits(&setup) {
+            frame.set_setup(ctx, &setup);
+            return Ok(());
+        }
+        tracing::debug!("yuksel: new sizes, configuring again");
+        let water = water.clone();
+        self.configure(ctx, scene, &water)
+    }
+
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
+        if let Some((frame, _)) = &self.frame {
+            self.pipelines.encode(frame, encoder, timer);
+        }
+    }
+
+    fn output(&self) -> Option<Output<'_>> {
+        self.frame.as_ref().map(|(f, _)| Output::Floor(&f.map))
+    }
+
+    fn bytes(&self) -> u64 {
+        self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
+    }
+}
