@@ -1,0 +1,133 @@
+//! The `Technique` interface: every registered technique through it against its CPU twin, and the
+//! steady state of a real-time frame (nothing created, nothing read back, a few uniform bytes up).
+
+use caustics_core::grid::Grid;
+use caustics_core::scene::Scene;
+use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
+use caustics_core::water::sample_grid;
+use caustics_gpu::context::test_context;
+use caustics_gpu::technique::{self, REGISTRY};
+use caustics_gpu::{GpuContext, Output, WaterTextures};
+use glam::DVec3;
+
+/// The pool with a 64² map, its surface sampled at `resolution`.
+fn pool(resolution: (u32, u32)) -> (Scene, Grid) {
+    let mut scene = Scene::builtin("pool").unwrap();
+    scene.caustics.width = 64;
+    scene.caustics.height = 64;
+    let water = scene.water.as_ref().unwrap();
+    let surface = water.surface_at(scene.time).unwrap();
+    let grid = sample_grid(
+        surface.as_ref(),
+        resolution.0 as usize,
+        resolution.1 as usize,
+        water.size,
+    );
+    (scene, grid)
+}
+
+fn read_floor(ctx: &GpuContext, out: Output) -> Vec<[f32; 4]> {
+    match out {
+        Output::Floor(t) => ctx.read_texture(t).unwrap(),
+        Output::EyeSpace(_) => panic!("yuksel makes a floor map"),
+    }
+}
+
+#[test]
+fn the_registry_names_are_unique_and_unknown_names_are_refused() {
+    for (k, r) in REGISTRY.iter().enumerate() {
+        assert!(
+            REGISTRY[..k].iter().all(|o| o.name != r.name),
+            "{} twice",
+            r.name
+        );
+    }
+    let Some(ctx) = test_context() else { return };
+    let err = technique::create(&ctx, "no-such", &toml::Table::new())
+        .err()
+        .expect("refused");
+    assert!(err.to_string().contains("no-such") && err.to_string().contains("yuksel"));
+}
+
+#[test]
+fn yuksel_through_the_interface_matches_its_cpu_twin() {
+    let Some(ctx) = test_context() else { return };
+    for name in ["yuksel", "yuksel-gather"] {
+        let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
+        let (scene, grid) = pool((64, 64));
+        assert_eq!(t.water_resolution(&scene), (64, 64));
+        let texture = ctx.upload_grid("heights", &grid).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&texture))
+            .unwrap();
+        t.update(&ctx, &scene).unwrap();
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        t.encode(&mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+        let gpu = read_floor(&ctx, t.output().unwrap());
+        let w = scene.water.as_ref().unwrap();
+        let setup = YukselSetup::new(
+            &YukselParams::default(),
+            64,
+            64,
+            w.size,
+            w.depth,
+            w.ior,
+            w.absorption,
+            w.wrap,
+            scene.light.direction,
+        )
+        .unwrap();
+        let cpu = yuksel::caustics(&setup, &grid);
+        let worst = gpu
+            .iter()
+            .zip(&cpu.texels)
+            .flat_map(|(g, c)| (0..3).map(move |k| (g[k] - c[k]).abs()))
+            .fold(0.0f32, f32::max);
+        // Measured on lavapipe: 9.4e-6 for both variants (f32 against f64, texels near 1).
+        assert!(worst < 9.4e-5, "{name}: worst texel difference {worst}");
+    }
+}
+
+#[test]
+fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
+    let Some(ctx) = test_context() else { return };
+    for name in ["yuksel", "yuksel-gather"] {
+        let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
+        let (mut scene, grid) = pool((64, 64));
+        let texture = ctx.upload_grid("heights", &grid).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&texture))
+            .unwrap();
+        let frame = |t: &mut Box<dyn caustics_gpu::Technique>, scene: &Scene| {
+            t.update(&ctx, scene).unwrap();
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            t.encode(&mut encoder, None);
+            ctx.queue.submit([encoder.finish()]);
+        };
+        frame(&mut t, &scene);
+        let before = ctx.traffic();
+        let frames = 10;
+        for k in 0..frames {
+            // The sun moves a little every frame: uniform writes, the region keeps its size.
+            scene.light.direction = DVec3::new(0.2 + 0.01 * k as f64, 0.1, -1.0).normalize();
+            frame(&mut t, &scene);
+        }
+        ctx.wait().unwrap();
+        let d = ctx.traffic().since(&before);
+        assert_eq!(d.created(), 0, "{name}: {d:?}");
+        assert_eq!(d.readbacks, 0, "{name}: {d:?}");
+        // One 96-byte uniform per pass-1 draw and pass 2's: 96 (gather) or 192 bytes a frame.
+        assert!(
+            d.uploaded_bytes <= 4096 * frames,
+            "{name}: {} bytes in {frames} frames",
+            d.uploaded_bytes
+        );
+        assert!(
+            d.uploaded_bytes > 0,
+            "{name}: the sun's moves never reached the GPU"
+        );
+        // A still frame uploads nothing at all.
+        let before = ctx.traffic();
+        frame(&mut t, &scene);
+        assert_eq!(ctx.traffic().since(&before).uploaded_bytes, 0, "{name}");
+    }
+}
