@@ -1,5 +1,15 @@
 //! Per-pass GPU time from timestamp queries written at the start and end of each pass (needs only
 //! `TIMESTAMP_QUERY`). Where the adapter lacks it the timer records nothing and says so.
+//!
+//! Two ways to read them: [`GpuTimer::read`] waits for the GPU (benchmarks, tests: one run, its own
+//! times), and the frame loop's [`GpuTimer::resolve_frame`] + [`GpuTimer::frame_submitted`] +
+//! [`GpuTimer::latest`], which copy each frame's stamps into a buffer of the timer's own and pick
+//! them up whenever the GPU has finished with them, a frame or two late, without stalling the queue
+//! or creating anything. Neither counts as a readback of the frame's data in
+//! [`crate::traffic`]: only [`GpuTimer::read`] waits, and it says so in its name.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::{GpuContext, GpuError};
 
@@ -9,6 +19,20 @@ pub struct GpuTimer {
     capacity: u32,
     labels: Vec<String>,
     period_ns: f64,
+    /// The frame loop's mappable copy of the stamps, and its state.
+    staging: Option<wgpu::Buffer>,
+    staged: Staged,
+    latest: Vec<PassTime>,
+}
+
+/// Where the frame loop's copy of the stamps is.
+enum Staged {
+    /// Free: the next `resolve_frame` may copy into it.
+    Idle,
+    /// A copy of these passes was recorded; `frame_submitted` maps it.
+    Recorded(Vec<String>),
+    /// Mapping; the flag turns true when the GPU is done.
+    Mapping(Vec<String>, Arc<AtomicBool>),
 }
 
 /// One pass's GPU time.
@@ -39,13 +63,79 @@ impl GpuTimer {
         } else {
             (None, None)
         };
+        let staging = query_set.as_ref().map(|_| {
+            ctx.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamp staging"),
+                size: capacity as u64 * 8,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            })
+        });
         GpuTimer {
             query_set,
             resolve,
             capacity,
             labels: Vec::new(),
             period_ns: ctx.queue.get_timestamp_period() as f64,
+            staging,
+            staged: Staged::Idle,
+            latest: Vec::new(),
         }
+    }
+
+    /// The frame loop's resolve: record the copy of this frame's stamps into the timer's staging
+    /// buffer if the previous copy has been picked up (else this frame goes untimed), and forget
+    /// the labels either way, ready for the next frame.
+    pub fn resolve_frame(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        let labels = std::mem::take(&mut self.labels);
+        if let (Some(qs), Some(buf), Some(staging), Staged::Idle) =
+            (&self.query_set, &self.resolve, &self.staging, &self.staged)
+            && !labels.is_empty()
+        {
+            let n = labels.len() as u32 * 2;
+            encoder.resolve_query_set(qs, 0..n, buf, 0);
+            encoder.copy_buffer_to_buffer(buf, 0, staging, 0, n as u64 * 8);
+            self.staged = Staged::Recorded(labels);
+        }
+    }
+
+    /// After the submission holding [`resolve_frame`](Self::resolve_frame)'s copy: start mapping it.
+    pub fn frame_submitted(&mut self) {
+        let Some(staging) = &self.staging else { return };
+        if let Staged::Recorded(labels) = std::mem::replace(&mut self.staged, Staged::Idle) {
+            let done = Arc::new(AtomicBool::new(false));
+            let flag = done.clone();
+            staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+                flag.store(r.is_ok(), Ordering::Release);
+            });
+            self.staged = Staged::Mapping(labels, done);
+        }
+    }
+
+    /// The pass times of the latest frame the GPU has finished, without waiting for it.
+    pub fn latest(&mut self, ctx: &GpuContext) -> &[PassTime] {
+        let _ = ctx.device.poll(wgpu::PollType::Poll);
+        if let (Some(staging), Staged::Mapping(labels, done)) = (&self.staging, &self.staged)
+            && done.load(Ordering::Acquire)
+        {
+            if let Ok(view) = staging.slice(..).get_mapped_range() {
+                let stamps: &[u64] = bytemuck::cast_slice(&view);
+                self.latest = self.times(labels.iter().cloned(), stamps);
+            }
+            staging.unmap();
+            self.staged = Staged::Idle;
+        }
+        &self.latest
+    }
+
+    fn times(&self, labels: impl Iterator<Item = String>, stamps: &[u64]) -> Vec<PassTime> {
+        labels
+            .enumerate()
+            .map(|(k, label)| PassTime {
+                label,
+                ms: stamps[2 * k + 1].saturating_sub(stamps[2 * k]) as f64 * self.period_ns * 1e-6,
+            })
+            .collect()
     }
 
     pub fn enabled(&self) -> bool {
@@ -100,15 +190,7 @@ impl GpuTimer {
             return Ok(Vec::new());
         };
         let stamps: Vec<u64> = ctx.read_buffer(buf)?;
-        let times = self
-            .labels
-            .drain(..)
-            .enumerate()
-            .map(|(k, label)| PassTime {
-                label,
-                ms: stamps[2 * k + 1].saturating_sub(stamps[2 * k]) as f64 * self.period_ns * 1e-6,
-            })
-            .collect();
-        Ok(times)
+        let labels = std::mem::take(&mut self.labels);
+        Ok(self.times(labels.into_iter(), &stamps))
     }
 }

@@ -72,6 +72,19 @@ impl GpuContext {
         })
     }
 
+    /// Read a technique's output texture (`Rgba32Float`, or `Rgba16Float` where the device cannot
+    /// blend 32-bit floats) as `[f32; 4]` texels: for tests, `--raw` and the viewer's map window.
+    pub fn read_rgba_f32(&self, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>, GpuError> {
+        Ok(match texture.format() {
+            wgpu::TextureFormat::Rgba16Float => self
+                .read_texture::<[u16; 4]>(texture)?
+                .into_iter()
+                .map(|t| t.map(crate::caustic_triangles::f16_to_f32))
+                .collect(),
+            _ => self.read_texture(texture)?,
+        })
+    }
+
     fn map_and_copy<R>(
         &self,
         staging: &wgpu::Buffer,
