@@ -1,5 +1,6 @@
 //! GPU-side descriptions of the water surfaces, laid out as the structs of `shaders/water.wgsl`.
 
+pub mod field;
 pub mod ocean;
 pub mod ripple;
 

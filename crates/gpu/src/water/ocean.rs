@@ -250,8 +250,15 @@ impl GpuOcean {
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         t: f32,
-        mut timer: Option<&mut GpuTimer>,
+        timer: Option<&mut GpuTimer>,
     ) {
+        self.set_time(ctx, t);
+        self.encode(encoder, timer);
+    }
+
+    /// The first half of [`update`](Self::update): write the time the next submitted
+    /// [`encode`](Self::encode) evaluates the surface at (16 bytes of uniform).
+    pub fn set_time(&self, ctx: &GpuContext, t: f32) {
         let params = SpectrumParams {
             n: self.n,
             time: t,
@@ -259,6 +266,11 @@ impl GpuOcean {
             _pad: 0,
         };
         ctx.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+    }
+
+    /// The second half of [`update`](Self::update): record the four passes, for a caller that
+    /// writes the time apart from recording (per frame: [`set_time`](Self::set_time), then this).
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
         let (n, half) = (self.n, self.n / 2);
         {
             let mut pass = begin_compute(encoder, &mut timer, "ocean spectrum");

@@ -4,11 +4,18 @@
 //! `previous` and `current`, as on the CPU; a step overwrites `previous` with the next heights and
 //! the pair swaps. Both passes repeat the CPU's `f32` arithmetic, so the two agree to rounding.
 
+use std::collections::VecDeque;
+
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
-use crate::pass::{bind_group, compute_pipeline};
-use crate::{GpuContext, GpuError, shaders};
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::{GpuContext, GpuError, GpuTimer, shaders};
+
+/// Most queued drops one [`GpuRipples::encode`] records: each needs its own uniform slot, because
+/// every `write_buffer` lands before the submission and a shared slot would hold only the last
+/// drop. Drops beyond these wait for the next encode.
+pub const DROPS_PER_ENCODE: usize = 16;
 
 /// Mirrors `RippleStep` in `shaders/ripple_step.wgsl`.
 #[repr(C)]
@@ -55,6 +62,15 @@ pub struct GpuRipples {
     drop_pipeline: wgpu::ComputePipeline,
     drop_group: wgpu::BindGroup,
     drop_params: wgpu::Buffer,
+    /// [`DROPS_PER_ENCODE`] uniform slots for the drops [`encode`](Self::encode) records, one
+    /// bind group per slot.
+    queued_params: wgpu::Buffer,
+    queued_groups: Vec<wgpu::BindGroup>,
+    queued_stride: u64,
+    /// The cell box of each slot written since the last encode.
+    queued: Vec<[u32; 2]>,
+    /// Drops queued while every slot was taken, in order.
+    waiting: VecDeque<RippleDrop>,
 }
 
 impl GpuRipples {
@@ -69,7 +85,6 @@ impl GpuRipples {
         let side = u32::try_from(params.resolution).unwrap_or(u32::MAX);
         ctx.check_texture_size("ripple height texture", side, side)?;
         let cpu = Ripples::new(params, size, edge)?;
-        let device = &ctx.device;
         let n = side;
         let texture = |label| {
             ctx.create_texture(&wgpu::TextureDescriptor {
@@ -101,14 +116,11 @@ impl GpuRipples {
             wrap: (edge == Edge::Wrap) as u32,
             _pad: 0,
         };
-        let step_params = wgpu::util::DeviceExt::create_buffer_init(
-            device,
-            &wgpu::util::BufferInitDescriptor {
-                label: Some("ripple step params"),
-                contents: bytemuck::bytes_of(&step),
-                usage: wgpu::BufferUsages::UNIFORM,
-            },
-        );
+        let step_params = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ripple step params"),
+            contents: bytemuck::bytes_of(&step),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
         let step_pipeline = compute_pipeline(ctx, &shaders::RIPPLE_STEP);
         let step_group = |c: usize| {
             bind_group(
@@ -141,6 +153,33 @@ impl GpuRipples {
                 wgpu::BindingResource::TextureView(&views[1]),
             ],
         );
+        let drop_bytes = std::mem::size_of::<RippleDrop>() as u64;
+        let queued_stride =
+            drop_bytes.next_multiple_of(ctx.limits().min_uniform_buffer_offset_alignment as u64);
+        let queued_params = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ripple queued drops"),
+            size: queued_stride * DROPS_PER_ENCODE as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let queued_groups = (0..DROPS_PER_ENCODE as u64)
+            .map(|slot| {
+                bind_group(
+                    ctx,
+                    "ripple queued drop",
+                    &drop_pipeline.get_bind_group_layout(0),
+                    &[
+                        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: &queued_params,
+                            offset: slot * queued_stride,
+                            size: wgpu::BufferSize::new(drop_bytes),
+                        }),
+                        wgpu::BindingResource::TextureView(&views[0]),
+                        wgpu::BindingResource::TextureView(&views[1]),
+                    ],
+                )
+            })
+            .collect();
         ctx.check()?;
         Ok(GpuRipples {
             n,
@@ -153,15 +192,19 @@ impl GpuRipples {
             drop_pipeline,
             drop_group,
             drop_params,
+            queued_params,
+            queued_groups,
+            queued_stride,
+            queued: Vec::with_capacity(DROPS_PER_ENCODE),
+            waiting: VecDeque::new(),
         })
     }
 
-    /// Add a drop to the surface at rest, into both textures, as [`Ripples::drop`] does; submitted
-    /// at once.
-    pub fn drop(&mut self, ctx: &GpuContext, d: &Drop) {
+    /// The drop pass's parameters for `d`: the box of cells the bump can reach, as
+    /// [`Ripples::drop`] spans them; `None` when it reaches no cell.
+    fn drop_params(&self, d: &Drop) -> Option<RippleDrop> {
         let n = self.n as i64;
         let dx = self.size / n as f64;
-        // The cells whose centre can lie within the radius, per axis, as `Ripples::drop` spans them.
         let span = |c: f64| -> (i64, i64) {
             let lo = ((c - d.radius) / dx - 0.5).floor() as i64;
             let hi = ((c + d.radius) / dx - 0.5).ceil() as i64;
@@ -173,9 +216,9 @@ impl GpuRipples {
         };
         let ((x0, nx), (y0, ny)) = (span(d.position[0]), span(d.position[1]));
         if nx <= 0 || ny <= 0 {
-            return;
+            return None;
         }
-        let params = RippleDrop {
+        Some(RippleDrop {
             centre: [d.position[0] as f32, d.position[1] as f32],
             radius: d.radius as f32,
             strength: d.strength as f32,
@@ -185,6 +228,14 @@ impl GpuRipples {
             size: self.size as f32,
             wrap: (self.edge == Edge::Wrap) as u32,
             _pad: 0,
+        })
+    }
+
+    /// Add a drop to the surface at rest, into both textures, as [`Ripples::drop`] does; submitted
+    /// at once.
+    pub fn drop(&mut self, ctx: &GpuContext, d: &Drop) {
+        let Some(params) = self.drop_params(d) else {
+            return;
         };
         ctx.write_buffer(&self.drop_params, 0, bytemuck::bytes_of(&params));
         let mut encoder = ctx
@@ -215,6 +266,58 @@ impl GpuRipples {
             label: Some("ripple step"),
             timestamp_writes: None,
         });
+        self.record_steps(&mut pass, steps);
+    }
+
+    /// Queue a drop for the next [`encode`](Self::encode), which records it before its steps (the
+    /// drop lands on the surface as it is then, as [`Ripples::drop`] between steps does). Its
+    /// parameters are written now; past [`DROPS_PER_ENCODE`] drops it waits for a slot (see
+    /// [`place_waiting_drops`](Self::place_waiting_drops)).
+    pub fn queue_drop(&mut self, ctx: &GpuContext, d: &Drop) {
+        if let Some(params) = self.drop_params(d) {
+            self.waiting.push_back(params);
+            self.place_waiting_drops(ctx);
+        }
+    }
+
+    /// Write waiting drops into the slots the last encode freed (call once a frame before
+    /// encoding; [`queue_drop`](Self::queue_drop) does it too).
+    pub fn place_waiting_drops(&mut self, ctx: &GpuContext) {
+        while self.queued.len() < DROPS_PER_ENCODE {
+            let Some(params) = self.waiting.pop_front() else {
+                break;
+            };
+            let offset = self.queued.len() as u64 * self.queued_stride;
+            ctx.write_buffer(&self.queued_params, offset, bytemuck::bytes_of(&params));
+            self.queued.push(params.count);
+        }
+    }
+
+    /// Record the queued drops (one pass, `ripple drops`), then `steps` time steps (one pass,
+    /// `ripple step`), each pass timed when a `timer` is given and recorded only when it has
+    /// work. As with [`step`](Self::step), [`current_texture`](Self::current_texture) names the
+    /// result's texture once the encoder has been submitted.
+    pub fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        steps: u32,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        if !self.queued.is_empty() {
+            let mut pass = begin_compute(encoder, &mut timer, "ripple drops");
+            pass.set_pipeline(&self.drop_pipeline);
+            for (group, count) in self.queued_groups.iter().zip(self.queued.drain(..)) {
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(count[0].div_ceil(8), count[1].div_ceil(8), 1);
+            }
+        }
+        if steps > 0 {
+            let mut pass = begin_compute(encoder, &mut timer, "ripple step");
+            self.record_steps(&mut pass, steps);
+        }
+    }
+
+    fn record_steps(&mut self, pass: &mut wgpu::ComputePass, steps: u32) {
         pass.set_pipeline(&self.step_pipeline);
         let groups = self.n.div_ceil(8);
         for _ in 0..steps {
@@ -222,6 +325,22 @@ impl GpuRipples {
             pass.dispatch_workgroups(groups, groups, 1);
             self.current = 1 - self.current;
         }
+    }
+
+    /// Both state textures (`R32Float`, `N × N`, storage and sampled), for passes that read
+    /// whichever is current or reset them.
+    pub fn textures(&self) -> &[wgpu::Texture; 2] {
+        &self.textures
+    }
+
+    /// Which of [`textures`](Self::textures) holds the latest step.
+    pub fn current_index(&self) -> usize {
+        self.current
+    }
+
+    /// Grid cells per side.
+    pub fn resolution(&self) -> u32 {
+        self.n
     }
 
     /// The heights at the latest step: `R32Float`, `N × N`, texel `(j, i)` at grid sample `(i, j)`.

@@ -1,0 +1,16 @@
+// Ripples: both state textures back to the surface at rest, so that a clocked simulation whose time
+// runs backwards can start again from its initial drops (crates/gpu/src/water/field.rs). Without
+// `Features::CLEAR_TEXTURE`, a pass is the portable way to zero a texture.
+
+@group(0) @binding(0) var a: texture_storage_2d<r32float, write>;
+@group(0) @binding(1) var b: texture_storage_2d<r32float, write>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let dims = textureDimensions(a);
+    if id.x >= dims.x || id.y >= dims.y {
+        return;
+    }
+    textureStore(a, id.xy, vec4<f32>(0.0));
+    textureStore(b, id.xy, vec4<f32>(0.0));
+}
