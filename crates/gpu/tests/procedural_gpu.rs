@@ -567,7 +567,8 @@ fn frames_create_nothing_and_upload_at_most_a_uniform() {
     }
 }
 
-/// A terrain floor and a scene without water are refused with errors naming the problem.
+/// A terrain floor and a scene without water are refused with errors naming the problem; `procedural`
+/// runs the variant its table names, a variant's own name refuses a table naming another.
 #[test]
 fn the_interface_refuses_a_terrain_and_no_water() {
     let Some(ctx) = test_context() else { return };
@@ -584,10 +585,12 @@ fn the_interface_refuses_a_terrain_and_no_water() {
     scene.water = None;
     let err = t.configure(&ctx, &scene, &water).unwrap_err().to_string();
     assert!(err.contains("no water"), "{err}");
-    let wrong: toml::Table = "procedural = { variant = \"vertex\" }"
+    let vertex: toml::Table = "procedural = { variant = \"vertex\" }"
         .parse()
         .expect("toml");
-    let err = technique::create(&ctx, "procedural-texture", &wrong)
+    let named = technique::create(&ctx, "procedural", &vertex).expect("registered");
+    assert_eq!(named.name(), "procedural-vertex");
+    let err = technique::create(&ctx, "procedural-texture", &vertex)
         .err()
         .expect("refused")
         .to_string();
