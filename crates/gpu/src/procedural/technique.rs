@@ -117,7 +117,7 @@ impl ProceduralTechnique {
         })
     }
 
-    /// The setup for `key` from `params` (as `caustics_core`'s Runner builds it for a water job).
+    /// The setup for `key` from `params`, as the application's Runner builds it for a water job.
     fn setup(
         params: &ProceduralCausticsParams,
         key: &SceneKey,
