@@ -123,6 +123,31 @@ pub const REGISTRY: &[Registered] = &[
         params: "yuksel",
         create: crate::yuksel::technique::create_gather,
     },
+    Registered {
+        name: "procedural",
+        params: "procedural",
+        create: crate::procedural::technique::create,
+    },
+    Registered {
+        name: "procedural-vertex",
+        params: "procedural",
+        create: crate::procedural::technique::create_vertex,
+    },
+    Registered {
+        name: "procedural-screen",
+        params: "procedural",
+        create: crate::procedural::technique::create_screen,
+    },
+    Registered {
+        name: "procedural-texture",
+        params: "procedural",
+        create: crate::procedural::technique::create_texture,
+    },
+    Registered {
+        name: "volumes",
+        params: "volumes",
+        create: crate::volumes::technique::create,
+    },
 ];
 
 /// The registered technique `name` with the parameter tables `params` (keyed by technique, as in a

@@ -23,7 +23,9 @@ use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Varia
 use crate::pass::bind_group;
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::water::GpuProceduralWave;
-use crate::{GpuContext, GpuError, GpuTimer};
+use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+
+pub mod technique;
 
 const COMMON: &str = include_str!("../shaders/procedural/common.wgsl");
 
@@ -83,9 +85,15 @@ fn v4(v: glam::DVec3) -> [f32; 4] {
 
 impl ProceduralUniform {
     pub fn new(s: &ProceduralSetup, water: &SurfaceInput) -> Self {
-        let (source, wave) = match water {
-            SurfaceInput::Wave(w) => (1, GpuProceduralWave::from(*w)),
-            SurfaceInput::Grid(_) => (0, GpuProceduralWave::default()),
+        Self::with_wave(s, wave_of(water))
+    }
+
+    /// The uniform for the paper's wave evaluated in the shader (`Some`), or for the bound height
+    /// grid (`None`).
+    pub fn with_wave(s: &ProceduralSetup, wave: Option<GpuProceduralWave>) -> Self {
+        let (source, wave) = match wave {
+            Some(w) => (1, w),
+            None => (0, GpuProceduralWave::default()),
         };
         ProceduralUniform {
             sun_x: v4(s.sun_frame[0]),
@@ -110,6 +118,13 @@ impl ProceduralUniform {
             wrap: s.wrap as u32,
             _pad: [0; 2],
         }
+    }
+}
+
+fn wave_of(water: &SurfaceInput) -> Option<GpuProceduralWave> {
+    match water {
+        SurfaceInput::Wave(w) => Some(GpuProceduralWave::from(*w)),
+        SurfaceInput::Grid(_) => None,
     }
 }
 
@@ -167,7 +182,11 @@ fn render_pipeline(
 /// and encoded every time the water moves ([`Frame::update_water`]).
 pub struct Frame {
     uniform: wgpu::Buffer,
-    heights: wgpu::Texture,
+    /// The heights it uploaded itself ([`ProceduralCaustics::frame`]); `None` when it reads the
+    /// caller's ([`ProceduralCaustics::frame_with_water`]).
+    heights: Option<wgpu::Texture>,
+    /// The paper's wave when the shader evaluates it, `None` when it reads the height grid.
+    wave: Option<GpuProceduralWave>,
     pub map: wgpu::Texture,
     map_view: wgpu::TextureView,
     setup: ProceduralSetup,
@@ -207,25 +226,67 @@ impl Frame {
 
     /// Replace the water for the next encode: a height grid of the frame's grid size, or the wave
     /// function at another time (the frame must have been made with the same kind of input).
-    pub fn update_water(&self, ctx: &GpuContext, water: &SurfaceInput) -> Result<(), GpuError> {
+    pub fn update_water(&mut self, ctx: &GpuContext, water: &SurfaceInput) -> Result<(), GpuError> {
         if let SurfaceInput::Grid(g) = water {
-            if (g.cols as u32, g.rows as u32) != (self.heights.width(), self.heights.height()) {
+            let Some(heights) = &self.heights else {
+                return Err(GpuError::BadOption(
+                    "procedural: this frame reads the caller's heights texture; write that instead"
+                        .into(),
+                ));
+            };
+            if (g.cols as u32, g.rows as u32) != (heights.width(), heights.height()) {
                 return Err(GpuError::BadOption(format!(
                     "procedural: the frame holds a {} x {} height grid, not {} x {}",
-                    self.heights.width(),
-                    self.heights.height(),
+                    heights.width(),
+                    heights.height(),
                     g.cols,
                     g.rows
                 )));
             }
-            ctx.write_grid(&self.heights, g);
+            ctx.write_grid(heights, g);
         }
+        self.wave = wave_of(water);
+        self.write_uniform(ctx);
+        Ok(())
+    }
+
+    /// Whether `setup` fits this frame's textures, bind groups and sampler (the same variant, map,
+    /// mesh, target, filtering, edges and light map), so that [`set_setup`](Self::set_setup) can
+    /// take it.
+    pub fn fits(&self, setup: &ProceduralSetup) -> bool {
+        let s = &self.setup;
+        (
+            setup.variant,
+            setup.width,
+            setup.height,
+            setup.mesh,
+            setup.target,
+            setup.anisotropy,
+            setup.wrap,
+        ) == (
+            s.variant,
+            s.width,
+            s.height,
+            s.mesh,
+            s.target,
+            s.anisotropy,
+            s.wrap,
+        ) && setup.light == s.light
+    }
+
+    /// Take a new sun, depth or absorption (a setup that [`fits`](Self::fits)): one uniform write.
+    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &ProceduralSetup) {
+        debug_assert!(self.fits(setup));
+        self.setup = setup.clone();
+        self.write_uniform(ctx);
+    }
+
+    fn write_uniform(&self, ctx: &GpuContext) {
         ctx.write_buffer(
             &self.uniform,
             0,
-            bytemuck::bytes_of(&ProceduralUniform::new(&self.setup, water)),
+            bytemuck::bytes_of(&ProceduralUniform::with_wave(&self.setup, self.wave)),
         );
-        Ok(())
     }
 }
 
@@ -275,13 +336,50 @@ impl ProceduralCaustics {
         setup: &ProceduralSetup,
         water: &SurfaceInput,
     ) -> Result<Frame, GpuError> {
+        let heights = match water {
+            SurfaceInput::Grid(g) => ctx.upload_grid("procedural height field", g)?,
+            // The wave is evaluated in the shader; the binding still needs a texture.
+            SurfaceInput::Wave(_) => {
+                ctx.upload_grid("procedural (unused heights)", &Grid::new(1, 1))?
+            }
+        };
+        let mut frame = self.build(
+            ctx,
+            setup,
+            wave_of(water),
+            &heights.create_view(&Default::default()),
+        )?;
+        frame.bytes += (heights.width() * heights.height()) as u64 * 4;
+        frame.heights = Some(heights);
+        Ok(frame)
+    }
+
+    /// Allocate a frame for the setup's variant that reads the caller's heights (any grid size:
+    /// the passes sample it bicubically, as the CPU twin samples its grid), and upload the light
+    /// map.
+    pub fn frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        setup: &ProceduralSetup,
+        water: &WaterTextures,
+    ) -> Result<Frame, GpuError> {
+        self.build(ctx, setup, None, &water.heights)
+    }
+
+    fn build(
+        &self,
+        ctx: &GpuContext,
+        setup: &ProceduralSetup,
+        wave: Option<GpuProceduralWave>,
+        heights_view: &wgpu::TextureView,
+    ) -> Result<Frame, GpuError> {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("procedural caustics map", w, h)?;
         let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("procedural uniform"),
-            contents: bytemuck::bytes_of(&ProceduralUniform::new(setup, water)),
+            contents: bytemuck::bytes_of(&ProceduralUniform::with_wave(setup, wave)),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let lm = &setup.light;
@@ -293,17 +391,7 @@ impl ProceduralCaustics {
                 data: lm.texels.clone(),
             },
         )?;
-        let heights = match water {
-            SurfaceInput::Grid(g) => ctx.upload_grid("procedural height field", g)?,
-            // The wave is evaluated in the shader; the binding still needs a texture.
-            SurfaceInput::Wave(_) => {
-                ctx.upload_grid("procedural (unused heights)", &Grid::new(1, 1))?
-            }
-        };
-        let (heights_view, light_view) = (
-            heights.create_view(&Default::default()),
-            light.create_view(&Default::default()),
-        );
+        let light_view = light.create_view(&Default::default());
         let water_bind = |pipeline: &wgpu::RenderPipeline, label: &str| {
             bind_group(
                 ctx,
@@ -311,7 +399,7 @@ impl ProceduralCaustics {
                 &pipeline.get_bind_group_layout(0),
                 &[
                     uniform.as_entire_binding(),
-                    View(&heights_view),
+                    View(heights_view),
                     View(&light_view),
                 ],
             )
@@ -323,10 +411,7 @@ impl ProceduralCaustics {
             U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        let mut bytes = (w * h) as u64 * 16
-            + (heights.width() * heights.height()) as u64 * 4
-            + (lm.width * lm.height) as u64 * 4
-            + uniform.size();
+        let mut bytes = (w * h) as u64 * 16 + (lm.width * lm.height) as u64 * 4 + uniform.size();
         let passes = match setup.variant {
             Variant::Vertex => {
                 let indices = mesh_indices(setup.mesh as u32);
@@ -424,7 +509,8 @@ impl ProceduralCaustics {
         ctx.check()?;
         Ok(Frame {
             uniform,
-            heights,
+            heights: None,
+            wave,
             map,
             map_view,
             setup: setup.clone(),

@@ -30,7 +30,9 @@ use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, Vo
 use crate::final_image::{BVH, GpuBvhNode, GpuBvhTriangle};
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
-use crate::{GpuContext, GpuError, GpuTimer};
+use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+
+pub mod technique;
 
 const COMMON: &str = include_str!("../shaders/volumes/common.wgsl");
 
@@ -175,6 +177,38 @@ pub struct PassUniform {
     pub albedo: [f32; 4],
 }
 
+impl PassUniform {
+    /// Object `k`'s depth, slice and shade passes: its view, reference planes and lattice cells.
+    pub fn object(setup: &VolumesSetup, k: usize) -> Self {
+        let o = &setup.objects[k];
+        let c = o.cells;
+        PassUniform {
+            view: ViewUniform::new(&o.view, o.spacing()),
+            cells: [c.i0 as u32, c.i1 as u32, c.j0 as u32, c.j1 as u32],
+            planes: o.planes as u32,
+            root_first: k as u32,
+            root_count: 1,
+            _pad: 0,
+            albedo: [
+                o.albedo.x as f32,
+                o.albedo.y as f32,
+                o.albedo.z as f32,
+                setup.params.ambient as f32,
+            ],
+        }
+    }
+
+    /// The shadow map's depth pass: every object's tree along the refracted sun.
+    pub fn shadow(view: &OrthoView, objects: usize) -> Self {
+        PassUniform {
+            view: ViewUniform::new(view, 0.0),
+            root_first: 0,
+            root_count: objects as u32,
+            ..Default::default()
+        }
+    }
+}
+
 /// Mirrors `Camera` in `shaders/volumes/view.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
@@ -255,6 +289,8 @@ pub struct Volumes {
 struct ObjectFrame {
     /// The object's layer of the frame's depth-texture and image arrays.
     layer: u32,
+    /// Its [`PassUniform`].
+    uniform: wgpu::Buffer,
     caustics: wgpu::Texture,
     caustics_view: wgpu::TextureView,
     diffuse: wgpu::Texture,
@@ -270,9 +306,15 @@ struct ObjectFrame {
 /// [`Frame::update_heights`]).
 pub struct Frame {
     pub setup: VolumesSetup,
-    heights: wgpu::Texture,
+    /// The heights it uploaded itself ([`Volumes::frame`]); `None` when it reads the caller's
+    /// ([`Volumes::frame_with_water`]).
+    heights: Option<wgpu::Texture>,
+    wrap: bool,
+    /// The [`VolumesUniform`] every pass reads.
+    uniform: wgpu::Buffer,
     pub water: wgpu::Buffer,
-    shadow: Option<(wgpu::Texture, wgpu::BindGroup)>,
+    /// The shadow map, its depth pass's bind group and [`PassUniform`].
+    shadow: Option<(wgpu::Texture, wgpu::BindGroup, wgpu::Buffer)>,
     objects: Vec<ObjectFrame>,
     bvh_bind: wgpu::BindGroup,
     water_bind: wgpu::BindGroup,
@@ -282,8 +324,9 @@ pub struct Frame {
     /// Every object's depth texture and final image (Eq. 4), one layer each.
     depths: wgpu::Texture,
     images: wgpu::Texture,
-    /// The refracted view's image and bind group, when one was asked for.
-    view: Option<(wgpu::Texture, wgpu::BindGroup)>,
+    /// The refracted view's image, bind group and its copy of every object's [`PassUniform`], when
+    /// one was asked for.
+    view: Option<(wgpu::Texture, wgpu::BindGroup, wgpu::Buffer)>,
     bytes: u64,
 }
 
@@ -293,15 +336,69 @@ impl Frame {
         self.bytes
     }
 
-    /// Replace the height field (same size) for the next encode.
+    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
     pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
-        ctx.write_grid(&self.heights, heights);
+        if let Some(t) = &self.heights {
+            ctx.write_grid(t, heights);
+        }
+    }
+
+    /// Whether `setup` fits this frame's buffers, textures and bind groups (the same parameters,
+    /// map, lattice size and objects), so that [`set_setup`](Self::set_setup) can take it. A new
+    /// sun moves the lattice, the shadow map's frame and each object's cells; a new camera turns
+    /// each object's view: none of that changes a size.
+    pub fn fits(&self, setup: &VolumesSetup) -> bool {
+        let s = &self.setup;
+        setup.params == s.params
+            && (setup.width, setup.height) == (s.width, s.height)
+            && (setup.lattice.nx, setup.lattice.ny) == (s.lattice.nx, s.lattice.ny)
+            && setup.shadow.as_ref().map(|v| v.res) == s.shadow.as_ref().map(|v| v.res)
+            && setup.objects.len() == s.objects.len()
+            && setup
+                .objects
+                .iter()
+                .zip(&s.objects)
+                .all(|(a, b)| a.view.res == b.view.res && slice_vertices(a).is_some())
+    }
+
+    /// Take a new sun or camera (a setup that [`fits`](Self::fits)): uniform writes only, and each
+    /// object's slice draw resized to its new cells.
+    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &VolumesSetup) {
+        debug_assert!(self.fits(setup));
+        ctx.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&VolumesUniform::new(setup, self.wrap)),
+        );
+        if let (Some((_, _, buffer)), Some(view)) = (&self.shadow, &setup.shadow) {
+            let u = PassUniform::shadow(view, setup.objects.len());
+            ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&u));
+        }
+        let uniforms: Vec<PassUniform> = (0..setup.objects.len())
+            .map(|k| PassUniform::object(setup, k))
+            .collect();
+        for ((o, u), view) in self.objects.iter_mut().zip(&uniforms).zip(&setup.objects) {
+            ctx.write_buffer(&o.uniform, 0, bytemuck::bytes_of(u));
+            o.vertices = slice_vertices(view).expect("fits checked the count");
+        }
+        if let Some((_, _, buffer)) = &self.view
+            && !uniforms.is_empty()
+        {
+            ctx.write_buffer(buffer, 0, bytemuck::cast_slice(&uniforms));
+        }
+        self.setup = setup.clone();
     }
 
     /// Triangles the slice pass draws per frame (all objects, all planes).
     pub fn slice_triangles(&self) -> u64 {
         self.objects.iter().map(|o| o.vertices as u64 / 3).sum()
     }
+}
+
+/// Vertices of an object's slice draw (one triangle per reference plane and lattice triangle of its
+/// cells), `None` beyond what one draw can take.
+fn slice_vertices(o: &caustics_core::techniques::volumes::ObjectView) -> Option<u32> {
+    u32::try_from(o.cells.triangles() as u64 * o.planes as u64 * 3).ok()
 }
 
 /// What one GPU run reads back.
@@ -358,6 +455,26 @@ impl Volumes {
         wrap: bool,
         view: Option<&ViewOptions>,
     ) -> Result<Frame, GpuError> {
+        let texture = ctx.upload_grid("volumes height field", heights)?;
+        let mut frame =
+            self.frame_with_water(ctx, setup, input, &WaterTextures::of(&texture), wrap, view)?;
+        frame.bytes += (heights.cols * heights.rows) as u64 * 4;
+        frame.heights = Some(texture);
+        Ok(frame)
+    }
+
+    /// Allocate a frame for `setup` (built from `input`) that reads the caller's heights (any grid
+    /// size: the water pass samples it bicubically, as the CPU twin samples its grid), and upload
+    /// the meshes' trees.
+    pub fn frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        setup: &VolumesSetup,
+        input: &VolumesInput,
+        heights: &WaterTextures,
+        wrap: bool,
+        view: Option<&ViewOptions>,
+    ) -> Result<Frame, GpuError> {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::BufferUsages as B;
         use wgpu::TextureUsages as U;
@@ -393,13 +510,13 @@ impl Volumes {
         let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("volumes uniform"),
             contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
-            usage: B::UNIFORM,
+            usage: B::UNIFORM | B::COPY_DST,
         });
         let pass_uniform = |p: PassUniform| {
             ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("volumes pass uniform"),
                 contents: bytemuck::bytes_of(&p),
-                usage: B::UNIFORM,
+                usage: B::UNIFORM | B::COPY_DST,
             })
         };
         let depth_texture = |label: &str, res: u32| -> Result<wgpu::Texture, GpuError> {
@@ -416,12 +533,7 @@ impl Volumes {
             Some(view) => {
                 let res = view.res as u32;
                 let tex = depth_texture("volumes shadow map", res)?;
-                let u = pass_uniform(PassUniform {
-                    view: ViewUniform::new(view, 0.0),
-                    root_first: 0,
-                    root_count: roots.len() as u32,
-                    ..Default::default()
-                });
+                let u = pass_uniform(PassUniform::shadow(view, roots.len()));
                 let bind = bind_group(
                     ctx,
                     "volumes shadow map",
@@ -433,13 +545,12 @@ impl Volumes {
                     ],
                 );
                 bytes += (res * res) as u64 * 16;
-                (tex.clone(), Some((tex, bind)))
+                (tex.clone(), Some((tex, bind, u)))
             }
             None => (depth_texture("volumes shadow stand-in", 1)?, None),
         };
         let shadow_view = shadow_tex.create_view(&Default::default());
 
-        let heights_tex = ctx.upload_grid("volumes height field", heights)?;
         let lattice_vertices = setup.lattice.vertex_count() as u64;
         ctx.check_buffer_size("volumes water vertices", lattice_vertices * 32)?;
         let water = ctx.create_buffer(&wgpu::BufferDescriptor {
@@ -448,14 +559,14 @@ impl Volumes {
             usage: B::STORAGE | B::COPY_SRC,
             mapped_at_creation: false,
         });
-        bytes += water.size() + (heights.cols * heights.rows) as u64 * 4;
+        bytes += water.size();
         let water_bind = bind_group(
             ctx,
             "volumes water",
             &self.water.get_bind_group_layout(0),
             &[
                 uniform.as_entire_binding(),
-                View(&heights_tex.create_view(&Default::default())),
+                View(&heights.heights),
                 water.as_entire_binding(),
             ],
         );
@@ -512,21 +623,7 @@ impl Volumes {
         let mut objects = Vec::new();
         for (k, o) in setup.objects.iter().enumerate() {
             let res = o.view.res as u32;
-            let c = o.cells;
-            let object_uniform = PassUniform {
-                view: ViewUniform::new(&o.view, o.spacing()),
-                cells: [c.i0 as u32, c.i1 as u32, c.j0 as u32, c.j1 as u32],
-                planes: o.planes as u32,
-                root_first: k as u32,
-                root_count: 1,
-                _pad: 0,
-                albedo: [
-                    o.albedo.x as f32,
-                    o.albedo.y as f32,
-                    o.albedo.z as f32,
-                    setup.params.ambient as f32,
-                ],
-            };
+            let object_uniform = PassUniform::object(setup, k);
             pass_uniforms.push(object_uniform);
             let u = pass_uniform(object_uniform);
             let depth_view = layer_view(&depths, k as u32);
@@ -568,23 +665,26 @@ impl Volumes {
                     View(&layer_view(&images, k as u32)),
                 ],
             );
-            let vertices = (c.triangles() * o.planes * 3) as u64;
-            if vertices > u32::MAX as u64 {
+            let Some(vertices) = slice_vertices(o) else {
                 return Err(GpuError::TooLarge {
                     what: format!("volumes slices of objects[{k}]"),
-                    size: format!("{vertices} vertices"),
+                    size: format!(
+                        "{} vertices",
+                        o.cells.triangles() as u64 * o.planes as u64 * 3
+                    ),
                     limit: format!("{} per draw", u32::MAX),
                 });
-            }
+            };
             objects.push(ObjectFrame {
                 layer: k as u32,
+                uniform: u,
                 caustics,
                 caustics_view,
                 diffuse,
                 depth_bind,
                 slices_bind,
                 shade_bind,
-                vertices: vertices as u32,
+                vertices,
                 res,
             });
         }
@@ -608,7 +708,11 @@ impl Volumes {
                     contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
                     usage: B::UNIFORM,
                 });
-                let object_buf = storage("volumes objects", bytemuck::cast_slice(&pass_uniforms));
+                let object_buf = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("volumes objects"),
+                    contents: bytemuck::cast_slice(&pass_uniforms),
+                    usage: B::STORAGE | B::COPY_DST,
+                });
                 let array_view = |t: &wgpu::Texture| {
                     t.create_view(&wgpu::TextureViewDescriptor {
                         dimension: Some(wgpu::TextureViewDimension::D2Array),
@@ -622,7 +726,7 @@ impl Volumes {
                     &[
                         uniform.as_entire_binding(),
                         camera.as_entire_binding(),
-                        View(&heights_tex.create_view(&Default::default())),
+                        View(&heights.heights),
                         object_buf.as_entire_binding(),
                         View(&array_view(&depths)),
                         View(&array_view(&images)),
@@ -630,13 +734,15 @@ impl Volumes {
                         View(&image.create_view(&Default::default())),
                     ],
                 );
-                Some((image, bind))
+                Some((image, bind, object_buf))
             }
         };
         ctx.check()?;
         Ok(Frame {
             setup: setup.clone(),
-            heights: heights_tex,
+            heights: None,
+            wrap,
+            uniform,
             water,
             shadow,
             objects,
@@ -663,7 +769,7 @@ impl Volumes {
             let mut pass = begin_compute(encoder, &mut timer, "volumes depth textures");
             pass.set_pipeline(&self.depth);
             pass.set_bind_group(1, &frame.bvh_bind, &[]);
-            if let Some((tex, bind)) = &frame.shadow {
+            if let Some((tex, bind, _)) = &frame.shadow {
                 pass.set_bind_group(0, bind, &[]);
                 pass.dispatch_workgroups(tex.width().div_ceil(8), tex.height().div_ceil(8), 1);
             }
@@ -716,7 +822,7 @@ impl Volumes {
                 pass.dispatch_workgroups(o.res.div_ceil(8), o.res.div_ceil(8), 1);
             }
         }
-        if let Some((image, bind)) = &frame.view {
+        if let Some((image, bind, _)) = &frame.view {
             let mut pass = begin_compute(encoder, &mut timer, "volumes view");
             pass.set_pipeline(&self.view);
             pass.set_bind_group(0, bind, &[]);
@@ -762,12 +868,12 @@ impl Volumes {
                 texels: self.read_map(ctx, &frame.floor)?,
             },
             shadow: match &frame.shadow {
-                Some((tex, _)) => ctx.read_texture(tex)?,
+                Some((tex, _, _)) => ctx.read_texture(tex)?,
                 None => Vec::new(),
             },
             water: ctx.read_buffer(&frame.water)?,
             view: match &frame.view {
-                Some((tex, _)) => {
+                Some((tex, _, _)) => {
                     let texels: Vec<[f32; 4]> = ctx.read_texture(tex)?;
                     texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect()
                 }

@@ -1,0 +1,207 @@
+//! Paper 2 behind [`Technique`]: its three variants, the caller's heights, a new sun as one uniform
+//! write (the light map is the sky around the sun, the same whichever way the sun stands, so it is
+//! uploaded once).
+
+use caustics_core::scene::{Scene, WaterSource};
+use caustics_core::techniques::procedural::{ProceduralCausticsParams, ProceduralSetup, Variant};
+use glam::DVec3;
+
+use super::{Frame, ProceduralCaustics};
+use crate::technique::{Output, Technique, WaterTextures};
+use crate::yuksel::technique::water;
+use crate::{GpuContext, GpuError, GpuTimer};
+
+pub struct ProceduralTechnique {
+    name: String,
+    pipelines: ProceduralCaustics,
+    params: ProceduralCausticsParams,
+    /// The parameters with the smallest generated light map: what [`update`](Technique::update)
+    /// derives a new sun's setup from, keeping the frame's own light map (which no sun changes)
+    /// instead of generating or loading it again.
+    sun_params: ProceduralCausticsParams,
+    frame: Option<(Frame, WaterTextures, SceneKey)>,
+}
+
+/// What the setup takes from the scene: when it is unchanged, [`update`](Technique::update) does
+/// nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SceneKey {
+    width: u32,
+    height: u32,
+    size: f64,
+    depth: f64,
+    absorption: DVec3,
+    wrap: bool,
+    light: DVec3,
+}
+
+/// `procedural`: the variant its parameters name (`variant`, screen by default).
+pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
+    ProceduralTechnique::new(ctx, params, None).map(|t| Box::new(t) as _)
+}
+
+pub fn create_vertex(
+    ctx: &GpuContext,
+    params: &toml::Table,
+) -> Result<Box<dyn Technique>, GpuError> {
+    ProceduralTechnique::new(ctx, params, Some(Variant::Vertex)).map(|t| Box::new(t) as _)
+}
+
+pub fn create_screen(
+    ctx: &GpuContext,
+    params: &toml::Table,
+) -> Result<Box<dyn Technique>, GpuError> {
+    ProceduralTechnique::new(ctx, params, Some(Variant::Screen)).map(|t| Box::new(t) as _)
+}
+
+pub fn create_texture(
+    ctx: &GpuContext,
+    params: &toml::Table,
+) -> Result<Box<dyn Technique>, GpuError> {
+    ProceduralTechnique::new(ctx, params, Some(Variant::Texture)).map(|t| Box::new(t) as _)
+}
+
+impl ProceduralTechnique {
+    /// `variant`: the one a registered name forces; a table naming another is refused.
+    pub fn new(
+        ctx: &GpuContext,
+        params: &toml::Table,
+        variant: Option<Variant>,
+    ) -> Result<Self, GpuError> {
+        let table = params;
+        let mut params = ProceduralCausticsParams::from_table(table)?;
+        if let Some(v) = variant {
+            if let Some(given) = table
+                .get("procedural")
+                .and_then(|t| t.get("variant"))
+                .filter(|given| given.as_str() != Some(v.name()))
+            {
+                return Err(GpuError::BadOption(format!(
+                    "technique `procedural-{}`: the name says variant `{}`, the parameters {given}",
+                    v.name(),
+                    v.name()
+                )));
+            }
+            params.variant = v;
+        }
+        let sun_params = ProceduralCausticsParams {
+            light_map: None,
+            light_map_resolution: 2,
+            ..params.clone()
+        };
+        Ok(ProceduralTechnique {
+            name: format!("procedural-{}", params.variant.name()),
+            pipelines: ProceduralCaustics::new(ctx)?,
+            params,
+            sun_params,
+            frame: None,
+        })
+    }
+
+    fn key(scene: &Scene) -> Result<SceneKey, GpuError> {
+        if scene.floor.terrain.is_some() {
+            return Err(GpuError::BadOption(
+                "technique `procedural` lights a flat floor at a constant depth (paper 2, \"Our Approach\"); this scene has a terrain".into(),
+            ));
+        }
+        caustics_core::techniques::check_light("procedural", &scene.light)?;
+        let w = water(scene, "procedural")?;
+        Ok(SceneKey {
+            width: scene.caustics.width,
+            height: scene.caustics.height,
+            size: w.size,
+            depth: w.depth,
+            absorption: w.absorption,
+            wrap: w.wrap,
+            light: scene.light.direction,
+        })
+    }
+
+    /// The setup for `key` from `params`, as the application's Runner builds it for a water job.
+    fn setup(
+        params: &ProceduralCausticsParams,
+        key: &SceneKey,
+    ) -> Result<ProceduralSetup, GpuError> {
+        Ok(ProceduralSetup::new(
+            params,
+            key.width as usize,
+            key.height as usize,
+            key.size,
+            key.depth,
+            key.absorption,
+            key.wrap,
+            key.light,
+        )?)
+    }
+}
+
+impl Technique for ProceduralTechnique {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The grid the application samples for the CPU twin (`procedural_heights`): a height-field
+    /// file's own samples, or the surface at least as finely as the lattice the variant evaluates
+    /// on (the map, the mesh's vertices, or the texture-space target).
+    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
+        let n = match self.params.variant {
+            Variant::Vertex => self.params.mesh_resolution + 1,
+            Variant::Screen => 0,
+            Variant::Texture => self.params.target_resolution,
+        };
+        match scene.water.as_ref().map(|w| &w.source) {
+            Some(WaterSource::HeightField(g)) => (g.cols as u32, g.rows as u32),
+            _ => (scene.caustics.width.max(n), scene.caustics.height.max(n)),
+        }
+    }
+
+    fn configure(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: &WaterTextures,
+    ) -> Result<(), GpuError> {
+        let key = Self::key(scene)?;
+        let setup = Self::setup(&self.params, &key)?;
+        self.frame = None;
+        let frame = self.pipelines.frame_with_water(ctx, &setup, water)?;
+        self.frame = Some((frame, water.clone(), key));
+        Ok(())
+    }
+
+    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+        let key = Self::key(scene)?;
+        let Some((frame, water, old)) = &mut self.frame else {
+            return Err(GpuError::BadOption(
+                "procedural: update before configure".into(),
+            ));
+        };
+        if *old == key {
+            return Ok(());
+        }
+        let mut setup = Self::setup(&self.sun_params, &key)?;
+        setup.light = frame.setup().light.clone();
+        if frame.fits(&setup) {
+            frame.set_setup(ctx, &setup);
+            *old = key;
+            return Ok(());
+        }
+        tracing::debug!("procedural: new sizes, configuring again");
+        let water = water.clone();
+        self.configure(ctx, scene, &water)
+    }
+
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
+        if let Some((frame, _, _)) = &self.frame {
+            self.pipelines.encode(frame, encoder, timer);
+        }
+    }
+
+    fn output(&self) -> Option<Output<'_>> {
+        self.frame.as_ref().map(|(f, _, _)| Output::Floor(&f.map))
+    }
+
+    fn bytes(&self) -> u64 {
+        self.frame.as_ref().map_or(0, |(f, _, _)| f.bytes())
+    }
+}

@@ -1,0 +1,161 @@
+//! Paper 3 behind [`Technique`]: its floor map (the illumination volumes cut by the floor, the
+//! objects' shadows in it), the objects' trees built once in configure, the caller's heights, a new
+//! sun or camera as uniform writes.
+
+use caustics_core::scene::Scene;
+use caustics_core::techniques::volumes::{VolumesInput, VolumesParams, VolumesSetup};
+use glam::DVec3;
+
+use super::{Frame, Volumes};
+use crate::technique::{Output, Technique, WaterTextures};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+pub struct VolumesTechnique {
+    pipelines: Volumes,
+    params: VolumesParams,
+    frame: Option<Configured>,
+}
+
+struct Configured {
+    frame: Frame,
+    water: WaterTextures,
+    /// The scene as configured, objects included: a new sun or camera goes into it and the setup
+    /// is derived again, without the meshes being read from the scene again.
+    input: VolumesInput,
+    key: SceneKey,
+}
+
+/// What the setup takes from the scene besides the objects: when it is unchanged,
+/// [`update`](Technique::update) does nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SceneKey {
+    width: u32,
+    height: u32,
+    size: f64,
+    depth: f64,
+    ior: f64,
+    absorption: DVec3,
+    wrap: bool,
+    light: DVec3,
+    camera: DVec3,
+}
+
+impl SceneKey {
+    fn of(scene: &Scene) -> Result<SceneKey, GpuError> {
+        if scene.floor.terrain.is_some() {
+            return Err(GpuError::BadOption(
+                "technique `volumes` draws its floor map on the plane z = 0; this scene has a terrain"
+                    .into(),
+            ));
+        }
+        caustics_core::techniques::check_light("volumes", &scene.light)?;
+        let w = crate::yuksel::technique::water(scene, "volumes")?;
+        Ok(SceneKey {
+            width: scene.caustics.width,
+            height: scene.caustics.height,
+            size: w.size,
+            depth: w.depth,
+            ior: w.ior,
+            absorption: w.absorption,
+            wrap: w.wrap,
+            light: scene.light.direction,
+            camera: scene.camera.position,
+        })
+    }
+
+    /// `input` with this key's water, sun, camera and map size.
+    fn apply(&self, input: &mut VolumesInput) {
+        input.size = self.size;
+        input.depth = self.depth;
+        input.ior = self.ior;
+        input.absorption = self.absorption;
+        input.light = self.light;
+        input.camera = self.camera;
+        input.width = self.width as usize;
+        input.height = self.height as usize;
+    }
+}
+
+pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
+    Ok(Box::new(VolumesTechnique {
+        pipelines: Volumes::new(ctx)?,
+        params: VolumesParams::from_table(params)?,
+        frame: None,
+    }))
+}
+
+impl Technique for VolumesTechnique {
+    fn name(&self) -> &str {
+        "volumes"
+    }
+
+    /// The grid the application samples for the CPU twin: one height per lattice cell over the
+    /// scene square (`water_cells`, or the map's width).
+    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
+        let n = match self.params.water_cells {
+            0 => scene.caustics.width,
+            n => n,
+        };
+        (n, n)
+    }
+
+    fn configure(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: &WaterTextures,
+    ) -> Result<(), GpuError> {
+        let key = SceneKey::of(scene)?;
+        let input = VolumesInput::from_scene(scene)?;
+        let setup = VolumesSetup::new(&self.params, &input)?;
+        self.frame = None;
+        let frame = self
+            .pipelines
+            .frame_with_water(ctx, &setup, &input, water, key.wrap, None)?;
+        self.frame = Some(Configured {
+            frame,
+            water: water.clone(),
+            input,
+            key,
+        });
+        Ok(())
+    }
+
+    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+        let key = SceneKey::of(scene)?;
+        let Some(c) = &mut self.frame else {
+            return Err(GpuError::BadOption(
+                "volumes: update before configure".into(),
+            ));
+        };
+        if c.key == key {
+            return Ok(());
+        }
+        if c.key.wrap == key.wrap {
+            key.apply(&mut c.input);
+            let setup = VolumesSetup::new(&self.params, &c.input)?;
+            if c.frame.fits(&setup) {
+                c.frame.set_setup(ctx, &setup);
+                c.key = key;
+                return Ok(());
+            }
+        }
+        tracing::debug!("volumes: new sizes, configuring again");
+        let water = c.water.clone();
+        self.configure(ctx, scene, &water)
+    }
+
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
+        if let Some(c) = &self.frame {
+            self.pipelines.encode(&c.frame, encoder, timer);
+        }
+    }
+
+    fn output(&self) -> Option<Output<'_>> {
+        self.frame.as_ref().map(|c| Output::Floor(&c.frame.floor))
+    }
+
+    fn bytes(&self) -> u64 {
+        self.frame.as_ref().map_or(0, |c| c.frame.bytes())
+    }
+}
