@@ -111,6 +111,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::caustic_triangles::CUBE,
     &crate::caustic_triangles::SHADOW,
     &crate::caustic_triangles::WATER_PHOTON,
+    &crate::caustic_triangles::COPY_BAND,
     &crate::caustic_triangles::camera::CAMERA,
     &crate::volumes::DEPTH,
     &crate::volumes::WATER_PASS,

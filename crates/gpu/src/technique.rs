@@ -148,6 +148,16 @@ pub const REGISTRY: &[Registered] = &[
         params: "volumes",
         create: crate::volumes::technique::create,
     },
+    Registered {
+        name: "caustic-triangles",
+        params: "caustic-triangles",
+        create: crate::caustic_triangles::technique::create,
+    },
+    Registered {
+        name: "cascaded",
+        params: "cascaded",
+        create: crate::cascaded::technique::create,
+    },
 ];
 
 /// The registered technique `name` with the parameter tables `params` (keyed by technique, as in a

@@ -265,3 +265,136 @@ fn timings() {
         );
     }
 }
+
+/// Through the `Technique` trait: the registry's `cascaded` on the pool at a small camera, the
+/// heights the test's own (sampled at `water_resolution()`, uploaded by the test).
+mod through_the_trait {
+    use super::*;
+    use caustics_core::grid::Grid;
+    use caustics_core::water::sample_grid;
+    use caustics_gpu::{GpuContext, Output, Technique, WaterTextures};
+
+    const PARAMS: &str = "[cascaded]\nresolution = 64\n";
+    /// 10x the agreement measured through the trait on the pool (see the tests).
+    const TOTAL: f64 = 5.2e-5;
+    const MEAN_ABS: f64 = 4.5e-4;
+
+    fn pool() -> Scene {
+        let mut s = Scene::builtin("pool").unwrap();
+        s.camera.width = 64;
+        s.camera.height = 36;
+        s
+    }
+
+    fn params() -> toml::Table {
+        toml::from_str(PARAMS).unwrap()
+    }
+
+    fn heights(t: &dyn Technique, scene: &Scene) -> Grid {
+        let w = scene.water.as_ref().unwrap();
+        let (cols, rows) = t.water_resolution(scene);
+        let surface = w.surface_at(scene.time).unwrap();
+        sample_grid(surface.as_ref(), cols as usize, rows as usize, w.size)
+    }
+
+    fn frame(ctx: &GpuContext, t: &dyn Technique) {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        t.encode(&mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+    }
+
+    fn read_image(ctx: &GpuContext, t: &dyn Technique) -> Vec<[f32; 4]> {
+        let Some(Output::EyeSpace(tex)) = t.output() else {
+            panic!("cascaded makes an eye-space image");
+        };
+        ctx.read_texture(tex).unwrap()
+    }
+
+    fn cpu(scene: &Scene, water: &Grid) -> Vec<[f32; 4]> {
+        let p = CascadedParams::from_table(&params()).unwrap();
+        let setup = CascadedSetup::from_scene(scene, &p).unwrap();
+        cascaded::caustics(&setup, water, scene.floor.terrain.as_ref()).image
+    }
+
+    #[test]
+    fn cascaded_through_the_trait_matches_the_cpu_twin() {
+        let Some(ctx) = test_context() else { return };
+        let scene = pool();
+        let mut t = caustics_gpu::technique::create(&ctx, "cascaded", &params()).unwrap();
+        assert_eq!(t.water_resolution(&scene), (256, 256));
+        let h = heights(t.as_ref(), &scene);
+        let tex = ctx.upload_grid("test heights", &h).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
+        t.update(&ctx, &scene).unwrap();
+        frame(&ctx, t.as_ref());
+        let gpu = read_image(&ctx, t.as_ref());
+        assert_eq!(gpu.len(), 64 * 36, "the camera's size");
+        let cpu = cpu(&scene, &h);
+        let (total, mean_abs, moved) = agreement(&cpu, &gpu);
+        let valued = gpu.iter().filter(|p| p[3] >= 0.0).count();
+        eprintln!(
+            "trait, pool: image total {total:.2e}, mean |Δ| / mean {mean_abs:.2e}, {moved} channels > 0.1 %, {valued} pixels with a value"
+        );
+        // No value is alpha -1 on both twins, the same pixels; no NaN.
+        assert!(gpu.iter().all(|p| p.iter().all(|c| c.is_finite())));
+        assert!(
+            cpu.iter()
+                .zip(&gpu)
+                .all(|(a, b)| (a[3] < 0.0) == (b[3] < 0.0))
+        );
+        assert!(valued > 0);
+        // Measured (lavapipe): total 5.1e-6, mean |Δ| / mean 4.5e-5; 10x.
+        assert!(total < TOTAL && mean_abs < MEAN_ABS, "{total} {mean_abs}");
+    }
+
+    /// Ten frames of moving water, camera and sun after the first: uniform writes only, and the
+    /// last frame's image is the CPU twin's for the last camera, sun and heights.
+    #[test]
+    fn cascaded_frames_create_and_read_nothing() {
+        let Some(ctx) = test_context() else { return };
+        let mut scene = pool();
+        let mut t = caustics_gpu::technique::create(&ctx, "cascaded", &params()).unwrap();
+        let h = heights(t.as_ref(), &scene);
+        let tex = ctx.upload_grid("test heights", &h).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
+        t.update(&ctx, &scene).unwrap();
+        frame(&ctx, t.as_ref());
+        ctx.wait().unwrap();
+        let before = ctx.traffic();
+        let mut h = h;
+        let start = scene.camera.position;
+        for f in 1..=10 {
+            let f = f as f64;
+            scene.time = 0.1 * f;
+            scene.camera.position = start + glam::DVec3::new(0.03 * f, -0.02 * f, 0.01 * f);
+            scene.light.direction = glam::DVec3::new(0.3 + 0.01 * f, 0.1, -1.0).normalize();
+            h = heights(t.as_ref(), &scene);
+            ctx.queue.write_texture(
+                tex.as_image_copy(),
+                bytemuck::cast_slice(&h.data),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(h.cols as u32 * 4),
+                    rows_per_image: Some(h.rows as u32),
+                },
+                tex.size(),
+            );
+            t.update(&ctx, &scene).unwrap();
+            frame(&ctx, t.as_ref());
+        }
+        ctx.wait().unwrap();
+        let d = ctx.traffic().since(&before);
+        eprintln!("ten cascaded frames: {d:?}");
+        assert_eq!(d.created(), 0, "{d:?}");
+        assert_eq!(d.readbacks, 0, "{d:?}");
+        assert!(
+            d.uploaded_bytes > 0 && d.uploaded_bytes <= 10 * 4096,
+            "{d:?}"
+        );
+        let gpu = read_image(&ctx, t.as_ref());
+        let (total, mean_abs, _) = agreement(&cpu(&scene, &h), &gpu);
+        eprintln!("after ten frames: image total {total:.2e}, mean |Δ| / mean {mean_abs:.2e}");
+        // Measured (lavapipe): total 1.7e-7, mean |Δ| / mean 4.4e-6 (the bound of the test above).
+        assert!(total < TOTAL && mean_abs < MEAN_ABS, "{total} {mean_abs}");
+    }
+}

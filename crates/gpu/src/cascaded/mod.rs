@@ -37,6 +37,8 @@ use caustics_core::techniques::cascaded::{
 };
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
+
+pub mod technique;
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -184,6 +186,9 @@ pub struct Cascaded {
 /// water texture bound at creation is read afresh by every encode).
 pub struct Frame {
     pub setup: CascadedSetup,
+    /// Per cascade, the uniform block its passes read (cascade 0's also serves the eye,
+    /// composition and dispersion passes).
+    uniforms: Vec<wgpu::Buffer>,
     pub eye: wgpu::Texture,
     pub gwater: wgpu::Texture,
     pub gterrain: wgpu::Texture,
@@ -205,6 +210,36 @@ pub struct Frame {
 impl Frame {
     pub fn bytes(&self) -> u64 {
         self.gbuffer_bytes + CASCADES as u64 * self.cascade_map_bytes + self.other_bytes
+    }
+
+    /// Whether `setup` fits this frame's textures and buffers (the same G-buffer resolution, eye
+    /// image size, terrain pass and dispersion), so that [`set_setup`](Self::set_setup) can take
+    /// it: a new camera pose, sun, water level or parameters of the same sizes.
+    pub fn fits(&self, setup: &CascadedSetup) -> bool {
+        let key = |s: &CascadedSetup| {
+            (
+                s.res,
+                s.eye.width,
+                s.eye.height,
+                s.terrain_range.is_some(),
+                s.params.dispersion == Dispersion::Post,
+            )
+        };
+        key(setup) == key(&self.setup)
+    }
+
+    /// Take a setup that [`fits`](Self::fits): the cascades' uniform writes, only those that
+    /// changed.
+    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &CascadedSetup) {
+        debug_assert!(self.fits(setup));
+        for (k, buffer) in self.uniforms.iter().enumerate() {
+            let old = CascadedUniform::new(&self.setup, k);
+            let new = CascadedUniform::new(setup, k);
+            if bytemuck::bytes_of(&old) != bytemuck::bytes_of(&new) {
+                ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&new));
+            }
+        }
+        self.setup = setup.clone();
     }
 }
 
@@ -310,7 +345,7 @@ impl Cascaded {
                 ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("cascaded uniform"),
                     contents: bytemuck::bytes_of(&CascadedUniform::new(setup, k)),
-                    usage: wgpu::BufferUsages::UNIFORM,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 })
             })
             .collect();
@@ -391,6 +426,7 @@ impl Cascaded {
         let screen = w as u64 * h as u64;
         Ok(Frame {
             setup: setup.clone(),
+            uniforms,
             eye,
             gwater,
             gterrain,

@@ -14,11 +14,16 @@
 //! | light cube shadow distances (compute, §4.3) | `shaders/caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
 //! | camera pass (compute, §4.3), [`camera`] | `shaders/caustic_triangles/camera.wgsl` | `camera::camera_pass` |
 //! | water photon pass (compute, the water surface as the generator) | `shaders/caustic_triangles/water_photon.wgsl` | `water::photon_pass` |
+//! | copy band (compute, one workgroup, tiling water) | `shaders/caustic_triangles/band.wgsl` | `water::copy_band` |
 //!
 //! With the water surface as the generator ([`WaterFrame`], `caustics_core::techniques::
 //! caustic_triangles::water`) the water photon pass replaces the photon tracing pass and also
 //! writes each photon's refracted path length; the triangles and splats read it for Beer-Lambert
-//! absorption and draw nine instances (offsets of `±size`) of each primitive for tiling water.
+//! absorption and draw nine instances (offsets of `±size`) of each primitive for tiling water. The
+//! eight shifted copies are drawn only over the band of quads whose light can cross an edge; the
+//! copy band pass fits that band on the GPU from the heights it reads and writes the indirect draw
+//! of the shifted copies, so a frame never reads the heights on the CPU (the CPU twin fits the same
+//! bound in f64, `WaterSetup::fit_band`; any band at least the light's reach draws the same map).
 //!
 //! The layered distance map is built on the CPU ([`DistanceMap::build`]) and uploaded as a storage
 //! buffer; the photon hit location image and the vertex irradiances are storage buffers that the
@@ -28,6 +33,7 @@
 //! digits, ~0.2 % of the total lost to rounding in accumulation).
 
 pub mod camera;
+pub mod technique;
 
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
@@ -37,11 +43,12 @@ use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, Distan
 
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
-use crate::{GpuContext, GpuError, GpuTimer};
+use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 const COMMON: &str = include_str!("../shaders/caustic_triangles/common.wgsl");
 const DISTANCE_MAP: &str = include_str!("../shaders/caustic_triangles/distance_map.wgsl");
 const MERGE: &str = include_str!("../shaders/caustic_triangles/merge.wgsl");
+const WATER_SETUP: &str = include_str!("../shaders/caustic_triangles/water_setup.wgsl");
 
 pub const PHOTON: PassSource = PassSource {
     name: "caustic-triangles photon tracing",
@@ -75,8 +82,13 @@ pub const SHADOW: PassSource = PassSource {
 };
 pub const WATER_PHOTON: PassSource = PassSource {
     name: "caustic-triangles water photons",
-    shared: &[OPTICS, WATER],
+    shared: &[OPTICS, WATER, WATER_SETUP],
     source: include_str!("../shaders/caustic_triangles/water_photon.wgsl"),
+};
+pub const COPY_BAND: PassSource = PassSource {
+    name: "caustic-triangles copy band",
+    shared: &[COMMON, WATER_SETUP],
+    source: include_str!("../shaders/caustic_triangles/band.wgsl"),
 };
 pub const SPLAT: PassSource = PassSource {
     name: "caustic-triangles splats",
@@ -204,6 +216,27 @@ impl WaterPhotonUniform {
     }
 }
 
+/// Mirrors `CopyBand` in `shaders/caustic_triangles/common.wgsl`: the band of quads the shifted
+/// copies of tiling water are drawn for as the copy band pass fits it, and their indirect draw.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct CopyBandBuffer {
+    pub band: u32,
+    pub _pad: [u32; 3],
+    /// `wgpu::util::DrawIndirectArgs`: vertex count, instance count, first vertex, first instance.
+    pub draw: [u32; 4],
+}
+
+impl CopyBandBuffer {
+    /// Before any copy band pass: the uniform's band stands (`u32::MAX` narrows nothing).
+    pub fn unfitted() -> Self {
+        CopyBandBuffer {
+            band: u32::MAX,
+            ..Default::default()
+        }
+    }
+}
+
 /// How the photon hits become the floor map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Reconstruction {
@@ -223,6 +256,7 @@ pub struct CausticTriangles {
     cube: wgpu::RenderPipeline,
     shadow: wgpu::ComputePipeline,
     water_photon: wgpu::ComputePipeline,
+    copy_band: wgpu::ComputePipeline,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float` (floor and light cube maps).
     pub map_format: wgpu::TextureFormat,
 }
@@ -245,6 +279,11 @@ pub struct Frame {
     /// The merge pyramid (§5) and one bind group per level.
     pub pyramid: wgpu::Buffer,
     pyramid_binds: Vec<wgpu::BindGroup>,
+    /// The band the GPU fitted and the indirect draw of the shifted copies ([`CopyBandBuffer`]).
+    pub copy_band: wgpu::Buffer,
+    /// Whether the shifted copies are drawn indirectly from `copy_band` (a water frame of tiling
+    /// water, whose copy band pass writes it) rather than from the setup's band.
+    gpu_band: bool,
     triangles_bind: wgpu::BindGroup,
     splat_bind: wgpu::BindGroup,
     bytes: u64,
@@ -293,6 +332,7 @@ impl CausticTriangles {
             cube: additive_pipeline(ctx, &CUBE, map_format),
             shadow: compute_pipeline(ctx, &SHADOW),
             water_photon: compute_pipeline(ctx, &WATER_PHOTON),
+            copy_band: compute_pipeline(ctx, &COPY_BAND),
             map_format,
         };
         ctx.check()?;
@@ -304,6 +344,19 @@ impl CausticTriangles {
         ctx: &GpuContext,
         setup: &CausticTrianglesSetup,
         dm: &DistanceMap,
+    ) -> Result<Frame, GpuError> {
+        self.frame_drawing_into(ctx, setup, dm, None)
+    }
+
+    /// A frame whose floor map is `map` when given (a floor map of the setup's size and this
+    /// format that several generators draw into, [`draw_floor`](Self::draw_floor) with `clear`
+    /// for the first only), else its own.
+    pub fn frame_drawing_into(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+        map: Option<&wgpu::Texture>,
     ) -> Result<Frame, GpuError> {
         use wgpu::BufferUsages as B;
         let (w, h) = (setup.floor.width as u32, setup.floor.height as u32);
@@ -340,14 +393,29 @@ impl CausticTriangles {
             usage: B::STORAGE | B::COPY_SRC,
             mapped_at_creation: false,
         });
-        let map = ctx.texture_2d(
-            "caustic-triangles floor map",
-            (w, h, 1),
-            self.map_format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
+        let own_map = map.is_none();
+        let map = match map {
+            Some(m) => {
+                if (m.width(), m.height(), m.format()) != (w, h, self.map_format) {
+                    return Err(GpuError::Validation(format!(
+                        "caustic-triangles: a shared floor map of {} x {} {:?} for a {w} x {h} {:?} frame",
+                        m.width(),
+                        m.height(),
+                        m.format(),
+                        self.map_format
+                    )));
+                }
+                m.clone()
+            }
+            None => ctx.texture_2d(
+                "caustic-triangles floor map",
+                (w, h, 1),
+                self.map_format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+            ),
+        };
         let map_view = map.create_view(&Default::default());
         let photon_bind = bind_group(
             ctx,
@@ -405,6 +473,11 @@ impl CausticTriangles {
                 )
             })
             .collect();
+        let copy_band = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles copy band"),
+            contents: bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
+            usage: B::STORAGE | B::INDIRECT | B::COPY_SRC,
+        });
         let triangles_bind = bind_group(
             ctx,
             "caustic-triangles triangles",
@@ -415,6 +488,7 @@ impl CausticTriangles {
                 irradiance.as_entire_binding(),
                 pyramid.as_entire_binding(),
                 paths.as_entire_binding(),
+                copy_band.as_entire_binding(),
             ],
         );
         let splat_bind = bind_group(
@@ -444,7 +518,13 @@ impl CausticTriangles {
             pyramid_binds,
             triangles_bind,
             splat_bind,
-            bytes: dm_bytes + p * p * 24 + (w * h) as u64 * texel + 176,
+            copy_band,
+            gpu_band: false,
+            bytes: dm_bytes
+                + p * p * 24
+                + own_map as u64 * (w * h) as u64 * texel
+                + 176
+                + std::mem::size_of::<CopyBandBuffer>() as u64,
         })
     }
 
@@ -456,14 +536,22 @@ impl CausticTriangles {
         mut timer: Option<&mut GpuTimer>,
         reconstruction: Reconstruction,
     ) {
-        let p = frame.setup.p as u32;
-        {
-            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles photon tracing");
-            pass.set_pipeline(&self.photon);
-            pass.set_bind_group(0, &frame.photon_bind, &[]);
-            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
-        }
+        self.encode_photons(frame, encoder, timer.as_deref_mut());
         self.encode_reconstruction(frame, encoder, timer, reconstruction);
+    }
+
+    /// Record the photon tracing pass alone (§4.1) into `frame.photons`.
+    pub fn encode_photons(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let p = frame.setup.p as u32;
+        let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles photon tracing");
+        pass.set_pipeline(&self.photon);
+        pass.set_bind_group(0, &frame.photon_bind, &[]);
+        pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
     }
 
     /// Record the reconstruction only (vertex irradiance and triangles, or splats) from the photon
@@ -554,19 +642,26 @@ impl CausticTriangles {
                 if copies == 1 {
                     pass.draw(0..all, 0..1);
                 } else {
-                    // The unshifted copy (instance 4) over every quad, the eight shifted ones over
-                    // their bands only (`copy_rect`): an edge band is at most `band` quads deep.
-                    let area =
-                        |(i0, i1, j0, j1): (usize, usize, usize, usize)| (i1 - i0) * (j1 - j0);
-                    let most = (0..9)
-                        .filter(|&k| k != 4)
-                        .map(|k| area(frame.setup.copy_rect(k)))
-                        .max()
-                        .unwrap_or(0) as u32;
-                    let shifted = (6 * most).min(all);
-                    pass.draw(0..all, 4..5);
-                    pass.draw(0..shifted, 0..4);
-                    pass.draw(0..shifted, 5..9);
+                    // The unshifted copy (instance 8) over every quad, the eight shifted ones
+                    // (instances 0..8, `copy_of_instance` in common.wgsl) over their bands only
+                    // (`copy_rect`): an edge band is at most `band` quads deep. The band is the
+                    // GPU's own where the copy band pass fitted it, else the setup's.
+                    pass.draw(0..all, 8..9);
+                    if frame.gpu_band {
+                        pass.draw_indirect(
+                            &frame.copy_band,
+                            std::mem::offset_of!(CopyBandBuffer, draw) as u64,
+                        );
+                    } else {
+                        let area =
+                            |(i0, i1, j0, j1): (usize, usize, usize, usize)| (i1 - i0) * (j1 - j0);
+                        let most = (0..9)
+                            .filter(|&k| k != 4)
+                            .map(|k| area(frame.setup.copy_rect(k)))
+                            .max()
+                            .unwrap_or(0) as u32;
+                        pass.draw(0..(6 * most).min(all), 0..8);
+                    }
                 }
             }
             Reconstruction::Splats => {
@@ -642,47 +737,89 @@ impl CausticTriangles {
 }
 
 /// The water surface as the generator: a [`Frame`] whose photon image the water photon pass
-/// writes from a height grid (no distance map). Built once per lattice, map and height-grid size;
-/// upload new heights every frame the water moves ([`update_heights`](Self::update_heights)).
+/// writes from a height texture (no distance map), and whose shifted copies of tiling water the
+/// copy band pass fits from the same texture. Built once per lattice, map and height-grid size;
+/// every encode reads the heights afresh (the caller's texture, [`CausticTriangles::water_frame_with_water`],
+/// or its own, rewritten by [`update_heights`](Self::update_heights)).
 pub struct WaterFrame {
     pub frame: Frame,
+    /// The setup its uniforms hold; the band of `setup.setup.water` is the lattice's (every
+    /// quad): the copy band pass narrows it on the GPU.
     pub setup: WaterSetup,
-    pub heights: wgpu::Texture,
+    /// The heights it uploaded itself ([`CausticTriangles::water_frame`]); `None` when it reads
+    /// the caller's.
+    pub heights: Option<wgpu::Texture>,
+    /// The grid size of the heights it reads.
+    pub grid: (u32, u32),
     pub water_uniform: wgpu::Buffer,
     water_bind: wgpu::BindGroup,
+    /// The copy band pass's bind group (tiling water only).
+    band_bind: Option<wgpu::BindGroup>,
 }
 
 impl WaterFrame {
-    /// Overwrite the heights with a grid of the same size (and refit the band of quads the
-    /// shifted copies of tiling water are drawn for, `WaterSetup::fit_band`).
+    /// Overwrite the heights with a grid of the same size, in a frame that uploaded its own (the
+    /// copy band pass refits the band on the GPU at the next encode).
     pub fn update_heights(&mut self, ctx: &GpuContext, heights: &Grid) -> Result<(), GpuError> {
-        if (heights.cols as u32, heights.rows as u32)
-            != (self.heights.width(), self.heights.height())
-        {
+        let Some(texture) = &self.heights else {
+            return Err(GpuError::BadOption(
+                "caustic-triangles water frame: it reads the caller's heights texture; write that instead".into(),
+            ));
+        };
+        if (heights.cols as u32, heights.rows as u32) != self.grid {
             return Err(GpuError::Validation(format!(
                 "caustic-triangles water heights: a {} x {} grid for a {} x {} frame",
-                heights.cols,
-                heights.rows,
-                self.heights.width(),
-                self.heights.height()
+                heights.cols, heights.rows, self.grid.0, self.grid.1
             )));
         }
-        ctx.write_grid(&self.heights, heights);
-        self.setup.fit_band(heights);
-        self.frame.setup = self.setup.setup.clone();
-        ctx.write_buffer(
-            &self.frame.uniform,
-            0,
-            bytemuck::bytes_of(&CausticTrianglesUniform::new(
-                &self.frame.setup,
-                &no_distance_map(),
-            )),
-        );
+        ctx.write_grid(texture, heights);
         Ok(())
     }
 
+    /// Whether `ws` fits this frame's buffers and bind groups (the same lattice, map size and
+    /// wrap), so that [`set_setup`](Self::set_setup) can take it.
+    pub fn fits(&self, ws: &WaterSetup) -> bool {
+        let f = &self.setup.setup.floor;
+        (
+            ws.lattice,
+            ws.setup.floor.width,
+            ws.setup.floor.height,
+            ws.setup.merge_levels,
+            ws.wrap(),
+        ) == (
+            self.setup.lattice,
+            f.width,
+            f.height,
+            self.setup.setup.merge_levels,
+            self.setup.wrap(),
+        )
+    }
+
+    /// Take a new sun, water depth, index or parameters (a setup that [`fits`](Self::fits)): two
+    /// uniform writes, none when nothing changed.
+    pub fn set_setup(&mut self, ctx: &GpuContext, ws: &WaterSetup) {
+        debug_assert!(self.fits(ws));
+        let old_ct = CausticTrianglesUniform::new(&self.frame.setup, &no_distance_map());
+        let old_w = WaterPhotonUniform::new(&self.setup);
+        let ct = CausticTrianglesUniform::new(&ws.setup, &no_distance_map());
+        let w = WaterPhotonUniform::new(ws);
+        if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
+            ctx.write_buffer(&self.frame.uniform, 0, bytemuck::bytes_of(&ct));
+        }
+        if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
+            ctx.write_buffer(&self.water_uniform, 0, bytemuck::bytes_of(&w));
+        }
+        self.setup = ws.clone();
+        self.frame.setup = ws.setup.clone();
+    }
+
     pub fn bytes(&self) -> u64 {
-        self.frame.bytes() + (self.heights.width() * self.heights.height()) as u64 * 4 + 48
+        self.frame.bytes()
+            + self
+                .heights
+                .as_ref()
+                .map_or(0, |_| (self.grid.0 * self.grid.1) as u64 * 4)
+            + 48
     }
 }
 
@@ -706,40 +843,70 @@ pub struct WaterGpuOutput {
 }
 
 impl CausticTriangles {
+    /// A water frame that uploads `heights` itself (rewrite them with
+    /// [`WaterFrame::update_heights`]).
     pub fn water_frame(
         &self,
         ctx: &GpuContext,
         ws: &WaterSetup,
         heights: &Grid,
     ) -> Result<WaterFrame, GpuError> {
-        let mut ws = ws.clone();
-        ws.fit_band(heights);
-        let frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
-        let heights_texture = ctx.upload_grid("caustic-triangles water heights", heights)?;
-        let view = heights_texture.create_view(&Default::default());
+        let texture = ctx.upload_grid("caustic-triangles water heights", heights)?;
+        let mut wf = self.water_frame_with_water(ctx, ws, &WaterTextures::of(&texture))?;
+        wf.heights = Some(texture);
+        Ok(wf)
+    }
+
+    /// A water frame reading the caller's heights (any grid size: the passes sample it
+    /// bicubically, as the CPU twin samples its grid). The band of `ws` is kept as an upper bound
+    /// the GPU's fit narrows (a fresh [`WaterSetup`] has every quad).
+    pub fn water_frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        water: &WaterTextures,
+    ) -> Result<WaterFrame, GpuError> {
+        let mut frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
         let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("caustic-triangles water photons"),
-            contents: bytemuck::bytes_of(&WaterPhotonUniform::new(&ws)),
+            contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
+        let view = wgpu::BindingResource::TextureView(&water.heights);
         let water_bind = bind_group(
             ctx,
             "caustic-triangles water photons",
             &self.water_photon.get_bind_group_layout(0),
             &[
                 water_uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&view),
+                view.clone(),
                 frame.photons.as_entire_binding(),
                 frame.paths.as_entire_binding(),
             ],
         );
+        let band_bind = ws.wrap().then(|| {
+            bind_group(
+                ctx,
+                COPY_BAND.name,
+                &self.copy_band.get_bind_group_layout(0),
+                &[
+                    water_uniform.as_entire_binding(),
+                    frame.uniform.as_entire_binding(),
+                    view.clone(),
+                    frame.copy_band.as_entire_binding(),
+                ],
+            )
+        });
+        frame.gpu_band = band_bind.is_some();
         ctx.check()?;
         Ok(WaterFrame {
             frame,
-            setup: ws,
-            heights: heights_texture,
+            setup: ws.clone(),
+            heights: None,
+            grid: (water.cols, water.rows),
             water_uniform,
             water_bind,
+            band_bind,
         })
     }
 
@@ -757,6 +924,12 @@ impl CausticTriangles {
             pass.set_pipeline(&self.water_photon);
             pass.set_bind_group(0, &wf.water_bind, &[]);
             pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        if let Some(bind) = &wf.band_bind {
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles copy band");
+            pass.set_pipeline(&self.copy_band);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(1, 1, 1);
         }
         self.encode_reconstruction(&wf.frame, encoder, timer, reconstruction);
     }

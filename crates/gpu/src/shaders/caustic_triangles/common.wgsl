@@ -93,3 +93,33 @@ fn pixel_to_clip(c: CausticTriangles, px: vec2<f32>) -> vec4<f32> {
 
 // A vertex every invalid primitive collapses to, outside the clip volume (the paper's trick).
 const CULLED: vec4<f32> = vec4<f32>(-4.0, -4.0, 0.0, 1.0);
+
+// The band of quads the shifted copies of tiling water are drawn for, as the GPU fits it from the
+// heights it reads (`band.wgsl`), and the indirect draw of those copies. Mirrors the copy-band
+// buffer of caustic_triangles/mod.rs (`CopyBandBuffer`). `band` is u32::MAX where nothing narrows
+// the uniform's `band` (glass, a water frame before its first band pass).
+struct CopyBand {
+    band: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+    // vertex_count, instance_count, first_vertex, first_instance: the eight shifted copies.
+    draw: array<u32, 4>,
+}
+
+// `c` with its band narrowed to the one the GPU fitted.
+fn with_band(c: CausticTriangles, b: CopyBand) -> CausticTriangles {
+    var n = c;
+    n.band = min(c.band, b.band);
+    return n;
+}
+
+// Copy (0..9) drawn by instance `instance`: instance 8 is the unshifted copy 4, drawn first over
+// every quad; instances 0..8 are the shifted copies 0, 1, 2, 3, 5, 6, 7, 8 over their bands, one
+// draw (direct, or indirect with the GPU's band) with no first instance to offset.
+fn copy_of_instance(instance: u32) -> u32 {
+    if instance == 8u {
+        return 4u;
+    }
+    return instance + select(0u, 1u, instance >= 4u);
+}

@@ -6,13 +6,15 @@
 // also interpolate their vertices' refracted path lengths and are attenuated by exp(-K d) per
 // channel, and tiling water draws each at nine offsets (instances: the shifted ones over the
 // quads along the edge their light crosses, `copy_rect`; copies whose quad misses the square are
-// collapsed). CPU twin: `triangles_pass_with_paths` in
+// collapsed; the band is the narrower of the uniform's and the one `band.wgsl` fitted on the GPU,
+// and instances map to copies by `copy_of_instance`). CPU twin: `triangles_pass_with_paths` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> irradiance: array<f32>;
 @group(0) @binding(4) var<storage, read> paths: array<f32>;
+@group(0) @binding(5) var<storage, read> copy_band: CopyBand;
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
@@ -21,9 +23,10 @@ struct VsOut {
 }
 
 @vertex
-fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) copy: u32) -> VsOut {
+fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) instance: u32) -> VsOut {
     // Copy `copy`'s quads, row-major over its rectangle (every quad for the unshifted copy).
-    let r = copy_rect(u, copy);
+    let copy = copy_of_instance(instance);
+    let r = copy_rect(with_band(u, copy_band), copy);
     let cols = max(r.w - r.z, 1u);
     let quad = vi / 6u;
     let qi = r.x + quad / cols;

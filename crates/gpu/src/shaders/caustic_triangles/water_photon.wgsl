@@ -8,16 +8,7 @@
 // reference's normalisation). CPU twin: `photon` in
 // caustics-core/src/techniques/caustic_triangles/water.rs.
 
-// Mirrors `WaterPhotonUniform` in caustic_triangles/mod.rs and `WaterSetup` in water.rs.
-struct WaterPhoton {
-    light: vec4<f32>,   // xyz: unit direction the sunlight travels; w: index of refraction of the water
-    water: vec4<f32>,   // x: depth; y: size of the square; z: lattice spacing; w: T(theta0), 1 without Fresnel
-    lattice: u32,       // quads per side, P (P + 1 photons per side)
-    wrap: u32,
-    fresnel: u32,
-    _pad: u32,
-}
-
+// The uniform block `WaterPhoton`: water_setup.wgsl.
 @group(0) @binding(0) var<uniform> w: WaterPhoton;
 @group(0) @binding(1) var heights: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read_write> photons: array<vec4<f32>>;

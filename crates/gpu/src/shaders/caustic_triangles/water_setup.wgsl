@@ -1,0 +1,11 @@
+// Technique `caustic-triangles` with the water surface as the generator: the uniform block of the
+// water passes (the water photon pass, the copy band pass).
+// Mirrors `WaterPhotonUniform` in caustic_triangles/mod.rs and `WaterSetup` in water.rs.
+struct WaterPhoton {
+    light: vec4<f32>,   // xyz: unit direction the sunlight travels; w: index of refraction of the water
+    water: vec4<f32>,   // x: depth; y: size of the square; z: lattice spacing; w: T(theta0), 1 without Fresnel
+    lattice: u32,       // quads per side, P (P + 1 photons per side)
+    wrap: u32,
+    fresnel: u32,
+    _pad: u32,
+}
