@@ -99,6 +99,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &RIPPLE_STEP,
     &RIPPLE_DROP,
     &crate::final_image::FINAL_IMAGE,
+    &crate::final_image::FINAL_IMAGE_SLAB,
     &crate::caustic_triangles::PHOTON,
     &crate::caustic_triangles::IRRADIANCE,
     &crate::caustic_triangles::TRIANGLES,
