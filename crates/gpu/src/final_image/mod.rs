@@ -6,24 +6,33 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
+//! | water slab bound (compute, 128² samples) | `shaders/final_image_slab.wgsl` | `h_max` of `render::render_with`, [`slab_half_height`] |
 //! | final image (compute, one invocation per pixel) | `shaders/final_image.wgsl` | `render::render` and `Tracer` |
 //! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::at` |
 //! | (shared) mesh ray queries | `shaders/bvh.wgsl` | `MeshBvh::intersect` |
 //!
+//! The image is a [`FinalImageFrame`]: built once per scene and image size (the objects' trees, the
+//! terrain and albedo textures, the output texture, the bind groups), then per frame one uniform
+//! write ([`FinalImageFrame::update`]) and two passes recorded into the caller's encoder
+//! ([`FinalImageFrame::encode`]). Nothing is created or read back per frame.
+//!
 //! How the inputs reach the shader, and where they differ from what the CPU reads:
-//! - The water surface is sampled on a square grid ([`water_grid`]) and read back with the shared
-//!   bicubic `grid_sample` of `water.wgsl`. A procedural surface is therefore the grid's
-//!   interpolant here; render on the CPU with [`water_grid`]'s surface for an exact comparison.
-//!   The grid is uploaded with a border ([`bordered_grid`]) so that a periodic surface is wrapped
-//!   once per sample rather than per tap.
+//! - The water is the heights texture the techniques read ([`crate::WaterTextures`]), through the
+//!   shared bicubic `grid_sample` of `water.wgsl` with the water's edge rule per tap, as the CPU's
+//!   `Grid::sample`. A procedural surface is therefore the grid's interpolant here; render on the
+//!   CPU with the grid's surface ([`water_grid`] is the one [`FinalImage::render_with`] uploads)
+//!   for an exact comparison. The slab the surface lies in is found from that texture on the GPU
+//!   each frame, as the CPU finds it from its surface.
 //! - The terrain is an `R32Float` texture through the same `grid_sample`, clamped; the caustics
-//!   map an `Rgba32Float` texture filtered by hand like `CausticsMap::sample`, or in its place an
-//!   eye-space image (`cascaded`) read like `EyeSpaceCaustics::sample`; an albedo image an
-//!   `Rgba32Float` texture read at the nearest texel like `Albedo::at`.
+//!   are the technique's output texture, bound as it is: a floor map filtered by hand like
+//!   `CausticsMap::sample`, or an eye-space image (`cascaded`) read like
+//!   `EyeSpaceCaustics::sample`; an albedo image an `Rgba32Float` texture read at the nearest texel
+//!   like `Albedo::at`.
 //! - Each object's `MeshBvh` (the very tree the CPU traverses) is flattened into two storage
 //!   buffers shared by all objects (bind group 1, `bvh.wgsl`).
 //! - The image is written tone-mapped and sRGB-encoded into an `Rgba8Unorm` storage texture with
-//!   the CPU's rounding, and read back as [`caustics_core::render::Image`].
+//!   the CPU's rounding; [`FinalImage::render_with`] reads it back as
+//!   [`caustics_core::render::Image`].
 //!
 //! WGSL has no recursion: the CPU's recursive trace (water surface, glass reflection and
 //! refraction) becomes a loop over a small stack of weighted rays, with the CPU's depth limit; the
@@ -34,8 +43,8 @@
 mod upload;
 
 pub use upload::{
-    FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject, Meshes, WATER_BORDER, albedo,
-    bordered_grid, flags, meshes, slab_half_height, water_grid, water_grid_resolution,
+    FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject, Meshes, SLAB_LATTICE, SlabUniform,
+    albedo, flags, meshes, slab_half_height, water_grid, water_grid_resolution,
 };
 
 use caustics_core::map::CausticsMap;
@@ -43,8 +52,11 @@ use caustics_core::render::{Caustics, Image, RenderOptions};
 use caustics_core::scene::{Albedo, Scene};
 use caustics_core::water::Surface;
 
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::technique::{Output, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
+use upload::Lighting;
 
 /// The sky, the floor's albedo and the tone curve, for any pass that shows the scene.
 pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
@@ -57,17 +69,47 @@ pub const FINAL_IMAGE: PassSource = PassSource {
     source: include_str!("../shaders/final_image.wgsl"),
 };
 
-/// Pixels per workgroup side (`@workgroup_size(8, 8)`).
+pub const FINAL_IMAGE_SLAB: PassSource = PassSource {
+    name: "final image slab",
+    shared: &[WATER],
+    source: include_str!("../shaders/final_image_slab.wgsl"),
+};
+
+/// Pixels per workgroup side (`@workgroup_size(8, 8)`, both passes).
 const TILE: u32 = 8;
 
-/// The final-image pipeline, built once per device.
+/// The final-image pipelines, built once per device.
 pub struct FinalImage {
     pipeline: wgpu::ComputePipeline,
+    slab_pipeline: wgpu::ComputePipeline,
     scene_layout: wgpu::BindGroupLayout,
     mesh_layout: wgpu::BindGroupLayout,
     /// Bound in place of a height field, terrain, caustics map or albedo image the scene lacks.
     empty_r32: wgpu::Texture,
     empty_rgba32: wgpu::Texture,
+}
+
+/// The final image of one scene at one image size, everything it reads and writes living across
+/// frames: built by [`FinalImage::frame`], updated per frame by one uniform write.
+pub struct FinalImageFrame {
+    pipeline: wgpu::ComputePipeline,
+    slab_pipeline: wgpu::ComputePipeline,
+    scene_group: wgpu::BindGroup,
+    mesh_group: wgpu::BindGroup,
+    /// The slab pass's bind group, with a heights texture bound (none: no surface, `h_max` = 0).
+    slab_group: Option<wgpu::BindGroup>,
+    uniform: wgpu::Buffer,
+    /// The bits of the largest |h| on the slab lattice (`final_image_slab.wgsl`).
+    slab_max: wgpu::Buffer,
+    output: wgpu::Texture,
+    lighting: Lighting,
+    /// A floor map's square given by the caller (a CPU map's own), in place of the scene's.
+    map_size: Option<f64>,
+    object_count: u32,
+    size: (u32, u32),
+    /// Kept alive with the bind groups that read them.
+    _resources: Vec<wgpu::Buffer>,
+    _textures: Vec<wgpu::Texture>,
 }
 
 fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -190,6 +232,7 @@ impl FinalImage {
                     },
                     count: None,
                 },
+                storage_entry(7),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -209,6 +252,7 @@ impl FinalImage {
             compilation_options: Default::default(),
             cache: None,
         });
+        let slab_pipeline = compute_pipeline(ctx, &FINAL_IMAGE_SLAB);
         let empty_r32 = float_texture(
             ctx,
             "no height field",
@@ -228,6 +272,7 @@ impl FinalImage {
         ctx.check()?;
         Ok(FinalImage {
             pipeline,
+            slab_pipeline,
             scene_layout,
             mesh_layout,
             empty_r32,
@@ -240,6 +285,181 @@ impl FinalImage {
     /// since the CPU renderer needs no texture fetches and no SIMD lanes wait on each other.
     pub fn software_adapter(ctx: &GpuContext) -> bool {
         ctx.info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    /// The final image of `scene` at its camera's size, every resource built here once: the
+    /// objects' trees (a scene whose objects change needs a new frame), the terrain and albedo
+    /// textures, the `Rgba8Unorm` output, the uniform and the bind groups.
+    ///
+    /// `water`: the heights as the techniques read them, bound as they are (the caller may rewrite
+    /// the texture every frame); `None` without water. `caustics`: the technique's output texture,
+    /// bound as it is: a floor map over the water square (over the scene square without water), or
+    /// an eye-space image of the scene's camera; `None` lights the floor as under flat water.
+    /// [`update`](FinalImageFrame::update) takes the first frame's camera and sun before
+    /// [`encode`](FinalImageFrame::encode).
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: Option<&WaterTextures>,
+        caustics: Option<Output>,
+        options: &RenderOptions,
+    ) -> Result<FinalImageFrame, GpuError> {
+        self.build(ctx, scene, water, caustics, None, options)
+    }
+
+    /// [`frame`](Self::frame), a floor map's square given (`map_size`) or the scene's.
+    fn build(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: Option<&WaterTextures>,
+        caustics: Option<Output>,
+        map_size: Option<f64>,
+        options: &RenderOptions,
+    ) -> Result<FinalImageFrame, GpuError> {
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        ctx.check_texture_size("final image", width, height)?;
+        // Heights without water in the scene have no square to cover: the frame has no surface.
+        let water = water.filter(|_| scene.water.is_some());
+        let lighting = match caustics {
+            Some(Output::Floor(_)) => Lighting::Floor {
+                size: map_size.unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
+            },
+            Some(Output::EyeSpace(_)) => Lighting::EyeSpace,
+            None => Lighting::Flat,
+        };
+
+        let meshes = meshes(scene);
+        let terrain = match &scene.floor.terrain {
+            Some(t) => Some(ctx.upload_grid("terrain height field", t)?),
+            None => None,
+        };
+        let albedo_image = match &scene.floor.albedo {
+            Albedo::Image {
+                width,
+                height,
+                texels,
+            } => Some(float_texture(
+                ctx,
+                "floor albedo image",
+                wgpu::TextureFormat::Rgba32Float,
+                *width as u32,
+                *height as u32,
+                bytemuck::cast_slice(&rgba32(texels)),
+            )?),
+            Albedo::Pattern(_) => None,
+        };
+        let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
+        let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.nodes)?;
+        let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.triangles)?;
+        let uniform = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("final image uniform"),
+            size: std::mem::size_of::<FinalImageUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let slab_max = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("final image slab bound"),
+            size: 4,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let output = ctx.texture_2d(
+            "final image",
+            (width, height, 1),
+            wgpu::TextureFormat::Rgba8Unorm,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+
+        let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
+            t.unwrap_or(empty).create_view(&Default::default())
+        };
+        let water_view = match water {
+            Some(w) => w.heights.clone(),
+            None => view(None, &self.empty_r32),
+        };
+        let views = [
+            view(terrain.as_ref(), &self.empty_r32),
+            view(caustics.map(|c| c.texture()), &self.empty_rgba32),
+            view(albedo_image.as_ref(), &self.empty_rgba32),
+            output.create_view(&Default::default()),
+        ];
+        let scene_group = bind_group(
+            ctx,
+            "final image scene",
+            &self.scene_layout,
+            &[
+                uniform.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&water_view),
+                wgpu::BindingResource::TextureView(&views[0]),
+                wgpu::BindingResource::TextureView(&views[1]),
+                wgpu::BindingResource::TextureView(&views[2]),
+                objects.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[3]),
+                slab_max.as_entire_binding(),
+            ],
+        );
+        let mesh_group = bind_group(
+            ctx,
+            "scene meshes",
+            &self.mesh_layout,
+            &[nodes.as_entire_binding(), triangles.as_entire_binding()],
+        );
+        let mut resources = vec![objects, nodes, triangles];
+        let slab_group = match (water, &scene.water) {
+            (Some(w), Some(sw)) => {
+                // The water's square and edge rule are the scene's: a new frame when they change.
+                let slab = SlabUniform {
+                    size: sw.size as f32,
+                    wrap: sw.wrap as u32,
+                    lattice: SLAB_LATTICE,
+                    _pad: 0,
+                };
+                let slab_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("final image slab uniform"),
+                    contents: bytemuck::bytes_of(&slab),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let group = bind_group(
+                    ctx,
+                    "final image slab",
+                    &self.slab_pipeline.get_bind_group_layout(0),
+                    &[
+                        slab_uniform.as_entire_binding(),
+                        wgpu::BindingResource::TextureView(&w.heights),
+                        slab_max.as_entire_binding(),
+                    ],
+                );
+                resources.push(slab_uniform);
+                Some(group)
+            }
+            _ => None,
+        };
+
+        let mut frame = FinalImageFrame {
+            pipeline: self.pipeline.clone(),
+            slab_pipeline: self.slab_pipeline.clone(),
+            scene_group,
+            mesh_group,
+            slab_group,
+            uniform,
+            slab_max,
+            output,
+            lighting,
+            map_size,
+            object_count: meshes.objects.len() as u32,
+            size: (width, height),
+            _resources: resources,
+            _textures: terrain.into_iter().chain(albedo_image).collect(),
+        };
+        frame.update(ctx, scene, options);
+        ctx.check()?;
+        Ok(frame)
     }
 
     /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with
@@ -268,7 +488,9 @@ impl FinalImage {
 
     /// [`render`](Self::render) with the caustics from either source, the GPU counterpart of
     /// `caustics_core::render::render_with`: a floor map, or an eye-space image made for the
-    /// scene's camera (`cascaded`), read at the pixel each floor point projects to.
+    /// scene's camera (`cascaded`), read at the pixel each floor point projects to. A one-off
+    /// image from CPU inputs: the water grid and the map are uploaded into textures, a
+    /// [`FinalImageFrame`] is built on them, and the image is read back.
     pub fn render_with(
         &self,
         ctx: &GpuContext,
@@ -278,35 +500,12 @@ impl FinalImage {
         options: &RenderOptions,
         mut timer: Option<&mut GpuTimer>,
     ) -> Result<Image, GpuError> {
-        let device = &ctx.device;
-        let (width, height) = (scene.camera.width, scene.camera.height);
-        ctx.check_texture_size("final image", width, height)?;
-
         let grid = surface.and_then(|s| water_grid(scene, s));
-        let h_max = match (&grid, &scene.water) {
-            (Some(g), Some(w)) => slab_half_height(g, w.size),
-            _ => 0.0,
-        };
-        let meshes = meshes(scene);
-        let params = upload::uniform(
-            scene,
-            grid.is_some(),
-            h_max,
-            caustics,
-            options,
-            meshes.objects.len() as u32,
-        );
-
-        let water_height = match &grid {
-            Some(g) => {
-                Some(ctx.upload_grid("water height field", &bordered_grid(&g.grid, g.edge))?)
-            }
+        let heights = match &grid {
+            Some(g) => Some(ctx.upload_grid("water height field", &g.grid)?),
             None => None,
         };
-        let terrain = match &scene.floor.terrain {
-            Some(t) => Some(ctx.upload_grid("terrain height field", t)?),
-            None => None,
-        };
+        let water = heights.as_ref().map(WaterTextures::of);
         let map = match caustics {
             Some(Caustics::Floor(m)) => Some(float_texture(
                 ctx,
@@ -326,105 +525,92 @@ impl FinalImage {
             )?),
             None => None,
         };
-        let albedo_image = match &scene.floor.albedo {
-            Albedo::Image {
-                width,
-                height,
-                texels,
-            } => Some(float_texture(
-                ctx,
-                "floor albedo image",
-                wgpu::TextureFormat::Rgba32Float,
-                *width as u32,
-                *height as u32,
-                bytemuck::cast_slice(&rgba32(texels)),
-            )?),
-            Albedo::Pattern(_) => None,
+        let (output, map_size) = match (caustics, &map) {
+            (Some(Caustics::Floor(m)), Some(t)) => (Some(Output::Floor(t)), Some(m.size)),
+            (Some(Caustics::EyeSpace(_)), Some(t)) => (Some(Output::EyeSpace(t)), None),
+            _ => (None, None),
         };
-        let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
-        let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.nodes)?;
-        let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.triangles)?;
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("final image uniform"),
-            contents: bytemuck::bytes_of(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let output = ctx.create_texture(&wgpu::TextureDescriptor {
-            label: Some("final image"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
+        let frame = self.build(ctx, scene, water.as_ref(), output, map_size, options)?;
 
-        let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
-            t.unwrap_or(empty).create_view(&Default::default())
-        };
-        let views = [
-            view(water_height.as_ref(), &self.empty_r32),
-            view(terrain.as_ref(), &self.empty_r32),
-            view(map.as_ref(), &self.empty_rgba32),
-            view(albedo_image.as_ref(), &self.empty_rgba32),
-        ];
-        let output_view = output.create_view(&Default::default());
-        let scene_group = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("final image scene"),
-            layout: &self.scene_layout,
-            entries: &[
-                entry(0, uniform.as_entire_binding()),
-                entry(1, wgpu::BindingResource::TextureView(&views[0])),
-                entry(2, wgpu::BindingResource::TextureView(&views[1])),
-                entry(3, wgpu::BindingResource::TextureView(&views[2])),
-                entry(4, wgpu::BindingResource::TextureView(&views[3])),
-                entry(5, objects.as_entire_binding()),
-                entry(6, wgpu::BindingResource::TextureView(&output_view)),
-            ],
-        });
-        let mesh_group = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("scene meshes"),
-            layout: &self.mesh_layout,
-            entries: &[
-                entry(0, nodes.as_entire_binding()),
-                entry(1, triangles.as_entire_binding()),
-            ],
-        });
-
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("final image"),
-        });
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("final image"),
-                timestamp_writes: timer.as_mut().and_then(|t| t.compute_pass("final image")),
             });
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &scene_group, &[]);
-            pass.set_bind_group(1, &mesh_group, &[]);
-            pass.dispatch_workgroups(width.div_ceil(TILE), height.div_ceil(TILE), 1);
-        }
+        frame.encode(&mut encoder, timer.as_deref_mut());
         if let Some(t) = &timer {
             t.resolve(&mut encoder);
         }
         ctx.queue.submit([encoder.finish()]);
         ctx.check()?;
-        let texels: Vec<[u8; 4]> = ctx.read_texture(&output)?;
+        let texels: Vec<[u8; 4]> = ctx.read_texture(frame.output())?;
         Ok(Image {
-            width,
-            height,
+            width: frame.size.0,
+            height: frame.size.1,
             rgb: texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect(),
         })
     }
 }
 
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
+impl FinalImageFrame {
+    /// Take this frame's camera, sun, exposure and supersampling from `scene` and `options`: one
+    /// uniform write. What the frame was built with stays: the image size (the aspect ratio is the
+    /// frame's), the textures, the objects; a change to those needs a new frame.
+    pub fn update(&mut self, ctx: &GpuContext, scene: &Scene, options: &RenderOptions) {
+        let lighting = match self.lighting {
+            // A floor map covers the water square (the scene's without water), as the techniques
+            // lay their maps out, unless the caller said otherwise.
+            Lighting::Floor { .. } => Lighting::Floor {
+                size: self
+                    .map_size
+                    .unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
+            },
+            other => other,
+        };
+        let params = upload::uniform(
+            scene,
+            self.slab_group.is_some(),
+            lighting,
+            options,
+            self.object_count,
+            self.size,
+        );
+        ctx.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&params));
+    }
+
+    /// Record the slab bound of the water (when there is water) and the image into `encoder`. With
+    /// a `timer`, the image pass is timed as "final image"; the slab pass (128² bicubic samples) is
+    /// left untimed so that a one-pass timer still times the image.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
+        if let Some(group) = &self.slab_group {
+            encoder.clear_buffer(&self.slab_max, 0, None);
+            let mut pass = begin_compute(encoder, &mut None, FINAL_IMAGE_SLAB.name);
+            pass.set_pipeline(&self.slab_pipeline);
+            pass.set_bind_group(0, group, &[]);
+            let groups = SLAB_LATTICE.div_ceil(TILE);
+            pass.dispatch_workgroups(groups, groups, 1);
+        }
+        let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE.name);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.scene_group, &[]);
+        pass.set_bind_group(1, &self.mesh_group, &[]);
+        let (width, height) = self.size;
+        pass.dispatch_workgroups(width.div_ceil(TILE), height.div_ceil(TILE), 1);
+    }
+
+    /// The image: `Rgba8Unorm`, tone-mapped and sRGB-encoded (the 8-bit codes of
+    /// `caustics_core::render`'s image), usable as a storage, sampled or copied texture.
+    pub fn output(&self) -> &wgpu::Texture {
+        &self.output
+    }
+
+    /// The slab half-height `h_max` the last submitted frame searched for the water surface in (0
+    /// without a surface): for tests against [`slab_half_height`]. A readback; not for the frame.
+    pub fn read_slab_half_height(&self, ctx: &GpuContext) -> Result<f32, GpuError> {
+        if self.slab_group.is_none() {
+            return Ok(0.0);
+        }
+        let bits: Vec<u32> = ctx.read_buffer(&self.slab_max)?;
+        Ok(f32::from_bits(bits[0]) * 1.5 + 1e-6)
+    }
 }

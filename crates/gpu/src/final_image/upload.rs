@@ -2,15 +2,14 @@
 //! `shaders/bvh.wgsl`: the frame's uniform (camera, sun, water, flags), the objects with their
 //! flattened trees, and the frozen water surface as a height grid.
 //!
-//! Everything the CPU renderer derives once per image (`render.rs`, `render`: the slab bound
-//! `h_max`, the refracted sun and its flat-water transmittance, the camera basis) is derived here
-//! in f64 the same way and handed to the shader rounded to f32, so the two sides start from the
-//! same numbers.
+//! Everything the CPU renderer derives once per image (`render.rs`, `render`: the refracted sun and
+//! its flat-water transmittance, the camera basis) is derived here in f64 the same way and handed
+//! to the shader rounded to f32, so the two sides start from the same numbers. The slab bound
+//! `h_max` depends on the water, which lives on the GPU: `shaders/final_image_slab.wgsl` finds it
+//! there each frame ([`slab_half_height`] is its CPU twin).
 
-use caustics_core::grid::{Edge, Grid};
-use caustics_core::map::CausticsMap;
 use caustics_core::optics::{fresnel_transmittance, refract};
-use caustics_core::render::{AMBIENT, Caustics, RenderOptions};
+use caustics_core::render::{AMBIENT, RenderOptions};
 use caustics_core::scene::{Albedo, FloorPattern, Material, Scene};
 use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::{DVec2, DVec3};
@@ -37,7 +36,6 @@ pub struct FinalImageUniform {
     pub light_color: [f32; 3],
     pub ior: f32,
     pub absorption: [f32; 3],
-    pub h_max: f32,
     pub scene_size: f32,
     pub map_size: f32,
     pub width: u32,
@@ -46,7 +44,22 @@ pub struct FinalImageUniform {
     pub object_count: u32,
     pub flags: u32,
     pub albedo: u32,
+    /// The WGSL struct's size rounds up to its 16-byte alignment.
+    pub _pad: u32,
 }
+
+/// Mirrors `Slab` in `shaders/final_image_slab.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct SlabUniform {
+    pub size: f32,
+    pub wrap: u32,
+    pub lattice: u32,
+    pub _pad: u32,
+}
+
+/// Samples along each side of the lattice the slab bound is taken on (render.rs `render_with`).
+pub const SLAB_LATTICE: u32 = 128;
 
 /// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image.wgsl`.
 pub mod flags {
@@ -138,33 +151,12 @@ pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
     })
 }
 
-/// Texels of border around the water's height grid on the GPU: the reach of the bicubic's taps
-/// (`WATER_BORDER` in `final_image.wgsl`).
-pub const WATER_BORDER: usize = 2;
-
-/// `grid` with [`WATER_BORDER`] texels added on every side, taken across the edge by `edge` (the
-/// neighbours on the far side for a periodic surface, the edge texel for a clamped one). Every tap
-/// the bicubic makes for a point of the square, wrapped into it if periodic, then lies inside the
-/// texture, and reads what the CPU's `Grid::sample` reads for that tap.
-pub fn bordered_grid(grid: &Grid, edge: Edge) -> Grid {
-    let b = WATER_BORDER as i64;
-    let (cols, rows) = (grid.cols as i64, grid.rows as i64);
-    let source = |k: i64, n: i64| match edge {
-        Edge::Wrap => k.rem_euclid(n),
-        Edge::Clamp => k.clamp(0, n - 1),
-    } as usize;
-    Grid::from_fn(
-        grid.cols + 2 * WATER_BORDER,
-        grid.rows + 2 * WATER_BORDER,
-        |i, j| grid.at(source(i as i64 - b, rows), source(j as i64 - b, cols)),
-    )
-}
-
 /// Bound on |h| of the water, for the slab the surface lies in: computed as `render.rs` `render`
-/// does (the largest |h| on a 128² lattice, times 1.5), so both sides search the same slab and
-/// put the deck at the same height.
+/// does (the largest |h| on a 128² lattice, times 1.5): the CPU twin of the slab pass
+/// (`shaders/final_image_slab.wgsl`), so both sides search the same slab and put the deck at the
+/// same height.
 pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
-    let n = 128;
+    let n = SLAB_LATTICE;
     let mut m: f64 = 0.0;
     for i in 0..n {
         for j in 0..n {
@@ -175,15 +167,26 @@ pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
     m * 1.5 + 1e-6
 }
 
-/// The frame's uniform. `h_max` is [`slab_half_height`] of the surface the shader reads (0 without
-/// one); `object_count` the number of objects uploaded.
+/// Where the floor's light comes from, as the frame binds it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Lighting {
+    /// No map: lit as under flat water.
+    Flat,
+    /// A map of the floor covering the square `[0, size]²`.
+    Floor { size: f64 },
+    /// An eye-space image of the scene's camera (`cascaded`).
+    EyeSpace,
+}
+
+/// The frame's uniform: `surface` whether a heights texture is bound, `object_count` the number of
+/// objects uploaded, `(width, height)` the frame's image (the camera's when it was built).
 pub(super) fn uniform(
     scene: &Scene,
     surface: bool,
-    h_max: f64,
-    caustics: Option<Caustics>,
+    lighting: Lighting,
     options: &RenderOptions,
     object_count: u32,
+    (width, height): (u32, u32),
 ) -> FinalImageUniform {
     let cam = &scene.camera;
     // `Camera::ray`'s basis, with the field of view and the aspect ratio folded in.
@@ -191,7 +194,7 @@ pub(super) fn uniform(
     let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
     let up = right.cross(forward);
     let half = (cam.fov_y.to_radians() * 0.5).tan();
-    let aspect = cam.width as f64 / cam.height as f64;
+    let aspect = width as f64 / height as f64;
 
     let water = scene.water.as_ref();
     let ior = water.map_or(1.0, |w| w.ior);
@@ -199,10 +202,6 @@ pub(super) fn uniform(
     let sun_water = refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun);
     let t_flat = fresnel_transmittance(-sun.z, 1.0, ior);
 
-    let map: Option<&CausticsMap> = match caustics {
-        Some(Caustics::Floor(m)) => Some(m),
-        _ => None,
-    };
     let mut f = 0;
     if let Some(w) = water {
         f |= flags::WATER;
@@ -212,16 +211,16 @@ pub(super) fn uniform(
         if w.wrap {
             f |= flags::WRAP_SURFACE;
         }
-        match caustics {
-            Some(Caustics::Floor(_)) => f |= flags::CAUSTICS,
-            Some(Caustics::EyeSpace(_)) => f |= flags::EYE_CAUSTICS,
-            None => {}
+        match lighting {
+            Lighting::Floor { .. } => f |= flags::CAUSTICS,
+            Lighting::EyeSpace => f |= flags::EYE_CAUSTICS,
+            Lighting::Flat => {}
         }
         if w.wrap && scene.floor.terrain.is_none() {
             f |= flags::WRAP_CAUSTICS;
         }
     }
-    if water.is_none() && map.is_some() {
+    if water.is_none() && matches!(lighting, Lighting::Floor { .. }) {
         f |= flags::AIR_CAUSTICS;
     }
     if scene.floor.terrain.is_some() {
@@ -243,11 +242,13 @@ pub(super) fn uniform(
         light_color: f3(scene.light.color),
         ior: ior as f32,
         absorption: f3(water.map_or(DVec3::ZERO, |w| w.absorption)),
-        h_max: h_max as f32,
         scene_size: scene.size as f32,
-        map_size: map.map_or(scene.size, |m| m.size) as f32,
-        width: cam.width,
-        height: cam.height,
+        map_size: match lighting {
+            Lighting::Floor { size } => size,
+            _ => scene.size,
+        } as f32,
+        width,
+        height,
         supersampling: options.supersampling.max(1),
         object_count,
         flags: f,
@@ -257,6 +258,7 @@ pub(super) fn uniform(
             Albedo::Pattern(FloorPattern::Plain) => albedo::PLAIN,
             Albedo::Image { .. } => albedo::IMAGE,
         },
+        _pad: 0,
     }
 }
 

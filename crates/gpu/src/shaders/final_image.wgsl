@@ -36,8 +36,6 @@ struct FinalImage {
     // The water's index of refraction (1 without water).
     ior: f32,
     absorption: vec3<f32>,
-    // Bound on |h| of the water: the slab the surface lies in.
-    h_max: f32,
     // `scene.size`: the terrain's square and the floor's without water.
     scene_size: f32,
     // The square the caustics map covers.
@@ -74,18 +72,21 @@ struct Object {
 }
 
 @group(0) @binding(0) var<uniform> params: FinalImage;
-// The water's displacement on the scene square (R32Float, with a border: see
-// water_height_gradient), read through grid_sample.
+// The water's heights as the techniques read them (R32Float, any size, covering the water square),
+// read through grid_sample with the water's edge rule per tap, as the CPU's `Grid::sample`.
 @group(0) @binding(1) var water_height: texture_2d<f32>;
 // The terrain's height (R32Float), clamped at its edges.
 @group(0) @binding(2) var terrain_height: texture_2d<f32>;
-// The caustics map (Rgba32Float, rgb used), filtered by hand as `CausticsMap::sample` does; or the
-// eye-space caustics (rgb, w < 0 where none), read as `EyeSpaceCaustics::sample` does.
+// The caustics map (Rgba32Float or Rgba16Float, rgb used), filtered by hand as `CausticsMap::sample`
+// does; or the eye-space caustics (rgb, w < 0 where none, as cascaded's compose.wgsl writes them and
+// the CPU twin's texels hold them), read as `EyeSpaceCaustics::sample` does.
 @group(0) @binding(3) var caustics_map: texture_2d<f32>;
 // The floor's albedo image (Rgba32Float, linear), when there is one.
 @group(0) @binding(4) var albedo_image: texture_2d<f32>;
 @group(0) @binding(5) var<storage, read> objects: array<Object>;
 @group(0) @binding(6) var image: texture_storage_2d<rgba8unorm, write>;
+// The bits of the largest |h| on the slab lattice, as final_image_slab.wgsl found it this frame.
+@group(0) @binding(7) var<storage, read> slab_max: array<u32>;
 
 // Stands for the CPU's f64::INFINITY as a ray's range.
 const FAR: f32 = 3.0e38;
@@ -111,6 +112,8 @@ struct Ray {
 var<private> rays: array<Ray, RAY_STACK>;
 var<private> ray_count: u32;
 var<private> pixel_radiance: vec3<f32>;
+// Bound on |h| of the water: the slab the surface lies in (render.rs `h_max`), 0 without a surface.
+var<private> h_max: f32;
 
 fn push_ray(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, under: bool) {
     if ray_count < RAY_STACK {
@@ -148,22 +151,16 @@ fn absorbed(distance: f32) -> vec3<f32> {
     return exp(-params.absorption * distance);
 }
 
-// The water's height grid arrives with a border of WATER_BORDER texels on every side, copied across
-// the edge by the water's rule (`bordered_grid` in final_image/upload.rs), so that the shared
-// `grid_sample` can run with clamping and still read the surface exactly: a periodic surface is
-// wrapped here once per sample, in floating point, instead of twice per tap with integer
-// remainders, which CPU adapters such as lavapipe cannot vectorise (it halves the pass there).
-const WATER_BORDER: f32 = 2.0;
-
 fn water_height_gradient(p: vec2<f32>) -> vec3<f32> {
-    let dims = f32(textureDimensions(water_height).x);
-    let n = dims - 2.0 * WATER_BORDER;
-    let size = params.water_size;
-    var q = p;
-    if has(FLAG_WRAP_SURFACE) {
-        q = p - size * floor(p / size);
+    return grid_sample(water_height, p, params.water_size, has(FLAG_WRAP_SURFACE));
+}
+
+// render.rs `render_with`: 1.5 times the largest |h| on its lattice, plus 1e-6.
+fn slab_half_height() -> f32 {
+    if !has(FLAG_SURFACE) {
+        return 0.0;
     }
-    return grid_sample(water_height, q + WATER_BORDER * (size / n), size * (dims / n), false);
+    return bitcast<f32>(slab_max[0]) * 1.5 + 1e-6;
 }
 
 fn floor_height(p: vec2<f32>) -> f32 {
@@ -313,8 +310,8 @@ fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
 
 // The first crossing of the ray with z = level + h(x, y): xyz the point, w the distance (-1: none).
 fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
-    let top = params.water_level + params.h_max;
-    let bottom = params.water_level - params.h_max;
+    let top = params.water_level + h_max;
+    let bottom = params.water_level - h_max;
     if o.z < bottom || d.z >= 0.0 {
         return vec4<f32>(o, -1.0);
     }
@@ -449,7 +446,7 @@ fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32
 // Above the water, outside the pool: the deck, or the sky.
 fn shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     if is_pool() && d.z < 0.0 {
-        let deck = params.water_level + 0.1 * min(params.water_size, 1.0) + params.h_max;
+        let deck = params.water_level + 0.1 * min(params.water_size, 1.0) + h_max;
         let t = (deck - o.z) / d.z;
         if t > 0.0 {
             let p = o + d * t;
@@ -588,6 +585,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= params.width || id.y >= params.height {
         return;
     }
+    h_max = slab_half_height();
     let n = max(params.supersampling, 1u);
     var c = vec3<f32>(0.0);
     for (var sy = 0u; sy < n; sy++) {
