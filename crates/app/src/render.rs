@@ -186,6 +186,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         return volumes_image(&runner, &scene, &spec, out);
     }
 
+    // The GPU frame: water, technique and final image on the GPU, read back once as the output.
+    if let Some(ctx) = runner.gpu.as_ref()
+        && scene.water.is_some()
+        && caustics_gpu::technique::REGISTRY
+            .iter()
+            .any(|r| r.name == spec.gpu_name())
+    {
+        return render_frame(ctx, &scene, &spec, &args, out.as_deref());
+    }
+
     let surface = match &scene.water {
         Some(w) => {
             if matches!(w.source, WaterSource::Ripple(_)) {
@@ -294,6 +304,102 @@ pub fn run(args: RenderArgs) -> Result<()> {
             out.display(),
             image.width,
             image.height,
+            started.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+/// `render` on the GPU frame (`caustics_gpu::renderer::Renderer`, as the viewer draws): the scene's
+/// water written on the GPU at the scene's time, the technique, the final image; the image and
+/// the raw caustics read back once at the end.
+fn render_frame(
+    ctx: &GpuContext,
+    scene: &Scene,
+    spec: &Spec,
+    args: &RenderArgs,
+    out: Option<&Path>,
+) -> Result<()> {
+    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    let started = Instant::now();
+    let mut renderer = Renderer::new(ctx)?;
+    renderer.set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)?;
+    renderer.set_techniques(
+        ctx,
+        &[Some(TechniqueSpec {
+            name: spec.gpu_name(),
+            params: spec.params.clone(),
+        })],
+    );
+    let options = RenderOptions {
+        supersampling: args.supersampling.max(1),
+        ..Default::default()
+    };
+    let clock = WaterClock {
+        time: scene.time,
+        amplitude: 1.0,
+        steps: 0,
+    };
+    renderer.render(ctx, scene, clock, &options)?;
+    if let Some(e) = renderer.error(0) {
+        bail!("technique `{}`: {e}", spec.label);
+    }
+    ctx.wait()?;
+    let output = renderer
+        .caustics(0)
+        .context("the technique made no caustics")?;
+    let texture = output.texture();
+    eprintln!(
+        "caustics: {} {} {} x {} on the GPU ({:.2} s with the image)",
+        spec.label,
+        match output {
+            caustics_gpu::Output::Floor(_) => "map",
+            caustics_gpu::Output::EyeSpace(_) => "eye-space image",
+        },
+        texture.width(),
+        texture.height(),
+        started.elapsed().as_secs_f64()
+    );
+    if let Some(raw) = &args.raw {
+        let texels = ctx.read_rgba_f32(texture)?;
+        let (width, height) = (texture.width() as usize, texture.height() as usize);
+        match output {
+            caustics_gpu::Output::Floor(_) => caustics_core::map::CausticsMap {
+                width,
+                height,
+                size: scene.water.as_ref().map_or(1.0, |w| w.size),
+                texels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect(),
+            }
+            .write_raw(raw)?,
+            caustics_gpu::Output::EyeSpace(_) => caustics_core::render::EyeSpaceCaustics {
+                width,
+                height,
+                texels: texels
+                    .iter()
+                    .map(|t| if t[3] >= 0.0 { *t } else { [f32::NAN; 4] })
+                    .collect(),
+            }
+            .write_raw(raw)?,
+        }
+        eprintln!("wrote {}", raw.display());
+    }
+    if let Some(out) = out {
+        let image = renderer.image(0).context("no final image")?;
+        let texels: Vec<[u8; 4]> = ctx.read_texture(image)?;
+        let rgb: Vec<u8> = texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
+        image::save_buffer(
+            out,
+            &rgb,
+            image.width(),
+            image.height(),
+            image::ExtendedColorType::Rgb8,
+        )
+        .with_context(|| format!("cannot write {}", out.display()))?;
+        eprintln!(
+            "wrote {} ({} x {}, {:.2} s on the GPU)",
+            out.display(),
+            image.width(),
+            image.height(),
             started.elapsed().as_secs_f64()
         );
     }

@@ -32,6 +32,16 @@ impl Spec {
         Ok(spec)
     }
 
+    /// The name the GPU registry (`caustics_gpu::technique::REGISTRY`) knows it by: the variant
+    /// suffix kept (`yuksel-gather`); procedural's variant travels in its parameters.
+    pub fn gpu_name(&self) -> String {
+        if self.gather {
+            format!("{}-gather", self.name)
+        } else {
+            self.name.clone()
+        }
+    }
+
     /// This spec's parameters laid over `base` (a scene's tables): the command line wins.
     pub fn over(mut self, base: &toml::Table) -> Self {
         let mut merged = base.clone();

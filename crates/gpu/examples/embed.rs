@@ -47,14 +47,27 @@ fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
-@fragment
-fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
-    let dims = vec2<f32>(textureDimensions(caustics));
-    let texel = vec2<i32>(frag.xy / 512.0 * dims);
-    let e = textureLoad(caustics, texel, 0);
-    let sand = vec3<f32>(0.76, 0.66, 0.50);
-    let lit = sand * select(1.0, e.g, e.a > 0.0);
+fn shade(e: vec3<f32>) -> vec4<f32> {
+    let lit = vec3<f32>(0.76, 0.66, 0.50) * e;
     return vec4<f32>(1.4 * lit / (1.0 + lit), 1.0);
+}
+
+fn texel(frag: vec4<f32>) -> vec4<f32> {
+    let dims = vec2<f32>(textureDimensions(caustics));
+    return textureLoad(caustics, vec2<i32>(frag.xy / 512.0 * dims), 0);
+}
+
+// A floor map: relative irradiance everywhere.
+@fragment
+fn fs_floor(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    return shade(texel(frag).rgb);
+}
+
+// An eye-space image: alpha < 0 where the pixel sees no lit floor.
+@fragment
+fn fs_eye(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let e = texel(frag);
+    return shade(select(vec3<f32>(0.2), e.rgb, e.a >= 0.0));
 }
 "#;
 
@@ -138,7 +151,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // 4. The technique, by name: pipelines once, its frame configured on our water texture.
     let mut technique = technique::create(&ctx, &name, &params)?;
     technique.configure(&ctx, &scene, &WaterTextures::of(&heights))?;
-    let caustics = technique.output().expect("configured").texture().clone();
+    let output = technique.output().expect("configured");
+    let caustics = output.texture().clone();
+    let fragment = match output {
+        Output::Floor(_) => "fs_floor",
+        Output::EyeSpace(_) => "fs_eye",
+    };
 
     // 5. The application's pass that samples the caustics, into its own target.
     let target = device.create_texture(&wgpu::TextureDescriptor {
@@ -174,7 +192,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         multisample: Default::default(),
         fragment: Some(wgpu::FragmentState {
             module: &show_module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(fragment),
             compilation_options: Default::default(),
             targets: &[Some(wgpu::TextureFormat::Rgba8Unorm.into())],
         }),
@@ -251,9 +269,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let rgb: Vec<u8> = texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
         image::save_buffer(&out, &rgb, 512, 512, image::ExtendedColorType::Rgb8)?;
         println!("wrote {out}");
-    }
-    if let Some(Output::EyeSpace(_)) = technique.output() {
-        println!("(an eye-space technique: its image is the pool's camera view)");
     }
     Ok(())
 }

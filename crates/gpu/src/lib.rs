@@ -10,6 +10,7 @@ pub mod final_image;
 pub mod pass;
 pub mod probe;
 pub mod procedural;
+pub mod renderer;
 pub mod shaders;
 pub mod technique;
 pub mod timing;

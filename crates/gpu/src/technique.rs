@@ -48,7 +48,8 @@ pub enum Output<'a> {
     /// 32-bit floats.
     Floor(&'a wgpu::Texture),
     /// An image in the scene camera's screen space (paper 5): relative irradiance of the floor
-    /// point each pixel sees, alpha 1 where the pixel has a value and 0 where it has none.
+    /// point each pixel sees; alpha is the cascade the value came from (its index plus the blend
+    /// towards the next, in [0, 4)) where the pixel has a value, and −1 (black) where it has none.
     EyeSpace(&'a wgpu::Texture),
 }
 

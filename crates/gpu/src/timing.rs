@@ -102,7 +102,10 @@ impl GpuTimer {
     /// After the submission holding [`resolve_frame`](Self::resolve_frame)'s copy: start mapping it.
     pub fn frame_submitted(&mut self) {
         let Some(staging) = &self.staging else { return };
-        if let Staged::Recorded(labels) = std::mem::replace(&mut self.staged, Staged::Idle) {
+        if let Staged::Recorded(_) = &self.staged {
+            let Staged::Recorded(labels) = std::mem::replace(&mut self.staged, Staged::Idle) else {
+                unreachable!("matched above")
+            };
             let done = Arc::new(AtomicBool::new(false));
             let flag = done.clone();
             staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
@@ -189,6 +192,9 @@ impl GpuTimer {
         let Some(buf) = &self.resolve else {
             return Ok(Vec::new());
         };
+        if self.labels.is_empty() {
+            return Ok(Vec::new());
+        }
         let stamps: Vec<u64> = ctx.read_buffer(buf)?;
         let labels = std::mem::take(&mut self.labels);
         Ok(self.times(labels.into_iter(), &stamps))

@@ -26,7 +26,7 @@ use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
 
 use super::buffers::{self, Buffer, BufferInput, SceneHas};
 use super::camera::{OrbitCamera, Sun};
-use super::frame::{Quality, SceneRenderer, Slot, TechniqueChoice, technique_names};
+use super::frame::{Quality, Rendered, SceneRenderer, Slot, TechniqueChoice, technique_names};
 use super::ui::{self, Model, Shown, Stats, TextureIds};
 use super::water::{SurfaceKey, WaterState};
 use super::{ImageOn, ViewArgs};
@@ -130,6 +130,8 @@ struct Script {
     base_size: [u32; 2],
     /// Wall time of each frame, ms, and whether it rendered the scene.
     times: Vec<(f64, bool)>,
+    /// GPU time per pass label summed over the frames after the first three, and its count.
+    passes: Vec<(String, f64, u32)>,
 }
 
 /// An image egui draws from a texture of ours: registered once, rewritten in place, replaced
@@ -169,6 +171,24 @@ impl GpuImage {
             );
         }
         write_rgba(ctx, &self.texture, rgba);
+    }
+
+    /// Show a texture of the GPU frame as it is: egui is told once per texture, no texel moves.
+    fn show(
+        &mut self,
+        ctx: &GpuContext,
+        renderer: &mut egui_wgpu::Renderer,
+        texture: &wgpu::Texture,
+    ) {
+        if self.texture != *texture {
+            self.texture = texture.clone();
+            renderer.update_egui_texture_from_wgpu_texture(
+                &ctx.device,
+                &self.texture.create_view(&Default::default()),
+                wgpu::FilterMode::Linear,
+                self.id,
+            );
+        }
     }
 }
 
@@ -250,6 +270,8 @@ struct Viewer {
     model: Model,
     script: Option<Script>,
     report_memory: bool,
+    /// With --report-traffic: the counts at the start of the steady frames, and that frame.
+    report_traffic: Option<Option<(u64, caustics_gpu::TrafficCounts)>>,
     frame: u64,
     last_frame: Instant,
     last_render: Option<RenderKey>,
@@ -375,6 +397,7 @@ impl Viewer {
             drop_every: args.drop_every,
             base_size: args.size,
             times: Vec::new(),
+            passes: Vec::new(),
         });
         Ok(Viewer {
             images,
@@ -391,6 +414,7 @@ impl Viewer {
             model,
             script,
             report_memory: args.report_memory,
+            report_traffic: args.report_traffic.then_some(None),
             frame: 0,
             last_frame: Instant::now(),
             last_render: None,
@@ -474,6 +498,8 @@ impl Viewer {
                 PathBuf::from(format!("caustics-view-{secs}.png"))
             })
         });
+        // The last frame's counts are taken before its screenshot is read back.
+        let counts = self.renderer.gpu().map(|c| c.traffic());
         self.paint(full, capture.as_deref())?;
         self.frame += 1;
 
@@ -487,10 +513,50 @@ impl Viewer {
                 None => println!("memory: frame {} VmRSS unknown", self.frame),
             }
         }
+        if let (Some(traffic), Some(s)) = (self.report_traffic.as_mut(), self.script.as_ref()) {
+            let first = steady_from(s.frames);
+            if self.frame + 1 == first {
+                *traffic = Some((first, self.renderer.gpu().expect("a device").traffic()));
+            }
+            if self.frame == s.frames
+                && let (Some((first, start)), Some(end)) = (traffic, counts)
+            {
+                let d = end.since(start);
+                let n = (s.frames + 1 - *first) as f64;
+                for k in 0..self.model.sides() {
+                    println!(
+                        "traffic {}: created {}, uploaded {} bytes, readbacks {} per frame (frames {} to {})",
+                        self.model.slots[k].choice.name,
+                        per_frame(d.created(), n),
+                        per_frame(d.uploaded_bytes, n),
+                        per_frame(d.readbacks, n),
+                        first,
+                        s.frames
+                    );
+                }
+            }
+        }
         if let Some(s) = self.script.as_mut() {
             s.times.push((super::frame::ms(started), rendered));
+            if self.frame > 3 {
+                for p in &self.model.stats.gpu {
+                    match s.passes.iter_mut().find(|(l, _, _)| *l == p.label) {
+                        Some(e) => {
+                            e.1 += p.ms;
+                            e.2 += 1;
+                        }
+                        None => s.passes.push((p.label.clone(), p.ms, 1)),
+                    }
+                }
+            }
             if self.frame >= s.frames {
                 print_summary(&s.times);
+                for (label, sum, n) in &s.passes {
+                    println!(
+                        "gpu pass {label}: mean {:.2} ms over {n} frames",
+                        sum / *n as f64
+                    );
+                }
                 return Ok(Flow::Exit);
             }
         }
@@ -543,14 +609,25 @@ impl Viewer {
             timestamps: m.stats.timestamps,
         };
         let ctx = self.renderer.gpu().expect("the viewer always has a device");
-        for (k, image) in images.iter().enumerate() {
-            self.images[k].set(
-                ctx,
-                &mut self.egui_renderer,
-                image.width,
-                image.height,
-                &rgba_of(image),
-            );
+        match images {
+            Rendered::Cpu(images) => {
+                for (k, image) in images.iter().enumerate() {
+                    self.images[k].set(
+                        ctx,
+                        &mut self.egui_renderer,
+                        image.width,
+                        image.height,
+                        &rgba_of(image),
+                    );
+                }
+            }
+            Rendered::Gpu => {
+                for k in 0..sides {
+                    if let Some(texture) = self.renderer.gpu_image(k) {
+                        self.images[k].show(ctx, &mut self.egui_renderer, texture);
+                    }
+                }
+            }
         }
         self.last_render = Some(key);
         Ok(true)
@@ -559,6 +636,10 @@ impl Viewer {
     /// Refresh the map and buffer pictures whose windows are open and whose inputs changed.
     fn update_pictures(&mut self) -> Result<()> {
         let m = &mut self.model;
+        if m.show_map && m.stats.rendered {
+            let sides = m.sides();
+            self.renderer.read_maps(&mut m.slots[..sides])?;
+        }
         let ctx = self.renderer.gpu().expect("the viewer always has a device");
         if m.show_map {
             for k in 0..m.sides() {
@@ -626,17 +707,25 @@ impl Viewer {
         if m.show_buffers
             && let Some(render) = self.last_render.as_ref()
         {
-            let water = m
-                .water
-                .as_ref()
-                .zip(self.renderer.surface.as_deref())
-                .map(|(w, s)| (w.technique_water(), s));
             let key = BufferKey {
                 buffer: m.buffer,
                 choice: m.slots[0].choice.clone(),
                 render: render.clone(),
             };
             if self.last_buffer.as_ref() != Some(&key) {
+                // The GPU frame keeps its water on the GPU: the buffer views (CPU twins) take the
+                // surface of this frame when they need it.
+                if self.renderer.surface.is_none()
+                    && let Some(w) = m.water.as_mut()
+                {
+                    self.renderer.surface = Some(self.renderer.cpu_surface(w)?);
+                }
+                let ctx = self.renderer.gpu().expect("the viewer always has a device");
+                let water = m
+                    .water
+                    .as_ref()
+                    .zip(self.renderer.surface.as_deref())
+                    .map(|(w, s)| (w.technique_water(), s));
                 let input = BufferInput {
                     choice: &m.slots[0].choice,
                     scene: &self.renderer.scene,
@@ -767,10 +856,13 @@ impl Viewer {
             self.egui_renderer.render(&mut pass, &jobs, &screen);
         }
         let timed = !targets.is_empty();
-        if let Some(t) = &self.ui_timer {
-            t.resolve(&mut encoder);
+        if let Some(t) = self.ui_timer.as_mut() {
+            t.resolve_frame(&mut encoder);
         }
         ctx.queue.submit(user.into_iter().chain([encoder.finish()]));
+        if let Some(t) = self.ui_timer.as_mut() {
+            t.frame_submitted();
+        }
         if let Some(f) = frame {
             ctx.queue.present(f);
         }
@@ -778,7 +870,8 @@ impl Viewer {
             self.egui_renderer.free_texture(id);
         }
         if let (Some(t), true) = (self.ui_timer.as_mut(), timed) {
-            self.model.stats.ui_gpu_ms = t.read(ctx)?.first().map(|p| p.ms);
+            // The latest the GPU has finished, a frame or two late: no stall, no readback.
+            self.model.stats.ui_gpu_ms = t.latest(ctx).first().map(|p| p.ms);
         }
         if let (Some(path), Some(texture)) = (capture, &offscreen) {
             let texels: Vec<[u8; 4]> = ctx.read_texture(texture)?;
@@ -940,7 +1033,10 @@ fn initial_model(
             cpu_image: match args.final_image {
                 ImageOn::Cpu => true,
                 ImageOn::Gpu => false,
-                ImageOn::Auto => software,
+                // The GPU frame wherever there is a GPU: on a software adapter too, where the CPU
+                // renderer alone is faster than the GPU pass, because the frame then reads
+                // nothing back (docs/benchmarks.md, the viewer's frame before and after).
+                ImageOn::Auto => false,
             },
         },
         scale: args.scale.unwrap_or(scale),
@@ -968,6 +1064,23 @@ fn initial_model(
 
 /// One line of frame times for a scripted run: the first frames compile shaders and build
 /// pipelines, so the statistics skip them.
+/// The first frame whose traffic `--report-traffic` counts: the first ones build the pipelines
+/// and the frames (and a technique's first run configures it), so a run of N frames counts from
+/// frame 11 on, or from its second half when shorter.
+fn steady_from(frames: u64) -> u64 {
+    (frames / 2).min(10) + 1
+}
+
+/// `total / frames`, as a whole number when it is one.
+fn per_frame(total: u64, frames: f64) -> String {
+    let v = total as f64 / frames;
+    if v.fract() == 0.0 {
+        format!("{v}")
+    } else {
+        format!("{v:.1}")
+    }
+}
+
 fn print_summary(times: &[(f64, bool)]) {
     let warm = 3.min(times.len().saturating_sub(1));
     let mut ms: Vec<f64> = times[warm..].iter().map(|t| t.0).collect();

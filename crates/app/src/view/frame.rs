@@ -218,8 +218,19 @@ pub struct FrameStats {
     pub gpu: Vec<PassTime>,
 }
 
+/// What a frame's render left for the window: CPU images to upload, or the GPU frame's own
+/// textures ([`SceneRenderer::gpu_image`]), shown as they are.
+pub enum Rendered {
+    Cpu(Vec<Image>),
+    Gpu,
+}
+
 /// Renders the view's images; owns the device through its [`Runner`].
 pub struct SceneRenderer {
+    /// The GPU-resident frame: water, techniques and final images on the GPU, nothing read back
+    /// (`caustics_gpu::renderer`). Used whenever the final image is on the GPU; the CPU twins
+    /// and [`Runner`] serve the rest (the CPU final image, the reference, the buffer views).
+    pub gpu_frame: Option<GpuFrame>,
     pub runner: Runner,
     final_image: Option<FinalImage>,
     /// Why the final image is traced on the CPU, when it is.
@@ -243,9 +254,18 @@ impl SceneRenderer {
         };
         // Two sides, one final-image pass each.
         let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 2));
+        let gpu_frame = match ctx.map(GpuFrame::new) {
+            Some(Ok(f)) => Some(f),
+            Some(Err(e)) => {
+                eprintln!("no GPU frame, the viewer runs the techniques one by one: {e}");
+                None
+            }
+            None => None,
+        };
         let mut runner = runner;
         runner.time_passes();
         SceneRenderer {
+            gpu_frame,
             runner,
             final_image,
             final_note,
@@ -271,7 +291,13 @@ impl SceneRenderer {
         size: (u32, u32),
         slots: &mut [Slot],
         quality: Quality,
-    ) -> Result<(Vec<Image>, FrameStats)> {
+    ) -> Result<(Rendered, FrameStats)> {
+        if !quality.cpu_image && self.gpu_frame.is_some() {
+            return self.render_gpu(water, camera, sun, size, slots, quality);
+        }
+        if let Some(w) = water.as_deref_mut() {
+            w.set_resident(false);
+        }
         let mut stats = FrameStats::default();
         let started = Instant::now();
         let surface = match water.as_deref_mut() {
@@ -393,7 +419,237 @@ impl SceneRenderer {
         }
         stats.image_ms = ms(started);
         self.surface = surface;
-        Ok((images, stats))
+        Ok((Rendered::Cpu(images), stats))
+    }
+
+    /// The frame on the GPU: the water source, each side's technique and final image recorded into
+    /// one submission (`caustics_gpu::renderer::Renderer`). A side whose technique has no GPU
+    /// implementation (the CPU reference) has its map made by the [`Runner`] when its inputs
+    /// change, as on the CPU path, and uploaded for its final image.
+    fn render_gpu(
+        &mut self,
+        mut water: Option<&mut WaterState>,
+        camera: &OrbitCamera,
+        sun: DVec3,
+        size: (u32, u32),
+        slots: &mut [Slot],
+        quality: Quality,
+    ) -> Result<(Rendered, FrameStats)> {
+        let mut stats = FrameStats::default();
+        let started = Instant::now();
+        self.scene.light.direction = sun;
+        self.scene.caustics.width = quality.map_size;
+        self.scene.caustics.height = quality.map_size;
+        self.scene.camera = camera.camera(size.0, size.1);
+        let options = RenderOptions {
+            supersampling: quality.supersampling.max(1),
+            exposure: quality.exposure,
+        };
+        let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
+        let frame = self.gpu_frame.as_mut().expect("checked by render");
+
+        // The water: the scene's source at the viewer's clock, or the resident ripple simulation.
+        let mut clock = caustics_gpu::renderer::WaterClock {
+            time: 0.0,
+            amplitude: 1.0,
+            steps: 0,
+        };
+        let mut drops = Vec::new();
+        if let Some(w) = water.as_deref_mut() {
+            w.set_resident(true);
+            let (steps, d) = w.take_pending();
+            drops = d;
+            clock = caustics_gpu::renderer::WaterClock {
+                time: w.time,
+                amplitude: w.amplitude,
+                steps,
+            };
+            let spec = match w.mode {
+                super::water::Mode::Scene => caustics_gpu::renderer::WaterSpec::Scene,
+                super::water::Mode::Ripple => {
+                    let (params, generation) = w.ripple_spec();
+                    caustics_gpu::renderer::WaterSpec::Ripples {
+                        params: params.clone(),
+                        generation,
+                    }
+                }
+            };
+            frame
+                .renderer
+                .set_water(ctx, Some(w.water()), &spec)
+                .context("the water on the GPU")?;
+        } else {
+            frame
+                .renderer
+                .set_water(ctx, None, &caustics_gpu::renderer::WaterSpec::Scene)?;
+        }
+        for d in &drops {
+            frame.renderer.drop_ripple(ctx, d);
+        }
+        stats.water_ms = ms(started);
+
+        // The techniques: registered GPU ones record into the frame; the others (the reference)
+        // run on the CPU when their input changes and hand the frame their map.
+        let mut specs = Vec::with_capacity(slots.len());
+        for slot in slots.iter_mut() {
+            slot.map_changed = false;
+            slot.technique_ms = None;
+            let spec = slot.choice.spec()?;
+            let name = slot.choice.name.clone();
+            if caustics_gpu::technique::REGISTRY
+                .iter()
+                .any(|r| r.name == name)
+            {
+                specs.push(Some(caustics_gpu::renderer::TechniqueSpec {
+                    name,
+                    params: spec.params.clone(),
+                }));
+                slot.backend = "GPU";
+                continue;
+            }
+            specs.push(None);
+            let key = MapKey {
+                label: slot.choice.label(),
+                cells_per_texel: slot.choice.cells_per_texel,
+                surface: water.as_deref().map(|w| w.key()),
+                sun: sun.to_array().map(f64::to_bits),
+                map_size: quality.map_size,
+                view: None,
+            };
+            if slot.key.as_ref() == Some(&key) {
+                continue;
+            }
+            let t0 = Instant::now();
+            let outcome = (|| -> Result<(SceneCaustics, &'static str)> {
+                let surface = match water.as_deref_mut() {
+                    Some(w) => Some(self.cpu_surface(w)?),
+                    None => None,
+                };
+                let input = match (surface.as_deref(), water.as_deref()) {
+                    (Some(s), Some(w)) => Some((s, w)),
+                    _ => None,
+                };
+                self.run_technique(&spec, slot.choice.cells_per_texel, input, sun, quality)
+            })();
+            slot.technique_ms = Some(ms(t0));
+            slot.key = Some(key);
+            slot.map_changed = true;
+            match outcome {
+                Ok((caustics, backend)) => {
+                    slot.backend = backend;
+                    slot.error = None;
+                    slot.caustics = Some(caustics);
+                }
+                Err(e) => {
+                    slot.error = Some(format!("{e:#}"));
+                    slot.caustics = None;
+                }
+            }
+        }
+        let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
+        let frame = self.gpu_frame.as_mut().expect("checked by render");
+        frame.renderer.set_techniques(ctx, &specs);
+        for (k, slot) in slots.iter().enumerate() {
+            if specs[k].is_none() && slot.map_changed {
+                frame.renderer.set_caustics(
+                    ctx,
+                    k,
+                    slot.caustics.as_ref().and_then(|c| match c {
+                        SceneCaustics::Floor(m) => Some(m),
+                        SceneCaustics::EyeSpace(_) => None,
+                    }),
+                )?;
+            }
+        }
+        let t0 = Instant::now();
+        frame
+            .renderer
+            .render(ctx, &self.scene, clock, &options)
+            .context("the GPU frame")?;
+        stats.image_ms = ms(t0);
+        for (k, slot) in slots.iter_mut().enumerate() {
+            if specs[k].is_some() {
+                slot.error = frame.renderer.error(k).map(str::to_string);
+                // The map window reads the GPU's map back only while it is open (`read_maps`).
+                slot.caustics = None;
+                slot.key = None;
+                slot.map_changed = true;
+            }
+        }
+        if let Some(t) = frame.renderer.timer.as_mut() {
+            stats.gpu = t.latest(ctx).to_vec();
+        }
+        stats.gpu.extend(self.runner.take_gpu_times()?);
+        self.surface = None;
+        Ok((Rendered::Gpu, stats))
+    }
+
+    /// Side `k`'s final image on the GPU, after a [`Rendered::Gpu`] frame.
+    pub fn gpu_image(&self, k: usize) -> Option<&wgpu::Texture> {
+        self.gpu_frame.as_ref()?.renderer.image(k)
+    }
+
+    /// Read the GPU techniques' maps back into the slots, for the map window (while it is open: a
+    /// readback per frame, which the steady frame without it does not make).
+    pub fn read_maps(&mut self, slots: &mut [Slot]) -> Result<()> {
+        let (Some(frame), Some(ctx)) = (&self.gpu_frame, self.runner.gpu.as_ref()) else {
+            return Ok(());
+        };
+        for (k, slot) in slots.iter_mut().enumerate() {
+            if slot.caustics.is_some() && slot.backend != "GPU" {
+                continue;
+            }
+            let Some(output) = frame.renderer.caustics(k) else {
+                continue;
+            };
+            let texture = output.texture();
+            let texels = ctx.read_rgba_f32(texture)?;
+            let (width, height) = (texture.width() as usize, texture.height() as usize);
+            slot.caustics = Some(match output {
+                caustics_gpu::Output::Floor(_) => SceneCaustics::Floor(CausticsMap {
+                    width,
+                    height,
+                    size: self.scene.water.as_ref().map_or(1.0, |w| w.size),
+                    texels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect(),
+                }),
+                caustics_gpu::Output::EyeSpace(_) => {
+                    SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
+                        width,
+                        height,
+                        texels: texels
+                            .iter()
+                            .map(|t| if t[3] >= 0.0 { *t } else { [f32::NAN; 4] })
+                            .collect(),
+                    })
+                }
+            });
+            slot.map_changed = true;
+        }
+        Ok(())
+    }
+
+    /// The CPU surface of this frame, for the CPU techniques and the buffer views: the scene's
+    /// source at the clock, or, with the ripple simulation on the GPU, its heights read back.
+    pub fn cpu_surface(&mut self, water: &mut WaterState) -> Result<Box<dyn Surface>> {
+        if water.mode == super::water::Mode::Ripple
+            && let (Some(frame), Some(ctx)) = (self.gpu_frame.as_mut(), self.runner.gpu.as_ref())
+            && let Some(w) = frame.renderer.water_texture(ctx, &self.scene)
+        {
+            let texture = w.heights.texture();
+            let data: Vec<f32> = ctx.read_texture(texture)?;
+            let grid = caustics_core::grid::Grid {
+                cols: texture.width() as usize,
+                rows: texture.height() as usize,
+                data,
+            };
+            let water = water.water();
+            return Ok(Box::new(caustics_core::water::GridSurface {
+                grid,
+                size: water.size,
+                edge: water.edge(),
+            }));
+        }
+        water.surface(self.runner.gpu.as_ref())
     }
 
     /// Run one technique on this frame's input: a water job for the floor-map techniques of a
@@ -473,6 +729,19 @@ impl SceneRenderer {
             options,
             &|_, _| {},
         ))
+    }
+}
+
+/// The GPU-resident frame and what the viewer keeps beside it.
+pub struct GpuFrame {
+    pub renderer: caustics_gpu::renderer::Renderer,
+}
+
+impl GpuFrame {
+    fn new(ctx: &GpuContext) -> Result<Self> {
+        Ok(GpuFrame {
+            renderer: caustics_gpu::renderer::Renderer::new(ctx)?,
+        })
     }
 }
 

@@ -87,10 +87,9 @@ pub struct ViewArgs {
     /// `photon-power`, `vertex-irradiance`, `light-cube`, `object:K`, `cascade:K`.
     #[arg(long, value_name = "NAME")]
     pub buffer: Option<String>,
-    /// Where the final image is traced: `gpu` (the `FinalImage` pass), `cpu` (the CPU renderer,
-    /// its twin), or `auto`: the GPU pass on a hardware GPU, the CPU renderer on a software adapter,
-    /// where it is measured 2.5 times faster (and where the GPU pass also grows the process's
-    /// memory by megabytes per frame on lavapipe, see the module docs).
+    /// Where the final image is traced: `gpu` (the GPU frame: water, technique and final image on
+    /// the GPU, shown without a CPU copy), `cpu` (the techniques' maps read back and the image traced
+    /// by the CPU renderer, the GPU pass's twin), or `auto`: the GPU frame whenever there is a GPU.
     #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
     pub final_image: ImageOn,
     /// Hide the control panel (toggle with F2).
@@ -116,6 +115,11 @@ pub struct ViewArgs {
     /// Print the resident memory (VmRSS) at frames 50 and every 100 after, and at the last.
     #[arg(long)]
     pub report_memory: bool,
+    /// After the run (with --frames), print per technique shown what the GPU crate created,
+    /// uploaded and read back per frame over the steady frames (the first ones, which build the
+    /// pipelines and frames, left out).
+    #[arg(long, requires = "frames")]
+    pub report_traffic: bool,
     /// GPU backend: vulkan, metal, dx12 (default: WGPU_BACKEND, else any).
     #[arg(long)]
     pub backend: Option<String>,

@@ -81,6 +81,16 @@ pub struct WaterState {
     generation: u64,
     /// Why the simulation runs on the CPU, when it does.
     pub sim_note: Option<String>,
+    /// Whether the simulation lives in the GPU frame (`caustics_gpu::renderer`): then this state
+    /// only keeps the clock and hands the frame its steps and drops ([`take_pending`]).
+    ///
+    /// [`take_pending`]: Self::take_pending
+    resident: bool,
+    pending_steps: u32,
+    pending_drops: Vec<Drop>,
+    /// Counts the restarts of the simulation (a calm, a new mode), so the GPU frame knows to build it
+    /// again.
+    epoch: u64,
 }
 
 /// What identifies the surface of a frame: equal keys, equal surfaces, so the techniques need not
@@ -123,7 +133,36 @@ impl WaterState {
             sim_steps: 0,
             generation: 0,
             sim_note: None,
+            resident: false,
+            pending_steps: 0,
+            pending_drops: Vec::new(),
+            epoch: 0,
         }
+    }
+
+    /// Hand the ripple simulation to the GPU frame (or take it back): from now on the steps and
+    /// drops wait in [`take_pending`](Self::take_pending). Either way the simulation starts again.
+    pub fn set_resident(&mut self, resident: bool) {
+        if self.resident != resident {
+            self.resident = resident;
+            self.sim = None;
+            self.sim_steps = 0;
+            self.epoch += 1;
+            self.generation += 1;
+        }
+    }
+
+    /// The simulation's parameters and restart count, for the GPU frame's ripple source.
+    pub fn ripple_spec(&self) -> (&RippleParams, u64) {
+        (&self.params, self.epoch)
+    }
+
+    /// The steps and drops asked for since the last call (a resident simulation's).
+    pub fn take_pending(&mut self) -> (u32, Vec<Drop>) {
+        (
+            std::mem::take(&mut self.pending_steps),
+            std::mem::take(&mut self.pending_drops),
+        )
     }
 
     pub fn water(&self) -> &Water {
@@ -178,6 +217,16 @@ impl WaterState {
         let dt = dt * self.time_scale;
         match self.mode {
             Mode::Scene => self.time += dt,
+            Mode::Ripple if self.resident => {
+                self.step_debt += dt / self.params.time_step;
+                let steps = (self.step_debt.floor().max(0.0) as u32).min(MAX_STEPS_PER_FRAME);
+                self.step_debt = (self.step_debt - steps as f64).clamp(0.0, 1.0);
+                if steps > 0 {
+                    self.pending_steps += steps;
+                    self.sim_steps += steps as u64;
+                    self.generation += 1;
+                }
+            }
             Mode::Ripple => {
                 self.ensure_sim(gpu)?;
                 self.step_debt += dt / self.params.time_step;
@@ -194,12 +243,17 @@ impl WaterState {
     /// Drop a ripple at water point `p` (switching to the simulation if need be).
     pub fn drop_at(&mut self, gpu: Option<&GpuContext>, p: DVec2) -> anyhow::Result<()> {
         self.mode = Mode::Ripple;
-        self.ensure_sim(gpu)?;
         let d = Drop {
             position: [p.x, p.y],
             radius: self.drop_radius.max(1e-6),
             strength: self.drop_strength,
         };
+        if self.resident {
+            self.pending_drops.push(d);
+            self.generation += 1;
+            return Ok(());
+        }
+        self.ensure_sim(gpu)?;
         match self.sim.as_mut().expect("just made") {
             Simulation::Gpu { sim, heights } => {
                 let ctx = gpu.expect("a GPU simulation has a GPU");
@@ -219,6 +273,9 @@ impl WaterState {
         self.params.drops.clear();
         self.params.steps = 0;
         self.generation += 1;
+        self.epoch += 1;
+        self.pending_steps = 0;
+        self.pending_drops.clear();
     }
 
     /// Simulated seconds of the ripple state, or the scene clock.
@@ -230,6 +287,9 @@ impl WaterState {
     }
 
     pub fn simulation_backend(&self) -> Option<&'static str> {
+        if self.resident && self.mode == Mode::Ripple {
+            return Some("GPU");
+        }
         match &self.sim {
             Some(Simulation::Gpu { .. }) => Some("GPU"),
             Some(Simulation::Cpu(_)) => Some("CPU"),

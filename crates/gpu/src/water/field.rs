@@ -121,7 +121,8 @@ struct RippleSource {
 struct FieldOutput {
     cols: u32,
     rows: u32,
-    texture: wgpu::Texture,
+    /// Handed out on every request: one view, so that consumers can tell the texture is the same.
+    textures: WaterTextures,
     groups: Vec<wgpu::BindGroup>,
 }
 
@@ -249,7 +250,7 @@ impl GpuWater {
             .iter()
             .find(|o| (o.cols, o.rows) == (cols, rows))
         {
-            return Ok(WaterTextures::of(&o.texture));
+            return Ok(o.textures.clone());
         }
         ctx.check_texture_size("water height texture", cols, rows)?;
         let texture = ctx.texture_2d(
@@ -298,7 +299,7 @@ impl GpuWater {
         self.outputs.push(FieldOutput {
             cols,
             rows,
-            texture,
+            textures: textures.clone(),
             groups,
         });
         Ok(textures)

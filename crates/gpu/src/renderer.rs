@@ -1,0 +1,410 @@
+//! One renderer for the whole frame, water to pixels, on the GPU: the water source writes its height
+//! textures ([`GpuWater`]), each side's technique reads them and writes its caustics texture
+//! ([`Technique`]), and each side's final image samples that texture and the water directly
+//! ([`FinalImageFrame`]). Everything is built when the scene, a size or a technique changes and
+//! lives across frames; a steady frame is uniform writes and one submission, nothing created and
+//! nothing read back. The viewer shows [`Renderer::image`] through egui without a CPU copy, and
+//! `caustics render` reads it back once, as its output.
+//!
+//! Two sides, because the viewer puts a technique beside another (or beside nothing: a side without
+//! a technique is lit as if through flat water).
+
+use caustics_core::render::RenderOptions;
+use caustics_core::scene::{Scene, Water};
+use caustics_core::water::ripple::{Drop, RippleParams};
+
+use crate::final_image::{FinalImage, FinalImageFrame, water_grid_resolution};
+use crate::technique::{self, Output, Technique, WaterTextures};
+use crate::water::field::GpuWater;
+use crate::{GpuContext, GpuError, GpuTimer};
+
+/// A technique as the application names it: a registered name and its parameter tables, keyed by
+/// technique as in a scene file's `[caustics]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TechniqueSpec {
+    pub name: String,
+    pub params: toml::Table,
+}
+
+/// Where the water comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum WaterSpec {
+    /// The scene's own source (waves, paper 2's wave function, the FFT ocean, a ripple simulation, a
+    /// height field).
+    Scene,
+    /// The interactive ripple simulation with these parameters; `generation` tells a restart.
+    Ripples {
+        params: RippleParams,
+        generation: u64,
+    },
+}
+
+/// This frame's clock and the viewer's height factor.
+#[derive(Clone, Copy, Debug)]
+pub struct WaterClock {
+    /// Seconds, for the scene's source.
+    pub time: f64,
+    /// Multiplies the heights (0: flat water).
+    pub amplitude: f64,
+    /// Ripple simulation steps to take this frame.
+    pub steps: u32,
+}
+
+struct Side {
+    spec: TechniqueSpec,
+    technique: Result<Box<dyn Technique>, String>,
+    /// The water texture and map size the technique was configured with.
+    configured: Option<(wgpu::TextureView, (u32, u32))>,
+    /// Why configuring failed, and for what water and map size: tried again when either changes.
+    failed: Option<(String, wgpu::TextureView, (u32, u32))>,
+    /// The map of a technique with no GPU implementation (the CPU reference), uploaded by the
+    /// application when it changes.
+    external: Option<wgpu::Texture>,
+    image: Option<FinalImageFrame>,
+    /// What the image frame was built from: caustics texture, water texture, image size.
+    image_key: Option<ImageKey>,
+}
+
+#[derive(Clone, PartialEq)]
+struct ImageKey {
+    caustics: Option<wgpu::Texture>,
+    water: Option<wgpu::TextureView>,
+    size: (u32, u32),
+}
+
+/// The GPU frame: water, up to two techniques, their final images.
+pub struct Renderer {
+    final_image: FinalImage,
+    water: Option<(GpuWater, WaterSpec)>,
+    /// Bound as the water of a scene without any (glass generators need none).
+    no_water: WaterTextures,
+    sides: Vec<Side>,
+    /// Techniques switched away from, most recent last.
+    parked: Vec<Side>,
+    pub timer: Option<GpuTimer>,
+}
+
+/// Techniques kept configured after a switch: the viewer's picker cycles through about ten.
+pub const PARKED: usize = 12;
+
+/// Passes a frame can time: the water's (ocean spectrum and FFT stages, ripple steps, outputs) and
+/// two techniques' (procedural's texture variant has the most) and two images.
+const TIMED_PASSES: u32 = 96;
+
+impl Renderer {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let empty = ctx.texture_2d(
+            "no water",
+            (1, 1, 1),
+            wgpu::TextureFormat::R32Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        );
+        ctx.write_texture(
+            empty.as_image_copy(),
+            bytemuck::bytes_of(&0f32),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4),
+                rows_per_image: Some(1),
+            },
+            empty.size(),
+        );
+        Ok(Renderer {
+            final_image: FinalImage::new(ctx)?,
+            water: None,
+            no_water: WaterTextures::of(&empty),
+            sides: Vec::new(),
+            parked: Vec::new(),
+            timer: ctx.timestamps.then(|| GpuTimer::new(ctx, TIMED_PASSES)),
+        })
+    }
+
+    /// Choose the sides' techniques. A technique is created (its pipelines built) only the first
+    /// time its name and parameters are asked for: one switched away from is kept, configured, for
+    /// a while ([`PARKED`] of them), so switching back costs nothing. A technique that cannot be
+    /// created leaves its side's error set.
+    pub fn set_techniques(&mut self, ctx: &GpuContext, specs: &[Option<TechniqueSpec>]) {
+        while self.sides.len() > specs.len() {
+            let side = self.sides.pop().expect("longer");
+            self.park(side);
+        }
+        for (k, spec) in specs.iter().enumerate() {
+            let spec = spec.clone().unwrap_or(TechniqueSpec {
+                name: String::new(),
+                params: toml::Table::new(),
+            });
+            if self.sides.get(k).is_some_and(|s| s.spec == spec) {
+                continue;
+            }
+            let side = match self.parked.iter().position(|s| s.spec == spec) {
+                Some(p) => self.parked.remove(p),
+                None => Side {
+                    technique: if spec.name.is_empty() {
+                        Err(String::new())
+                    } else {
+                        technique::create(ctx, &spec.name, &spec.params).map_err(|e| e.to_string())
+                    },
+                    spec,
+                    configured: None,
+                    failed: None,
+                    external: None,
+                    image: None,
+                    image_key: None,
+                },
+            };
+            if k < self.sides.len() {
+                let old = std::mem::replace(&mut self.sides[k], side);
+                self.park(old);
+            } else {
+                self.sides.push(side);
+            }
+        }
+    }
+
+    fn park(&mut self, side: Side) {
+        if side.technique.is_err() {
+            return;
+        }
+        if self.parked.len() >= PARKED {
+            self.parked.remove(0);
+        }
+        self.parked.push(side);
+    }
+
+    /// Make the water source (again) when it changes: the scene's own, or the ripple simulation.
+    pub fn set_water(
+        &mut self,
+        ctx: &GpuContext,
+        water: Option<&Water>,
+        spec: &WaterSpec,
+    ) -> Result<(), GpuError> {
+        let Some(water) = water else {
+            self.water = None;
+            return Ok(());
+        };
+        if self.water.as_ref().is_some_and(|(_, s)| s == spec) {
+            return Ok(());
+        }
+        let source = match spec {
+            WaterSpec::Scene => GpuWater::new(ctx, water)?,
+            WaterSpec::Ripples { params, .. } => GpuWater::ripples(ctx, water, params)?,
+        };
+        self.water = Some((source, spec.clone()));
+        // New textures: every technique configures again.
+        for side in self.sides.iter_mut().chain(&mut self.parked) {
+            side.configured = None;
+        }
+        Ok(())
+    }
+
+    /// Drop a ripple into the simulation (the ripple source only).
+    pub fn drop_ripple(&mut self, ctx: &GpuContext, d: &Drop) {
+        if let Some((w, _)) = &mut self.water {
+            w.drop_ripple(ctx, d);
+        }
+    }
+
+    /// Record and submit one frame of `scene` (its camera, sun, map size and water optics) at
+    /// `clock`: the water's passes, each side's technique, each side's final image.
+    pub fn render(
+        &mut self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        clock: WaterClock,
+        options: &RenderOptions,
+    ) -> Result<(), GpuError> {
+        if let Some((w, _)) = &mut self.water {
+            w.update(ctx, clock.time, clock.amplitude);
+            w.step_ripples(clock.steps);
+        }
+        let image_water = match &mut self.water {
+            Some((w, _)) => {
+                let n = water_grid_resolution(scene) as u32;
+                Some(w.output(ctx, n, n)?)
+            }
+            None => None,
+        };
+        for side in &mut self.sides {
+            let Ok(technique) = &mut side.technique else {
+                side.configured = None;
+                continue;
+            };
+            let map = (scene.caustics.width, scene.caustics.height);
+            let water = match &mut self.water {
+                Some((w, _)) => {
+                    let (cols, rows) = technique.water_resolution(scene);
+                    w.output(ctx, cols, rows)?
+                }
+                None => self.no_water.clone(),
+            };
+            if side
+                .failed
+                .as_ref()
+                .is_some_and(|(_, view, size)| *view == water.heights && *size == map)
+            {
+                continue;
+            }
+            let fresh = side
+                .configured
+                .as_ref()
+                .is_some_and(|(view, size)| *view == water.heights && *size == map);
+            let result = if fresh {
+                technique.update(ctx, scene)
+            } else {
+                technique
+                    .configure(ctx, scene, &water)
+                    .and_then(|()| technique.update(ctx, scene))
+            };
+            match result {
+                Ok(()) => {
+                    side.configured = Some((water.heights.clone(), map));
+                    side.failed = None;
+                }
+                Err(e) => {
+                    side.configured = None;
+                    side.failed = Some((e.to_string(), water.heights.clone(), map));
+                }
+            }
+        }
+        for side in &mut self.sides {
+            let caustics = match &side.technique {
+                Ok(t) if side.configured.is_some() => t.output(),
+                Ok(_) => None,
+                Err(_) => side.external.as_ref().map(Output::Floor),
+            };
+            let key = ImageKey {
+                caustics: caustics.map(|o| o.texture().clone()),
+                water: image_water.as_ref().map(|w| w.heights.clone()),
+                size: (scene.camera.width, scene.camera.height),
+            };
+            if side.image_key.as_ref() == Some(&key)
+                && let Some(image) = &mut side.image
+            {
+                image.update(ctx, scene, options);
+            } else {
+                side.image = Some(self.final_image.frame(
+                    ctx,
+                    scene,
+                    image_water.as_ref(),
+                    caustics,
+                    options,
+                )?);
+                side.image_key = Some(key);
+            }
+        }
+
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("caustics frame"),
+            });
+        let mut timer = self.timer.as_mut();
+        if let Some((w, _)) = &mut self.water {
+            w.encode(&mut encoder, timer.as_deref_mut());
+        }
+        for side in &self.sides {
+            if let (Ok(t), Some(_)) = (&side.technique, &side.configured) {
+                t.encode(&mut encoder, timer.as_deref_mut());
+            }
+        }
+        for side in &self.sides {
+            if let Some(image) = &side.image {
+                image.encode(&mut encoder, timer.as_deref_mut());
+            }
+        }
+        if let Some(t) = timer {
+            t.resolve_frame(&mut encoder);
+        }
+        ctx.queue.submit([encoder.finish()]);
+        if let Some(t) = self.timer.as_mut() {
+            t.frame_submitted();
+        }
+        ctx.check()
+    }
+
+    /// The floor map of side `k` when its technique runs elsewhere (the CPU reference): uploaded
+    /// now, into a texture kept while the map's size holds. `None` lights the side as flat water.
+    pub fn set_caustics(
+        &mut self,
+        ctx: &GpuContext,
+        k: usize,
+        map: Option<&caustics_core::map::CausticsMap>,
+    ) -> Result<(), GpuError> {
+        let Some(side) = self.sides.get_mut(k) else {
+            return Ok(());
+        };
+        let Some(map) = map else {
+            side.external = None;
+            return Ok(());
+        };
+        let (w, h) = (map.width as u32, map.height as u32);
+        if side
+            .external
+            .as_ref()
+            .is_none_or(|t| (t.width(), t.height()) != (w, h))
+        {
+            ctx.check_texture_size("caustics map", w, h)?;
+            side.external = Some(ctx.texture_2d(
+                "uploaded caustics map",
+                (w, h, 1),
+                wgpu::TextureFormat::Rgba32Float,
+                wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            ));
+        }
+        let texture = side.external.as_ref().expect("just made");
+        let texels: Vec<[f32; 4]> = map.texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
+        ctx.write_texture(
+            texture.as_image_copy(),
+            bytemuck::cast_slice(&texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(16 * w),
+                rows_per_image: Some(h),
+            },
+            texture.size(),
+        );
+        Ok(())
+    }
+
+    /// Side `k`'s final image (`Rgba8Unorm`, sRGB-encoded values), once rendered.
+    pub fn image(&self, k: usize) -> Option<&wgpu::Texture> {
+        self.sides.get(k)?.image.as_ref().map(|i| i.output())
+    }
+
+    /// Side `k`'s caustics texture, once its technique ran.
+    pub fn caustics(&self, k: usize) -> Option<Output<'_>> {
+        let side = self.sides.get(k)?;
+        side.configured.as_ref()?;
+        side.technique.as_ref().ok()?.output()
+    }
+
+    /// Why side `k` has no caustics, if it has a technique that could not be made or configured.
+    pub fn error(&self, k: usize) -> Option<&str> {
+        let side = self.sides.get(k)?;
+        match (&side.technique, &side.failed) {
+            (Err(e), _) if !e.is_empty() => Some(e),
+            (Ok(_), Some((e, _, _))) => Some(e),
+            _ => None,
+        }
+    }
+
+    /// The technique's registered name on side `k`.
+    pub fn technique_name(&self, k: usize) -> Option<&str> {
+        self.sides.get(k)?.technique.as_ref().ok().map(|t| t.name())
+    }
+
+    /// The heights the final images read, for the buffer views (read them back only on demand).
+    pub fn water_texture(&mut self, ctx: &GpuContext, scene: &Scene) -> Option<WaterTextures> {
+        let n = water_grid_resolution(scene) as u32;
+        self.water.as_mut()?.0.output(ctx, n, n).ok()
+    }
+
+    /// GPU memory of the techniques' frames, bytes.
+    pub fn technique_bytes(&self) -> u64 {
+        self.sides
+            .iter()
+            .filter_map(|s| s.technique.as_ref().ok())
+            .map(|t| t.bytes())
+            .sum()
+    }
+}
