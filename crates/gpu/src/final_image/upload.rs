@@ -125,10 +125,10 @@ fn f4(v: DVec3) -> [f32; 4] {
     v.as_vec3().extend(0.0).to_array()
 }
 
-/// Side of the square grid the water surface is sampled on for the GPU: the caustics map's
-/// resolution (the detail the scene asks the caustics to resolve), at least 256 so that small maps
-/// still give the view rays a smooth surface, and at most 4096 (a 64 MiB texture, within every
-/// adapter's limits with its border).
+/// Side of the square grid [`FinalImage::render_with`](super::FinalImage::render_with) samples a
+/// CPU surface on: the caustics map's resolution (the detail the scene asks the caustics to
+/// resolve), at least 256 so that small maps still give the view rays a smooth surface, and at
+/// most 4096 (a 64 MiB texture, within every adapter's limits).
 pub fn water_grid_resolution(scene: &Scene) -> usize {
     scene
         .caustics
@@ -137,10 +137,11 @@ pub fn water_grid_resolution(scene: &Scene) -> usize {
         .clamp(256, 4096) as usize
 }
 
-/// The frozen water surface as the GPU sees it: `surface` sampled on the lattice of
-/// [`water_grid_resolution`] over the water's square and read back through the same bicubic
-/// interpolant, with the water's edge rule. `None` without water. Render on the CPU with this
-/// surface to get the image the GPU renders.
+/// The frozen water surface as [`FinalImage::render_with`](super::FinalImage::render_with) hands it
+/// to the GPU: `surface` sampled on the lattice of [`water_grid_resolution`] over the water's
+/// square (uploaded as is, the heights texture of [`crate::WaterTextures`]) and read back through
+/// the same bicubic interpolant, with the water's edge rule. `None` without water. Render on the
+/// CPU with this surface to get the image the GPU renders.
 pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
     let water = scene.water.as_ref()?;
     let n = water_grid_resolution(scene);
