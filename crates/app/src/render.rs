@@ -452,7 +452,7 @@ fn render_on_gpu(
     caustics: Option<Caustics>,
     options: &RenderOptions,
 ) -> Option<caustics_core::render::Image> {
-    let mut timer = GpuTimer::new(ctx, 1);
+    let mut timer = GpuTimer::new(ctx, 2);
     match final_image.render_with(ctx, scene, surface, caustics, options, Some(&mut timer)) {
         Ok(image) => {
             if let Ok(times) = timer.read(ctx) {

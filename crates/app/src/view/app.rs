@@ -524,9 +524,12 @@ impl Viewer {
                 let d = end.since(start);
                 let n = (s.frames + 1 - *first) as f64;
                 for k in 0..self.model.sides() {
+                    let name = self
+                        .renderer
+                        .gpu_technique_name(k)
+                        .unwrap_or(&self.model.slots[k].choice.name);
                     println!(
-                        "traffic {}: created {}, uploaded {} bytes, readbacks {} per frame (frames {} to {})",
-                        self.model.slots[k].choice.name,
+                        "traffic {name}: created {}, uploaded {} bytes, readbacks {} per frame (frames {} to {})",
                         per_frame(d.created(), n),
                         per_frame(d.uploaded_bytes, n),
                         per_frame(d.readbacks, n),
@@ -539,7 +542,11 @@ impl Viewer {
         if let Some(s) = self.script.as_mut() {
             s.times.push((super::frame::ms(started), rendered));
             if self.frame > 3 {
-                for p in &self.model.stats.gpu {
+                let ui = self.model.stats.ui_gpu_ms.map(|ms| caustics_gpu::PassTime {
+                    label: "panel + blit".into(),
+                    ms,
+                });
+                for p in self.model.stats.gpu.iter().chain(ui.as_ref()) {
                     match s.passes.iter_mut().find(|(l, _, _)| *l == p.label) {
                         Some(e) => {
                             e.1 += p.ms;

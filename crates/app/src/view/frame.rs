@@ -584,6 +584,11 @@ impl SceneRenderer {
         Ok((Rendered::Gpu, stats))
     }
 
+    /// The GPU technique on side `k` as the registry names it (its variant included).
+    pub fn gpu_technique_name(&self, k: usize) -> Option<&str> {
+        self.gpu_frame.as_ref()?.renderer.technique_name(k)
+    }
+
     /// Side `k`'s final image on the GPU, after a [`Rendered::Gpu`] frame.
     pub fn gpu_image(&self, k: usize) -> Option<&wgpu::Texture> {
         self.gpu_frame.as_ref()?.renderer.image(k)

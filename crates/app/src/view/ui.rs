@@ -613,6 +613,10 @@ fn overlay(ctx: &egui::Context, m: &Model, at: Pos2) {
                             let slot = &m.slots[k];
                             let t = match s.technique_ms[k] {
                                 Some(ms) => format!("{ms:7.1} ms {}", slot.backend),
+                                // In the GPU frame: its passes are timed below.
+                                None if slot.backend == "GPU" && !m.quality.cpu_image => {
+                                    "  (GPU frame)".into()
+                                }
                                 None => "  (unchanged)".into(),
                             };
                             mono(ui, format!("{:<10} {t}", short(&slot.choice.name, 14)));

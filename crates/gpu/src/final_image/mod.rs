@@ -584,7 +584,7 @@ impl FinalImageFrame {
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
         if let Some(group) = &self.slab_group {
             encoder.clear_buffer(&self.slab_max, 0, None);
-            let mut pass = begin_compute(encoder, &mut None, FINAL_IMAGE_SLAB.name);
+            let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE_SLAB.name);
             pass.set_pipeline(&self.slab_pipeline);
             pass.set_bind_group(0, group, &[]);
             let groups = SLAB_LATTICE.div_ceil(TILE);

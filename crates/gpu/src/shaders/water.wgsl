@@ -53,15 +53,18 @@ fn catmull_rom(t: f32) -> array<vec4<f32>, 2> {
     return array<vec4<f32>, 2>(w, dw);
 }
 
-fn grid_texel(tex: texture_2d<f32>, i: i32, j: i32, wrap: bool) -> f32 {
-    let dims = vec2<i32>(textureDimensions(tex));
-    var c = vec2<i32>(j, i);
+// Tap `k` (0..3) of a row or column of `n` samples from the first tap `first`, periodic or clamped.
+// Wrapping, `first` is already in [0, n), so with n >= 3 the taps pass the end at most once and need
+// no division each (integer division is slow on some GPUs, and on lavapipe).
+fn grid_index(first: i32, k: i32, n: i32, wrap: bool) -> i32 {
+    let c = first + k;
     if wrap {
-        c = ((c % dims) + dims) % dims;
-    } else {
-        c = clamp(c, vec2<i32>(0), dims - 1);
+        if n < 3 {
+            return c % n;
+        }
+        return select(c, c - n, c >= n);
     }
-    return textureLoad(tex, c, 0).r;
+    return clamp(c, 0, n - 1);
 }
 
 // Height and gradient of the bicubic interpolant of a height texture covering [0, size]^2, samples
@@ -74,12 +77,19 @@ fn grid_sample(tex: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec
     let f = uv - base;
     let wu = catmull_rom(f.x);
     let wv = catmull_rom(f.y);
+    let n = vec2<i32>(dims);
+    // The first tap's column and row, wrapped once into the grid when periodic.
+    var first = vec2<i32>(base) - 1;
+    if wrap {
+        first = ((first % n) + n) % n;
+    }
     var h = 0.0;
     var hu = 0.0;
     var hv = 0.0;
     for (var a = 0; a < 4; a++) {
+        let row = grid_index(first.y, a, n.y, wrap);
         for (var b = 0; b < 4; b++) {
-            let s = grid_texel(tex, i32(base.y) - 1 + a, i32(base.x) - 1 + b, wrap);
+            let s = textureLoad(tex, vec2<i32>(grid_index(first.x, b, n.x, wrap), row), 0).r;
             h += wu[0][b] * wv[0][a] * s;
             hu += wu[1][b] * wv[0][a] * s;
             hv += wu[0][b] * wv[1][a] * s;
