@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates docs/compare (quality), docs/bench (speed) and docs/results.md from them, on whatever
+# Regenerates docs/compare (quality), docs/bench (speed, error against cost) and docs/results.md from them, on whatever
 # adapter this machine has (set WGPU_BACKEND / WGPU_ADAPTER_NAME to choose). One command:
 #   docs/regenerate.sh [bench flags]     (docs/regenerate.sh --assemble-only rebuilds results.md alone)
 set -euo pipefail
@@ -17,9 +17,10 @@ $bin compare \
   --resolution 256,128,512 \
   --picture-cases waves-mid-deep,lens-low-deep,ocean-overhead-shallow,ripples-low-shallow \
   --out docs/compare
-$bin bench --out docs/bench \
-  --technique yuksel --technique yuksel-gather \
-  --technique procedural-vertex --technique procedural-screen --technique procedural-texture "$@"
+# Every registered technique and the whole frame (water, technique, final image) at 1280x720 and
+# 1920x1080; then error against cost (each technique's main knob; --small for lavapipe).
+$bin bench --out docs/bench "$@"
+$bin bench --tradeoff --out docs/bench "$@"
 fi
 {
   cat docs/results-intro.md
@@ -30,6 +31,17 @@ fi
   echo
   sed -n '/^## Summary/,/^## Every case/p' docs/compare/compare.md | sed '1d;$d'
   echo "Every case, with pictures: [compare/compare.md](compare/compare.md); CSV: [compare/compare.csv](compare/compare.csv)."
+  echo
+  echo "## Error against cost"
+  echo
+  echo "Which technique for which budget: each technique's main knob swept, its error against the reference"
+  echo "over its time per frame; the black staircase is the Pareto front (settings no other beats on both)."
+  echo
+  echo "![error against cost](bench/tradeoff.svg)"
+  echo
+  cat docs/bench/tradeoff.md
+  echo
+  echo "CSV: [bench/tradeoff.csv](bench/tradeoff.csv)."
   echo
   echo "## Speed"
   echo

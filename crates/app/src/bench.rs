@@ -1,7 +1,18 @@
-//! `caustics bench`: for each technique and resolution, warm-up frames then timed frames; GPU time
-//! per pass from timestamp queries (median and spread), CPU time per frame, the GPU memory the
-//! technique allocates, and how time grows with resolution (the slope of log time over log pixels).
-//! Writes Markdown, CSV and an SVG plot.
+//! `caustics bench`: every registered GPU technique (`caustics_gpu::technique::REGISTRY`, no name
+//! matched here) on the scenes it applies to (the pool's water for all, the glass scene's objects
+//! for the techniques that take glass generators), then the whole GPU-resident frame (water,
+//! technique, final image through `caustics_gpu::renderer::Renderer`) at each resolution. Warm-up
+//! frames then timed frames; GPU time per pass from timestamp queries (median and spread), the
+//! wall time per frame, the GPU memory the technique allocates, and how time grows with
+//! resolution (the slope of log time over log pixels). Writes Markdown, CSV and an SVG plot.
+//!
+//! Each pass group is its own submission (the water's, then the technique's, untimed water
+//! first), so that the technique's timestamps open their command buffer: Mesa's lavapipe reports
+//! nonsense (0.05 ms for a 50 ms pass) for passes recorded after others in one command buffer.
+//! The wall time of that submission (submit to idle) is the cross-check beside each GPU total.
+//!
+//! Without a GPU adapter (`--cpu`), the CPU twins' wall time through the same runner `caustics
+//! compare` uses.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -10,36 +21,45 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
-use caustics_core::cases::cases;
-use caustics_core::techniques::procedural::{self, ProceduralCausticsParams, ProceduralSetup};
-use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
-use caustics_gpu::procedural::ProceduralCaustics;
-use caustics_gpu::yuksel::{Variant, Yuksel};
-use caustics_gpu::{GpuContext, GpuTimer};
+use caustics_core::render::RenderOptions;
+use caustics_core::scene::Scene;
+use caustics_core::techniques::{self as core_techniques, Input};
+use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+use caustics_gpu::technique::{self, REGISTRY, WaterTextures};
+use caustics_gpu::water::field::GpuWater;
+use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 use crate::progress;
-use crate::techniques::{Spec, heights_for, procedural_heights};
+use crate::techniques::{Runner, Spec};
 
 #[derive(Args)]
 pub struct BenchArgs {
-    /// Techniques, `name` or `name:key=value,...` (yuksel, yuksel-gather, procedural,
-    /// procedural-vertex, procedural-screen, procedural-texture); repeat the flag. Default: yuksel
-    /// and yuksel-gather.
+    /// Techniques, `name` or `name:key=value,...` as registered (`caustics techniques`); repeat
+    /// the flag. Default: every registered technique.
     #[arg(long = "technique")]
     techniques: Vec<Spec>,
-    /// Map resolutions WIDTHxHEIGHT, comma-separated (the paper's sizes first).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "400x300,800x600,1920x1080,4096x4096"
-    )]
+    /// Resolutions WIDTHxHEIGHT, comma-separated: the camera's (the frame) and the caustics map's
+    /// (the technique). Default 1280x720,1920x1080 (with --small: 64x36).
+    #[arg(long, value_delimiter = ',')]
     resolution: Vec<String>,
-    /// Timed frames per measurement.
-    #[arg(long, default_value_t = 50)]
-    frames: u32,
-    /// Untimed frames first (pipeline compilation, caches).
-    #[arg(long, default_value_t = 5)]
-    warmup: u32,
+    /// Timed frames per measurement (default 30; with --small 1).
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Untimed frames first: pipeline compilation, caches (default 3; with --small 1).
+    #[arg(long)]
+    warmup: Option<u32>,
+    /// Shrink everything for a software rasteriser (lavapipe): one 64x36 size, one warm-up and
+    /// one timed frame, the error-against-cost sweep on one case at a 48² map.
+    #[arg(long)]
+    small: bool,
+    /// Measure error against cost instead: each technique's main knob swept, relative L1 against
+    /// the reference (as `caustics compare`) over GPU time per frame (as the bench), with the
+    /// Pareto front: writes tradeoff.csv, tradeoff.md and tradeoff.svg.
+    #[arg(long)]
+    tradeoff: bool,
+    /// Skip the whole-frame rows (the technique rows only).
+    #[arg(long)]
+    no_frame: bool,
     /// Output folder.
     #[arg(long, default_value = "bench")]
     out: PathBuf,
@@ -49,6 +69,8 @@ pub struct BenchArgs {
 
 #[derive(Clone, Debug)]
 pub struct Measurement {
+    /// The technique's label, with the scene where it is not the pool (`caustic-triangles
+    /// (glass)`); `frame: <technique>` for the whole frame.
     pub technique: String,
     pub width: u32,
     pub height: u32,
@@ -57,12 +79,13 @@ pub struct Measurement {
     pub passes: Vec<(String, f64, f64, f64)>,
     /// Sum of the passes' medians (GPU) or the CPU twin's median wall time.
     pub total_ms: f64,
-    /// Wall time per frame on the CPU side: encode + submit + wait.
-    pub cpu_ms: f64,
+    /// Median wall time per frame: submit to idle for the measured submission (the technique's
+    /// alone, or the whole frame's), or the CPU twin's run.
+    pub wall_ms: f64,
     pub gpu_bytes: u64,
 }
 
-fn percentile(sorted: &[f64], p: f64) -> f64 {
+pub(crate) fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * p).round() as usize]
 }
 
@@ -77,20 +100,62 @@ fn parse_res(s: &str) -> Result<(u32, u32)> {
     Ok((w, h))
 }
 
+/// The name `spec` is registered under (`yuksel-gather`, `procedural-texture`): its label up to
+/// the parameters.
+pub(crate) fn registry_name(spec: &Spec) -> &str {
+    spec.label.split(':').next().unwrap_or(&spec.label)
+}
+
+/// Every registered technique, as specs with default parameters.
+pub(crate) fn registered() -> Result<Vec<Spec>> {
+    REGISTRY.iter().map(|r| r.name.parse()).collect()
+}
+
+/// The built-in scenes `spec` applies to: the pool (its water) for every technique, and the glass
+/// scene (its objects) for those that take glass generators.
+pub(crate) fn scenes_for(spec: &Spec) -> Result<Vec<Scene>> {
+    let mut out = vec![Scene::builtin("pool")?];
+    if core_techniques::info(&spec.name).is_some_and(|t| t.input == Input::GlassOrWater) {
+        out.push(Scene::builtin("glass")?);
+    }
+    Ok(out)
+}
+
+/// The row label of `spec` on `scene`: the scene named where it is not the pool.
+fn label(spec: &Spec, scene: &Scene) -> String {
+    if scene.name == "pool" {
+        spec.label.clone()
+    } else {
+        format!("{} ({})", spec.label, scene.name)
+    }
+}
+
 pub fn run(args: BenchArgs) -> Result<()> {
+    if args.tradeoff {
+        return crate::tradeoff::run(&args.gpu, args.small, &args.out);
+    }
     let specs = if args.techniques.is_empty() {
-        vec!["yuksel".parse()?, "yuksel-gather".parse()?]
+        registered()?
     } else {
         args.techniques.clone()
     };
-    if args.frames == 0 {
+    let frames = args.frames.unwrap_or(if args.small { 1 } else { 30 });
+    let warmup = args.warmup.unwrap_or(if args.small { 1 } else { 3 });
+    if frames == 0 {
         bail!("--frames must be at least 1");
     }
-    let sizes = args
-        .resolution
-        .iter()
-        .map(|s| parse_res(s))
-        .collect::<Result<Vec<_>>>()?;
+    let sizes = if args.resolution.is_empty() {
+        if args.small {
+            vec![(64, 36)]
+        } else {
+            vec![(1280, 720), (1920, 1080)]
+        }
+    } else {
+        args.resolution
+            .iter()
+            .map(|s| parse_res(s))
+            .collect::<Result<Vec<_>>>()?
+    };
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let gpu = args.gpu.context();
@@ -98,285 +163,305 @@ pub fn run(args: BenchArgs) -> Result<()> {
         .as_ref()
         .map_or("none: CPU twins (wall time)".to_string(), |c| c.describe());
     println!("adapter: {adapter}");
-    // The measured water: smooth periodic waves, the sun 30 degrees from the zenith, deep water.
-    let case = cases(true).into_iter().next().expect("a case");
-    let surface = case.water.surface_at(0.0)?;
+    let timing = Timing { warmup, frames };
+    let jobs: Vec<(Spec, Scene)> = specs
+        .iter()
+        .map(|s| Ok(scenes_for(s)?.into_iter().map(|sc| (s.clone(), sc))))
+        .collect::<Result<Vec<_>>>()?
+        .into_iter()
+        .flatten()
+        .collect();
     let bar = progress::bar("bench");
-    bar.set_length((specs.len() * sizes.len()) as u64);
+    bar.set_length((jobs.len() * sizes.len()) as u64);
     let mut results = Vec::new();
-    for spec in &specs {
-        if spec.name == "procedural" {
-            let params = ProceduralCausticsParams::from_table(&spec.params)?;
-            let pipelines = gpu.as_ref().map(ProceduralCaustics::new).transpose()?;
-            for &(w, h) in &sizes {
-                let wt = &case.water;
-                let setup = ProceduralSetup::new(
-                    &params,
-                    w as usize,
-                    h as usize,
-                    wt.size,
-                    wt.depth,
-                    wt.absorption,
-                    wt.wrap,
-                    case.light,
-                )?;
-                let heights = procedural_heights(wt, surface.as_ref(), &setup);
-                let water = procedural::SurfaceInput::Grid(&heights);
-                let m = match (&gpu, &pipelines) {
-                    (Some(ctx), Some(p)) => {
-                        let frame = p.frame(ctx, &setup, &water)?;
-                        time_frames(ctx, &args, &spec.label, (w, h), frame.bytes(), |timer| {
-                            let mut encoder =
-                                ctx.device.create_command_encoder(&Default::default());
-                            p.encode(&frame, &mut encoder, Some(timer));
-                            timer.resolve(&mut encoder);
-                            ctx.queue.submit([encoder.finish()]);
-                        })?
+    let mut runner = None;
+    let started = Instant::now();
+    for (spec, base) in &jobs {
+        for &(w, h) in &sizes {
+            let mut scene = base.clone();
+            scene.caustics.width = w;
+            scene.caustics.height = h;
+            scene.camera.width = w;
+            scene.camera.height = h;
+            let spec = spec.clone().over(&base.caustics.params);
+            let name = label(&spec, &scene);
+            let rows = match &gpu {
+                Some(ctx) => {
+                    let mut rows = vec![
+                        time_technique(ctx, &scene, &spec, &timing)
+                            .with_context(|| format!("{name} at {w} x {h}"))?,
+                    ];
+                    if !args.no_frame {
+                        rows.push(
+                            time_frame(ctx, &scene, &spec, &timing)
+                                .with_context(|| format!("frame of {name} at {w} x {h}"))?,
+                        );
                     }
-                    _ => bench_cpu_procedural(&setup, &water, &args, &spec.label),
-                };
+                    rows
+                }
+                None => {
+                    let r = runner.get_or_insert_with(|| Runner::new(None));
+                    vec![time_cpu(r, &scene, &spec, &timing)?]
+                }
+            };
+            for mut m in rows {
+                if m.technique.is_empty() {
+                    m.technique = name.clone();
+                } else {
+                    m.technique = format!("{}{name}", m.technique);
+                }
                 report(&m);
                 results.push(m);
-                bar.inc(1);
             }
-            continue;
-        }
-        if spec.name != "yuksel" {
-            bail!(
-                "`caustics bench` measures yuksel and procedural so far; `{}` has no GPU path yet",
-                spec.label
-            );
-        }
-        let params = YukselParams::from_table(&spec.params)?;
-        let variant = if spec.gather {
-            Variant::Gather
-        } else {
-            Variant::RenderTargets
-        };
-        let pipelines = gpu.as_ref().map(Yuksel::new).transpose()?;
-        for &(w, h) in &sizes {
-            let wt = &case.water;
-            let setup = YukselSetup::new(
-                &params,
-                w as usize,
-                h as usize,
-                wt.size,
-                wt.depth,
-                wt.ior,
-                wt.absorption,
-                wt.wrap,
-                case.light,
-            )?;
-            let heights = heights_for(wt, surface.as_ref(), w as usize, h as usize);
-            let m = match (&gpu, &pipelines) {
-                (Some(ctx), Some(y)) => {
-                    bench_gpu(ctx, y, &setup, &heights, variant, &args, &spec.label)?
-                }
-                _ => bench_cpu(&setup, &heights, &args, &spec.label),
-            };
-            report(&m);
-            results.push(m);
             bar.inc(1);
         }
     }
     bar.finish_and_clear();
+    let elapsed = started.elapsed().as_secs_f64();
     std::fs::write(args.out.join("bench.csv"), csv(&results))?;
     std::fs::write(
         args.out.join("bench.md"),
-        markdown(&results, &adapter, &args),
+        markdown(&results, &adapter, &timing, elapsed),
     )?;
     plot(&results, &args.out.join("bench.svg"), &adapter)?;
-    eprintln!("wrote {}", args.out.join("bench.md").display());
+    eprintln!(
+        "wrote {} ({elapsed:.0} s)",
+        args.out.join("bench.md").display()
+    );
     Ok(())
+}
+
+#[derive(Clone, Copy)]
+pub(crate) struct Timing {
+    pub warmup: u32,
+    pub frames: u32,
 }
 
 fn report(m: &Measurement) {
     println!(
-        "{:<24} {:>5} x {:<5} {} {:>9.3} ms  (CPU {:.3} ms, {:.1} MiB)",
+        "{:<36} {:>5} x {:<5} {} {:>9.3} ms  (wall {:.3} ms, {:.1} MiB)",
         m.technique,
         m.width,
         m.height,
         m.backend,
         m.total_ms,
-        m.cpu_ms,
+        m.wall_ms,
         m.gpu_bytes as f64 / (1 << 20) as f64
     );
 }
 
-fn bench_gpu(
-    ctx: &GpuContext,
-    y: &Yuksel,
-    setup: &YukselSetup,
-    heights: &caustics_core::grid::Grid,
-    variant: Variant,
-    args: &BenchArgs,
-    label: &str,
-) -> Result<Measurement> {
-    let frame = y.frame(ctx, setup, heights, variant)?;
-    time_frames(
-        ctx,
-        args,
-        label,
-        (setup.width as u32, setup.height as u32),
-        frame.bytes(),
-        |timer| {
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            y.encode(&frame, &mut encoder, Some(timer));
-            timer.resolve(&mut encoder);
-            ctx.queue.submit([encoder.finish()]);
+/// A 1 x 1 water texture of height 0, the water of a scene without any (glass generators read
+/// none).
+fn no_water(ctx: &GpuContext) -> WaterTextures {
+    let t = ctx.texture_2d(
+        "no water",
+        (1, 1, 1),
+        wgpu::TextureFormat::R32Float,
+        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+    );
+    ctx.write_texture(
+        t.as_image_copy(),
+        &0f32.to_ne_bytes(),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4),
+            rows_per_image: Some(1),
         },
-    )
+        t.size(),
+    );
+    WaterTextures::of(&t)
 }
 
-/// Warm-up then timed frames of whatever `submit` encodes (with the timer's timestamps, resolved)
-/// and submits: GPU time per pass label (passes recorded more than once in a frame under one label,
-/// such as one downsample per mip level, are summed per frame), and the CPU wall time of encoding,
-/// submitting and waiting.
-fn time_frames(
+/// One technique through `caustics_gpu::technique`, as an application runs it: configured once
+/// on the scene's GPU water, then per frame the water advanced and encoded in a submission of its
+/// own (untimed), the technique updated and encoded, timed, in the next. The label of the returned
+/// measurement is empty (the caller names it).
+pub(crate) fn time_technique(
     ctx: &GpuContext,
-    args: &BenchArgs,
-    label: &str,
-    (width, height): (u32, u32),
-    gpu_bytes: u64,
-    mut submit: impl FnMut(&mut GpuTimer),
+    scene: &Scene,
+    spec: &Spec,
+    timing: &Timing,
 ) -> Result<Measurement> {
-    let mut timer = GpuTimer::new(ctx, 32);
-    let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
-    let mut cpu = Vec::new();
-    for k in 0..args.warmup + args.frames {
+    let mut t = technique::create(ctx, registry_name(spec), &spec.params)?;
+    let mut water = scene
+        .water
+        .as_ref()
+        .map(|w| GpuWater::new(ctx, w))
+        .transpose()?;
+    let textures = match &mut water {
+        Some(w) => {
+            let (cols, rows) = t.water_resolution(scene);
+            w.update(ctx, scene.time, 1.0);
+            w.output(ctx, cols, rows)?
+        }
+        None => no_water(ctx),
+    };
+    t.configure(ctx, scene, &textures)?;
+    let mut timer = GpuTimer::new(ctx, 64);
+    let (w, h) = (scene.caustics.width, scene.caustics.height);
+    let bytes = t.bytes();
+    let mut clock = scene.time;
+    time_frames(timing, (w, h), bytes, || {
+        clock += 1.0 / 60.0;
+        if let Some(water) = &mut water {
+            water.update(ctx, clock, 1.0);
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            water.encode(&mut encoder, None);
+            ctx.queue.submit([encoder.finish()]);
+            ctx.wait()?;
+        }
+        t.update(ctx, scene)?;
         let started = Instant::now();
-        submit(&mut timer);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        t.encode(&mut encoder, Some(&mut timer));
+        timer.resolve(&mut encoder);
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        Ok((started.elapsed().as_secs_f64() * 1e3, timer.read(ctx)?))
+    })
+}
+
+/// The whole frame through the renderer the viewer uses: water, technique and final image at the
+/// camera's size in one submission; the wall time is `render` to idle. The timestamps come from
+/// the renderer's own timer (its frame-loop copy, picked up once the frame is done).
+fn time_frame(
+    ctx: &GpuContext,
+    scene: &Scene,
+    spec: &Spec,
+    timing: &Timing,
+) -> Result<Measurement> {
+    let mut renderer = Renderer::new(ctx)?;
+    renderer.set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)?;
+    renderer.set_techniques(
+        ctx,
+        &[Some(TechniqueSpec {
+            name: registry_name(spec).to_string(),
+            params: spec.params.clone(),
+        })],
+    );
+    let options = RenderOptions {
+        supersampling: 1,
+        ..Default::default()
+    };
+    let mut clock = scene.time;
+    let mut first = true;
+    let mut m = time_frames(timing, (0, 0), 0, || {
+        clock += 1.0 / 60.0;
+        let started = Instant::now();
+        renderer.render(
+            ctx,
+            scene,
+            WaterClock {
+                time: clock,
+                amplitude: 1.0,
+                steps: 0,
+            },
+            &options,
+        )?;
         ctx.wait()?;
         let wall = started.elapsed().as_secs_f64() * 1e3;
-        let passes = timer.read(ctx)?;
-        if k < args.warmup {
-            continue;
-        }
-        cpu.push(wall);
-        let mut frame: Vec<(String, f64)> = Vec::new();
-        for p in passes {
-            match frame.iter_mut().find(|(l, _)| *l == p.label) {
-                Some((_, ms)) => *ms += p.ms,
-                None => frame.push((p.label, p.ms)),
+        if first {
+            first = false;
+            if let Some(e) = renderer.error(0) {
+                bail!("{e}");
             }
         }
-        for (l, ms) in frame {
+        let passes = match renderer.timer.as_mut() {
+            Some(t) => t.latest(ctx).to_vec(),
+            None => Vec::new(),
+        };
+        Ok((wall, passes))
+    })?;
+    m.width = scene.camera.width;
+    m.height = scene.camera.height;
+    m.gpu_bytes = renderer.technique_bytes();
+    m.technique = "frame: ".into();
+    Ok(m)
+}
+
+/// Warm-up then timed frames of `frame`, which records, submits and waits for one frame and
+/// returns its wall time and its passes' GPU times: GPU time per pass label (passes recorded more
+/// than once in a frame under one label, such as one downsample per mip level, summed per frame).
+fn time_frames(
+    timing: &Timing,
+    (width, height): (u32, u32),
+    gpu_bytes: u64,
+    mut frame: impl FnMut() -> Result<(f64, Vec<PassTime>)>,
+) -> Result<Measurement> {
+    let mut per_pass: Vec<(String, Vec<f64>)> = Vec::new();
+    let mut walls = Vec::new();
+    for k in 0..timing.warmup + timing.frames {
+        let (wall, passes) = frame()?;
+        if k < timing.warmup {
+            continue;
+        }
+        walls.push(wall);
+        let mut sums: Vec<(String, f64)> = Vec::new();
+        for p in passes {
+            match sums.iter_mut().find(|(l, _)| *l == p.label) {
+                Some((_, ms)) => *ms += p.ms,
+                None => sums.push((p.label, p.ms)),
+            }
+        }
+        for (l, ms) in sums {
             record(&mut per_pass, l, ms);
         }
     }
     let passes = summarise(per_pass);
-    cpu.sort_by(f64::total_cmp);
+    walls.sort_by(f64::total_cmp);
+    let wall = percentile(&walls, 0.5);
     let total = if passes.is_empty() {
-        percentile(&cpu, 0.5)
+        wall
     } else {
         passes.iter().map(|p| p.1).sum()
     };
     Ok(Measurement {
-        technique: label.to_string(),
+        technique: String::new(),
         width,
         height,
         backend: "GPU",
         passes,
         total_ms: total,
-        cpu_ms: percentile(&cpu, 0.5),
+        wall_ms: wall,
         gpu_bytes,
     })
 }
 
-/// The procedural CPU twin, stage by stage (wall time, at most 5 frames).
-fn bench_cpu_procedural(
-    setup: &ProceduralSetup,
-    water: &procedural::SurfaceInput,
-    args: &BenchArgs,
-    label: &str,
-) -> Measurement {
-    let frames = args.frames.min(5);
-    let mut stages: Vec<(String, Vec<f64>)> = Vec::new();
-    let mut total = Vec::new();
-    for _ in 0..frames {
-        let mut times: Vec<(&str, f64)> = Vec::new();
-        let mut lap = Instant::now();
-        let mut mark = |name: &'static str, times: &mut Vec<(&str, f64)>| {
-            times.push((name, lap.elapsed().as_secs_f64() * 1e3));
-            lap = Instant::now();
-        };
-        match setup.variant {
-            procedural::Variant::Vertex => {
-                let values = procedural::vertex_values(setup, water);
-                mark("vertex values", &mut times);
-                let _ = procedural::rasterise(setup, &values);
-                mark("rasterise", &mut times);
-            }
-            procedural::Variant::Screen => {
-                let _ = procedural::per_pixel(setup, water, setup.width, setup.height);
-                mark("per pixel", &mut times);
-            }
-            procedural::Variant::Texture => {
-                let level0 = procedural::per_pixel(setup, water, setup.target, setup.target);
-                mark("target", &mut times);
-                let levels = procedural::mip_chain(level0, setup.target);
-                mark("mips", &mut times);
-                let _ = procedural::resample(setup, &levels);
-                mark("resample", &mut times);
-            }
-        }
-        total.push(times.iter().map(|t| t.1).sum::<f64>());
-        for (name, ms) in times {
-            let name = format!("procedural {name} (CPU twin)");
-            record(&mut stages, name, ms);
-        }
+/// The CPU twin of `spec` on `scene` through the runner `caustics compare` uses (at most 5 frames).
+fn time_cpu(
+    runner: &mut Runner,
+    scene: &Scene,
+    spec: &Spec,
+    timing: &Timing,
+) -> Result<Measurement> {
+    let surface = scene
+        .water
+        .as_ref()
+        .map(|w| w.surface_at(scene.time))
+        .transpose()?;
+    let mut walls = Vec::new();
+    for _ in 0..timing.frames.min(5) {
+        let started = Instant::now();
+        runner.run_scene_caustics(spec, scene, surface.as_deref(), 1, &|_, _| {})?;
+        walls.push(started.elapsed().as_secs_f64() * 1e3);
     }
-    total.sort_by(f64::total_cmp);
-    Measurement {
-        technique: label.to_string(),
-        width: setup.width as u32,
-        height: setup.height as u32,
+    walls.sort_by(f64::total_cmp);
+    let wall = percentile(&walls, 0.5);
+    Ok(Measurement {
+        technique: String::new(),
+        width: scene.caustics.width,
+        height: scene.caustics.height,
         backend: "CPU",
-        passes: summarise(stages),
-        total_ms: percentile(&total, 0.5),
-        cpu_ms: percentile(&total, 0.5),
+        passes: vec![(
+            format!("{} (CPU twin)", spec.name),
+            wall,
+            walls[0],
+            walls[walls.len() - 1],
+        )],
+        total_ms: wall,
+        wall_ms: wall,
         gpu_bytes: 0,
-    }
-}
-
-fn bench_cpu(
-    setup: &YukselSetup,
-    heights: &caustics_core::grid::Grid,
-    args: &BenchArgs,
-    label: &str,
-) -> Measurement {
-    let frames = args.frames.min(5);
-    let mut names = ["pre-pass", "pass 1", "pass 2"].map(|n| (n.to_string(), Vec::new()));
-    let mut total = Vec::new();
-    for _ in 0..frames {
-        let t0 = Instant::now();
-        let pre = yuksel::prepass(setup, heights);
-        let t1 = Instant::now();
-        let p1 = yuksel::pass1(setup, &pre);
-        let t2 = Instant::now();
-        let _ = yuksel::pass2(setup, &p1);
-        let t3 = Instant::now();
-        for (k, d) in [t1 - t0, t2 - t1, t3 - t2].iter().enumerate() {
-            names[k].1.push(d.as_secs_f64() * 1e3);
-        }
-        total.push((t3 - t0).as_secs_f64() * 1e3);
-    }
-    total.sort_by(f64::total_cmp);
-    Measurement {
-        technique: label.to_string(),
-        width: setup.width as u32,
-        height: setup.height as u32,
-        backend: "CPU",
-        passes: summarise(
-            names
-                .into_iter()
-                .map(|(l, v)| (format!("yuksel {l} (CPU twin)"), v))
-                .collect(),
-        ),
-        total_ms: percentile(&total, 0.5),
-        cpu_ms: percentile(&total, 0.5),
-        gpu_bytes: 0,
-    }
+    })
 }
 
 /// Add a sample to the series of `label`, series kept in the order first seen.
@@ -418,29 +503,41 @@ pub fn slope(points: &[(f64, f64)]) -> f64 {
 
 fn csv(results: &[Measurement]) -> String {
     let mut s =
-        "technique,width,height,backend,pass,median_ms,p10_ms,p90_ms,total_ms,cpu_ms,gpu_bytes\n"
+        "technique,width,height,backend,pass,median_ms,p10_ms,p90_ms,total_ms,wall_ms,gpu_bytes\n"
             .to_string();
     for m in results {
-        for (p, med, lo, hi) in &m.passes {
+        let none = [(String::new(), 0.0, 0.0, 0.0)];
+        let passes = if m.passes.is_empty() {
+            &none[..]
+        } else {
+            &m.passes[..]
+        };
+        for (p, med, lo, hi) in passes {
             let _ = writeln!(
                 s,
                 "\"{}\",{},{},{},\"{p}\",{med:.4},{lo:.4},{hi:.4},{:.4},{:.4},{}",
-                m.technique, m.width, m.height, m.backend, m.total_ms, m.cpu_ms, m.gpu_bytes
+                m.technique, m.width, m.height, m.backend, m.total_ms, m.wall_ms, m.gpu_bytes
             );
         }
     }
     s
 }
 
-fn markdown(results: &[Measurement], adapter: &str, args: &BenchArgs) -> String {
+fn markdown(results: &[Measurement], adapter: &str, timing: &Timing, elapsed: f64) -> String {
     let mut s = format!(
-        "# caustics bench\n\nAdapter: {adapter}. {} warm-up frames, then {} timed frames per row; GPU times are \
-         timestamp queries around each pass (median, with the 10th-90th percentile spread); CPU is the wall \
-         time of encoding, submitting and waiting for one frame; memory is what the technique allocates on \
-         the GPU for that size.\n\n",
-        args.warmup, args.frames
+        "# caustics bench\n\nAdapter: {adapter}. {} warm-up frames, then {} timed frames per row ({elapsed:.0} s in \
+         all). A technique row is the technique alone as an application runs it (configured once on the \
+         pool's GPU water, or the glass scene's objects; per frame the water in a submission of its own, then \
+         the technique's passes, timed, at a map of the given size); a `frame:` row is the whole GPU frame \
+         through the renderer the viewer uses (water, technique, final image at a camera of the given size, \
+         one submission). GPU: the sum of the passes' timestamp medians (each pass: median [10th, 90th \
+         percentile]); wall: submit to idle of the timed submission, the cross-check (on a real GPU wall is \
+         GPU plus a fraction of a millisecond; where GPU is far below wall, the timestamps are not to be \
+         trusted: Mesa's lavapipe under-reports passes recorded after others in one command buffer); memory: \
+         what the technique allocates on the GPU for that size.\n\n",
+        timing.warmup, timing.frames
     );
-    s += "| technique | resolution | backend | total (ms) | passes: median [p10, p90] ms | CPU (ms) | GPU memory (MiB) |\n|---|---|---|---|---|---|---|\n";
+    s += "| technique | resolution | backend | GPU total (ms) | wall (ms) | passes: median [p10, p90] ms | GPU memory (MiB) |\n|---|---|---|---|---|---|---|\n";
     for m in results {
         let passes: Vec<String> = m
             .passes
@@ -449,46 +546,50 @@ fn markdown(results: &[Measurement], adapter: &str, args: &BenchArgs) -> String 
             .collect();
         let _ = writeln!(
             s,
-            "| {} | {} x {} | {} | {:.3} | {} | {:.3} | {:.2} |",
+            "| {} | {} x {} | {} | {:.3} | {:.3} | {} | {:.2} |",
             m.technique,
             m.width,
             m.height,
             m.backend,
             m.total_ms,
+            m.wall_ms,
             passes.join("; "),
-            m.cpu_ms,
             m.gpu_bytes as f64 / (1 << 20) as f64
         );
     }
-    s += "\n| technique | slope of log time over log pixels |\n|---|---|\n";
+    s += "\n| technique | slope of log wall time over log pixels |\n|---|---|\n";
     let mut names: Vec<&str> = results.iter().map(|m| m.technique.as_str()).collect();
+    names.sort();
     names.dedup();
     for t in names {
         let pts: Vec<(f64, f64)> = results
             .iter()
             .filter(|m| m.technique == t)
-            .map(|m| (m.width as f64 * m.height as f64, m.total_ms))
+            .map(|m| (m.width as f64 * m.height as f64, m.wall_ms.max(1e-6)))
             .collect();
         if pts.len() >= 2 {
             let _ = writeln!(s, "| {t} | {:.2} |", slope(&pts));
         }
     }
-    s += "\n![time over resolution](bench.svg)\n";
+    s += "\n![wall time over resolution](bench.svg)\n";
     s
 }
 
 fn plot(results: &[Measurement], path: &std::path::Path, adapter: &str) -> Result<()> {
     use plotters::prelude::*;
-    let root = SVGBackend::new(path, (720, 480)).into_drawing_area();
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE)?;
     let xs = results
         .iter()
         .map(|m| (m.width as f64 * m.height as f64).log10());
-    let ys = results.iter().map(|m| m.total_ms.max(1e-4).log10());
+    let ys = results.iter().map(|m| m.wall_ms.max(1e-4).log10());
     let (x0, x1) = xs.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
     let (y0, y1) = ys.fold((f64::MAX, f64::MIN), |(a, b), y| (a.min(y), b.max(y)));
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("time per frame: {adapter}"), ("sans-serif", 14))
+        .caption(
+            format!("wall time per frame: {adapter}"),
+            ("sans-serif", 14),
+        )
         .margin(12)
         .x_label_area_size(36)
         .y_label_area_size(52)
@@ -502,28 +603,32 @@ fn plot(results: &[Measurement], path: &std::path::Path, adapter: &str) -> Resul
     names.dedup();
     for (k, t) in names.iter().enumerate() {
         let color = Palette99::pick(k).to_rgba();
+        let dashed = t.starts_with("frame: ");
         let pts: Vec<(f64, f64)> = results
             .iter()
             .filter(|m| m.technique == *t)
             .map(|m| {
                 (
                     (m.width as f64 * m.height as f64).log10(),
-                    m.total_ms.max(1e-4).log10(),
+                    m.wall_ms.max(1e-4).log10(),
                 )
             })
             .collect();
+        let width = if dashed { 1 } else { 2 };
         chart
-            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))?
+            .draw_series(LineSeries::new(pts.clone(), color.stroke_width(width)))?
             .label(*t)
             .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2))
+                PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(width))
             });
         chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?;
     }
     chart
         .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", 10))
         .border_style(BLACK)
-        .background_style(WHITE)
+        .background_style(WHITE.mix(0.8))
         .draw()?;
     root.present()?;
     Ok(())

@@ -19,13 +19,14 @@ use crate::techniques::{Job, Runner, Spec};
 #[derive(Args)]
 pub struct CompareArgs {
     /// Techniques to measure, `name` or `name:key=value,...` (e.g. `yuksel:n=15,m=14`,
-    /// `yuksel-gather`); repeat the flag. Default: every implemented technique and variant.
+    /// `yuksel-gather`); repeat the flag. Default: every registered technique that makes a floor
+    /// map (`caustics bench --tradeoff` scores the eye-space `cascaded`).
     #[arg(long = "technique")]
     techniques: Vec<Spec>,
-    /// Caustics-map resolutions (square), comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "256")]
+    /// Caustics-map resolutions (square), comma-separated. Default 256 (with --quick 64).
+    #[arg(long, value_delimiter = ',')]
     resolution: Vec<u32>,
-    /// Only the mid sun over deep water.
+    /// Small: only the mid sun over deep water, a 64² map unless --resolution says otherwise.
     #[arg(long)]
     quick: bool,
     /// Output folder.
@@ -54,9 +55,12 @@ pub struct Row {
     pub diff_range: f32,
 }
 
-pub fn run(args: CompareArgs) -> Result<()> {
+pub fn run(mut args: CompareArgs) -> Result<()> {
+    if args.resolution.is_empty() {
+        args.resolution = vec![if args.quick { 64 } else { 256 }];
+    }
     let specs = if args.techniques.is_empty() {
-        vec!["yuksel".parse()?, "yuksel-gather".parse()?]
+        default_specs()?
     } else {
         args.techniques.clone()
     };
@@ -128,6 +132,21 @@ pub fn run(args: CompareArgs) -> Result<()> {
         rows.len()
     );
     Ok(())
+}
+
+/// Every registered GPU technique that makes a floor map from the water, in the registry's order
+/// (on its CPU twin where no adapter exists). `cascaded` makes an eye-space
+/// image, which these floor cases cannot score: `caustics bench --tradeoff` measures it through
+/// the pool's camera.
+fn default_specs() -> Result<Vec<Spec>> {
+    caustics_gpu::technique::REGISTRY
+        .iter()
+        .filter(|r| {
+            caustics_core::techniques::info(r.params)
+                .is_some_and(|t| t.input != caustics_core::techniques::Input::EyeSpace)
+        })
+        .map(|r| r.name.parse())
+        .collect()
 }
 
 fn file_safe(s: &str) -> String {

@@ -5,6 +5,7 @@ mod compare;
 mod progress;
 mod render;
 mod techniques;
+mod tradeoff;
 mod view;
 
 use std::path::PathBuf;
@@ -38,7 +39,8 @@ enum Command {
     Techniques,
     /// Every technique against the reference on generated surfaces: Markdown, CSV, pictures.
     Compare(compare::CompareArgs),
-    /// GPU time per pass and CPU time of each technique over resolutions: Markdown, CSV, a plot.
+    /// Every technique and the whole frame timed (GPU per pass, wall, memory), or with --tradeoff
+    /// error against cost with the Pareto front: Markdown, CSV, a plot.
     Bench(bench::BenchArgs),
     /// An interactive window: any scene, any technique, beside another, with the sun, the water and
     /// ripples under the mouse (needs a display; under Xvfb for headless runs).
