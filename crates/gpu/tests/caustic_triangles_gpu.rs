@@ -2,13 +2,16 @@
 //! vertex irradiances, floor maps of both reconstructions), the no-light-leak property on the GPU,
 //! the `Rgba16Float` fallback, and the uniform block against its WGSL twin.
 
+#[macro_use]
+mod common;
+
 use caustics_core::metrics::compare;
 use caustics_core::techniques::caustic_triangles::{
     self as ct, AreaRule, CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, FloorWindow,
     GlassScene, Occluder, Shape,
 };
 use caustics_gpu::caustic_triangles::{CausticTriangles, CausticTrianglesUniform, Reconstruction};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use glam::{DVec2, DVec3};
 
 fn ball_scene(res: usize, window: f64) -> GlassScene {
@@ -60,9 +63,8 @@ fn photon_agreement(a: &[[f32; 4]], b: &[[f32; 4]]) -> (f64, f64, f64) {
     )
 }
 
-#[test]
 fn gpu_matches_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     eprintln!(
         "adapter: {}, map format {:?}",
@@ -108,9 +110,8 @@ fn gpu_matches_the_cpu_twin() {
 }
 
 /// Vertex irradiance and triangles from the very same photon image: only the rasteriser differs.
-#[test]
 fn reconstruction_of_gpu_photons_matches_the_cpu_reconstruction() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = ball_scene(128, 0.6);
     let params = CausticTrianglesParams {
@@ -136,9 +137,8 @@ fn reconstruction_of_gpu_photons_matches_the_cpu_reconstruction() {
     assert!(m.relative_l1 < 2e-3 && m.flux_error.abs() < 1e-3, "{m:?}");
 }
 
-#[test]
 fn no_light_leaks_through_a_wall_on_the_gpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let mut scene = ball_scene(64, 0.6);
     let c = DVec3::new(0.0, 0.0, 0.35);
@@ -175,9 +175,8 @@ fn no_light_leaks_through_a_wall_on_the_gpu() {
     }
 }
 
-#[test]
 fn the_half_float_fallback_gives_the_same_map() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let full = CausticTriangles::new(&ctx).unwrap();
     let half = CausticTriangles::with_format(&ctx, wgpu::TextureFormat::Rgba16Float).unwrap();
     let scene = ball_scene(96, 0.6);
@@ -199,7 +198,6 @@ fn the_half_float_fallback_gives_the_same_map() {
     assert!(m.relative_l1 < 5e-3 && m.flux_error.abs() < 5e-3, "{m:?}");
 }
 
-#[test]
 fn the_camera_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::camera::CAMERA.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -214,7 +212,6 @@ fn the_camera_uniform_matches_its_wgsl_size() {
     );
 }
 
-#[test]
 fn the_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::IRRADIANCE.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -274,9 +271,8 @@ fn split_path_photons(s: &GlassScene) -> Vec<[f32; 4]> {
     photons
 }
 
-#[test]
 fn quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = ball_scene(64, 0.6);
     let dm = DistanceMap::build(&scene, 16, 1);
@@ -350,9 +346,8 @@ fn lamp_scene(res: usize, window: f64, cone: Option<f64>, occluders: Vec<Occlude
     .unwrap()
 }
 
-#[test]
 fn point_light_photons_and_light_cube_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     for cone in [None, Some(6f64.to_radians())] {
         let scene = lamp_scene(128, 1.2, cone, vec![]);
@@ -439,13 +434,12 @@ fn wall() -> Occluder {
     Occluder::wall(DVec3::new(0.25, -0.6, 0.0), DVec3::new(0.3, 0.0, 0.35))
 }
 
-#[test]
 fn camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark() {
     use caustics_core::techniques::caustic_triangles::camera::{
         self, CameraInput, CameraLight, CameraParams,
     };
     use caustics_gpu::caustic_triangles::camera::CameraRenderer;
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let renderer = CameraRenderer::new(&ctx).expect("camera pipeline");
     let scene = lamp_scene(128, 1.2, None, vec![wall()]);
@@ -538,13 +532,12 @@ fn camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark() {
     assert!(shadowed > 50 && lit > 1000, "{shadowed} {lit}");
 }
 
-#[test]
 fn camera_pass_with_the_sun_matches_the_cpu_twin() {
     use caustics_core::techniques::caustic_triangles::camera::{
         self, CameraInput, CameraLight, CameraParams,
     };
     use caustics_gpu::caustic_triangles::camera::CameraRenderer;
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let renderer = CameraRenderer::new(&ctx).expect("camera pipeline");
     let mut scene = ball_scene(128, 0.6);
@@ -581,9 +574,8 @@ fn camera_pass_with_the_sun_matches_the_cpu_twin() {
 
 /// §5 merging on the `glass` scene's resting sphere (its focus is a few texels): the GPU's pyramid,
 /// floor map and light cube map from the same photons against the CPU twin's.
-#[test]
 fn merging_matches_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let centre = DVec3::new(0.35, 0.5, 0.12);
     let light = DVec3::new(0.45, 0.3, -0.8).normalize();
@@ -701,11 +693,10 @@ fn merging_matches_the_cpu_twin() {
 /// The water surface as the generator: the pool's waves through the water photon pass, its
 /// photons, path lengths and maps (triangles and splats, wrapped, with absorption) against the CPU
 /// twin; and clamped water's single copy.
-#[test]
 fn water_generator_matches_the_cpu_twin() {
     use caustics_core::scene::Scene;
     use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = Scene::builtin("pool").unwrap();
     let mut w = scene.water.clone().unwrap();
@@ -758,7 +749,6 @@ fn water_generator_matches_the_cpu_twin() {
     }
 }
 
-#[test]
 fn the_water_photon_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::WATER_PHOTON.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -867,9 +857,8 @@ mod through_the_trait {
     /// The water generator through the trait equals the CPU twin; the band of shifted copies is
     /// the GPU's own fit (the copy band pass): at least the CPU twin's bound, at most one quad
     /// wider than it plus its f32 margin.
-    #[test]
-    fn water_generator_through_the_trait_matches_the_cpu_twin() {
-        let Some(ctx) = test_context() else { return };
+    pub fn water_generator_through_the_trait_matches_the_cpu_twin() {
+        let ctx = test_gpu();
         // At t = 0 one texel of 4096 (row 15, column 3) sits on the edge of a sliver triangle of
         // a focus, inside it on one twin and outside on the other (f32 against f64 vertices):
         // 8 % in that texel, flux 2e-5; bands 12 to 48 give the CPU twin bit-identical maps, so
@@ -913,9 +902,8 @@ mod through_the_trait {
     /// Ten frames of moving water and a moving sun after the first: no resource created, nothing
     /// read back, at most 4 KiB of uniforms a frame; and the last frame's map is the CPU twin's
     /// for the last heights and sun (the band refitted on the GPU every frame).
-    #[test]
-    fn water_generator_frames_create_and_read_nothing() {
-        let Some(ctx) = test_context() else { return };
+    pub fn water_generator_frames_create_and_read_nothing() {
+        let ctx = test_gpu();
         let mut scene = pool(0.0);
         let mut t =
             caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
@@ -968,9 +956,8 @@ mod through_the_trait {
 
     /// The `glass` scene's two generators (sphere and teapot) summed into one map on the GPU
     /// equal the CPU twin's sum.
-    #[test]
-    fn glass_generators_through_the_trait_match_the_cpu_twin() {
-        let Some(ctx) = test_context() else { return };
+    pub fn glass_generators_through_the_trait_match_the_cpu_twin() {
+        let ctx = test_gpu();
         let mut scene = glass();
         let table = params(GLASS_PARAMS);
         let mut t = caustics_gpu::technique::create(&ctx, "caustic-triangles", &table).unwrap();
@@ -1001,9 +988,8 @@ mod through_the_trait {
     }
 
     /// Ten frames of a moving sun over the glass: uniform writes only.
-    #[test]
-    fn glass_generator_frames_create_and_read_nothing() {
-        let Some(ctx) = test_context() else { return };
+    pub fn glass_generator_frames_create_and_read_nothing() {
+        let ctx = test_gpu();
         let mut scene = glass();
         let mut t =
             caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(GLASS_PARAMS))
@@ -1030,4 +1016,24 @@ mod through_the_trait {
             "{d:?}"
         );
     }
+}
+
+test_main! {
+    gpu gpu_matches_the_cpu_twin,
+    gpu reconstruction_of_gpu_photons_matches_the_cpu_reconstruction,
+    gpu no_light_leaks_through_a_wall_on_the_gpu,
+    gpu the_half_float_fallback_gives_the_same_map,
+    cpu the_camera_uniform_matches_its_wgsl_size,
+    cpu the_uniform_matches_its_wgsl_size,
+    gpu quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu,
+    gpu point_light_photons_and_light_cube_match_the_cpu_twin,
+    gpu camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark,
+    gpu camera_pass_with_the_sun_matches_the_cpu_twin,
+    gpu merging_matches_the_cpu_twin,
+    gpu water_generator_matches_the_cpu_twin,
+    cpu the_water_photon_uniform_matches_its_wgsl_size,
+    gpu through_the_trait::water_generator_through_the_trait_matches_the_cpu_twin,
+    gpu through_the_trait::water_generator_frames_create_and_read_nothing,
+    gpu through_the_trait::glass_generators_through_the_trait_match_the_cpu_twin,
+    gpu through_the_trait::glass_generator_frames_create_and_read_nothing,
 }
