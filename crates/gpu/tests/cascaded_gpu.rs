@@ -139,12 +139,14 @@ fn screen_caustics_match_the_cpu_twin() {
              channels differing > 0.1 %: {moved}",
             100.0 * same as f64 / cpu.acc.len() as f64,
         );
-        assert!(eye < 1e-4, "eye depth {eye}");
+        // Measured (lavapipe), the largest over the four cases: eye 2.3e-5, total 4.51e-6,
+        // mean |Δ| / mean 7.49e-5; 10x.
+        assert!(eye < 2.3e-4, "eye depth {eye}");
         // A photon that f32 and f64 put on different sides of a pixel edge (or of a footprint's
         // 1/64-pixel step) moves its weight to the neighbour: totals agree closely, single pixels
         // differ by whole photons (point splat) or by a few units of a share (footprint).
-        assert!(total < 1e-4, "total {total}");
-        assert!(mean_abs < 1e-3, "mean |Δ| {mean_abs}");
+        assert!(total < 4.5e-5, "total {total}");
+        assert!(mean_abs < 7.5e-4, "mean |Δ| {mean_abs}");
     }
 }
 
