@@ -93,11 +93,13 @@ fn gpu_matches_the_cpu_twin() {
         // agree to a few micrometres of a 0.6-unit window.
         assert!(flips < 0.002, "validity flips {flips}");
         assert!(dpos < 1e-4, "positions {dpos}");
-        assert!(dpow < 1e-4, "powers {dpow}");
+        // Measured (lavapipe, both rules): p99 power 7.6e-6; triangles map relative L1 3.3e-6,
+        // flux 8.0e-8; splats relative L1 3.5e-3, flux 1.0e-7. Bounds 10x.
+        assert!(dpow < 7.6e-5, "powers {dpow}");
         // Maps: both reconstructions of the GPU photons against the CPU ones.
         let m = compare(&gpu.map, &cpu.map);
         eprintln!("{rule:?}: triangles map GPU vs CPU {m:?}");
-        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        assert!(m.relative_l1 < 3.4e-5 && m.flux_error.abs() < 8e-7, "{m:?}");
         let splat_gpu = ct_gpu
             .run(&ctx, &setup, &dm, Reconstruction::Splats)
             .expect("gpu splats");
@@ -105,7 +107,7 @@ fn gpu_matches_the_cpu_twin() {
         let s = compare(&splat_gpu.map, &splat_cpu);
         eprintln!("{rule:?}: splat map GPU vs CPU {s:?}");
         // Splat edges fall on texel centres more often (ties decided differently).
-        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-5, "{s:?}");
+        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-6, "{s:?}");
     }
 }
 
@@ -134,7 +136,11 @@ fn reconstruction_of_gpu_photons_matches_the_cpu_reconstruction() {
     let cpu_map = ct::triangles_pass(&setup, &gpu.photons, &gpu.irradiance);
     let m = compare(&gpu.map, &cpu_map);
     eprintln!("same photons, triangles GPU vs CPU {m:?}");
-    assert!(m.relative_l1 < 2e-3 && m.flux_error.abs() < 1e-3, "{m:?}");
+    // Measured (lavapipe): relative L1 2.2e-6, flux 1.3e-6; 10x.
+    assert!(
+        m.relative_l1 < 2.2e-5 && m.flux_error.abs() < 1.3e-5,
+        "{m:?}"
+    );
 }
 
 fn no_light_leaks_through_a_wall_on_the_gpu() {
@@ -299,7 +305,11 @@ fn quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu() {
         let cpu = ct::triangles_pass(&setup, &photons, &irr);
         let m = compare(&gpu.map, &cpu);
         eprintln!("{rule:?}: split-path image, GPU vs CPU {m:?}");
-        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        // Measured (lavapipe, the larger of the two rules): relative L1 1.3e-7, flux 3.5e-8; 10x.
+        assert!(
+            m.relative_l1 < 1.3e-6 && m.flux_error.abs() < 3.5e-7,
+            "{m:?}"
+        );
         let at = |x: usize, y: usize| gpu.map.texels[y * 64 + x][0];
         // The four quads around photon (3, 3) (map pixels 20..36) and the way from the grid's
         // corner to where the odd photon landed stay dark; the rest of the grid is lit.
@@ -401,7 +411,8 @@ fn point_light_photons_and_light_cube_match_the_cpu_twin() {
         eprintln!(
             "cone {cone:?}: light cube ΣE rel L1 {l1:.2e}, ΣEd {l1d:.2e}, shadow texels off by > 0.1 % {off} of {n}"
         );
-        assert!(sum > 0.0 && l1 < 1e-3 && l1d < 1e-3, "{l1} {l1d}");
+        // Measured (lavapipe): ΣE 3.3e-5, ΣEd 3.2e-5 without a cone; 10x.
+        assert!(sum > 0.0 && l1 < 3.3e-4 && l1d < 3.3e-4, "{l1} {l1d}");
         assert!((off as f64) < 2e-3 * n as f64, "{off}");
     }
 }
@@ -724,13 +735,18 @@ fn water_generator_matches_the_cpu_twin() {
             "wrap {wrap}: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}"
         );
         assert_eq!(flips, 0.0);
-        // f32 against f64 on a 4 m square: micrometres.
-        assert!(dpos < 5e-6, "positions {dpos}");
-        assert!(dpow < 1e-4, "powers {dpow}");
-        assert!(dpath < 1e-5, "paths {dpath}");
+        // f32 against f64 on a 4 m square: micrometres. Measured (lavapipe, both wraps): p99
+        // position 4.8e-7, power 2.0e-7, path 2.4e-7; triangles map relative L1 2.5e-6, flux
+        // 1.3e-7; splats relative L1 3.7e-3, flux 1.5e-7. Bounds 10x.
+        assert!(dpos < 4.8e-6, "positions {dpos}");
+        assert!(dpow < 2e-6, "powers {dpow}");
+        assert!(dpath < 2.4e-6, "paths {dpath}");
         let m = compare(&gpu.map, &cpu.map);
         eprintln!("wrap {wrap}: triangles GPU vs CPU {m:?}");
-        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        assert!(
+            m.relative_l1 < 2.5e-5 && m.flux_error.abs() < 1.3e-6,
+            "{m:?}"
+        );
         // Absorption per channel: red is absorbed most.
         let sum = |c: usize| gpu.map.texels.iter().map(|t| t[c] as f64).sum::<f64>();
         assert!(sum(0) < sum(1) && sum(1) < sum(2));
@@ -740,7 +756,7 @@ fn water_generator_matches_the_cpu_twin() {
         let cs = ct::splat_pass_with_paths(&ws.setup, &cpu.photons, Some(&cpu.paths));
         let s = compare(&gs.map, &cs);
         eprintln!("wrap {wrap}: splats GPU vs CPU {s:?}");
-        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-4, "{s:?}");
+        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1.5e-6, "{s:?}");
         if wrap {
             // Every photon cell's light lands in the square: the map holds the photons' power.
             let mean = sum(2) / (128.0 * 128.0);
