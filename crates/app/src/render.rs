@@ -65,9 +65,13 @@ pub struct RenderArgs {
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got `{s}`"))?;
+    let parts: Vec<&str> = s.split(['x', 'X']).collect();
+    let [w, h] = parts[..] else {
+        return Err(format!(
+            "expected WIDTHxHEIGHT (two numbers), got `{s}` ({} entries)",
+            parts.len()
+        ));
+    };
     let w: u32 = w
         .trim()
         .parse()
@@ -77,6 +81,43 @@ fn parse_size(s: &str) -> Result<[u32; 2], String> {
         .parse()
         .map_err(|_| format!("bad height in `{s}`"))?;
     Ok([w, h])
+}
+
+/// Refuse an output that cannot be written, before the work rather than after it, without
+/// creating or changing the file itself: an existing one must be a file opened for writing (not
+/// truncated), a new one's folder must take a new file (probed with a file of another name,
+/// removed at once: permissions alone do not tell, e.g. for root or a read-only mount).
+fn check_writable(flag: &str, path: &Path) -> Result<()> {
+    let fail = |why: String| anyhow::anyhow!("{flag} {}: cannot be written: {why}", path.display());
+    if path.is_dir() {
+        return Err(fail("it is a folder".into()));
+    }
+    if path.exists() {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map_err(|e| fail(e.to_string()))?;
+        return Ok(());
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(fail(format!("no folder {}", parent.display())));
+    }
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let probe = parent.join(format!(".{name}.{}.caustics-probe", std::process::id()));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .map_err(|e| fail(e.to_string()))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
 }
 
 /// Paths the scene reads from: an output must never replace one of them.
@@ -166,6 +207,12 @@ pub fn run(args: RenderArgs) -> Result<()> {
         && o.extension().and_then(|e| e.to_str()) != Some("png")
     {
         bail!("--out {}: expected a .png file name", o.display());
+    }
+    if let Some(o) = &out {
+        check_writable("--out", o)?;
+    }
+    if let Some(raw) = &args.raw {
+        check_writable("--raw", raw)?;
     }
 
     // The device, set up before the caustics so that a bad --backend fails at once and the

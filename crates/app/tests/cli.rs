@@ -105,6 +105,103 @@ fn the_default_scene_renders_an_image() {
     assert!(o.status.success(), "{}", stderr(&o));
     let img = image::open(d.join("pool.png")).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (96, 54));
+    // The same picture from the CPU's final image (and, where a GPU made the first, its map): the
+    // two implementations agree, so a wrong picture from either fails here.
+    let o = caustics(
+        &[
+            "render",
+            "--resolution",
+            "64x64",
+            "--image-size",
+            "96x54",
+            "--supersampling",
+            "1",
+            "--cpu",
+            "--out",
+            "cpu.png",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let cpu = image::open(d.join("cpu.png")).unwrap().to_rgb8();
+    let n = img.as_raw().len() as f64;
+    let diff: f64 = img
+        .as_raw()
+        .iter()
+        .zip(cpu.as_raw())
+        .map(|(a, b)| (*a as f64 - *b as f64).abs())
+        .sum::<f64>()
+        / n;
+    let mean = cpu.as_raw().iter().map(|&v| v as f64).sum::<f64>() / n;
+    // The caustics show: the pool's floor is not one flat colour. Luminance spread of the CPU image.
+    let lum: Vec<f64> = cpu
+        .pixels()
+        .map(|p| 0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64)
+        .collect();
+    let lmean = lum.iter().sum::<f64>() / lum.len() as f64;
+    let spread = (lum.iter().map(|l| (l - lmean).powi(2)).sum::<f64>() / lum.len() as f64).sqrt();
+    eprintln!(
+        "default scene: mean |GPU - CPU| {diff:.3} of 255, mean {mean:.1}, luminance spread {spread:.1}"
+    );
+    assert!(diff < DEFAULT_SCENE_DIFF, "{diff}");
+    assert!(
+        (mean - DEFAULT_SCENE_MEAN).abs() < 0.02 * DEFAULT_SCENE_MEAN,
+        "{mean}"
+    );
+    assert!(spread > 0.5 * DEFAULT_SCENE_SPREAD, "{spread}");
+}
+
+/// Mean |GPU - CPU| per channel, 0..255: measured 0.063 on lavapipe; 10x.
+const DEFAULT_SCENE_DIFF: f64 = 0.63;
+/// The CPU picture's mean channel value (measured 175.0, held to 2 %) and luminance spread
+/// (measured 20.8, a flat floor without caustics has far less): the scene's look.
+const DEFAULT_SCENE_MEAN: f64 = 175.0;
+const DEFAULT_SCENE_SPREAD: f64 = 20.8;
+
+#[test]
+fn outputs_that_cannot_be_written_fail_before_the_work() {
+    let d = tmpdir("unwritable");
+    std::fs::create_dir_all(d.join("folder.png")).unwrap();
+    for (flag, path, needle) in [
+        ("--out", "nowhere/out.png", "no folder nowhere"),
+        ("--out", "folder.png", "it is a folder"),
+        ("--raw", "nowhere/out.npy", "no folder nowhere"),
+    ] {
+        let start = std::time::Instant::now();
+        // A map large enough that the work would take long: the check comes first.
+        let o = caustics(&["render", "--resolution", "2048x2048", flag, path], &d);
+        let e = stderr(&o);
+        assert!(!o.status.success(), "{flag} {path}: must fail");
+        assert!(
+            e.contains("cannot be written") && e.contains(needle),
+            "{flag} {path}: {e}"
+        );
+        assert!(
+            start.elapsed().as_secs_f64() < 20.0,
+            "{flag} {path}: checked after the work"
+        );
+    }
+    // Nothing left beside the outputs: no probe file, and the folder is as it was.
+    let mut left: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["folder.png"]);
+}
+
+#[test]
+fn a_resolution_takes_exactly_two_entries() {
+    let d = tmpdir("resolution");
+    for bad in ["64x64x64", "64", "64x"] {
+        for flag in ["--resolution", "--image-size"] {
+            let o = caustics(&["render", flag, bad, "--out", "x.png"], &d);
+            let e = stderr(&o);
+            assert!(!o.status.success(), "{flag} {bad}: must fail");
+            assert!(e.contains(flag) && e.contains(bad), "{flag} {bad}: {e}");
+        }
+    }
+    assert!(!d.join("x.png").exists());
 }
 
 fn expect_error(name: &str, toml: &str, surface: &Grid, needle: &[&str]) {

@@ -239,16 +239,41 @@ impl GpuContext {
     }
 }
 
+fn gpu_required() -> bool {
+    std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1")
+}
+
 /// The device for GPU tests. Without an adapter the test is skipped with a message, unless
 /// `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), in which case it fails: CI must not pass by skipping.
+/// Tests whose harness marks them ignored without an adapter use [`gpu_test_skip`] and
+/// [`test_gpu`] instead, so that a skip shows in cargo's summary rather than as a pass.
 pub fn test_context() -> Option<GpuContext> {
-    let required = std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1");
     match GpuContext::headless(&GpuOptions::default()) {
         Ok(ctx) => Some(ctx),
-        Err(e) if required => panic!("CAUSTICS_REQUIRE_GPU=1 but no GPU device: {e}"),
+        Err(e) if gpu_required() => panic!("CAUSTICS_REQUIRE_GPU=1 but no GPU device: {e}"),
         Err(e) => {
             eprintln!("skipping GPU test: {e}");
             None
         }
     }
+}
+
+/// Why the GPU tests cannot run here, for a test harness to report them as ignored; `None` when a
+/// device can be created, and always `None` with `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), so
+/// that there the tests run and fail in [`test_gpu`]: CI must not pass by skipping.
+pub fn gpu_test_skip() -> Option<String> {
+    if gpu_required() {
+        return None;
+    }
+    GpuContext::headless(&GpuOptions::default())
+        .err()
+        .map(|e| format!("no GPU device: {e}"))
+}
+
+/// The device for a GPU test that its harness let run (see [`gpu_test_skip`]). Without one the
+/// test fails rather than passing unrun: that happens with `CAUSTICS_REQUIRE_GPU=1` or when an
+/// ignored GPU test is asked for with `--ignored` / `--include-ignored`.
+pub fn test_gpu() -> GpuContext {
+    GpuContext::headless(&GpuOptions::default())
+        .unwrap_or_else(|e| panic!("a GPU test without a GPU device: {e}"))
 }

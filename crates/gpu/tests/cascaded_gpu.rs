@@ -2,13 +2,16 @@
 //! final screen-space caustics), the uniform block against its WGSL twin, and (ignored by default) the
 //! per-pass timings of docs/benchmarks.md.
 
+#[macro_use]
+mod common;
+
 use caustics_core::scene::Scene;
 use caustics_core::techniques::cascaded::{
     self, CASCADES, CascadedParams, CascadedSetup, Dispersion, Placement, Splat,
 };
 use caustics_gpu::GpuTimer;
 use caustics_gpu::cascaded::{Cascaded, CascadedUniform};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 
 fn shore(width: u32, height: u32) -> Scene {
     let mut s = Scene::builtin("shore").unwrap();
@@ -17,7 +20,6 @@ fn shore(width: u32, height: u32) -> Scene {
     s
 }
 
-#[test]
 fn uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::cascaded::PHOTONS.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -32,9 +34,8 @@ fn uniform_matches_its_wgsl_size() {
     );
 }
 
-#[test]
 fn gbuffers_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let cascaded = Cascaded::new(&ctx).unwrap();
     let scene = shore(96, 54);
     let params = CascadedParams {
@@ -95,9 +96,8 @@ fn agreement(cpu: &[[f32; 4]], gpu: &[[f32; 4]]) -> (f64, f64, usize) {
     (((sg - sc) / sc).abs(), diff / n as f64 / mean, moved)
 }
 
-#[test]
 fn screen_caustics_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let cascaded = Cascaded::new(&ctx).unwrap();
     let scene = shore(240, 135);
     let water = cascaded::water_grid(&scene, 128).unwrap();
@@ -139,24 +139,24 @@ fn screen_caustics_match_the_cpu_twin() {
              channels differing > 0.1 %: {moved}",
             100.0 * same as f64 / cpu.acc.len() as f64,
         );
-        assert!(eye < 1e-4, "eye depth {eye}");
+        // Measured (lavapipe), the largest over the four cases: eye 2.3e-5, total 4.51e-6,
+        // mean |Δ| / mean 7.49e-5; 10x.
+        assert!(eye < 2.3e-4, "eye depth {eye}");
         // A photon that f32 and f64 put on different sides of a pixel edge (or of a footprint's
         // 1/64-pixel step) moves its weight to the neighbour: totals agree closely, single pixels
         // differ by whole photons (point splat) or by a few units of a share (footprint).
-        assert!(total < 1e-4, "total {total}");
-        assert!(mean_abs < 1e-3, "mean |Δ| {mean_abs}");
+        assert!(total < 4.5e-5, "total {total}");
+        assert!(mean_abs < 7.5e-4, "mean |Δ| {mean_abs}");
     }
 }
 
 /// `cargo test --release -p caustics-gpu --test cascaded_gpu -- --ignored --nocapture timings`:
 /// per-pass GPU time (`GpuTimer`) and wall time (each pass submitted alone and waited for) and
 /// memory, for docs/benchmarks.md. Medians over `frames` frames after one warm-up frame.
-#[test]
-#[ignore]
 fn timings() {
     use caustics_gpu::cascaded::Pass;
     use std::collections::BTreeMap;
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let cascaded = Cascaded::new(&ctx).unwrap();
     let scene = Scene::builtin("shore").unwrap();
     let water = cascaded::water_grid(&scene, 128).unwrap();
@@ -316,9 +316,8 @@ mod through_the_trait {
         cascaded::caustics(&setup, water, scene.floor.terrain.as_ref()).image
     }
 
-    #[test]
-    fn cascaded_through_the_trait_matches_the_cpu_twin() {
-        let Some(ctx) = test_context() else { return };
+    pub fn cascaded_through_the_trait_matches_the_cpu_twin() {
+        let ctx = test_gpu();
         let scene = pool();
         let mut t = caustics_gpu::technique::create(&ctx, "cascaded", &params()).unwrap();
         assert_eq!(t.water_resolution(&scene), (256, 256));
@@ -349,9 +348,8 @@ mod through_the_trait {
 
     /// Ten frames of moving water, camera and sun after the first: uniform writes only, and the
     /// last frame's image is the CPU twin's for the last camera, sun and heights.
-    #[test]
-    fn cascaded_frames_create_and_read_nothing() {
-        let Some(ctx) = test_context() else { return };
+    pub fn cascaded_frames_create_and_read_nothing() {
+        let ctx = test_gpu();
         let mut scene = pool();
         let mut t = caustics_gpu::technique::create(&ctx, "cascaded", &params()).unwrap();
         let h = heights(t.as_ref(), &scene);
@@ -397,4 +395,13 @@ mod through_the_trait {
         // Measured (lavapipe): total 1.7e-7, mean |Δ| / mean 4.4e-6 (the bound of the test above).
         assert!(total < TOTAL && mean_abs < MEAN_ABS, "{total} {mean_abs}");
     }
+}
+
+test_main! {
+    cpu uniform_matches_its_wgsl_size,
+    gpu gbuffers_match_the_cpu_twin,
+    gpu screen_caustics_match_the_cpu_twin,
+    gpu_ignored timings,
+    gpu through_the_trait::cascaded_through_the_trait_matches_the_cpu_twin,
+    gpu through_the_trait::cascaded_frames_create_and_read_nothing,
 }

@@ -2,13 +2,16 @@
 //! vertex irradiances, floor maps of both reconstructions), the no-light-leak property on the GPU,
 //! the `Rgba16Float` fallback, and the uniform block against its WGSL twin.
 
+#[macro_use]
+mod common;
+
 use caustics_core::metrics::compare;
 use caustics_core::techniques::caustic_triangles::{
     self as ct, AreaRule, CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, FloorWindow,
     GlassScene, Occluder, Shape,
 };
 use caustics_gpu::caustic_triangles::{CausticTriangles, CausticTrianglesUniform, Reconstruction};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use glam::{DVec2, DVec3};
 
 fn ball_scene(res: usize, window: f64) -> GlassScene {
@@ -60,9 +63,8 @@ fn photon_agreement(a: &[[f32; 4]], b: &[[f32; 4]]) -> (f64, f64, f64) {
     )
 }
 
-#[test]
 fn gpu_matches_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     eprintln!(
         "adapter: {}, map format {:?}",
@@ -91,11 +93,13 @@ fn gpu_matches_the_cpu_twin() {
         // agree to a few micrometres of a 0.6-unit window.
         assert!(flips < 0.002, "validity flips {flips}");
         assert!(dpos < 1e-4, "positions {dpos}");
-        assert!(dpow < 1e-4, "powers {dpow}");
+        // Measured (lavapipe, both rules): p99 power 7.6e-6; triangles map relative L1 3.3e-6,
+        // flux 8.0e-8; splats relative L1 3.5e-3, flux 1.0e-7. Bounds 10x.
+        assert!(dpow < 7.6e-5, "powers {dpow}");
         // Maps: both reconstructions of the GPU photons against the CPU ones.
         let m = compare(&gpu.map, &cpu.map);
         eprintln!("{rule:?}: triangles map GPU vs CPU {m:?}");
-        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        assert!(m.relative_l1 < 3.4e-5 && m.flux_error.abs() < 8e-7, "{m:?}");
         let splat_gpu = ct_gpu
             .run(&ctx, &setup, &dm, Reconstruction::Splats)
             .expect("gpu splats");
@@ -103,14 +107,13 @@ fn gpu_matches_the_cpu_twin() {
         let s = compare(&splat_gpu.map, &splat_cpu);
         eprintln!("{rule:?}: splat map GPU vs CPU {s:?}");
         // Splat edges fall on texel centres more often (ties decided differently).
-        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-5, "{s:?}");
+        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-6, "{s:?}");
     }
 }
 
 /// Vertex irradiance and triangles from the very same photon image: only the rasteriser differs.
-#[test]
 fn reconstruction_of_gpu_photons_matches_the_cpu_reconstruction() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = ball_scene(128, 0.6);
     let params = CausticTrianglesParams {
@@ -133,12 +136,15 @@ fn reconstruction_of_gpu_photons_matches_the_cpu_reconstruction() {
     let cpu_map = ct::triangles_pass(&setup, &gpu.photons, &gpu.irradiance);
     let m = compare(&gpu.map, &cpu_map);
     eprintln!("same photons, triangles GPU vs CPU {m:?}");
-    assert!(m.relative_l1 < 2e-3 && m.flux_error.abs() < 1e-3, "{m:?}");
+    // Measured (lavapipe): relative L1 2.2e-6, flux 1.3e-6; 10x.
+    assert!(
+        m.relative_l1 < 2.2e-5 && m.flux_error.abs() < 1.3e-5,
+        "{m:?}"
+    );
 }
 
-#[test]
 fn no_light_leaks_through_a_wall_on_the_gpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let mut scene = ball_scene(64, 0.6);
     let c = DVec3::new(0.0, 0.0, 0.35);
@@ -175,9 +181,8 @@ fn no_light_leaks_through_a_wall_on_the_gpu() {
     }
 }
 
-#[test]
 fn the_half_float_fallback_gives_the_same_map() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let full = CausticTriangles::new(&ctx).unwrap();
     let half = CausticTriangles::with_format(&ctx, wgpu::TextureFormat::Rgba16Float).unwrap();
     let scene = ball_scene(96, 0.6);
@@ -199,7 +204,6 @@ fn the_half_float_fallback_gives_the_same_map() {
     assert!(m.relative_l1 < 5e-3 && m.flux_error.abs() < 5e-3, "{m:?}");
 }
 
-#[test]
 fn the_camera_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::camera::CAMERA.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -214,7 +218,6 @@ fn the_camera_uniform_matches_its_wgsl_size() {
     );
 }
 
-#[test]
 fn the_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::IRRADIANCE.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -274,9 +277,8 @@ fn split_path_photons(s: &GlassScene) -> Vec<[f32; 4]> {
     photons
 }
 
-#[test]
 fn quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = ball_scene(64, 0.6);
     let dm = DistanceMap::build(&scene, 16, 1);
@@ -303,7 +305,11 @@ fn quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu() {
         let cpu = ct::triangles_pass(&setup, &photons, &irr);
         let m = compare(&gpu.map, &cpu);
         eprintln!("{rule:?}: split-path image, GPU vs CPU {m:?}");
-        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        // Measured (lavapipe, the larger of the two rules): relative L1 1.3e-7, flux 3.5e-8; 10x.
+        assert!(
+            m.relative_l1 < 1.3e-6 && m.flux_error.abs() < 3.5e-7,
+            "{m:?}"
+        );
         let at = |x: usize, y: usize| gpu.map.texels[y * 64 + x][0];
         // The four quads around photon (3, 3) (map pixels 20..36) and the way from the grid's
         // corner to where the odd photon landed stay dark; the rest of the grid is lit.
@@ -350,9 +356,8 @@ fn lamp_scene(res: usize, window: f64, cone: Option<f64>, occluders: Vec<Occlude
     .unwrap()
 }
 
-#[test]
 fn point_light_photons_and_light_cube_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     for cone in [None, Some(6f64.to_radians())] {
         let scene = lamp_scene(128, 1.2, cone, vec![]);
@@ -406,7 +411,8 @@ fn point_light_photons_and_light_cube_match_the_cpu_twin() {
         eprintln!(
             "cone {cone:?}: light cube ΣE rel L1 {l1:.2e}, ΣEd {l1d:.2e}, shadow texels off by > 0.1 % {off} of {n}"
         );
-        assert!(sum > 0.0 && l1 < 1e-3 && l1d < 1e-3, "{l1} {l1d}");
+        // Measured (lavapipe): ΣE 3.3e-5, ΣEd 3.2e-5 without a cone; 10x.
+        assert!(sum > 0.0 && l1 < 3.3e-4 && l1d < 3.3e-4, "{l1} {l1d}");
         assert!((off as f64) < 2e-3 * n as f64, "{off}");
     }
 }
@@ -439,13 +445,12 @@ fn wall() -> Occluder {
     Occluder::wall(DVec3::new(0.25, -0.6, 0.0), DVec3::new(0.3, 0.0, 0.35))
 }
 
-#[test]
 fn camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark() {
     use caustics_core::techniques::caustic_triangles::camera::{
         self, CameraInput, CameraLight, CameraParams,
     };
     use caustics_gpu::caustic_triangles::camera::CameraRenderer;
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let renderer = CameraRenderer::new(&ctx).expect("camera pipeline");
     let scene = lamp_scene(128, 1.2, None, vec![wall()]);
@@ -538,13 +543,12 @@ fn camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark() {
     assert!(shadowed > 50 && lit > 1000, "{shadowed} {lit}");
 }
 
-#[test]
 fn camera_pass_with_the_sun_matches_the_cpu_twin() {
     use caustics_core::techniques::caustic_triangles::camera::{
         self, CameraInput, CameraLight, CameraParams,
     };
     use caustics_gpu::caustic_triangles::camera::CameraRenderer;
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let renderer = CameraRenderer::new(&ctx).expect("camera pipeline");
     let mut scene = ball_scene(128, 0.6);
@@ -581,9 +585,8 @@ fn camera_pass_with_the_sun_matches_the_cpu_twin() {
 
 /// §5 merging on the `glass` scene's resting sphere (its focus is a few texels): the GPU's pyramid,
 /// floor map and light cube map from the same photons against the CPU twin's.
-#[test]
 fn merging_matches_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let centre = DVec3::new(0.35, 0.5, 0.12);
     let light = DVec3::new(0.45, 0.3, -0.8).normalize();
@@ -701,11 +704,10 @@ fn merging_matches_the_cpu_twin() {
 /// The water surface as the generator: the pool's waves through the water photon pass, its
 /// photons, path lengths and maps (triangles and splats, wrapped, with absorption) against the CPU
 /// twin; and clamped water's single copy.
-#[test]
 fn water_generator_matches_the_cpu_twin() {
     use caustics_core::scene::Scene;
     use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = Scene::builtin("pool").unwrap();
     let mut w = scene.water.clone().unwrap();
@@ -733,13 +735,18 @@ fn water_generator_matches_the_cpu_twin() {
             "wrap {wrap}: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}"
         );
         assert_eq!(flips, 0.0);
-        // f32 against f64 on a 4 m square: micrometres.
-        assert!(dpos < 5e-6, "positions {dpos}");
-        assert!(dpow < 1e-4, "powers {dpow}");
-        assert!(dpath < 1e-5, "paths {dpath}");
+        // f32 against f64 on a 4 m square: micrometres. Measured (lavapipe, both wraps): p99
+        // position 4.8e-7, power 2.0e-7, path 2.4e-7; triangles map relative L1 2.5e-6, flux
+        // 1.3e-7; splats relative L1 3.7e-3, flux 1.5e-7. Bounds 10x.
+        assert!(dpos < 4.8e-6, "positions {dpos}");
+        assert!(dpow < 2e-6, "powers {dpow}");
+        assert!(dpath < 2.4e-6, "paths {dpath}");
         let m = compare(&gpu.map, &cpu.map);
         eprintln!("wrap {wrap}: triangles GPU vs CPU {m:?}");
-        assert!(m.relative_l1 < 1e-4 && m.flux_error.abs() < 1e-5, "{m:?}");
+        assert!(
+            m.relative_l1 < 2.5e-5 && m.flux_error.abs() < 1.3e-6,
+            "{m:?}"
+        );
         // Absorption per channel: red is absorbed most.
         let sum = |c: usize| gpu.map.texels.iter().map(|t| t[c] as f64).sum::<f64>();
         assert!(sum(0) < sum(1) && sum(1) < sum(2));
@@ -749,7 +756,7 @@ fn water_generator_matches_the_cpu_twin() {
         let cs = ct::splat_pass_with_paths(&ws.setup, &cpu.photons, Some(&cpu.paths));
         let s = compare(&gs.map, &cs);
         eprintln!("wrap {wrap}: splats GPU vs CPU {s:?}");
-        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1e-4, "{s:?}");
+        assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1.5e-6, "{s:?}");
         if wrap {
             // Every photon cell's light lands in the square: the map holds the photons' power.
             let mean = sum(2) / (128.0 * 128.0);
@@ -758,7 +765,6 @@ fn water_generator_matches_the_cpu_twin() {
     }
 }
 
-#[test]
 fn the_water_photon_uniform_matches_its_wgsl_size() {
     let source = caustics_gpu::caustic_triangles::WATER_PHOTON.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
@@ -867,9 +873,8 @@ mod through_the_trait {
     /// The water generator through the trait equals the CPU twin; the band of shifted copies is
     /// the GPU's own fit (the copy band pass): at least the CPU twin's bound, at most one quad
     /// wider than it plus its f32 margin.
-    #[test]
-    fn water_generator_through_the_trait_matches_the_cpu_twin() {
-        let Some(ctx) = test_context() else { return };
+    pub fn water_generator_through_the_trait_matches_the_cpu_twin() {
+        let ctx = test_gpu();
         // At t = 0 one texel of 4096 (row 15, column 3) sits on the edge of a sliver triangle of
         // a focus, inside it on one twin and outside on the other (f32 against f64 vertices):
         // 8 % in that texel, flux 2e-5; bands 12 to 48 give the CPU twin bit-identical maps, so
@@ -913,9 +918,8 @@ mod through_the_trait {
     /// Ten frames of moving water and a moving sun after the first: no resource created, nothing
     /// read back, at most 4 KiB of uniforms a frame; and the last frame's map is the CPU twin's
     /// for the last heights and sun (the band refitted on the GPU every frame).
-    #[test]
-    fn water_generator_frames_create_and_read_nothing() {
-        let Some(ctx) = test_context() else { return };
+    pub fn water_generator_frames_create_and_read_nothing() {
+        let ctx = test_gpu();
         let mut scene = pool(0.0);
         let mut t =
             caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
@@ -968,9 +972,8 @@ mod through_the_trait {
 
     /// The `glass` scene's two generators (sphere and teapot) summed into one map on the GPU
     /// equal the CPU twin's sum.
-    #[test]
-    fn glass_generators_through_the_trait_match_the_cpu_twin() {
-        let Some(ctx) = test_context() else { return };
+    pub fn glass_generators_through_the_trait_match_the_cpu_twin() {
+        let ctx = test_gpu();
         let mut scene = glass();
         let table = params(GLASS_PARAMS);
         let mut t = caustics_gpu::technique::create(&ctx, "caustic-triangles", &table).unwrap();
@@ -1001,9 +1004,8 @@ mod through_the_trait {
     }
 
     /// Ten frames of a moving sun over the glass: uniform writes only.
-    #[test]
-    fn glass_generator_frames_create_and_read_nothing() {
-        let Some(ctx) = test_context() else { return };
+    pub fn glass_generator_frames_create_and_read_nothing() {
+        let ctx = test_gpu();
         let mut scene = glass();
         let mut t =
             caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(GLASS_PARAMS))
@@ -1030,4 +1032,24 @@ mod through_the_trait {
             "{d:?}"
         );
     }
+}
+
+test_main! {
+    gpu gpu_matches_the_cpu_twin,
+    gpu reconstruction_of_gpu_photons_matches_the_cpu_reconstruction,
+    gpu no_light_leaks_through_a_wall_on_the_gpu,
+    gpu the_half_float_fallback_gives_the_same_map,
+    cpu the_camera_uniform_matches_its_wgsl_size,
+    cpu the_uniform_matches_its_wgsl_size,
+    gpu quads_whose_corners_took_different_paths_are_not_drawn_on_the_gpu,
+    gpu point_light_photons_and_light_cube_match_the_cpu_twin,
+    gpu camera_pass_matches_the_cpu_twin_and_keeps_the_walls_shadow_dark,
+    gpu camera_pass_with_the_sun_matches_the_cpu_twin,
+    gpu merging_matches_the_cpu_twin,
+    gpu water_generator_matches_the_cpu_twin,
+    cpu the_water_photon_uniform_matches_its_wgsl_size,
+    gpu through_the_trait::water_generator_through_the_trait_matches_the_cpu_twin,
+    gpu through_the_trait::water_generator_frames_create_and_read_nothing,
+    gpu through_the_trait::glass_generators_through_the_trait_match_the_cpu_twin,
+    gpu through_the_trait::glass_generator_frames_create_and_read_nothing,
 }

@@ -1,13 +1,16 @@
 //! Technique `procedural`: each GPU variant against its CPU twin, and the texture-space variant's
 //! mip chain against point sampling on a surface too fine for the map.
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{
     self, ProceduralCausticsParams, ProceduralSetup, SurfaceInput, Variant,
 };
 use caustics_core::water::procedural::{Procedural, ProceduralParams};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::procedural::ProceduralCaustics;
 use glam::DVec3;
 
@@ -87,9 +90,8 @@ fn setup(
 /// texel's refracted direction falls on the sun disk's edge, where the light map climbs from the
 /// halo level to 1 within one of its texels (2.5e-4 rad): an f32 direction there moves the value by
 /// up to ~1e-3 of the flat-water level. At most 0.5 % of the texels differ by more than 1e-4.
-#[test]
 fn screen_and_vertex_variants_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
     let grid = surface(48);
     let wave = Procedural {
@@ -154,9 +156,8 @@ fn screen_and_vertex_variants_match_the_cpu_twin() {
 /// footprint it blurs over about √2 texels of the level where the CPU twin's trilinear reads one:
 /// measured mean difference up to 0.18 of the map's mean (asserted < 0.2), max < 0.4, and a blur,
 /// not a misplacement: the two correlate above 0.98.
-#[test]
 fn texture_variant_matches_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
     let grid = surface(64);
     let water = SurfaceInput::Grid(&grid);
@@ -219,9 +220,8 @@ fn correlation(a: &CausticsMap, b: &CausticsMap) -> f64 {
 }
 
 /// Flat water under the paper's sun gives exactly 1 in every variant on the GPU too.
-#[test]
 fn flat_water_gives_one_on_the_gpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
     let flat = Grid::new(8, 8);
     for variant in Variant::ALL {
@@ -326,9 +326,8 @@ fn high_frequency_share(map: &CausticsMap) -> f64 {
 /// box-averaged). lavapipe's anisotropic filter (an elliptical Gaussian wider than the texel) removes
 /// even more of the high frequencies, and with them some of the true texel-scale detail: it is
 /// measured, not asserted, against the box averages.
-#[test]
 fn the_mip_chain_aliases_less_than_point_sampling() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
     let wave = Procedural {
         params: ProceduralParams {
@@ -372,9 +371,8 @@ fn the_mip_chain_aliases_less_than_point_sampling() {
     assert!(h(&anisotropic) < 0.25 * h(&point));
 }
 
-#[test]
 fn a_map_beyond_the_device_limit_is_refused() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
     let max = ctx.limits().max_texture_dimension_2d as usize;
     let grid = surface(8);
@@ -491,9 +489,8 @@ fn read_output(ctx: &GpuContext, t: &dyn Technique, scene: &Scene) -> CausticsMa
 /// Measured on lavapipe (largest, mean absolute difference over every channel; the map spans about
 /// 0.16..0.63): screen 5.0e-5, 2.1e-7; vertex 2.0e-5, 2.6e-7; texture 3.8e-5, 2.0e-7. Asserted:
 /// largest < 4e-4, mean < 2.5e-6.
-#[test]
 fn registered_variants_match_the_cpu_twin_through_the_interface() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let scene = pool();
     for (name, variant) in REGISTERED {
         let (mut t, heights, _texture) = configured(&ctx, name, &scene);
@@ -522,9 +519,8 @@ fn registered_variants_match_the_cpu_twin_through_the_interface() {
 /// (the light map is the sky around the sun, the same whichever way it stands: nothing else is
 /// uploaded). After the sun has moved, the map is the CPU twin's for the new sun (measured largest
 /// difference 5.6e-5; asserted < 4e-4 as above) and far from the old sun's (0.5..0.7).
-#[test]
 fn frames_create_nothing_and_upload_at_most_a_uniform() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for (name, variant) in REGISTERED {
         let mut scene = pool();
         let (mut t, heights, _texture) = configured(&ctx, name, &scene);
@@ -569,9 +565,8 @@ fn frames_create_nothing_and_upload_at_most_a_uniform() {
 
 /// A terrain floor and a scene without water are refused with errors naming the problem; `procedural`
 /// runs the variant its table names, a variant's own name refuses a table naming another.
-#[test]
 fn the_interface_refuses_a_terrain_and_no_water() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut scene = pool();
     let heights = ctx
         .upload_grid("test heights", &Grid::new(64, 64))
@@ -595,4 +590,15 @@ fn the_interface_refuses_a_terrain_and_no_water() {
         .expect("refused")
         .to_string();
     assert!(err.contains("variant"), "{err}");
+}
+
+test_main! {
+    gpu screen_and_vertex_variants_match_the_cpu_twin,
+    gpu texture_variant_matches_the_cpu_twin,
+    gpu flat_water_gives_one_on_the_gpu,
+    gpu the_mip_chain_aliases_less_than_point_sampling,
+    gpu a_map_beyond_the_device_limit_is_refused,
+    gpu registered_variants_match_the_cpu_twin_through_the_interface,
+    gpu frames_create_nothing_and_upload_at_most_a_uniform,
+    gpu the_interface_refuses_a_terrain_and_no_water,
 }

@@ -24,6 +24,9 @@
 //! On failure (or always, with `CAUSTICS_KEEP_IMAGES=1`) the two images and their difference are
 //! written as PPM files to the temp directory.
 
+#[macro_use]
+mod common;
+
 use caustics_core::map::CausticsMap;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::render::{
@@ -31,7 +34,7 @@ use caustics_core::render::{
 };
 use caustics_core::scene::{Albedo, Material, Scene};
 use caustics_core::water::{GridSurface, Surface};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::final_image::{FinalImage, slab_half_height, water_grid};
 use caustics_gpu::{GpuContext, GpuTimer, Output, WaterTextures};
 
@@ -249,23 +252,20 @@ const EXACT: Bounds = Bounds {
     drift: 10.0 * CHANNEL,
 };
 
-#[test]
 fn pool_matches_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     // Measured: mean 0.000023 (one channel one step), no outliers, no drift.
     check(&ctx, "pool", &small("pool"), true, EXACT);
 }
 
-#[test]
 fn objects_match_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     // Measured: identical images.
     check(&ctx, "objects", &small("objects"), true, EXACT);
 }
 
-#[test]
 fn glass_matches_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     // Measured: mean 0.001736, outliers 0.0139 % (2 pixels), drift 0.0139 % (6 channels).
     let bounds = Bounds {
         mean: 0.017,
@@ -276,9 +276,8 @@ fn glass_matches_the_cpu() {
 }
 
 /// Terrain (read through the clamped bicubic), sand, open sea beyond the surface's slab.
-#[test]
 fn shore_matches_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     // Measured: mean 0.000208 (9 channels one step), no outliers, no drift.
     let bounds = Bounds {
         mean: 0.0021,
@@ -290,10 +289,9 @@ fn shore_matches_the_cpu() {
 /// Technique `cascaded`: caustics in the camera's screen space, read where each refracted view
 /// ray's floor point projects. The eye-space image is the CPU twin's (`cascaded_gpu.rs` holds the
 /// GPU's to it), made for the final image's camera and size.
-#[test]
 fn shore_with_cascaded_eye_space_caustics_matches_the_cpu() {
     use caustics_core::techniques::cascaded::{self, CascadedParams, CascadedSetup};
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let scene = small("shore");
     let (surface, _) = inputs(&scene);
     let params = CascadedParams {
@@ -352,9 +350,8 @@ fn shore_with_cascaded_eye_space_caustics_matches_the_cpu() {
 }
 
 /// An albedo image on the floor, and no caustics map (the floor lit as under flat water).
-#[test]
 fn albedo_image_without_a_map_matches_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut scene = small("pool");
     let (width, height) = (37, 23);
     scene.floor.albedo = Albedo::Image {
@@ -377,9 +374,8 @@ fn albedo_image_without_a_map_matches_the_cpu() {
 
 /// No water, a map of the light through the glass (as caustic-triangles makes it): every object
 /// shadows the sun and the map adds the transmitted light, on both sides alike.
-#[test]
 fn glass_with_an_air_caustics_map_matches_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let scene = small("glass");
     let n = 64;
     let grid = caustics_core::grid::Grid::from_fn(n, n, |i, j| {
@@ -399,9 +395,8 @@ fn glass_with_an_air_caustics_map_matches_the_cpu() {
 
 /// Glass under water: the reflected and refracted branches under the surface, up to the CPU's
 /// recursion depth.
-#[test]
 fn glass_under_water_matches_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut scene = small("objects");
     for obj in &mut scene.objects {
         obj.material = Material::Glass {
@@ -437,9 +432,8 @@ fn read_image(ctx: &GpuContext, texture: &wgpu::Texture) -> Image {
 /// The frame of a real-time loop: built once, then frames with a moving camera and sun that
 /// create nothing, read nothing back and upload only the uniform; the slab bound the GPU finds is
 /// the CPU's; and the last frame's image is the CPU's for the last camera and sun.
-#[test]
 fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut scene = small("objects");
     let (surface, map) = inputs(&scene);
     let (grid, map) = (surface.expect("water"), map.expect("map"));
@@ -544,9 +538,8 @@ fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
 
 /// The frame on a technique's own output texture (yuksel's floor map, never on the CPU) gives
 /// the image `render_with` gives from the same map read back, and the map shows in it.
-#[test]
 fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let scene = small("pool");
     let (surface, _) = inputs(&scene);
     let grid = surface.expect("water");
@@ -643,10 +636,8 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
 /// The time of a full-size render (the scene's 960 x 540, 2 x 2 samples per pixel) on both sides.
 /// Slow on a software adapter, so run on demand:
 /// `cargo test --release -p caustics-gpu --test render_gpu -- --ignored --nocapture`.
-#[test]
-#[ignore]
 fn full_size_render_times() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for name in ["pool", "objects"] {
         let mut scene = Scene::builtin(name).expect("built-in scene");
         scene.caustics.width = 256;
@@ -685,4 +676,18 @@ fn full_size_render_times() {
         render(&scene, surface, map.as_ref(), &options, &|_, _| {});
         eprintln!("{name}: CPU {:.2} s", started.elapsed().as_secs_f64());
     }
+}
+
+test_main! {
+    gpu pool_matches_the_cpu,
+    gpu objects_match_the_cpu,
+    gpu glass_matches_the_cpu,
+    gpu shore_matches_the_cpu,
+    gpu shore_with_cascaded_eye_space_caustics_matches_the_cpu,
+    gpu albedo_image_without_a_map_matches_the_cpu,
+    gpu glass_with_an_air_caustics_map_matches_the_cpu,
+    gpu glass_under_water_matches_the_cpu,
+    gpu a_frame_moves_its_camera_and_sun_through_uniforms_alone,
+    gpu a_frame_reads_a_techniques_texture_as_render_with_reads_its_map,
+    gpu_ignored full_size_render_times,
 }

@@ -1,11 +1,14 @@
 //! The shared WGSL math against its CPU twins in `caustics-core`, evaluated on the GPU.
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::optics::{fresnel_transmittance, refract};
 use caustics_core::water::Surface;
 use caustics_core::water::procedural::{Procedural, ProceduralParams};
 use caustics_core::water::waves::{Wave, Waves};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::probe::{self, ProbeIn, ProbeSetup};
 use caustics_gpu::water::{GpuProceduralWave, GpuSineWave};
 use glam::{DVec2, DVec3};
@@ -17,9 +20,8 @@ fn close(gpu: f32, cpu: f64, tol: f64, what: &str) {
     );
 }
 
-#[test]
 fn wgsl_optics_and_water_match_the_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let size = 2.0;
     let waves = Waves::new(
         &[
@@ -120,9 +122,8 @@ fn wgsl_optics_and_water_match_the_cpu() {
     }
 }
 
-#[test]
 fn textures_beyond_the_device_limit_are_refused() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let max = ctx.limits().max_texture_dimension_2d;
     let err = ctx
         .check_texture_size("caustics map", max + 1, 16)
@@ -134,4 +135,9 @@ fn textures_beyond_the_device_limit_are_refused() {
     );
     assert!(ctx.check_texture_size("caustics map", 0, 16).is_err());
     assert!(ctx.check_texture_size("caustics map", 64, 64).is_ok());
+}
+
+test_main! {
+    gpu wgsl_optics_and_water_match_the_cpu,
+    gpu textures_beyond_the_device_limit_are_refused,
 }

@@ -3,6 +3,9 @@
 //! shadow map and water buffer handed to the CPU pass), where only the rasteriser and f32 rounding
 //! differ.
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::Grid;
 use caustics_core::mesh::{cuboid, sphere};
 use caustics_core::techniques::volumes::illumination::{floor_pass, shade_pass, slice_pass};
@@ -11,7 +14,7 @@ use caustics_core::techniques::volumes::view::{ViewCamera, view_pass};
 use caustics_core::techniques::volumes::{
     self, VolumesInput, VolumesObject, VolumesParams, VolumesSetup,
 };
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::volumes::{
     CameraUniform, PassUniform, ViewOptions, ViewUniform, Volumes, VolumesUniform,
 };
@@ -84,9 +87,8 @@ fn depth_agreement(gpu: &[[f32; 4]], cpu: &[[f32; 4]]) -> (f64, f32) {
 
 /// Tolerances: from the same inputs 5e-4 (measured 1e-6 .. 8e-5: texel centres on shared edges, f32);
 /// end to end 1e-3 (the depth textures and water in f32 against f64 add nothing measurable).
-#[test]
 fn gpu_passes_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let volumes = Volumes::new(&ctx).expect("pipelines");
     let res = 64;
     let input = scene(res);
@@ -192,9 +194,8 @@ fn gpu_passes_match_the_cpu_twin() {
 }
 
 /// Without `FLOAT32_BLENDABLE` the maps are `Rgba16Float`: the same maps to half precision.
-#[test]
 fn half_float_maps_match_full_float() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let full = Volumes::new(&ctx).expect("pipelines");
     let half = Volumes::with_format(&ctx, wgpu::TextureFormat::Rgba16Float).expect("pipelines");
     let input = scene(48);
@@ -217,7 +218,6 @@ fn half_float_maps_match_full_float() {
     }
 }
 
-#[test]
 fn uniform_structs_match_their_wgsl_size() {
     let module = naga::front::wgsl::parse_str(&caustics_gpu::volumes::SLICES.composed()).unwrap();
     let size_of = |name: &str| {
@@ -244,9 +244,8 @@ fn uniform_structs_match_their_wgsl_size() {
     );
 }
 
-#[test]
 fn a_texture_beyond_the_device_limit_is_refused() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let volumes = Volumes::new(&ctx).expect("pipelines");
     let max = ctx.limits().max_texture_dimension_2d as usize;
     let input = scene(max + 1);
@@ -266,7 +265,6 @@ fn a_texture_beyond_the_device_limit_is_refused() {
     assert!(err.contains("volumes floor map"), "{err}");
 }
 
-#[test]
 fn every_volumes_pass_validates() {
     use caustics_gpu::volumes::{DEPTH, FLOOR, SHADE, SLICES, VIEW, WATER_PASS};
     for pass in [&DEPTH, &WATER_PASS, &SLICES, &FLOOR, &SHADE, &VIEW] {
@@ -284,9 +282,8 @@ fn every_volumes_pass_validates() {
 
 /// The edge cases of the frame: no shadow map (`shadow = 0`), and no objects at all (the BVH and the
 /// texture arrays get one unused entry), with the refracted view: GPU and CPU still agree.
-#[test]
 fn without_shadows_or_objects_gpu_matches_cpu() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let volumes = Volumes::new(&ctx).expect("pipelines");
     let h = heights(32);
     let view = ViewOptions {
@@ -410,9 +407,8 @@ fn read_output(ctx: &GpuContext, t: &dyn Technique) -> Vec<[f32; 3]> {
 /// Measured on lavapipe (`Rgba32Float` maps), `Σ|gpu − cpu| / Σ|cpu|`: pool 7.8e-4 (its waves focus
 /// the light up to 11.6 times the flat level, where Eq. 3's area ratio of thin f32 triangles
 /// carries the rounding), objects 2.5e-4. Asserted < 2.5e-3, within 10x of both.
-#[test]
 fn the_floor_map_matches_the_cpu_twin_through_the_interface() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for name in ["pool", "objects"] {
         let scene = small(name);
         let (mut t, heights, _texture) = configured(&ctx, &scene);
@@ -434,9 +430,8 @@ fn the_floor_map_matches_the_cpu_twin_through_the_interface() {
 /// the shadow map's frame and each object's cells: uniform writes only, well under 4 KiB a frame.
 /// After the sun has moved, the floor map is the CPU twin's for the new sun (measured 6.3e-4 on the
 /// pool, 3.3e-4 with objects; asserted < 2.5e-3 as above), far from the old sun's (about 0.5).
-#[test]
 fn frames_create_nothing_and_upload_only_uniforms() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for name in ["pool", "objects"] {
         let mut scene = small(name);
         let (mut t, heights, _texture) = configured(&ctx, &scene);
@@ -482,9 +477,8 @@ fn frames_create_nothing_and_upload_only_uniforms() {
 }
 
 /// A terrain floor is refused with an error naming it.
-#[test]
 fn the_interface_refuses_a_terrain() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut scene = small("pool");
     scene.floor.terrain = Some(Grid::new(8, 8));
     let heights = ctx
@@ -496,4 +490,16 @@ fn the_interface_refuses_a_terrain() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("terrain"), "{err}");
+}
+
+test_main! {
+    gpu gpu_passes_match_the_cpu_twin,
+    gpu half_float_maps_match_full_float,
+    cpu uniform_structs_match_their_wgsl_size,
+    gpu a_texture_beyond_the_device_limit_is_refused,
+    cpu every_volumes_pass_validates,
+    gpu without_shadows_or_objects_gpu_matches_cpu,
+    gpu the_floor_map_matches_the_cpu_twin_through_the_interface,
+    gpu frames_create_nothing_and_upload_only_uniforms,
+    gpu the_interface_refuses_a_terrain,
 }

@@ -3,6 +3,9 @@
 //! stepped the same way), at two times and at an output size other than the source's own grid.
 //! Then what a frame costs once built: nothing created, nothing read back, a few uniforms uploaded.
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::scene::{Water, WaterSource};
 use caustics_core::water::ocean::{Ocean, OceanParams};
@@ -11,7 +14,7 @@ use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 use caustics_core::water::sample_grid;
 use caustics_core::water::waves::Wave;
 use caustics_gpu::GpuContext;
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::water::field::{FieldParams, GpuWater};
 use glam::DVec3;
 
@@ -134,7 +137,7 @@ fn cpu_at(water: &Water, t: f64, cols: u32, rows: u32) -> Grid {
 /// The scene's source at two times (the second far enough on for the phases to wrap many times)
 /// against `surface_at`.
 fn check_source(name: &str, water: &Water, times: [f64; 2], tolerance: f64) {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut w = GpuWater::new(&ctx, water).expect("GPU water");
     w.output(&ctx, COLS, ROWS).unwrap();
     for t in times {
@@ -146,9 +149,8 @@ fn check_source(name: &str, water: &Water, times: [f64; 2], tolerance: f64) {
     }
 }
 
-#[test]
 fn flat_water_is_zero() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut w = GpuWater::new(&ctx, &water(WaterSource::Flat, 1.0, true)).unwrap();
     w.output(&ctx, COLS, ROWS).unwrap();
     for t in [0.0, 3.0] {
@@ -158,35 +160,30 @@ fn flat_water_is_zero() {
     }
 }
 
-#[test]
 fn waves_match_the_cpu() {
     // Measured on lavapipe: 2.1e-6 at t 0.3, 2.3e-6 at t 41.7 (f32 sines of arguments up to
     // ~60 rad; the phases reduced mod 2π on the CPU keep the late time as close as the early one).
     check_source("waves", &waves_water(), [0.3, 41.7], 2e-5);
 }
 
-#[test]
 fn procedural_matches_the_cpu() {
     // Measured on lavapipe: 1.25e-6 at t 0.5, 1.34e-6 at t 37.2.
     check_source("procedural", &procedural_water(), [0.5, 37.2], 1.2e-5);
 }
 
-#[test]
 fn ocean_matches_the_cpu() {
     // Measured on lavapipe: 4.0e-7 at t 0.5, 1.5e-6 at t 2.75 (the FFT's f32 stages, then the
     // bicubic interpolant in f32).
     check_source("ocean", &ocean_water(), [0.5, 2.75], 1.5e-5);
 }
 
-#[test]
 fn height_field_matches_the_cpu() {
     // Measured on lavapipe: 4.5e-7 at both times (the file does not move).
     check_source("height field", &height_field_water(), [0.0, 5.0], 4e-6);
 }
 
-#[test]
 fn the_scene_ripples_follow_the_clock() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let water = ripple_water();
     let mut w = GpuWater::new(&ctx, &water).unwrap();
     w.output(&ctx, COLS, ROWS).unwrap();
@@ -202,9 +199,8 @@ fn the_scene_ripples_follow_the_clock() {
     }
 }
 
-#[test]
 fn interactive_ripples_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let params = RippleParams {
         steps: 10,
         ..ripple_params()
@@ -246,10 +242,9 @@ fn interactive_ripples_match_the_cpu_twin() {
 
 /// More drops in one frame than an encode has slots for: the first `DROPS_PER_ENCODE` land in
 /// that frame, the rest in the next, in order.
-#[test]
 fn drops_beyond_the_slots_wait_for_the_next_frame() {
     use caustics_gpu::water::ripple::DROPS_PER_ENCODE;
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let params = RippleParams {
         drops: Vec::new(),
         steps: 0,
@@ -285,9 +280,8 @@ fn drops_beyond_the_slots_wait_for_the_next_frame() {
 /// Every source, with two outputs (one of them asked for again each frame): after the first
 /// frame, ten frames of update + encode + submit create nothing, read nothing back and upload at
 /// most 4096 bytes each; then the height factor scales the heights exactly.
-#[test]
 fn frames_create_nothing_and_amplitude_scales() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let sources = [
         ("flat", water(WaterSource::Flat, 1.0, true)),
         ("waves", waves_water()),
@@ -362,7 +356,6 @@ fn frames_create_nothing_and_amplitude_scales() {
     }
 }
 
-#[test]
 fn field_params_match_their_wgsl_size() {
     let pass = &caustics_gpu::water::field::GRID;
     let module = naga::front::wgsl::parse_str(&pass.composed()).unwrap();
@@ -377,13 +370,26 @@ fn field_params_match_their_wgsl_size() {
     );
 }
 
-#[test]
 fn an_output_beyond_the_device_limits_is_refused() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut w = GpuWater::new(&ctx, &waves_water()).unwrap();
     let too_wide = ctx.limits().max_texture_dimension_2d + 1;
     let err = w.output(&ctx, too_wide, 8).unwrap_err().to_string();
     assert!(err.contains("water height texture"), "{err}");
     let err = w.output(&ctx, 0, 8).unwrap_err().to_string();
     assert!(err.contains("water height texture"), "{err}");
+}
+
+test_main! {
+    gpu flat_water_is_zero,
+    gpu waves_match_the_cpu,
+    gpu procedural_matches_the_cpu,
+    gpu ocean_matches_the_cpu,
+    gpu height_field_matches_the_cpu,
+    gpu the_scene_ripples_follow_the_clock,
+    gpu interactive_ripples_match_the_cpu_twin,
+    gpu drops_beyond_the_slots_wait_for_the_next_frame,
+    gpu frames_create_nothing_and_amplitude_scales,
+    cpu field_params_match_their_wgsl_size,
+    gpu an_output_beyond_the_device_limits_is_refused,
 }

@@ -2,11 +2,14 @@
 //! (`GpuOcean` vs `Ocean::height_grid` / `slope_grids`) and the ripples (`GpuRipples` vs
 //! `Ripples`).
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ocean::{Ocean, OceanParams};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 use caustics_gpu::GpuTimer;
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::water::ocean::GpuOcean;
 use caustics_gpu::water::ripple::GpuRipples;
 
@@ -26,9 +29,8 @@ fn max_error(gpu: &[[f32; 4]], channel: usize, cpu: &Grid) -> f64 {
 /// times 1e-6 of the rms is typical, so 1e-4 leaves room for less careful sin/cos than lavapipe's.
 const OCEAN_TOLERANCE: f64 = 1e-4;
 
-#[test]
 fn gpu_ocean_matches_the_cpu_fft() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for (n, size) in [(64, 3.0), (256, 20.0)] {
         let params = OceanParams {
             resolution: n,
@@ -63,9 +65,8 @@ fn gpu_ocean_matches_the_cpu_fft() {
     }
 }
 
-#[test]
 fn ocean_passes_are_timed() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let ocean = Ocean::new(
         &OceanParams {
             resolution: 32,
@@ -102,9 +103,8 @@ fn ocean_passes_are_timed() {
     assert!(max_error(&got, 0, &heights) <= OCEAN_TOLERANCE * rms(&heights.data));
 }
 
-#[test]
 fn gpu_ripples_match_the_cpu_scheme() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let params = RippleParams {
         resolution: 96,
         damping: 0.4,
@@ -173,9 +173,8 @@ fn max_abs_diff(a: &Grid, b: &Grid) -> f64 {
         .fold(0.0, f64::max)
 }
 
-#[test]
 fn an_ocean_beyond_the_device_limits_is_refused() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let limits = ctx.limits();
     let buffer_max = limits
         .max_storage_buffer_binding_size
@@ -210,4 +209,11 @@ fn an_ocean_beyond_the_device_limits_is_refused() {
             .to_string();
         assert!(err.contains("ocean FFT buffer"), "{err}");
     }
+}
+
+test_main! {
+    gpu gpu_ocean_matches_the_cpu_fft,
+    gpu ocean_passes_are_timed,
+    gpu gpu_ripples_match_the_cpu_scheme,
+    gpu an_ocean_beyond_the_device_limits_is_refused,
 }

@@ -21,6 +21,7 @@ use caustics_core::render::{Caustics, Image, RenderOptions, render_with};
 use caustics_core::scene::{Material, Scene};
 use caustics_core::techniques::cascaded::CascadedParams;
 use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
+use caustics_core::techniques::procedural::ProceduralCausticsParams;
 use caustics_core::techniques::volumes::VolumesParams;
 use caustics_core::techniques::yuksel::YukselParams;
 use caustics_core::techniques::{self, Input, TECHNIQUES};
@@ -53,6 +54,9 @@ fn default_params(base: &str) -> toml::Table {
         }
         "volumes" => toml::Table::try_from(VolumesParams::default()).unwrap_or_default(),
         "cascaded" => toml::Table::try_from(CascadedParams::default()).unwrap_or_default(),
+        "procedural" => {
+            toml::Table::try_from(ProceduralCausticsParams::default()).unwrap_or_default()
+        }
         _ => toml::Table::new(),
     }
 }
@@ -776,6 +780,38 @@ mod tests {
             "reference"
         );
         assert!(TechniqueChoice::parse("no-such", 2).is_err());
+    }
+
+    /// Every technique with parameters shows them in the panel, and its defaults run as given.
+    #[test]
+    fn procedural_starts_with_its_parameters() {
+        let c = TechniqueChoice::parse("procedural:variant=texture", 2).unwrap();
+        assert_eq!(
+            c.params.get("variant").and_then(|v| v.as_str()),
+            Some("texture")
+        );
+        assert_eq!(
+            c.params.get("mesh_resolution").and_then(|v| v.as_integer()),
+            Some(128)
+        );
+        let spec = c.spec().unwrap();
+        let table = spec
+            .params
+            .get("procedural")
+            .and_then(|v| v.as_table())
+            .unwrap();
+        let p = ProceduralCausticsParams::from_table(&toml::Table::from_iter([(
+            "procedural".to_string(),
+            toml::Value::Table(table.clone()),
+        )]))
+        .unwrap();
+        assert_eq!(
+            p,
+            ProceduralCausticsParams {
+                variant: caustics_core::techniques::procedural::Variant::Texture,
+                ..Default::default()
+            }
+        );
     }
 
     #[test]

@@ -401,6 +401,7 @@ fn choices(technique: &str, key: &str) -> &'static [&'static str] {
         ("cascaded", "brightness") => &["physical", "ramps"],
         ("cascaded", "dispersion") => &["none", "wavelength", "post"],
         ("cascaded", "splat") => &["footprint", "point"],
+        ("procedural", "variant") => &["vertex", "screen", "texture"],
         _ => &[],
     }
 }
@@ -424,6 +425,9 @@ fn integer_range(technique: &str, key: &str) -> (i64, i64, Option<i64>) {
         ("volumes", "water_cells") => (0, 1024, None),
         ("volumes", "shadow") => (0, 2048, None),
         ("cascaded", "resolution") => (16, 2048, None),
+        ("procedural", "mesh_resolution") => (1, 1024, None),
+        ("procedural", "anisotropy") => (1, 16, None),
+        ("procedural", "light_map_resolution") => (16, 1024, None),
         _ => (0, 64, None),
     }
 }

@@ -1483,10 +1483,16 @@ mod accuracy {
                 full.len()
             );
             assert!(n > 2000);
-            if placement == Placement::Plane {
-                assert!((ratio - 1.0).abs() < 0.02, "{ratio}");
-                assert!(block_l1 < 0.1, "{block_l1}");
-            }
+            // Measured: Plane ratio 0.9998, L1 per pixel 0.004, per block 0.001; Eq33 (the
+            // default: its cascade 0 is nearer, so its texels are coarser on this plane) ratio
+            // 1.0167, per pixel 0.026, per block 0.018. Bounds 10x the Plane's, 2 to 3x Eq33's.
+            let (dr, pixel, block) = match placement {
+                Placement::Plane => (0.002, 0.04, 0.01),
+                Placement::Eq33 => (0.04, 0.06, 0.04),
+            };
+            assert!((ratio - 1.0).abs() < dr, "{placement:?}: ratio {ratio}");
+            assert!(pixel_l1 < pixel, "{placement:?}: L1 per pixel {pixel_l1}");
+            assert!(block_l1 < block, "{placement:?}: L1 per block {block_l1}");
         }
     }
 

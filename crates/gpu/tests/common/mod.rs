@@ -1,0 +1,95 @@
+//! The harness of the GPU test files (`harness = false` in Cargo.toml, run by `libtest-mimic`):
+//! cargo's own harness can only pass a GPU test that returned early for want of an adapter, so a
+//! laptop without Vulkan reported every GPU test as passed. Here a GPU test is reported as
+//! *ignored* when no device can be created (the reason printed once), and fails when
+//! `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets) or when asked for with `--include-ignored`.
+//!
+//! Each file lists its tests once with [`test_main!`]; a test function left out of the list is
+//! never used, which `-D warnings` refuses, so none can drop out silently.
+
+// Not every test file has every kind of test.
+#![allow(dead_code)]
+
+use std::process::ExitCode;
+
+use libtest_mimic::{Arguments, Trial};
+
+/// One test of a file: its name, its body, and whether it needs the GPU or is ignored by default
+/// (timings, which are run by hand with `--ignored`).
+pub struct Case {
+    name: String,
+    body: fn(),
+    gpu: bool,
+    ignored: bool,
+}
+
+/// A test that needs no device.
+pub fn cpu(name: String, body: fn()) -> Case {
+    Case {
+        name,
+        body,
+        gpu: false,
+        ignored: false,
+    }
+}
+
+/// A test that needs a device (it gets one from `caustics_gpu::context::test_gpu`).
+pub fn gpu(name: String, body: fn()) -> Case {
+    Case {
+        name,
+        body,
+        gpu: true,
+        ignored: false,
+    }
+}
+
+/// A GPU test run only when asked for (`-- --ignored`), as `#[ignore]` does.
+pub fn gpu_ignored(name: String, body: fn()) -> Case {
+    Case {
+        name,
+        body,
+        gpu: true,
+        ignored: true,
+    }
+}
+
+/// Run the cases under cargo's usual command line (filters, `--ignored`, `--nocapture`, ...).
+pub fn run(cases: Vec<Case>) -> ExitCode {
+    let args = Arguments::from_args();
+    let trial = |c: &Case, ignored: bool| {
+        let body = c.body;
+        Trial::test(c.name.clone(), move || {
+            body();
+            Ok(())
+        })
+        .with_ignored_flag(ignored)
+    };
+    // Probe for a device only when a GPU test would run, so that CPU tests run alone stay quick.
+    let gpu_runs = cases.iter().filter(|c| c.gpu).any(|c| {
+        !args.is_filtered_out(&trial(c, c.ignored)) && !args.is_ignored(&trial(c, c.ignored))
+    });
+    let skip = if gpu_runs {
+        caustics_gpu::context::gpu_test_skip()
+    } else {
+        None
+    };
+    if let Some(reason) = &skip {
+        eprintln!("GPU tests ignored: {reason}");
+    }
+    let trials = cases
+        .iter()
+        .map(|c| trial(c, c.ignored || (c.gpu && skip.is_some())))
+        .collect();
+    libtest_mimic::run(&args, trials).exit_code()
+}
+
+/// `fn main` of a test file: `test_main! { cpu a, gpu b, gpu_ignored c, gpu module::d }`.
+macro_rules! test_main {
+    ($($kind:ident $($name:ident)::+),* $(,)?) => {
+        fn main() -> std::process::ExitCode {
+            common::run(vec![
+                $(common::$kind([$(stringify!($name)),+].join("::"), $($name)::+)),*
+            ])
+        }
+    };
+}
