@@ -252,8 +252,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         }
         None => None,
     };
-    // A map when the scene has a caustic generator the technique handles: water, or glass objects.
-    let has_generator = scene.water.is_some() || spec.name == "caustic-triangles";
+    // A map when the scene has a caustic generator the technique handles: water, or glass objects
+    // (caustic-triangles, and the reference there: paper 4's photon tracer against the exact
+    // geometry, so that the glass scene's own technique draws its foci and shadows).
+    let glass = scene
+        .objects
+        .iter()
+        .any(|o| matches!(o.material, caustics_core::scene::Material::Glass { .. }));
+    let has_generator = scene.water.is_some()
+        || spec.name == "caustic-triangles"
+        || (spec.name == "reference" && glass);
     let caustics = if has_generator {
         let started = Instant::now();
         let bar = progress::bar("caustics");
