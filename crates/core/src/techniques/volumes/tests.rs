@@ -481,6 +481,74 @@ fn reference_agrees_with_the_floor_reference() {
     assert!(diff < 0.05, "mean |photons − exact| {diff}");
 }
 
+/// The technique's floor map (its illumination volumes cut by the floor, §3.2) against the
+/// project's reference under waves that focus the sun: the error the technique makes, held to what
+/// it is measured at, so that a change that moves its light fails here.
+#[test]
+fn the_floor_map_under_waves_agrees_with_the_reference() {
+    let res = 64;
+    // Steeper waves than `waves`: they focus within the depth, the hard case for the volumes.
+    let heights = Grid::from_fn(res, res, |i, j| {
+        let x = (j as f64 + 0.5) / res as f64;
+        let y = (i as f64 + 0.5) / res as f64;
+        let tau = std::f64::consts::TAU;
+        (0.006 * (tau * (3.0 * x + y)).sin() + 0.004 * (tau * (-2.0 * x + 4.0 * y) + 1.0).sin())
+            as f32
+    });
+    let inp = input(vec![], DVec3::new(0.3, 0.1, -1.0), res);
+    let setup = VolumesSetup::new(&params(5, res as u32), &inp).unwrap();
+    let water = water_pass(&setup, &heights, true);
+    let floor = floor_pass(&setup, &water, &[]);
+    let surface = GridSurface {
+        grid: heights,
+        size: 1.0,
+        edge: crate::grid::Edge::Wrap,
+    };
+    let exact = crate::reference::reference(
+        &crate::reference::ReferenceInput {
+            surface: &surface,
+            water: &crate::scene::Water {
+                source: crate::scene::WaterSource::Flat,
+                size: 1.0,
+                depth: 0.5,
+                ior: 1.333,
+                wrap: true,
+                absorption: DVec3::ZERO,
+            },
+            floor: &crate::scene::Floor {
+                terrain: None,
+                albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
+            },
+            light: inp.light,
+            width: res,
+            height: res,
+        },
+        &crate::reference::ReferenceOptions {
+            cells_per_texel: 4,
+            fresnel: false,
+            absorption: false,
+        },
+        &|_, _| {},
+    )
+    .unwrap();
+    let (mut diff, mut total, mut flux, mut flux_exact, mut peak) = (0.0, 0.0, 0.0, 0.0, 0.0f64);
+    for (a, b) in floor.texels.iter().zip(&exact.texels) {
+        diff += (a[0] - b[0]).abs() as f64;
+        total += b[0] as f64;
+        flux += a[0] as f64;
+        flux_exact += b[0] as f64;
+        peak = peak.max(b[0] as f64);
+    }
+    let l1 = diff / total;
+    let flux_error = flux / flux_exact - 1.0;
+    // The waves focus: the reference peaks at 2.61 times flat water.
+    assert!(peak > 1.5, "no focus in the reference ({peak})");
+    // Measured: relative L1 0.0317 (the lattice's linear volumes against the exact surface),
+    // flux +2.15e-3.
+    assert!(l1 < 0.06, "relative L1 {l1}");
+    assert!(flux_error.abs() < 0.01, "flux {flux_error}");
+}
+
 // ---------------------------------------------------------------------------------------------
 // The refracted view (§3.3).
 
