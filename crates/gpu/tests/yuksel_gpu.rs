@@ -43,8 +43,8 @@ fn gpu_variants_match_the_cpu_twin() {
         ),
         (
             YukselParams {
-                n: 9,
-                m: 10,
+                n: Some(9),
+                m: Some(10),
                 ..Default::default()
             },
             false,
@@ -53,10 +53,10 @@ fn gpu_variants_match_the_cpu_twin() {
         ),
         (
             YukselParams {
-                n: 3,
-                m: 30,
+                n: Some(3),
+                m: Some(30),
                 fresnel: false,
-                absorption: true,
+                ..Default::default()
             },
             true,
             DVec3::new(0.0, 0.0, -1.0),
@@ -105,8 +105,8 @@ fn fewer_render_targets_give_the_same_map() {
     let Some(ctx) = test_context() else { return };
     let mut yuksel = Yuksel::new(&ctx).expect("pipelines");
     let params = YukselParams {
-        n: 7,
-        m: 22,
+        n: Some(7),
+        m: Some(22),
         ..Default::default()
     };
     let setup = YukselSetup::new(

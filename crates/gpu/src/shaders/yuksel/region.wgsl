@@ -1,0 +1,115 @@
+// Technique `yuksel`, the region pass (ours, before the pre-pass): the gather region for this
+// frame's water, so that no frame reads heights on the CPU. One workgroup reduces the grid's
+// steepest finite-difference slope and its height range, as caustic-triangles' copy band does;
+// thread 0 then bounds the sideways offset of every sample's floor hit and takes the smallest odd
+// run of offsets holding it along each axis not fixed by the uniform. CPU twin: `region_bound`,
+// `deflection_range` and `YukselSetup::region_from_bound` in caustics-core's yuksel.rs, step for
+// step.
+
+@group(0) @binding(0) var<uniform> u: Yuksel;
+@group(0) @binding(1) var heights: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read_write> out: YukselRegion;
+
+const THREADS: u32 = 256u;
+const BIG: f32 = 3.0e38;
+const TAU: f32 = 6.28318530718;
+// `MAX_N` and `MAX_M` in yuksel.rs.
+const MAX_N: u32 = 31u;
+const MAX_M: u32 = 30u;
+
+var<workgroup> slopes: array<f32, 256>;
+var<workgroup> lows: array<f32, 256>;
+var<workgroup> highs: array<f32, 256>;
+
+// Along one axis: the offsets [-ceil(hi), -floor(lo)] (pixels), padded to an odd length, at most
+// `limit` long. x: the length, y: the centre offset, z: 1 where clamped.
+fn axis_region(lo: f32, hi: f32, limit: u32) -> vec3<i32> {
+    if !(abs(lo) < BIG && abs(hi) < BIG) {
+        return vec3<i32>(i32(limit), 0, 1);
+    }
+    let first = i32(-ceil(hi));
+    var last = i32(-floor(lo));
+    if ((last - first) & 1) == 1 {
+        last += 1;
+    }
+    let len = last - first + 1;
+    let centre = (first + last) / 2;
+    if len > i32(limit) {
+        return vec3<i32>(i32(limit), centre, 1);
+    }
+    return vec3<i32>(len, centre, 0);
+}
+
+@compute @workgroup_size(256)
+fn main(@builtin(local_invocation_index) t: u32) {
+    let dims = textureDimensions(heights);
+    let cols = max(dims.x, 1u);
+    let rows = max(dims.y, 1u);
+    let dx = u.size / f32(cols);
+    let dy = u.size / f32(rows);
+    var slope = 0.0;
+    var lo = BIG;
+    var hi = -BIG;
+    for (var k = t; k < dims.x * dims.y; k += THREADS) {
+        let i = k / dims.x;
+        let j = k % dims.x;
+        let h = textureLoad(heights, vec2<u32>(j, i), 0).x;
+        let hx = textureLoad(heights, vec2<u32>((j + 1u) % cols, i), 0).x;
+        let hy = textureLoad(heights, vec2<u32>(j, (i + 1u) % rows), 0).x;
+        slope = max(slope, max(abs(hx - h) / dx, abs(hy - h) / dy));
+        lo = min(lo, h);
+        hi = max(hi, h);
+    }
+    slopes[t] = slope;
+    lows[t] = lo;
+    highs[t] = hi;
+    workgroupBarrier();
+    for (var s = THREADS / 2u; s > 0u; s /= 2u) {
+        if t < s {
+            slopes[t] = max(slopes[t], slopes[t + s]);
+            lows[t] = min(lows[t], lows[t + s]);
+            highs[t] = max(highs[t], highs[t + s]);
+        }
+        workgroupBarrier();
+    }
+    if t != 0u {
+        return;
+    }
+    // The sideways travel per unit of descent of every refracted ray within the tilt bound.
+    let l = u.light.xyz;
+    let t0 = refract_dir(l, vec3<f32>(0.0, 0.0, 1.0), u.light.w);
+    let travel0 = t0.xy / -t0.z;
+    let g = slopes[0] * 1.25 * sqrt(2.0);
+    var t_lo = travel0;
+    var t_hi = travel0;
+    for (var ring = 1; ring <= 4; ring++) {
+        for (var k = 0; k < 32; k++) {
+            let a = f32(k) * TAU / 32.0;
+            let normal = height_field_normal(vec2<f32>(cos(a), sin(a)) * (g * f32(ring) / 4.0));
+            let tr = refract_dir(l, normal, u.light.w);
+            if -dot(l, normal) > 0.0 && tr.w != 0.0 && tr.z < 0.0 {
+                let travel = tr.xy / -tr.z;
+                t_lo = min(t_lo, travel);
+                t_hi = max(t_hi, travel);
+            }
+        }
+    }
+    let spread = highs[0] - lows[0];
+    let z_lo = max(u.depth + lows[0] - 0.25 * spread, 0.0);
+    let z_hi = max(u.depth + highs[0] + 0.25 * spread, 0.0);
+    let flat = travel0 * u.depth;
+    let d_lo = (min(min(t_lo * z_lo, t_lo * z_hi), min(t_hi * z_lo, t_hi * z_hi)) - flat) / u.pixel;
+    let d_hi = (max(max(t_lo * z_lo, t_lo * z_hi), max(t_hi * z_lo, t_hi * z_hi)) - flat) / u.pixel;
+    var x = vec3<i32>(i32(u.n), 0, 0);
+    if u.n == 0u {
+        x = axis_region(d_lo.x, d_hi.x, MAX_N);
+    }
+    var y = vec3<i32>(i32(u.m) + 1, 0, 0);
+    if u.m == 0xffffffffu {
+        y = axis_region(d_lo.y, d_hi.y, MAX_M + 1u);
+    }
+    out.n = u32(x.x);
+    out.m = u32(y.x - 1);
+    out.shift = vec2<i32>(x.y, y.y);
+    out.clamped = u32(x.z | y.z);
+}
