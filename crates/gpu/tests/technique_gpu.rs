@@ -98,10 +98,11 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
             .zip(&cpu.texels)
             .flat_map(|(g, c)| (0..3).map(move |k| (g[k] - c[k]).abs()))
             .fold(0.0f32, f32::max);
-        eprintln!("{name} {sun:?}: {worst}");
-        // Measured on lavapipe: 9.4e-6 for both variants (f32 against f64, texels near 1).
+        // Measured on lavapipe (f32 against f64, texels near 1), both variants: 9.4e-6 at the
+        // pool's sun, 2.6e-5 at 80 degrees.
+        let bound = if sun.is_some() { 2.6e-4 } else { 9.4e-5 };
         assert!(
-            worst < 9.4e-5,
+            worst < bound,
             "{name} {sun:?}: worst texel difference {worst}"
         );
     }
