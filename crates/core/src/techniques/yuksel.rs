@@ -573,4 +573,63 @@ mod tests {
         .to_string();
         assert!(e.contains("even"), "{e}");
     }
+
+    #[test]
+    fn the_region_follows_the_water_unless_fixed() {
+        let light = DVec3::new(0.8, 0.6, -0.4).normalize();
+        let s = setup(&YukselParams::default(), 64, light);
+        // Flat water deflects nothing: each pixel gathers its own sample.
+        let flat = s.region_for(&Grid::new(16, 16));
+        assert_eq!(
+            (flat.n, flat.m, flat.shift, flat.clamped),
+            (1, 0, [0, 0], false)
+        );
+        let waves = Grid::from_fn(64, 64, |i, j| {
+            let x = (j as f64 + 0.5) / 64.0;
+            let y = (i as f64 + 0.5) / 64.0;
+            (0.003 * (std::f64::consts::TAU * (2.0 * x + y)).sin()) as f32
+        });
+        let r = s.region_for(&waves);
+        assert!(
+            r.n > 1 && r.m > 0 && !r.n.is_multiple_of(2) && r.m.is_multiple_of(2),
+            "{r:?}"
+        );
+        // Every hit lies within the region: no sample lands beyond its edge.
+        let mut fitted = s.clone();
+        fitted.fit_region(&waves);
+        let pre = prepass(&fitted, &waves);
+        // A hit δ pixels off reaches the pixels at offsets ⌊δ⌋ and ⌈δ⌉: both within the region.
+        let inside = |d: f32, half: usize, shift: i32| {
+            let (lo, hi) = ((shift - half as i32) as f32, (shift + half as i32) as f32);
+            -d.ceil() >= lo && -d.floor() <= hi
+        };
+        for p in pre.iter().filter(|p| p[2] > 0.0) {
+            assert!(inside(p[0], r.n / 2, r.shift[0]), "{p:?} {r:?}");
+            assert!(inside(p[1], r.m / 2, r.shift[1]), "{p:?} {r:?}");
+        }
+        // The paper's preset, and a given N, stay fixed.
+        let paper = setup(&YukselParams::paper(), 64, light).region_for(&waves);
+        assert_eq!((paper.n, paper.m, paper.shift), (7, 6, [0, 0]));
+        let table: toml::Table = toml::from_str("[yuksel]\npreset = \"paper\"\nn = 9").unwrap();
+        let p = YukselParams::from_table(&table).unwrap();
+        assert_eq!(p.fixed(), (Some(9), Some(6)));
+        // Far more deflection than the largest region: clamped, and said so.
+        let deep = YukselSetup::new(
+            &YukselParams::default(),
+            64,
+            64,
+            1.0,
+            5.0,
+            1.333,
+            DVec3::ZERO,
+            true,
+            light,
+        )
+        .unwrap();
+        let r = deep.region_for(&waves);
+        assert!(
+            r.clamped && r.n == MAX_N as usize && r.m == MAX_M as usize,
+            "{r:?}"
+        );
+    }
 }
