@@ -68,11 +68,10 @@ fn measure(name: &str) -> (Metrics, Metrics, yuksel::Region) {
 fn the_region_from_the_waves_keeps_the_light_the_papers_loses() {
     // Measured (128 x 128, 4 reference cells per texel), rel. L1 / flux, defaults vs the paper's
     // 7 x 6 region:
-    //   waves-low-deep:     16.6 % / -3.0e-7   paper 25.3 % / -13.4 %   region 23 x 19, shift (1, 0)
-    //   waves-grazing-deep: 24.9 % / -4.7e-5   paper 69.5 % / -61.3 %   region 31 x 31 (clamped)
-    // The L1 left at the defaults is the box filter's and the per-pixel normal's (docs/yuksel.md),
-    // not lost light. The bound is conservative: at 80 degrees it asks for more than 31 x 31 and
-    // is clamped, yet the light that lands still fits.
+    //   waves-low-deep:     16.6 % / -3.0e-7   paper 25.3 % / -13.4 %   region 13 x 11
+    //   waves-grazing-deep: 24.9 % / -4.7e-5   paper 69.5 % / -61.3 %   region 23 x 17
+    // Both equal the largest fixed region's (31 x 31) maps: the L1 left at the defaults is the box
+    // filter's and the per-pixel normal's (docs/yuksel.md), not lost light.
     for (name, l1, flux, paper_flux) in [
         ("waves-low-deep", 0.166, 3.0e-7, -0.134),
         ("waves-grazing-deep", 0.249, 4.7e-5, -0.613),
@@ -91,7 +90,24 @@ fn the_region_from_the_waves_keeps_the_light_the_papers_loses() {
             "{name}: paper {paper:?}"
         );
     }
-    let (_, _, region) = measure("waves-low-deep");
-    // Under a low sun the deflections lean: the region is shifted along the refracted sun.
-    assert_eq!(region.shift, [1, 0], "{region:?}");
+    // At 512 x 512 the 80-degree sun's deflections pass the largest region at the map's own
+    // pixels: the finest level that holds them is 4 times coarser, and keeps the light.
+    let c = case("waves-grazing-deep");
+    let surface = c.water.surface_at(c.time).unwrap();
+    let heights = sample_grid(surface.as_ref(), 512, 512, c.water.size);
+    let w = &c.water;
+    let setup = YukselSetup::new(
+        &YukselParams::default(),
+        512,
+        512,
+        w.size,
+        w.depth,
+        w.ior,
+        w.absorption,
+        w.wrap,
+        c.light,
+    )
+    .unwrap();
+    let region = setup.region_for(&heights);
+    assert_eq!((region.level, region.clamped), (2, false), "{region:?}");
 }

@@ -18,6 +18,17 @@ fn surface(n: usize) -> Grid {
     })
 }
 
+/// Waves whose slopes lean one way (steep fronts, long backs), so the light leans too.
+fn lopsided(n: usize) -> Grid {
+    Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        let tau = std::f64::consts::TAU;
+        (0.02 * ((tau * 2.0 * x).sin() + 0.5 * (tau * 4.0 * x).sin()) + 0.001 * (tau * y).sin())
+            as f32
+    })
+}
+
 /// Largest difference relative to the map's mean (f32 sums in different orders).
 fn worst(a: &CausticsMap, b: &CausticsMap) -> f32 {
     let mean = a.texels.iter().map(|t| t[0]).sum::<f32>() / a.texels.len() as f32;
@@ -157,21 +168,30 @@ fn a_map_beyond_the_device_limit_is_refused() {
     assert!(err.contains("yuksel caustics map"), "{err}");
 }
 
-/// The region pass chooses on the GPU the region the CPU twin fits from the same heights (N, M and
-/// the shift along the refracted sun), at suns from overhead to 80 degrees from the zenith, and
-/// both variants then agree with the CPU map in that region.
+/// The region pass chooses on the GPU the region the CPU twin fits from the same heights (N, M, the
+/// shift along the refracted sun and the level), at suns from overhead to 85 degrees from the
+/// zenith (levels 0 to 3) and over lopsided waves (a shifted region), and both variants then agree
+/// with the CPU map.
 #[test]
 fn the_gpu_chooses_the_cpus_region() {
     let Some(ctx) = test_context() else { return };
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
-    let heights = surface(48);
+    let (waves, leaning) = (surface(48), lopsided(48));
+    let mut shifted = false;
     for (zenith, depth) in [
         (0.0f64, 0.2),
         (60.0, 0.6),
         (80.0, 0.4),
         (80.0, 0.8),
         (60.0, 0.02),
+        (80.0, 1.5),
+        (80.0, 0.6),
+        (85.0, 0.35),
+        (80.0, 4.0),
+        (0.0, 0.5),
     ] {
+        // The last case: the lopsided waves under an overhead sun.
+        let heights = if depth == 0.5 { &leaning } else { &waves };
         let z = zenith.to_radians();
         let light = DVec3::new(0.8 * z.sin(), 0.6 * z.sin(), -z.cos());
         let setup = YukselSetup::new(
@@ -186,10 +206,11 @@ fn the_gpu_chooses_the_cpus_region() {
             light,
         )
         .unwrap();
-        let cpu_region = setup.region_for(&heights);
-        let cpu = yuksel::caustics(&setup, &heights);
+        let cpu_region = setup.region_for(heights);
+        shifted |= cpu_region.shift != [0, 0];
+        let cpu = yuksel::caustics(&setup, heights);
         for variant in [Variant::RenderTargets, Variant::Gather] {
-            let frame = yuksel.frame(&ctx, &setup, &heights, variant).unwrap();
+            let frame = yuksel.frame(&ctx, &setup, heights, variant).unwrap();
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             let texture = yuksel.encode(&frame, &mut encoder, None);
             ctx.queue.submit([encoder.finish()]);
@@ -202,12 +223,14 @@ fn the_gpu_chooses_the_cpus_region() {
                 size: 1.0,
                 texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
             };
-            // Measured on lavapipe: at most 4.8e-5 of the mean (f32 against f64).
+            // Measured on lavapipe: at most 2.2e-4 of the mean (f32 against f64; the largest where
+            // the hits lie furthest from their samples).
             let d = worst(&cpu, &gpu);
-            assert!(d < 4.8e-4, "sun {zenith}, {variant:?}: {d}");
+            assert!(d < 2.2e-3, "sun {zenith}, {variant:?}: {d}");
         }
         eprintln!("sun {zenith}, depth {depth}: {cpu_region:?}");
     }
+    assert!(shifted, "a case with a shifted region");
 }
 
 /// A fixed region that the waves overfill: light reaches its first and last rows and columns, so

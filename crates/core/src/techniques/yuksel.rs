@@ -39,7 +39,8 @@
 //! - **The region from the water** (default, `preset = "water"`): the paper fixes `N`, `M` in map
 //!   pixels (7 and 6, §6), so light the waves throw further, or a finer map, loses light. Unless `n`
 //!   or `m` is given, the region is chosen each frame from a bound on the largest deflection
-//!   ([`region_bound`]: steepest slope, height range, depth, sun), and shifted along the refracted
+//!   ([`region_bound`]: every texel's deflection from its slope, height, the depth and the sun,
+//!   with a margin), and shifted along the refracted
 //!   sun (`shift`) where the deflections lean one way, as under a low sun. Its cost: GPU time grows
 //!   with `N × (M + 1)`; past [`MAX_N`] or [`MAX_M`] it is clamped with a warning. The GPU computes
 //!   the same bound in a one-workgroup pass (`region.wgsl`), so no frame reads heights back.
@@ -67,6 +68,8 @@ pub const MAX_CHANNELS: u32 = 32;
 pub const MAX_N: u32 = 31;
 /// The tallest region: `M + 1 ≤` [`MAX_CHANNELS`] channels in pass 1's render targets.
 pub const MAX_M: u32 = MAX_CHANNELS - 2;
+/// The coarsest level the region may be sampled at: pixels `2^level` times the map's.
+pub const MAX_LEVEL: u32 = 3;
 
 /// How the region is chosen where `n` or `m` is not given.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -177,64 +180,50 @@ pub struct Region {
     pub n: usize,
     pub m: usize,
     pub shift: [i32; 2],
-    /// Whether the bound asked for more than [`MAX_N`] or [`MAX_M`]: light is lost.
+    /// The passes run on a map `2^level` times coarser (N, M and the shift in its pixels), then
+    /// [`upsample`] brings it to the map's size: where the deflection passes the largest region
+    /// at the map's own pixels, a coarser level keeps the light at the cost of detail.
+    pub level: u32,
+    /// Whether the bound asked for more than [`MAX_N`] or [`MAX_M`] even at [`MAX_LEVEL`]:
+    /// light is lost.
     pub clamped: bool,
 }
 
 /// The range `[lo, hi]` (world units, per axis) of the offset `δ` of a sample's floor hit from
-/// its pixel centre over `heights`: the bound caustic-triangles' copy band takes
-/// (`water::copy_band`), the steepest finite-difference slope widened 1.25 √2 times (the diagonal
-/// and the bicubic's overshoot between grid points) and the height range widened a quarter each
-/// way, here kept per direction so that the region can lean with the refracted sun. Every normal
-/// within that tilt of vertical (rings at 1/4 .. 4/4 of it, 32 azimuths each) refracts the sun;
-/// `δ = (h + depth) T − depth T0` with `T` the refracted ray's sideways travel per unit of
-/// descent is affine in `h` and in `T`, so its extremes are at the corners of the two ranges.
+/// its pixel centre over `heights`: every texel's own deflection, refracted through the normal of
+/// its central differences, `δ = (depth + h) T − depth T0` (`T` the refracted ray's sideways travel
+/// per unit of descent, `T0` flat water's), widened by an eighth of the span each way for the
+/// bicubic surface between texels (the margin caustic-triangles' copy band takes, there on the
+/// slope). Texels the sun cannot light (facing away) carry no light and are left out.
 pub fn region_bound(setup: &YukselSetup, heights: &Grid) -> (DVec2, DVec2) {
     let (cols, rows) = (heights.cols.max(1), heights.rows.max(1));
     let (dx, dy) = (setup.size / cols as f64, setup.size / rows as f64);
     let at = |i: usize, j: usize| heights.at(i, j) as f64;
-    let mut slope: f64 = 0.0;
-    for i in 0..heights.rows {
-        for j in 0..heights.cols {
-            let (jn, i_n) = ((j + 1) % cols, (i + 1) % rows);
-            slope = slope
-                .max((at(i, jn) - at(i, j)).abs() / dx)
-                .max((at(i_n, j) - at(i, j)).abs() / dy);
-        }
-    }
-    let (lo, hi) = heights.min_max();
-    let (lo, hi) = (lo as f64, hi as f64);
-    deflection_range(setup, slope, lo - 0.25 * (hi - lo), hi + 0.25 * (hi - lo))
-}
-
-/// [`region_bound`] from the slope and the height range it found (the region pass's last step).
-pub fn deflection_range(setup: &YukselSetup, slope: f64, h_lo: f64, h_hi: f64) -> (DVec2, DVec2) {
     let l = setup.light;
     let t0 = refract(l, DVec3::Z, setup.eta).expect("air to water never reflects totally");
-    let travel0 = t0.truncate() / -t0.z;
-    let g = slope * 1.25 * std::f64::consts::SQRT_2;
-    let (mut t_lo, mut t_hi) = (travel0, travel0);
-    for ring in 1..=4 {
-        for k in 0..32 {
-            let a = k as f64 * std::f64::consts::TAU / 32.0;
-            let grad = DVec2::new(a.cos(), a.sin()) * (g * ring as f64 / 4.0);
+    let flat = t0.truncate() / -t0.z * setup.depth;
+    let (mut lo, mut hi) = (flat, flat);
+    for i in 0..heights.rows {
+        for j in 0..heights.cols {
+            let (jn, jp) = ((j + 1) % cols, (j + cols - 1) % cols);
+            let (i_n, ip) = ((i + 1) % rows, (i + rows - 1) % rows);
+            let grad = DVec2::new(
+                (at(i, jn) - at(i, jp)) / (2.0 * dx),
+                (at(i_n, j) - at(ip, j)) / (2.0 * dy),
+            );
             let normal = height_field_normal(grad);
             if -l.dot(normal) <= 0.0 {
                 continue;
             }
             if let Some(t) = refract(l, normal, setup.eta).filter(|t| t.z < 0.0) {
-                let travel = t.truncate() / -t.z;
-                t_lo = t_lo.min(travel);
-                t_hi = t_hi.max(travel);
+                let d = t.truncate() / -t.z * (setup.depth + at(i, j)).max(0.0);
+                lo = lo.min(d);
+                hi = hi.max(d);
             }
         }
     }
-    let (z_lo, z_hi) = ((setup.depth + h_lo).max(0.0), (setup.depth + h_hi).max(0.0));
-    let corners = [t_lo * z_lo, t_lo * z_hi, t_hi * z_lo, t_hi * z_hi];
-    let flat = travel0 * setup.depth;
-    let lo = corners.iter().fold(DVec2::INFINITY, |a, &c| a.min(c)) - flat;
-    let hi = corners.iter().fold(DVec2::NEG_INFINITY, |a, &c| a.max(c)) - flat;
-    (lo, hi)
+    let margin = (hi - lo) * 0.125;
+    (lo - margin - flat, hi + margin - flat)
 }
 
 /// The smallest odd run of offsets that holds every sample landing on a pixel, along one axis:
@@ -312,6 +301,7 @@ impl YukselSetup {
                 n: fixed.0.unwrap_or(MAX_N) as usize,
                 m: fixed.1.unwrap_or(MAX_M) as usize,
                 shift: [0, 0],
+                level: 0,
                 clamped: false,
             },
             fixed,
@@ -346,21 +336,49 @@ impl YukselSetup {
     }
 
     /// [`region_for`](Self::region_for) from the deflection range, world units.
+    /// With both N and M from the water, the finest level (down to [`MAX_LEVEL`], while it
+    /// divides the map's size) whose region holds the bound.
     pub fn region_from_bound(&self, lo: DVec2, hi: DVec2) -> Region {
-        let (lo, hi) = (lo / self.pixel, hi / self.pixel);
-        let (n, sx, cx) = match self.fixed.0 {
-            Some(n) => (n as usize, 0, false),
-            None => axis_region(lo.x, hi.x, MAX_N as usize),
-        };
-        let (rows, sy, cy) = match self.fixed.1 {
-            Some(m) => (m as usize + 1, 0, false),
-            None => axis_region(lo.y, hi.y, MAX_M as usize + 1),
-        };
-        Region {
-            n,
-            m: rows - 1,
-            shift: [sx, sy],
-            clamped: cx || cy,
+        let auto = self.fixed.0.is_none() && self.fixed.1.is_none();
+        let mut level = 0;
+        loop {
+            let pixel = self.pixel * (1u32 << level) as f64;
+            let (l, h) = (lo / pixel, hi / pixel);
+            let (n, sx, cx) = match self.fixed.0 {
+                Some(n) => (n as usize, 0, false),
+                None => axis_region(l.x, h.x, MAX_N as usize),
+            };
+            let (rows, sy, cy) = match self.fixed.1 {
+                Some(m) => (m as usize + 1, 0, false),
+                None => axis_region(l.y, h.y, MAX_M as usize + 1),
+            };
+            let region = Region {
+                n,
+                m: rows - 1,
+                shift: [sx, sy],
+                level,
+                clamped: cx || cy,
+            };
+            let next = 2usize << level;
+            if !region.clamped
+                || !auto
+                || level == MAX_LEVEL
+                || !self.width.is_multiple_of(next)
+                || !self.height.is_multiple_of(next)
+            {
+                return region;
+            }
+            level += 1;
+        }
+    }
+
+    /// This setup's passes at `level`: a map `2^level` times coarser over the same square.
+    pub fn at_level(&self, level: u32) -> YukselSetup {
+        YukselSetup {
+            width: self.width >> level,
+            height: self.height >> level,
+            pixel: self.pixel * (1u32 << level) as f64,
+            ..self.clone()
         }
     }
 
@@ -371,7 +389,9 @@ impl YukselSetup {
         if self.region.clamped {
             tracing::warn!(
                 "yuksel: the water deflects light further than the largest gather region \
-                 (N = {MAX_N}, M = {MAX_M}) at {}x{}: light beyond it is lost",
+                 (N = {MAX_N}, M = {MAX_M}, at {} times the pixel of the {}x{} map): light \
+                 beyond it is lost",
+                1u32 << self.region.level,
                 self.width,
                 self.height
             );
@@ -502,11 +522,53 @@ pub fn caustics(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     caustics_in_region(&setup, heights)
 }
 
-/// The three passes in `setup`'s region as it stands.
+/// The three passes in `setup`'s region as it stands, at its level, brought to the map's size.
 pub fn caustics_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
-    let pre = prepass(setup, heights);
-    let p1 = pass1(setup, &pre);
-    pass2(setup, &p1)
+    let level = setup.region.level;
+    let coarse = setup.at_level(level);
+    let pre = prepass(&coarse, heights);
+    let p1 = pass1(&coarse, &pre);
+    let map = pass2(&coarse, &p1);
+    if level == 0 {
+        map
+    } else {
+        upsample(&map, setup, level)
+    }
+}
+
+/// The map of a level `level` times coarser, bilinear at each of `setup`'s pixel centres (wrapped
+/// or clamped at the edges as the water is): it keeps the flux of a periodic map. GPU twin:
+/// `shaders/yuksel/upsample.wgsl`.
+pub fn upsample(coarse: &CausticsMap, setup: &YukselSetup, level: u32) -> CausticsMap {
+    let (cw, ch) = (coarse.width as i64, coarse.height as i64);
+    let scale = (1u32 << level) as f32;
+    let index = |k: i64, n: i64| {
+        if setup.wrap {
+            k.rem_euclid(n)
+        } else {
+            k.clamp(0, n - 1)
+        }
+    };
+    let mut map = CausticsMap::new(setup.width, setup.height, setup.size);
+    for i in 0..setup.height {
+        for j in 0..setup.width {
+            let x = (j as f32 + 0.5) / scale - 0.5;
+            let y = (i as f32 + 0.5) / scale - 0.5;
+            let (x0, y0) = (x.floor(), y.floor());
+            let (fx, fy) = (x - x0, y - y0);
+            let (c0, c1) = (index(x0 as i64, cw), index(x0 as i64 + 1, cw));
+            let (r0, r1) = (index(y0 as i64, ch), index(y0 as i64 + 1, ch));
+            let at = |r: i64, c: i64| coarse.texels[(r * cw + c) as usize];
+            let (a, b, c, d) = (at(r0, c0), at(r0, c1), at(r1, c0), at(r1, c1));
+            let t = &mut map.texels[i * setup.width + j];
+            for k in 0..3 {
+                let top = a[k] + (b[k] - a[k]) * fx;
+                let bottom = c[k] + (d[k] - c[k]) * fx;
+                t[k] = top + (bottom - top) * fy;
+            }
+        }
+    }
+    map
 }
 
 #[cfg(test)]
@@ -613,22 +675,27 @@ mod tests {
         let table: toml::Table = toml::from_str("[yuksel]\npreset = \"paper\"\nn = 9").unwrap();
         let p = YukselParams::from_table(&table).unwrap();
         assert_eq!(p.fixed(), (Some(9), Some(6)));
-        // Far more deflection than the largest region: clamped, and said so.
-        let deep = YukselSetup::new(
-            &YukselParams::default(),
-            64,
-            64,
-            1.0,
-            5.0,
-            1.333,
-            DVec3::ZERO,
-            true,
-            light,
-        )
-        .unwrap();
-        let r = deep.region_for(&waves);
+        let at_depth = |depth: f64| {
+            YukselSetup::new(
+                &YukselParams::default(),
+                64,
+                64,
+                1.0,
+                depth,
+                1.333,
+                DVec3::ZERO,
+                true,
+                light,
+            )
+            .unwrap()
+            .region_for(&waves)
+        };
+        // Deeper: a coarser level holds it; far deeper: clamped at the coarsest.
+        let r = at_depth(5.0);
+        assert!(r.level > 0 && !r.clamped, "{r:?}");
+        let r = at_depth(500.0);
         assert!(
-            r.clamped && r.n == MAX_N as usize && r.m == MAX_M as usize,
+            r.clamped && r.level == MAX_LEVEL && r.n == MAX_N as usize && r.m == MAX_M as usize,
             "{r:?}"
         );
     }

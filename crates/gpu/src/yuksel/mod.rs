@@ -9,6 +9,7 @@
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
 //! | fused variant (compute, workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
+//! | upsample (compute): the level's map to the map's size | `shaders/yuksel/upsample.wgsl` | `upsample` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
@@ -50,6 +51,11 @@ pub const REGION: PassSource = PassSource {
     name: "yuksel region",
     shared: &[OPTICS, COMMON],
     source: include_str!("../shaders/yuksel/region.wgsl"),
+};
+pub const UPSAMPLE: PassSource = PassSource {
+    name: "yuksel upsample",
+    shared: &[COMMON],
+    source: include_str!("../shaders/yuksel/upsample.wgsl"),
 };
 pub const GATHER: PassSource = PassSource {
     name: "yuksel gather",
@@ -122,8 +128,9 @@ pub struct YukselRegion {
     pub n: u32,
     pub m: u32,
     pub shift: [i32; 2],
+    pub level: u32,
     pub clamped: u32,
-    pub _pad: [u32; 3],
+    pub _pad: [u32; 2],
 }
 
 impl From<YukselRegion> for Region {
@@ -132,6 +139,7 @@ impl From<YukselRegion> for Region {
             n: r.n as usize,
             m: r.m as usize,
             shift: r.shift,
+            level: r.level,
             clamped: r.clamped != 0,
         }
     }
@@ -173,6 +181,7 @@ impl YukselUniform {
 /// The technique's pipelines, built once per device.
 pub struct Yuksel {
     region: wgpu::ComputePipeline,
+    upsample: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
     gather: wgpu::ComputePipeline,
@@ -231,6 +240,7 @@ pub struct Frame {
     /// This frame's gather region ([`YukselRegion`]), written by the region pass.
     pub region: wgpu::Buffer,
     region_bind: wgpu::BindGroup,
+    upsample_bind: wgpu::BindGroup,
     pub map: wgpu::Texture,
     setup: YukselSetup,
     pub variant: Variant,
@@ -251,7 +261,8 @@ enum FramePasses {
             Vec<wgpu::TextureView>,
         )>,
         pass2: wgpu::BindGroup,
-        map_view: wgpu::TextureView,
+        /// The level's map.
+        target: wgpu::TextureView,
     },
 }
 
@@ -301,6 +312,7 @@ impl Yuksel {
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
             region: compute_pipeline(ctx, &REGION),
+            upsample: compute_pipeline(ctx, &UPSAMPLE),
             prepass: compute_pipeline(ctx, &PREPASS),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
             gather: compute_pipeline(ctx, &GATHER),
@@ -396,7 +408,26 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        let mut bytes = (w * h) as u64 * 16 + uniform.size() + region.size();
+        // What the passes write: the map at the region's level, in its top-left corner.
+        let coarse = ctx.texture_2d(
+            "yuksel level map",
+            (w, h, 1),
+            MAP_FORMAT,
+            U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::TEXTURE_BINDING,
+        );
+        let coarse_view = coarse.create_view(&Default::default());
+        let upsample_bind = bind_group(
+            ctx,
+            "yuksel upsample",
+            &self.upsample.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                region.as_entire_binding(),
+                View(&coarse_view),
+                View(&map_view),
+            ],
+        );
+        let mut bytes = 2 * (w * h) as u64 * 16 + uniform.size() + region.size();
         let passes = match variant {
             Variant::Gather => FramePasses::Gather {
                 bind: bind_group(
@@ -406,7 +437,7 @@ impl Yuksel {
                     &[
                         uniform.as_entire_binding(),
                         View(heights_view),
-                        View(&map_view),
+                        View(&coarse_view),
                         region.as_entire_binding(),
                     ],
                 ),
@@ -487,7 +518,7 @@ impl Yuksel {
                     prepass,
                     draws,
                     pass2,
-                    map_view,
+                    target: coarse_view,
                 }
             }
         };
@@ -497,6 +528,7 @@ impl Yuksel {
             uniforms,
             region,
             region_bind,
+            upsample_bind,
             map,
             setup: setup.clone(),
             variant,
@@ -530,7 +562,7 @@ impl Yuksel {
                 prepass,
                 draws,
                 pass2,
-                map_view,
+                target,
             } => {
                 {
                     let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
@@ -558,7 +590,7 @@ impl Yuksel {
                 }
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("yuksel pass 2"),
-                    color_attachments: &[color_attachment(map_view)],
+                    color_attachments: &[color_attachment(target)],
                     depth_stencil_attachment: None,
                     timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("yuksel pass 2")),
                     occlusion_query_set: None,
@@ -569,6 +601,11 @@ impl Yuksel {
                 pass.draw(0..3, 0..1);
             }
         }
+        let mut pass = begin_compute(encoder, &mut timer, "yuksel upsample");
+        pass.set_pipeline(&self.upsample);
+        pass.set_bind_group(0, &frame.upsample_bind, &[]);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        drop(pass);
         &frame.map
     }
 

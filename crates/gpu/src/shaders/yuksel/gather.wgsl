@@ -30,17 +30,19 @@ fn main(
     let cols = TILE + region.n - 1u;
     let rows = TILE + region.m;
     let origin = vec2<i32>(group.xy * TILE) - vec2<i32>(nh, mh) + region.shift;
+    let size = level_size(u.width, u.height, region.level);
+    let level_pixel = u.pixel * f32(1u << region.level);
     for (var t = local; t < cols * rows; t += TILE * TILE) {
         let c = t % cols;
         let r = t / cols;
-        let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r));
+        let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r), level_pixel);
         tile_dx[r * SPAN + c] = s.x;
         tile_dy[r * SPAN + c] = s.y;
         tile_w[r * SPAN + c] = s.z;
     }
     workgroupBarrier();
     let pixel = vec2<i32>(group.xy * TILE + lid.xy);
-    if pixel.x >= i32(u.width) || pixel.y >= i32(u.height) {
+    if pixel.x >= i32(size.x) || pixel.y >= i32(size.y) {
         return;
     }
     var e = 0.0;

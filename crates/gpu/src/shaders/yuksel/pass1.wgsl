@@ -19,7 +19,7 @@ fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
 fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
     var intensity: array<f32, 32>;
     // The texture holds the largest region's rows; rows past this frame's are never read.
-    if r >= i32(u.height + region.m) {
+    if r >= i32(level_size(u.width, u.height, region.level).y + region.m) {
         return intensity;
     }
     let col0 = region.shift.x - i32(region.n / 2u);

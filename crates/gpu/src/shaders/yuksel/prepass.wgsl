@@ -8,10 +8,12 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let dims = textureDimensions(pre_out);
-    if id.x >= min(dims.x, u.width + region.n - 1u) || id.y >= min(dims.y, u.height + region.m) {
+    let size = level_size(u.width, u.height, region.level);
+    if id.x >= min(dims.x, size.x + region.n - 1u) || id.y >= min(dims.y, size.y + region.m) {
         return;
     }
     let c = i32(id.x) - i32(region.n / 2u) + region.shift.x;
     let r = i32(id.y) - i32(region.m / 2u) + region.shift.y;
-    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r));
+    let pixel = u.pixel * f32(1u << region.level);
+    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r, pixel));
 }

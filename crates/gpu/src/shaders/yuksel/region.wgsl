@@ -12,14 +12,13 @@
 
 const THREADS: u32 = 256u;
 const BIG: f32 = 3.0e38;
-const TAU: f32 = 6.28318530718;
-// `MAX_N` and `MAX_M` in yuksel.rs.
+// `MAX_N`, `MAX_M` and `MAX_LEVEL` in yuksel.rs.
 const MAX_N: u32 = 31u;
 const MAX_M: u32 = 30u;
+const MAX_LEVEL: u32 = 3u;
 
-var<workgroup> slopes: array<f32, 256>;
-var<workgroup> lows: array<f32, 256>;
-var<workgroup> highs: array<f32, 256>;
+var<workgroup> lows: array<vec2<f32>, 256>;
+var<workgroup> highs: array<vec2<f32>, 256>;
 
 // Along one axis: the offsets [-ceil(hi), -floor(lo)] (pixels), padded to an odd length, at most
 // `limit` long. x: the length, y: the centre offset, z: 1 where clamped.
@@ -47,26 +46,32 @@ fn main(@builtin(local_invocation_index) t: u32) {
     let rows = max(dims.y, 1u);
     let dx = u.size / f32(cols);
     let dy = u.size / f32(rows);
-    var slope = 0.0;
-    var lo = BIG;
-    var hi = -BIG;
+    let l = u.light.xyz;
+    let t0 = refract_dir(l, vec3<f32>(0.0, 0.0, 1.0), u.light.w);
+    let flat = t0.xy / -t0.z * u.depth;
+    var lo = flat;
+    var hi = flat;
     for (var k = t; k < dims.x * dims.y; k += THREADS) {
         let i = k / dims.x;
         let j = k % dims.x;
         let h = textureLoad(heights, vec2<u32>(j, i), 0).x;
-        let hx = textureLoad(heights, vec2<u32>((j + 1u) % cols, i), 0).x;
-        let hy = textureLoad(heights, vec2<u32>(j, (i + 1u) % rows), 0).x;
-        slope = max(slope, max(abs(hx - h) / dx, abs(hy - h) / dy));
-        lo = min(lo, h);
-        hi = max(hi, h);
+        let e = textureLoad(heights, vec2<u32>((j + 1u) % cols, i), 0).x;
+        let w = textureLoad(heights, vec2<u32>((j + cols - 1u) % cols, i), 0).x;
+        let n = textureLoad(heights, vec2<u32>(j, (i + 1u) % rows), 0).x;
+        let s = textureLoad(heights, vec2<u32>(j, (i + rows - 1u) % rows), 0).x;
+        let normal = height_field_normal(vec2<f32>((e - w) / (2.0 * dx), (n - s) / (2.0 * dy)));
+        let tr = refract_dir(l, normal, u.light.w);
+        if -dot(l, normal) > 0.0 && tr.w != 0.0 && tr.z < 0.0 {
+            let d = tr.xy / -tr.z * max(u.depth + h, 0.0);
+            lo = min(lo, d);
+            hi = max(hi, d);
+        }
     }
-    slopes[t] = slope;
     lows[t] = lo;
     highs[t] = hi;
     workgroupBarrier();
     for (var s = THREADS / 2u; s > 0u; s /= 2u) {
         if t < s {
-            slopes[t] = max(slopes[t], slopes[t + s]);
             lows[t] = min(lows[t], lows[t + s]);
             highs[t] = max(highs[t], highs[t + s]);
         }
@@ -75,41 +80,35 @@ fn main(@builtin(local_invocation_index) t: u32) {
     if t != 0u {
         return;
     }
-    // The sideways travel per unit of descent of every refracted ray within the tilt bound.
-    let l = u.light.xyz;
-    let t0 = refract_dir(l, vec3<f32>(0.0, 0.0, 1.0), u.light.w);
-    let travel0 = t0.xy / -t0.z;
-    let g = slopes[0] * 1.25 * sqrt(2.0);
-    var t_lo = travel0;
-    var t_hi = travel0;
-    for (var ring = 1; ring <= 4; ring++) {
-        for (var k = 0; k < 32; k++) {
-            let a = f32(k) * TAU / 32.0;
-            let normal = height_field_normal(vec2<f32>(cos(a), sin(a)) * (g * f32(ring) / 4.0));
-            let tr = refract_dir(l, normal, u.light.w);
-            if -dot(l, normal) > 0.0 && tr.w != 0.0 && tr.z < 0.0 {
-                let travel = tr.xy / -tr.z;
-                t_lo = min(t_lo, travel);
-                t_hi = max(t_hi, travel);
-            }
+    let margin = (highs[0] - lows[0]) * 0.125;
+    let w_lo = lows[0] - margin - flat;
+    let w_hi = highs[0] + margin - flat;
+    // The finest level whose region holds the bound (both axes from the water only), while the
+    // level divides the map's size.
+    let from_water = u.n == 0u && u.m == 0xffffffffu;
+    var level = 0u;
+    loop {
+        let pixel = u.pixel * f32(1u << level);
+        let d_lo = w_lo / pixel;
+        let d_hi = w_hi / pixel;
+        var x = vec3<i32>(i32(u.n), 0, 0);
+        if u.n == 0u {
+            x = axis_region(d_lo.x, d_hi.x, MAX_N);
         }
+        var y = vec3<i32>(i32(u.m) + 1, 0, 0);
+        if u.m == 0xffffffffu {
+            y = axis_region(d_lo.y, d_hi.y, MAX_M + 1u);
+        }
+        let clamped = (x.z | y.z) != 0;
+        let next = 2u << level;
+        if !clamped || !from_water || level == MAX_LEVEL || u.width % next != 0u || u.height % next != 0u {
+            out.n = u32(x.x);
+            out.m = u32(y.x - 1);
+            out.shift = vec2<i32>(x.y, y.y);
+            out.level = level;
+            out.clamped = u32(clamped);
+            return;
+        }
+        level += 1u;
     }
-    let spread = highs[0] - lows[0];
-    let z_lo = max(u.depth + lows[0] - 0.25 * spread, 0.0);
-    let z_hi = max(u.depth + highs[0] + 0.25 * spread, 0.0);
-    let flat = travel0 * u.depth;
-    let d_lo = (min(min(t_lo * z_lo, t_lo * z_hi), min(t_hi * z_lo, t_hi * z_hi)) - flat) / u.pixel;
-    let d_hi = (max(max(t_lo * z_lo, t_lo * z_hi), max(t_hi * z_lo, t_hi * z_hi)) - flat) / u.pixel;
-    var x = vec3<i32>(i32(u.n), 0, 0);
-    if u.n == 0u {
-        x = axis_region(d_lo.x, d_hi.x, MAX_N);
-    }
-    var y = vec3<i32>(i32(u.m) + 1, 0, 0);
-    if u.m == 0xffffffffu {
-        y = axis_region(d_lo.y, d_hi.y, MAX_M + 1u);
-    }
-    out.n = u32(x.x);
-    out.m = u32(y.x - 1);
-    out.shift = vec2<i32>(x.y, y.y);
-    out.clamped = u32(x.z | y.z);
 }
