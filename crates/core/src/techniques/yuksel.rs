@@ -40,11 +40,12 @@
 //!   pixels (7 and 6, §6), so light the waves throw further, or a finer map, loses light. Unless `n`
 //!   or `m` is given, the region is chosen each frame from a bound on the largest deflection
 //!   ([`region_bound`]: every texel's deflection from its slope, height, the depth and the sun,
-//!   with a margin), and shifted along the refracted
-//!   sun (`shift`) where the deflections lean one way, as under a low sun. Its cost: GPU time grows
-//!   with `N × (M + 1)`; past [`MAX_N`] or [`MAX_M`] it is clamped with a warning. The GPU computes
-//!   the same bound in a one-workgroup pass (`region.wgsl`), so no frame reads heights back.
-//!   `preset = "paper"` keeps the paper's 7 and 6.
+//!   with a margin), and shifted along the refracted sun (`shift`) where the deflections lean one
+//!   way. Its cost: GPU time grows with `N × (M + 1)`. Past [`MAX_N`] or [`MAX_M`] the passes run
+//!   on a map 2, 4 or 8 times coarser ([`Region::level`]) and [`upsample`] brings it back: the
+//!   light is kept, detail lost; past that, the region is clamped with a warning. The GPU
+//!   computes the same region in a one-workgroup pass (`region.wgsl`), so no frame reads heights
+//!   back. `preset = "paper"` keeps the paper's 7 and 6.
 //!
 //! # Where it departs from the reference
 //! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost; each

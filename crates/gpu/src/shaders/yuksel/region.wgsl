@@ -1,10 +1,10 @@
 // Technique `yuksel`, the region pass (ours, before the pre-pass): the gather region for this
-// frame's water, so that no frame reads heights on the CPU. One workgroup reduces the grid's
-// steepest finite-difference slope and its height range, as caustic-triangles' copy band does;
-// thread 0 then bounds the sideways offset of every sample's floor hit and takes the smallest odd
-// run of offsets holding it along each axis not fixed by the uniform. CPU twin: `region_bound`,
-// `deflection_range` and `YukselSetup::region_from_bound` in caustics-core's yuksel.rs, step for
-// step.
+// frame's water, so that no frame reads heights on the CPU. One workgroup refracts the sun through
+// every height texel's normal (central differences) and reduces the range of the floor hits'
+// sideways offsets, as caustic-triangles' copy band reduces its slope; thread 0 widens it by an
+// eighth of the span each way and takes, at the finest level that holds it, the smallest odd run
+// of offsets along each axis not fixed by the uniform. CPU twin: `region_bound` and
+// `YukselSetup::region_from_bound` in caustics-core's yuksel.rs, step for step.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var heights: texture_2d<f32>;
