@@ -82,6 +82,8 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::yuksel::PREPASS,
     &crate::yuksel::PASS2,
     &crate::yuksel::GATHER,
+    &crate::yuksel::REGION,
+    &crate::yuksel::UPSAMPLE,
     &crate::cascaded::EYE,
     &crate::cascaded::WATER_GBUFFER,
     &crate::cascaded::TERRAIN_GBUFFER,

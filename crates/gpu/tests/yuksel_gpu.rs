@@ -18,6 +18,17 @@ fn surface(n: usize) -> Grid {
     })
 }
 
+/// Waves whose slopes lean one way (steep fronts, long backs), so the light leans too.
+fn lopsided(n: usize) -> Grid {
+    Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        let tau = std::f64::consts::TAU;
+        (0.02 * ((tau * 2.0 * x).sin() + 0.5 * (tau * 4.0 * x).sin()) + 0.001 * (tau * y).sin())
+            as f32
+    })
+}
+
 /// Largest difference relative to the map's mean (f32 sums in different orders).
 fn worst(a: &CausticsMap, b: &CausticsMap) -> f32 {
     let mean = a.texels.iter().map(|t| t[0]).sum::<f32>() / a.texels.len() as f32;
@@ -43,8 +54,8 @@ fn gpu_variants_match_the_cpu_twin() {
         ),
         (
             YukselParams {
-                n: 9,
-                m: 10,
+                n: Some(9),
+                m: Some(10),
                 ..Default::default()
             },
             false,
@@ -53,10 +64,10 @@ fn gpu_variants_match_the_cpu_twin() {
         ),
         (
             YukselParams {
-                n: 3,
-                m: 30,
+                n: Some(3),
+                m: Some(30),
                 fresnel: false,
-                absorption: true,
+                ..Default::default()
             },
             true,
             DVec3::new(0.0, 0.0, -1.0),
@@ -105,8 +116,8 @@ fn fewer_render_targets_give_the_same_map() {
     let Some(ctx) = test_context() else { return };
     let mut yuksel = Yuksel::new(&ctx).expect("pipelines");
     let params = YukselParams {
-        n: 7,
-        m: 22,
+        n: Some(7),
+        m: Some(22),
         ..Default::default()
     };
     let setup = YukselSetup::new(
@@ -155,4 +166,121 @@ fn a_map_beyond_the_device_limit_is_refused() {
         .expect("refused")
         .to_string();
     assert!(err.contains("yuksel caustics map"), "{err}");
+}
+
+/// The region pass chooses on the GPU the region the CPU twin fits from the same heights (N, M, the
+/// shift along the refracted sun and the level), at suns from overhead to 85 degrees from the
+/// zenith (levels 0 to 3) and over lopsided waves (a shifted region), and both variants then agree
+/// with the CPU map.
+#[test]
+fn the_gpu_chooses_the_cpus_region() {
+    let Some(ctx) = test_context() else { return };
+    let yuksel = Yuksel::new(&ctx).expect("pipelines");
+    let (waves, leaning) = (surface(48), lopsided(48));
+    let mut shifted = false;
+    for (zenith, depth) in [
+        (0.0f64, 0.2),
+        (60.0, 0.6),
+        (80.0, 0.4),
+        (80.0, 0.8),
+        (60.0, 0.02),
+        (80.0, 1.5),
+        (80.0, 0.6),
+        (85.0, 0.35),
+        (80.0, 4.0),
+        (0.0, 0.5),
+    ] {
+        // The last case: the lopsided waves under an overhead sun.
+        let heights = if depth == 0.5 { &leaning } else { &waves };
+        let z = zenith.to_radians();
+        let light = DVec3::new(0.8 * z.sin(), 0.6 * z.sin(), -z.cos());
+        let setup = YukselSetup::new(
+            &YukselParams::default(),
+            96,
+            96,
+            1.0,
+            depth,
+            1.333,
+            DVec3::ZERO,
+            true,
+            light,
+        )
+        .unwrap();
+        let cpu_region = setup.region_for(heights);
+        shifted |= cpu_region.shift != [0, 0];
+        let cpu = yuksel::caustics(&setup, heights);
+        for variant in [Variant::RenderTargets, Variant::Gather] {
+            let frame = yuksel.frame(&ctx, &setup, heights, variant).unwrap();
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            let texture = yuksel.encode(&frame, &mut encoder, None);
+            ctx.queue.submit([encoder.finish()]);
+            let gpu_region = yuksel.read_region(&ctx, &frame).unwrap();
+            assert_eq!(gpu_region, cpu_region, "sun {zenith}, {variant:?}");
+            let texels: Vec<[f32; 4]> = ctx.read_texture(texture).unwrap();
+            let gpu = CausticsMap {
+                width: 96,
+                height: 96,
+                size: 1.0,
+                texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+            };
+            // Measured on lavapipe: at most 2.2e-4 of the mean (f32 against f64; the largest where
+            // the hits lie furthest from their samples).
+            let d = worst(&cpu, &gpu);
+            assert!(d < 2.2e-3, "sun {zenith}, {variant:?}: {d}");
+        }
+        eprintln!("sun {zenith}, depth {depth}: {cpu_region:?}");
+    }
+    assert!(shifted, "a case with a shifted region");
+}
+
+/// A fixed region that the waves overfill: light reaches its first and last rows and columns, so
+/// pass 2 must sum every channel (dropping channel M loses the light the samples send M/2 rows on).
+#[test]
+fn light_at_the_regions_edge_counts_in_every_channel() {
+    let Some(ctx) = test_context() else { return };
+    let yuksel = Yuksel::new(&ctx).expect("pipelines");
+    let heights = surface(40);
+    let params = YukselParams {
+        n: Some(5),
+        m: Some(4),
+        ..Default::default()
+    };
+    let setup = YukselSetup::new(
+        &params,
+        40,
+        40,
+        1.0,
+        3.0,
+        1.333,
+        DVec3::ZERO,
+        true,
+        DVec3::new(0.3, -0.2, -1.0).normalize(),
+    )
+    .unwrap();
+    let pre = yuksel::prepass(&setup, &heights);
+    let p1 = yuksel::pass1(&setup, &pre);
+    let ch = setup.region.m + 1;
+    let channel = |k: usize| {
+        p1.iter()
+            .skip(k)
+            .step_by(ch)
+            .map(|&v| v as f64)
+            .sum::<f64>()
+    };
+    let total: f64 = (0..ch).map(channel).sum();
+    // Measured: the first and last channels carry 23.4 % and 23.2 % of the light.
+    for k in [0, ch - 1] {
+        assert!(
+            channel(k) > 0.1 * total,
+            "channel {k}: {} of {total}",
+            channel(k)
+        );
+    }
+    let cpu = yuksel::caustics(&setup, &heights);
+    for variant in [Variant::RenderTargets, Variant::Gather] {
+        let gpu = yuksel.caustics(&ctx, &setup, &heights, variant).unwrap();
+        // Measured on lavapipe: 3.2e-5 of the mean for both variants.
+        let d = worst(&cpu, &gpu);
+        assert!(d < 3.2e-4, "{variant:?}: {d}");
+    }
 }

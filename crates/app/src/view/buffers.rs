@@ -323,7 +323,7 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
     let spec = input.choice.spec()?;
     let params = YukselParams::from_table(&spec.params)?;
     let w = water;
-    let setup = YukselSetup::new(
+    let mut setup = YukselSetup::new(
         &params,
         n,
         n,
@@ -334,12 +334,13 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
         w.wrap,
         input.light,
     )?;
+    setup.fit_region(&heights);
     let pre = yuksel::prepass(&setup, &heights);
     let (pw, ph) = setup.prepass_size();
     match buffer {
         Buffer::YukselOffset => {
             // δ in pixels: red for x, green for y, mid-grey at no offset, saturating at N/2.
-            let reach = (setup.n / 2).max(1) as f32;
+            let reach = (setup.region.n / 2).max(1) as f32;
             let rgba = flip_rows(pw, ph, |t| {
                 let p = pre[t];
                 let c = |d: f32| ((0.5 + 0.5 * d / reach).clamp(0.0, 1.0) * 255.0) as u8;
@@ -368,8 +369,8 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
         Buffer::YukselChannel(k) => {
             let p1 = yuksel::pass1(&setup, &pre);
             let (w1, h1) = setup.pass1_size();
-            let ch = setup.m + 1;
-            let k = (k as usize).min(setup.m);
+            let ch = setup.region.m + 1;
+            let k = (k as usize).min(setup.region.m);
             let g = Grid {
                 cols: w1,
                 rows: h1,
@@ -380,7 +381,7 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
             Ok(Picture {
                 legend: format!(
                     "channel {k} of {ch} (row offset {}): black 0, white {top:.2}",
-                    k as i64 - setup.m as i64 / 2
+                    k as i64 - setup.region.m as i64 / 2 - setup.region.shift[1] as i64
                 ),
                 ..scalar_picture(&g, |v| heat(v / top))
             })

@@ -36,6 +36,17 @@
 //!   pixel gathers its whole region and the map tiles; with clamped edges they see the clamped
 //!   surface, as the reference does.
 //!
+//! - **The region from the water** (default, `preset = "water"`): the paper fixes `N`, `M` in map
+//!   pixels (7 and 6, §6), so light the waves throw further, or a finer map, loses light. Unless `n`
+//!   or `m` is given, the region is chosen each frame from a bound on the largest deflection
+//!   ([`region_bound`]: every texel's deflection from its slope, height, the depth and the sun,
+//!   with a margin), and shifted along the refracted sun (`shift`) where the deflections lean one
+//!   way. Its cost: GPU time grows with `N × (M + 1)`. Past [`MAX_N`] or [`MAX_M`] the passes run
+//!   on a map 2, 4 or 8 times coarser ([`Region::level`]) and [`upsample`] brings it back: the
+//!   light is kept, detail lost; past that, the region is clamped with a warning. The GPU
+//!   computes the same region in a one-workgroup pass (`region.wgsl`), so no frame reads heights
+//!   back. `preset = "paper"` keeps the paper's 7 and 6.
+//!
 //! # Where it departs from the reference
 //! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost; each
 //! sample's flux lands as a box the size of a pixel (a box filter) instead of the true, stretched or
@@ -53,68 +64,188 @@ use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 
 /// The largest channel count: 8 render targets of 4 channels.
 pub const MAX_CHANNELS: u32 = 32;
+/// The widest region a pixel gathers along x: the fused variant's workgroup apron holds
+/// `16 + N − 1` columns, and GPU time grows with `N × (M + 1)`.
+pub const MAX_N: u32 = 31;
+/// The tallest region: `M + 1 ≤` [`MAX_CHANNELS`] channels in pass 1's render targets.
+pub const MAX_M: u32 = MAX_CHANNELS - 2;
+/// The coarsest level the region may be sampled at: pixels `2^level` times the map's.
+pub const MAX_LEVEL: u32 = 3;
+
+/// How the region is chosen where `n` or `m` is not given.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// From a bound on the water's largest deflection on the floor ([`region_bound`]), every
+    /// frame, and placed along the refracted sun where the deflections lean.
+    #[default]
+    Water,
+    /// The paper's N = 7, M = 6 (§6), centred on the illumination centre, for comparison.
+    Paper,
+}
 
 /// The technique's parameters, `[caustics.yuksel]` in a scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct YukselParams {
-    /// Samples along x per pixel (odd): the region `R` is `N` pixels wide.
-    pub n: u32,
-    /// Neighbouring pixels along y (even): `M + 1` channels, the region `R` is `M + 1` pixels tall.
-    pub m: u32,
+    /// `"water"` (default) or `"paper"`: where `n` or `m` is not given.
+    pub preset: Preset,
+    /// Samples along x per pixel (odd): the region `R` is `N` pixels wide. Given, it is fixed
+    /// and centred on the illumination centre.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub n: Option<u32>,
+    /// Neighbouring pixels along y (even): `M + 1` channels, the region `R` is `M + 1` pixels
+    /// tall. Given, it is fixed and centred.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub m: Option<u32>,
     pub fresnel: bool,
     pub absorption: bool,
 }
 
 impl Default for YukselParams {
     fn default() -> Self {
-        YukselParams {
-            n: 7,
-            m: 6,
-            fresnel: true,
-            absorption: true,
-        }
+        Self::defaults()
     }
 }
 
 impl YukselParams {
+    /// The paper's fixed region, N = 7, M = 6.
+    pub fn paper() -> Self {
+        YukselParams {
+            preset: Preset::Paper,
+            ..Self::defaults()
+        }
+    }
+
+    /// The defaults: the region from the water, Fresnel and absorption on.
+    pub fn defaults() -> Self {
+        YukselParams {
+            preset: Preset::Water,
+            n: None,
+            m: None,
+            fresnel: true,
+            absorption: true,
+        }
+    }
+
     pub fn from_table(table: &toml::Table) -> Result<Self> {
         let p: YukselParams = match table.get("yuksel") {
             Some(v) => v
                 .clone()
                 .try_into()
                 .map_err(|e| Error::field("caustics.yuksel", e.to_string()))?,
-            None => YukselParams::default(),
+            None => YukselParams::defaults(),
         };
         p.validate()?;
         Ok(p)
     }
 
     pub fn validate(&self) -> Result<()> {
-        if self.n == 0 || self.n.is_multiple_of(2) || self.n > 31 {
+        if let Some(n) = self.n
+            && (n == 0 || n.is_multiple_of(2) || n > MAX_N)
+        {
             return Err(Error::field(
                 "caustics.yuksel.n",
                 format!(
-                    "must be odd, between 1 and 31 (samples centred on the illumination centre), got {}",
-                    self.n
+                    "must be odd, between 1 and {MAX_N} (samples centred on the illumination centre), got {n}"
                 ),
             ));
         }
-        if !self.m.is_multiple_of(2) || self.m + 1 > MAX_CHANNELS {
+        if let Some(m) = self.m
+            && (!m.is_multiple_of(2) || m > MAX_M)
+        {
             return Err(Error::field(
                 "caustics.yuksel.m",
                 format!(
-                    "must be even and at most {} (M + 1 channels, at most {MAX_CHANNELS}), got {}",
-                    MAX_CHANNELS - 2,
-                    self.m
+                    "must be even and at most {MAX_M} (M + 1 channels, at most {MAX_CHANNELS}), got {m}"
                 ),
             ));
         }
         Ok(())
     }
 
-    pub fn channels(&self) -> u32 {
-        self.m + 1
+    /// The fixed N and M: given, or the paper's; `None` where the water chooses.
+    pub fn fixed(&self) -> (Option<u32>, Option<u32>) {
+        match self.preset {
+            Preset::Paper => (Some(self.n.unwrap_or(7)), Some(self.m.unwrap_or(6))),
+            Preset::Water => (self.n, self.m),
+        }
+    }
+}
+
+/// The gather region of every pixel: samples at column offsets `shift.x + [−N/2, N/2]` and row
+/// offsets `shift.y + [−M/2, M/2]` from the pixel's own sample (the one at its illumination
+/// centre). Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Region {
+    pub n: usize,
+    pub m: usize,
+    pub shift: [i32; 2],
+    /// The passes run on a map `2^level` times coarser (N, M and the shift in its pixels), then
+    /// [`upsample`] brings it to the map's size: where the deflection passes the largest region
+    /// at the map's own pixels, a coarser level keeps the light at the cost of detail.
+    pub level: u32,
+    /// Whether the bound asked for more than [`MAX_N`] or [`MAX_M`] even at [`MAX_LEVEL`]:
+    /// light is lost.
+    pub clamped: bool,
+}
+
+/// The range `[lo, hi]` (world units, per axis) of the offset `δ` of a sample's floor hit from
+/// its pixel centre over `heights`: every texel's own deflection, refracted through the normal of
+/// its central differences, `δ = (depth + h) T − depth T0` (`T` the refracted ray's sideways travel
+/// per unit of descent, `T0` flat water's), widened by an eighth of the span each way for the
+/// bicubic surface between texels (the margin caustic-triangles' copy band takes, there on the
+/// slope). Texels the sun cannot light (facing away) carry no light and are left out.
+pub fn region_bound(setup: &YukselSetup, heights: &Grid) -> (DVec2, DVec2) {
+    let (cols, rows) = (heights.cols.max(1), heights.rows.max(1));
+    let (dx, dy) = (setup.size / cols as f64, setup.size / rows as f64);
+    let at = |i: usize, j: usize| heights.at(i, j) as f64;
+    let l = setup.light;
+    let t0 = refract(l, DVec3::Z, setup.eta).expect("air to water never reflects totally");
+    let flat = t0.truncate() / -t0.z * setup.depth;
+    let (mut lo, mut hi) = (flat, flat);
+    for i in 0..heights.rows {
+        for j in 0..heights.cols {
+            let (jn, jp) = ((j + 1) % cols, (j + cols - 1) % cols);
+            let (i_n, ip) = ((i + 1) % rows, (i + rows - 1) % rows);
+            let grad = DVec2::new(
+                (at(i, jn) - at(i, jp)) / (2.0 * dx),
+                (at(i_n, j) - at(ip, j)) / (2.0 * dy),
+            );
+            let normal = height_field_normal(grad);
+            if -l.dot(normal) <= 0.0 {
+                continue;
+            }
+            if let Some(t) = refract(l, normal, setup.eta).filter(|t| t.z < 0.0) {
+                let d = t.truncate() / -t.z * (setup.depth + at(i, j)).max(0.0);
+                lo = lo.min(d);
+                hi = hi.max(d);
+            }
+        }
+    }
+    let margin = (hi - lo) * 0.125;
+    (lo - margin - flat, hi + margin - flat)
+}
+
+/// The smallest odd run of offsets that holds every sample landing on a pixel, along one axis:
+/// a sample `o` pixels from the pixel whose hit is `δ` pixels from its own centre overlaps the
+/// pixel iff `|o + δ| < 1`, so `o ∈ [−⌈δ_max⌉, −⌊δ_min⌋]`; padded by one to be odd, and at most
+/// `limit` long (then centred on the same place: light is lost at both ends).
+fn axis_region(lo: f64, hi: f64, limit: usize) -> (usize, i32, bool) {
+    if !(lo.is_finite() && hi.is_finite()) {
+        return (limit, 0, true);
+    }
+    let first = -hi.ceil();
+    let mut last = -lo.floor();
+    if ((last - first) as i64) % 2 == 1 {
+        last += 1.0;
+    }
+    let len = (last - first) as usize + 1;
+    let centre = ((first + last) / 2.0) as i32;
+    if len > limit {
+        (limit, centre, true)
+    } else {
+        (len, centre, false)
     }
 }
 
@@ -124,8 +255,10 @@ impl YukselParams {
 pub struct YukselSetup {
     pub width: usize,
     pub height: usize,
-    pub n: usize,
-    pub m: usize,
+    /// The region the CPU passes gather: fixed, or the largest until [`fit_region`](Self::fit_region).
+    pub region: Region,
+    /// N and M given (or the paper's); `None` where the water chooses.
+    pub fixed: (Option<u32>, Option<u32>),
     /// Map pixel size, world units.
     pub pixel: DVec2,
     /// `h L'` in world units: from a floor point to its illumination centre on the rest surface.
@@ -161,11 +294,18 @@ impl YukselSetup {
         let eta = 1.0 / ior;
         let t0 = refract(light, DVec3::Z, eta).expect("air to water never reflects totally");
         let d0 = depth / -t0.z;
+        let fixed = params.fixed();
         Ok(YukselSetup {
             width,
             height,
-            n: params.n as usize,
-            m: params.m as usize,
+            region: Region {
+                n: fixed.0.unwrap_or(MAX_N) as usize,
+                m: fixed.1.unwrap_or(MAX_M) as usize,
+                shift: [0, 0],
+                level: 0,
+                clamped: false,
+            },
+            fixed,
             pixel: DVec2::new(size / width as f64, size / height as f64),
             // Up the refracted ray from the floor to the rest surface: P_C = P_G − T0 · h / T0_z.
             centre_offset: -t0.truncate() * (depth / -t0.z),
@@ -189,28 +329,111 @@ impl YukselSetup {
         })
     }
 
+    /// The region for `heights`: along each axis not fixed, the offsets that hold every
+    /// deflection [`region_bound`] allows (GPU twin: `shaders/yuksel/region.wgsl`).
+    pub fn region_for(&self, heights: &Grid) -> Region {
+        let (lo, hi) = region_bound(self, heights);
+        self.region_from_bound(lo, hi)
+    }
+
+    /// [`region_for`](Self::region_for) from the deflection range, world units.
+    /// With both N and M from the water, the finest level (down to [`MAX_LEVEL`], while it
+    /// divides the map's size) whose region holds the bound.
+    pub fn region_from_bound(&self, lo: DVec2, hi: DVec2) -> Region {
+        let auto = self.fixed.0.is_none() && self.fixed.1.is_none();
+        let mut level = 0;
+        loop {
+            let pixel = self.pixel * (1u32 << level) as f64;
+            let (l, h) = (lo / pixel, hi / pixel);
+            let (n, sx, cx) = match self.fixed.0 {
+                Some(n) => (n as usize, 0, false),
+                None => axis_region(l.x, h.x, MAX_N as usize),
+            };
+            let (rows, sy, cy) = match self.fixed.1 {
+                Some(m) => (m as usize + 1, 0, false),
+                None => axis_region(l.y, h.y, MAX_M as usize + 1),
+            };
+            let region = Region {
+                n,
+                m: rows - 1,
+                shift: [sx, sy],
+                level,
+                clamped: cx || cy,
+            };
+            let next = 2usize << level;
+            if !region.clamped
+                || !auto
+                || level == MAX_LEVEL
+                || !self.width.is_multiple_of(next)
+                || !self.height.is_multiple_of(next)
+            {
+                return region;
+            }
+            level += 1;
+        }
+    }
+
+    /// This setup's passes at `level`: a map `2^level` times coarser over the same square.
+    pub fn at_level(&self, level: u32) -> YukselSetup {
+        YukselSetup {
+            width: self.width >> level,
+            height: self.height >> level,
+            pixel: self.pixel * (1u32 << level) as f64,
+            ..self.clone()
+        }
+    }
+
+    /// Take the region for `heights` ([`region_for`](Self::region_for)); warns when the bound
+    /// passes [`MAX_N`] or [`MAX_M`], since the light beyond is lost.
+    pub fn fit_region(&mut self, heights: &Grid) {
+        self.region = self.region_for(heights);
+        if self.region.clamped {
+            tracing::warn!(
+                "yuksel: the water deflects light further than the largest gather region \
+                 (N = {MAX_N}, M = {MAX_M}, at {} times the pixel of the {}x{} map): light \
+                 beyond it is lost",
+                1u32 << self.region.level,
+                self.width,
+                self.height
+            );
+        }
+    }
+
+    /// The largest region the GPU may choose: its textures are allocated for it.
+    pub fn capacity(&self) -> (usize, usize) {
+        (
+            self.fixed.0.unwrap_or(MAX_N) as usize,
+            self.fixed.1.unwrap_or(MAX_M) as usize,
+        )
+    }
+
     /// Pre-pass texture size: samples for `N − 1` extra columns and `M` extra rows.
     pub fn prepass_size(&self) -> (usize, usize) {
-        (self.width + self.n - 1, self.height + self.m)
+        (self.width + self.region.n - 1, self.height + self.region.m)
     }
 
     /// Pass-1 texture size: every map column, `M` extra rows.
     pub fn pass1_size(&self) -> (usize, usize) {
-        (self.width, self.height + self.m)
+        (self.width, self.height + self.region.m)
     }
 }
 
-/// Pre-pass: for the sample of pre-pass texel `(r, c)` (map pixel `(r − M/2, c − N/2)`), the hit
-/// offset `δ` in pixels and the flux it carries relative to flat water: `[δx, δy, flux, 0]`.
+/// Pre-pass: for the sample of pre-pass texel `(r, c)` (map pixel `(r − M/2 + shift.y, c − N/2 +
+/// shift.x)`), the hit offset `δ` in pixels and the flux it carries relative to flat water:
+/// `[δx, δy, flux, 0]`.
 pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
     let (pw, ph) = setup.prepass_size();
     let edge = if setup.wrap { Edge::Wrap } else { Edge::Clamp };
-    let (nh, mh) = ((setup.n / 2) as f64, (setup.m / 2) as f64);
+    let r0 = setup.region;
+    let first = DVec2::new(
+        r0.shift[0] as f64 - (r0.n / 2) as f64,
+        r0.shift[1] as f64 - (r0.m / 2) as f64,
+    );
     let l = setup.light;
     let mut out = Vec::with_capacity(pw * ph);
     for r in 0..ph {
         for c in 0..pw {
-            let pixel_centre = DVec2::new(c as f64 - nh + 0.5, r as f64 - mh + 0.5) * setup.pixel;
+            let pixel_centre = (DVec2::new(c as f64, r as f64) + first + 0.5) * setup.pixel;
             let s = pixel_centre + setup.centre_offset;
             let (h, grad) = heights.sample(s, setup.size, edge);
             let normal = height_field_normal(grad);
@@ -238,27 +461,29 @@ pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
 }
 
 /// Pass 1 (Fig. 5): pass-1 texel `(r, j)` holds, in channel `k`, what the `N` samples of sample row
-/// `r − M/2` around column `j` give map pixel `(r − M/2 + k − M/2, j)`. Channels are contiguous per
-/// texel: `M + 1` floats each.
+/// `R = r − M/2 + shift.y` at columns `j + shift.x + [−N/2, N/2]` give map pixel
+/// `(R + k − M/2 − shift.y, j)`. Channels are contiguous per texel: `M + 1` floats each.
 pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]]) -> Vec<f32> {
     let (w, h1) = setup.pass1_size();
     let (pw, _) = setup.prepass_size();
-    let ch = setup.m + 1;
-    let (n, mh) = (setup.n, setup.m as i64 / 2);
-    let nh = n as i64 / 2;
+    let r0 = setup.region;
+    let ch = r0.m + 1;
+    let n = r0.n;
+    // Column offset of sample `s` from the pixel; row offset of channel `k`'s pixel from the row.
+    let col0 = r0.shift[0] as f32 - (n / 2) as f32;
+    let row0 = -((r0.m / 2) as f32) - r0.shift[1] as f32;
     let mut out = vec![0.0f32; w * h1 * ch];
     for r in 0..h1 {
         for j in 0..w {
             let texel = &mut out[(r * w + j) * ch..(r * w + j + 1) * ch];
             for s in 0..n {
                 let p = pre[r * pw + j + s];
-                let ax = (1.0 - (s as f32 - nh as f32 + p[0]).abs()).max(0.0);
+                let ax = (1.0 - (s as f32 + col0 + p[0]).abs()).max(0.0);
                 if ax == 0.0 {
                     continue;
                 }
                 for (k, t) in texel.iter_mut().enumerate() {
-                    let d = k as i64 - mh;
-                    let ay = (1.0 - (p[1] - d as f32).abs()).max(0.0);
+                    let ay = (1.0 - (p[1] - (k as f32 + row0)).abs()).max(0.0);
                     *t += ax * ay * p[2];
                 }
             }
@@ -268,11 +493,12 @@ pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]]) -> Vec<f32> {
 }
 
 /// Pass 2 (Fig. 6): map pixel `(i, j)` sums channel `k` of pass-1 row `i + M − k`, then applies the
-/// absorption.
+/// absorption (the shift cancels: row `i + M − k` holds sample row `i − (k − M/2 − shift.y)`).
 pub fn pass2(setup: &YukselSetup, p1: &[f32]) -> CausticsMap {
     let (w, h) = (setup.width, setup.height);
-    let ch = setup.m + 1;
-    let (h1, m) = (h + setup.m, setup.m);
+    let m = setup.region.m;
+    let ch = m + 1;
+    let h1 = h + m;
     let mut map = CausticsMap::new(w, h, setup.size);
     let a = setup.attenuation;
     for i in 0..h {
@@ -289,11 +515,61 @@ pub fn pass2(setup: &YukselSetup, p1: &[f32]) -> CausticsMap {
     map
 }
 
-/// The whole technique on the CPU: the surface sampled as `heights` over the map's square.
+/// The whole technique on the CPU: the surface sampled as `heights` over the map's square, with
+/// the region fitted to `heights` where N or M is not fixed.
 pub fn caustics(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
-    let pre = prepass(setup, heights);
-    let p1 = pass1(setup, &pre);
-    pass2(setup, &p1)
+    let mut setup = setup.clone();
+    setup.fit_region(heights);
+    caustics_in_region(&setup, heights)
+}
+
+/// The three passes in `setup`'s region as it stands, at its level, brought to the map's size.
+pub fn caustics_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
+    let level = setup.region.level;
+    let coarse = setup.at_level(level);
+    let pre = prepass(&coarse, heights);
+    let p1 = pass1(&coarse, &pre);
+    let map = pass2(&coarse, &p1);
+    if level == 0 {
+        map
+    } else {
+        upsample(&map, setup, level)
+    }
+}
+
+/// The map of a level `level` times coarser, bilinear at each of `setup`'s pixel centres (wrapped
+/// or clamped at the edges as the water is): it keeps the flux of a periodic map. GPU twin:
+/// `shaders/yuksel/upsample.wgsl`.
+pub fn upsample(coarse: &CausticsMap, setup: &YukselSetup, level: u32) -> CausticsMap {
+    let (cw, ch) = (coarse.width as i64, coarse.height as i64);
+    let scale = (1u32 << level) as f32;
+    let index = |k: i64, n: i64| {
+        if setup.wrap {
+            k.rem_euclid(n)
+        } else {
+            k.clamp(0, n - 1)
+        }
+    };
+    let mut map = CausticsMap::new(setup.width, setup.height, setup.size);
+    for i in 0..setup.height {
+        for j in 0..setup.width {
+            let x = (j as f32 + 0.5) / scale - 0.5;
+            let y = (i as f32 + 0.5) / scale - 0.5;
+            let (x0, y0) = (x.floor(), y.floor());
+            let (fx, fy) = (x - x0, y - y0);
+            let (c0, c1) = (index(x0 as i64, cw), index(x0 as i64 + 1, cw));
+            let (r0, r1) = (index(y0 as i64, ch), index(y0 as i64 + 1, ch));
+            let at = |r: i64, c: i64| coarse.texels[(r * cw + c) as usize];
+            let (a, b, c, d) = (at(r0, c0), at(r0, c1), at(r1, c0), at(r1, c1));
+            let t = &mut map.texels[i * setup.width + j];
+            for k in 0..3 {
+                let top = a[k] + (b[k] - a[k]) * fx;
+                let bottom = c[k] + (d[k] - c[k]) * fx;
+                t[k] = top + (bottom - top) * fy;
+            }
+        }
+    }
+    map
 }
 
 #[cfg(test)]
@@ -336,7 +612,7 @@ mod tests {
     #[test]
     fn bad_n_and_m_are_named() {
         let e = YukselParams {
-            n: 0,
+            n: Some(0),
             ..Default::default()
         }
         .validate()
@@ -344,7 +620,7 @@ mod tests {
         .to_string();
         assert!(e.contains("caustics.yuksel.n"), "{e}");
         let e = YukselParams {
-            m: 40,
+            m: Some(40),
             ..Default::default()
         }
         .validate()
@@ -352,12 +628,76 @@ mod tests {
         .to_string();
         assert!(e.contains("caustics.yuksel.m"), "{e}");
         let e = YukselParams {
-            m: 3,
+            m: Some(3),
             ..Default::default()
         }
         .validate()
         .unwrap_err()
         .to_string();
         assert!(e.contains("even"), "{e}");
+    }
+
+    #[test]
+    fn the_region_follows_the_water_unless_fixed() {
+        let light = DVec3::new(0.8, 0.6, -0.4).normalize();
+        let s = setup(&YukselParams::default(), 64, light);
+        // Flat water deflects nothing: each pixel gathers its own sample.
+        let flat = s.region_for(&Grid::new(16, 16));
+        assert_eq!(
+            (flat.n, flat.m, flat.shift, flat.clamped),
+            (1, 0, [0, 0], false)
+        );
+        let waves = Grid::from_fn(64, 64, |i, j| {
+            let x = (j as f64 + 0.5) / 64.0;
+            let y = (i as f64 + 0.5) / 64.0;
+            (0.003 * (std::f64::consts::TAU * (2.0 * x + y)).sin()) as f32
+        });
+        let r = s.region_for(&waves);
+        assert!(
+            r.n > 1 && r.m > 0 && !r.n.is_multiple_of(2) && r.m.is_multiple_of(2),
+            "{r:?}"
+        );
+        // Every hit lies within the region: no sample lands beyond its edge.
+        let mut fitted = s.clone();
+        fitted.fit_region(&waves);
+        let pre = prepass(&fitted, &waves);
+        // A hit δ pixels off reaches the pixels at offsets ⌊δ⌋ and ⌈δ⌉: both within the region.
+        let inside = |d: f32, half: usize, shift: i32| {
+            let (lo, hi) = ((shift - half as i32) as f32, (shift + half as i32) as f32);
+            -d.ceil() >= lo && -d.floor() <= hi
+        };
+        for p in pre.iter().filter(|p| p[2] > 0.0) {
+            assert!(inside(p[0], r.n / 2, r.shift[0]), "{p:?} {r:?}");
+            assert!(inside(p[1], r.m / 2, r.shift[1]), "{p:?} {r:?}");
+        }
+        // The paper's preset, and a given N, stay fixed.
+        let paper = setup(&YukselParams::paper(), 64, light).region_for(&waves);
+        assert_eq!((paper.n, paper.m, paper.shift), (7, 6, [0, 0]));
+        let table: toml::Table = toml::from_str("[yuksel]\npreset = \"paper\"\nn = 9").unwrap();
+        let p = YukselParams::from_table(&table).unwrap();
+        assert_eq!(p.fixed(), (Some(9), Some(6)));
+        let at_depth = |depth: f64| {
+            YukselSetup::new(
+                &YukselParams::default(),
+                64,
+                64,
+                1.0,
+                depth,
+                1.333,
+                DVec3::ZERO,
+                true,
+                light,
+            )
+            .unwrap()
+            .region_for(&waves)
+        };
+        // Deeper: a coarser level holds it; far deeper: clamped at the coarsest.
+        let r = at_depth(5.0);
+        assert!(r.level > 0 && !r.clamped, "{r:?}");
+        let r = at_depth(500.0);
+        assert!(
+            r.clamped && r.level == MAX_LEVEL && r.n == MAX_N as usize && r.m == MAX_M as usize,
+            "{r:?}"
+        );
     }
 }

@@ -4,22 +4,29 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
+//! | region (compute, one workgroup) | `shaders/yuksel/region.wgsl` | `YukselSetup::region_for` |
 //! | pre-pass (compute) | `shaders/yuksel/prepass.wgsl` + `sample.wgsl` | `prepass` |
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
 //! | fused variant (compute, workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
+//! | upsample (compute): the level's map to the map's size | `shaders/yuksel/upsample.wgsl` | `upsample` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
 //! 128 bytes per sample give all 32 channels in one draw, as the paper's MRT design intends); with
 //! fewer it draws again for the remaining layers.
+//!
+//! The region pass chooses the gather region (N, M and its shift along the refracted sun) on the
+//! GPU from the heights, every frame, into a small storage buffer every later pass reads: the
+//! textures are allocated once for the largest region ([`YukselSetup::capacity`]), and the
+//! passes' loops run over this frame's region only.
 
 use std::collections::HashMap;
 use std::sync::Mutex;
 
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
-use caustics_core::techniques::yuksel::YukselSetup;
+use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{self, OPTICS, PassSource, WATER};
@@ -39,6 +46,16 @@ pub const PASS2: PassSource = PassSource {
     name: "yuksel pass 2",
     shared: &[COMMON],
     source: include_str!("../shaders/yuksel/pass2.wgsl"),
+};
+pub const REGION: PassSource = PassSource {
+    name: "yuksel region",
+    shared: &[OPTICS, COMMON],
+    source: include_str!("../shaders/yuksel/region.wgsl"),
+};
+pub const UPSAMPLE: PassSource = PassSource {
+    name: "yuksel upsample",
+    shared: &[COMMON],
+    source: include_str!("../shaders/yuksel/upsample.wgsl"),
 };
 pub const GATHER: PassSource = PassSource {
     name: "yuksel gather",
@@ -104,7 +121,32 @@ pub struct YukselUniform {
     pub _pad: [u32; 2],
 }
 
+/// Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`: what the region pass writes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct YukselRegion {
+    pub n: u32,
+    pub m: u32,
+    pub shift: [i32; 2],
+    pub level: u32,
+    pub clamped: u32,
+    pub _pad: [u32; 2],
+}
+
+impl From<YukselRegion> for Region {
+    fn from(r: YukselRegion) -> Region {
+        Region {
+            n: r.n as usize,
+            m: r.m as usize,
+            shift: r.shift,
+            level: r.level,
+            clamped: r.clamped != 0,
+        }
+    }
+}
+
 impl YukselUniform {
+    /// `n` = 0 and `m` = `u32::MAX` ask the region pass to choose them from the water.
     pub fn new(s: &YukselSetup, channel_base: u32) -> Self {
         YukselUniform {
             light: [
@@ -127,8 +169,8 @@ impl YukselUniform {
             fresnel: s.fresnel as u32,
             width: s.width as u32,
             height: s.height as u32,
-            n: s.n as u32,
-            m: s.m as u32,
+            n: s.fixed.0.unwrap_or(0),
+            m: s.fixed.1.unwrap_or(u32::MAX),
             wrap: s.wrap as u32,
             channel_base,
             _pad: [0; 2],
@@ -138,6 +180,8 @@ impl YukselUniform {
 
 /// The technique's pipelines, built once per device.
 pub struct Yuksel {
+    region: wgpu::ComputePipeline,
+    upsample: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
     gather: wgpu::ComputePipeline,
@@ -193,6 +237,10 @@ pub struct Frame {
     heights: Option<wgpu::Texture>,
     /// Every uniform buffer with the channel base it carries (one per pass-1 draw).
     uniforms: Vec<(wgpu::Buffer, u32)>,
+    /// This frame's gather region ([`YukselRegion`]), written by the region pass.
+    pub region: wgpu::Buffer,
+    region_bind: wgpu::BindGroup,
+    upsample_bind: wgpu::BindGroup,
     pub map: wgpu::Texture,
     setup: YukselSetup,
     pub variant: Variant,
@@ -213,7 +261,8 @@ enum FramePasses {
             Vec<wgpu::TextureView>,
         )>,
         pass2: wgpu::BindGroup,
-        map_view: wgpu::TextureView,
+        /// The level's map.
+        target: wgpu::TextureView,
     },
 }
 
@@ -234,25 +283,14 @@ impl Frame {
         &self.setup
     }
 
-    /// Whether `setup` fits this frame's textures (the same map, pre-pass and pass-1 sizes and
-    /// channel count), so that [`set_setup`](Self::set_setup) can take it.
+    /// Whether `setup` fits this frame's textures (the same map size and the same largest region),
+    /// so that [`set_setup`](Self::set_setup) can take it.
     pub fn fits(&self, setup: &YukselSetup) -> bool {
-        (
-            setup.width,
-            setup.height,
-            setup.prepass_size(),
-            setup.pass1_size(),
-            setup.m,
-        ) == (
-            self.setup.width,
-            self.setup.height,
-            self.setup.prepass_size(),
-            self.setup.pass1_size(),
-            self.setup.m,
-        )
+        (setup.width, setup.height, setup.capacity())
+            == (self.setup.width, self.setup.height, self.setup.capacity())
     }
 
-    /// Take a new sun, depth or N (a setup that [`fits`](Self::fits)): uniform writes only.
+    /// Take a new sun or depth (a setup that [`fits`](Self::fits)): uniform writes only.
     pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
         debug_assert!(self.fits(setup));
         for (buffer, base) in &self.uniforms {
@@ -273,6 +311,8 @@ impl Yuksel {
         let targets_per_draw = limits.max_color_attachments.min(by_bytes).clamp(1, 8);
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
+            region: compute_pipeline(ctx, &REGION),
+            upsample: compute_pipeline(ctx, &UPSAMPLE),
             prepass: compute_pipeline(ctx, &PREPASS),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
             gather: compute_pipeline(ctx, &GATHER),
@@ -326,8 +366,10 @@ impl Yuksel {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
-        let (pw, ph) = setup.prepass_size();
-        let (p1w, p1h) = setup.pass1_size();
+        // Sized for the largest region the region pass may choose.
+        let (cap_n, cap_m) = setup.capacity();
+        let (pw, ph) = (setup.width + cap_n - 1, setup.height + cap_m);
+        let (p1w, p1h) = (setup.width, setup.height + cap_m);
         ctx.check_texture_size("yuksel caustics map", w, h)?;
         ctx.check_texture_size("yuksel pre-pass texture", pw as u32, ph as u32)?;
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
@@ -343,6 +385,22 @@ impl Yuksel {
         };
         let uniform = uniform_for(0);
         let heights_view = &water.heights;
+        let region = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("yuksel region"),
+            size: std::mem::size_of::<YukselRegion>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let region_bind = bind_group(
+            ctx,
+            "yuksel region",
+            &self.region.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                View(heights_view),
+                region.as_entire_binding(),
+            ],
+        );
         let map = ctx.texture_2d(
             "yuksel map",
             (w, h, 1),
@@ -350,7 +408,26 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        let mut bytes = (w * h) as u64 * 16 + uniform.size();
+        // What the passes write: the map at the region's level, in its top-left corner.
+        let coarse = ctx.texture_2d(
+            "yuksel level map",
+            (w, h, 1),
+            MAP_FORMAT,
+            U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::TEXTURE_BINDING,
+        );
+        let coarse_view = coarse.create_view(&Default::default());
+        let upsample_bind = bind_group(
+            ctx,
+            "yuksel upsample",
+            &self.upsample.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                region.as_entire_binding(),
+                View(&coarse_view),
+                View(&map_view),
+            ],
+        );
+        let mut bytes = 2 * (w * h) as u64 * 16 + uniform.size() + region.size();
         let passes = match variant {
             Variant::Gather => FramePasses::Gather {
                 bind: bind_group(
@@ -360,12 +437,13 @@ impl Yuksel {
                     &[
                         uniform.as_entire_binding(),
                         View(heights_view),
-                        View(&map_view),
+                        View(&coarse_view),
+                        region.as_entire_binding(),
                     ],
                 ),
             },
             Variant::RenderTargets => {
-                let layers = (setup.m as u32 + 1).div_ceil(4);
+                let layers = (cap_m as u32 + 1).div_ceil(4);
                 let pre = ctx.texture_2d(
                     "yuksel pre-pass",
                     (pw as u32, ph as u32, 1),
@@ -388,6 +466,7 @@ impl Yuksel {
                         uniform.as_entire_binding(),
                         View(heights_view),
                         View(&pre_view),
+                        region.as_entire_binding(),
                     ],
                 );
                 // Pass 1: as many layers per draw as the device allows.
@@ -402,7 +481,11 @@ impl Yuksel {
                         ctx,
                         "yuksel pass 1",
                         &pipeline.get_bind_group_layout(0),
-                        &[draw_uniform.as_entire_binding(), View(&pre_view)],
+                        &[
+                            draw_uniform.as_entire_binding(),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                        ],
                     );
                     let views = (first..first + count)
                         .map(|layer| {
@@ -425,13 +508,17 @@ impl Yuksel {
                     ctx,
                     "yuksel pass 2",
                     &self.pass2.get_bind_group_layout(0),
-                    &[uniform.as_entire_binding(), View(&channels_view)],
+                    &[
+                        uniform.as_entire_binding(),
+                        View(&channels_view),
+                        region.as_entire_binding(),
+                    ],
                 );
                 FramePasses::RenderTargets {
                     prepass,
                     draws,
                     pass2,
-                    map_view,
+                    target: coarse_view,
                 }
             }
         };
@@ -439,6 +526,9 @@ impl Yuksel {
         Ok(Frame {
             heights: None,
             uniforms,
+            region,
+            region_bind,
+            upsample_bind,
             map,
             setup: setup.clone(),
             variant,
@@ -455,6 +545,12 @@ impl Yuksel {
         mut timer: Option<&mut GpuTimer>,
     ) -> &'f wgpu::Texture {
         let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "yuksel region");
+            pass.set_pipeline(&self.region);
+            pass.set_bind_group(0, &frame.region_bind, &[]);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
         match &frame.passes {
             FramePasses::Gather { bind } => {
                 let mut pass = begin_compute(encoder, &mut timer, "yuksel gather");
@@ -466,13 +562,14 @@ impl Yuksel {
                 prepass,
                 draws,
                 pass2,
-                map_view,
+                target,
             } => {
                 {
                     let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
                     pass.set_pipeline(&self.prepass);
                     pass.set_bind_group(0, prepass, &[]);
-                    let (pw, ph) = frame.setup.prepass_size();
+                    let (cap_n, cap_m) = frame.setup.capacity();
+                    let (pw, ph) = (frame.setup.width + cap_n - 1, frame.setup.height + cap_m);
                     pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
                 }
                 for (pipeline, bind, views) in draws {
@@ -493,7 +590,7 @@ impl Yuksel {
                 }
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("yuksel pass 2"),
-                    color_attachments: &[color_attachment(map_view)],
+                    color_attachments: &[color_attachment(target)],
                     depth_stencil_attachment: None,
                     timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("yuksel pass 2")),
                     occlusion_query_set: None,
@@ -504,7 +601,19 @@ impl Yuksel {
                 pass.draw(0..3, 0..1);
             }
         }
+        let mut pass = begin_compute(encoder, &mut timer, "yuksel upsample");
+        pass.set_pipeline(&self.upsample);
+        pass.set_bind_group(0, &frame.upsample_bind, &[]);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        drop(pass);
         &frame.map
+    }
+
+    /// The region the last encode of `frame` chose, read back (for tests and tools: it waits for
+    /// the GPU).
+    pub fn read_region(&self, ctx: &GpuContext, frame: &Frame) -> Result<Region, GpuError> {
+        let r: Vec<YukselRegion> = ctx.read_buffer(&frame.region)?;
+        Ok(r[0].into())
     }
 
     /// Run the technique once and read the map back.

@@ -3,9 +3,11 @@
 // M/2 rows each side) into workgroup memory, then each pixel gathers the N x (M + 1) samples of its
 // region directly: no intermediate render targets, no channel budget, and the samples shared by
 // neighbouring pixels are refracted once per tile instead of read back through memory.
-// Same sums as pass 1 + pass 2 (in another order).
+// Same sums as pass 1 + pass 2 (in another order). The region (its size and its shift along the
+// refracted sun) comes from the region pass.
 
 @group(0) @binding(2) var map_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(3) var<storage, read> region: YukselRegion;
 
 const TILE: u32 = 16u;
 // Up to N = 31 and M = 30: (16 + 30) x (16 + 30) samples.
@@ -21,22 +23,26 @@ fn main(
     @builtin(local_invocation_index) local: u32,
     @builtin(local_invocation_id) lid: vec3<u32>,
 ) {
-    let nh = i32(u.n / 2u);
-    let mh = i32(u.m / 2u);
-    let cols = TILE + u.n - 1u;
-    let rows = TILE + u.m;
-    let origin = vec2<i32>(group.xy * TILE) - vec2<i32>(nh, mh);
+    let nh = i32(region.n / 2u);
+    let mh = i32(region.m / 2u);
+    let sx = region.shift.x;
+    let sy = region.shift.y;
+    let cols = TILE + region.n - 1u;
+    let rows = TILE + region.m;
+    let origin = vec2<i32>(group.xy * TILE) - vec2<i32>(nh, mh) + region.shift;
+    let size = level_size(u.width, u.height, region.level);
+    let level_pixel = u.pixel * f32(1u << region.level);
     for (var t = local; t < cols * rows; t += TILE * TILE) {
         let c = t % cols;
         let r = t / cols;
-        let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r));
+        let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r), level_pixel);
         tile_dx[r * SPAN + c] = s.x;
         tile_dy[r * SPAN + c] = s.y;
         tile_w[r * SPAN + c] = s.z;
     }
     workgroupBarrier();
     let pixel = vec2<i32>(group.xy * TILE + lid.xy);
-    if pixel.x >= i32(u.width) || pixel.y >= i32(u.height) {
+    if pixel.x >= i32(size.x) || pixel.y >= i32(size.y) {
         return;
     }
     var e = 0.0;
@@ -44,8 +50,8 @@ fn main(
         let row = u32(i32(lid.y) + mh + dr) * SPAN;
         for (var dc = -nh; dc <= nh; dc++) {
             let k = row + u32(i32(lid.x) + nh + dc);
-            let ax = box_overlap(f32(dc) + tile_dx[k]);
-            let ay = box_overlap(f32(dr) + tile_dy[k]);
+            let ax = box_overlap(f32(dc + sx) + tile_dx[k]);
+            let ay = box_overlap(f32(dr + sy) + tile_dy[k]);
             e += ax * ay * tile_w[k];
         }
     }

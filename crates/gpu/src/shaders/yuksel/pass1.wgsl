@@ -1,10 +1,12 @@
 // Technique `yuksel`, pass 1 (paper Fig. 5): for pass-1 texel (j, r), the N samples of sample row
-// r - M/2 around column j, and their overlap with map pixel (j, r - M/2 + k - M/2) in channel k. The
+// R = r - M/2 + shift.y at columns j + shift.x + [-N/2, N/2], and their overlap with map pixel
+// (j, R + k - M/2 - shift.y) in channel k. The
 // channels leave through multiple render targets; the output struct (`Pass1Out`, one vec4 per
 // target) and `fs_main` that fills it are generated for the number of targets one draw writes.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var pre: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read> region: YukselRegion;
 
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
@@ -16,18 +18,22 @@ fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
 // Channels channel_base .. channel_base + count of texel (j, r), relative to channel_base.
 fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
     var intensity: array<f32, 32>;
-    let nh = i32(u.n / 2u);
-    let mh = i32(u.m / 2u);
+    // The texture holds the largest region's rows; rows past this frame's are never read.
+    if r >= i32(level_size(u.width, u.height, region.level).y + region.m) {
+        return intensity;
+    }
+    let col0 = region.shift.x - i32(region.n / 2u);
+    let row0 = -i32(region.m / 2u) - region.shift.y;
     let base = i32(u.channel_base);
-    let last = min(base + count, i32(u.m) + 1);
-    for (var s = 0; s < i32(u.n); s++) {
+    let last = min(base + count, i32(region.m) + 1);
+    for (var s = 0; s < i32(region.n); s++) {
         let p = textureLoad(pre, vec2<i32>(j + s, r), 0);
-        let ax = box_overlap(f32(s - nh) + p.x);
+        let ax = box_overlap(f32(s + col0) + p.x);
         if ax == 0.0 {
             continue;
         }
         for (var k = base; k < last; k++) {
-            let ay = box_overlap(p.y - f32(k - mh));
+            let ay = box_overlap(p.y - f32(k + row0));
             intensity[k - base] += ax * ay * p.z;
         }
     }

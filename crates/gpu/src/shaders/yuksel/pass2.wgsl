@@ -1,8 +1,10 @@
 // Technique `yuksel`, pass 2 (paper Fig. 6): map pixel (j, i) sums channel k of pass-1 row
-// i + M - k (the row whose samples gave pixel i that channel), then the absorption.
+// i + M - k (the row whose samples gave pixel i that channel; the region's shift cancels), then the
+// absorption.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var channels: texture_2d_array<f32>;
+@group(0) @binding(2) var<storage, read> region: YukselRegion;
 
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
@@ -15,8 +17,9 @@ fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let j = i32(frag.x);
     let i = i32(frag.y);
     var e = 0.0;
-    for (var k = 0; k <= i32(u.m); k++) {
-        let texel = textureLoad(channels, vec2<i32>(j, i + i32(u.m) - k), k / 4, 0);
+    let m = i32(region.m);
+    for (var k = 0; k <= m; k++) {
+        let texel = textureLoad(channels, vec2<i32>(j, i + m - k), k / 4, 0);
         e += texel[k % 4];
     }
     return vec4<f32>(e * u.attenuation.rgb, 1.0);

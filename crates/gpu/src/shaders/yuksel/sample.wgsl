@@ -6,8 +6,9 @@
 
 // The sample of map pixel (column c, row r), which may lie outside the map: the offset of its floor
 // hit from its pixel centre in pixels, and the flux it carries relative to flat water.
-fn yuksel_sample(c: i32, r: i32) -> vec4<f32> {
-    let pixel_centre = (vec2<f32>(f32(c), f32(r)) + 0.5) * u.pixel;
+// `pixel`: the map pixel at the region's level.
+fn yuksel_sample(c: i32, r: i32, pixel: vec2<f32>) -> vec4<f32> {
+    let pixel_centre = (vec2<f32>(f32(c), f32(r)) + 0.5) * pixel;
     let s = pixel_centre + u.centre_offset;
     let hg = grid_sample(heights, s, u.size, u.wrap != 0u);
     let l = u.light.xyz;
@@ -20,7 +21,7 @@ fn yuksel_sample(c: i32, r: i32) -> vec4<f32> {
     }
     let z = u.depth + hg.x;
     let hit = s + t.xy * (z / -t.z);
-    let delta = (hit - pixel_centre) / u.pixel;
+    let delta = (hit - pixel_centre) / pixel;
     var fresnel = 1.0;
     if u.fresnel != 0u {
         fresnel = fresnel_transmittance(cos_i, 1.0, u.ior) / u.attenuation.w;
