@@ -767,8 +767,12 @@ mod tests {
         let c = TechniqueChoice::parse("yuksel:n=15", 2).unwrap();
         assert_eq!(c.name, "yuksel");
         assert_eq!(c.params.get("n").and_then(|v| v.as_integer()), Some(15));
-        // The defaults fill the rest.
-        assert_eq!(c.params.get("m").and_then(|v| v.as_integer()), Some(6));
+        // The defaults fill the rest: M is not given, so the region's height comes from the water.
+        assert_eq!(c.params.get("m"), None);
+        assert_eq!(
+            c.params.get("preset").and_then(|v| v.as_str()),
+            Some("water")
+        );
         let spec = c.spec().unwrap();
         assert_eq!(spec.name, "yuksel");
         assert!(!spec.gather);

@@ -299,7 +299,7 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
 /// Where a parameter stands in the panel: the paper's order where we know it, then the rest.
 fn param_order(technique: &str, key: &str) -> (usize, String) {
     let known: &[&str] = match technique {
-        "yuksel" => &["n", "m", "fresnel", "absorption"],
+        "yuksel" => &["preset", "n", "m", "fresnel", "absorption"],
         "volumes" => &["planes", "texture", "shadow", "fresnel", "absorption"],
         "cascaded" => &[
             "resolution",
@@ -377,6 +377,10 @@ fn param_label(technique: &str, key: &str) -> (String, &'static str) {
             "cascade placement".into(),
             "eq33: the split of Eq. 3.3; plane: practical split planes",
         ),
+        ("yuksel", "preset") => (
+            "region".into(),
+            "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6",
+        ),
         ("cascaded", "dispersion") => (
             "dispersion".into(),
             "none; wavelength: one IOR per channel (§3.5); post: a screen-space shift",
@@ -402,6 +406,7 @@ fn choices(technique: &str, key: &str) -> &'static [&'static str] {
         ("cascaded", "dispersion") => &["none", "wavelength", "post"],
         ("cascaded", "splat") => &["footprint", "point"],
         ("procedural", "variant") => &["vertex", "screen", "texture"],
+        ("yuksel", "preset") => &["water", "paper"],
         _ => &[],
     }
 }
