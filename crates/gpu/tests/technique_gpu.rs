@@ -1,11 +1,14 @@
 //! The `Technique` interface: every registered technique through it against its CPU twin, and the
 //! steady state of a real-time frame (nothing created, nothing read back, a few uniform bytes up).
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::Grid;
 use caustics_core::scene::Scene;
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
 use caustics_core::water::sample_grid;
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::technique::{self, REGISTRY};
 use caustics_gpu::{GpuContext, Output, WaterTextures};
 use glam::DVec3;
@@ -33,7 +36,6 @@ fn read_floor(ctx: &GpuContext, out: Output) -> Vec<[f32; 4]> {
     }
 }
 
-#[test]
 fn the_registry_names_are_unique_and_unknown_names_are_refused() {
     for (k, r) in REGISTRY.iter().enumerate() {
         assert!(
@@ -42,16 +44,15 @@ fn the_registry_names_are_unique_and_unknown_names_are_refused() {
             r.name
         );
     }
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let err = technique::create(&ctx, "no-such", &toml::Table::new())
         .err()
         .expect("refused");
     assert!(err.to_string().contains("no-such") && err.to_string().contains("yuksel"));
 }
 
-#[test]
 fn yuksel_through_the_interface_matches_its_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     // The pool's own sun, and one 80 degrees from the zenith: the region the GPU chooses from the
     // heights gives the CPU twin's map.
     let grazing = DVec3::new(
@@ -108,9 +109,8 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
     }
 }
 
-#[test]
 fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for name in ["yuksel", "yuksel-gather"] {
         let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
@@ -156,9 +156,8 @@ fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
 /// widens the region on the GPU (here past the largest region at the map's pixels, to a coarser
 /// level) with nothing created and nothing read back, and the map is the CPU twin's on the new
 /// heights.
-#[test]
 fn yuksel_follows_steeper_water_without_new_resources() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     for name in ["yuksel", "yuksel-gather"] {
         let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
@@ -208,4 +207,11 @@ fn yuksel_follows_steeper_water_without_new_resources() {
         // shifted, at level 1).
         assert!(worst < 2.0e-4, "{name}: worst texel difference {worst}");
     }
+}
+
+test_main! {
+    gpu the_registry_names_are_unique_and_unknown_names_are_refused,
+    gpu yuksel_through_the_interface_matches_its_cpu_twin,
+    gpu yuksel_steady_frames_create_nothing_and_read_nothing_back,
+    gpu yuksel_follows_steeper_water_without_new_resources,
 }

@@ -1,10 +1,13 @@
 //! Technique `yuksel`: the GPU passes against their CPU twin, and the two GPU variants against each
 //! other.
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
-use caustics_gpu::context::test_context;
+use caustics_gpu::context::test_gpu;
 use caustics_gpu::yuksel::{Variant, Yuksel};
 use glam::DVec3;
 
@@ -40,9 +43,8 @@ fn worst(a: &CausticsMap, b: &CausticsMap) -> f32 {
         / mean
 }
 
-#[test]
 fn gpu_variants_match_the_cpu_twin() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
     let heights = surface(48);
     for (params, wrap, light, (w, h)) in [
@@ -111,9 +113,8 @@ fn gpu_variants_match_the_cpu_twin() {
 
 /// Where the adapter allows fewer render targets than the channels need, pass 1 draws again for the
 /// remaining layers: same map.
-#[test]
 fn fewer_render_targets_give_the_same_map() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let mut yuksel = Yuksel::new(&ctx).expect("pipelines");
     let params = YukselParams {
         n: Some(7),
@@ -143,9 +144,8 @@ fn fewer_render_targets_give_the_same_map() {
     assert_eq!(all, split);
 }
 
-#[test]
 fn a_map_beyond_the_device_limit_is_refused() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
     let max = ctx.limits().max_texture_dimension_2d as usize;
     let setup = YukselSetup::new(
@@ -172,9 +172,8 @@ fn a_map_beyond_the_device_limit_is_refused() {
 /// shift along the refracted sun and the level), at suns from overhead to 85 degrees from the
 /// zenith (levels 0 to 3) and over lopsided waves (a shifted region), and both variants then agree
 /// with the CPU map.
-#[test]
 fn the_gpu_chooses_the_cpus_region() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
     let (waves, leaning) = (surface(48), lopsided(48));
     let mut shifted = false;
@@ -235,9 +234,8 @@ fn the_gpu_chooses_the_cpus_region() {
 
 /// A fixed region that the waves overfill: light reaches its first and last rows and columns, so
 /// pass 2 must sum every channel (dropping channel M loses the light the samples send M/2 rows on).
-#[test]
 fn light_at_the_regions_edge_counts_in_every_channel() {
-    let Some(ctx) = test_context() else { return };
+    let ctx = test_gpu();
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
     let heights = surface(40);
     let params = YukselParams {
@@ -283,4 +281,12 @@ fn light_at_the_regions_edge_counts_in_every_channel() {
         let d = worst(&cpu, &gpu);
         assert!(d < 3.2e-4, "{variant:?}: {d}");
     }
+}
+
+test_main! {
+    gpu gpu_variants_match_the_cpu_twin,
+    gpu fewer_render_targets_give_the_same_map,
+    gpu a_map_beyond_the_device_limit_is_refused,
+    gpu the_gpu_chooses_the_cpus_region,
+    gpu light_at_the_regions_edge_counts_in_every_channel,
 }
