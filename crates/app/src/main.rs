@@ -2,6 +2,8 @@
 
 mod bench;
 mod compare;
+#[cfg(test)]
+mod fuzz_spec;
 mod progress;
 mod render;
 mod techniques;
