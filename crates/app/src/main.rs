@@ -2,6 +2,8 @@
 
 mod bench;
 mod compare;
+#[cfg(test)]
+mod fuzz_spec;
 mod progress;
 mod render;
 mod techniques;
@@ -85,21 +87,39 @@ fn ensure_runtime_dir() {
     }
 }
 
+/// Crates that log through the `log` crate, which the `tracing-log` bridge (installed by `init`)
+/// turns into tracing events. wgpu's and naga's info level is a line per resource and pass, so
+/// they stay at warn under `-v`; under `-vv` they say everything.
+const CHATTY: [&str; 4] = ["wgpu_core", "wgpu_hal", "wgpu", "naga"];
+
+/// Our log: `-v` info, `-vv` debug, warnings otherwise; `rust_log` (RUST_LOG) replaces it all.
+fn subscriber<W>(verbose: u8, rust_log: Option<String>, writer: W) -> impl tracing::Subscriber
+where
+    W: for<'w> tracing_subscriber::fmt::MakeWriter<'w> + Send + Sync + 'static,
+{
+    let filter = match rust_log {
+        Some(directives) => tracing_subscriber::EnvFilter::new(directives),
+        None => {
+            let (level, chatty) = match verbose {
+                0 => ("warn", "warn"),
+                1 => ("info", "warn"),
+                _ => ("debug", "debug"),
+            };
+            let quiet: Vec<String> = CHATTY.iter().map(|t| format!("{t}={chatty}")).collect();
+            tracing_subscriber::EnvFilter::new(format!("{level},{}", quiet.join(",")))
+        }
+    };
+    tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(writer)
+        .finish()
+}
+
 fn main() -> ExitCode {
     ensure_runtime_dir();
     let cli = Cli::parse();
-    let level = match cli.verbose {
-        0 => "warn",
-        1 => "info",
-        _ => "debug",
-    };
-    tracing_subscriber::fmt()
-        .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(level)),
-        )
-        .with_writer(std::io::stderr)
-        .init();
+    use tracing_subscriber::util::SubscriberInitExt;
+    subscriber(cli.verbose, std::env::var("RUST_LOG").ok(), std::io::stderr).init();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -267,4 +287,52 @@ pub(crate) fn default_output(scene: &str) -> PathBuf {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
     PathBuf::from(format!("{stem}.png"))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::{Arc, Mutex};
+
+    use tracing_subscriber::util::SubscriberInitExt;
+
+    /// What the subscriber writes, kept for the test to read.
+    #[derive(Clone, Default)]
+    struct Captured(Arc<Mutex<Vec<u8>>>);
+
+    impl std::io::Write for Captured {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.0.lock().unwrap().extend_from_slice(buf);
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    impl<'w> tracing_subscriber::fmt::MakeWriter<'w> for Captured {
+        type Writer = Captured;
+        fn make_writer(&'w self) -> Captured {
+            self.clone()
+        }
+    }
+
+    /// The only test here that installs the process-wide subscriber (and with it the `log`
+    /// bridge), as `main` does.
+    #[test]
+    fn log_records_reach_the_output_and_wgpu_info_stays_quiet_under_v() {
+        let out = Captured::default();
+        super::subscriber(1, None, out.clone())
+            .try_init()
+            .expect("no other test installs a subscriber");
+        log::warn!(target: "wgpu_hal::vulkan::instance", "a warning from wgpu");
+        log::info!(target: "wgpu_core::device::resource", "a resource from wgpu");
+        log::info!(target: "naga::front::wgsl", "a parse from naga");
+        tracing::info!("our own info");
+        let text = String::from_utf8(out.0.lock().unwrap().clone()).unwrap();
+        assert!(text.contains("a warning from wgpu"), "{text}");
+        assert!(text.contains("wgpu_hal::vulkan::instance"), "{text}");
+        assert!(text.contains("our own info"), "{text}");
+        assert!(!text.contains("a resource from wgpu"), "{text}");
+        assert!(!text.contains("a parse from naga"), "{text}");
+    }
 }

@@ -203,8 +203,53 @@ fn catmull_rom(t: f64) -> ([f64; 4], [f64; 4]) {
     )
 }
 
+/// The byte offset of a `.npy` file's samples, from its preamble: the magic string, the version,
+/// and the header's length (2 bytes in version 1, 4 in versions 2 and 3).
+///
+/// npyz reserves the header's claimed length before reading it, so a 100-byte file claiming a
+/// 2 GB header made it reserve 2 GB (found by fuzzing, `fuzz_regressions/npy-header-*.npy`);
+/// the claim is checked against the file's length first.
+fn npy_data_offset(path: &Path, file: &mut std::fs::File, len: u64) -> Result<u64> {
+    use std::io::Read;
+    let mut pre = [0u8; 12];
+    let got = file.read(&mut pre).map_err(|e| Error::io(path, e))?;
+    if got < 10 || &pre[..6] != b"\x93NUMPY" {
+        return Err(Error::bad_file(
+            path,
+            "not a valid .npy file: no NUMPY preamble",
+        ));
+    }
+    let (start, header) = match pre[6] {
+        1 => (10, u64::from(u16::from_le_bytes([pre[8], pre[9]]))),
+        2 | 3 if got == 12 => (
+            12,
+            u64::from(u32::from_le_bytes([pre[8], pre[9], pre[10], pre[11]])),
+        ),
+        v => {
+            return Err(Error::bad_file(
+                path,
+                format!("not a valid .npy file: unknown format version {v}"),
+            ));
+        }
+    };
+    if start + header > len {
+        return Err(Error::bad_file(
+            path,
+            format!(
+                "not a valid .npy file: the header claims {header} bytes, the file has {len} in all"
+            ),
+        ));
+    }
+    Ok(start + header)
+}
+
 fn read_npy(path: &Path) -> Result<Grid> {
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    use std::io::{Seek, SeekFrom};
+    let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let len = file.metadata().map_err(|e| Error::io(path, e))?.len();
+    let offset = npy_data_offset(path, &mut file, len)?;
+    file.seek(SeekFrom::Start(0))
+        .map_err(|e| Error::io(path, e))?;
     let npy = npyz::NpyFile::new(BufReader::new(file))
         .map_err(|e| Error::bad_file(path, format!("not a valid .npy file: {e}")))?;
     let shape = npy.shape().to_vec();
@@ -221,6 +266,23 @@ fn read_npy(path: &Path) -> Result<Grid> {
         ));
     }
     let dtype = npy.dtype();
+    // Likewise the samples: the shape must fit in the file before any is read.
+    if let npyz::DType::Plain(t) = &dtype {
+        let needed = (shape[0].checked_mul(shape[1])).and_then(|n| n.checked_mul(t.size_field()));
+        if needed.is_none_or(|n| n > len - offset) {
+            return Err(Error::bad_file(
+                path,
+                format!(
+                    "the header's shape ({}, {}) of {}-byte samples needs more than the {} bytes \
+                     of samples the file holds",
+                    shape[0],
+                    shape[1],
+                    t.size_field(),
+                    len - offset
+                ),
+            ));
+        }
+    }
     let data: Vec<f32> = match &dtype {
         npyz::DType::Plain(t) if t.type_char() == npyz::TypeChar::Float && t.size_field() == 4 => {
             npy.into_vec::<f32>()
@@ -246,6 +308,26 @@ fn read_npy(path: &Path) -> Result<Grid> {
 
 fn read_exr(path: &Path) -> Result<Grid> {
     use exr::prelude::*;
+    // exr sizes its sample buffers from the header's data window before it reads a pixel, so a
+    // few hundred bytes naming a 10⁸ x 10⁸ window asked for petabytes (found by fuzzing,
+    // crates/core/tests/fuzz_regressions/exr-huge-data-window.exr). The headers alone are read
+    // first, and a layer larger than the largest grid the program takes is refused.
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| crate::Error::bad_file(path, format!("not a readable OpenEXR image: {e}")))?;
+    let max = crate::scene::MAX_RESOLUTION as usize;
+    for header in meta.headers.iter() {
+        let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        let channels = header.channels.list.len();
+        if w > max || h > max || (w * h).saturating_mul(channels) > max * max {
+            return Err(crate::Error::bad_file(
+                path,
+                format!(
+                    "a layer of {w} x {h} samples in {channels} channel(s) is larger than the largest \
+                     height field taken ({max} x {max} samples in one channel)"
+                ),
+            ));
+        }
+    }
     let image = read_first_flat_layer_from_file(path)
         .map_err(|e| crate::Error::bad_file(path, format!("not a readable OpenEXR image: {e}")))?;
     let layer = &image.layer_data;

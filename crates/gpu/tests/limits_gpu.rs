@@ -1,0 +1,171 @@
+//! Device limits: every registered technique, on a device created with smaller limits than the
+//! adapter's, refuses a map, cube map, cascade or texture larger than the device allows with one
+//! `GpuError::TooLarge` naming what, before wgpu sees it, and still configures at sizes that fit.
+//! A GPU with a 2048 or 4096 texture limit (WebGPU's default is 8192) is what this stands for.
+
+use caustics_core::grid::Grid;
+use caustics_core::scene::Scene;
+use caustics_core::water::sample_grid;
+use caustics_gpu::context::GpuOptions;
+use caustics_gpu::technique::{self, REGISTRY};
+use caustics_gpu::{GpuContext, GpuError, WaterTextures};
+
+/// The device's largest texture side.
+const MAX_2D: u32 = 1024;
+/// The device's largest storage buffer binding: 16 MiB, an eighth of WebGPU's default.
+const MAX_STORAGE: u64 = 16 << 20;
+
+/// A device on the test adapter with `MAX_2D` and `MAX_STORAGE` in place of the adapter's limits,
+/// wrapped as an application would wrap its own.
+fn small_device() -> Option<GpuContext> {
+    caustics_gpu::context::test_context()?;
+    let instance = GpuContext::instance(&GpuOptions::default()).unwrap();
+    let adapter = pollster::block_on(instance.request_adapter(&Default::default())).unwrap();
+    let limits = wgpu::Limits {
+        max_texture_dimension_2d: MAX_2D,
+        max_storage_buffer_binding_size: MAX_STORAGE,
+        ..adapter.limits()
+    };
+    let features = adapter.features()
+        & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::FLOAT32_BLENDABLE);
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("small limits"),
+        required_features: features,
+        required_limits: limits,
+        ..Default::default()
+    }))
+    .unwrap();
+    let ctx = GpuContext::from_parts(instance, adapter, device, queue);
+    assert_eq!(ctx.limits().max_texture_dimension_2d, MAX_2D);
+    Some(ctx)
+}
+
+/// The built-in scene `name` with a `side`² caustics map and camera image.
+fn scene(name: &str, side: u32) -> Scene {
+    let mut s = Scene::builtin(name).unwrap();
+    s.caustics.width = side;
+    s.caustics.height = side;
+    s.camera.width = side;
+    s.camera.height = side;
+    s
+}
+
+/// The scene each registered technique is tried on: glass objects where it takes them.
+fn scene_for(name: &str) -> &'static str {
+    match name {
+        "caustic-triangles" => "glass",
+        "volumes" => "objects",
+        _ => "pool",
+    }
+}
+
+/// Small parameters for the techniques whose defaults are large, so that the fitting case is fast.
+const SMALL: &str = "volumes = { texture = 64, shadow = 128, planes = 5 }\n\
+                     caustic-triangles = { photon_image = 64, cube_resolution = 64 }\n\
+                     cascaded = { resolution = 128 }\n\
+                     procedural = { mesh_resolution = 64, target_resolution = 128 }";
+
+/// Create `name` with `params` over `SMALL` and configure it on `scene`.
+fn configure(ctx: &GpuContext, name: &str, scene: &Scene, params: &str) -> Result<(), GpuError> {
+    let mut table: toml::Table = SMALL.parse().unwrap();
+    let over: toml::Table = params.parse().unwrap();
+    for (k, v) in over {
+        match (table.get_mut(&k), v) {
+            (Some(toml::Value::Table(into)), toml::Value::Table(from)) => into.extend(from),
+            (_, v) => {
+                table.insert(k, v);
+            }
+        }
+    }
+    let mut t = technique::create(ctx, name, &table)?;
+    // The water as large as the technique reads it, within the device's limit: the refusals
+    // tested here are the technique's own.
+    let (cols, rows) = t.water_resolution(scene);
+    let (cols, rows) = (cols.min(MAX_2D), rows.min(MAX_2D));
+    let grid = match &scene.water {
+        Some(water) => {
+            let surface = water.surface_at(scene.time).unwrap();
+            sample_grid(surface.as_ref(), cols as usize, rows as usize, water.size)
+        }
+        // The glass scene has no water: a still surface stands in for the texture.
+        None => Grid::from_fn(cols.max(1) as usize, rows.max(1) as usize, |_, _| 0.0),
+    };
+    let texture = ctx.upload_grid("heights", &grid)?;
+    t.configure(ctx, scene, &WaterTextures::of(&texture))?;
+    t.update(ctx, scene)?;
+    ctx.wait()
+}
+
+/// `result` is one `TooLarge` whose `what` contains `names`.
+fn assert_too_large(result: Result<(), GpuError>, case: &str, names: &str) {
+    match result {
+        Err(GpuError::TooLarge { what, size, limit }) => {
+            assert!(
+                what.contains(names),
+                "{case}: names `{what}` ({size}, {limit})"
+            );
+        }
+        Err(e) => panic!("{case}: expected TooLarge naming `{names}`, got: {e}"),
+        Ok(()) => panic!("{case}: configured beyond the device's limits"),
+    }
+}
+
+#[test]
+fn every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit() {
+    let Some(ctx) = small_device() else { return };
+    for r in REGISTRY {
+        let home = scene_for(r.name);
+        configure(&ctx, r.name, &scene(home, 64), "")
+            .unwrap_or_else(|e| panic!("{} at 64²: {e}", r.name));
+        // A map (or, for the eye-space technique, a screen image) one texel past the limit.
+        let result = configure(&ctx, r.name, &scene(home, MAX_2D + 1), "");
+        let names = if r.name == "cascaded" {
+            "screen"
+        } else {
+            "map"
+        };
+        assert_too_large(result, r.name, names);
+        // Nothing reached wgpu's validation: the refusal came first.
+        ctx.check()
+            .unwrap_or_else(|e| panic!("{}: wgpu saw it: {e}", r.name));
+    }
+}
+
+#[test]
+fn cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused() {
+    let Some(ctx) = small_device() else { return };
+    let cases = [
+        (
+            "cascaded",
+            "cascaded = { resolution = 2048 }",
+            "cascaded caustic map",
+        ),
+        (
+            "procedural-texture",
+            "procedural = { target_resolution = 2048 }",
+            "texture-space target",
+        ),
+        (
+            "volumes",
+            "volumes = { texture = 2048 }",
+            "volumes depth texture",
+        ),
+        ("volumes", "volumes = { shadow = 2048 }", "shadow"),
+        (
+            "caustic-triangles",
+            "caustic-triangles = { cube_resolution = 1024 }",
+            "distance map",
+        ),
+        (
+            "caustic-triangles",
+            "caustic-triangles = { photon_image = 2048 }",
+            "photon image",
+        ),
+    ];
+    for (name, params, names) in cases {
+        let result = configure(&ctx, name, &scene(scene_for(name), 64), params);
+        assert_too_large(result, &format!("{name} with {params}"), names);
+        ctx.check()
+            .unwrap_or_else(|e| panic!("{name} with {params}: wgpu saw it: {e}"));
+    }
+}
