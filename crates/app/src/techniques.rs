@@ -413,6 +413,33 @@ impl Runner {
                     backend: "CPU",
                 })
             }
+            // Water with diffuse objects under it (`objects`): the truth is the photon reference with
+            // mesh receivers (`volumes::reference`), so the objects' shadows are in it, as they are in
+            // the floor maps of the techniques that see the objects.
+            "reference" if scene.water.is_some() && !scene.objects.is_empty() => {
+                use caustics_core::techniques::volumes;
+                let water = scene.water.as_ref().expect("matched");
+                let owned;
+                let surface = match surface {
+                    Some(s) => s,
+                    None => {
+                        owned = water.surface_at(scene.time)?;
+                        owned.as_ref()
+                    }
+                };
+                let input = volumes::VolumesInput::from_scene(scene)?;
+                let setup = volumes::VolumesSetup::new(&volumes::VolumesParams::default(), &input)?;
+                let options = volumes::reference::MeshReferenceOptions::per_texel(
+                    &setup,
+                    (MESH_REFERENCE_PHOTONS * cells_per_texel.clamp(1, 8)) as f64,
+                );
+                let r = volumes::reference::mesh_reference(&setup, &input, surface, &options);
+                progress(1, 1);
+                Ok(Outcome {
+                    map: r.floor,
+                    backend: "CPU",
+                })
+            }
             // Paper 3: its floor map (the illumination volumes cut by the floor, the objects' shadows
             // in it); the objects' own caustics maps and the refracted view are the technique's
             // (caustics_gpu::volumes, docs/volumes.md).
@@ -674,6 +701,11 @@ pub fn cascaded_heights(water: &Water, surface: &dyn Surface) -> Grid {
         ),
     }
 }
+
+/// Photons per texel side of the mesh-receiver reference, per cell per texel of the floor
+/// reference: 4 (8² photons per texel at the viewer's 2 cells), stratified, so its noise is a few
+/// per cent per texel where the floor reference's triangulation is exact.
+const MESH_REFERENCE_PHOTONS: u32 = 4;
 
 /// Photons per side of the light rectangle of one glass generator, per cell per texel, in the
 /// glass reference: 128² (2 cells per texel, the viewer's default, gives 256² per glass object,

@@ -680,7 +680,9 @@ impl SceneRenderer {
             return Ok((SceneCaustics::Floor(o.map), o.backend));
         };
         let w = water.technique_water();
-        let with_objects = spec.name == "volumes" && !self.scene.objects.is_empty();
+        // `volumes` and the reference see the objects (their floor maps hold the shadows).
+        let with_objects =
+            matches!(spec.name.as_str(), "volumes" | "reference") && !self.scene.objects.is_empty();
         if eye_space(&spec.name) || with_objects {
             // The scene as the technique sees it: the water as animated, not as loaded.
             let mut scene = self.scene.clone();
