@@ -86,10 +86,11 @@ fn setup(
 /// Screen and vertex variants, height grid and the paper's wave, wrapped and clamped, paper's sun
 /// and the scene's: the GPU (f32) against the CPU twin (f64).
 ///
-/// Tolerance: the per-point work agrees to rounding (mean difference below 1e-5) except where a
-/// texel's refracted direction falls on the sun disk's edge, where the light map climbs from the
-/// halo level to 1 within one of its texels (2.5e-4 rad): an f32 direction there moves the value by
-/// up to ~1e-3 of the flat-water level. At most 0.5 % of the texels differ by more than 1e-4.
+/// Tolerance: the per-point work agrees to rounding except where a texel's refracted direction falls
+/// on the sun disk's edge, where the light map climbs from the halo level to 1 within one of its
+/// texels (2.5e-4 rad) and an f32 direction moves the value most. Measured on lavapipe over the
+/// eight cases: mean difference up to 7.6e-7, largest 7.6e-5, and at most 1.4 % of the texels
+/// differing by more than 1e-5.
 fn screen_and_vertex_variants_match_the_cpu_twin() {
     let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
@@ -120,14 +121,15 @@ fn screen_and_vertex_variants_match_the_cpu_twin() {
             let cpu = procedural::caustics(&s, &water);
             let out = gpu.caustics(&ctx, &s, &water).expect("GPU map");
             let (max, mean) = diff(&cpu, &out);
-            let share = outliers(&cpu, &out, 1e-4);
+            let share = outliers(&cpu, &out, 1e-5);
             let what = format!("{variant:?} {size:?} follow_sun {follow_sun} wrap {wrap}");
-            eprintln!("{what}: max {max:.2e}, mean {mean:.2e}, share > 1e-4: {share:.4}");
-            assert!(mean < 1e-5, "{what}: mean difference {mean}");
-            assert!(max < 2e-3, "{what}: largest difference {max}");
+            eprintln!("{what}: max {max:.2e}, mean {mean:.2e}, share > 1e-5: {share:.4}");
+            assert!(mean < 5e-6, "{what}: mean difference {mean}"); // Measured on lavapipe: 7.6e-7
+            assert!(max < 5e-4, "{what}: largest difference {max}"); // Measured on lavapipe: 7.6e-5
+            // Measured on lavapipe: 0.0138
             assert!(
-                share < 0.005,
-                "{what}: {share} of the texels differ by > 1e-4"
+                share < 0.05,
+                "{what}: {share} of the texels differ by > 1e-5"
             );
             let hi = cpu.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
             let lo = cpu.texels.iter().map(|t| t[0]).fold(1.0, f32::min);
@@ -143,19 +145,19 @@ fn screen_and_vertex_variants_match_the_cpu_twin() {
 /// order), then the hardware's sampler against the CPU's reading of it.
 ///
 /// Trilinear (`anisotropy = 1`): where the level of detail is an integer and the footprint square
-/// (a 256 target into a 64 or 128 map) the sampler reads one level at its texel centres and the
-/// maps agree to rounding (max 1e-4). Where it is fractional (a 128 target into a 96 map: λ = 0.415),
-/// magnified (into 300 x 200) or elongated (into 48 x 96: λ = log2 of the major axis), lavapipe's LOD
-/// and weights are approximations of the exact ones: mean difference < 2e-3, max < 2e-2 of the
-/// flat-water level.
+/// (a 256 target into a 64 or 128 map), or the map magnified (into 300 x 200: level 0, bilinear),
+/// the sampler reads the texels the CPU twin reads and the maps agree to rounding. Where the level
+/// is fractional (a 128 target into a 96 map: λ = 0.415) or the footprint elongated (into 48 x 96:
+/// λ = log2 of the major axis), lavapipe's LOD and weights are approximations of the exact ones.
+/// Each case carries its own bounds, within 10x of what lavapipe measured (written beside them).
 ///
 /// Anisotropic (`anisotropy = 16`, the default): the filter is the implementation's. lavapipe's
 /// (Mesa's `lp_build_sample_aniso`) is Heckbert's elliptical weighted average: Gaussian weights over
 /// the nearest texels of one level inside the footprint's ellipse widened by one texel each way
 /// (`A = v² + 1`, `C = u² + 1`), derivatives taken from the coordinates themselves. Even for a square
 /// footprint it blurs over about √2 texels of the level where the CPU twin's trilinear reads one:
-/// measured mean difference up to 0.18 of the map's mean (asserted < 0.2), max < 0.4, and a blur,
-/// not a misplacement: the two correlate above 0.98.
+/// measured mean difference up to 1.9e-2 (0.059 of the map's mean, on the 64² map), largest up to
+/// 0.22, and a blur, not a misplacement: the two correlate above 0.98 (measured 0.9869 at worst).
 fn texture_variant_matches_the_cpu_twin() {
     let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
@@ -163,12 +165,18 @@ fn texture_variant_matches_the_cpu_twin() {
     let water = SurfaceInput::Grid(&grid);
     let tilted = DVec3::new(0.3, -0.2, -1.0).normalize();
     for anisotropy in [1, 16] {
-        for (size, target, wrap, exact) in [
-            ((64, 64), 256, true, true),
-            ((128, 128), 256, false, true),
-            ((96, 96), 128, true, false),
-            ((300, 200), 128, true, false),
-            ((48, 96), 128, false, false),
+        // Bounds on (largest, mean) difference: [trilinear, anisotropic].
+        for (size, target, wrap, bounds) in [
+            // Measured on lavapipe: (9.5e-7, 4.7e-8), (0.205, 1.9e-2)
+            ((64, 64), 256, true, [(5e-6, 4e-7), (0.4, 0.06)]),
+            // Measured on lavapipe: (4.4e-6, 6.1e-8), (0.223, 1.05e-2)
+            ((128, 128), 256, false, [(2e-5, 4e-7), (0.4, 0.05)]),
+            // Measured on lavapipe: (5.0e-3, 3.4e-4), (8.0e-2, 3.7e-3)
+            ((96, 96), 128, true, [(2e-2, 2e-3), (0.4, 0.02)]),
+            // Measured on lavapipe: (8.1e-6, 1.1e-7), (0.123, 3.3e-3)
+            ((300, 200), 128, true, [(5e-5, 8e-7), (0.4, 0.02)]),
+            // Measured on lavapipe: (8.4e-3, 8.8e-4), (8.5e-2, 4.6e-3)
+            ((48, 96), 128, false, [(2e-2, 2e-3), (0.4, 0.02)]),
         ] {
             let s = setup(
                 Variant::Texture,
@@ -189,15 +197,11 @@ fn texture_variant_matches_the_cpu_twin() {
                 "texture {what}: λ, taps = {:?}; max {max:.2e}, mean {mean:.2e} (map mean {level:.3}), correlation {r:.4}",
                 procedural::sampling_footprint(&s)
             );
-            if anisotropy == 1 && exact {
-                assert!(max < 1e-4, "{what}: largest difference {max}");
-            } else if anisotropy == 1 {
-                assert!(mean < 2e-3, "{what}: mean difference {mean}");
-                assert!(max < 2e-2, "{what}: largest difference {max}");
-            } else {
-                assert!(mean < 0.2 * level, "{what}: mean difference {mean}");
-                assert!(max < 0.4, "{what}: largest difference {max}");
-                assert!(r > 0.98, "{what}: correlation {r}");
+            let (max_bound, mean_bound) = bounds[usize::from(anisotropy > 1)];
+            assert!(max < max_bound, "{what}: largest difference {max}");
+            assert!(mean < mean_bound, "{what}: mean difference {mean}");
+            if anisotropy > 1 {
+                assert!(r > 0.98, "{what}: correlation {r}"); // Measured on lavapipe: 0.9869
             }
         }
     }
@@ -219,7 +223,8 @@ fn correlation(a: &CausticsMap, b: &CausticsMap) -> f64 {
     ab / (aa * bb).sqrt()
 }
 
-/// Flat water under the paper's sun gives exactly 1 in every variant on the GPU too.
+/// Flat water under the paper's sun gives exactly 1 in every variant on the GPU too (measured on
+/// lavapipe: every channel exactly 1.0 in all three variants).
 fn flat_water_gives_one_on_the_gpu() {
     let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
@@ -366,8 +371,11 @@ fn the_mip_chain_aliases_less_than_point_sampling() {
         h(&trilinear),
         h(&anisotropic)
     );
+    // Measured on lavapipe: RMS point 0.0527, trilinear 0.0049 (0.093 of it).
     assert!(e(&trilinear) < 0.25 * e(&point));
+    // Measured on lavapipe: share above half Nyquist point 0.322, trilinear 0.194 (0.60 of it).
     assert!(h(&trilinear) < 0.7 * h(&point));
+    // Measured on lavapipe: anisotropic 0.022 (0.068 of point's).
     assert!(h(&anisotropic) < 0.25 * h(&point));
 }
 
@@ -505,8 +513,8 @@ fn registered_variants_match_the_cpu_twin_through_the_interface() {
         );
         let hi = cpu.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
         let lo = cpu.texels.iter().map(|t| t[0]).fold(1.0, f32::min);
-        assert!(max < 4e-4, "{name}: largest difference {max}");
-        assert!(mean < 2.5e-6, "{name}: mean difference {mean}");
+        assert!(max < 4e-4, "{name}: largest difference {max}"); // Measured on lavapipe: 5.0e-5
+        assert!(mean < 2.5e-6, "{name}: mean difference {mean}"); // Measured on lavapipe: 2.6e-7
         assert!(
             hi - lo > 0.3,
             "{name}: the waves make a pattern, {lo}..{hi}"
@@ -555,7 +563,7 @@ fn frames_create_nothing_and_upload_at_most_a_uniform() {
         eprintln!(
             "{name}: after the sun moved, max {max:.2e}; the move changed the map by {moved:.2e}"
         );
-        assert!(max < 4e-4, "{name}: after the sun moved, {max}");
+        assert!(max < 4e-4, "{name}: after the sun moved, {max}"); // Measured on lavapipe: 5.6e-5
         assert!(
             moved > 10.0 * max,
             "{name}: the sun's move changes the map ({moved})"
