@@ -85,8 +85,10 @@ fn depth_agreement(gpu: &[[f32; 4]], cpu: &[[f32; 4]]) -> (f64, f32) {
     (flips as f64 / gpu.len() as f64, worst)
 }
 
-/// Tolerances: from the same inputs 5e-4 (measured 1e-6 .. 8e-5: texel centres on shared edges, f32);
-/// end to end 1e-3 (the depth textures and water in f32 against f64 add nothing measurable).
+/// Tolerances: within 10x of the largest value lavapipe measured over both plane counts and both
+/// objects (written beside each bound). From the same inputs the slices and floor differ by texel
+/// centres on shared edges and f32 (measured 1.4e-6 .. 8.3e-5); end to end the depth textures and
+/// water in f32 against f64 add nothing measurable.
 fn gpu_passes_match_the_cpu_twin() {
     let ctx = test_gpu();
     let volumes = Volumes::new(&ctx).expect("pipelines");
@@ -125,18 +127,21 @@ fn gpu_passes_match_the_cpu_twin() {
             .zip(&cpu_water)
             .flat_map(|(g, c)| (0..7).map(move |k| (g[k] - c[k]).abs()))
             .fold(0.0f32, f32::max);
-        assert!(worst < 1e-5, "water vertices differ by {worst}");
+        assert!(worst < 1e-6, "water vertices differ by {worst}"); // Measured on lavapipe: 1.2e-7
 
         // Depth textures and the shadow map: the same BVH rays in f32 against f64.
         let (flips, worst) = depth_agreement(&gpu.shadow, &cpu.shadow);
+        // Measured on lavapipe: 0 flips, worst 1.2e-5 (flips: a few texels left for another
+        // device's f32 at a silhouette).
         assert!(
-            flips < 2e-3 && worst < 1e-3,
+            flips < 1e-3 && worst < 1e-4,
             "shadow map: {flips} flips, {worst}"
         );
         for (g, c) in gpu.objects.iter().zip(&cpu.objects) {
             let (flips, worst) = depth_agreement(&g.depth, &c.depth);
+            // Measured on lavapipe: 0 flips, worst 3.9e-5.
             assert!(
-                flips < 2e-3 && worst < 1e-3,
+                flips < 1e-3 && worst < 2e-4,
                 "depth texture: {flips} flips, {worst}"
             );
             assert_eq!(
@@ -150,19 +155,20 @@ fn gpu_passes_match_the_cpu_twin() {
             let same = slice_pass(&setup, o, &g.depth, &gpu.water, &gpu.shadow);
             let e = relative_l1(&g.caustics, &same);
             eprintln!("{planes} planes, object {k}: slices GPU vs CPU (same inputs) {e:.2e}");
-            assert!(e < 5e-4, "object {k}: {e}");
+            assert!(e < 5e-4, "object {k}: {e}"); // Measured on lavapipe: 8.3e-5
             let lit = same.iter().filter(|t| t[0] > 0.05).count();
-            assert!(lit > 200, "object {k} is lit: {lit}");
+            assert!(lit > 1000, "object {k} is lit: {lit}"); // Measured on lavapipe: 2053, 2970
             // Eq. 4 from the GPU's own maps.
             let image = shade_pass(&g.diffuse, &g.caustics, setup.params.ambient);
-            assert!(relative_l1(&g.image, &image) < 1e-6);
+            assert!(relative_l1(&g.image, &image) < 1e-6); // Measured on lavapipe: 0
             // End to end.
             let e = relative_l1(&g.caustics, &cpu.objects[k].caustics);
             eprintln!("{planes} planes, object {k}: slices GPU vs CPU (end to end) {e:.2e}");
-            assert!(e < 1e-3, "object {k} end to end: {e}");
+            assert!(e < 5e-4, "object {k} end to end: {e}"); // Measured on lavapipe: 8.3e-5
         }
         // The refracted view from the GPU's own maps: a pixel whose ray falls on a plane's
-        // acceptance boundary or a texel edge can flip between object and floor, a handful.
+        // acceptance boundary or a texel edge could flip between object and floor; none does on
+        // lavapipe, so the bound is rounding's.
         let same = view_pass(
             &setup,
             &view.camera,
@@ -174,7 +180,7 @@ fn gpu_passes_match_the_cpu_twin() {
         );
         let e = relative_l1(&gpu.view, &same);
         eprintln!("{planes} planes: refracted view GPU vs CPU (same inputs) {e:.2e}");
-        assert!(e < 1e-3, "view: {e}");
+        assert!(e < 1e-6, "view: {e}"); // Measured on lavapipe: 1.4e-7
         let objects_seen = same
             .iter()
             .filter(|c| c[0] > 1.3 * c[2] || c[2] > 1.3 * c[0])
@@ -186,10 +192,10 @@ fn gpu_passes_match_the_cpu_twin() {
         let same = floor_pass(&setup, &gpu.water, &gpu.shadow);
         let e = relative_l1(&gpu.floor.texels, &same.texels);
         eprintln!("{planes} planes: floor GPU vs CPU (same inputs) {e:.2e}");
-        assert!(e < 5e-4, "floor: {e}");
+        assert!(e < 5e-4, "floor: {e}"); // Measured on lavapipe: 7.6e-5
         let e = relative_l1(&gpu.floor.texels, &cpu.floor.texels);
         eprintln!("{planes} planes: floor GPU vs CPU (end to end) {e:.2e}");
-        assert!(e < 1e-3, "floor end to end: {e}");
+        assert!(e < 5e-4, "floor end to end: {e}"); // Measured on lavapipe: 7.7e-5
     }
 }
 
@@ -211,10 +217,10 @@ fn half_float_maps_match_full_float() {
     let a = full.run(&ctx, &setup, &input, &h, true, None).unwrap();
     let b = half.run(&ctx, &setup, &input, &h, true, None).unwrap();
     let e = relative_l1(&b.floor.texels, &a.floor.texels);
-    assert!(e < 5e-3, "floor {e}");
+    assert!(e < 2.5e-3, "floor {e}"); // Measured on lavapipe: 3.5e-4
     for (x, y) in b.objects.iter().zip(&a.objects) {
         let e = relative_l1(&x.caustics, &y.caustics);
-        assert!(e < 5e-3, "object {e}");
+        assert!(e < 2.5e-3, "object {e}"); // Measured on lavapipe: 3.6e-4
     }
 }
 
@@ -313,10 +319,10 @@ fn without_shadows_or_objects_gpu_matches_cpu() {
             .expect("GPU run");
         assert!(gpu.shadow.is_empty() == setup.shadow.is_none());
         let e = relative_l1(&gpu.floor.texels, &cpu.floor.texels);
-        assert!(e < 1e-3, "floor {e}");
+        assert!(e < 1e-3, "floor {e}"); // Measured on lavapipe: 3.9e-4
         for (g, c) in gpu.objects.iter().zip(&cpu.objects) {
             let e = relative_l1(&g.caustics, &c.caustics);
-            assert!(e < 1e-3, "object {e}");
+            assert!(e < 1e-3, "object {e}"); // Measured on lavapipe: 1.9e-4
         }
         let same = view_pass(
             &setup,
@@ -327,7 +333,8 @@ fn without_shadows_or_objects_gpu_matches_cpu() {
             &gpu.floor,
             view.floor_albedo,
         );
-        assert!(relative_l1(&gpu.view, &same) < 1e-3);
+        let e = relative_l1(&gpu.view, &same);
+        assert!(e < 1e-6, "view {e}"); // Measured on lavapipe: 1.2e-7
     }
 }
 
@@ -420,7 +427,7 @@ fn the_floor_map_matches_the_cpu_twin_through_the_interface() {
         let hi = cpu.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
         let lo = cpu.texels.iter().map(|t| t[0]).fold(f32::MAX, f32::min);
         eprintln!("{name}: floor GPU vs CPU {e:.2e}, map {lo:.3}..{hi:.3}");
-        assert!(e < 2.5e-3, "{name}: {e}");
+        assert!(e < 2.5e-3, "{name}: {e}"); // Measured on lavapipe: 7.8e-4, 2.5e-4
         assert!(hi > 1.2, "{name}: the waves focus light, up to {hi}");
     }
 }
@@ -468,7 +475,7 @@ fn frames_create_nothing_and_upload_only_uniforms() {
         eprintln!(
             "{name}: after the sun moved, GPU vs CPU {e:.2e}; the move changed it by {moved:.2e}"
         );
-        assert!(e < 2.5e-3, "{name}: after the sun moved, {e}");
+        assert!(e < 2.5e-3, "{name}: after the sun moved, {e}"); // Measured on lavapipe: 6.3e-4, 3.3e-4
         assert!(
             moved > 10.0 * e,
             "{name}: the sun's move changes the map ({moved})"
