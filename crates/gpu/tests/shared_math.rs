@@ -13,6 +13,8 @@ use caustics_gpu::probe::{self, ProbeIn, ProbeSetup};
 use caustics_gpu::water::{GpuProceduralWave, GpuSineWave};
 use glam::{DVec2, DVec3};
 
+/// `|gpu − cpu| ≤ tol · (1 + |cpu|)`. Each call's bound is within 10x of the largest such error
+/// measured on lavapipe over the 128 probes (written beside it).
 fn close(gpu: f32, cpu: f64, tol: f64, what: &str) {
     assert!(
         (gpu as f64 - cpu).abs() <= tol * (1.0 + cpu.abs()),
@@ -96,7 +98,7 @@ fn wgsl_optics_and_water_match_the_cpu() {
             Some(t) => {
                 assert_eq!(o.refracted[3], 1.0);
                 for c in 0..3 {
-                    close(o.refracted[c], t[c], 1e-5, "refract");
+                    close(o.refracted[c], t[c], 1.5e-6, "refract"); // Measured on lavapipe: 1.9e-7
                 }
             }
             None => assert_eq!(o.refracted[3], 0.0, "total internal reflection"),
@@ -104,21 +106,21 @@ fn wgsl_optics_and_water_match_the_cpu() {
         close(
             o.fresnel_sine[0],
             fresnel_transmittance(-d.dot(*n), 1.0, 1.333),
-            1e-5,
+            1e-6,
             "fresnel",
-        );
+        ); // Measured on lavapipe: 1.1e-7
         let (h, g) = waves.height_gradient(*p);
-        close(o.fresnel_sine[1], h, 1e-5, "waves h");
-        close(o.fresnel_sine[2], g.x, 1e-4, "waves dh/dx");
-        close(o.fresnel_sine[3], g.y, 1e-4, "waves dh/dy");
+        close(o.fresnel_sine[1], h, 3e-7, "waves h"); // Measured on lavapipe: 3.6e-8
+        close(o.fresnel_sine[2], g.x, 1e-5, "waves dh/dx"); // Measured on lavapipe: 1.1e-6
+        close(o.fresnel_sine[3], g.y, 1e-5, "waves dh/dy"); // Measured on lavapipe: 1.1e-6
         let (h, g) = procedural.height_gradient(*p);
-        close(o.procedural[0], h, 1e-4, "procedural h");
-        close(o.procedural[1], g.x, 1e-3, "procedural dh/dx");
-        close(o.procedural[2], g.y, 1e-3, "procedural dh/dy");
+        close(o.procedural[0], h, 4e-6, "procedural h"); // Measured on lavapipe: 5.0e-7
+        close(o.procedural[1], g.x, 1.5e-4, "procedural dh/dx"); // Measured on lavapipe: 1.7e-5
+        close(o.procedural[2], g.y, 2e-4, "procedural dh/dy"); // Measured on lavapipe: 2.2e-5
         let (h, g) = grid_surface.height_gradient(*p);
-        close(o.grid[0], h, 1e-5, "grid h");
-        close(o.grid[1], g.x, 1e-4, "grid dh/dx");
-        close(o.grid[2], g.y, 1e-4, "grid dh/dy");
+        close(o.grid[0], h, 8e-8, "grid h"); // Measured on lavapipe: 9.2e-9
+        close(o.grid[1], g.x, 8e-7, "grid dh/dx"); // Measured on lavapipe: 9.9e-8
+        close(o.grid[2], g.y, 1.5e-6, "grid dh/dy"); // Measured on lavapipe: 1.6e-7
     }
 }
 

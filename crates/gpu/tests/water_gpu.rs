@@ -25,9 +25,9 @@ fn max_error(gpu: &[[f32; 4]], channel: usize, cpu: &Grid) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// f32 arithmetic through 2 log2 N butterfly stages, against an f64 FFT rounded to f32: a few
-/// times 1e-6 of the rms is typical, so 1e-4 leaves room for less careful sin/cos than lavapipe's.
-const OCEAN_TOLERANCE: f64 = 1e-4;
+/// f32 arithmetic through 2 log2 N butterfly stages, against an f64 FFT rounded to f32, as a share
+/// of the field's rms. Measured on lavapipe: up to 6.8e-6 (dh/dx, N 64, t 2.75).
+const OCEAN_TOLERANCE: f64 = 5e-5;
 
 fn gpu_ocean_matches_the_cpu_fft() {
     let ctx = test_gpu();
@@ -100,7 +100,8 @@ fn ocean_passes_are_timed() {
         .read_texture::<[f32; 4]>(gpu.height_slopes_texture())
         .unwrap();
     let heights = ocean.height_grid(1.0);
-    assert!(max_error(&got, 0, &heights) <= OCEAN_TOLERANCE * rms(&heights.data));
+    // Measured on lavapipe: 9.3e-7 of the rms.
+    assert!(max_error(&got, 0, &heights) <= 5e-6 * rms(&heights.data));
 }
 
 fn gpu_ripples_match_the_cpu_scheme() {
@@ -137,7 +138,7 @@ fn gpu_ripples_match_the_cpu_scheme() {
         }
         let dropped = gpu.read(&ctx).unwrap();
         let err0 = max_abs_diff(&dropped, cpu.current());
-        assert!(err0 <= 1e-7, "{edge:?}: drops differ by {err0}");
+        assert!(err0 <= 1e-7, "{edge:?}: drops differ by {err0}"); // Measured on lavapipe: 1.1e-8
 
         // 200 steps in two submissions, to cover both the recording within a pass and across them.
         for steps in [120, 80] {
@@ -159,8 +160,8 @@ fn gpu_ripples_match_the_cpu_scheme() {
         eprintln!(
             "{edge:?}: drops max error {err0:.3e}, after 200 steps {err:.3e} (peak {peak:.3e})"
         );
-        assert!(peak > 1e-4, "{edge:?}: the surface went flat");
-        assert!(err <= 1e-5, "{edge:?}: GPU and CPU differ by {err}");
+        assert!(peak > 5e-4, "{edge:?}: the surface went flat"); // Measured on lavapipe: 2.0e-3
+        assert!(err <= 5e-8, "{edge:?}: GPU and CPU differ by {err}"); // Measured on lavapipe: 5.9e-9
     }
 }
 
