@@ -57,7 +57,7 @@ fn photon_power_matches_the_reference() {
         },
     );
     let truth = r.budget.on_map + r.budget.off_map;
-    assert!((ours / truth - 1.0).abs() < 0.02, "{ours} vs {truth}");
+    assert!((ours / truth - 1.0).abs() < 5e-4, "{ours} vs {truth}"); // Measured: 5.0e-5
 }
 
 #[test]
@@ -77,7 +77,7 @@ fn triangles_beat_splats_against_the_reference() {
     let mt = compare(&out.map, &r.map);
     let ms = compare(&splats, &r.map);
     eprintln!("triangles {mt:?}\nsplats {ms:?}");
-    assert!(mt.relative_l1 < 0.1, "{mt:?}");
+    assert!(mt.relative_l1 < 0.1, "{mt:?}"); // Measured: 0.042 (splats 0.18)
     assert!(mt.relative_l1 < ms.relative_l1, "{mt:?} vs {ms:?}");
 }
 
@@ -120,7 +120,7 @@ fn the_hat_rule_conserves_the_photon_power() {
         .sum();
     eprintln!("drawn {drawn} in quads {power} all {all} near or beyond the edge {outside}");
     // What is left is rasterisation at texel centres (triangles smaller than a texel in the focus).
-    assert!((drawn / power - 1.0).abs() < 0.02, "{drawn} vs {power}");
+    assert!((drawn / power - 1.0).abs() < 0.02, "{drawn} vs {power}"); // Measured: -0.014
 }
 
 #[test]
@@ -308,8 +308,9 @@ fn point_light_triangles_match_the_point_light_reference() {
     let truth = r.budget.on_map + r.budget.off_map;
     let m = compare(&out.map, &r.map);
     eprintln!("point light: photons {ours} vs reference floor power {truth}; map {m:?}");
-    assert!((ours / truth - 1.0).abs() < 0.02, "{ours} vs {truth}");
-    assert!(m.relative_l1 < 0.06 && m.flux_error.abs() < 0.01, "{m:?}");
+    assert!((ours / truth - 1.0).abs() < 8e-4, "{ours} vs {truth}"); // Measured: 9.0e-5
+    // Measured: relative L1 0.040, flux error -6.4e-4.
+    assert!(m.relative_l1 < 0.06 && m.flux_error.abs() < 5e-3, "{m:?}");
 }
 
 #[test]
@@ -340,7 +341,7 @@ fn a_spot_lights_only_its_cone() {
     );
     let truth = r.budget.on_map + r.budget.off_map;
     let ours = photon_power(&photons);
-    assert!((ours / truth - 1.0).abs() < 0.03, "{ours} vs {truth}");
+    assert!((ours / truth - 1.0).abs() < 1.5e-2, "{ours} vs {truth}"); // Measured: -1.6e-3
 }
 
 /// Floor area the light cube texel `k` sees: its solid angle times `d² / cos`.
@@ -392,12 +393,13 @@ fn the_light_cube_map_carries_the_floor_caustic() {
         out.map.texels.iter().map(|t| t[0] as f64).sum::<f64>() * s.floor.texel_area();
     let distance_error = distance_error / weight;
     eprintln!("cube {cube_power} map {map_power} receiver distance error {distance_error:.2e}");
+    // Measured: 9.4e-3.
     assert!(
         (cube_power / map_power - 1.0).abs() < 0.02,
         "{cube_power} vs {map_power}"
     );
     // Distances are interpolated linearly across a triangle, not exact inside it.
-    assert!(distance_error < 1e-3, "{distance_error}");
+    assert!(distance_error < 1e-3, "{distance_error}"); // Measured: 1.1e-4
 }
 
 #[test]
@@ -419,7 +421,6 @@ fn shadow_distances_are_the_first_surface() {
         match exact {
             None => assert_eq!(got, cube::FAR, "texel {k}"),
             Some(t) => {
-                // Texels at the sphere's silhouette may see the floor through the map's search.
                 let hit_sphere = s
                     .generator
                     .intersect(pl.position, d, f64::INFINITY)
@@ -430,10 +431,10 @@ fn shadow_distances_are_the_first_surface() {
                     floor += 1;
                 }
                 let err = (got as f64 / t - 1.0).abs();
-                assert!(
-                    err < 1e-3 || hit_sphere && err < 0.5,
-                    "texel {k}: {got} vs {t}"
-                );
+                // Measured: up to 1.2e-7 on the sphere (its silhouette texels included), 5.8e-8
+                // on the floor (f32 rounding of the stored distance).
+                let bound = if hit_sphere { 1e-6 } else { 5e-7 };
+                assert!(err < bound, "texel {k}: {got} vs {t}");
             }
         }
     }
@@ -530,15 +531,18 @@ fn the_caustic_lights_only_its_receiver() {
     let d = distance_map::texel_dir(k / (c * c), (k / c) % c, k % c, c);
     let receiver = (t[1] / t[0]) as f64;
     let on = pl.position + d * receiver;
+    // Measured: 5.6e-7 of the receiver distance.
     assert!(
-        on.z.abs() < 1e-3 * receiver,
+        on.z.abs() < 5e-6 * receiver,
         "the caustic lies on the floor: {on}"
     );
     let e_on = input.irradiance(on, DVec3::Z, true);
-    assert!(e_on >= t[0] as f64 * 0.999, "{e_on} vs {}", t[0]);
+    // Measured: equal (the texel holds the f32 of the same irradiance).
+    assert!(e_on >= t[0] as f64 * (1.0 - 1e-6), "{e_on} vs {}", t[0]);
     // Halfway to the glass the caustic went through (the first surface along d), facing the
     // light: the direct light alone.
     let first = cube.shadow[k] as f64;
+    // Measured: 0.43 of the receiver distance.
     assert!(
         first < 0.8 * receiver,
         "the caustic's direction passes the glass"
@@ -546,8 +550,9 @@ fn the_caustic_lights_only_its_receiver() {
     let front = pl.position + d * (0.5 * first);
     let e_front = input.irradiance(front, -d, false);
     let direct = pl.intensity() / (0.5 * first).powi(2);
+    // Measured: -7.8e-16.
     assert!(
-        (e_front / direct - 1.0).abs() < 1e-9,
+        (e_front / direct - 1.0).abs() < 5e-15,
         "{e_front} vs direct {direct}"
     );
 }
@@ -609,12 +614,13 @@ fn merging_small_triangles_keeps_the_focus_power() {
             a1 * (e[0] + e[1] + e[2]) / 3.0 + a2 * (e[0] + e[2] + e[3]) / 3.0
         })
         .sum();
-    assert!((drawn / quads - 1.0).abs() < 1e-5, "{drawn} vs {quads}");
+    assert!((drawn / quads - 1.0).abs() < 1e-9, "{drawn} vs {quads}"); // Measured: -1.3e-10
     let n_merged = pyr[127 * 127..].iter().filter(|t| t[2] > 0.0).count();
     let mp = compare(&plain.map, &r.map);
     let mm = compare(&merged.map, &r.map);
     eprintln!("{n_merged} merged blocks; plain {mp:?}\nmerged {mm:?}");
     assert!(n_merged > 0);
+    // Measured: flux error 0.0104 merged, -0.080 plain (0.13 of it).
     assert!(
         mm.flux_error.abs() < 0.5 * mp.flux_error.abs(),
         "{mm:?} vs {mp:?}"
