@@ -421,6 +421,34 @@ fn ripples_split_view_and_windows_run() {
     );
     let img = image::open(&png).unwrap().to_rgb8();
     assert_eq!(img.dimensions(), (900, 500));
+    // Both maps are of the same rippled water (the GPU simulation, the reference reading it back):
+    // the rings focus the light in both, and yuksel's flux is the reference's.
+    let map = |name: &str| -> (f64, f64) {
+        let line = stdout
+            .lines()
+            .find(|l| l.starts_with(&format!("map {name}:")))
+            .unwrap_or_else(|| panic!("no map line for {name} in\n{stdout}"));
+        let number = |after: &str| -> f64 {
+            line.split(after)
+                .nth(1)
+                .and_then(|v| v.split([',', ' ']).next())
+                .and_then(|v| v.parse().ok())
+                .unwrap_or_else(|| panic!("no `{after}` in {line}"))
+        };
+        (number("mean "), number("max "))
+    };
+    let (yuksel, reference) = (map("yuksel"), map("reference"));
+    eprintln!("maps: yuksel {yuksel:?}, reference {reference:?}");
+    // Measured: peaks 1.77 (yuksel) and 1.81 (reference), against 0.91 through flat water.
+    assert!(
+        yuksel.1 > 1.2 && reference.1 > 1.2,
+        "no ring focuses the light: {yuksel:?} {reference:?}"
+    );
+    // Measured: means 0.9117 and 0.9118 (1.1e-4 apart).
+    assert!(
+        (yuksel.0 / reference.0 - 1.0).abs() < 1.1e-3,
+        "the maps' flux differs: yuksel {yuksel:?}, reference {reference:?}"
+    );
 }
 
 fn switching_and_resizing_for_hundreds_of_frames_keeps_memory_flat() {

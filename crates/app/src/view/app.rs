@@ -564,6 +564,21 @@ impl Viewer {
                         sum / *n as f64
                     );
                 }
+                // With the map window open, what the last frame's maps held (green channel), so
+                // a scripted run can judge the caustics as well as the window.
+                if self.model.show_map {
+                    for slot in &self.model.slots[..self.model.sides()] {
+                        if let Some(m) = slot.floor_map() {
+                            let g = m.texels.iter().map(|t| t[1] as f64);
+                            let mean = g.clone().sum::<f64>() / m.texels.len().max(1) as f64;
+                            let max = g.fold(0.0, f64::max);
+                            println!(
+                                "map {}: {} x {}, mean {mean:.4}, max {max:.3}",
+                                slot.choice.name, m.width, m.height
+                            );
+                        }
+                    }
+                }
                 return Ok(Flow::Exit);
             }
         }
