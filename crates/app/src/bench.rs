@@ -600,6 +600,7 @@ fn plot(results: &[Measurement], path: &std::path::Path, adapter: &str) -> Resul
         .y_desc("log10 ms")
         .draw()?;
     let mut names: Vec<&str> = results.iter().map(|m| m.technique.as_str()).collect();
+    names.sort();
     names.dedup();
     for (k, t) in names.iter().enumerate() {
         let color = Palette99::pick(k).to_rgba();

@@ -416,25 +416,10 @@ fn render_frame(
         started.elapsed().as_secs_f64()
     );
     if let Some(raw) = &args.raw {
-        let texels = ctx.read_rgba_f32(texture)?;
-        let (width, height) = (texture.width() as usize, texture.height() as usize);
-        match output {
-            caustics_gpu::Output::Floor(_) => caustics_core::map::CausticsMap {
-                width,
-                height,
-                size: scene.water.as_ref().map_or(1.0, |w| w.size),
-                texels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect(),
-            }
-            .write_raw(raw)?,
-            caustics_gpu::Output::EyeSpace(_) => caustics_core::render::EyeSpaceCaustics {
-                width,
-                height,
-                texels: texels
-                    .iter()
-                    .map(|t| if t[3] >= 0.0 { *t } else { [f32::NAN; 4] })
-                    .collect(),
-            }
-            .write_raw(raw)?,
+        let size = scene.water.as_ref().map_or(1.0, |w| w.size);
+        match SceneCaustics::read(ctx, output, size)? {
+            SceneCaustics::Floor(m) => m.write_raw(raw)?,
+            SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
         }
         eprintln!("wrote {}", raw.display());
     }

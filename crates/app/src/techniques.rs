@@ -170,6 +170,30 @@ pub enum SceneCaustics {
 }
 
 impl SceneCaustics {
+    /// A GPU technique's output read back (the viewer's map window, `render --raw`): a floor map of
+    /// the water square `size`, or an eye-space image whose texels are the CPU twin's as they are
+    /// (flag < 0 where a pixel has no value).
+    pub fn read(ctx: &GpuContext, output: caustics_gpu::Output, size: f64) -> Result<Self> {
+        let texture = output.texture();
+        let texels = ctx.read_rgba_f32(texture)?;
+        let (width, height) = (texture.width() as usize, texture.height() as usize);
+        Ok(match output {
+            caustics_gpu::Output::Floor(_) => SceneCaustics::Floor(CausticsMap {
+                width,
+                height,
+                size,
+                texels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect(),
+            }),
+            caustics_gpu::Output::EyeSpace(_) => {
+                SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
+                    width,
+                    height,
+                    texels,
+                })
+            }
+        })
+    }
+
     pub fn caustics(&self) -> caustics_core::render::Caustics<'_> {
         match self {
             SceneCaustics::Floor(m) => caustics_core::render::Caustics::Floor(m),

@@ -139,6 +139,24 @@ pub struct Image {
     pub rgb: Vec<u8>,
 }
 
+/// Samples per side of the lattice [`slab_half_height`] searches.
+pub const SLAB_LATTICE: usize = 128;
+
+/// Half the height of the slab the water surface lies in, which the view rays search: the largest
+/// |h| on a [`SLAB_LATTICE`]² lattice of the square, times 1.5 (room for the interpolant between
+/// samples). The GPU's final image finds the same bound on the GPU (`final_image_slab.wgsl`).
+pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
+    let n = SLAB_LATTICE;
+    let mut m: f64 = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) * (size / n as f64);
+            m = m.max(surface.height(p).abs());
+        }
+    }
+    m * 1.5 + 1e-6
+}
+
 pub const AMBIENT: f64 = 0.12;
 
 struct Tracer<'a> {
@@ -184,17 +202,7 @@ pub fn render_with(
 ) -> Image {
     let cam = &scene.camera;
     let h_max = match (surface, &scene.water) {
-        (Some(s), Some(w)) => {
-            let n = 128;
-            let mut m: f64 = 0.0;
-            for i in 0..n {
-                for j in 0..n {
-                    let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) * (w.size / n as f64);
-                    m = m.max(s.height(p).abs());
-                }
-            }
-            m * 1.5 + 1e-6
-        }
+        (Some(s), Some(w)) => slab_half_height(s, w.size),
         _ => 0.0,
     };
     let ior = scene.water.as_ref().map_or(1.0, |w| w.ior);

@@ -55,14 +55,24 @@ struct Side {
     technique: Result<Box<dyn Technique>, String>,
     /// The water texture and map size the technique was configured with.
     configured: Option<(wgpu::TextureView, (u32, u32))>,
-    /// Why configuring failed, and for what water and map size: tried again when either changes.
-    failed: Option<(String, wgpu::TextureView, (u32, u32))>,
+    /// Why configuring (or updating) failed, and for what: tried again when any of it changes.
+    failed: Option<(String, FailKey)>,
     /// The map of a technique with no GPU implementation (the CPU reference), uploaded by the
     /// application when it changes.
     external: Option<wgpu::Texture>,
     image: Option<FinalImageFrame>,
     /// What the image frame was built from: caustics texture, water texture, image size.
     image_key: Option<ImageKey>,
+}
+
+/// What a technique's configuration depends on beyond its parameters: the water texture, the map
+/// size, and the camera's image size and the sun (an eye-space image's size, a gather region).
+#[derive(Clone, PartialEq)]
+struct FailKey {
+    water: wgpu::TextureView,
+    map: (u32, u32),
+    view: (u32, u32),
+    sun: [u64; 3],
 }
 
 #[derive(Clone, PartialEq)]
@@ -217,11 +227,10 @@ impl Renderer {
             w.update(ctx, clock.time, clock.amplitude);
             w.step_ripples(clock.steps);
         }
+        let image_grid = water_grid_resolution(scene) as u32;
+        let mut grids = vec![(image_grid, image_grid)];
         let image_water = match &mut self.water {
-            Some((w, _)) => {
-                let n = water_grid_resolution(scene) as u32;
-                Some(w.output(ctx, n, n)?)
-            }
+            Some((w, _)) => Some(w.output(ctx, image_grid, image_grid)?),
             None => None,
         };
         for side in &mut self.sides {
@@ -233,15 +242,18 @@ impl Renderer {
             let water = match &mut self.water {
                 Some((w, _)) => {
                     let (cols, rows) = technique.water_resolution(scene);
+                    grids.push((cols, rows));
                     w.output(ctx, cols, rows)?
                 }
                 None => self.no_water.clone(),
             };
-            if side
-                .failed
-                .as_ref()
-                .is_some_and(|(_, view, size)| *view == water.heights && *size == map)
-            {
+            let fail_key = FailKey {
+                water: water.heights.clone(),
+                map,
+                view: (scene.camera.width, scene.camera.height),
+                sun: scene.light.direction.to_array().map(f64::to_bits),
+            };
+            if side.failed.as_ref().is_some_and(|(_, k)| *k == fail_key) {
                 continue;
             }
             let fresh = side
@@ -262,9 +274,14 @@ impl Renderer {
                 }
                 Err(e) => {
                     side.configured = None;
-                    side.failed = Some((e.to_string(), water.heights.clone(), map));
+                    side.failed = Some((e.to_string(), fail_key));
                 }
             }
+        }
+        // Heights no side reads any more (an old map size, a technique switched away from) are
+        // neither written nor kept.
+        if let Some((w, _)) = &mut self.water {
+            w.retain_outputs(&grids);
         }
         for side in &mut self.sides {
             let caustics = match &side.technique {
@@ -383,7 +400,7 @@ impl Renderer {
         let side = self.sides.get(k)?;
         match (&side.technique, &side.failed) {
             (Err(e), _) if !e.is_empty() => Some(e),
-            (Ok(_), Some((e, _, _))) => Some(e),
+            (Ok(_), Some((e, _))) => Some(e),
             _ => None,
         }
     }

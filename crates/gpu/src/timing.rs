@@ -9,7 +9,7 @@
 //! [`crate::traffic`]: only [`GpuTimer::read`] waits, and it says so in its name.
 
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicU8, Ordering};
 
 use crate::{GpuContext, GpuError};
 
@@ -25,14 +25,18 @@ pub struct GpuTimer {
     latest: Vec<PassTime>,
 }
 
+const MAPPING: u8 = 0;
+const MAPPED: u8 = 1;
+const MAP_FAILED: u8 = 2;
+
 /// Where the frame loop's copy of the stamps is.
 enum Staged {
     /// Free: the next `resolve_frame` may copy into it.
     Idle,
     /// A copy of these passes was recorded; `frame_submitted` maps it.
     Recorded(Vec<String>),
-    /// Mapping; the flag turns true when the GPU is done.
-    Mapping(Vec<String>, Arc<AtomicBool>),
+    /// Mapping; the state turns [`MAPPED`] or [`MAP_FAILED`] when the GPU is done with it.
+    Mapping(Vec<String>, Arc<AtomicU8>),
 }
 
 /// One pass's GPU time.
@@ -106,10 +110,13 @@ impl GpuTimer {
             let Staged::Recorded(labels) = std::mem::replace(&mut self.staged, Staged::Idle) else {
                 unreachable!("matched above")
             };
-            let done = Arc::new(AtomicBool::new(false));
+            let done = Arc::new(AtomicU8::new(MAPPING));
             let flag = done.clone();
             staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-                flag.store(r.is_ok(), Ordering::Release);
+                flag.store(
+                    if r.is_ok() { MAPPED } else { MAP_FAILED },
+                    Ordering::Release,
+                );
             });
             self.staged = Staged::Mapping(labels, done);
         }
@@ -118,15 +125,20 @@ impl GpuTimer {
     /// The pass times of the latest frame the GPU has finished, without waiting for it.
     pub fn latest(&mut self, ctx: &GpuContext) -> &[PassTime] {
         let _ = ctx.device.poll(wgpu::PollType::Poll);
-        if let (Some(staging), Staged::Mapping(labels, done)) = (&self.staging, &self.staged)
-            && done.load(Ordering::Acquire)
-        {
-            if let Ok(view) = staging.slice(..).get_mapped_range() {
-                let stamps: &[u64] = bytemuck::cast_slice(&view);
-                self.latest = self.times(labels.iter().cloned(), stamps);
+        if let (Some(staging), Staged::Mapping(labels, done)) = (&self.staging, &self.staged) {
+            match done.load(Ordering::Acquire) {
+                MAPPED => {
+                    if let Ok(view) = staging.slice(..).get_mapped_range() {
+                        let stamps: &[u64] = bytemuck::cast_slice(&view);
+                        self.latest = self.times(labels.iter().cloned(), stamps);
+                    }
+                    staging.unmap();
+                    self.staged = Staged::Idle;
+                }
+                // A failed map leaves the buffer unmapped: free it for the next frame's copy.
+                MAP_FAILED => self.staged = Staged::Idle,
+                _ => {}
             }
-            staging.unmap();
-            self.staged = Staged::Idle;
         }
         &self.latest
     }

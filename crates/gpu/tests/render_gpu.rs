@@ -510,6 +510,10 @@ fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
         spent.uploaded_bytes <= 4096 * frames,
         "more than 4096 bytes uploaded per frame: {spent:?}"
     );
+    // A frame whose camera, sun and options stand still uploads nothing.
+    let before = ctx.traffic();
+    frame.update(&ctx, &scene, &options);
+    assert_eq!(ctx.traffic().since(&before).uploaded_bytes, 0);
 
     let gpu_h = frame.read_slab_half_height(&ctx).expect("slab") as f64;
     let cpu_h = slab_half_height(&grid, grid.size);

@@ -139,6 +139,9 @@ struct Script {
 struct GpuImage {
     texture: wgpu::Texture,
     id: egui::TextureId,
+    /// Whether `texture` is the viewer's own (written by [`set`](Self::set)) rather than the GPU
+    /// frame's output ([`show`](Self::show)), which must never be written into.
+    own: bool,
 }
 
 impl GpuImage {
@@ -150,7 +153,11 @@ impl GpuImage {
             &texture.create_view(&Default::default()),
             wgpu::FilterMode::Linear,
         );
-        GpuImage { texture, id }
+        GpuImage {
+            texture,
+            id,
+            own: true,
+        }
     }
 
     fn set(
@@ -161,8 +168,9 @@ impl GpuImage {
         height: u32,
         rgba: &[u8],
     ) {
-        if (self.texture.width(), self.texture.height()) != (width, height) {
+        if !self.own || (self.texture.width(), self.texture.height()) != (width, height) {
             self.texture = image_texture(ctx, width, height);
+            self.own = true;
             renderer.update_egui_texture_from_wgpu_texture(
                 &ctx.device,
                 &self.texture.create_view(&Default::default()),
@@ -182,6 +190,7 @@ impl GpuImage {
     ) {
         if self.texture != *texture {
             self.texture = texture.clone();
+            self.own = false;
             renderer.update_egui_texture_from_wgpu_texture(
                 &ctx.device,
                 &self.texture.create_view(&Default::default()),
@@ -658,7 +667,9 @@ impl Viewer {
     /// Refresh the map and buffer pictures whose windows are open and whose inputs changed.
     fn update_pictures(&mut self) -> Result<()> {
         let m = &mut self.model;
-        if m.show_map && m.stats.rendered {
+        // The GPU frame's maps stay on the GPU: read back for the window (on the CPU path the
+        // slots already hold theirs).
+        if m.show_map && m.stats.rendered && !m.quality.cpu_image {
             let sides = m.sides();
             self.renderer.read_maps(&mut m.slots[..sides])?;
         }

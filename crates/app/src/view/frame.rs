@@ -611,27 +611,8 @@ impl SceneRenderer {
             let Some(output) = frame.renderer.caustics(k) else {
                 continue;
             };
-            let texture = output.texture();
-            let texels = ctx.read_rgba_f32(texture)?;
-            let (width, height) = (texture.width() as usize, texture.height() as usize);
-            slot.caustics = Some(match output {
-                caustics_gpu::Output::Floor(_) => SceneCaustics::Floor(CausticsMap {
-                    width,
-                    height,
-                    size: self.scene.water.as_ref().map_or(1.0, |w| w.size),
-                    texels: texels.iter().map(|t| [t[0], t[1], t[2]]).collect(),
-                }),
-                caustics_gpu::Output::EyeSpace(_) => {
-                    SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
-                        width,
-                        height,
-                        texels: texels
-                            .iter()
-                            .map(|t| if t[3] >= 0.0 { *t } else { [f32::NAN; 4] })
-                            .collect(),
-                    })
-                }
-            });
+            let size = self.scene.water.as_ref().map_or(1.0, |w| w.size);
+            slot.caustics = Some(SceneCaustics::read(ctx, output, size)?);
             slot.map_changed = true;
         }
         Ok(())

@@ -90,7 +90,8 @@ pub struct FinalImage {
 }
 
 /// The final image of one scene at one image size, everything it reads and writes living across
-/// frames: built by [`FinalImage::frame`], updated per frame by one uniform write.
+/// frames: built by [`FinalImage::frame`], updated per frame by one uniform write when the camera,
+/// sun or options moved.
 pub struct FinalImageFrame {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
@@ -107,6 +108,9 @@ pub struct FinalImageFrame {
     map_size: Option<f64>,
     object_count: u32,
     size: (u32, u32),
+    /// What the uniform holds, so that a frame whose camera, sun and options stand still uploads
+    /// nothing.
+    written: Option<FinalImageUniform>,
     /// Kept alive with the bind groups that read them.
     _resources: Vec<wgpu::Buffer>,
     _textures: Vec<wgpu::Texture>,
@@ -454,6 +458,7 @@ impl FinalImage {
             map_size,
             object_count: meshes.objects.len() as u32,
             size: (width, height),
+            written: None,
             _resources: resources,
             _textures: terrain.into_iter().chain(albedo_image).collect(),
         };
@@ -575,7 +580,14 @@ impl FinalImageFrame {
             self.object_count,
             self.size,
         );
+        if self
+            .written
+            .is_some_and(|w| bytemuck::bytes_of(&w) == bytemuck::bytes_of(&params))
+        {
+            return;
+        }
         ctx.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&params));
+        self.written = Some(params);
     }
 
     /// Record the slab bound of the water (when there is water) and the image into `encoder`. With

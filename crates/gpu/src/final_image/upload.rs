@@ -12,7 +12,7 @@ use caustics_core::optics::{fresnel_transmittance, refract};
 use caustics_core::render::{AMBIENT, RenderOptions};
 use caustics_core::scene::{Albedo, FloorPattern, Material, Scene};
 use caustics_core::water::{GridSurface, Surface, sample_grid};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 /// Mirrors `FinalImage` in `shaders/final_image.wgsl` (uniform layout: each `vec3` is padded by the
 /// scalar after it).
@@ -59,7 +59,7 @@ pub struct SlabUniform {
 }
 
 /// Samples along each side of the lattice the slab bound is taken on (render.rs `render_with`).
-pub const SLAB_LATTICE: u32 = 128;
+pub const SLAB_LATTICE: u32 = caustics_core::render::SLAB_LATTICE as u32;
 
 /// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image.wgsl`.
 pub mod flags {
@@ -152,21 +152,9 @@ pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
     })
 }
 
-/// Bound on |h| of the water, for the slab the surface lies in: computed as `render.rs` `render`
-/// does (the largest |h| on a 128² lattice, times 1.5): the CPU twin of the slab pass
-/// (`shaders/final_image_slab.wgsl`), so both sides search the same slab and put the deck at the
-/// same height.
-pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
-    let n = SLAB_LATTICE;
-    let mut m: f64 = 0.0;
-    for i in 0..n {
-        for j in 0..n {
-            let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) * (size / n as f64);
-            m = m.max(surface.height(p).abs());
-        }
-    }
-    m * 1.5 + 1e-6
-}
+/// The slab bound of the CPU renderer, which the slab pass (`shaders/final_image_slab.wgsl`) finds
+/// on the GPU: both sides search the same slab and put the deck at the same height.
+pub use caustics_core::render::slab_half_height;
 
 /// Where the floor's light comes from, as the frame binds it.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -305,6 +305,12 @@ impl GpuWater {
         Ok(textures)
     }
 
+    /// Drop the outputs of sizes not in `keep`: they are no longer written, and their textures
+    /// live only as long as someone holds their view.
+    pub fn retain_outputs(&mut self, keep: &[(u32, u32)]) {
+        self.outputs.retain(|o| keep.contains(&(o.cols, o.rows)));
+    }
+
     /// Per frame: the source's time in seconds and a height factor (the viewer's amplitude
     /// slider; 0 = flat). Buffer writes only: 32 bytes, plus 16 per sine wave, 32 for paper 2's
     /// wave, 16 for the ocean, 48 per waiting ripple drop. The scene's ripple simulation queues
