@@ -113,6 +113,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
                     floor: Floor {
                         terrain: None,
                         albedo: Albedo::Pattern(FloorPattern::Plain),
+                        walls: false,
                     },
                     light,
                     time: 0.0,

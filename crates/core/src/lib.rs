@@ -13,6 +13,7 @@ pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod techniques;
+pub mod walls;
 pub mod water;
 
 pub use error::{Error, Result};

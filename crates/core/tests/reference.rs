@@ -25,6 +25,7 @@ fn plane() -> Floor {
     Floor {
         terrain: None,
         albedo: Albedo::Pattern(FloorPattern::Plain),
+        walls: false,
     }
 }
 
@@ -316,6 +317,7 @@ fn terrain_receives_the_cosine_of_its_slope() {
     let floor = Floor {
         terrain: Some(terrain),
         albedo: Albedo::Pattern(FloorPattern::Sand),
+        walls: false,
     };
     let w = water(size, 0.6, true);
     let light = DVec3::new(0.25, 0.1, -1.0).normalize();

@@ -120,6 +120,12 @@ pub struct FloorSpec {
     pub albedo: Option<PathBuf>,
     #[serde(default)]
     pub pattern: FloorPattern,
+    /// The four walls of the water's square receive light too, from the floor up to the rest water
+    /// level (issue 18): light that meets a wall stops there instead of wrapping round to the
+    /// floor. Only for a flat pool floor (no terrain); off unless asked, so that a scene's floor
+    /// map keeps holding all the light.
+    #[serde(default)]
+    pub walls: bool,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -353,6 +359,8 @@ pub struct Floor {
     /// Terrain heights above z = 0 on the scene square (clamped at its edges); `None` is the plane z = 0.
     pub terrain: Option<Grid>,
     pub albedo: Albedo,
+    /// The pool's walls are receivers ([`FloorSpec::walls`]); see [`crate::walls`].
+    pub walls: bool,
 }
 
 impl Floor {

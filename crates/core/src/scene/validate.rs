@@ -84,6 +84,12 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
     }
 
     let floor = validate_floor(&file.floor, base, size)?;
+    if floor.walls && water.is_none() {
+        return Err(Error::field(
+            "floor.walls",
+            "walls receive the light the water sends down; the scene has no water",
+        ));
+    }
     if let (Some(w), Some(t)) = (&water, &floor.terrain) {
         let (lo, _) = t.min_max();
         if lo as f64 >= w.depth {
@@ -398,7 +404,17 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
             }
         }
     };
-    Ok(Floor { terrain, albedo })
+    if f.walls && terrain.is_some() {
+        return Err(Error::field(
+            "floor.walls",
+            "walls receive light only around a flat pool floor; remove `terrain` or `walls`",
+        ));
+    }
+    Ok(Floor {
+        terrain,
+        albedo,
+        walls: f.walls,
+    })
 }
 
 fn srgb_to_linear(c: f32) -> f32 {

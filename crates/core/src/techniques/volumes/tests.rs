@@ -452,6 +452,7 @@ fn reference_agrees_with_the_floor_reference() {
     let floor = crate::scene::Floor {
         terrain: None,
         albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
+        walls: false,
     };
     let exact = crate::reference::reference(
         &crate::reference::ReferenceInput {
@@ -518,6 +519,7 @@ fn the_floor_map_under_waves_agrees_with_the_reference() {
             floor: &crate::scene::Floor {
                 terrain: None,
                 albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
+                walls: false,
             },
             light: inp.light,
             width: res,
