@@ -120,8 +120,21 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     use tracing_subscriber::util::SubscriberInitExt;
     subscriber(cli.verbose, std::env::var("RUST_LOG").ok(), std::io::stderr).init();
-    match run(cli) {
-        Ok(()) => ExitCode::SUCCESS,
+    let result = run(cli);
+    // With CAUSTICS_VALIDATION=1, any message of the Vulkan validation layer fails the command, even
+    // one the command recovered from (a GPU render that fell back to the CPU) or one given when the
+    // device was destroyed.
+    let messages = caustics_gpu::validation::all_messages();
+    if let Some(first) = messages.first() {
+        // Each was logged as it came; this names the first again where the command ends.
+        eprintln!(
+            "error: the Vulkan validation layer reported {} message(s), the first: {first}",
+            messages.len()
+        );
+    }
+    match result {
+        Ok(()) if messages.is_empty() => ExitCode::SUCCESS,
+        Ok(()) => ExitCode::FAILURE,
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::FAILURE

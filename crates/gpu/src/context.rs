@@ -27,6 +27,9 @@ pub struct GpuContext {
     errors: Arc<Mutex<Vec<String>>>,
     lost: Arc<Mutex<Option<String>>>,
     pub(crate) traffic: Arc<crate::traffic::Traffic>,
+    /// The validation layer's messages, where the instance is `validation::instance`'s. Last, so
+    /// that it is dropped after the device and the instance (see `validation::Guard`'s `Drop`).
+    validation: Option<crate::validation::Guard>,
 }
 
 fn parse_backends(s: &str) -> Result<wgpu::Backends, GpuError> {
@@ -54,8 +57,16 @@ impl GpuContext {
         pollster::block_on(Self::create(options, None))
     }
 
-    /// Create the instance alone (the viewer needs it to make a window surface first).
+    /// Create the instance alone (the viewer needs it to make a window surface first). With
+    /// `CAUSTICS_VALIDATION=1`, under the Vulkan validation layer (see [`crate::validation`]).
     pub fn instance(options: &GpuOptions) -> Result<wgpu::Instance, GpuError> {
+        if crate::validation::requested() {
+            let backends = match &options.backend {
+                Some(b) => parse_backends(b)?,
+                None => wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN),
+            };
+            return crate::validation::instance(backends);
+        }
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         if let Some(b) = &options.backend {
             desc.backends = parse_backends(b)?;
@@ -116,15 +127,20 @@ impl GpuContext {
             | wgpu::Features::FLOAT32_FILTERABLE
             | wgpu::Features::FLOAT32_BLENDABLE;
         let features = available & wanted_features;
-        let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("caustics"),
-                required_features: features,
-                required_limits: adapter.limits(),
-                ..Default::default()
-            })
-            .await
-            .map_err(|e| GpuError::RequestDevice(e.to_string()))?;
+        let desc = wgpu::DeviceDescriptor {
+            label: Some("caustics"),
+            required_features: features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        };
+        let (device, queue) = if crate::validation::owns(&instance) {
+            crate::validation::request_device(&adapter, &desc)?
+        } else {
+            adapter
+                .request_device(&desc)
+                .await
+                .map_err(|e| GpuError::RequestDevice(e.to_string()))?
+        };
 
         Ok(Self::from_parts(instance, adapter, device, queue))
     }
@@ -160,6 +176,7 @@ impl GpuContext {
             info.device_type
         );
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let validation = crate::validation::Guard::of(&instance);
         GpuContext {
             instance,
             adapter,
@@ -170,6 +187,7 @@ impl GpuContext {
             errors,
             lost,
             traffic: Default::default(),
+            validation,
         }
     }
 
@@ -216,7 +234,8 @@ impl GpuContext {
         Ok(())
     }
 
-    /// Turn any error wgpu reported since the last call, or a lost device, into a `GpuError`.
+    /// Turn any error wgpu reported since the last call, a lost device, or (with
+    /// `CAUSTICS_VALIDATION=1`) a message of the validation layer, into a `GpuError`.
     pub fn check(&self) -> Result<(), GpuError> {
         if let Some(reason) = self.lost.lock().expect("lost flag").clone() {
             return Err(GpuError::DeviceLost(reason));
@@ -227,7 +246,11 @@ impl GpuContext {
             errors.clear();
             return Err(GpuError::Validation(all));
         }
-        Ok(())
+        drop(errors);
+        match &self.validation {
+            Some(v) => v.check(),
+            None => Ok(()),
+        }
     }
 
     /// Block until the queue is idle, then [`check`](Self::check).
@@ -246,8 +269,11 @@ fn gpu_required() -> bool {
 /// The device for GPU tests. Without an adapter the test is skipped with a message, unless
 /// `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), in which case it fails: CI must not pass by skipping.
 /// Tests whose harness marks them ignored without an adapter use [`gpu_test_skip`] and
-/// [`test_gpu`] instead, so that a skip shows in cargo's summary rather than as a pass.
+/// [`test_gpu`] instead, so that a skip shows in cargo's summary rather than as a pass. With
+/// `CAUSTICS_VALIDATION=1` (all three helpers) a test context panics when dropped with a message of
+/// the validation layer that no `check` reported, so a GPU test fails on any.
 pub fn test_context() -> Option<GpuContext> {
+    crate::validation::panic_on_drop();
     match GpuContext::headless(&GpuOptions::default()) {
         Ok(ctx) => Some(ctx),
         Err(e) if gpu_required() => panic!("CAUSTICS_REQUIRE_GPU=1 but no GPU device: {e}"),
@@ -262,6 +288,7 @@ pub fn test_context() -> Option<GpuContext> {
 /// device can be created, and always `None` with `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), so
 /// that there the tests run and fail in [`test_gpu`]: CI must not pass by skipping.
 pub fn gpu_test_skip() -> Option<String> {
+    crate::validation::panic_on_drop();
     if gpu_required() {
         return None;
     }
@@ -274,6 +301,7 @@ pub fn gpu_test_skip() -> Option<String> {
 /// test fails rather than passing unrun: that happens with `CAUSTICS_REQUIRE_GPU=1` or when an
 /// ignored GPU test is asked for with `--ignored` / `--include-ignored`.
 pub fn test_gpu() -> GpuContext {
+    crate::validation::panic_on_drop();
     GpuContext::headless(&GpuOptions::default())
         .unwrap_or_else(|e| panic!("a GPU test without a GPU device: {e}"))
 }

@@ -16,6 +16,7 @@ pub mod technique;
 pub mod timing;
 pub mod traffic;
 mod transfer;
+pub mod validation;
 pub mod volumes;
 pub mod water;
 pub mod yuksel;
