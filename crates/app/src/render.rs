@@ -22,7 +22,7 @@ use crate::techniques::{Runner, SceneCaustics, Spec};
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass.
+    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass, underwater.
     #[arg(long, default_value = "pool")]
     scene: String,
     /// The caustics technique (see `caustics techniques`); the scene's own by default.
