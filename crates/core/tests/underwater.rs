@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use caustics_core::optics::fresnel_transmittance;
 use caustics_core::render::{Image, RenderOptions, camera_under_water, from_below, render_with};
-use caustics_core::scene::{Albedo, Camera, Scene, WaterSource};
+use caustics_core::scene::{Albedo, BUILTIN_SCENES, Camera, Scene, WaterSource};
 use caustics_core::water::Surface;
 
 const IOR: f64 = 1.333;
@@ -254,4 +254,30 @@ fn beyond_the_window_the_surface_mirrors_the_pool() {
     assert!(differ_out <= 150, "{differ_out} of {outside}");
     // Measured: all but 64 of 19285 (next to the edge, where little of the sky comes through).
     assert!(inside - differ_in <= 640, "{differ_in} of {inside}");
+}
+
+/// A camera under the water is a valid scene; one under the pool's floor is refused, naming the
+/// field.
+#[test]
+fn a_camera_may_be_under_the_water_but_not_under_the_floor() {
+    let (_, text) = BUILTIN_SCENES
+        .iter()
+        .find(|(n, _)| *n == "underwater")
+        .expect("the built-in underwater scene");
+    let at = |z: &str| {
+        text.replace(
+            "position = [0.4, 0.3, 0.6]",
+            &format!("position = [0.4, 0.3, {z}]"),
+        )
+    };
+    assert_ne!(at("0.2"), *text, "the camera line is the scene's");
+    let dir = std::path::Path::new(".");
+    let scene = Scene::from_toml(&at("0.2"), dir, "under").expect("under the water is valid");
+    assert!(camera_under_water(&scene, None));
+    let err = Scene::from_toml(&at("-0.1"), dir, "below").expect_err("under the floor");
+    let message = err.to_string();
+    assert!(
+        message.contains("camera.position") && message.contains("floor"),
+        "{message}"
+    );
 }
