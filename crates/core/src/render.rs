@@ -615,7 +615,8 @@ impl Tracer<'_> {
     }
 
     /// The first crossing of a rising underwater ray with `z = level + h(x, y)` (the rest plane
-    /// without a surface); `None` for a ray going down or level, which cannot reach it.
+    /// without a surface); `None` for a ray going down or level, or starting over the surface's
+    /// slab, which cannot meet it from below.
     fn hit_water_from_below(&self, o: DVec3, d: DVec3, level: f64) -> Option<(f64, DVec3)> {
         if d.z <= 0.0 {
             return None;
