@@ -22,7 +22,7 @@ use crate::techniques::{Runner, SceneCaustics, Spec};
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass.
+    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass, underwater.
     #[arg(long, default_value = "pool")]
     scene: String,
     /// The caustics technique (see `caustics techniques`); the scene's own by default.
@@ -228,8 +228,10 @@ pub fn run(args: RenderArgs) -> Result<()> {
         return caustic_triangles_image(&runner, &scene, &spec, out);
     }
     // Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the
-    // water where refraction puts them, the floor lit by its map.
-    if let (Some(out), None, "volumes") = (&out, &args.raw, spec.name.as_str()) {
+    // water where refraction puts them, the floor lit by its map. That view looks down through the
+    // surface; a camera under the water gets the general final image of the volumes' map.
+    let under = caustics_core::render::camera_under_water(&scene, None);
+    if let (Some(out), None, "volumes", false) = (&out, &args.raw, spec.name.as_str(), under) {
         return volumes_image(&runner, &scene, &spec, out);
     }
 

@@ -331,7 +331,7 @@ fn inputs_are_never_overwritten() {
 #[test]
 fn scene_check_and_techniques() {
     let d = tmpdir("check");
-    for name in ["pool", "shore", "objects", "glass"] {
+    for name in ["pool", "shore", "objects", "glass", "underwater"] {
         let o = caustics(&["scene", "check", name], &d);
         assert!(o.status.success(), "{name}: {}", stderr(&o));
     }

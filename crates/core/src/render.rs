@@ -16,6 +16,11 @@
 //!   the water) reads that image where `F` projects through the camera, which is the pixel whose
 //!   straight ray the technique's eye pass followed to `F`. Where the image has nothing there (off
 //!   the image, no floor seen, beyond the last cascade), `F` is lit as under flat water.
+//! - A camera under the surface (inside the water's square, below the water's height there) starts
+//!   its rays in the water ([`camera_under_water`]). A ray meeting the surface from below splits by
+//!   the Fresnel equations from the dense side ([`from_below`]): inside Snell's window (the cone of
+//!   half-angle asin(1/n) about the surface normal) part of it refracts out to the sky, the rest
+//!   reflects back down; beyond the window it is totally reflected, so the surface mirrors the pool.
 //! - Objects under water are lit by the flat-water refracted sun with their own shadow test; they
 //!   do not receive caustics from the reference (which knows only the floor) until a technique that
 //!   handles mesh receivers provides them.
@@ -225,6 +230,7 @@ pub fn render_with(
         t_flat: fresnel_transmittance(-sun.z, 1.0, ior),
         pool: scene.floor.terrain.is_none(),
     };
+    let under = camera_under_water(scene, surface);
     let n = options.supersampling.max(1) as usize;
     let (w, h) = (cam.width as usize, cam.height as usize);
     let done = std::sync::atomic::AtomicUsize::new(0);
@@ -240,7 +246,7 @@ pub fn render_with(
                             x as f64 + (sx as f64 + 0.5) / n as f64 - 0.5,
                             y as f64 + (sy as f64 + 0.5) / n as f64 - 0.5,
                         );
-                        c += tracer.trace(o, d, 0);
+                        c += tracer.trace_from(o, d, 0, under);
                     }
                 }
                 let c = c / (n * n) as f64 * options.exposure;
@@ -255,6 +261,44 @@ pub fn render_with(
         width: cam.width,
         height: cam.height,
         rgb: rows.concat(),
+    }
+}
+
+/// Whether the scene's camera is under the water: inside the water's square and below the surface's
+/// height there (the rest level without a surface). Its primary rays then start in the water.
+pub fn camera_under_water(scene: &Scene, surface: Option<&dyn Surface>) -> bool {
+    let Some(water) = &scene.water else {
+        return false;
+    };
+    let p = scene.camera.position;
+    let h = surface.map_or(0.0, |s| s.height(p.truncate()));
+    inside(p.truncate(), water.size) && p.z < water.depth + h
+}
+
+/// A ray meeting the water surface from below, split by the Fresnel equations from the dense side.
+#[derive(Clone, Copy, Debug)]
+pub struct FromBelow {
+    /// The mirrored ray, back into the water.
+    pub reflected: DVec3,
+    /// The ray refracted out into the air; `None` beyond Snell's window (total internal reflection).
+    pub refracted: Option<DVec3>,
+    /// The fraction of the flux that leaves the water (0 beyond the window); the reflected ray
+    /// carries the rest, `1 - transmittance`.
+    pub transmittance: f64,
+}
+
+/// Split the unit ray `d` meeting the surface of unit upward normal `n` from the water's side
+/// (`d · n > 0`), the water of index `ior` under air. Snell's window is where `sin θ < 1 / ior`.
+pub fn from_below(d: DVec3, n: DVec3, ior: f64) -> FromBelow {
+    let refracted = refract(d, -n, ior);
+    FromBelow {
+        reflected: reflect(d, n),
+        refracted,
+        transmittance: if refracted.is_some() {
+            fresnel_transmittance(d.dot(n), ior, 1.0)
+        } else {
+            0.0
+        },
     }
 }
 
@@ -361,6 +405,10 @@ impl Tracer<'_> {
         let water = scene.water.as_ref().expect("under water");
         let size = water.size;
         let (t_floor, floor_p) = self.hit_floor(o, d);
+        // A ray going up ends at the surface seen from below instead; the branches below read
+        // `t_floor` and `floor_p` as the ray's end, wherever it is.
+        let ceiling = self.hit_water_from_below(o, d, water.depth);
+        let (t_floor, floor_p) = ceiling.unwrap_or((t_floor, floor_p));
         let obj = self.nearest_object(o, d, t_floor);
         let (dist, colour) = if let Some((t, n, k)) = obj {
             (t, self.shade_object(o + d * t, n, d, k, depth, true))
@@ -370,6 +418,8 @@ impl Tracer<'_> {
             let p = o + d * t;
             let a = scene.floor.albedo.at(DVec2::new(p.x + p.y, p.z), size);
             (t, a * AMBIENT * self.sun_radiance())
+        } else if ceiling.is_some() {
+            (t_floor, self.leave_water(floor_p, d, depth))
         } else {
             (t_floor, self.shade_floor(floor_p))
         };
@@ -532,7 +582,7 @@ impl Tracer<'_> {
         let top = level + self.h_max;
         let bottom = level - self.h_max;
         if o.z < bottom || d.z >= 0.0 {
-            return None; // the camera is above the water in every scene
+            return None; // `trace` follows rays in the air, which meet the surface from above
         }
         let t0 = ((top - o.z) / d.z).max(0.0);
         let t1 = (bottom - o.z) / d.z;
@@ -562,6 +612,69 @@ impl Tracer<'_> {
             a = b;
         }
         None
+    }
+
+    /// The first crossing of a rising underwater ray with `z = level + h(x, y)` (the rest plane
+    /// without a surface); `None` for a ray going down or level, or starting over the surface's
+    /// slab, which cannot meet it from below.
+    fn hit_water_from_below(&self, o: DVec3, d: DVec3, level: f64) -> Option<(f64, DVec3)> {
+        if d.z <= 0.0 {
+            return None;
+        }
+        let Some(s) = self.surface else {
+            let t = ((level - o.z) / d.z).max(0.0);
+            return Some((t, o + d * t));
+        };
+        let (bottom, top) = (level - self.h_max, level + self.h_max);
+        if o.z > top {
+            return None;
+        }
+        let t0 = ((bottom - o.z) / d.z).max(0.0);
+        let t1 = (top - o.z) / d.z;
+        // Depth of the ray below the surface at distance t.
+        let f = |t: f64| {
+            let p = o + d * t;
+            level + s.height(p.truncate()) - p.z
+        };
+        let steps = 24;
+        let dt = (t1 - t0) / steps as f64;
+        let mut a = t0;
+        for k in 1..=steps {
+            let b = t0 + dt * k as f64;
+            if f(b) <= 0.0 {
+                let (mut lo, mut hi) = (a, b);
+                for _ in 0..30 {
+                    let m = 0.5 * (lo + hi);
+                    if f(m) > 0.0 {
+                        lo = m;
+                    } else {
+                        hi = m;
+                    }
+                }
+                let t = 0.5 * (lo + hi);
+                return Some((t, o + d * t));
+            }
+            a = b;
+        }
+        Some((t1, o + d * t1))
+    }
+
+    /// Radiance arriving along `d` at point `p` of the surface, seen from below: the air's through
+    /// Snell's window, weighted by the Fresnel transmittance from the dense side, plus the water's
+    /// mirrored in the surface (all of it beyond the window).
+    fn leave_water(&self, p: DVec3, d: DVec3, depth: u32) -> DVec3 {
+        let water = self.scene.water.as_ref().expect("under water");
+        let n = match self.surface {
+            Some(s) => height_field_normal(s.gradient(p.truncate())),
+            None => DVec3::Z,
+        };
+        let split = from_below(d, n, water.ior);
+        let mut c = self.trace_under(p - n * 1e-5, split.reflected, depth + 1)
+            * (1.0 - split.transmittance);
+        if let Some(r) = split.refracted {
+            c += self.trace(p + n * 1e-5, r, depth + 1) * split.transmittance;
+        }
+        c
     }
 
     /// Distance to and point on the floor or terrain along an underwater ray.

@@ -413,6 +413,14 @@ fn glass_under_water_matches_the_cpu() {
     check(&ctx, "glass-under-water", &scene, true, bounds);
 }
 
+/// A camera under the surface (the built-in `underwater`): the primary rays start in the water,
+/// the surface seen from below splits them into Snell's window and the totally reflected mirror.
+fn underwater_matches_the_cpu() {
+    let ctx = test_gpu();
+    // Measured: identical images.
+    check(&ctx, "underwater", &small("underwater"), true, EXACT);
+}
+
 /// The heights `surface` takes on the GPU (the grid [`FinalImage::render_with`] uploads), as a
 /// texture the techniques and the frame read.
 fn heights_texture(ctx: &GpuContext, grid: &GridSurface) -> wgpu::Texture {
@@ -691,6 +699,7 @@ test_main! {
     gpu albedo_image_without_a_map_matches_the_cpu,
     gpu glass_with_an_air_caustics_map_matches_the_cpu,
     gpu glass_under_water_matches_the_cpu,
+    gpu underwater_matches_the_cpu,
     gpu a_frame_moves_its_camera_and_sun_through_uniforms_alone,
     gpu a_frame_reads_a_techniques_texture_as_render_with_reads_its_map,
     gpu_ignored full_size_render_times,

@@ -79,7 +79,9 @@ impl OrbitCamera {
     }
 
     /// Fly for `dt` seconds: `forward` along the view, `right` sideways, `up` along +z (each -1, 0
-    /// or 1), at a fifth of the scene per second, both the eye and the target.
+    /// or 1), at a fifth of the scene per second, both the eye and the target. Nothing holds the eye
+    /// above the water: flown under the surface, it sees the pool from below (the final image starts
+    /// its rays in the water, `caustics_core::render::camera_under_water`).
     pub fn fly(&mut self, forward: f64, right: f64, up: f64, dt: f64) {
         let (f, r, _) = self.basis();
         let step = (f * forward + r * right + DVec3::Z * up) * (0.2 * self.scale * dt);
@@ -206,6 +208,26 @@ mod tests {
         o.pan(40.0, -25.0, 180.0);
         assert!((o.target - t).dot(f).abs() < 1e-9);
         assert!((o.target - t).length() > 0.0);
+    }
+
+    #[test]
+    fn flying_down_dives_under_the_water() {
+        use caustics_core::render::camera_under_water;
+        use caustics_core::scene::Scene;
+        let mut scene = Scene::builtin("pool").unwrap();
+        let level = scene.water.as_ref().unwrap().depth;
+        let mut o = OrbitCamera::from_scene(&scene.camera, scene.size);
+        assert!(!camera_under_water(&scene, None));
+        // Forward at 0.8 m/s for 4.3 s: 3.44 m of the 4.32 m to the target on the pool's floor,
+        // to (1.538, 1.417, 0.642), under the rest level 1 m.
+        for _ in 0..43 {
+            o.fly(1.0, 0.0, 0.0, 0.1);
+        }
+        let p = o.position();
+        assert!((p - DVec3::new(1.538, 1.417, 0.642)).length() < 1e-3, "{p}");
+        assert!(p.z < level);
+        scene.camera = o.camera(320, 180);
+        assert!(camera_under_water(&scene, None));
     }
 
     #[test]

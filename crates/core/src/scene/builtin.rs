@@ -5,4 +5,5 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
     ("shore", include_str!("scenes/shore.toml")),
     ("objects", include_str!("scenes/objects.toml")),
     ("glass", include_str!("scenes/glass.toml")),
+    ("underwater", include_str!("scenes/underwater.toml")),
 ];

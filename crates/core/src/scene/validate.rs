@@ -127,6 +127,16 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
                 ));
             }
             resolution("camera.resolution", c.resolution)?;
+            // Under the water is a place to look from (the final image starts its rays there);
+            // under a pool's floor is inside the ground.
+            let [x, y, z] = c.position;
+            let over_pool = x >= 0.0 && y >= 0.0 && x <= size && y <= size;
+            if water.is_some() && floor.terrain.is_none() && over_pool && z <= 0.0 {
+                return Err(Error::field(
+                    "camera.position",
+                    format!("{:?} is under the pool's floor (z = 0)", c.position),
+                ));
+            }
             Camera {
                 position: c.position.into(),
                 target: c.target.into(),

@@ -1,6 +1,7 @@
 // The final image, one invocation per pixel: the GPU twin of caustics-core/src/render.rs, function
 // for function (`render`, `Tracer::trace`, `trace_under`, `shade_floor`, `shade_object`,
-// `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`). The light
+// `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`,
+// `hit_water_from_below`, `leave_water`, `camera_under_water`). The light
 // transport is documented there. Composed after optics.wgsl, water.wgsl, shading.wgsl and bvh.wgsl.
 //
 // WGSL has no recursion, and the CPU's recursion is linear in what it returns: `trace` returns the
@@ -92,7 +93,8 @@ struct Object {
 const FAR: f32 = 3.0e38;
 // render.rs gives up past this recursion depth (`if depth > 6`).
 const MAX_DEPTH: u32 = 6u;
-// Pending rays: each level of glass leaves at most one ray waiting, so 7 levels need 8 slots.
+// Pending rays: each level of glass, or of the surface met from below, leaves at most one ray
+// waiting, so 7 levels need 8 slots.
 const RAY_STACK: u32 = 16u;
 // Steps of the slab search for the water and the terrain, and bisection steps after it.
 const WATER_STEPS: u32 = 24u;
@@ -340,6 +342,81 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(o, -1.0);
 }
 
+// Depth of the ray below the water surface at distance t.
+fn water_depth_along(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
+    return -water_gap(o, d, t);
+}
+
+// render.rs `hit_water_from_below`: the first crossing of a rising underwater ray with
+// z = level + h(x, y) (the rest plane without a surface): xyz the point, w the distance (-1: none).
+fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    if d.z <= 0.0 {
+        return vec4<f32>(o, -1.0);
+    }
+    if !has(FLAG_SURFACE) {
+        let t = max((params.water_level - o.z) / d.z, 0.0);
+        return vec4<f32>(o + d * t, t);
+    }
+    let top = params.water_level + h_max;
+    let bottom = params.water_level - h_max;
+    if o.z > top {
+        return vec4<f32>(o, -1.0);
+    }
+    let t0 = max((bottom - o.z) / d.z, 0.0);
+    let t1 = (top - o.z) / d.z;
+    let dt = (t1 - t0) / f32(WATER_STEPS);
+    var a = t0;
+    for (var k = 1u; k <= WATER_STEPS; k++) {
+        let b = t0 + dt * f32(k);
+        if water_depth_along(o, d, b) <= 0.0 {
+            var lo = a;
+            var hi = b;
+            for (var s = 0u; s < BISECTIONS; s++) {
+                let m = 0.5 * (lo + hi);
+                if water_depth_along(o, d, m) > 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            return vec4<f32>(o + d * t, t);
+        }
+        a = b;
+    }
+    return vec4<f32>(o + d * t1, t1);
+}
+
+// render.rs `leave_water` with `from_below`: a ray meeting the surface at `p` from below splits by
+// the Fresnel equations from the dense side: out to the air through Snell's window, the rest (all of
+// it beyond the window) mirrored back into the water.
+fn leave_water(p: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+    var n = vec3<f32>(0.0, 0.0, 1.0);
+    if has(FLAG_SURFACE) {
+        n = height_field_normal(water_height_gradient(p.xy).yz);
+    }
+    let r = refract_dir(d, -n, params.ior);
+    var t = 0.0;
+    if r.w != 0.0 {
+        t = fresnel_transmittance(dot(d, n), params.ior, 1.0);
+        push_ray(p + n * 1e-5, r.xyz, w * t, depth + 1u, false);
+    }
+    push_ray(p - n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, true);
+}
+
+// render.rs `camera_under_water`: inside the water's square and below the surface there.
+fn camera_under_water() -> bool {
+    if !has(FLAG_WATER) {
+        return false;
+    }
+    let c = params.camera_position;
+    var h = 0.0;
+    if has(FLAG_SURFACE) {
+        h = water_height_gradient(c.xy).x;
+    }
+    return inside(c.xy, params.water_size) && c.z < params.water_level + h;
+}
+
 // Height of the ray above the floor or terrain at distance t.
 fn floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     let p = o + d * t;
@@ -537,7 +614,13 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
 // Radiance arriving along `d` at point `o` under the water.
 fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     let size = params.water_size;
-    let floor_hit = hit_floor(o, d);
+    var floor_hit = hit_floor(o, d);
+    // A ray going up ends at the surface seen from below instead; the branches below read
+    // `floor_hit` as the ray's end, wherever it is.
+    let ceiling = hit_water_from_below(o, d);
+    if ceiling.w >= 0.0 {
+        floor_hit = ceiling;
+    }
     let t_floor = floor_hit.w;
     let obj = nearest_object(o, d, t_floor);
     if obj.found {
@@ -548,16 +631,18 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         let p = o + d * t;
         let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size);
         emit(w * absorbed(t), a * params.ambient * sun_radiance());
+    } else if ceiling.w >= 0.0 {
+        leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor));
     } else {
         emit(w * absorbed(t_floor), shade_floor(floor_hit.xyz));
     }
 }
 
-// Everything a primary ray brings back: `Tracer::trace(o, d, 0)` unrolled.
-fn radiance(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+// Everything a primary ray brings back: `Tracer::trace_from(o, d, 0, under)` unrolled.
+fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec3<f32> {
     pixel_radiance = vec3<f32>(0.0);
     ray_count = 0u;
-    push_ray(o, d, vec3<f32>(1.0), 0u, false);
+    push_ray(o, d, vec3<f32>(1.0), 0u, under);
     while ray_count > 0u {
         ray_count--;
         let r = rays[ray_count];
@@ -586,13 +671,14 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     h_max = slab_half_height();
+    let under = camera_under_water();
     let n = max(params.supersampling, 1u);
     var c = vec3<f32>(0.0);
     for (var sy = 0u; sy < n; sy++) {
         for (var sx = 0u; sx < n; sx++) {
             let x = f32(id.x) + (f32(sx) + 0.5) / f32(n) - 0.5;
             let y = f32(id.y) + (f32(sy) + 0.5) / f32(n) - 0.5;
-            c += radiance(params.camera_position, camera_ray(x, y));
+            c += radiance(params.camera_position, camera_ray(x, y), under);
         }
     }
     c = c / f32(n * n) * params.exposure;
