@@ -245,6 +245,9 @@ fn every_technique_shows_caustics_in_the_window() {
         "0.4",
         "--map-size",
         "128",
+        // The GPU frame, which `auto` leaves for the CPU image on a software adapter.
+        "--final-image",
+        "gpu",
     ];
 
     // Flat water: the plain floor is nearly uniform (the absorption and the Fresnel term vary a
@@ -343,6 +346,8 @@ fn every_gpu_technique_runs_without_creating_or_reading_back() {
                 "0.25",
                 "--map-size",
                 "64",
+                "--final-image",
+                "gpu",
                 "--report-traffic",
             ],
         ) else {
@@ -397,6 +402,8 @@ fn ripples_split_view_and_windows_run() {
             "--ripple",
             "--drop-every",
             "4",
+            "--final-image",
+            "gpu",
             "--show-map",
             "--show-buffers",
             "--screenshot",

@@ -1119,10 +1119,13 @@ fn initial_model(
             cpu_image: match args.final_image {
                 ImageOn::Cpu => true,
                 ImageOn::Gpu => false,
-                // The GPU frame wherever there is a GPU: on a software adapter too, where the CPU
-                // renderer alone is faster than the GPU pass, because the frame then reads
-                // nothing back (docs/benchmarks.md, the viewer's frame before and after).
-                ImageOn::Auto => false,
+                // The faster of the two: the GPU frame on a GPU, the CPU image on a software
+                // adapter, where lavapipe runs the GPU passes on the same cores and the CPU
+                // renderer traces the small image faster. Median frame at 640 x 360, CPU image
+                // against GPU frame (docs/benchmarks.md, the viewer's table): yuksel 87.8 / 153.9
+                // ms, procedural 90.1 / 127.8, volumes 163.9 / 179.8, cascaded 774 / 819 on
+                // Mesa 25.0.7; 31.4 / 106.7 ms (yuksel) on Mesa 22.3.6.
+                ImageOn::Auto => software,
             },
         },
         scale: args.scale.unwrap_or(scale),

@@ -89,7 +89,8 @@ pub struct ViewArgs {
     pub buffer: Option<String>,
     /// Where the final image is traced: `gpu` (the GPU frame: water, technique and final image on
     /// the GPU, shown without a CPU copy), `cpu` (the techniques' maps read back and the image traced
-    /// by the CPU renderer, the GPU pass's twin), or `auto`: the GPU frame whenever there is a GPU.
+    /// by the CPU renderer, the GPU pass's twin), or `auto`: the faster there, the GPU frame on a
+    /// GPU and the CPU image on a software adapter such as lavapipe.
     #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
     pub final_image: ImageOn,
     /// Hide the control panel (toggle with F2).
