@@ -313,25 +313,29 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let final_image = runner
             .gpu
             .as_ref()
-            .and_then(|ctx| match FinalImage::new(ctx) {
-                Ok(f) => Some((ctx, f)),
+            .map(|ctx| match FinalImage::new(ctx) {
+                Ok(f) => Ok(Some((ctx, f))),
+                Err(e @ GpuError::DeviceLost(_)) => Err(e),
                 Err(e) => {
                     eprintln!(
                         "the GPU cannot build the final-image pass ({e}): rendering on the CPU"
                     );
-                    None
+                    Ok(None)
                 }
-            });
-        let from_gpu = final_image.as_ref().and_then(|(ctx, final_image)| {
-            render_on_gpu(
+            })
+            .transpose()?
+            .flatten();
+        let from_gpu = match &final_image {
+            Some((ctx, final_image)) => render_on_gpu(
                 ctx,
                 final_image,
                 &scene,
                 surface.as_deref(),
                 caustics,
                 &options,
-            )
-        });
+            )?,
+            None => None,
+        };
         let on = if from_gpu.is_some() { "GPU" } else { "CPU" };
         let image = match from_gpu {
             Some(image) => image,
@@ -485,7 +489,8 @@ fn gpu_context(args: &RenderArgs) -> Result<Option<GpuContext>> {
 }
 
 /// The final image from the GPU twin of `caustics_core::render::render`, or `None` (after one line
-/// on stderr) when the GPU fails at it, e.g. an image larger than its textures may be.
+/// on stderr) when the GPU fails at it, e.g. an image larger than its textures may be; a lost
+/// device is an error (the CPU image would hide that the GPU went away).
 fn render_on_gpu(
     ctx: &GpuContext,
     final_image: &FinalImage,
@@ -493,7 +498,7 @@ fn render_on_gpu(
     surface: Option<&dyn Surface>,
     caustics: Option<Caustics>,
     options: &RenderOptions,
-) -> Option<caustics_core::render::Image> {
+) -> Result<Option<caustics_core::render::Image>, GpuError> {
     let mut timer = GpuTimer::new(ctx, 2);
     match final_image.render_with(ctx, scene, surface, caustics, options, Some(&mut timer)) {
         Ok(image) => {
@@ -502,11 +507,12 @@ fn render_on_gpu(
                     tracing::info!("GPU pass `{}`: {:.1} ms", t.label, t.ms);
                 }
             }
-            Some(image)
+            Ok(Some(image))
         }
+        Err(e @ GpuError::DeviceLost(_)) => Err(e),
         Err(e) => {
             eprintln!("the GPU render failed ({e}): rendering on the CPU");
-            None
+            Ok(None)
         }
     }
 }

@@ -1,7 +1,8 @@
 //! `caustics view` in a real window: under the display the environment has, else under an Xvfb
 //! this test starts. Each technique renders a few frames into a screenshot that must show
 //! caustics on the floor; a long scripted run switches techniques and resizes the window while its
-//! resident memory must stay flat.
+//! resident memory must stay flat (2,000 frames of everything with `CAUSTICS_LONG_RUN=1`); a lost
+//! device ends a run with one error.
 //!
 //! Without a display and without Xvfb the tests are reported as ignored (the reason printed once),
 //! unless `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), when they fail: CI must not pass by
@@ -245,6 +246,9 @@ fn every_technique_shows_caustics_in_the_window() {
         "0.4",
         "--map-size",
         "128",
+        // The GPU frame, which `auto` leaves for the CPU image on a software adapter.
+        "--final-image",
+        "gpu",
     ];
 
     // Flat water: the plain floor is nearly uniform (the absorption and the Fresnel term vary a
@@ -343,6 +347,8 @@ fn every_gpu_technique_runs_without_creating_or_reading_back() {
                 "0.25",
                 "--map-size",
                 "64",
+                "--final-image",
+                "gpu",
                 "--report-traffic",
             ],
         ) else {
@@ -397,6 +403,8 @@ fn ripples_split_view_and_windows_run() {
             "--ripple",
             "--drop-every",
             "4",
+            "--final-image",
+            "gpu",
             "--show-map",
             "--show-buffers",
             "--screenshot",
@@ -559,6 +567,172 @@ fn switching_and_resizing_for_hundreds_of_frames_keeps_memory_flat() {
     assert!(image::open(&png).is_ok());
 }
 
+/// A device lost mid-run (`--lose-device-at`, which destroys it as a driver reset would lose it)
+/// ends a scripted run with one error naming the loss and a non-zero exit, for the GPU frame and
+/// for the CPU image alike, never a panic.
+fn a_lost_device_ends_the_run_with_one_clear_error() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let Some(display) = display() else {
+        return;
+    };
+    let dir = tmpdir("lost");
+    for image in ["gpu", "cpu"] {
+        let args = [
+            "view",
+            "--technique",
+            "yuksel",
+            "--frames",
+            "8",
+            "--size",
+            "320x180",
+            "--no-panel",
+            "--map-size",
+            "32",
+            "--final-image",
+            image,
+            "--lose-device-at",
+            "4",
+        ];
+        let o = Command::new(env!("CARGO_BIN_EXE_caustics"))
+            .args(args)
+            .current_dir(&dir)
+            .env("DISPLAY", &display.name)
+            .env_remove("WAYLAND_DISPLAY")
+            .env_remove("WAYLAND_SOCKET")
+            .output()
+            .expect("the binary runs");
+        let err = String::from_utf8_lossy(&o.stderr);
+        if err.contains("GPU adapter") && !required() {
+            eprintln!("skipping the viewer test: {err}");
+            return;
+        }
+        assert_eq!(o.status.code(), Some(1), "{image}: {err}");
+        assert!(!err.contains("panicked"), "{image}: {err}");
+        let errors: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+        assert_eq!(errors.len(), 1, "{image}: {err}");
+        assert!(
+            errors[0].contains("the GPU device was lost: the device was destroyed"),
+            "{image}: {err}"
+        );
+    }
+}
+
+/// Whether the long run is asked for (`CAUSTICS_LONG_RUN=1`, as `.ci/run` sets).
+fn long_run() -> bool {
+    std::env::var("CAUSTICS_LONG_RUN").is_ok_and(|v| v == "1")
+}
+
+/// `name value` pairs from the viewer's `wgpu: frame N ...` line for `frame`.
+fn wgpu_objects(stdout: &str, frame: u64) -> Vec<(String, i64)> {
+    let tag = format!("wgpu: frame {frame} ");
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix(tag.as_str()))
+        .unwrap_or_else(|| panic!("no wgpu line for frame {frame} in\n{stdout}"));
+    line.split(", ")
+        .map(|pair| {
+            let (name, v) = pair.rsplit_once(' ').expect("`name value`");
+            (name.to_string(), v.parse().expect("a count"))
+        })
+        .collect()
+}
+
+/// The long run issue 19 asks for: 2,000 frames with every technique the pool offers switched in
+/// each frame (split every other round), the water moving (the waves' clock, then the ripple
+/// simulation the drops start), a ripple dropped every 25 frames and the window resized every
+/// 50, all on the GPU frame. After the first 100 frames (every technique built, every window
+/// size seen) the resident memory grows under 5 %, and none of wgpu's counts of live objects
+/// (buffers and their bytes, texture bytes and views, bind groups, pipelines, ...) is higher at
+/// the end than at frame 100.
+/// Behind `CAUSTICS_LONG_RUN=1` (reported as ignored without it): minutes on lavapipe.
+fn two_thousand_frames_of_every_technique_keep_memory_flat() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let Some(display) = display() else {
+        return;
+    };
+    let dir = tmpdir("long");
+    let frames = 2000;
+    let started = Instant::now();
+    let Some(o) = view(
+        &display,
+        &dir,
+        &[
+            "--frames",
+            &frames.to_string(),
+            "--size",
+            "160x90",
+            "--no-panel",
+            "--scale",
+            "0.5",
+            "--map-size",
+            "32",
+            "--cycle-techniques",
+            "--drop-every",
+            "25",
+            "--resize-every",
+            "50",
+            "--final-image",
+            "gpu",
+            "--report-memory",
+        ],
+    ) else {
+        return;
+    };
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !stderr.lines().any(|l| l.starts_with("technique `")),
+        "a technique failed in the long run:\n{stderr}"
+    );
+    let rss = |frame: u64| -> u64 {
+        let tag = format!("memory: frame {frame} VmRSS ");
+        stdout
+            .lines()
+            .find_map(|l| l.strip_prefix(tag.as_str()))
+            .and_then(|v| v.trim_end_matches(" kB").parse().ok())
+            .unwrap_or_else(|| panic!("no memory line for frame {frame} in\n{stdout}"))
+    };
+    let (early, late) = (rss(100), rss(frames));
+    let growth = late as f64 / early as f64 - 1.0;
+    let peak = (1..=frames / 100)
+        .map(|k| rss(100 * k))
+        .max()
+        .unwrap_or(late);
+    eprintln!(
+        "long run: {:.0} s; VmRSS {early} kB at frame 100, {late} kB at frame {frames} ({:+.2} %), \
+         peak {peak} kB; {}",
+        started.elapsed().as_secs_f64(),
+        growth * 100.0,
+        stdout
+            .lines()
+            .find(|l| l.starts_with("frames:"))
+            .unwrap_or("")
+    );
+    // Measured on lavapipe from Mesa 25.0.7, three runs: 295 280 -> 299 460 kB from frame 100 to
+    // 2000 (+1.4 %), 294 192 -> 295 796 kB (+0.55 %), 294 036 -> 295 704 kB (+0.57 %); 482, 511
+    // and 333 s on a 2-core machine shared with other builds (load 15), median frame 54-89 ms. (Mesa 22.3.6's lavapipe grows
+    // by megabytes a frame, docs/reliability.md.)
+    assert!(
+        growth < 0.05,
+        "resident memory grew {:.1} % from frame 100 to {frames}",
+        growth * 100.0
+    );
+    let (at100, at_end) = (wgpu_objects(&stdout, 100), wgpu_objects(&stdout, frames));
+    eprintln!("wgpu objects at frame 100: {at100:?}\nat frame {frames}: {at_end:?}");
+    for ((name, a), (_, b)) in at100.iter().zip(&at_end) {
+        // Measured (both runs): every count the same at frames 100 and 2000 (buffers 137, bind
+        // groups 133, pipelines 25 + 54, ...) but texture bytes and views, 16 348 928 -> 16 312 064
+        // and 153 -> 150: the window's size at the end differs from frame 100's. Command encoders
+        // are wgpu's own pool, in flight with the frames the swap chain holds (6 in one run, 7 in
+        // the other): up to that latency, 2, more is allowed.
+        let slack = if name == "command_encoders" { 2 } else { 0 };
+        assert!(
+            *b <= a + slack,
+            "wgpu's {name} grew from {a} at frame 100 to {b} at frame {frames}"
+        );
+    }
+}
+
 /// The techniques `caustics techniques` lists as computing caustics in eye space.
 fn eye_space_techniques() -> Vec<String> {
     let o = Command::new(env!("CARGO_BIN_EXE_caustics"))
@@ -697,6 +871,10 @@ fn main() -> std::process::ExitCode {
             switching_and_resizing_for_hundreds_of_frames_keeps_memory_flat,
         ),
         (
+            "a_lost_device_ends_the_run_with_one_clear_error",
+            a_lost_device_ends_the_run_with_one_clear_error,
+        ),
+        (
             "the_glass_scene_runs_caustic_triangles_beside_its_reference",
             the_glass_scene_runs_caustic_triangles_beside_its_reference,
         ),
@@ -705,6 +883,10 @@ fn main() -> std::process::ExitCode {
             the_underwater_scene_shows_snells_window,
         ),
     ];
+    let long = long_run();
+    if !long {
+        eprintln!("the 2,000-frame run is ignored: set CAUSTICS_LONG_RUN=1 to run it");
+    }
     let mut trials = vec![Trial::test(
         "without_a_display_it_says_so_instead_of_panicking",
         || {
@@ -721,5 +903,15 @@ fn main() -> std::process::ExitCode {
             .with_ignored_flag(ignore),
         );
     }
+    trials.push(
+        Trial::test(
+            "two_thousand_frames_of_every_technique_keep_memory_flat",
+            || {
+                two_thousand_frames_of_every_technique_keep_memory_flat();
+                Ok(())
+            },
+        )
+        .with_ignored_flag(ignore || !long),
+    );
     libtest_mimic::run(&args, trials).exit_code()
 }

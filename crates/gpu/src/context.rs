@@ -167,7 +167,7 @@ impl GpuContext {
         let lost = Arc::new(Mutex::new(None));
         let lost_sink = lost.clone();
         device.set_device_lost_callback(move |reason, message| {
-            *lost_sink.lock().expect("lost flag") = Some(format!("{reason:?}: {message}"));
+            *lost_sink.lock().expect("lost flag") = Some(lost_reason(reason, &message));
         });
         tracing::info!(
             "GPU adapter: {} ({:?}, {:?})",
@@ -237,6 +237,7 @@ impl GpuContext {
     /// Turn any error wgpu reported since the last call, a lost device, or (with
     /// `CAUSTICS_VALIDATION=1`) a message of the validation layer, into a `GpuError`.
     pub fn check(&self) -> Result<(), GpuError> {
+        self.notice_loss();
         if let Some(reason) = self.lost.lock().expect("lost flag").clone() {
             return Err(GpuError::DeviceLost(reason));
         }
@@ -253,12 +254,41 @@ impl GpuContext {
         }
     }
 
+    /// wgpu runs the device-lost callback only while it maintains the device (a poll): after a
+    /// loss, work is dropped without an error, so without this `check` would report success on
+    /// frames that never ran. A non-blocking poll costs a fence query.
+    fn notice_loss(&self) {
+        if let Err(e) = self.device.poll(wgpu::PollType::Poll) {
+            let mut lost = self.lost.lock().expect("lost flag");
+            lost.get_or_insert_with(|| e.to_string());
+        }
+    }
+
+    /// Whether the device is known to be lost (after a poll to find out).
+    pub(crate) fn is_lost(&self) -> bool {
+        self.notice_loss();
+        self.lost.lock().expect("lost flag").is_some()
+    }
+
     /// Block until the queue is idle, then [`check`](Self::check).
     pub fn wait(&self) -> Result<(), GpuError> {
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
             .map_err(|e| GpuError::DeviceLost(e.to_string()))?;
         self.check()
+    }
+}
+
+/// What the device-lost callback says, in words: wgpu's message is empty for `destroy()`.
+fn lost_reason(reason: wgpu::DeviceLostReason, message: &str) -> String {
+    let why = match reason {
+        wgpu::DeviceLostReason::Destroyed => "the device was destroyed",
+        wgpu::DeviceLostReason::Unknown => "the driver lost it (a reset, a removed GPU, a crash)",
+    };
+    if message.is_empty() {
+        why.to_string()
+    } else {
+        format!("{why}: {message}")
     }
 }
 

@@ -107,6 +107,17 @@ impl GpuContext {
     pub fn create_buffer_init(&self, desc: &wgpu::util::BufferInitDescriptor) -> wgpu::Buffer {
         Traffic::add(&self.traffic.buffers, 1);
         Traffic::add(&self.traffic.uploaded_bytes, desc.contents.len() as u64);
+        if self.is_lost() {
+            // wgpu's `create_buffer_init` panics when a lost device cannot map the new buffer; the
+            // buffer is invalid either way, and the caller's next `check` reports the loss.
+            let size = (desc.contents.len() as u64).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT);
+            return self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: desc.label,
+                size: size.max(wgpu::COPY_BUFFER_ALIGNMENT),
+                usage: desc.usage,
+                mapped_at_creation: false,
+            });
+        }
         self.device.create_buffer_init(desc)
     }
 

@@ -169,3 +169,72 @@ fn cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused() {
             .unwrap_or_else(|e| panic!("{name} with {params}: wgpu saw it: {e}"));
     }
 }
+
+/// A device lost mid-run (here destroyed, as a driver reset or a removed GPU would lose it) gives
+/// `GpuError::DeviceLost` from the next frame, from a technique created or configured after it,
+/// from a readback and from a wait on the queue: one error naming the loss, never a panic and never a validation
+/// error about the resources the lost device no longer holds.
+#[test]
+fn a_lost_device_gives_device_lost_errors() {
+    use caustics_core::render::RenderOptions;
+    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    let Some(ctx) = small_device() else { return };
+    let scene = scene("pool", 64);
+    let mut renderer = Renderer::new(&ctx).expect("renderer");
+    renderer
+        .set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
+        .expect("water");
+    let spec = |name: &str| {
+        Some(TechniqueSpec {
+            name: name.into(),
+            params: SMALL.parse().unwrap(),
+        })
+    };
+    renderer.set_techniques(&ctx, &[spec("yuksel"), spec("procedural")]);
+    let clock = |time| WaterClock {
+        time,
+        amplitude: 1.0,
+        steps: 0,
+    };
+    let options = RenderOptions::default();
+    renderer
+        .render(&ctx, &scene, clock(0.0), &options)
+        .expect("a frame before the loss");
+    ctx.wait().expect("the frame before the loss finishes");
+    assert_eq!(renderer.error(0), None);
+
+    let map = renderer
+        .caustics(0)
+        .expect("yuksel's map")
+        .texture()
+        .clone();
+
+    ctx.device.destroy();
+    let lost = |what: &str, r: Result<(), GpuError>| match r {
+        Err(GpuError::DeviceLost(reason)) => eprintln!("{what}: device lost ({reason})"),
+        other => panic!("{what}: expected DeviceLost, got {other:?}"),
+    };
+    lost(
+        "the next frame",
+        renderer.render(&ctx, &scene, clock(0.1), &options),
+    );
+    lost(
+        "a frame after that",
+        renderer.render(&ctx, &scene, clock(0.2), &options),
+    );
+    renderer.set_techniques(&ctx, &[spec("volumes")]);
+    lost(
+        "a technique switched to after the loss",
+        renderer.render(&ctx, &scene, clock(0.3), &options),
+    );
+    lost(
+        "a technique configured after the loss",
+        configure(&ctx, "yuksel", &scene, ""),
+    );
+    lost(
+        "reading a map back",
+        ctx.read_rgba_f32(&map)
+            .map(|texels| assert!(texels.is_empty())),
+    );
+    lost("waiting on the queue", ctx.wait());
+}

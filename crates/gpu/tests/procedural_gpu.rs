@@ -328,9 +328,15 @@ fn high_frequency_share(map: &CausticsMap) -> f64 {
 /// x·y), point sampling per pixel aliases and the texture-space variant's mip chain does not: far
 /// less of the mipmapped map's energy sits above half its Nyquist frequency, and (trilinear) it is
 /// much closer to the map's true texel averages (the per-pixel caustic at 16 x 16 points per texel,
-/// box-averaged). lavapipe's anisotropic filter (an elliptical Gaussian wider than the texel) removes
-/// even more of the high frequencies, and with them some of the true texel-scale detail: it is
-/// measured, not asserted, against the box averages.
+/// box-averaged). Both follow from what WGSL and Vulkan specify for a mip-filtered sample: the level
+/// of detail comes from the screen-space derivatives (Vulkan 1.3 §16.6.7, "Scale Factor Operation,
+/// LOD Operation and Image Level(s) Selection"), so each pixel reads a prefiltered average of about
+/// its own footprint. Anisotropic filtering is held only to aliasing no more than trilinear: Vulkan
+/// leaves its filter implementation-dependent (§16.6.8, "Texel Anisotropic Filtering", which bounds
+/// the level by the footprint's minor axis and the sample count by `maxAnisotropy`), and lavapipe
+/// changed it between Mesa 22.3.6 (an elliptical Gaussian wider than the texel, which also blurs
+/// away true texel-scale detail) and Mesa 25.0.7 (the same as trilinear on this near-isotropic
+/// footprint). Its distance to the box averages is printed, not asserted.
 fn the_mip_chain_aliases_less_than_point_sampling() {
     let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
@@ -362,21 +368,27 @@ fn the_mip_chain_aliases_less_than_point_sampling() {
     let e = |m: &CausticsMap| rms_against(m, &truth);
     let h = high_frequency_share;
     eprintln!(
-        "RMS against the 16 x 16 supersampled map: point {:.4}, trilinear mips {:.4}, anisotropic {:.4}; \
-         energy above half Nyquist: point {:.3}, trilinear {:.3}, anisotropic {:.3}",
+        "RMS against the 16 x 16 supersampled map: point {:.5}, trilinear mips {:.5}, anisotropic {:.5}; \
+         energy above half Nyquist: point {:.5}, trilinear {:.5}, anisotropic {:.5} ({:+.1e} from trilinear)",
         e(&point),
         e(&trilinear),
         e(&anisotropic),
         h(&point),
         h(&trilinear),
-        h(&anisotropic)
+        h(&anisotropic),
+        h(&anisotropic) - h(&trilinear)
     );
-    // Measured on lavapipe: RMS point 0.0527, trilinear 0.0049 (0.093 of it).
+    // Measured, RMS: point 0.0527, trilinear 0.0049 (0.093 of it) on lavapipe from Mesa 22.3.6 and
+    // from Mesa 25.0.7 alike.
     assert!(e(&trilinear) < 0.25 * e(&point));
-    // Measured on lavapipe: share above half Nyquist point 0.322, trilinear 0.194 (0.60 of it).
+    // Measured, share above half Nyquist: point 0.322, trilinear 0.194 (0.60 of it) on both.
     assert!(h(&trilinear) < 0.7 * h(&point));
-    // Measured on lavapipe: anisotropic 0.022 (0.068 of point's).
-    assert!(h(&anisotropic) < 0.25 * h(&point));
+    // Measured, anisotropic's share: 0.022 on Mesa 22.3.6 (0.17 below trilinear's), 0.19362 on
+    // Mesa 25.0.7 (trilinear's exactly). Not a tolerance on a measurement but the spec's allowance:
+    // §16.6.8's level comes from the footprint's minor axis, so on a slightly anisotropic footprint
+    // a conforming filter may be a little sharper than trilinear; 5 % of the gap between trilinear
+    // and point sampling is left for that.
+    assert!(h(&anisotropic) < h(&trilinear) + 0.05 * (h(&point) - h(&trilinear)));
 }
 
 fn a_map_beyond_the_device_limit_is_refused() {

@@ -78,12 +78,30 @@ impl ApplicationHandler for ViewApp {
         };
         let response = v.egui_state.on_window_event(&v.window, &event);
         match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::CloseRequested => {
+                self.error = v.lost.take();
+                event_loop.exit();
+            }
             WindowEvent::Resized(size) => v.resize(size.width, size.height),
+            WindowEvent::RedrawRequested if v.lost.is_some() => {}
             WindowEvent::RedrawRequested => match v.frame() {
                 Ok(Flow::Continue) => {}
                 Ok(Flow::Exit) => event_loop.exit(),
+                Err(e) if v.script.is_none() && device_lost(&e) => {
+                    // Nothing can be drawn with a lost device: the title says it, and the window
+                    // stays until closed, when the run ends with the error.
+                    v.window.set_title(&format!(
+                        "caustics view: {} (close the window)",
+                        e.root_cause()
+                    ));
+                    tracing::error!("{e:#}");
+                    v.lost = Some(e);
+                }
                 Err(e) => {
+                    if device_lost(&e) {
+                        v.window
+                            .set_title(&format!("caustics view: {}", e.root_cause()));
+                    }
                     self.error = Some(e);
                     event_loop.exit();
                 }
@@ -99,7 +117,9 @@ impl ApplicationHandler for ViewApp {
         let Some(v) = self.viewer.as_ref() else {
             return;
         };
-        if v.continuous() {
+        if v.lost.is_some() {
+            event_loop.set_control_flow(ControlFlow::Wait);
+        } else if v.continuous() {
             v.window.request_redraw();
             event_loop.set_control_flow(ControlFlow::Wait);
         } else if let Some(at) = v.repaint_at {
@@ -111,6 +131,16 @@ impl ApplicationHandler for ViewApp {
             event_loop.set_control_flow(ControlFlow::Wait);
         }
     }
+}
+
+/// Whether `e` comes from a lost GPU device, which no later frame can recover from.
+fn device_lost(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        matches!(
+            c.downcast_ref::<caustics_gpu::GpuError>(),
+            Some(caustics_gpu::GpuError::DeviceLost(_))
+        )
+    })
 }
 
 enum Flow {
@@ -126,6 +156,7 @@ struct Script {
     cycle: Option<Vec<String>>,
     resize_every: Option<u64>,
     drop_every: Option<u64>,
+    lose_device_at: Option<u64>,
     /// The window size asked for at the start, which resizes vary around.
     base_size: [u32; 2],
     /// Wall time of each frame, ms, and whether it rendered the scene.
@@ -285,6 +316,8 @@ struct Viewer {
     last_frame: Instant,
     last_render: Option<RenderKey>,
     last_buffer: Option<BufferKey>,
+    /// The lost device's error, shown in the title until the window is closed.
+    lost: Option<anyhow::Error>,
     /// When egui asked to be drawn again, if it did.
     repaint_at: Option<Instant>,
     window: Arc<Window>,
@@ -404,6 +437,7 @@ impl Viewer {
             cycle: args.cycle_techniques.clone(),
             resize_every: args.resize_every,
             drop_every: args.drop_every,
+            lose_device_at: args.lose_device_at,
             base_size: args.size,
             times: Vec::new(),
             passes: Vec::new(),
@@ -428,6 +462,7 @@ impl Viewer {
             last_frame: Instant::now(),
             last_render: None,
             last_buffer: None,
+            lost: None,
             repaint_at: None,
             window,
         })
@@ -521,6 +556,11 @@ impl Viewer {
                 Some(kib) => println!("memory: frame {} VmRSS {kib} kB", self.frame),
                 None => println!("memory: frame {} VmRSS unknown", self.frame),
             }
+            println!(
+                "wgpu: frame {} {}",
+                self.frame,
+                super::wgpu_objects(&self.ctx().device)
+            );
         }
         if let (Some(traffic), Some(s)) = (self.report_traffic.as_mut(), self.script.as_ref()) {
             let first = steady_from(s.frames);
@@ -816,7 +856,9 @@ impl Viewer {
                 None
             }
             wgpu::CurrentSurfaceTexture::Validation => {
-                bail!("the window's surface refused a frame: {:?}", ctx.check())
+                // A lost device is the likeliest cause: say that, not the symptom.
+                ctx.check()?;
+                bail!("the window's surface refused a frame")
             }
         };
         let mut encoder = ctx
@@ -955,6 +997,12 @@ impl Viewer {
             return;
         };
         let k = self.frame;
+        if s.lose_device_at == Some(k) {
+            self.ctx().device.destroy();
+        }
+        let Some(s) = &self.script else {
+            return;
+        };
         if let Some(only) = &s.cycle {
             let names: Vec<String> = if only.is_empty() {
                 self.model.technique_names.clone()
@@ -981,12 +1029,17 @@ impl Viewer {
         {
             let [w, h] = s.base_size;
             // Narrower, wider, taller, each frame size a new swap chain and new image textures;
-            // never narrower than the panel and a view.
+            // never narrower than the panel and a view (without the panel, than `--size` allows).
             let f = [1.0, 0.8, 1.3, 0.9][((k / every) % 4) as usize];
             let g = [1.0, 1.2, 0.85, 0.7][((k / every) % 4) as usize];
+            let least = if self.model.show_panel {
+                [400, 200]
+            } else {
+                [64, 64]
+            };
             let size = winit::dpi::PhysicalSize::new(
-                ((w as f64 * f) as u32).max(400),
-                ((h as f64 * g) as u32).max(200),
+                ((w as f64 * f) as u32).max(least[0]),
+                ((h as f64 * g) as u32).max(least[1]),
             );
             if let Some(now) = self.window.request_inner_size(size) {
                 self.resize(now.width, now.height);
@@ -1066,10 +1119,13 @@ fn initial_model(
             cpu_image: match args.final_image {
                 ImageOn::Cpu => true,
                 ImageOn::Gpu => false,
-                // The GPU frame wherever there is a GPU: on a software adapter too, where the CPU
-                // renderer alone is faster than the GPU pass, because the frame then reads
-                // nothing back (docs/benchmarks.md, the viewer's frame before and after).
-                ImageOn::Auto => false,
+                // The faster of the two: the GPU frame on a GPU, the CPU image on a software
+                // adapter, where lavapipe runs the GPU passes on the same cores and the CPU
+                // renderer traces the small image faster. Median frame at 640 x 360, CPU image
+                // against GPU frame (docs/benchmarks.md, the viewer's table): yuksel 87.8 / 153.9
+                // ms, procedural 90.1 / 127.8, volumes 163.9 / 179.8, cascaded 774 / 819 on
+                // Mesa 25.0.7; 31.4 / 106.7 ms (yuksel) on Mesa 22.3.6.
+                ImageOn::Auto => software,
             },
         },
         scale: args.scale.unwrap_or(scale),

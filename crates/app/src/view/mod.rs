@@ -89,7 +89,8 @@ pub struct ViewArgs {
     pub buffer: Option<String>,
     /// Where the final image is traced: `gpu` (the GPU frame: water, technique and final image on
     /// the GPU, shown without a CPU copy), `cpu` (the techniques' maps read back and the image traced
-    /// by the CPU renderer, the GPU pass's twin), or `auto`: the GPU frame whenever there is a GPU.
+    /// by the CPU renderer, the GPU pass's twin), or `auto`: the faster there, the GPU frame on a
+    /// GPU and the CPU image on a software adapter such as lavapipe.
     #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
     pub final_image: ImageOn,
     /// Hide the control panel (toggle with F2).
@@ -112,7 +113,13 @@ pub struct ViewArgs {
     /// Smoke mode: drop a ripple as a click near the image's centre would, every K frames.
     #[arg(long, requires = "frames")]
     pub drop_every: Option<u64>,
-    /// Print the resident memory (VmRSS) at frames 50 and every 100 after, and at the last.
+    /// Smoke mode: destroy the GPU device at frame N, as a driver reset would lose it, to show
+    /// how the viewer reports a lost device (the window's title says so, the run exits with the
+    /// error).
+    #[arg(long, requires = "frames", value_name = "N")]
+    pub lose_device_at: Option<u64>,
+    /// Print the resident memory (VmRSS) at frames 50 and every 100 after, and at the last, with
+    /// wgpu's count of the objects alive on the device (buffers, textures, bind groups, ...).
     #[arg(long)]
     pub report_memory: bool,
     /// After the run (with --frames), print per technique shown what the GPU crate created,
@@ -193,4 +200,36 @@ pub fn resident_kib() -> Option<u64> {
         .lines()
         .find_map(|l| l.strip_prefix("VmRSS:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+}
+
+/// wgpu's own count of the objects alive on `device` (its `counters` feature), as `name value`
+/// pairs: the viewer's, the techniques' and egui's together. Beside the resident memory it tells
+/// growth in what the process holds from growth inside the driver, which no count of ours sees.
+/// Left out: wgpu-hal 30's Vulkan `textures` count (`create_texture` never adds to it and
+/// `destroy_texture` subtracts, so it falls by one per texture freed, swap-chain images
+/// included) and `memory_allocations` (not counted on Vulkan); `texture_bytes` and
+/// `texture_views` stand for the textures.
+pub fn wgpu_objects(device: &wgpu::Device) -> String {
+    let c = device.get_internal_counters().hal;
+    let pairs = [
+        ("buffers", &c.buffers),
+        ("buffer_bytes", &c.buffer_memory),
+        ("texture_bytes", &c.texture_memory),
+        ("texture_views", &c.texture_views),
+        ("bind_groups", &c.bind_groups),
+        ("bind_group_layouts", &c.bind_group_layouts),
+        ("render_pipelines", &c.render_pipelines),
+        ("compute_pipelines", &c.compute_pipelines),
+        ("pipeline_layouts", &c.pipeline_layouts),
+        ("shader_modules", &c.shader_modules),
+        ("samplers", &c.samplers),
+        ("query_sets", &c.query_sets),
+        ("command_encoders", &c.command_encoders),
+        ("fences", &c.fences),
+    ];
+    pairs
+        .iter()
+        .map(|(name, v)| format!("{name} {}", v.read()))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
