@@ -82,8 +82,15 @@ fn flat_water_gives_one_everywhere() {
         DVec3::new(-0.8, 0.5, -0.4),
     ] {
         let m = run(&Flat, &water(1.0, 0.4, true), &plane(), light, 64, 2);
+        let worst = m
+            .texels
+            .iter()
+            .map(|t| (t[0] - 1.0).abs())
+            .fold(0.0, f32::max);
+        eprintln!("flat, light {light}: worst |E - 1| {worst:.2e}");
+        // measured 0 (exact) at every sun; the bound allows f32 rounding
         for t in &m.texels {
-            assert!((t[0] - 1.0).abs() < 1e-4, "light {light}: texel {}", t[0]);
+            assert!((t[0] - 1.0).abs() < 1e-6, "light {light}: texel {}", t[0]);
         }
     }
     // Clamped edges: the traced domain must still cover the whole square.
@@ -95,8 +102,14 @@ fn flat_water_gives_one_everywhere() {
         48,
         2,
     );
+    let worst = m
+        .texels
+        .iter()
+        .map(|t| (t[0] - 1.0).abs())
+        .fold(0.0, f32::max);
+    eprintln!("flat, clamped: worst |E - 1| {worst:.2e}");
     for t in &m.texels {
-        assert!((t[0] - 1.0).abs() < 1e-4, "clamped: texel {}", t[0]);
+        assert!((t[0] - 1.0).abs() < 1e-6, "clamped: texel {}", t[0]); // measured 0
     }
 }
 
@@ -123,8 +136,12 @@ fn periodic_mean_is_the_mean_fresnel_ratio() {
     }
     let expected = sum / (n * n) as f64;
     let got = mean(&m);
+    eprintln!(
+        "periodic mean {got} against the quadrature's {expected}: {:.2e}",
+        got - expected
+    );
     assert!(
-        (got - expected).abs() < 1e-3,
+        (got - expected).abs() < 1.6e-8, // measured -1.60e-9
         "mean {got}, expected {expected}"
     );
     // And the waves make real caustics: not a flat map.
@@ -150,13 +167,15 @@ fn refining_the_triangulation_converges() {
         .iter()
         .map(|&c| l1(&run(&s, &w, &plane(), light, 64, c)))
         .collect();
+    eprintln!("L1 against 32 cells per texel: {errors:?}");
     for k in 1..errors.len() {
         assert!(
             errors[k] < errors[k - 1],
             "errors {errors:?} must shrink as triangles halve"
         );
     }
-    assert!(errors[3] < 0.5 * errors[0], "errors {errors:?}");
+    // measured 3.1e-3, 4.7e-4, 1.3e-4, 3.0e-5: errors[3] / errors[0] = 0.0097
+    assert!(errors[3] < 0.097 * errors[0], "errors {errors:?}");
 }
 
 #[test]
@@ -193,7 +212,8 @@ fn mirror_symmetric_input_gives_mirror_symmetric_output() {
             worst = worst.max((a - b).abs() / (1.0 + a.abs()));
         }
     }
-    assert!(worst < 1e-4, "asymmetry {worst}");
+    eprintln!("mirror asymmetry {worst:.2e}");
+    assert!(worst < 1e-6, "asymmetry {worst}"); // measured 0 (exact); f32 rounding allowed
 }
 
 /// A Gaussian bump `a exp(−r² / 2σ²)` is a converging lens of paraxial focal length

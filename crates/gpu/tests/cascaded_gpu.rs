@@ -66,8 +66,9 @@ fn gbuffers_match_the_cpu_twin() {
         eprintln!(
             "cascade {k}: max |Δ| water depth {depth:.2e}, normal {normal:.2e}, terrain depth {ground:.2e}"
         );
-        // World units on a 32 m scene (measured: below 6e-6).
-        assert!(depth < 5e-5, "cascade {k}: water depth {depth}");
+        // World units on a 32 m scene: measured at most 3.81e-6 (water depth), 5.20e-6 (normal),
+        // 5.72e-6 (terrain depth) on lavapipe 25.0.7 (Mesa)
+        assert!(depth < 3.8e-5, "cascade {k}: water depth {depth}");
         assert!(normal < 5e-5, "cascade {k}: normal {normal}");
         assert!(ground < 5e-5, "cascade {k}: terrain depth {ground}");
     }
@@ -139,7 +140,7 @@ fn screen_caustics_match_the_cpu_twin() {
              channels differing > 0.1 %: {moved}",
             100.0 * same as f64 / cpu.acc.len() as f64,
         );
-        // Measured (lavapipe), the largest over the four cases: eye 2.3e-5, total 4.51e-6,
+        // measured on lavapipe 25.0.7 (Mesa), the largest over the four cases: eye 2.3e-5, total 4.51e-6,
         // mean |Δ| / mean 7.49e-5; 10x.
         assert!(eye < 2.3e-4, "eye depth {eye}");
         // A photon that f32 and f64 put on different sides of a pixel edge (or of a footprint's
@@ -276,7 +277,7 @@ mod through_the_trait {
 
     const PARAMS: &str = "[cascaded]\nresolution = 64\n";
     /// 10x the agreement measured through the trait on the pool (see the tests).
-    const TOTAL: f64 = 5.2e-5;
+    const TOTAL: f64 = 5.1e-5;
     const MEAN_ABS: f64 = 4.5e-4;
 
     fn pool() -> Scene {
@@ -342,7 +343,7 @@ mod through_the_trait {
                 .all(|(a, b)| (a[3] < 0.0) == (b[3] < 0.0))
         );
         assert!(valued > 0);
-        // Measured (lavapipe): total 5.1e-6, mean |Δ| / mean 4.5e-5; 10x.
+        // measured total 5.13e-6, mean |Δ| / mean 4.49e-5 on lavapipe 25.0.7 (Mesa); 10x.
         assert!(total < TOTAL && mean_abs < MEAN_ABS, "{total} {mean_abs}");
     }
 
@@ -392,8 +393,8 @@ mod through_the_trait {
         let gpu = read_image(&ctx, t.as_ref());
         let (total, mean_abs, _) = agreement(&cpu(&scene, &h), &gpu);
         eprintln!("after ten frames: image total {total:.2e}, mean |Δ| / mean {mean_abs:.2e}");
-        // Measured (lavapipe): total 1.7e-7, mean |Δ| / mean 4.4e-6 (the bound of the test above).
-        assert!(total < TOTAL && mean_abs < MEAN_ABS, "{total} {mean_abs}");
+        // measured total 1.72e-7, mean |Δ| / mean 4.44e-6 on lavapipe 25.0.7 (Mesa)
+        assert!(total < 1.7e-6 && mean_abs < 4.4e-5, "{total} {mean_abs}");
     }
 }
 

@@ -907,6 +907,147 @@ mod tests {
         assert!(not_blank(&p) > 0, "no caustic on the light cube map");
     }
 
+    /// The value `v / top` a heat-ramp colour stands for: the nearest of 4096 points on the ramp.
+    fn unheat(rgb: &[u8]) -> f32 {
+        (0..=4096)
+            .map(|k| k as f32 / 4096.0)
+            .min_by_key(|&t| {
+                heat(t)
+                    .iter()
+                    .zip(rgb)
+                    .map(|(a, b)| a.abs_diff(*b) as u32)
+                    .sum::<u32>()
+            })
+            .unwrap()
+    }
+
+    /// The pool with its water made flat: every buffer's value is known without a simulation.
+    fn flat_pool() -> Scene {
+        let mut scene = Scene::builtin("pool").unwrap();
+        scene.water.as_mut().unwrap().source = caustics_core::scene::WaterSource::Flat;
+        scene
+    }
+
+    /// Under flat water each yuksel sample carries the flux of flat water (1: the flux picture is
+    /// one colour, the ramp at 1 / 1.5), lands at the same offset from its pixel (one colour), and
+    /// pass 1 puts it into the one or two channels that offset straddles, the same in every texel:
+    /// each channel's picture is black or uniformly white, and a wrong channel, offset or flux
+    /// changes the colours.
+    #[test]
+    fn yuksel_buffers_under_flat_water_show_its_uniform_light() {
+        let scene = flat_pool();
+        let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
+        let choice = TechniqueChoice::parse("yuksel:n=5,m=4", 1).unwrap();
+        let input = input_for(&choice, &scene, Some(surface.as_ref()));
+        let flux = buffer_picture(Buffer::YukselFlux, &input).unwrap();
+        let expect = heat(1.0 / 1.5);
+        let off = flux
+            .rgba
+            .chunks(4)
+            .map(|t| (0..3).map(|c| t[c].abs_diff(expect[c])).max().unwrap())
+            .max()
+            .unwrap();
+        eprintln!("flux picture: largest step from the ramp at 1 / 1.5: {off}");
+        // measured 0 steps
+        assert_eq!(off, 0, "flux picture departs from flat water's flux");
+        let offset = buffer_picture(Buffer::YukselOffset, &input).unwrap();
+        let first = &offset.rgba[..4];
+        assert!(offset.rgba.chunks(4).all(|t| t == first), "offsets differ");
+        let mut lit = Vec::new();
+        for k in 0..5 {
+            let p = buffer_picture(Buffer::YukselChannel(k), &input).unwrap();
+            let white = p
+                .rgba
+                .chunks(4)
+                .filter(|t| t[..3] == [255, 255, 255])
+                .count();
+            let black = p.rgba.chunks(4).filter(|t| t[..3] == [0, 0, 0]).count();
+            let n = p.rgba.len() / 4;
+            eprintln!("channel {k}: {white} white, {black} black of {n}");
+            assert_eq!(white + black, n, "channel {k}: not one value");
+            if white > 0 {
+                lit.push(k);
+            }
+        }
+        assert!((1..=2).contains(&lit.len()), "lit channels {lit:?}");
+    }
+
+    /// Under flat water the nearest cascade's map is the flat water's irradiance, 1 (on the ramp's
+    /// middle, 1 of a top of 2), up to the splat's sampling, where that cascade lights the view:
+    /// the mean value read back from the picture's colours.
+    #[test]
+    fn the_cascade_map_under_flat_water_reads_one() {
+        let mut scene = flat_pool();
+        scene.camera.width = 64;
+        scene.camera.height = 36;
+        scene.water.as_mut().unwrap().absorption = DVec3::ZERO;
+        let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
+        let choice = TechniqueChoice::parse("cascaded:resolution=64", 1).unwrap();
+        let input = input_for(&choice, &scene, Some(surface.as_ref()));
+        let p = buffer_picture(Buffer::CascadeMap(0), &input).unwrap();
+        let values: Vec<f32> = p
+            .rgba
+            .chunks(4)
+            .filter(|t| t[..3] != [20, 30, 70])
+            .map(|t| 2.0 * unheat(t))
+            .collect();
+        // Pixels beyond cascade 0's far plane take no light from it (black).
+        let lit: Vec<f32> = values.iter().copied().filter(|&v| v > 0.5).collect();
+        let mean = lit.iter().sum::<f32>() / lit.len() as f32;
+        eprintln!(
+            "cascade 0 under flat water: {} of {} pixels lit, mean {mean:.4}",
+            lit.len(),
+            values.len()
+        );
+        assert!(lit.len() > 64 * 36 / 2, "cascade 0 is nearly empty");
+        // measured 1.0073 over 2108 of 2304 pixels
+        assert!((mean - 1.0).abs() < 0.03, "mean {mean}");
+    }
+
+    /// Under flat water caustic-triangles' water photons all carry the same power (a white power
+    /// picture) and land on the lattice shifted by the refracted sun: the hit picture's red and
+    /// green are the floor's x and y, so they step by one lattice cell a column and a row.
+    #[test]
+    fn caustic_triangles_photons_under_flat_water_lie_on_the_shifted_lattice() {
+        let scene = flat_pool();
+        let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
+        let choice = TechniqueChoice::parse("caustic-triangles:photon_image=32", 1).unwrap();
+        let input = input_for(&choice, &scene, Some(surface.as_ref()));
+        let power = buffer_picture(Buffer::PhotonPower, &input).unwrap();
+        let white = power
+            .rgba
+            .chunks(4)
+            .filter(|t| t[..3] == [255, 255, 255])
+            .count();
+        eprintln!("photon power: {white} of {} white", power.rgba.len() / 4);
+        assert_eq!(white, power.rgba.len() / 4, "photon powers differ");
+        let hits = buffer_picture(Buffer::PhotonHits, &input).unwrap();
+        let w = hits.width as usize;
+        let at = |i: usize, j: usize, c: usize| hits.rgba[(i * w + j) * 4 + c] as f64;
+        // One lattice cell in colour steps: 255 / P of the square (P + 1 vertices span it).
+        let cell = 255.0 / (w - 1) as f64;
+        let (mut worst, mut steps) = (0.0f64, 0usize);
+        for i in 0..w {
+            for j in 1..w {
+                let x = (at(i, j - 1, 0), at(i, j, 0));
+                let y = (at(j, i, 1), at(j - 1, i, 1));
+                // Where the shifted lattice wraps or leaves the square (clamped to 0 or 255), the
+                // step is not a cell.
+                for (a, b) in [x, y] {
+                    if b > a && a > 0.0 && b < 255.0 {
+                        worst = worst.max((b - a - cell).abs());
+                        steps += 1;
+                    }
+                }
+            }
+        }
+        eprintln!("photon hits: {steps} steps of {cell:.2}, worst departure {worst:.2}");
+        assert!(steps > w * (w - 1), "too few steps on the lattice: {steps}");
+        // Colours are whole steps: a cell of 7.97 steps is 7 or 8 (measured worst 0.97 over 2013
+        // steps).
+        assert!(worst < 1.0, "hits off the lattice by {worst} steps");
+    }
+
     #[test]
     fn eye_space_images_mark_texels_without_a_value() {
         let image = EyeSpaceCaustics {

@@ -1187,16 +1187,20 @@ mod tests {
         let s = CascadedSetup::from_scene(&scene, &p).unwrap();
         let water = water_grid(&scene, 128).unwrap();
         let g = water_gbuffer(&s, 1, &water);
+        let (mut worst_h, mut worst_n) = (0.0f64, 0.0f64);
         for (t, texel) in g.iter().enumerate() {
             let o = s.ray_origin(1, t / 32, t % 32);
             let q = o + s.light * texel[0] as f64;
             let (h, grad) = water.sample(q.truncate(), s.size, Edge::Wrap);
-            assert!((q.z - s.level - h).abs() < 1e-5, "{}", q.z - s.level - h);
+            worst_h = worst_h.max((q.z - s.level - h).abs());
+            // measured at most 4.42e-7 (f32 distance along the ray)
+            assert!((q.z - s.level - h).abs() < 4.4e-6, "{}", q.z - s.level - h);
             let n = height_field_normal(grad);
-            assert!(
-                (n - DVec3::new(texel[1] as f64, texel[2] as f64, texel[3] as f64)).length() < 1e-5
-            );
+            let e = (n - DVec3::new(texel[1] as f64, texel[2] as f64, texel[3] as f64)).length();
+            worst_n = worst_n.max(e);
+            assert!(e < 6.5e-7, "{e}"); // measured at most 6.49e-8
         }
+        eprintln!("water g-buffer: worst height {worst_h:.2e}, normal {worst_n:.2e}");
     }
 
     #[test]
@@ -1236,10 +1240,21 @@ mod tests {
                 .map(|t| t[1])
                 .collect();
             let mean = lit.iter().sum::<f32>() / lit.len() as f32;
+            eprintln!(
+                "{placement:?}: {} lit pixels, mean - 1 = {:.2e}",
+                lit.len(),
+                mean - 1.0
+            );
             assert!(lit.len() > 1000);
             // Both place every photon of flat water on the floor (Eq. 3.3 only shifts them all
             // the same way), so the mean is 1 up to the edges.
-            assert!((mean - 1.0).abs() < 0.03, "{placement:?}: mean {mean}");
+            // measured 9.39e-3 (Eq33), -2.08e-4 (Plane)
+            let bound = if placement == Placement::Eq33 {
+                0.03
+            } else {
+                2e-3
+            };
+            assert!((mean - 1.0).abs() < bound, "{placement:?}: mean {mean}");
         }
     }
 
@@ -1253,6 +1268,7 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
+        let mut worst_share = 0.0f64;
         for n in 0..400 {
             let mut acc = vec![0u32; w * h * 3];
             let side = DVec2::new(rnd() * 10.0, rnd() * 10.0);
@@ -1293,10 +1309,13 @@ mod tests {
                     let ox = cum(x + 1.0 - c.x, hw.x) - cum(x - c.x, hw.x);
                     let oy = cum(y + 1.0 - c.y, hw.y) - cum(y - c.y, hw.y);
                     let expect = q[2] as f64 * ox * oy;
+                    worst_share = worst_share.max((v[2] as f64 - expect).abs());
+                    // measured at most 3.50 units of 16384 (the integer split's rounding)
                     assert!((v[2] as f64 - expect).abs() <= 8.0, "{} vs {expect}", v[2]);
                 }
             }
         }
+        eprintln!("footprint shares: worst against the tent's integral {worst_share:.2}");
         // Channels outside c0..c1 are untouched (wavelength dispersion splats one at a time).
         let mut acc = vec![0u32; w * h * 3];
         splat_footprint(
@@ -1371,7 +1390,7 @@ mod tests {
         );
         assert!(n > 3000, "{n}");
         assert!(pcv > 0.5, "the point splat should be dotted here: CV {pcv}");
-        assert!((fm - 1.0).abs() < 0.01, "footprint mean {fm}");
+        assert!((fm - 1.0).abs() < 5e-3, "footprint mean {fm}"); // measured 0.9995
         // Measured 1.37 and 0.061: what is left is the moiré of the sun's texel grid, rotated on
         // the screen, against the separable tents.
         assert!(fcv < 0.08, "footprint CV {fcv}");
@@ -1618,8 +1637,8 @@ mod accuracy {
                 let ratio = ours / flat;
                 eprintln!("dunes {dunes}: cascade {k}, {n} pixels, mean / flat-water {ratio:.3}");
                 assert!(n > 1000, "{n}");
-                // Measured within 2 % without dunes, within 3.3 % with them (1.42 in cascade 1
-                // before the eye pass measured the floor at the pixel's scale).
+                // measured within 1.9 % without dunes (0.981), within 3.3 % with them (1.033;
+                // 1.42 in cascade 1 before the eye pass measured the floor at the pixel's scale).
                 let tolerance = if dunes { 0.05 } else { 0.03 };
                 assert!((ratio - 1.0).abs() < tolerance, "cascade {k}: {ratio}");
             }
@@ -1684,7 +1703,7 @@ mod accuracy {
         }
         // Eq. 3.3 is a first-order approximation: centimetres on this beach; the plane placement
         // is several times closer.
-        assert!(stats[0].0 < 0.05, "Eq. 3.3 mean error {}", stats[0].0);
+        assert!(stats[0].0 < 0.05, "Eq. 3.3 mean error {}", stats[0].0); // measured 0.0377 m
         assert!(stats[1].0 < stats[0].0, "{stats:?}");
     }
 }

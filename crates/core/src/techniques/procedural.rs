@@ -865,11 +865,15 @@ mod tests {
                 )
                 .unwrap();
                 let m = caustics(&s, &SurfaceInput::Grid(&flat));
-                for t in &m.texels {
-                    for c in t {
-                        assert!((c - 1.0).abs() < 1e-6, "{variant:?} {follow_sun}: {c}");
-                    }
-                }
+                let worst = m
+                    .texels
+                    .iter()
+                    .flatten()
+                    .map(|c| (c - 1.0).abs())
+                    .fold(0.0f32, f32::max);
+                eprintln!("flat, {variant:?} {follow_sun}: worst |c - 1| {worst:.2e}");
+                // measured 0 (every variant); the bound allows f32 rounding of a sum near 1
+                assert!(worst < 1e-6, "{variant:?} {follow_sun}: {worst}");
             }
         }
     }
@@ -887,7 +891,8 @@ mod tests {
         let at = |theta: f64| map.sample(DVec2::new(theta.tan(), 0.0));
         assert!((at(0.9 * r_s) - 1.0).abs() < 1e-6);
         let mid = at(0.5 * (r_s + r_h));
-        assert!((mid - 0.25).abs() < 0.01, "{mid}");
+        eprintln!("halo halfway: {mid}");
+        assert!((mid - 0.25).abs() < 6e-4, "{mid}"); // measured 6.3e-5
         assert_eq!(at(1.05 * r_h), 0.0);
         assert_eq!(map.sample(DVec2::new(1.0, 1.0)), 0.0);
         let halo = |t: f64| LightMap::profile(&p, t);
@@ -915,7 +920,12 @@ mod tests {
             let fx = (wave.height(p + DVec2::X * e) - wave.height(p - DVec2::X * e)) / (2.0 * e);
             let fy = (wave.height(p + DVec2::Y * e) - wave.height(p - DVec2::Y * e)) / (2.0 * e);
             let n = height_field_normal(DVec2::new(fx, fy));
-            assert!((t.normal - n).length() < 1e-6, "{} vs {n}", t.normal);
+            eprintln!(
+                "normal against differences: {:.2e}",
+                (t.normal - n).length()
+            );
+            // measured at most 5.6e-10 (central differences with a step of 1e-6)
+            assert!((t.normal - n).length() < 5e-9, "{} vs {n}", t.normal);
             assert_eq!(t.height, wave.height(p));
         }
     }
@@ -974,6 +984,11 @@ mod tests {
             if variant == Variant::Vertex {
                 // The mesh's diagonals do not mirror (its triangles differ), but its vertices do.
                 let (a, b) = (vertex_values(&s, &a_in), vertex_values(&s, &b_in));
+                let worst = (0..33 * 33)
+                    .map(|k| (a[k][0] - b[(k / 33) * 33 + 32 - k % 33][0]).abs())
+                    .fold(0.0f32, f32::max);
+                eprintln!("{variant:?}: worst vertex asymmetry {worst:.2e}");
+                // measured 0 (exact); the bound allows f32 rounding
                 for l in 0..=32 {
                     for k in 0..=32 {
                         let (x, y) = (a[l * 33 + k][0], b[l * 33 + 32 - k][0]);
@@ -992,7 +1007,9 @@ mod tests {
                     worst = worst.max((x - y).abs());
                 }
             }
-            assert!(worst < 1e-5, "{variant:?}: {worst}");
+            eprintln!("{variant:?}: worst texel asymmetry {worst:.2e}");
+            // measured 1.19e-7 (texture: its mips sum in a fixed order), 0 (screen)
+            assert!(worst < 1.2e-6, "{variant:?}: {worst}");
             // Between the spots only the ground's share of the light remains.
             let ground = s.ground as f32;
             let max = a.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
@@ -1070,7 +1087,9 @@ mod tests {
         .unwrap();
         let c = caustic_at(&s, &SurfaceInput::Grid(&flat), DVec2::new(0.3, 0.3));
         for q in 0..3 {
-            assert!((c[q] as f64 - (-k[q] * 0.6).exp()).abs() < 1e-6);
+            let e = (c[q] as f64 - (-k[q] * 0.6).exp()).abs();
+            eprintln!("Beer-Lambert channel {q}: {e:.2e}");
+            assert!(e < 2e-7, "channel {q}: {e}"); // measured at most 1.98e-8 (f32)
         }
         let off = ProceduralSetup::new(
             &ProceduralCausticsParams {
@@ -1114,6 +1133,7 @@ mod tests {
             for j in 0..16 {
                 let (x, y) = ((j as f32 + 0.5) / 4.0, (i as f32 + 0.5) / 4.0);
                 let t = m.texels[i * 16 + j];
+                // measured 0 (exact) in every texel; the bound allows f32 rounding of values to 12
                 assert!((t[0] - (x + 2.0 * y)).abs() < 1e-5 && (t[1] - x).abs() < 1e-5);
             }
         }
@@ -1126,7 +1146,9 @@ mod tests {
         let levels = mip_chain(level0.clone(), t);
         assert_eq!(levels.len(), 5);
         let mean0 = level0.iter().map(|v| v[0] as f64).sum::<f64>() / (t * t) as f64;
-        assert!((levels[4][0][0] as f64 - mean0).abs() < 1e-5);
+        let e = (levels[4][0][0] as f64 - mean0).abs();
+        eprintln!("mip top against the mean: {e:.2e}");
+        assert!(e < 1e-5, "{e}"); // measured 0 (exact); f32 rounding of a mean of 256 values to 6
         // A 4 x 4 map over a 16² target reads level 2 exactly at its texel centres.
         let params = ProceduralCausticsParams {
             variant: Variant::Texture,
@@ -1138,6 +1160,7 @@ mod tests {
         assert_eq!(sampling_footprint(&s), (2.0, 1, true));
         let m = resample(&s, &levels);
         for (a, b) in m.texels.iter().zip(&levels[2]) {
+            // measured 0 (exact) in every texel
             assert!((a[0] - b[0]).abs() < 1e-6);
         }
         // A 2 x 8 map: a footprint of 8 x 2 texels, 4 anisotropic taps at level 1.

@@ -584,6 +584,13 @@ mod tests {
     fn flat_water_gives_one() {
         let s = setup(&YukselParams::default(), 32, DVec3::new(0.3, 0.1, -1.0));
         let m = caustics(&s, &Grid::new(16, 16));
+        let worst = m
+            .texels
+            .iter()
+            .map(|t| (t[0] - 1.0).abs())
+            .fold(0.0, f32::max);
+        eprintln!("flat water: worst |E - 1| {worst:.2e}");
+        // measured 0 (exact); the bound allows f32 rounding of the overlaps' sum
         for t in &m.texels {
             assert!((t[0] - 1.0).abs() < 1e-5, "{}", t[0]);
         }
@@ -604,8 +611,9 @@ mod tests {
         let s = setup(&params, 64, DVec3::new(0.2, 0.1, -1.0));
         let m = caustics(&s, &g);
         let mean = m.texels.iter().map(|t| t[0] as f64).sum::<f64>() / m.texels.len() as f64;
-        assert!((mean - 1.0).abs() < 1e-4, "mean {mean}");
         let max = m.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+        eprintln!("periodic waves: mean - 1 = {:.2e}, max {max}", mean - 1.0);
+        assert!((mean - 1.0).abs() < 7.5e-8, "mean {mean}"); // measured -7.45e-9
         assert!(max > 1.05, "waves focus: {max}");
     }
 

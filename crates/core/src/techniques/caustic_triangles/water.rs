@@ -375,7 +375,14 @@ mod tests {
             let water = flat_water(true, absorption);
             let ws = WaterSetup::new(&params(48), &water, light, 96, 96).unwrap();
             let out = caustics(&ws, &Grid::new(16, 16)).unwrap();
-            assert!(out.paths.iter().all(|&d| (d as f64 - d0).abs() < 1e-6));
+            let path = out
+                .paths
+                .iter()
+                .map(|&d| (d as f64 - d0).abs())
+                .fold(0.0, f64::max);
+            eprintln!("flat water, K = {absorption}: worst path {path:.2e}");
+            assert!(path < 1.8e-7, "path off by {path}"); // measured 1.83e-8
+
             let mut worst: f64 = 0.0;
             for t in &out.map.texels {
                 for c in 0..3 {
@@ -383,7 +390,8 @@ mod tests {
                 }
             }
             eprintln!("flat water, K = {absorption}: worst texel {worst:.2e}");
-            assert!(worst < 1e-4, "worst texel off by {worst}");
+            // measured 3.39e-6 (K = 0.45, 0.09, 0.05), 3.34e-6 (clear)
+            assert!(worst < 3.4e-5, "worst texel off by {worst}");
         }
     }
 
@@ -399,6 +407,11 @@ mod tests {
         let shift = t0.truncate() * (0.7 / -t0.z);
         let inside = (2.0 - shift.x) * (2.0 - shift.y) / 4.0;
         let mean = out.map.texels.iter().map(|t| t[0] as f64).sum::<f64>() / (96.0 * 96.0);
+        eprintln!(
+            "clamped: mean {mean} vs {inside}: {:.2e}",
+            mean / inside - 1.0
+        );
+        // measured 9.55e-3: the texels the copy's edge cuts are counted whole
         assert!((mean / inside - 1.0).abs() < 0.02, "{mean} vs {inside}");
         // Texel (0, 0) lies upwind: no light reaches it.
         assert_eq!(out.map.texels[0], [0.0; 3]);
@@ -447,6 +460,7 @@ mod tests {
             let m = compare(&out.map, &r);
             eprintln!("pool {res}², P = {p}: {m:?}");
             l1.push(m.relative_l1);
+            // measured 2.37e-3 (P = 128), 9.8e-4 (P = 256)
             assert!(m.flux_error.abs() < 0.01, "flux {m:?}");
             if p == 256 {
                 // The six brightest foci of the reference are among our brightest (peaks of
@@ -458,6 +472,8 @@ mod tests {
                         .iter()
                         .map(|o| torus_distance(*o, *f, res))
                         .fold(f64::MAX, f64::min);
+                    eprintln!("reference focus {f:?}: nearest of ours {near:.2} texels");
+                    // measured at most 2.24
                     assert!(
                         near <= 3.0,
                         "reference focus {f:?}: nearest of ours {near} texels away"
@@ -465,7 +481,7 @@ mod tests {
                 }
             }
         }
-        // Measured: 0.070 and 0.022 (flux +0.24 % and +0.10 %).
+        // measured 0.0700 and 0.0215
         assert!(l1[0] < 0.09, "P = 128: {}", l1[0]);
         assert!(l1[1] < 0.035, "P = 256: {}", l1[1]);
         assert!(l1[1] < l1[0], "converges: {l1:?}");
@@ -491,6 +507,7 @@ mod tests {
             let ws = WaterSetup::new(&p, &water, scene.light.direction, 128, 128).unwrap();
             let band = copy_band(&ws, &heights);
             eprintln!("band {band} of {} quads", ws.lattice);
+            // measured 30 of 128 quads, both merge levels
             assert!(band < ws.lattice / 2, "band {band} of {}", ws.lattice);
             let (photons, paths) = photon_pass(&ws, &heights);
             let irradiance = irradiance_pass(&ws.setup, &photons);
@@ -518,8 +535,10 @@ mod tests {
                 .zip(&thin.texels)
                 .map(|(a, b)| a[1] - b[1])
                 .sum::<f32>();
+            eprintln!("merge {merge_levels}: a one-quad band loses {lost}");
+            // measured 1454 (merge 0), 765 (merge 2)
             assert!(
-                lost > 1.0,
+                lost > 70.0,
                 "merge {merge_levels}: a one-quad band lost only {lost}"
             );
         }
