@@ -642,7 +642,8 @@ impl Runner {
                 }
                 let params = CausticTrianglesParams::from_table(&spec.params)?;
                 let ws =
-                    water::WaterSetup::new(&params, job.water, job.light, job.width, job.height)?;
+                    water::WaterSetup::new(&params, job.water, job.light, job.width, job.height)?
+                        .with_walls(job.floor.walls);
                 let heights = heights_for(job.water, job.surface, job.width, job.height);
                 let (map, backend) = match &self.gpu {
                     Some(ctx) => {

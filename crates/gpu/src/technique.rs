@@ -96,6 +96,16 @@ pub trait Technique {
 
     /// GPU memory of the configured frame, bytes.
     fn bytes(&self) -> u64;
+
+    /// The pool's wall maps where the technique lights the walls (`floor.walls`, issue 18): a 2-D
+    /// array texture of the floor map's format with 4 layers in [`caustics_core::walls::Wall::ALL`]'s
+    /// order (x = 0, x = size, y = 0, y = size); layer `k` holds wall `k`'s
+    /// [`caustics_core::walls::WallMap`] (row 0 at the floor, columns along the wall, the floor
+    /// map's unit) in its first `cols` columns, the texture being as wide as the widest wall.
+    /// `None` for floor-only techniques and scenes without walls.
+    fn walls(&self) -> Option<&wgpu::Texture> {
+        None
+    }
 }
 
 /// How a registered technique is made: its pipelines for the device, its parameters from the

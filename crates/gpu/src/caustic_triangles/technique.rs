@@ -121,7 +121,8 @@ impl CausticTrianglesTechnique {
             scene.light.direction,
             scene.caustics.width as usize,
             scene.caustics.height as usize,
-        )?)
+        )?
+        .with_walls(scene.floor.walls))
     }
 
     fn configure_glass(
@@ -320,6 +321,14 @@ impl Technique for CausticTrianglesTechnique {
         match self.state.as_ref()? {
             State::Water { frame, .. } => Some(Output::Floor(&frame.frame.map)),
             State::Glass { map, .. } => Some(Output::Floor(map)),
+        }
+    }
+
+    /// The water generator's wall maps on a scene with walls (glass scenes have none).
+    fn walls(&self) -> Option<&wgpu::Texture> {
+        match self.state.as_ref()? {
+            State::Water { frame, .. } => frame.walls.as_ref().map(|w| &w.texture),
+            State::Glass { .. } => None,
         }
     }
 

@@ -424,7 +424,8 @@ pub fn heights(water: &Water, surface: &dyn Surface, width: usize, height: usize
 }
 
 /// The technique on a scene with water, the water as the generator, over the scene square at the
-/// scene's caustics resolution.
+/// scene's caustics resolution; with the scene's walls, nothing carried across the edges (the
+/// walls' own maps: [`render_with_walls`]).
 pub fn render(scene: &Scene, params: &CausticTrianglesParams) -> Result<CausticsMap> {
     let water = scene.water.as_ref().ok_or_else(|| {
         Error::InvalidParameter(format!(
@@ -443,7 +444,8 @@ pub fn render(scene: &Scene, params: &CausticTrianglesParams) -> Result<Caustics
         scene.caustics.width as usize,
         scene.caustics.height as usize,
     );
-    let ws = WaterSetup::new(params, water, scene.light.direction, w, h)?;
+    let ws =
+        WaterSetup::new(params, water, scene.light.direction, w, h)?.with_walls(scene.floor.walls);
     let surface = water.surface_at(scene.time)?;
     Ok(caustics(&ws, &heights(water, surface.as_ref(), w, h))?.map)
 }
