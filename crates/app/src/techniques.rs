@@ -673,23 +673,31 @@ impl Runner {
                     water::WaterSetup::new(&params, job.water, job.light, job.width, job.height)?
                         .with_walls(job.floor.walls);
                 let heights = heights_for(job.water, job.surface, job.width, job.height);
-                let (map, backend) = match &self.gpu {
+                let (map, walls, backend) = match &self.gpu {
                     Some(ctx) => {
                         if self.caustic_triangles.is_none() {
                             self.caustic_triangles =
                                 Some(caustics_gpu::caustic_triangles::CausticTriangles::new(ctx)?);
                         }
                         let gpu = self.caustic_triangles.as_ref().expect("just made");
-                        let map = gpu.water_caustics(ctx, &ws, &heights, self.timer.as_mut())?;
-                        (map, "GPU")
+                        let (map, walls) =
+                            gpu.water_caustics_walls(ctx, &ws, &heights, self.timer.as_mut())?;
+                        (map, walls, "GPU")
                     }
-                    None => (water::caustics(&ws, &heights)?.map, "CPU"),
+                    None => {
+                        let walls = if ws.walls {
+                            Some(water::wall_caustics(&ws, &heights)?)
+                        } else {
+                            None
+                        };
+                        (water::caustics(&ws, &heights)?.map, walls, "CPU")
+                    }
                 };
                 progress(1, 1);
                 Ok(Outcome {
                     map,
                     backend,
-                    walls: None,
+                    walls,
                 })
             }
             // Paper 3 on a water job alone (no objects to receive it: `caustics compare`, the

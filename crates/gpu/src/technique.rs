@@ -61,6 +61,16 @@ impl<'a> Output<'a> {
     }
 }
 
+/// A technique's maps of the pool's walls (issue 18), for the final image to sample: an
+/// `Rgba32Float` 2D array texture of four layers in `caustics_core::walls::Wall::ALL`'s order,
+/// layer `k` holding that wall's map in its first `cols[k]` columns (`WallMap`'s layout: row 0 at
+/// the floor, the rows up to the rest water level, the floor map's unit).
+#[derive(Clone, Copy, Debug)]
+pub struct WallsOutput<'a> {
+    pub texture: &'a wgpu::Texture,
+    pub cols: [u32; 4],
+}
+
 /// A caustics technique on the GPU. The scene gives the water's optics (`water`: size, depth,
 /// index, absorption, wrap; its `source` is ignored, the heights come from [`WaterTextures`]), the
 /// floor, the sun (`light`), the map size (`caustics.width`, `caustics.height`), the camera (for
@@ -94,18 +104,14 @@ pub trait Technique {
     /// The texture the passes end in (`None` before [`configure`](Self::configure)).
     fn output(&self) -> Option<Output<'_>>;
 
-    /// GPU memory of the configured frame, bytes.
-    fn bytes(&self) -> u64;
-
-    /// The pool's wall maps where the technique lights the walls (`floor.walls`, issue 18): a 2-D
-    /// array texture of the floor map's format with 4 layers in [`caustics_core::walls::Wall::ALL`]'s
-    /// order (x = 0, x = size, y = 0, y = size); layer `k` holds wall `k`'s
-    /// [`caustics_core::walls::WallMap`] (row 0 at the floor, columns along the wall, the floor
-    /// map's unit) in its first `cols` columns, the texture being as wide as the widest wall.
-    /// `None` for floor-only techniques and scenes without walls.
-    fn walls(&self) -> Option<&wgpu::Texture> {
+    /// Its maps of the pool's walls, when the scene's walls are on and the technique lights them;
+    /// `None` (the default) for a floor technique.
+    fn walls(&self) -> Option<WallsOutput<'_>> {
         None
     }
+
+    /// GPU memory of the configured frame, bytes.
+    fn bytes(&self) -> u64;
 }
 
 /// How a registered technique is made: its pipelines for the device, its parameters from the

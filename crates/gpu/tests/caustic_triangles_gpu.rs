@@ -1003,11 +1003,13 @@ mod through_the_trait {
         let m = compare(&gpu, &cpu);
         eprintln!("walls: floor GPU vs CPU {m:?}");
         let cpu_walls = water::wall_caustics(&ws, &h).unwrap();
-        let texture = t.walls().expect("the pool's walls are lit");
+        let out = t.walls().expect("the pool's walls are lit");
+        let texture = out.texture;
         assert_eq!(texture.depth_or_array_layers(), 4);
         let mut worst = (m.relative_l1, m.flux_error.abs());
         for wall in Wall::ALL {
             let c = cpu_walls.get(wall);
+            assert_eq!(out.cols[wall.index()] as usize, c.cols);
             let texels = ctx
                 .read_rgba_f32_layer(texture, wall.index() as u32)
                 .unwrap();

@@ -1114,8 +1114,19 @@ impl CausticTriangles {
         ctx: &GpuContext,
         ws: &WaterSetup,
         heights: &Grid,
-        mut timer: Option<&mut GpuTimer>,
+        timer: Option<&mut GpuTimer>,
     ) -> Result<CausticsMap, GpuError> {
+        Ok(self.water_caustics_walls(ctx, ws, heights, timer)?.0)
+    }
+
+    /// [`water_caustics`](Self::water_caustics) with the wall maps when `ws` has walls.
+    pub fn water_caustics_walls(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &Grid,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> Result<(CausticsMap, Option<WallMaps>), GpuError> {
         let wf = self.water_frame(ctx, ws, heights)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode_water(
@@ -1129,8 +1140,9 @@ impl CausticTriangles {
         }
         ctx.queue.submit([encoder.finish()]);
         let map = self.read_map(ctx, &wf.frame)?;
+        let walls = self.read_walls(ctx, &wf)?;
         ctx.check()?;
-        Ok(map)
+        Ok((map, walls))
     }
 
     /// The water generator once, everything read back.

@@ -18,7 +18,7 @@ use caustics_core::techniques::caustic_triangles::{
 };
 
 use super::{CausticTriangles, CausticTrianglesUniform, Frame, Reconstruction, WaterFrame};
-use crate::technique::{Output, Technique, WaterTextures};
+use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct CausticTrianglesTechnique {
@@ -324,10 +324,14 @@ impl Technique for CausticTrianglesTechnique {
         }
     }
 
-    /// The water generator's wall maps on a scene with walls (glass scenes have none).
-    fn walls(&self) -> Option<&wgpu::Texture> {
+    /// The water generator's wall maps on a scene with walls (glass scenes have none), in the
+    /// floor map's format (`Rgba16Float` where the device cannot blend 32-bit floats).
+    fn walls(&self) -> Option<WallsOutput<'_>> {
         match self.state.as_ref()? {
-            State::Water { frame, .. } => frame.walls.as_ref().map(|w| &w.texture),
+            State::Water { frame, .. } => frame.walls.as_ref().map(|w| WallsOutput {
+                texture: &w.texture,
+                cols: w.layout.maps.each_ref().map(|m| m.cols as u32),
+            }),
             State::Glass { .. } => None,
         }
     }
