@@ -25,6 +25,11 @@
 //! of the shifted copies, so a frame never reads the heights on the CPU (the CPU twin fits the same
 //! bound in f64, `WaterSetup::fit_band`; any band at least the light's reach draws the same map).
 //!
+//! With the pool's walls (`WaterSetup::with_walls`, issue 18) nothing wraps; each wall is a
+//! receiver of its own ([`WallFrames`]): the water photon pass again with the uniform's `receiver`
+//! (the rays extended to the wall's plane, `water::receiver_photon`), vertex irradiance and
+//! triangles into its layer of a 4-layer wall-map texture (`water::wall_caustics`).
+//!
 //! The layered distance map is built on the CPU ([`DistanceMap::build`]) and uploaded as a storage
 //! buffer; the photon hit location image and the vertex irradiances are storage buffers that the
 //! vertex shaders read (no vertex buffers: 6 vertices per photon-image quad, 6 per splat). The floor
