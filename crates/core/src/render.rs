@@ -426,14 +426,19 @@ impl Tracer<'_> {
         albedo * (direct + ambient) * scene.light.color
     }
 
-    /// The sun's light on wall point `p` through its wall's map (none without maps), shadowed by
-    /// the objects as the floor is.
+    /// The sun's light on wall point `p` through its wall's map, or an eye-space technique's
+    /// image where the wall point projects (cascaded lights the walls it sees); none without
+    /// either; shadowed by the objects as the floor is.
     fn wall_light(&self, p: DVec3, size: f64) -> DVec3 {
-        let Some(maps) = self.walls else {
-            return DVec3::ZERO;
-        };
         let wall = wall_at(p, size);
-        let c = maps.get(wall).sample(wall.along(p), p.z);
+        let c = match (self.walls, &self.eye_space) {
+            (Some(maps), _) => maps.get(wall).sample(wall.along(p), p.z),
+            (None, Some((image, eye))) => match image.sample(eye, p) {
+                Some(v) => [v.x as f32, v.y as f32, v.z as f32],
+                None => return DVec3::ZERO,
+            },
+            (None, None) => return DVec3::ZERO,
+        };
         if self.occluded(p + wall.normal() * 1e-4, -self.sun_water, f64::INFINITY) {
             return DVec3::ZERO;
         }

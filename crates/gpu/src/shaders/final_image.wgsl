@@ -340,12 +340,19 @@ fn sample_wall(k: u32, along: f32, z: f32) -> vec3<f32> {
     return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
 }
 
-// `Tracer::wall_light`: the sun's light on wall point p through its wall's map (none without maps),
-// shadowed by the objects.
+// `Tracer::wall_light`: the sun's light on wall point p through its wall's map, or the eye-space
+// image where p projects (cascaded); none without either; shadowed by the objects.
 fn wall_light(p: vec3<f32>, size: f32) -> vec3<f32> {
     let k = wall_at(p, size);
+    var eye = vec4<f32>(0.0);
     if wall_cols[k] == 0u {
-        return vec3<f32>(0.0);
+        if !has(FLAG_EYE_CAUSTICS) {
+            return vec3<f32>(0.0);
+        }
+        eye = sample_eye_space(p);
+        if eye.w == 0.0 {
+            return vec3<f32>(0.0);
+        }
     }
     var along = p.x;
     var normal = vec3<f32>(0.0, 1.0, 0.0);
@@ -363,7 +370,10 @@ fn wall_light(p: vec3<f32>, size: f32) -> vec3<f32> {
         }
         default: {}
     }
-    let c = sample_wall(k, along, p.z);
+    var c = eye.rgb;
+    if wall_cols[k] != 0u {
+        c = sample_wall(k, along, p.z);
+    }
     if occluded(p + normal * 1e-4, -params.sun_water, FAR) {
         return vec3<f32>(0.0);
     }
