@@ -48,5 +48,7 @@ fi
   sed '1,2d' docs/bench/bench.md | sed 's/(bench.svg)/(bench\/bench.svg)/'
   echo
   echo "CSV: [bench/bench.csv](bench/bench.csv). Numbers from a real GPU, when one was lent, are in [benchmarks.md](benchmarks.md)."
+  echo
+  cat docs/results-walls.md
 } > docs/results.md
 echo "wrote docs/results.md"

@@ -853,7 +853,7 @@ fn main() -> std::process::ExitCode {
     if ignore {
         eprintln!("viewer tests ignored: no DISPLAY and no Xvfb on PATH (apt-get install xvfb)");
     }
-    let windowed: [(&str, fn()); 6] = [
+    let windowed: [(&str, fn()); 7] = [
         (
             "every_technique_shows_caustics_in_the_window",
             every_technique_shows_caustics_in_the_window,

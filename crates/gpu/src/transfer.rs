@@ -29,6 +29,15 @@ impl GpuContext {
         &self,
         texture: &wgpu::Texture,
     ) -> Result<Vec<T>, GpuError> {
+        self.read_texture_layer(texture, 0)
+    }
+
+    /// [`read_texture`](Self::read_texture) of array layer `layer`.
+    pub fn read_texture_layer<T: bytemuck::Pod>(
+        &self,
+        texture: &wgpu::Texture,
+        layer: u32,
+    ) -> Result<Vec<T>, GpuError> {
         let (w, h) = (texture.width(), texture.height());
         let texel = std::mem::size_of::<T>() as u32;
         let row = w * texel;
@@ -46,7 +55,14 @@ impl GpuContext {
                 label: Some("readback"),
             });
         encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
+            wgpu::TexelCopyTextureInfo {
+                origin: wgpu::Origin3d {
+                    x: 0,
+                    y: 0,
+                    z: layer,
+                },
+                ..texture.as_image_copy()
+            },
             wgpu::TexelCopyBufferInfo {
                 buffer: &staging,
                 layout: wgpu::TexelCopyBufferLayout {
@@ -75,13 +91,22 @@ impl GpuContext {
     /// Read a technique's output texture (`Rgba32Float`, or `Rgba16Float` where the device cannot
     /// blend 32-bit floats) as `[f32; 4]` texels: for tests, `--raw` and the viewer's map window.
     pub fn read_rgba_f32(&self, texture: &wgpu::Texture) -> Result<Vec<[f32; 4]>, GpuError> {
+        self.read_rgba_f32_layer(texture, 0)
+    }
+
+    /// [`read_rgba_f32`](Self::read_rgba_f32) of array layer `layer` (a wall map, [`crate::technique::Technique::walls`]).
+    pub fn read_rgba_f32_layer(
+        &self,
+        texture: &wgpu::Texture,
+        layer: u32,
+    ) -> Result<Vec<[f32; 4]>, GpuError> {
         Ok(match texture.format() {
             wgpu::TextureFormat::Rgba16Float => self
-                .read_texture::<[u16; 4]>(texture)?
+                .read_texture_layer::<[u16; 4]>(texture, layer)?
                 .into_iter()
                 .map(|t| t.map(crate::caustic_triangles::f16_to_f32))
                 .collect(),
-            _ => self.read_texture(texture)?,
+            _ => self.read_texture_layer(texture, layer)?,
         })
     }
 

@@ -343,6 +343,22 @@ mod through_the_trait {
                 .all(|(a, b)| (a[3] < 0.0) == (b[3] < 0.0))
         );
         assert!(valued > 0);
+        // The pool's walls are receivers (issue 18): the camera sees the walls x = 4 and y = 4,
+        // whose pixels both twins light alike.
+        let p = CascadedParams::from_table(&params()).unwrap();
+        let setup = CascadedSetup::from_scene(&scene, &p).unwrap();
+        assert!(setup.walls);
+        let eye = cascaded::eye_pass(&setup, None);
+        let on_walls: Vec<usize> = (0..eye.len())
+            .filter(|&k| {
+                let (x, y) = ((k % 64) as f64 + 0.5, (k / 64) as f64 + 0.5);
+                let q = setup.eye.position + setup.eye.ray(x, y) * eye[k][0] as f64;
+                eye[k][3] != 0.0 && setup.receiver_normal(q).z == 0.0
+            })
+            .collect();
+        let lit = on_walls.iter().filter(|&&k| gpu[k][1] > 0.0).count();
+        eprintln!("{} wall pixels, {lit} lit on the GPU", on_walls.len());
+        assert!(on_walls.len() > 100 && lit > 50, "{} {lit}", on_walls.len());
         // measured total 5.13e-6, mean |Δ| / mean 4.49e-5 on lavapipe 25.0.7 (Mesa); 10x.
         assert!(total < TOTAL && mean_abs < MEAN_ABS, "{total} {mean_abs}");
     }

@@ -841,12 +841,14 @@ mod through_the_trait {
 
     const WATER_PARAMS: &str = "[caustic-triangles]\nphoton_image = 48\n";
 
-    /// The pool (tiling water with waves) at 64², at `time`.
+    /// The pool (tiling water with waves) at 64², at `time`, without its walls: the light wraps
+    /// round (the shifted copies and the copy band pass under test).
     fn pool(time: f64) -> Scene {
         let mut scene = Scene::builtin("pool").unwrap();
         scene.caustics.width = MAP as u32;
         scene.caustics.height = MAP as u32;
         scene.time = time;
+        scene.floor.walls = false;
         scene
     }
 
@@ -974,6 +976,84 @@ mod through_the_trait {
             m.relative_l1 < WATER_L1 && m.flux_error.abs() < WATER_FLUX,
             "{m:?}"
         );
+    }
+
+    /// The pool with its walls (issue 18) through the trait: ten frames of moving water and a
+    /// moving sun create and read nothing; the last frame's floor map and the four wall maps of
+    /// [`Technique::walls`] (layer k = `Wall::ALL[k]`) equal the CPU twin's `wall_caustics`.
+    pub fn walls_through_the_trait_match_the_cpu_twin() {
+        use caustics_core::metrics::compare_grids;
+        use caustics_core::walls::Wall;
+        let ctx = test_gpu();
+        let mut scene = pool(0.0);
+        scene.floor.walls = true;
+        let mut t =
+            caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
+                .unwrap();
+        let h = heights(t.as_ref(), &scene);
+        let tex = ctx.upload_grid("test heights", &h).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
+        t.update(&ctx, &scene).unwrap();
+        frame(&ctx, t.as_ref());
+        ctx.wait().unwrap();
+        let before = ctx.traffic();
+        let mut h = h;
+        for f in 1..=10 {
+            scene.time = 0.1 * f as f64;
+            scene.light.direction = glam::DVec3::new(0.3 + 0.05 * f as f64, 0.15, -1.0).normalize();
+            h = heights(t.as_ref(), &scene);
+            write_heights(&ctx, &tex, &h);
+            t.update(&ctx, &scene).unwrap();
+            frame(&ctx, t.as_ref());
+        }
+        ctx.wait().unwrap();
+        let d = ctx.traffic().since(&before);
+        eprintln!("ten frames with walls: {d:?}");
+        assert_eq!(d.created(), 0, "{d:?}");
+        assert_eq!(d.readbacks, 0, "{d:?}");
+        assert!(d.uploaded_bytes <= 10 * 4096, "{d:?}");
+        let ws = water_setup(&scene).with_walls(true);
+        let gpu = read_floor(&ctx, t.as_ref(), &scene);
+        let cpu = water::caustics(&ws, &h).unwrap().map;
+        let m = compare(&gpu, &cpu);
+        eprintln!("walls: floor GPU vs CPU {m:?}");
+        let cpu_walls = water::wall_caustics(&ws, &h).unwrap();
+        let out = t.walls().expect("the pool's walls are lit");
+        let texture = out.texture;
+        assert_eq!(texture.depth_or_array_layers(), 4);
+        let mut worst = (m.relative_l1, m.flux_error.abs());
+        for wall in Wall::ALL {
+            let c = cpu_walls.get(wall);
+            assert_eq!(out.cols[wall.index()] as usize, c.cols);
+            let texels = ctx
+                .read_rgba_f32_layer(texture, wall.index() as u32)
+                .unwrap();
+            let mut g = c.clone();
+            g.texels = (0..c.rows * c.cols)
+                .map(|k| {
+                    let t = texels[(k / c.cols) * texture.width() as usize + k % c.cols];
+                    [t[0], t[1], t[2]]
+                })
+                .collect();
+            let w = compare_grids(&g.mean_channel(), &c.mean_channel());
+            eprintln!(
+                "wall {}: GPU vs CPU {w:?}, flux {:.5}",
+                wall.suffix(),
+                c.flux()
+            );
+            if c.flux() > 0.0 {
+                worst = (worst.0.max(w.relative_l1), worst.1.max(w.flux_error.abs()));
+            } else {
+                assert_eq!(g.flux(), 0.0, "wall {} is in its own shadow", wall.suffix());
+            }
+        }
+        assert!(
+            cpu_walls.get(Wall::X1).flux() > 0.1,
+            "the sun lights the wall x = size"
+        );
+        // Measured (lavapipe, Rgba32Float): relative L1 floor 2.1e-6, x1 8.2e-7, y1 1.3e-6;
+        // flux floor 4.1e-7, x1 3.3e-7, y1 1.1e-6 (x0, y0 dark on both); bounds 10x the worst.
+        assert!(worst.0 < 2.1e-5 && worst.1 < 1.1e-5, "{worst:?}");
     }
 
     const GLASS_PARAMS: &str = "[caustic-triangles]\nphoton_image = 64\ncube_resolution = 64\n";
@@ -1108,6 +1188,7 @@ test_main! {
     cpu the_water_photon_uniform_matches_its_wgsl_size,
     gpu through_the_trait::water_generator_through_the_trait_matches_the_cpu_twin,
     gpu through_the_trait::water_generator_frames_create_and_read_nothing,
+    gpu through_the_trait::walls_through_the_trait_match_the_cpu_twin,
     gpu through_the_trait::glass_generators_through_the_trait_match_the_cpu_twin,
     gpu through_the_trait::glass_generator_frames_create_and_read_nothing,
     gpu through_the_trait::every_layer_of_the_distance_map_counts,

@@ -50,6 +50,7 @@ use crate::error::{Error, Result};
 use crate::grid::{Edge, Grid};
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::scene::{Camera, Scene, WaterSource};
+use crate::walls::Wall;
 
 /// The fixed number of cascades (§3.2.2: "a fixed number of cascades" avoids shimmering).
 pub const CASCADES: usize = 4;
@@ -329,6 +330,10 @@ pub struct CascadedSetup {
     pub terrain_range: Option<(f64, f64)>,
     /// Post-process dispersion: the floor shift per unit of water column for each channel.
     pub post_shift: [DVec2; 3],
+    /// The pool's walls receive light (issue 18, `floor.walls`, a flat floor only): the receivers
+    /// are the inside of the box `[0, size]² x [0, level]`, floor and walls
+    /// ([`CascadedSetup::box_hit`]).
+    pub walls: bool,
 }
 
 fn bad(m: String) -> Error {
@@ -514,6 +519,7 @@ impl CascadedSetup {
             t_flat: fresnel_transmittance(-light.z, 1.0, ior),
             terrain_range,
             post_shift,
+            walls: false,
         })
     }
 
@@ -536,6 +542,10 @@ impl CascadedSetup {
             water.absorption,
             scene.floor.terrain.as_ref(),
         )
+        .map(|s| CascadedSetup {
+            walls: scene.floor.walls,
+            ..s
+        })
     }
 
     /// Where texel `(i, j)` of cascade `k`'s sun ray starts.
@@ -562,9 +572,59 @@ impl CascadedSetup {
     /// across the terrain's height range, then [`BISECTION_STEPS`] of bisection. The plane z = 0
     /// without terrain.
     pub fn terrain_hit(&self, terrain: Option<&Grid>, o: DVec3, d: DVec3) -> Option<f64> {
+        if self.walls && self.terrain_range.is_none() {
+            return self.box_hit(o, d);
+        }
         terrain_march(o, d, self.terrain_range, MARCH_STEPS, |p| {
             self.terrain_height(terrain, p).0
         })
+    }
+}
+
+impl CascadedSetup {
+    /// With walls: where the ray `o + s d` (`d` pointing down) first meets a receiver, the floor or a
+    /// wall's inside. A ray from above the rim enters through the pool's open top (the rest level)
+    /// and must do so inside the square (else it meets the pool's surround: `None`); from inside the
+    /// box it leaves through the floor where its floor point lies in the square, else through the
+    /// wall [`Wall::exit`] names. Also the exact placement of a refracted photon
+    /// ([`place_photon`]).
+    pub fn box_hit(&self, o: DVec3, d: DVec3) -> Option<f64> {
+        if d.z >= 0.0 {
+            return None;
+        }
+        let s0 = if o.z > self.level {
+            (self.level - o.z) / d.z
+        } else {
+            0.0
+        };
+        let p = o + d * s0;
+        let inside =
+            |q: DVec3| (0.0..=self.size).contains(&q.x) && (0.0..=self.size).contains(&q.y);
+        if !inside(p) {
+            return None;
+        }
+        let s_floor = -p.z / d.z;
+        if inside(p + d * s_floor) {
+            return Some(s0 + s_floor);
+        }
+        let (_, s) = Wall::exit(p.truncate(), d.truncate(), self.size)?;
+        Some(s0 + s)
+    }
+
+    /// The inward normal of the receiver a [`box_hit`](Self::box_hit) point lies on: the floor's
+    /// below a millionth of the level, else the nearest wall's.
+    pub fn receiver_normal(&self, p: DVec3) -> DVec3 {
+        if p.z <= 1e-6 * self.level {
+            return DVec3::Z;
+        }
+        let d = [p.x, self.size - p.x, p.y, self.size - p.y];
+        let mut k = 0;
+        for n in 1..4 {
+            if d[n] < d[k] {
+                k = n;
+            }
+        }
+        Wall::ALL[k].normal()
     }
 }
 
@@ -688,11 +748,16 @@ pub fn eye_pass(setup: &CascadedSetup, terrain: Option<&Grid>) -> Vec<[f32; 4]> 
                     let zv = s / len;
                     let f = e.position + r * zv;
                     let (x, y) = (x as f64, y as f64);
+                    // With walls an edge ray must meet the centre's receiver (floor or the same
+                    // wall): across a corner the parallelogram would span two planes.
+                    let own = setup.walls.then(|| setup.receiver_normal(f));
                     let edge = |px: f64, py: f64| {
                         let r = e.ray(px, py);
                         let s = setup.terrain_hit(terrain, e.position, r.normalize())?;
                         let z = s / r.length();
-                        (z > 0.5 * zv && z < 2.0 * zv).then_some(e.position + r * z)
+                        let p = e.position + r * z;
+                        let same = own.is_none_or(|n| setup.receiver_normal(p) == n);
+                        (z > 0.5 * zv && z < 2.0 * zv && same).then_some(p)
                     };
                     let sides = [
                         edge(x, y + 0.5),
@@ -706,11 +771,19 @@ pub fn eye_pass(setup: &CascadedSetup, terrain: Option<&Grid>) -> Vec<[f32; 4]> 
                             (c.length(), (c.z / c.length()).abs())
                         }
                         _ => {
-                            let n =
-                                height_field_normal(setup.terrain_height(terrain, f.truncate()).1);
+                            let n = own.unwrap_or_else(|| {
+                                height_field_normal(setup.terrain_height(terrain, f.truncate()).1)
+                            });
                             let cos = d.dot(n).abs().max(1e-4);
                             (zv * zv * pixel / (len * cos), n.z)
                         }
+                    };
+                    // A wall's map is per area of the wall, not per horizontal area: its
+                    // pixels take the area itself (N_z read as 1).
+                    let nz = if own.is_some_and(|n| n.z == 0.0) {
+                        1.0
+                    } else {
+                        nz
                     };
                     [zv as f32, area as f32, f.z as f32, nz.max(1e-6) as f32]
                 }
@@ -748,9 +821,14 @@ pub fn place_photon(
         return None;
     }
     let t = refract(l, normal, 1.0 / ior)?;
-    let position = match setup.params.placement {
-        Placement::Eq33 => water + t * ((terrain - water).dot(t) / t.length_squared()),
-        Placement::Plane => water + t * ((water.z - terrain.z) / -t.z),
+    let position = if setup.walls && setup.terrain_range.is_none() {
+        // Walls: the refracted ray's exact end on the floor or a wall (no water outside the pool).
+        water + t * setup.box_hit(water, t)?
+    } else {
+        match setup.params.placement {
+            Placement::Eq33 => water + t * ((terrain - water).dot(t) / t.length_squared()),
+            Placement::Plane => water + t * ((water.z - terrain.z) / -t.z),
+        }
     };
     Some(Photon {
         position,
@@ -1256,6 +1334,70 @@ mod tests {
             };
             assert!((mean - 1.0).abs() < bound, "{placement:?}: mean {mean}");
         }
+    }
+
+    /// The pool's walls as receivers (issue 18): flat, clear water in a 4 m pool 1 m deep, the sun
+    /// heading along +x, the eye above the rim looking at the wall x = 4: its pixels see that
+    /// wall's irradiance `t_x / |t_z|` (the flux per area of the wall, the wall maps' unit), the
+    /// floor's see 1, and no photon leaves the pool through a wall.
+    #[test]
+    fn flat_water_lights_the_wall_it_faces() {
+        let scene = Scene::from_toml(
+            r#"
+            [water]
+            size = 4.0
+            depth = 1.0
+            [floor]
+            walls = true
+            [light]
+            direction = [0.4, 0.0, -1.0]
+            [camera]
+            position = [1.0, 2.0, 2.2]
+            target = [4.0, 2.0, 0.4]
+            fov_y = 50.0
+            resolution = [64, 48]
+            "#,
+            std::path::Path::new("."),
+            "walls",
+        )
+        .unwrap();
+        let p = CascadedParams {
+            resolution: 256,
+            far: 8.0,
+            placement: Placement::Plane,
+            ..Default::default()
+        };
+        let s = CascadedSetup::from_scene(&scene, &p).unwrap();
+        assert!(s.walls);
+        let f = caustics(&s, &Grid::new(8, 8), None);
+        let t = refract(s.light, DVec3::Z, 1.0 / 1.333).unwrap();
+        let a = t.x / -t.z;
+        let (mut wall, mut floor) = (Vec::new(), Vec::new());
+        for (pixel, (e, v)) in f.eye.iter().zip(&f.image).enumerate() {
+            if e[3] == 0.0 || v[3] < 0.0 {
+                continue;
+            }
+            let (x, y) = ((pixel % s.eye.width) as f64, (pixel / s.eye.width) as f64);
+            let q = s.eye.position + s.eye.ray(x + 0.5, y + 0.5) * e[0] as f64;
+            // Away from the edges, where the footprints reach over two receivers.
+            let n = s.receiver_normal(q);
+            if n == -DVec3::X && q.z > 0.1 && q.z < 0.9 && (q.y - 2.0).abs() < 1.5 {
+                wall.push(v[1] as f64);
+            } else if n == DVec3::Z && q.x < 3.7 && q.x > 1.0 && (q.y - 2.0).abs() < 1.5 {
+                floor.push(v[1] as f64);
+            }
+        }
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let (mw, mf) = (mean(&wall), mean(&floor));
+        eprintln!(
+            "wall x1: {} pixels, mean {mw:.4} (tan θt {a:.4}); floor: {} pixels, mean {mf:.4}",
+            wall.len(),
+            floor.len()
+        );
+        assert!(wall.len() > 300 && floor.len() > 300);
+        // Measured: wall +3.4e-3 of tan θt, floor −9e-4 (the footprint splat's sampling).
+        assert!((mw / a - 1.0).abs() < 0.034, "wall {mw} vs {a}");
+        assert!((mf - 1.0).abs() < 0.009, "floor {mf}");
     }
 
     #[test]

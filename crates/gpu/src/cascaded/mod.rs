@@ -101,7 +101,9 @@ pub struct CascadedUniform {
     pub cascade: u32,
     pub flags: u32,
     pub wrap: u32,
-    pub _pad: [u32; 2],
+    /// 1: the pool's walls receive light (`CascadedSetup::walls`).
+    pub walls: u32,
+    pub _pad: u32,
 }
 
 fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
@@ -167,7 +169,8 @@ impl CascadedUniform {
             cascade: k as u32,
             flags,
             wrap: s.wrap as u32,
-            _pad: [0; 2],
+            walls: s.walls as u32,
+            _pad: 0,
         }
     }
 }

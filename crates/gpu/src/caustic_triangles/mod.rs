@@ -25,6 +25,11 @@
 //! of the shifted copies, so a frame never reads the heights on the CPU (the CPU twin fits the same
 //! bound in f64, `WaterSetup::fit_band`; any band at least the light's reach draws the same map).
 //!
+//! With the pool's walls (`WaterSetup::with_walls`, issue 18) nothing wraps; each wall is a
+//! receiver of its own ([`WallFrames`]): the water photon pass again with the uniform's `receiver`
+//! (the rays extended to the wall's plane, `water::receiver_photon`), vertex irradiance and
+//! triangles into its layer of a 4-layer wall-map texture (`water::wall_caustics`).
+//!
 //! The layered distance map is built on the CPU ([`DistanceMap::build`]) and uploaded as a storage
 //! buffer; the photon hit location image and the vertex irradiances are storage buffers that the
 //! vertex shaders read (no vertex buffers: 6 vertices per photon-image quad, 6 per splat). The floor
@@ -40,6 +45,7 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::caustic_triangles::cube::{FAR, LightCube};
 use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
+use caustics_core::walls::{Wall, WallMaps};
 
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
@@ -194,11 +200,17 @@ pub struct WaterPhotonUniform {
     pub lattice: u32,
     pub wrap: u32,
     pub fresnel: u32,
-    pub _pad: u32,
+    /// 0: the floor; `1 + k`: wall `k` of `Wall::ALL` (its own photon image, `receiver_photon`).
+    pub receiver: u32,
 }
 
 impl WaterPhotonUniform {
     pub fn new(ws: &WaterSetup) -> Self {
+        Self::for_receiver(ws, None)
+    }
+
+    /// The uniform of receiver `wall`'s photon pass (`None`: the floor).
+    pub fn for_receiver(ws: &WaterSetup, wall: Option<Wall>) -> Self {
         let l = ws.light;
         WaterPhotonUniform {
             light: [l.x as f32, l.y as f32, l.z as f32, ws.ior as f32],
@@ -209,9 +221,9 @@ impl WaterPhotonUniform {
                 ws.t_flat as f32,
             ],
             lattice: ws.lattice as u32,
-            wrap: ws.wrap() as u32,
+            wrap: ws.surface_wrap as u32,
             fresnel: ws.fresnel as u32,
-            _pad: 0,
+            receiver: wall.map_or(0, |w| 1 + w.index() as u32),
         }
     }
 }
@@ -358,6 +370,18 @@ impl CausticTriangles {
         dm: &DistanceMap,
         map: Option<&wgpu::Texture>,
     ) -> Result<Frame, GpuError> {
+        self.frame_into_layer(ctx, setup, dm, map.map(|m| (m, 0)))
+    }
+
+    /// [`frame_drawing_into`](Self::frame_drawing_into) a layer of a shared 2-D array texture at
+    /// least as wide as the setup's map (the wall maps: the map in the layer's first columns).
+    pub fn frame_into_layer(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+        map: Option<(&wgpu::Texture, u32)>,
+    ) -> Result<Frame, GpuError> {
         use wgpu::BufferUsages as B;
         let (w, h) = (setup.floor.width as u32, setup.floor.height as u32);
         ctx.check_texture_size("caustic-triangles floor map", w, h)?;
@@ -394,9 +418,13 @@ impl CausticTriangles {
             mapped_at_creation: false,
         });
         let own_map = map.is_none();
-        let map = match map {
+        let layer = map.map_or(0, |m| m.1);
+        let map = match map.map(|m| m.0) {
             Some(m) => {
-                if (m.width(), m.height(), m.format()) != (w, h, self.map_format) {
+                if m.width() < w
+                    || (m.height(), m.format()) != (h, self.map_format)
+                    || layer >= m.depth_or_array_layers()
+                {
                     return Err(GpuError::Validation(format!(
                         "caustic-triangles: a shared floor map of {} x {} {:?} for a {w} x {h} {:?} frame",
                         m.width(),
@@ -416,7 +444,12 @@ impl CausticTriangles {
                     | wgpu::TextureUsages::TEXTURE_BINDING,
             ),
         };
-        let map_view = map.create_view(&Default::default());
+        let map_view = map.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2),
+            base_array_layer: layer,
+            array_layer_count: Some(1),
+            ..Default::default()
+        });
         let photon_bind = bind_group(
             ctx,
             "caustic-triangles photon tracing",
@@ -634,6 +667,9 @@ impl CausticTriangles {
             occlusion_query_set: None,
             multiview_mask: None,
         });
+        // The map may fill only the first columns of its target (a wall map in its layer).
+        let f = &frame.setup.floor;
+        pass.set_viewport(0.0, 0.0, f.width as f32, f.height as f32, 0.0, 1.0);
         match reconstruction {
             Reconstruction::Triangles => {
                 pass.set_pipeline(&self.triangles);
@@ -755,6 +791,28 @@ pub struct WaterFrame {
     water_bind: wgpu::BindGroup,
     /// The copy band pass's bind group (tiling water only).
     band_bind: Option<wgpu::BindGroup>,
+    /// The walls' receivers when the setup has walls ([`WaterSetup::with_walls`]).
+    pub walls: Option<WallFrames>,
+}
+
+/// The pool's walls as receivers of a water frame (issue 18, CPU twin `water::wall_caustics`):
+/// each wall has its own photon image (the rays extended to its plane), vertex irradiance and
+/// caustic triangles, a [`Frame`] drawing into its layer of one 2-D array texture
+/// ([`crate::technique::Technique::walls`]'s layout).
+pub struct WallFrames {
+    /// 4 layers in `Wall::ALL`'s order, as wide as the widest wall map, as tall as the maps.
+    pub texture: wgpu::Texture,
+    /// Empty maps: the walls' sizes.
+    pub layout: WallMaps,
+    /// One per wall, in `Wall::ALL`'s order.
+    pub walls: Vec<WallFrame>,
+}
+
+/// One wall's receiver: its frame and its photon pass's uniform and bind group.
+pub struct WallFrame {
+    pub frame: Frame,
+    pub water_uniform: wgpu::Buffer,
+    water_bind: wgpu::BindGroup,
 }
 
 impl WaterFrame {
@@ -809,6 +867,22 @@ impl WaterFrame {
         if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
             ctx.write_buffer(&self.water_uniform, 0, bytemuck::bytes_of(&w));
         }
+        if let Some(walls) = &mut self.walls {
+            for (wall, wf) in Wall::ALL.into_iter().zip(&mut walls.walls) {
+                let setup = ws.receiver_setup(Some(wall), &walls.layout);
+                let old_ct = CausticTrianglesUniform::new(&wf.frame.setup, &no_distance_map());
+                let ct = CausticTrianglesUniform::new(&setup, &no_distance_map());
+                if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
+                    ctx.write_buffer(&wf.frame.uniform, 0, bytemuck::bytes_of(&ct));
+                }
+                let old_w = WaterPhotonUniform::for_receiver(&self.setup, Some(wall));
+                let w = WaterPhotonUniform::for_receiver(ws, Some(wall));
+                if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
+                    ctx.write_buffer(&wf.water_uniform, 0, bytemuck::bytes_of(&w));
+                }
+                wf.frame.setup = setup;
+            }
+        }
         self.setup = ws.clone();
         self.frame.setup = ws.setup.clone();
     }
@@ -820,6 +894,12 @@ impl WaterFrame {
                 .as_ref()
                 .map_or(0, |_| (self.grid.0 * self.grid.1) as u64 * 4)
             + 48
+            + self.walls.as_ref().map_or(0, |w| {
+                let t = &w.texture;
+                let texel = t.format().block_copy_size(None).unwrap_or(16) as u64;
+                w.walls.iter().map(|f| f.frame.bytes() + 48).sum::<u64>()
+                    + (t.width() * t.height() * 4) as u64 * texel
+            })
     }
 }
 
@@ -840,6 +920,8 @@ pub struct WaterGpuOutput {
     pub paths: Vec<f32>,
     pub irradiance: Vec<f32>,
     pub map: CausticsMap,
+    /// The wall maps when the setup has walls.
+    pub walls: Option<WallMaps>,
 }
 
 impl CausticTriangles {
@@ -898,6 +980,11 @@ impl CausticTriangles {
             )
         });
         frame.gpu_band = band_bind.is_some();
+        let walls = if ws.walls {
+            Some(self.wall_frames(ctx, ws, &view)?)
+        } else {
+            None
+        };
         ctx.check()?;
         Ok(WaterFrame {
             frame,
@@ -907,7 +994,90 @@ impl CausticTriangles {
             water_uniform,
             water_bind,
             band_bind,
+            walls,
         })
+    }
+
+    /// The walls' receivers of a water frame with walls, reading the heights through `heights`.
+    fn wall_frames(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &wgpu::BindingResource,
+    ) -> Result<WallFrames, GpuError> {
+        let f = &ws.setup.floor;
+        let layout = WallMaps::for_floor_map(f.width, f.height, ws.size, ws.depth);
+        let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
+        let rows = layout.maps[0].rows as u32;
+        ctx.check_texture_size("caustic-triangles wall maps", cols, rows)?;
+        let texture = ctx.texture_2d(
+            "caustic-triangles wall maps",
+            (cols, rows, 4),
+            self.map_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let mut walls = Vec::with_capacity(4);
+        for wall in Wall::ALL {
+            let setup = ws.receiver_setup(Some(wall), &layout);
+            let frame = self.frame_into_layer(
+                ctx,
+                &setup,
+                &no_distance_map(),
+                Some((&texture, wall.index() as u32)),
+            )?;
+            let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("caustic-triangles wall photons"),
+                contents: bytemuck::bytes_of(&WaterPhotonUniform::for_receiver(ws, Some(wall))),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+            let water_bind = bind_group(
+                ctx,
+                "caustic-triangles wall photons",
+                &self.water_photon.get_bind_group_layout(0),
+                &[
+                    water_uniform.as_entire_binding(),
+                    heights.clone(),
+                    frame.photons.as_entire_binding(),
+                    frame.paths.as_entire_binding(),
+                ],
+            );
+            walls.push(WallFrame {
+                frame,
+                water_uniform,
+                water_bind,
+            });
+        }
+        Ok(WallFrames {
+            texture,
+            layout,
+            walls,
+        })
+    }
+
+    /// Read a water frame's wall maps back (`None` without walls).
+    pub fn read_walls(
+        &self,
+        ctx: &GpuContext,
+        wf: &WaterFrame,
+    ) -> Result<Option<WallMaps>, GpuError> {
+        let Some(walls) = &wf.walls else {
+            return Ok(None);
+        };
+        let mut maps = walls.layout.clone();
+        let width = walls.texture.width() as usize;
+        for wall in Wall::ALL {
+            let texels = ctx.read_rgba_f32_layer(&walls.texture, wall.index() as u32)?;
+            let m = maps.get_mut(wall);
+            m.texels = (0..m.rows * m.cols)
+                .map(|k| {
+                    let t = texels[(k / m.cols) * width + k % m.cols];
+                    [t[0], t[1], t[2]]
+                })
+                .collect();
+        }
+        Ok(Some(maps))
     }
 
     /// Record the water photon pass, then the reconstruction into the floor map (cleared first).
@@ -931,7 +1101,16 @@ impl CausticTriangles {
             pass.set_bind_group(0, bind, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         }
-        self.encode_reconstruction(&wf.frame, encoder, timer, reconstruction);
+        self.encode_reconstruction(&wf.frame, encoder, timer.as_deref_mut(), reconstruction);
+        for wall in wf.walls.iter().flat_map(|w| &w.walls) {
+            {
+                let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles wall photons");
+                pass.set_pipeline(&self.water_photon);
+                pass.set_bind_group(0, &wall.water_bind, &[]);
+                pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+            }
+            self.encode_reconstruction(&wall.frame, encoder, timer.as_deref_mut(), reconstruction);
+        }
     }
 
     /// The water generator once, its floor map read back (the Runner's frame).
@@ -940,8 +1119,19 @@ impl CausticTriangles {
         ctx: &GpuContext,
         ws: &WaterSetup,
         heights: &Grid,
-        mut timer: Option<&mut GpuTimer>,
+        timer: Option<&mut GpuTimer>,
     ) -> Result<CausticsMap, GpuError> {
+        Ok(self.water_caustics_walls(ctx, ws, heights, timer)?.0)
+    }
+
+    /// [`water_caustics`](Self::water_caustics) with the wall maps when `ws` has walls.
+    pub fn water_caustics_walls(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &Grid,
+        mut timer: Option<&mut GpuTimer>,
+    ) -> Result<(CausticsMap, Option<WallMaps>), GpuError> {
         let wf = self.water_frame(ctx, ws, heights)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode_water(
@@ -955,8 +1145,9 @@ impl CausticTriangles {
         }
         ctx.queue.submit([encoder.finish()]);
         let map = self.read_map(ctx, &wf.frame)?;
+        let walls = self.read_walls(ctx, &wf)?;
         ctx.check()?;
-        Ok(map)
+        Ok((map, walls))
     }
 
     /// The water generator once, everything read back.
@@ -977,6 +1168,7 @@ impl CausticTriangles {
             paths: ctx.read_buffer(&wf.frame.paths)?,
             irradiance: ctx.read_buffer(&wf.frame.irradiance)?,
             map,
+            walls: self.read_walls(ctx, &wf)?,
         })
     }
 }

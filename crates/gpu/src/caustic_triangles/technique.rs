@@ -18,7 +18,7 @@ use caustics_core::techniques::caustic_triangles::{
 };
 
 use super::{CausticTriangles, CausticTrianglesUniform, Frame, Reconstruction, WaterFrame};
-use crate::technique::{Output, Technique, WaterTextures};
+use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct CausticTrianglesTechnique {
@@ -121,7 +121,8 @@ impl CausticTrianglesTechnique {
             scene.light.direction,
             scene.caustics.width as usize,
             scene.caustics.height as usize,
-        )?)
+        )?
+        .with_walls(scene.floor.walls))
     }
 
     fn configure_glass(
@@ -320,6 +321,18 @@ impl Technique for CausticTrianglesTechnique {
         match self.state.as_ref()? {
             State::Water { frame, .. } => Some(Output::Floor(&frame.frame.map)),
             State::Glass { map, .. } => Some(Output::Floor(map)),
+        }
+    }
+
+    /// The water generator's wall maps on a scene with walls (glass scenes have none), in the
+    /// floor map's format (`Rgba16Float` where the device cannot blend 32-bit floats).
+    fn walls(&self) -> Option<WallsOutput<'_>> {
+        match self.state.as_ref()? {
+            State::Water { frame, .. } => frame.walls.as_ref().map(|w| WallsOutput {
+                texture: &w.texture,
+                cols: w.layout.maps.each_ref().map(|m| m.cols as u32),
+            }),
+            State::Glass { .. } => None,
         }
     }
 

@@ -24,7 +24,7 @@ struct Cascaded {
     cascade: u32,
     flags: u32,            // bit 0: plane placement; bit 1: physical brightness; bit 2: wavelength dispersion; bit 3: footprint splat
     wrap: u32,
-    _pad0: u32,
+    walls: u32,            // 1: the pool's walls receive light (floor and walls inside [0, size]^2 x [0, level])
     _pad1: u32,
 }
 
@@ -52,8 +52,75 @@ fn terrain_gap(c: Cascaded, tex: texture_2d<f32>, o: vec3<f32>, d: vec3<f32>, s:
     return p.z - terrain_height(c, tex, p.xy).x;
 }
 
+fn in_square(c: Cascaded, q: vec3<f32>) -> bool {
+    return q.x >= 0.0 && q.y >= 0.0 && q.x <= c.e_u.w && q.y <= c.e_u.w;
+}
+
+// `CascadedSetup::box_hit`: with walls, the first receiver (floor or a wall's inside) of o + s d,
+// entering through the open top inside the square; -1 where there is none.
+fn box_hit(c: Cascaded, o: vec3<f32>, d: vec3<f32>) -> f32 {
+    if d.z >= 0.0 {
+        return -1.0;
+    }
+    var s0 = 0.0;
+    if o.z > c.light.w {
+        s0 = (c.light.w - o.z) / d.z;
+    }
+    let p = o + d * s0;
+    if !in_square(c, p) {
+        return -1.0;
+    }
+    let s_floor = -p.z / d.z;
+    if in_square(c, p + d * s_floor) {
+        return s0 + s_floor;
+    }
+    // `Wall::exit`: the nearer of the x and y walls the horizontal direction leaves through.
+    var sx = 3.0e38;
+    var sy = 3.0e38;
+    if d.x > 0.0 {
+        sx = (c.e_u.w - p.x) / d.x;
+    } else if d.x < 0.0 {
+        sx = -p.x / d.x;
+    }
+    if d.y > 0.0 {
+        sy = (c.e_u.w - p.y) / d.y;
+    } else if d.y < 0.0 {
+        sy = -p.y / d.y;
+    }
+    let s = min(sx, sy);
+    if s >= 3.0e38 {
+        return -1.0;
+    }
+    return s0 + s;
+}
+
+// `CascadedSetup::receiver_normal`: the inward normal of the receiver a box_hit point lies on.
+fn receiver_normal(c: Cascaded, p: vec3<f32>) -> vec3<f32> {
+    if p.z <= 1e-6 * c.light.w {
+        return vec3<f32>(0.0, 0.0, 1.0);
+    }
+    let size = c.e_u.w;
+    var best = p.x;
+    var n = vec3<f32>(1.0, 0.0, 0.0);
+    if size - p.x < best {
+        best = size - p.x;
+        n = vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    if p.y < best {
+        best = p.y;
+        n = vec3<f32>(0.0, 1.0, 0.0);
+    }
+    if size - p.y < best {
+        n = vec3<f32>(0.0, -1.0, 0.0);
+    }
+    return n;
+}
+
 // `terrain_march`: the first terrain hit of o + s d (d unit), -1 where there is none.
 fn terrain_hit(c: Cascaded, tex: texture_2d<f32>, o: vec3<f32>, d: vec3<f32>) -> f32 {
+    if c.walls != 0u && c.terrain.z == 0.0 {
+        return box_hit(c, o, d);
+    }
     if d.z >= 0.0 {
         return -1.0;
     }

@@ -39,7 +39,14 @@ fn place_photon(water: vec3<f32>, normal: vec3<f32>, terrain: vec3<f32>, ior: f3
         return ph;
     }
     let t = t4.xyz;
-    if (cfg.flags & 1u) != 0u {
+    if cfg.walls != 0u && cfg.terrain.z == 0.0 {
+        // Walls: the refracted ray's exact end on the floor or a wall (`box_hit`).
+        let s = box_hit(cfg, water, t);
+        if s < 0.0 {
+            return ph;
+        }
+        ph.position = water + t * s;
+    } else if (cfg.flags & 1u) != 0u {
         ph.position = water + t * ((water.z - terrain.z) / -t.z);
     } else {
         ph.position = water + t * (dot(terrain - water, t) / dot(t, t));

@@ -5,8 +5,10 @@
 // (x, y, power, 1) of the floor hit (power -1 where the surface faces away from the sun) and the
 // refracted path length (Beer-Lambert in the triangles pass). Power: the cell's area projected
 // along the light onto the horizontal, times the Fresnel transmittance relative to flat water (the
-// reference's normalisation). CPU twin: `photon` in
-// caustics-core/src/techniques/caustic_triangles/water.rs.
+// reference's normalisation). With walls each receiver (the floor, one wall) has its own photon
+// image: the rays extended to its plane, a wall's hits as (along, z size / depth) with the power
+// stretched alike, invalid where the ray runs away from the wall or ends more than `size` below the
+// floor. CPU twin: `receiver_photon` in caustics-core/src/techniques/caustic_triangles/water.rs.
 
 // The uniform block `WaterPhoton`: water_setup.wgsl.
 @group(0) @binding(0) var<uniform> w: WaterPhoton;
@@ -34,11 +36,33 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         paths[k] = 0.0;
         return;
     }
-    let d = (w.water.x + hg.x) / -t.z;
     var fresnel = 1.0;
     if w.fresnel != 0u {
         fresnel = fresnel_transmittance(cos_i, 1.0, w.light.w) / w.water.w;
     }
-    photons[k] = vec4<f32>(s + t.xy * d, w.water.z * w.water.z * seen * fresnel, 1.0);
+    let power = w.water.z * w.water.z * seen * fresnel;
+    let z = w.water.x + hg.x;
+    if w.receiver == 0u {
+        let d = z / -t.z;
+        photons[k] = vec4<f32>(s + t.xy * d, power, 1.0);
+        paths[k] = d;
+        return;
+    }
+    // Wall x = 0, x = size, y = 0, y = size: the axis across it, its plane, its inward normal's sign.
+    let wall = w.receiver - 1u;
+    let axis = wall / 2u;
+    let plane = select(0.0, w.water.y, wall % 2u == 1u);
+    let inward = select(1.0, -1.0, wall % 2u == 1u);
+    let toward = -t[axis] * inward;
+    let d = (plane - s[axis]) / t[axis];
+    let hz = z + t.z * d;
+    if toward <= 0.0 || hz < -w.water.y {
+        photons[k] = vec4<f32>(0.0, 0.0, -1.0, 0.0);
+        paths[k] = 0.0;
+        return;
+    }
+    let along = s[1u - axis] + t[1u - axis] * d;
+    let stretch = w.water.y / w.water.x;
+    photons[k] = vec4<f32>(along, hz * stretch, power * stretch, 1.0);
     paths[k] = d;
 }

@@ -5,7 +5,7 @@ struct WaterPhoton {
     light: vec4<f32>,   // xyz: unit direction the sunlight travels; w: index of refraction of the water
     water: vec4<f32>,   // x: depth; y: size of the square; z: lattice spacing; w: T(theta0), 1 without Fresnel
     lattice: u32,       // quads per side, P (P + 1 photons per side)
-    wrap: u32,
+    wrap: u32,          // the surface tiles: heights sampled wrapped
     fresnel: u32,
-    _pad: u32,
+    receiver: u32,      // 0: the floor; 1 + k: wall k of Wall::ALL (x = 0, x = size, y = 0, y = size)
 }
