@@ -56,6 +56,14 @@ pub struct RenderArgs {
     /// Samples per pixel along each axis of the final image.
     #[arg(long, default_value_t = 2)]
     supersampling: u32,
+    /// Exposure of the final image: radiance is multiplied by it before the tone curve (the
+    /// scene's `[camera] exposure` by default).
+    #[arg(long)]
+    exposure: Option<f64>,
+    /// Tone curve of the final image: aces, agx or none (the scene's `[camera] tone_map`, by
+    /// default aces).
+    #[arg(long)]
+    tone_map: Option<caustics_core::render::ToneMap>,
     /// Render the final image on the CPU even when a GPU is present.
     #[arg(long, conflicts_with_all = ["backend", "adapter"])]
     cpu: bool,
@@ -182,6 +190,15 @@ pub fn run(args: RenderArgs) -> Result<()> {
         check_size("--image-size", w, h)?;
         scene.camera.width = w;
         scene.camera.height = h;
+    }
+    if let Some(e) = args.exposure {
+        if !(e.is_finite() && e > 0.0) {
+            bail!("--exposure must be positive and finite, got {e}");
+        }
+        scene.look.exposure = e;
+    }
+    if let Some(t) = args.tone_map {
+        scene.look.tone_map = t;
     }
     if let Some(t) = args.time {
         if !t.is_finite() {
@@ -347,10 +364,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let caustics = caustics.as_ref().map(SceneCaustics::caustics);
     if let Some(out) = &out {
         let started = Instant::now();
-        let options = RenderOptions {
-            supersampling: args.supersampling.max(1),
-            ..Default::default()
-        };
+        let options = RenderOptions::for_scene(&scene, args.supersampling.max(1));
         let final_image = runner
             .gpu
             .as_ref()
@@ -435,10 +449,7 @@ fn render_frame(
             params: spec.params.clone(),
         })],
     );
-    let options = RenderOptions {
-        supersampling: args.supersampling.max(1),
-        ..Default::default()
-    };
+    let options = RenderOptions::for_scene(scene, args.supersampling.max(1));
     let clock = WaterClock {
         time: scene.time,
         amplitude: 1.0,
@@ -653,7 +664,8 @@ fn volumes_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Res
         scene.camera.width,
         scene.camera.height,
         &rgb,
-        RenderOptions::default().exposure,
+        scene.look.exposure,
+        scene.look.tone_map,
     )?;
     eprintln!(
         "wrote {} ({} x {}, volumes through its refracted view, {:.2} s on the {on})",
@@ -680,7 +692,8 @@ fn caustic_triangles_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Pa
         image.width,
         image.height,
         &image.rgb,
-        RenderOptions::default().exposure,
+        scene.look.exposure,
+        scene.look.tone_map,
     )?;
     eprintln!(
         "wrote {} ({} x {}, caustic-triangles through its camera pass, {:.2} s on the {on})",

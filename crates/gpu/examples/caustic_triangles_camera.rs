@@ -42,7 +42,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         image.width,
         image.height,
         &image.rgb,
-        0.85,
+        scene.look.exposure,
+        scene.look.tone_map,
     )?;
     println!("wrote {out}");
     if !bench {

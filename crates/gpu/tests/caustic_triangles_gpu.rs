@@ -705,11 +705,10 @@ fn merging_matches_the_cpu_twin() {
 /// photons, path lengths and maps (triangles and splats, wrapped, with absorption) against the CPU
 /// twin; and clamped water's single copy.
 fn water_generator_matches_the_cpu_twin() {
-    use caustics_core::scene::Scene;
     use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
     let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
-    let scene = Scene::builtin("pool").unwrap();
+    let scene = common::with_gentle_ripples("pool");
     let mut w = scene.water.clone().unwrap();
     let surface = w.surface_at(scene.time).unwrap();
     let heights = water::heights(&w, surface.as_ref(), 256, 256);
@@ -844,7 +843,7 @@ mod through_the_trait {
     /// The pool (tiling water with waves) at 64², at `time`, without its walls: the light wraps
     /// round (the shifted copies and the copy band pass under test).
     fn pool(time: f64) -> Scene {
-        let mut scene = Scene::builtin("pool").unwrap();
+        let mut scene = super::common::with_gentle_ripples("pool");
         scene.caustics.width = MAP as u32;
         scene.caustics.height = MAP as u32;
         scene.time = time;

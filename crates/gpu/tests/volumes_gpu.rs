@@ -347,9 +347,10 @@ use caustics_core::water::sample_grid;
 use caustics_gpu::GpuContext;
 use caustics_gpu::technique::{self, Technique, WaterTextures};
 
-/// A built-in scene with a 64 x 64 map.
+/// A built-in scene with a 64 x 64 map (the pool and objects with their gentle ripples, on which
+/// the bounds were measured).
 fn small(name: &str) -> Scene {
-    let mut scene = Scene::builtin(name).expect("built-in scene");
+    let mut scene = common::with_gentle_ripples(name);
     scene.caustics.width = 64;
     scene.caustics.height = 64;
     scene

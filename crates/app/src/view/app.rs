@@ -1115,7 +1115,7 @@ fn initial_model(
         quality: Quality {
             map_size: args.map_size.unwrap_or(map_size).clamp(8, 4096),
             supersampling: args.supersampling.unwrap_or(supersampling).clamp(1, 8),
-            exposure: 0.85,
+            exposure: scene.look.exposure,
             cpu_image: match args.final_image {
                 ImageOn::Cpu => true,
                 ImageOn::Gpu => false,

@@ -411,6 +411,7 @@ impl SceneRenderer {
         let options = RenderOptions {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
+            tone_map: self.scene.look.tone_map,
         };
         let mut images = Vec::with_capacity(slots.len());
         for slot in slots.iter() {
@@ -461,6 +462,7 @@ impl SceneRenderer {
         let options = RenderOptions {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
+            tone_map: self.scene.look.tone_map,
         };
         let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
         let frame = self.gpu_frame.as_mut().expect("checked by render");

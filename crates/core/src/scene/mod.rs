@@ -218,6 +218,12 @@ pub struct CameraSpec {
     pub fov_y: f64,
     #[serde(default = "default_image")]
     pub resolution: [u32; 2],
+    /// The final image's exposure: radiance is multiplied by it before the tone curve.
+    #[serde(default = "one")]
+    pub exposure: f64,
+    /// The final image's tone curve: "aces" (the default), "agx" or "none".
+    #[serde(default)]
+    pub tone_map: crate::render::ToneMap,
 }
 
 fn one() -> f64 {
@@ -261,6 +267,8 @@ pub struct Scene {
     pub floor: Floor,
     pub objects: Vec<Object>,
     pub camera: Camera,
+    /// How the final image shows the camera's radiance.
+    pub look: Look,
     pub time: f64,
     /// The square `[0, size]²` the water, the floor and the caustics map cover (1 without water).
     pub size: f64,
@@ -438,6 +446,22 @@ pub struct Camera {
     pub fov_y: f64,
     pub width: u32,
     pub height: u32,
+}
+
+/// How the final image turns radiance into display values (`[camera]` `exposure`, `tone_map`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Look {
+    pub exposure: f64,
+    pub tone_map: crate::render::ToneMap,
+}
+
+impl Default for Look {
+    fn default() -> Self {
+        Look {
+            exposure: 1.0,
+            tone_map: crate::render::ToneMap::default(),
+        }
+    }
 }
 
 impl Camera {

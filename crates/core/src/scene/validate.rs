@@ -110,6 +110,21 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
         .map(|(k, o)| validate_object(o, base, k, size))
         .collect::<Result<Vec<_>>>()?;
 
+    let look = match &file.camera {
+        Some(c) => {
+            if !(c.exposure.is_finite() && c.exposure > 0.0) {
+                return Err(Error::field(
+                    "camera.exposure",
+                    format!("must be positive and finite, got {}", c.exposure),
+                ));
+            }
+            Look {
+                exposure: c.exposure,
+                tone_map: c.tone_map,
+            }
+        }
+        None => Look::default(),
+    };
     let camera = match &file.camera {
         Some(c) => {
             finite("camera.position", &c.position)?;
@@ -162,6 +177,7 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
         floor,
         objects,
         camera,
+        look,
         time: file.time,
         size,
     })

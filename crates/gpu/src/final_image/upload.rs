@@ -44,8 +44,8 @@ pub struct FinalImageUniform {
     pub object_count: u32,
     pub flags: u32,
     pub albedo: u32,
-    /// The WGSL struct's size rounds up to its 16-byte alignment.
-    pub _pad: u32,
+    /// `ToneMap::code` of the options' tone curve.
+    pub tone_map: u32,
 }
 
 /// Mirrors `Slab` in `shaders/final_image_slab.wgsl`.
@@ -247,7 +247,7 @@ pub(super) fn uniform(
             Albedo::Pattern(FloorPattern::Plain) => albedo::PLAIN,
             Albedo::Image { .. } => albedo::IMAGE,
         },
-        _pad: 0,
+        tone_map: options.tone_map.code(),
     }
 }
 

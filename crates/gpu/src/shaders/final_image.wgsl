@@ -48,6 +48,8 @@ struct FinalImage {
     flags: u32,
     // ALBEDO_* of shading.wgsl.
     albedo: u32,
+    // TONE_* of shading.wgsl (`ToneMap::code`).
+    tone_map: u32,
 }
 
 // `FinalImageUniform::flags`.
@@ -761,5 +763,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     c = c / f32(n * n) * params.exposure;
-    textureStore(image, id.xy, vec4<f32>(tone_map(c), 1.0));
+    textureStore(image, id.xy, vec4<f32>(tone_map(c, params.tone_map), 1.0));
 }

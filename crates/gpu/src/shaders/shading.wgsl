@@ -60,11 +60,65 @@ fn floor_albedo(kind: u32, image: texture_2d<f32>, p: vec2<f32>, size: f32) -> v
     }
 }
 
-// Filmic curve (Narkowicz's ACES fit), then the sRGB transfer function, then the 8-bit code as the
-// CPU rounds it (`(s * 255 + 0.5) as u8`), returned as code / 255 so that an `rgba8unorm` store
-// writes exactly that code.
-fn tone_map(c: vec3<f32>) -> vec3<f32> {
-    let y = clamp((c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+// `ToneMap::code` (render.rs): which tone curve `tone_map` applies.
+const TONE_ACES: u32 = 0u;
+const TONE_AGX: u32 = 1u;
+const TONE_NONE: u32 = 2u;
+
+// render.rs `mat3`: a matrix given by its rows times `c`.
+fn rows3(r0: vec3<f32>, r1: vec3<f32>, r2: vec3<f32>, c: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(r0, c), dot(r1, c), dot(r2, c));
+}
+
+// render.rs `tone_curve`: display light in [0, 1] for radiance times the exposure. The matrices
+// are render.rs's `ACES_IN`, `ACES_OUT`, `AGX_IN`, `AGX_OUT`, row by row.
+fn tone_curve(c: vec3<f32>, curve: u32) -> vec3<f32> {
+    var y = c;
+    if curve == TONE_ACES {
+        let v = rows3(
+            vec3<f32>(0.59719, 0.35458, 0.04823),
+            vec3<f32>(0.07600, 0.90834, 0.01566),
+            vec3<f32>(0.02840, 0.13383, 0.83777),
+            c,
+        );
+        let a = v * (v + 0.0245786) - 0.000090537;
+        let b = v * (0.983729 * v + 0.4329510) + 0.238081;
+        y = rows3(
+            vec3<f32>(1.60475, -0.53108, -0.07367),
+            vec3<f32>(-0.10208, 1.10813, -0.00605),
+            vec3<f32>(-0.00327, -0.07276, 1.07602),
+            a / b,
+        );
+    } else if curve == TONE_AGX {
+        let min_ev = -12.47393;
+        let max_ev = 4.026069;
+        let v = max(rows3(
+            vec3<f32>(0.842479062253094, 0.0784335999999992, 0.0792237451477643),
+            vec3<f32>(0.0423282422610123, 0.878468636469772, 0.0791661274605434),
+            vec3<f32>(0.0423756549057051, 0.0784336, 0.879142973793104),
+            c,
+        ), vec3<f32>(1e-10));
+        let x = (clamp(log2(v), vec3<f32>(min_ev), vec3<f32>(max_ev)) - min_ev) / (max_ev - min_ev);
+        let x2 = x * x;
+        let x4 = x2 * x2;
+        let s = 15.5 * x4 * x2 - 40.14 * x4 * x + 31.96 * x4 - 6.868 * x2 * x + 0.4298 * x2
+            + 0.1191 * x - 0.00232;
+        let d = max(rows3(
+            vec3<f32>(1.19687900512017, -0.0980208811401368, -0.0990297440797205),
+            vec3<f32>(-0.0528968517574562, 1.15190312990417, -0.0989611768448433),
+            vec3<f32>(-0.0529716355144438, -0.0980434501171241, 1.15107367264116),
+            s,
+        ), vec3<f32>(0.0));
+        y = pow(d, vec3<f32>(2.2));
+    }
+    return clamp(y, vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+// render.rs `tone_map`: the tone curve, then the sRGB transfer function, then the 8-bit code as
+// the CPU rounds it (`(s * 255 + 0.5) as u8`), returned as code / 255 so that an `rgba8unorm`
+// store writes exactly that code.
+fn tone_map(c: vec3<f32>, curve: u32) -> vec3<f32> {
+    let y = tone_curve(c, curve);
     var s: vec3<f32>;
     for (var k = 0; k < 3; k++) {
         if y[k] <= 0.0031308 {

@@ -305,19 +305,15 @@ pub fn camera_pass(input: &CameraInput) -> Vec<[f32; 3]> {
         .collect()
 }
 
-/// Tone map (Narkowicz's ACES fit, the final image's curve) and sRGB-encode linear radiance.
-pub fn to_rgb8(linear: &[[f32; 3]], exposure: f64) -> Vec<u8> {
-    let f = |x: f32| {
-        let x = x as f64 * exposure;
-        let y = ((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)).clamp(0.0, 1.0);
-        let s = if y <= 0.003_130_8 {
-            12.92 * y
-        } else {
-            1.055 * y.powf(1.0 / 2.4) - 0.055
-        };
-        (s * 255.0 + 0.5) as u8
-    };
-    linear.iter().flat_map(|c| c.map(f)).collect()
+/// Tone map (the final image's curve, [`crate::render::tone_map`]) and sRGB-encode linear radiance.
+pub fn to_rgb8(linear: &[[f32; 3]], exposure: f64, curve: crate::render::ToneMap) -> Vec<u8> {
+    linear
+        .iter()
+        .flat_map(|c| {
+            let c = glam::DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64) * exposure;
+            crate::render::tone_map(c, curve)
+        })
+        .collect()
 }
 
 impl CameraParams {
@@ -419,10 +415,11 @@ pub fn write_png(
     height: u32,
     linear: &[[f32; 3]],
     exposure: f64,
+    curve: crate::render::ToneMap,
 ) -> crate::Result<()> {
     image::save_buffer(
         path,
-        &to_rgb8(linear, exposure),
+        &to_rgb8(linear, exposure, curve),
         width,
         height,
         image::ExtendedColorType::Rgb8,
