@@ -23,6 +23,22 @@
 //! As the triangulation is refined the piecewise-linear ray map converges to the true one, and so
 //! does the deposited irradiance (away from the caustic singularities, where it converges in the
 //! mean). Triangles facing away from the sun receive nothing (the surface shadows itself).
+//!
+//! # Walls
+//! With the pool's walls as receivers ([`Floor::walls`], issue 18) the traced domain is the water
+//! square itself (light enters the pool only through its surface, and nothing wraps), and each
+//! vertex's ray stops at whichever it meets first: the floor, or a wall plane (x = 0, x = size,
+//! y = 0, y = size). A triangle whose three rays meet the same receiver is deposited there as on
+//! the floor, in that receiver's plane (`(along, z)` on a wall). A triangle whose rays meet
+//! different receivers is split between them: for each receiver its rays met, the triangle's
+//! piecewise-linear image on that receiver's plane (every vertex's ray carried to the plane) is
+//! clipped to the receiver (the floor's square; a wall from the floor up), and the part inside,
+//! over the whole image, is the share of the triangle's flux that meets that receiver first (for
+//! straight rays from inside a convex box these parts partition the triangle; the shares are
+//! normalised to sum to one, so nothing is lost to the linear approximation). Under flat water
+//! every ray map is affine and the split is exact. Light meeting a wall above the rest water level
+//! (a wave crest's own edge) goes to its top row. A wall texel's value is its flux over its area
+//! in the floor's unit ([`crate::walls`]).
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -31,6 +47,7 @@ use crate::error::{Error, Result};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::scene::{Floor, Scene, Water};
+use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
 #[derive(Clone, Debug)]
@@ -88,21 +105,51 @@ impl<'a> ReferenceInput<'a> {
 #[derive(Clone, Copy)]
 struct Hit {
     surface: DVec3,
+    /// The point its receiver is met at, in that receiver's plane: `(x, y)` on the floor,
+    /// `(along, z)` on a wall.
     floor: DVec2,
     weight: DVec3,
     lit: bool,
+    /// The receiver met first: [`FLOOR`] or a wall's `index() + 1`; always the floor without walls.
+    receiver: u8,
+    /// The refracted direction, to meet the other receivers' planes (with walls only).
+    dir: DVec3,
 }
+
+/// [`Hit::receiver`] of the floor.
+const FLOOR: u8 = 0;
 
 /// The most memory the reference's per-thread accumulators may take.
 pub const MAX_ACCUMULATOR_BYTES: u64 = 8 << 30;
 
-/// Compute the reference caustics map. `progress(done, total)` is called as bands of the
-/// triangulation finish.
+/// What the reference lights: the floor map, and the walls' maps when the floor has walls.
+#[derive(Clone, Debug)]
+pub struct ReferenceOutput {
+    pub floor: CausticsMap,
+    /// `Some` when [`Floor::walls`]: light that meets a wall is here, not on the floor.
+    pub walls: Option<WallMaps>,
+    /// The flux that left the water surface downwards (per channel, Fresnel and absorption
+    /// included as in the maps), in the floor map's unit times area: what floor and walls hold.
+    pub transmitted: DVec3,
+}
+
+/// Compute the reference caustics map of the floor (see [`reference_with_walls`] for the walls).
+/// `progress(done, total)` is called as bands of the triangulation finish.
 pub fn reference(
     input: &ReferenceInput,
     options: &ReferenceOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<CausticsMap> {
+    reference_with_walls(input, options, progress).map(|o| o.floor)
+}
+
+/// The reference with everything it lights: the floor map and, when [`Floor::walls`], the four
+/// walls' maps (laid out as [`WallMaps::for_floor_map`] says).
+pub fn reference_with_walls(
+    input: &ReferenceInput,
+    options: &ReferenceOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<ReferenceOutput> {
     let ReferenceInput {
         surface,
         water,
@@ -118,7 +165,14 @@ pub fn reference(
         ));
     }
     let size = water.size;
-    let wrap = water.wrap;
+    let walls = floor.walls;
+    if walls && floor.terrain.is_some() {
+        return Err(Error::InvalidParameter(
+            "walls receive light only around a flat pool floor, not over a terrain".into(),
+        ));
+    }
+    // Walls close the pool: no light wraps round, whatever the water's heights do.
+    let wrap = water.wrap && !walls;
     let eta = 1.0 / water.ior;
     let t_flat = if options.fresnel {
         fresnel_transmittance(-light.z, 1.0, water.ior)
@@ -131,7 +185,7 @@ pub fn reference(
     // mean horizontal travel of the refracted light and widened by a margin for the waves' deflection.
     let cpt = options.cells_per_texel as usize;
     let texel = DVec2::new(size / width as f64, size / height as f64);
-    let (origin, nx, ny) = if wrap {
+    let (origin, nx, ny) = if wrap || walls {
         (DVec2::ZERO, width * cpt, height * cpt)
     } else {
         let travel = -flat_dir.truncate() * (water.depth / -flat_dir.z);
@@ -140,7 +194,7 @@ pub fn reference(
         let n = |extent: f64, t: f64| ((extent + 2.0 * margin) / t * cpt as f64).ceil() as usize;
         (lo, n(size, texel.x), n(size, texel.y))
     };
-    let cell = if wrap {
+    let cell = if wrap || walls {
         DVec2::new(size / nx as f64, size / ny as f64)
     } else {
         texel / cpt as f64
@@ -161,6 +215,8 @@ pub fn reference(
             floor: p,
             weight: DVec3::ZERO,
             lit: false,
+            receiver: FLOOR,
+            dir: DVec3::ZERO,
         };
         if cos_i <= 0.0 {
             return unlit;
@@ -168,7 +224,20 @@ pub fn reference(
         let Some(t) = refract(light, n, eta) else {
             return unlit;
         };
+        let mut receiver = FLOOR;
         let (floor_point, d) = match &terrain_march {
+            None if walls => {
+                let d_floor = if t.z < 0.0 { s.z / -t.z } else { f64::INFINITY };
+                match Wall::exit(s.truncate(), t.truncate(), size) {
+                    Some((w, u)) if u < d_floor => {
+                        let hit = s + t * u;
+                        receiver = w.index() as u8 + 1;
+                        (DVec2::new(w.along(hit), hit.z), u)
+                    }
+                    _ if d_floor.is_finite() => ((s + t * d_floor).truncate(), d_floor),
+                    _ => return unlit,
+                }
+            }
             None => {
                 let d = s.z / -t.z;
                 ((s + t * d).truncate(), d)
@@ -193,6 +262,8 @@ pub fn reference(
             floor: floor_point,
             weight: fresnel * absorb,
             lit: true,
+            receiver,
+            dir: t,
         }
     };
 
@@ -207,9 +278,14 @@ pub fn reference(
         wrap,
     };
     let light_z = -light.z;
+    let wall_maps = walls.then(|| WallMaps::for_floor_map(width, height, size, water.depth));
+    let net = wall_maps
+        .as_ref()
+        .map(|m| BoxNet::new(m, width, height, texel, size));
+    let acc_len = width * height + net.as_ref().map_or(0, |n| n.wall_texels);
     // One accumulator per worker thread (bands interleaved between them) and one for the sum, fewer
     // workers where memory would not hold them, and a clear refusal where not even two fit.
-    let map_bytes = (width * height) as u64 * std::mem::size_of::<DVec3>() as u64;
+    let map_bytes = acc_len as u64 * std::mem::size_of::<DVec3>() as u64;
     let by_memory = (MAX_ACCUMULATOR_BYTES / map_bytes).saturating_sub(1) as usize;
     if by_memory == 0 {
         return Err(Error::InvalidParameter(format!(
@@ -222,10 +298,11 @@ pub fn reference(
     let workers = rayon::current_num_threads()
         .min(by_memory)
         .clamp(1, bands.max(1));
-    let acc = (0..workers)
+    let (acc, transmitted) = (0..workers)
         .into_par_iter()
         .map(|worker| {
-            let mut acc = vec![DVec3::ZERO; width * height];
+            let mut acc = vec![DVec3::ZERO; acc_len];
+            let mut transmitted = DVec3::ZERO;
             for k in (worker..bands).step_by(workers) {
                 let a0 = k * band;
                 let a1 = ((k + 1) * band).min(ny);
@@ -256,11 +333,15 @@ pub fn reference(
                                 continue;
                             }
                             let w = (tri[0].weight + tri[1].weight + tri[2].weight) / 3.0;
-                            deposit.triangle(
-                                &mut acc,
-                                [tri[0].floor, tri[1].floor, tri[2].floor],
-                                flux * w,
-                            );
+                            transmitted += flux * w;
+                            match &net {
+                                Some(net) => net.triangle(&mut acc, &tri, flux * w),
+                                None => deposit.triangle(
+                                    &mut acc,
+                                    [tri[0].floor, tri[1].floor, tri[2].floor],
+                                    flux * w,
+                                ),
+                            }
                         }
                     }
                     std::mem::swap(&mut prev, &mut next);
@@ -268,13 +349,13 @@ pub fn reference(
                 let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
                 progress(d, bands);
             }
-            acc
+            (acc, transmitted)
         })
         .reduce(
-            || vec![DVec3::ZERO; width * height],
-            |mut a, b| {
+            || (vec![DVec3::ZERO; acc_len], DVec3::ZERO),
+            |(mut a, ta), (b, tb)| {
                 a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
-                a
+                (a, ta + tb)
             },
         );
 
@@ -291,7 +372,238 @@ pub fn reference(
             *t = [e.x as f32, e.y as f32, e.z as f32];
         }
     }
-    Ok(map)
+    let walls = match (wall_maps, &net) {
+        (Some(mut maps), Some(net)) => {
+            for w in Wall::ALL {
+                let m = maps.get_mut(w);
+                let area = m.texel_area();
+                let base = net.offsets[w.index()];
+                for (k, t) in m.texels.iter_mut().enumerate() {
+                    let e = acc[base + k] / area;
+                    *t = [e.x as f32, e.y as f32, e.z as f32];
+                }
+            }
+            Some(maps)
+        }
+        _ => None,
+    };
+    Ok(ReferenceOutput {
+        floor: map,
+        walls,
+        transmitted,
+    })
+}
+
+/// Exact area deposit of the triangles of the pool's receivers (floor and walls) into their
+/// texels, all in one accumulator: the floor's `width x height` texels, then each wall's (in
+/// [`Wall::ALL`]'s order).
+struct BoxNet {
+    width: usize,
+    height: usize,
+    texel: DVec2,
+    size: f64,
+    /// Wall texel height.
+    hz: f64,
+    rows: usize,
+    cols: [usize; 4],
+    offsets: [usize; 4],
+    wall_texels: usize,
+}
+
+impl BoxNet {
+    fn new(maps: &WallMaps, width: usize, height: usize, texel: DVec2, size: f64) -> Self {
+        let mut offsets = [0; 4];
+        let mut next = width * height;
+        for w in Wall::ALL {
+            offsets[w.index()] = next;
+            next += maps.get(w).texels.len();
+        }
+        let m = maps.get(Wall::X0);
+        BoxNet {
+            width,
+            height,
+            texel,
+            size,
+            hz: m.height / m.rows as f64,
+            rows: m.rows,
+            cols: Wall::ALL.map(|w| maps.get(w).cols),
+            offsets,
+            wall_texels: next - width * height,
+        }
+    }
+
+    fn triangle(&self, acc: &mut [DVec3], tri: &[Hit; 3], flux: DVec3) {
+        let r = tri[0].receiver;
+        if tri.iter().all(|h| h.receiver == r) {
+            self.deposit(acc, r, &[tri[0].floor, tri[1].floor, tri[2].floor], flux);
+            return;
+        }
+        // The receivers its rays meet, each with the triangle's image on its plane clipped to it.
+        let mut parts: [(u8, [DVec2; 16], usize, f64); 3] = [(0, [DVec2::ZERO; 16], 0, 0.0); 3];
+        let mut count = 0;
+        let mut total = 0.0;
+        let top = tri.iter().fold(0.0f64, |m, h| m.max(h.surface.z));
+        for h in tri {
+            let r = h.receiver;
+            if parts[..count].iter().any(|p| p.0 == r) {
+                continue;
+            }
+            let image = tri.map(|v| self.on_plane(r, &v));
+            let whole = polygon_area(&image);
+            let (bx, by) = if r == FLOOR {
+                ((Some(0.0), Some(self.size)), (Some(0.0), Some(self.size)))
+            } else {
+                // Rays from the surface meet a wall below where they started.
+                ((Some(0.0), Some(self.size)), (Some(0.0), Some(top)))
+            };
+            let mut poly = [DVec2::ZERO; 16];
+            let n = if whole > 0.0 {
+                clip_rect(&image, &mut poly, bx, by)
+            } else {
+                0
+            };
+            let share = if n >= 3 {
+                polygon_area(&poly[..n]) / whole
+            } else {
+                0.0
+            };
+            parts[count] = (r, poly, n, share);
+            total += share;
+            count += 1;
+        }
+        if total <= 0.0 {
+            // Degenerate images: all of it where the first ray lands.
+            let h = &tri[0];
+            self.deposit(acc, h.receiver, &[h.floor; 3], flux);
+            return;
+        }
+        for (r, poly, n, share) in &parts[..count] {
+            if *share > 0.0 {
+                self.deposit(acc, *r, &poly[..*n], flux * (share / total));
+            }
+        }
+    }
+
+    /// Where the ray of `h` meets receiver `r`'s plane, in that plane's coordinates (its own hit
+    /// when `r` is the receiver it met); far away but finite for a ray parallel to the plane.
+    fn on_plane(&self, r: u8, h: &Hit) -> DVec2 {
+        if r == h.receiver {
+            return h.floor;
+        }
+        let (s, t) = (h.surface, h.dir);
+        let far = 1e6 * self.size;
+        let param = |gap: f64, rate: f64| {
+            let u = gap / rate;
+            if u.is_finite() {
+                u.clamp(-far, far)
+            } else {
+                far
+            }
+        };
+        if r == FLOOR {
+            let u = param(s.z, -t.z);
+            return (s + t * u).truncate();
+        }
+        let w = Wall::ALL[(r - 1) as usize];
+        let u = match w {
+            Wall::X0 => param(-s.x, t.x),
+            Wall::X1 => param(self.size - s.x, t.x),
+            Wall::Y0 => param(-s.y, t.y),
+            Wall::Y1 => param(self.size - s.y, t.y),
+        };
+        let p = s + t * u;
+        DVec2::new(w.along(p), p.z)
+    }
+
+    /// Spread `flux` over `poly` (in receiver `r`'s plane) into that receiver's texels.
+    fn deposit(&self, acc: &mut [DVec3], r: u8, poly: &[DVec2], flux: DVec3) {
+        if r == FLOOR {
+            let (w, h) = (self.width as i64, self.height as i64);
+            let q: Vec<DVec2> = poly.iter().map(|v| *v / self.texel).collect();
+            spread(&q, flux, &mut |i, j, v| {
+                acc[(i.clamp(0, h - 1) * w + j.clamp(0, w - 1)) as usize] += v;
+            });
+            return;
+        }
+        let k = (r - 1) as usize;
+        let (cols, rows) = (self.cols[k] as i64, self.rows as i64);
+        let along = self.size / self.cols[k] as f64;
+        let base = self.offsets[k];
+        let q: Vec<DVec2> = poly
+            .iter()
+            .map(|v| DVec2::new(v.x / along, v.y / self.hz))
+            .collect();
+        // Rows past the top are light meeting the wall above the rest level: its top row.
+        spread(&q, flux, &mut |i, j, v| {
+            acc[base + (i.clamp(0, rows - 1) * cols + j.clamp(0, cols - 1)) as usize] += v;
+        });
+    }
+}
+
+/// Spread `flux` uniformly over the convex polygon `q` (in texel units) and hand each texel
+/// `(row, col)` its share, the polygon's area inside it over the whole.
+fn spread(q: &[DVec2], flux: DVec3, add: &mut dyn FnMut(i64, i64, DVec3)) {
+    let lo = q.iter().fold(DVec2::INFINITY, |m, v| m.min(*v));
+    let hi = q.iter().fold(DVec2::NEG_INFINITY, |m, v| m.max(*v));
+    let (j0, i0) = (lo.x.floor() as i64, lo.y.floor() as i64);
+    let (j1, i1) = (hi.x.floor() as i64, hi.y.floor() as i64);
+    let area = polygon_area(q);
+    if (j0 == j1 && i0 == i1) || area < 0.5e-12 {
+        let c = q.iter().copied().sum::<DVec2>() / q.len() as f64;
+        add(c.y.floor() as i64, c.x.floor() as i64, flux);
+        return;
+    }
+    let inv = 1.0 / area;
+    let mut row = [DVec2::ZERO; 16];
+    let mut cellp = [DVec2::ZERO; 16];
+    let mut tmp = [DVec2::ZERO; 16];
+    for i in i0..=i1 {
+        let n = clip_slab(q, &mut row, 1, i as f64, i as f64 + 1.0, &mut tmp);
+        if n < 3 {
+            continue;
+        }
+        let rlo = row[..n].iter().fold(f64::INFINITY, |m, v| m.min(v.x));
+        let rhi = row[..n].iter().fold(f64::NEG_INFINITY, |m, v| m.max(v.x));
+        for j in (rlo.floor() as i64)..=(rhi.floor() as i64).min(j1) {
+            let m = clip_slab(&row[..n], &mut cellp, 0, j as f64, j as f64 + 1.0, &mut tmp);
+            if m < 3 {
+                continue;
+            }
+            let a = polygon_area(&cellp[..m]);
+            if a > 0.0 {
+                add(i, j, flux * (a * inv));
+            }
+        }
+    }
+}
+
+/// Clip a convex polygon to `x` within `bx` and `y` within `by` (`None`: unbounded that side).
+fn clip_rect(
+    poly: &[DVec2],
+    out: &mut [DVec2; 16],
+    bx: (Option<f64>, Option<f64>),
+    by: (Option<f64>, Option<f64>),
+) -> usize {
+    let mut cur = [DVec2::ZERO; 16];
+    let mut n = poly.len();
+    cur[..n].copy_from_slice(poly);
+    let planes: [(usize, Option<f64>, f64); 4] = [
+        (0, bx.0, 1.0),
+        (0, bx.1, -1.0),
+        (1, by.0, 1.0),
+        (1, by.1, -1.0),
+    ];
+    for (axis, bound, sign) in planes {
+        let Some(b) = bound else { continue };
+        let mut next = [DVec2::ZERO; 16];
+        n = clip_half(&cur[..n], &mut next, |v| sign * (v[axis] - b));
+        if n < 3 {
+            return 0;
+        }
+        cur = next;
+    }
+    out[..n].copy_from_slice(&cur[..n]);
+    n
 }
 
 /// Exact area deposit of floor triangles into the texel grid.
@@ -369,7 +681,7 @@ fn clip_slab(
     if n < 3 {
         return 0;
     }
-    let tmp_copy: [DVec2; 10] = std::array::from_fn(|k| if k < n { tmp[k] } else { DVec2::ZERO });
+    let tmp_copy: [DVec2; 16] = std::array::from_fn(|k| if k < n { tmp[k] } else { DVec2::ZERO });
     clip_half(&tmp_copy[..n], out, |v| hi - v[axis])
 }
 
