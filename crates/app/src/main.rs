@@ -141,10 +141,10 @@ fn run(cli: Cli) -> Result<()> {
                 "technique", "paper", "input -> output"
             );
             for t in TECHNIQUES {
-                let status = if t.implemented {
-                    ""
-                } else {
-                    " [not yet implemented]"
+                let status = match (t.implemented, t.floor_only) {
+                    (false, _) => " [not yet implemented]",
+                    (true, true) => " [floor only: no light on a pool's walls]",
+                    (true, false) => "",
                 };
                 println!(
                     "{:<18} {:<6} {:<20} {}{}",

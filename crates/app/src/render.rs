@@ -36,6 +36,11 @@ pub struct RenderArgs {
     /// top, NaN where the technique has none (no floor seen, beyond its last cascade).
     #[arg(long)]
     raw: Option<PathBuf>,
+    /// The raw maps of the pool's walls (scenes with `[floor] walls = true`): PREFIX-x0.npy,
+    /// PREFIX-x1.npy, PREFIX-y0.npy, PREFIX-y1.npy, float32 of shape (rows, cols), row 0 at the
+    /// floor, in the floor map's unit. Techniques reference, caustic-triangles, volumes, cascaded.
+    #[arg(long, value_name = "PREFIX")]
+    raw_walls: Option<PathBuf>,
     /// Caustics map resolution WIDTHxHEIGHT, overriding the scene's.
     #[arg(long, value_parser = parse_size)]
     resolution: Option<[u32; 2]>,
@@ -184,12 +189,23 @@ pub fn run(args: RenderArgs) -> Result<()> {
         }
         scene.time = t;
     }
-    let out = match (&args.out, &args.raw) {
-        (None, None) => Some(crate::default_output(&args.scene)),
-        (o, _) => o.clone(),
+    let out = match (&args.out, &args.raw, &args.raw_walls) {
+        (None, None, None) => Some(crate::default_output(&args.scene)),
+        (o, _, _) => o.clone(),
     };
+    let wall_paths = args
+        .raw_walls
+        .as_deref()
+        .map(caustics_core::walls::WallMaps::raw_paths);
+    if wall_paths.is_some() {
+        check_walls(&scene, &spec.name)?;
+    }
     let inputs = inputs_of(&args.scene);
-    for o in out.iter().chain(args.raw.iter()) {
+    for o in out
+        .iter()
+        .chain(args.raw.iter())
+        .chain(wall_paths.iter().flatten())
+    {
         if let Some(i) = inputs.iter().find(|i| same_file(i, o)) {
             bail!(
                 "refusing to overwrite {}: the scene reads it as an input",
@@ -214,6 +230,9 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(raw) = &args.raw {
         check_writable("--raw", raw)?;
     }
+    for path in wall_paths.iter().flatten() {
+        check_writable("--raw-walls", path)?;
+    }
 
     // The device, set up before the caustics so that a bad --backend fails at once and the
     // adapter is named first; the technique and the final image share it.
@@ -222,20 +241,28 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // Paper 4 ends in its own camera pass (§4.3): the technique's final image, lit through the
     // light cube map of a point light or the floor map of the sun. With water, the water surface
     // is its generator and its floor map lights the general final image.
-    if let (Some(out), None, "caustic-triangles", None) =
-        (&out, &args.raw, spec.name.as_str(), &scene.water)
-    {
+    if let (Some(out), None, None, "caustic-triangles", None) = (
+        &out,
+        &args.raw,
+        &args.raw_walls,
+        spec.name.as_str(),
+        &scene.water,
+    ) {
         return caustic_triangles_image(&runner, &scene, &spec, out);
     }
     // Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the
     // water where refraction puts them, the floor lit by its map.
-    if let (Some(out), None, "volumes") = (&out, &args.raw, spec.name.as_str()) {
+    if let (Some(out), None, None, "volumes") =
+        (&out, &args.raw, &args.raw_walls, spec.name.as_str())
+    {
         return volumes_image(&runner, &scene, &spec, out);
     }
 
     // The GPU frame: water, technique and final image on the GPU, read back once as the output.
+    // The walls' maps come from the technique run on its own (`Outcome::walls`).
     if let Some(ctx) = runner.gpu.as_ref()
         && scene.water.is_some()
+        && args.raw_walls.is_none()
         && caustics_gpu::technique::REGISTRY
             .iter()
             .any(|r| r.name == spec.gpu_name())
@@ -262,6 +289,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let has_generator = scene.water.is_some()
         || spec.name == "caustic-triangles"
         || (spec.name == "reference" && glass);
+    let mut walls = None;
     let caustics = if has_generator {
         let started = Instant::now();
         let bar = progress::bar("caustics");
@@ -283,6 +311,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             started.elapsed().as_secs_f64(),
             outcome.backend
         );
+        walls = outcome.walls;
         Some(outcome.caustics)
     } else {
         if args.raw.is_some() {
@@ -300,6 +329,18 @@ pub fn run(args: RenderArgs) -> Result<()> {
             SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
         }
         eprintln!("wrote {}", raw.display());
+    }
+    if let Some(prefix) = &args.raw_walls {
+        let Some(maps) = &walls else {
+            bail!(
+                "technique `{}` lit no walls on scene `{}`: --raw-walls has nothing to write",
+                spec.label,
+                scene.name
+            );
+        };
+        for path in maps.write_raw(prefix)? {
+            eprintln!("wrote {}", path.display());
+        }
     }
     let caustics = caustics.as_ref().map(SceneCaustics::caustics);
     if let Some(out) = &out {
@@ -507,6 +548,24 @@ fn render_on_gpu(
             None
         }
     }
+}
+
+/// `--raw-walls` asks for light on the pool's walls: refused before any work when the scene's walls
+/// are off or the technique maps the floor only.
+fn check_walls(scene: &Scene, technique: &str) -> Result<()> {
+    if !scene.floor.walls {
+        bail!(
+            "--raw-walls: the scene's walls are off: set `[floor] walls = true` in scene `{}`",
+            scene.name
+        );
+    }
+    if techniques::info(technique).is_some_and(|i| i.floor_only) {
+        bail!(
+            "--raw-walls: {technique} maps the floor only; --raw-walls needs reference, \
+             caustic-triangles, volumes or cascaded"
+        );
+    }
+    Ok(())
 }
 
 fn check_size(flag: &str, w: u32, h: u32) -> Result<()> {

@@ -5,9 +5,10 @@ use glam::DVec3;
 
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
-use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
+use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference_with_walls};
 use caustics_core::scene::{Floor, Water, WaterSource};
 use caustics_core::techniques::{self, procedural, yuksel};
+use caustics_core::walls::WallMaps;
 use caustics_core::water::{Surface, sample_grid};
 use caustics_gpu::procedural::ProceduralCaustics;
 use caustics_gpu::yuksel::{Variant, Yuksel};
@@ -157,6 +158,9 @@ pub struct Outcome {
     pub map: CausticsMap,
     /// "GPU" or "CPU".
     pub backend: &'static str,
+    /// The pool's walls' maps, from a technique that lights them when the scene's walls are on
+    /// (`render --raw-walls`, the final image); `None` from a floor-only technique.
+    pub walls: Option<WallMaps>,
 }
 
 /// What a technique made of a whole scene: a map of the floor square, or, for `cascaded` (paper 5),
@@ -206,6 +210,8 @@ pub struct SceneOutcome {
     pub caustics: SceneCaustics,
     /// "GPU" or "CPU".
     pub backend: &'static str,
+    /// As [`Outcome::walls`].
+    pub walls: Option<WallMaps>,
 }
 
 /// Passes one technique run can time (procedural's texture variant has the most: a target, one
@@ -268,6 +274,7 @@ impl Runner {
             return Ok(SceneOutcome {
                 caustics: SceneCaustics::Floor(o.map),
                 backend: o.backend,
+                walls: o.walls,
             });
         }
         let water = match (&scene.water, surface) {
@@ -320,6 +327,7 @@ impl Runner {
                 texels,
             }),
             backend,
+            walls: None,
         })
     }
 
@@ -363,6 +371,7 @@ impl Runner {
                     return Ok(Outcome {
                         map: ct::render(scene, &params)?,
                         backend: "CPU",
+                        walls: None,
                     });
                 };
                 if self.caustic_triangles.is_none() {
@@ -412,6 +421,7 @@ impl Runner {
                 Ok(Outcome {
                     map: total.expect("one glass object at least"),
                     backend: "GPU",
+                    walls: None,
                 })
             }
             "reference" if scene.water.is_none() => {
@@ -435,6 +445,7 @@ impl Runner {
                 Ok(Outcome {
                     map: total.expect("one glass object at least"),
                     backend: "CPU",
+                    walls: None,
                 })
             }
             // Water with diffuse objects under it (`objects`): the truth is the photon reference with
@@ -462,6 +473,7 @@ impl Runner {
                 Ok(Outcome {
                     map: r.floor,
                     backend: "CPU",
+                    walls: None,
                 })
             }
             // Paper 3: its floor map (the illumination volumes cut by the floor, the objects' shadows
@@ -495,7 +507,11 @@ impl Runner {
                     ),
                 };
                 progress(1, 1);
-                Ok(Outcome { map, backend })
+                Ok(Outcome {
+                    map,
+                    backend,
+                    walls: None,
+                })
             }
             "cascaded" => bail!(
                 "technique `cascaded` (paper 5) computes caustics in the eye camera's screen space, not \
@@ -541,12 +557,17 @@ impl Runner {
                     cells_per_texel: job.cells_per_texel,
                     ..Default::default()
                 };
+                let out = reference_with_walls(&input, &options, progress)?;
                 Ok(Outcome {
-                    map: reference(&input, &options, progress)?,
+                    map: out.floor,
                     backend: "CPU",
+                    walls: out.walls,
                 })
             }
             "yuksel" => {
+                if job.floor.walls {
+                    tracing::warn!("{}", techniques::floor_only_note(&spec.name));
+                }
                 if job.floor.terrain.is_some() {
                     bail!(
                         "technique `yuksel` computes caustics on a flat floor (paper 1, §3); this scene has a terrain"
@@ -586,15 +607,20 @@ impl Runner {
                                 self.timer.as_mut(),
                             )?,
                             backend: "GPU",
+                            walls: None,
                         })
                     }
                     None => Ok(Outcome {
                         map: yuksel::caustics(&setup, &heights),
                         backend: "CPU",
+                        walls: None,
                     }),
                 }
             }
             "procedural" => {
+                if job.floor.walls {
+                    tracing::warn!("{}", techniques::floor_only_note(&spec.name));
+                }
                 if job.floor.terrain.is_some() {
                     bail!(
                         "technique `procedural` lights a flat floor at a constant depth (paper 2, \"Our Approach\"); this scene has a terrain"
@@ -623,11 +649,13 @@ impl Runner {
                         Ok(Outcome {
                             map: p.caustics_timed(ctx, &setup, &water, self.timer.as_mut())?,
                             backend: "GPU",
+                            walls: None,
                         })
                     }
                     None => Ok(Outcome {
                         map: procedural::caustics(&setup, &water),
                         backend: "CPU",
+                        walls: None,
                     }),
                 }
             }
@@ -657,7 +685,11 @@ impl Runner {
                     None => (water::caustics(&ws, &heights)?.map, "CPU"),
                 };
                 progress(1, 1);
-                Ok(Outcome { map, backend })
+                Ok(Outcome {
+                    map,
+                    backend,
+                    walls: None,
+                })
             }
             // Paper 3 on a water job alone (no objects to receive it: `caustics compare`, the
             // viewer's water): its floor pass, the illumination volumes cut by the floor.
@@ -693,11 +725,13 @@ impl Runner {
                         Ok(Outcome {
                             map: v.run(ctx, &setup, &input, &heights, w.wrap, None)?.floor,
                             backend: "GPU",
+                            walls: None,
                         })
                     }
                     None => Ok(Outcome {
                         map: volumes::caustics(&setup, &input, &heights, w.wrap).floor,
                         backend: "CPU",
+                        walls: None,
                     }),
                 }
             }

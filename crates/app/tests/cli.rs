@@ -875,3 +875,81 @@ fn the_reference_sees_the_objects() {
     let flux = sum(&volumes) / sum(&reference) - 1.0;
     assert!(flux.abs() < 0.03, "flux {flux}");
 }
+
+/// `--raw-walls PREFIX` writes the four walls' maps of the pool (issue 18) in the floor map's unit,
+/// shape (rows, cols): a sun travelling towards +x lights x = size most; and it is refused before
+/// the work where there are no walls to write or the technique maps the floor only.
+#[test]
+fn render_writes_the_pools_walls() {
+    let d = tmpdir("walls");
+    // The pool under a low sun (63° from the zenith) travelling towards +x, a little +y.
+    let (_, pool) = caustics_core::scene::BUILTIN_SCENES
+        .iter()
+        .find(|(n, _)| *n == "pool")
+        .expect("built-in pool");
+    std::fs::write(
+        d.join("low.toml"),
+        pool.replace(
+            "direction = [0.3, 0.1, -1.0]",
+            "direction = [1.0, 0.2, -0.5]",
+        ),
+    )
+    .unwrap();
+    let o = caustics(
+        &[
+            "render",
+            "--scene",
+            "low.toml",
+            "--resolution",
+            "64x64",
+            "--cells-per-texel",
+            "2",
+            "--raw-walls",
+            "w",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // 4 m at 64 texels: 1 m deep is 16 rows.
+    let mean = |s: &str| {
+        let (shape, v) = read_npy_f32(&d.join(format!("w-{s}.npy")));
+        assert_eq!(shape, (16, 64), "{s}");
+        v.iter().map(|&x| x as f64).sum::<f64>() / v.len() as f64
+    };
+    let (x0, x1, y0, y1) = (mean("x0"), mean("x1"), mean("y0"), mean("y1"));
+    eprintln!("walls' mean: x0 {x0:.4} x1 {x1:.4} y0 {y0:.4} y1 {y1:.4}");
+    assert_eq!(x0, 0.0);
+    assert!(x1 > 0.5 && x1 > 3.0 * y1, "{x1} {y1}");
+    assert_eq!(y0, 0.0);
+    assert!(
+        !d.join("low.png").exists(),
+        "--raw-walls alone writes no image"
+    );
+
+    for (args, needle) in [
+        (
+            vec!["--scene", "shore", "--raw-walls", "w"],
+            "the scene's walls are off: set `[floor] walls = true`",
+        ),
+        (
+            vec![
+                "--scene",
+                "low.toml",
+                "--technique",
+                "yuksel",
+                "--raw-walls",
+                "w",
+            ],
+            "yuksel maps the floor only; --raw-walls needs reference",
+        ),
+        (
+            vec!["--scene", "low.toml", "--raw-walls", "nowhere/w"],
+            "--raw-walls nowhere/w-x0.npy: cannot be written",
+        ),
+    ] {
+        let o = caustics(&[&["render"], &args[..]].concat(), &d);
+        assert!(!o.status.success());
+        assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("caustics:"), "refused after the work");
+    }
+}

@@ -37,6 +37,17 @@ pub struct TechniqueInfo {
     /// Whether this build renders it; the others are accepted in scene files but not yet implemented.
     pub implemented: bool,
     pub input: Input,
+    /// A floor technique by design (issue 18): with the scene's walls on it still maps the floor
+    /// alone, and the light that would meet a wall stays on the floor map.
+    pub floor_only: bool,
+}
+
+/// The line `caustics techniques` and the logs give a floor-only technique on a scene with walls.
+pub fn floor_only_note(name: &str) -> String {
+    format!(
+        "technique `{name}` maps the floor only: the scene's walls stay lit by the ambient light, and \
+         the light that would meet them stays on the floor map"
+    )
 }
 
 pub const TECHNIQUES: &[TechniqueInfo] = &[
@@ -46,6 +57,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         summary: "physically based forward flux tracing: exact Snell + Fresnel at a fine triangulation of the surface, exact area deposit (CPU, the ground truth)",
         implemented: true,
         input: Input::Water,
+        floor_only: false,
     },
     TechniqueInfo {
         name: "yuksel",
@@ -53,6 +65,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser)",
         implemented: true,
         input: Input::Water,
+        floor_only: true,
     },
     TechniqueInfo {
         name: "procedural",
@@ -60,6 +73,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         summary: "aesthetic procedural caustics: vertical ray to the waves, refract, look up a sun map (Sanchez-Crespo)",
         implemented: true,
         input: Input::Water,
+        floor_only: true,
     },
     TechniqueInfo {
         name: "volumes",
@@ -67,6 +81,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         summary: "illumination volumes against colour + depth textures and reference planes, caustics on underwater objects",
         implemented: true,
         input: Input::Water,
+        floor_only: false,
     },
     TechniqueInfo {
         name: "caustic-triangles",
@@ -74,6 +89,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         summary: "layered distance maps, photon hit image, caustic triangles into a light cube map (Umenhoffer et al.)",
         implemented: true,
         input: Input::GlassOrWater,
+        floor_only: false,
     },
     TechniqueInfo {
         name: "cascaded",
@@ -81,6 +97,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         summary: "cascaded caustic maps for oceans: four light-view cascades, photons splatted in eye space, dispersion (Backlund)",
         implemented: true,
         input: Input::EyeSpace,
+        floor_only: false,
     },
 ];
 

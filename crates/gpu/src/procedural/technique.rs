@@ -164,6 +164,12 @@ impl Technique for ProceduralTechnique {
         let key = Self::key(scene)?;
         let setup = Self::setup(&self.params, &key)?;
         self.frame = None;
+        if scene.floor.walls {
+            tracing::warn!(
+                "{}",
+                caustics_core::techniques::floor_only_note(self.name())
+            );
+        }
         let frame = self.pipelines.frame_with_water(ctx, &setup, water)?;
         self.frame = Some((frame, water.clone(), key));
         Ok(())

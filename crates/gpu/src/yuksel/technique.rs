@@ -96,6 +96,12 @@ impl Technique for YukselTechnique {
     ) -> Result<(), GpuError> {
         let setup = self.setup(scene)?;
         self.frame = None;
+        if scene.floor.walls {
+            tracing::warn!(
+                "{}",
+                caustics_core::techniques::floor_only_note(self.name())
+            );
+        }
         let frame = self
             .pipelines
             .frame_with_water(ctx, &setup, water, self.variant)?;
