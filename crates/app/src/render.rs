@@ -10,7 +10,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
-use caustics_core::render::{Caustics, RenderOptions, render_with};
+use caustics_core::render::{Caustics, RenderOptions, render_with_walls};
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques;
 use caustics_core::water::Surface;
@@ -368,6 +368,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
                 &scene,
                 surface.as_deref(),
                 caustics,
+                walls.as_ref(),
                 &options,
             )
         });
@@ -376,10 +377,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
             Some(image) => image,
             None => {
                 let bar = progress::bar("image");
-                let image = render_with(
+                let image = render_with_walls(
                     &scene,
                     surface.as_deref(),
                     caustics,
+                    walls.as_ref(),
                     &options,
                     &progress::callback(&bar),
                 );
@@ -531,10 +533,20 @@ fn render_on_gpu(
     scene: &Scene,
     surface: Option<&dyn Surface>,
     caustics: Option<Caustics>,
+    walls: Option<&caustics_core::walls::WallMaps>,
     options: &RenderOptions,
 ) -> Option<caustics_core::render::Image> {
     let mut timer = GpuTimer::new(ctx, 2);
-    match final_image.render_with(ctx, scene, surface, caustics, options, Some(&mut timer)) {
+    let image = final_image.render_with_walls(
+        ctx,
+        scene,
+        surface,
+        caustics,
+        walls,
+        options,
+        Some(&mut timer),
+    );
+    match image {
         Ok(image) => {
             if let Ok(times) = timer.read(ctx) {
                 for t in times {

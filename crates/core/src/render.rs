@@ -16,6 +16,9 @@
 //!   the water) reads that image where `F` projects through the camera, which is the pixel whose
 //!   straight ray the technique's eye pass followed to `F`. Where the image has nothing there (off
 //!   the image, no floor seen, beyond the last cascade), `F` is lit as under flat water.
+//! - With the pool's walls as receivers (issue 18) and a technique that lit them, a wall point gets
+//!   `E_h T(θ₀) W(along, z)` from the sun, `W` its wall's map in the same relative unit as `M`
+//!   (absorption along the light's path already in it), besides the ambient term it gets anyway.
 //! - Objects under water are lit by the flat-water refracted sun with their own shadow test; they
 //!   do not receive caustics from the reference (which knows only the floor) until a technique that
 //!   handles mesh receivers provides them.
@@ -28,6 +31,7 @@ use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, reflect, refract};
 use crate::scene::{Camera, Material, Scene};
 use crate::techniques::cascaded::EyeCamera;
+use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
 /// Caustics computed in the eye camera's screen space (technique `cascaded`): per pixel of an image
@@ -164,6 +168,8 @@ struct Tracer<'a> {
     surface: Option<&'a dyn Surface>,
     caustics: Option<&'a CausticsMap>,
     eye_space: Option<(&'a EyeSpaceCaustics, EyeCamera)>,
+    /// The walls' maps, when the technique lit the pool's walls.
+    walls: Option<&'a WallMaps>,
     bvhs: Vec<MeshBvh>,
     /// Bound on |h| of the water, for the slab the surface lies in.
     h_max: f64,
@@ -200,6 +206,20 @@ pub fn render_with(
     options: &RenderOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Image {
+    render_with_walls(scene, surface, caustics, None, options, progress)
+}
+
+/// [`render_with`], the pool's walls lit by the sun through their maps (`walls`, from a technique
+/// that lights them: the reference) as well as by the ambient light; `None` leaves the walls to
+/// the ambient light alone.
+pub fn render_with_walls(
+    scene: &Scene,
+    surface: Option<&dyn Surface>,
+    caustics: Option<Caustics>,
+    walls: Option<&WallMaps>,
+    options: &RenderOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Image {
     let cam = &scene.camera;
     let h_max = match (surface, &scene.water) {
         (Some(s), Some(w)) => slab_half_height(s, w.size),
@@ -218,6 +238,7 @@ pub fn render_with(
             Some(Caustics::EyeSpace(e)) => Some((e, e.eye(cam))),
             _ => None,
         },
+        walls: walls.filter(|_| scene.floor.walls),
         bvhs: scene.objects.iter().map(|o| o.mesh.bvh()).collect(),
         h_max,
         sun,
@@ -365,11 +386,15 @@ impl Tracer<'_> {
         let (dist, colour) = if let Some((t, n, k)) = obj {
             (t, self.shade_object(o + d * t, n, d, k, depth, true))
         } else if self.pool && !inside(floor_p.truncate(), size) {
-            // The ray meets a pool wall first: tiles lit by the ambient light only.
+            // The ray meets a pool wall first: tiles lit by the ambient light, and by the sun
+            // through the wall's map where the technique lit the walls.
             let t = wall_distance(o, d, size);
             let p = o + d * t;
             let a = scene.floor.albedo.at(DVec2::new(p.x + p.y, p.z), size);
-            (t, a * AMBIENT * self.sun_radiance())
+            (
+                t,
+                a * (AMBIENT * self.sun_radiance() + self.wall_light(p, size)),
+            )
         } else {
             (t_floor, self.shade_floor(floor_p))
         };
@@ -399,6 +424,23 @@ impl Tracer<'_> {
         let direct = relative * (e_h * self.t_flat * shadow);
         let ambient = AMBIENT * (-water.absorption * water.depth).exp();
         albedo * (direct + ambient) * scene.light.color
+    }
+
+    /// The sun's light on wall point `p` through its wall's map (none without maps), shadowed by
+    /// the objects as the floor is.
+    fn wall_light(&self, p: DVec3, size: f64) -> DVec3 {
+        let Some(maps) = self.walls else {
+            return DVec3::ZERO;
+        };
+        let wall = wall_at(p, size);
+        let c = maps.get(wall).sample(wall.along(p), p.z);
+        if self.occluded(p + wall.normal() * 1e-4, -self.sun_water, f64::INFINITY) {
+            return DVec3::ZERO;
+        }
+        let e_h = self.scene.light.intensity * -self.sun.z;
+        DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)
+            * (e_h * self.t_flat)
+            * self.scene.light.color
     }
 
     fn shade_object(
@@ -621,6 +663,13 @@ fn wall_distance(o: DVec3, d: DVec3, size: f64) -> f64 {
         }
     }
     t.max(0.0)
+}
+
+/// The wall of the pool square nearest to `p` (the one a view ray leaving the square met).
+fn wall_at(p: DVec3, size: f64) -> Wall {
+    let d = [p.x, size - p.x, p.y, size - p.y];
+    let k = (1..4).fold(0, |k, i| if d[i] < d[k] { i } else { k });
+    Wall::ALL[k]
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ pub mod water;
 pub mod yuksel;
 
 pub use context::{GpuContext, GpuOptions};
-pub use technique::{Output, Technique, WaterTextures};
+pub use technique::{Output, Technique, WallsOutput, WaterTextures};
 pub use timing::{GpuTimer, PassTime};
 pub use traffic::TrafficCounts;
 

@@ -61,6 +61,16 @@ impl<'a> Output<'a> {
     }
 }
 
+/// A technique's maps of the pool's walls (issue 18), for the final image to sample: an
+/// `Rgba32Float` 2D array texture of four layers in `caustics_core::walls::Wall::ALL`'s order,
+/// layer `k` holding that wall's map in its first `cols[k]` columns (`WallMap`'s layout: row 0 at
+/// the floor, the rows up to the rest water level, the floor map's unit).
+#[derive(Clone, Copy, Debug)]
+pub struct WallsOutput<'a> {
+    pub texture: &'a wgpu::Texture,
+    pub cols: [u32; 4],
+}
+
 /// A caustics technique on the GPU. The scene gives the water's optics (`water`: size, depth,
 /// index, absorption, wrap; its `source` is ignored, the heights come from [`WaterTextures`]), the
 /// floor, the sun (`light`), the map size (`caustics.width`, `caustics.height`), the camera (for
@@ -93,6 +103,12 @@ pub trait Technique {
 
     /// The texture the passes end in (`None` before [`configure`](Self::configure)).
     fn output(&self) -> Option<Output<'_>>;
+
+    /// Its maps of the pool's walls, when the scene's walls are on and the technique lights them;
+    /// `None` (the default) for a floor technique.
+    fn walls(&self) -> Option<WallsOutput<'_>> {
+        None
+    }
 
     /// GPU memory of the configured frame, bytes.
     fn bytes(&self) -> u64;

@@ -28,6 +28,10 @@
 //!   `CausticsMap::sample`, or an eye-space image (`cascaded`) read like
 //!   `EyeSpaceCaustics::sample`; an albedo image an `Rgba32Float` texture read at the nearest texel
 //!   like `Albedo::at`.
+//! - The walls' maps (a technique that lights the pool's walls) are one `Rgba32Float` 2D array
+//!   texture of four layers with each layer's column count in a small storage buffer
+//!   ([`crate::technique::WallsOutput`]), read like `WallMap::sample`; without maps the count is 0
+//!   and the walls get the ambient light alone.
 //! - Each object's `MeshBvh` (the very tree the CPU traverses) is flattened into two storage
 //!   buffers shared by all objects (bind group 1, `bvh.wgsl`).
 //! - The image is written tone-mapped and sRGB-encoded into an `Rgba8Unorm` storage texture with
@@ -50,11 +54,12 @@ pub use upload::{
 use caustics_core::map::CausticsMap;
 use caustics_core::render::{Caustics, Image, RenderOptions};
 use caustics_core::scene::{Albedo, Scene};
+use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
-use crate::technique::{Output, WaterTextures};
+use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 use upload::Lighting;
 
@@ -87,6 +92,8 @@ pub struct FinalImage {
     /// Bound in place of a height field, terrain, caustics map or albedo image the scene lacks.
     empty_r32: wgpu::Texture,
     empty_rgba32: wgpu::Texture,
+    /// Bound in place of the walls' maps (one zero layer).
+    empty_walls: wgpu::Texture,
 }
 
 /// The final image of one scene at one image size, everything it reads and writes living across
@@ -128,6 +135,55 @@ fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
         },
         count: None,
     }
+}
+
+/// The final image's view of a walls texture: all its layers.
+fn walls_view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// Upload CPU-made walls' maps (the reference's) as the final image reads them: an `Rgba32Float`
+/// 2D array texture of four layers, as wide as the widest wall ([`WallsOutput`]'s layout), and
+/// each layer's column count. Once per set of maps, not per frame.
+pub fn upload_walls(
+    ctx: &GpuContext,
+    maps: &WallMaps,
+) -> Result<(wgpu::Texture, [u32; 4]), GpuError> {
+    let cols = maps.maps.each_ref().map(|m| m.cols as u32);
+    let width = cols.iter().copied().max().unwrap_or(1).max(1);
+    let rows = maps.maps[0].rows as u32;
+    ctx.check_texture_size("walls' maps", width, rows)?;
+    let mut texels = vec![[0f32; 4]; (width * rows) as usize * 4];
+    for (k, m) in maps.maps.iter().enumerate() {
+        for i in 0..m.rows {
+            for j in 0..m.cols {
+                let t = m.texels[i * m.cols + j];
+                texels[(k * rows as usize + i) * width as usize + j] = [t[0], t[1], t[2], 1.0];
+            }
+        }
+    }
+    let texture = ctx.create_texture_with_data(
+        &wgpu::TextureDescriptor {
+            label: Some("walls' maps"),
+            size: wgpu::Extent3d {
+                width,
+                height: rows,
+                depth_or_array_layers: 4,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&texels),
+    );
+    Ok((texture, cols))
 }
 
 fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -237,6 +293,17 @@ impl FinalImage {
                     count: None,
                 },
                 storage_entry(7),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 8,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                storage_entry(9),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -273,6 +340,14 @@ impl FinalImage {
             1,
             bytemuck::bytes_of(&[1f32; 4]),
         )?;
+        let empty_walls = float_texture(
+            ctx,
+            "no walls' maps",
+            wgpu::TextureFormat::Rgba32Float,
+            1,
+            1,
+            bytemuck::bytes_of(&[0f32; 4]),
+        )?;
         ctx.check()?;
         Ok(FinalImage {
             pipeline,
@@ -281,6 +356,7 @@ impl FinalImage {
             mesh_layout,
             empty_r32,
             empty_rgba32,
+            empty_walls,
         })
     }
 
@@ -309,16 +385,33 @@ impl FinalImage {
         caustics: Option<Output>,
         options: &RenderOptions,
     ) -> Result<FinalImageFrame, GpuError> {
-        self.build(ctx, scene, water, caustics, None, options)
+        self.build(ctx, scene, water, caustics, None, None, options)
     }
 
-    /// [`frame`](Self::frame), a floor map's square given (`map_size`) or the scene's.
+    /// [`frame`](Self::frame) with the walls' maps of a technique that lit the pool's walls (bound
+    /// as they are; ignored when the scene's walls are off).
+    pub fn frame_with_walls(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: Option<&WaterTextures>,
+        caustics: Option<Output>,
+        walls: Option<WallsOutput>,
+        options: &RenderOptions,
+    ) -> Result<FinalImageFrame, GpuError> {
+        self.build(ctx, scene, water, caustics, walls, None, options)
+    }
+
+    /// [`frame_with_walls`](Self::frame_with_walls), a floor map's square given (`map_size`) or
+    /// the scene's.
+    #[allow(clippy::too_many_arguments)]
     fn build(
         &self,
         ctx: &GpuContext,
         scene: &Scene,
         water: Option<&WaterTextures>,
         caustics: Option<Output>,
+        walls: Option<WallsOutput>,
         map_size: Option<f64>,
         options: &RenderOptions,
     ) -> Result<FinalImageFrame, GpuError> {
@@ -354,6 +447,9 @@ impl FinalImage {
             )?),
             Albedo::Pattern(_) => None,
         };
+        let walls = walls.filter(|_| scene.floor.walls && scene.water.is_some());
+        let wall_cols =
+            storage_buffer(ctx, "walls' columns", &walls.map_or([0u32; 4], |w| w.cols))?;
         let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
         let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.nodes)?;
         let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.triangles)?;
@@ -392,6 +488,7 @@ impl FinalImage {
             view(caustics.map(|c| c.texture()), &self.empty_rgba32),
             view(albedo_image.as_ref(), &self.empty_rgba32),
             output.create_view(&Default::default()),
+            walls_view(walls.map_or(&self.empty_walls, |w| w.texture)),
         ];
         let scene_group = bind_group(
             ctx,
@@ -406,6 +503,8 @@ impl FinalImage {
                 objects.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[3]),
                 slab_max.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[4]),
+                wall_cols.as_entire_binding(),
             ],
         );
         let mesh_group = bind_group(
@@ -414,7 +513,7 @@ impl FinalImage {
             &self.mesh_layout,
             &[nodes.as_entire_binding(), triangles.as_entire_binding()],
         );
-        let mut resources = vec![objects, nodes, triangles];
+        let mut resources = vec![objects, nodes, triangles, wall_cols];
         let slab_group = match (water, &scene.water) {
             (Some(w), Some(sw)) => {
                 // The water's square and edge rule are the scene's: a new frame when they change.
@@ -503,6 +602,22 @@ impl FinalImage {
         surface: Option<&dyn Surface>,
         caustics: Option<Caustics>,
         options: &RenderOptions,
+        timer: Option<&mut GpuTimer>,
+    ) -> Result<Image, GpuError> {
+        self.render_with_walls(ctx, scene, surface, caustics, None, options, timer)
+    }
+
+    /// [`render_with`](Self::render_with), the pool's walls lit through CPU-made walls' maps (the
+    /// reference's), the GPU counterpart of `caustics_core::render::render_with_walls`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_with_walls(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        surface: Option<&dyn Surface>,
+        caustics: Option<Caustics>,
+        walls: Option<&WallMaps>,
+        options: &RenderOptions,
         mut timer: Option<&mut GpuTimer>,
     ) -> Result<Image, GpuError> {
         let grid = surface.and_then(|s| water_grid(scene, s));
@@ -535,7 +650,23 @@ impl FinalImage {
             (Some(Caustics::EyeSpace(_)), Some(t)) => (Some(Output::EyeSpace(t)), None),
             _ => (None, None),
         };
-        let frame = self.build(ctx, scene, water.as_ref(), output, map_size, options)?;
+        let walls = match walls {
+            Some(w) => Some(upload_walls(ctx, w)?),
+            None => None,
+        };
+        let walls_output = walls.as_ref().map(|(texture, cols)| WallsOutput {
+            texture,
+            cols: *cols,
+        });
+        let frame = self.build(
+            ctx,
+            scene,
+            water.as_ref(),
+            output,
+            walls_output,
+            map_size,
+            options,
+        )?;
 
         let mut encoder = ctx
             .device

@@ -1,6 +1,7 @@
 // The final image, one invocation per pixel: the GPU twin of caustics-core/src/render.rs, function
 // for function (`render`, `Tracer::trace`, `trace_under`, `shade_floor`, `shade_object`,
-// `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`). The light
+// `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`, `wall_light`,
+// `wall_at`). The light
 // transport is documented there. Composed after optics.wgsl, water.wgsl, shading.wgsl and bvh.wgsl.
 //
 // WGSL has no recursion, and the CPU's recursion is linear in what it returns: `trace` returns the
@@ -87,6 +88,11 @@ struct Object {
 @group(0) @binding(6) var image: texture_storage_2d<rgba8unorm, write>;
 // The bits of the largest |h| on the slab lattice, as final_image_slab.wgsl found it this frame.
 @group(0) @binding(7) var<storage, read> slab_max: array<u32>;
+// The walls' maps (issue 18): layer k is wall k of `Wall::ALL` (x = 0, x = size, y = 0, y = size)
+// in its first wall_cols[k] columns, row 0 at the floor, the rows up to the rest water level;
+// wall_cols is 0 where the technique lit no walls.
+@group(0) @binding(8) var wall_maps: texture_2d_array<f32>;
+@group(0) @binding(9) var<storage, read> wall_cols: array<u32>;
 
 // Stands for the CPU's f64::INFINITY as a ray's range.
 const FAR: f32 = 3.0e38;
@@ -300,6 +306,69 @@ fn wall_distance(o: vec3<f32>, d: vec3<f32>, size: f32) -> f32 {
         }
     }
     return max(t, 0.0);
+}
+
+// `wall_at`: the wall of the pool square nearest to p, as its index in `Wall::ALL`.
+fn wall_at(p: vec3<f32>, size: f32) -> u32 {
+    let d = array<f32, 4>(p.x, size - p.x, p.y, size - p.y);
+    var k = 0u;
+    for (var i = 1u; i < 4u; i++) {
+        if d[i] < d[k] {
+            k = i;
+        }
+    }
+    return k;
+}
+
+// `WallMap::sample`: bilinear between texel centres, clamped at the wall's edges.
+fn sample_wall(k: u32, along: f32, z: f32) -> vec3<f32> {
+    let cols = wall_cols[k];
+    let rows = textureDimensions(wall_maps).y;
+    let u = clamp(along / params.water_size * f32(cols) - 0.5, 0.0, f32(cols - 1u));
+    let v = clamp(z / params.water_level * f32(rows) - 0.5, 0.0, f32(rows - 1u));
+    let j0 = u32(floor(u));
+    let i0 = u32(floor(v));
+    let j1 = min(j0 + 1u, cols - 1u);
+    let i1 = min(i0 + 1u, rows - 1u);
+    let fu = u - f32(j0);
+    let fv = v - f32(i0);
+    let layer = i32(k);
+    let a = textureLoad(wall_maps, vec2<u32>(j0, i0), layer, 0).rgb;
+    let b = textureLoad(wall_maps, vec2<u32>(j1, i0), layer, 0).rgb;
+    let c = textureLoad(wall_maps, vec2<u32>(j0, i1), layer, 0).rgb;
+    let d = textureLoad(wall_maps, vec2<u32>(j1, i1), layer, 0).rgb;
+    return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
+}
+
+// `Tracer::wall_light`: the sun's light on wall point p through its wall's map (none without maps),
+// shadowed by the objects.
+fn wall_light(p: vec3<f32>, size: f32) -> vec3<f32> {
+    let k = wall_at(p, size);
+    if wall_cols[k] == 0u {
+        return vec3<f32>(0.0);
+    }
+    var along = p.x;
+    var normal = vec3<f32>(0.0, 1.0, 0.0);
+    switch k {
+        case 0u: {
+            along = p.y;
+            normal = vec3<f32>(1.0, 0.0, 0.0);
+        }
+        case 1u: {
+            along = p.y;
+            normal = vec3<f32>(-1.0, 0.0, 0.0);
+        }
+        case 3u: {
+            normal = vec3<f32>(0.0, -1.0, 0.0);
+        }
+        default: {}
+    }
+    let c = sample_wall(k, along, p.z);
+    if occluded(p + normal * 1e-4, -params.sun_water, FAR) {
+        return vec3<f32>(0.0);
+    }
+    let e_h = params.sun_intensity * -params.sun.z;
+    return c * (e_h * params.t_flat) * params.light_color;
 }
 
 // Height of the ray above the water surface at distance t.
@@ -543,11 +612,12 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if obj.found {
         shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, true, w * absorbed(obj.t));
     } else if is_pool() && !inside(floor_hit.xy, size) {
-        // The ray meets a pool wall first: tiles lit by the ambient light only.
+        // The ray meets a pool wall first: tiles lit by the ambient light, and by the sun through
+        // the wall's map where the technique lit the walls.
         let t = wall_distance(o, d, size);
         let p = o + d * t;
         let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size);
-        emit(w * absorbed(t), a * params.ambient * sun_radiance());
+        emit(w * absorbed(t), a * (params.ambient * sun_radiance() + wall_light(p, size)));
     } else {
         emit(w * absorbed(t_floor), shade_floor(floor_hit.xyz));
     }
