@@ -13,8 +13,8 @@ use caustics_core::render::RenderOptions;
 use caustics_core::scene::{Scene, Water};
 use caustics_core::water::ripple::{Drop, RippleParams};
 
-use crate::final_image::{FinalImage, FinalImageFrame, water_grid_resolution};
-use crate::technique::{self, Output, Technique, WaterTextures};
+use crate::final_image::{FinalImage, FinalImageFrame, upload_walls, water_grid_resolution};
+use crate::technique::{self, Output, Technique, WallsOutput, WaterTextures};
 use crate::water::field::GpuWater;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -60,6 +60,9 @@ struct Side {
     /// The map of a technique with no GPU implementation (the CPU reference), uploaded by the
     /// application when it changes.
     external: Option<wgpu::Texture>,
+    /// The walls' maps of that technique (the reference's, when the scene's walls are on) and
+    /// each wall's column count, uploaded by the application when they change.
+    external_walls: Option<(wgpu::Texture, [u32; 4])>,
     image: Option<FinalImageFrame>,
     /// What the image frame was built from: caustics texture, water texture, image size.
     image_key: Option<ImageKey>,
@@ -78,6 +81,7 @@ struct FailKey {
 #[derive(Clone, PartialEq)]
 struct ImageKey {
     caustics: Option<wgpu::Texture>,
+    walls: Option<wgpu::Texture>,
     water: Option<wgpu::TextureView>,
     size: (u32, u32),
 }
@@ -158,6 +162,7 @@ impl Renderer {
                     configured: None,
                     failed: None,
                     external: None,
+                    external_walls: None,
                     image: None,
                     image_key: None,
                 },
@@ -289,8 +294,20 @@ impl Renderer {
                 Ok(_) => None,
                 Err(_) => side.external.as_ref().map(Output::Floor),
             };
+            let walls = match &side.technique {
+                Ok(t) if side.configured.is_some() => t.walls(),
+                Ok(_) => None,
+                Err(_) => side
+                    .external_walls
+                    .as_ref()
+                    .map(|(texture, cols)| WallsOutput {
+                        texture,
+                        cols: *cols,
+                    }),
+            };
             let key = ImageKey {
                 caustics: caustics.map(|o| o.texture().clone()),
+                walls: walls.map(|w| w.texture.clone()),
                 water: image_water.as_ref().map(|w| w.heights.clone()),
                 size: (scene.camera.width, scene.camera.height),
             };
@@ -299,11 +316,12 @@ impl Renderer {
             {
                 image.update(ctx, scene, options);
             } else {
-                side.image = Some(self.final_image.frame(
+                side.image = Some(self.final_image.frame_with_walls(
                     ctx,
                     scene,
                     image_water.as_ref(),
                     caustics,
+                    walls,
                     options,
                 )?);
                 side.image_key = Some(key);
@@ -380,6 +398,25 @@ impl Renderer {
             },
             texture.size(),
         );
+        Ok(())
+    }
+
+    /// The walls' maps of side `k` when its technique runs elsewhere (the CPU reference on a scene
+    /// with walls): uploaded now, once per new set of maps (a new texture, so the side's image
+    /// frame binds it at the next render). `None` leaves the walls to the ambient light.
+    pub fn set_walls(
+        &mut self,
+        ctx: &GpuContext,
+        k: usize,
+        walls: Option<&caustics_core::walls::WallMaps>,
+    ) -> Result<(), GpuError> {
+        let Some(side) = self.sides.get_mut(k) else {
+            return Ok(());
+        };
+        side.external_walls = match walls {
+            Some(w) => Some(upload_walls(ctx, w)?),
+            None => None,
+        };
         Ok(())
     }
 
