@@ -17,7 +17,7 @@ use anyhow::{Context, Result};
 use glam::DVec3;
 
 use caustics_core::map::CausticsMap;
-use caustics_core::render::{Caustics, Image, RenderOptions, render_with};
+use caustics_core::render::{Caustics, Image, RenderOptions, render_with_walls};
 use caustics_core::scene::{Material, Scene};
 use caustics_core::techniques::cascaded::CascadedParams;
 use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
@@ -25,6 +25,7 @@ use caustics_core::techniques::procedural::ProceduralCausticsParams;
 use caustics_core::techniques::volumes::VolumesParams;
 use caustics_core::techniques::yuksel::YukselParams;
 use caustics_core::techniques::{self, Input, TECHNIQUES};
+use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
@@ -161,6 +162,7 @@ struct CachedMap {
     key: MapKey,
     caustics: SceneCaustics,
     backend: &'static str,
+    walls: Option<WallMaps>,
 }
 
 /// One side of the view: a technique, its latest caustics (a floor map, or `cascaded`'s eye-space
@@ -168,6 +170,9 @@ struct CachedMap {
 pub struct Slot {
     pub choice: TechniqueChoice,
     pub caustics: Option<SceneCaustics>,
+    /// The pool's walls' maps that came with the caustics (the reference's, when the scene's
+    /// walls are on), which the final image lights the walls with.
+    pub walls: Option<WallMaps>,
     key: Option<MapKey>,
     pub error: Option<String>,
     /// "GPU" or "CPU", and milliseconds, of the last run that happened.
@@ -182,6 +187,7 @@ impl Slot {
         Slot {
             choice,
             caustics: None,
+            walls: None,
             key: None,
             error: None,
             backend: "",
@@ -323,6 +329,7 @@ impl SceneRenderer {
                 _ if self.scene.water.is_none() => None,
                 _ => {
                     slot.caustics = None;
+                    slot.walls = None;
                     slot.error = None;
                     continue;
                 }
@@ -345,6 +352,7 @@ impl SceneRenderer {
                 // Seen a moment ago (the other side, or before a switch): most recent last.
                 let cached = self.maps.remove(k);
                 slot.caustics = Some(cached.caustics.clone());
+                slot.walls = cached.walls.clone();
                 slot.backend = cached.backend;
                 slot.error = None;
                 slot.technique_ms = None;
@@ -365,7 +373,7 @@ impl SceneRenderer {
             slot.technique_ms = Some(ms(started));
             slot.key = Some(key.clone());
             match outcome {
-                Ok((caustics, backend)) => {
+                Ok((caustics, backend, walls)) => {
                     // An eye-space image made for another view of the same input is stale (the
                     // camera rarely comes back to the same spot): replace it rather than push a
                     // floor map that would be reused out of the cache.
@@ -378,8 +386,10 @@ impl SceneRenderer {
                         key,
                         caustics: caustics.clone(),
                         backend,
+                        walls: walls.clone(),
                     });
                     slot.caustics = Some(caustics);
+                    slot.walls = walls;
                     slot.backend = backend;
                     slot.error = None;
                 }
@@ -390,6 +400,7 @@ impl SceneRenderer {
                         eprintln!("technique `{}`: {e}", slot.choice.label());
                     }
                     slot.caustics = None;
+                    slot.walls = None;
                     slot.error = Some(e);
                 }
             }
@@ -404,16 +415,18 @@ impl SceneRenderer {
         let mut images = Vec::with_capacity(slots.len());
         for slot in slots.iter() {
             let caustics = slot.caustics.as_ref().map(SceneCaustics::caustics);
+            let walls = slot.walls.as_ref().filter(|_| caustics.is_some());
             images.push(if quality.cpu_image {
-                render_with(
+                render_with_walls(
                     &self.scene,
                     surface.as_deref(),
                     caustics,
+                    walls,
                     &options,
                     &|_, _| {},
                 )
             } else {
-                self.final_image(surface.as_deref(), caustics, &options)?
+                self.final_image(surface.as_deref(), caustics, walls, &options)?
             });
         }
         if let (Some(timer), Some(ctx)) = (self.timer.as_mut(), self.runner.gpu.as_ref()) {
@@ -524,7 +537,7 @@ impl SceneRenderer {
                 continue;
             }
             let t0 = Instant::now();
-            let outcome = (|| -> Result<(SceneCaustics, &'static str)> {
+            let outcome = (|| -> Result<(SceneCaustics, &'static str, Option<WallMaps>)> {
                 let surface = match water.as_deref_mut() {
                     Some(w) => Some(self.cpu_surface(w)?),
                     None => None,
@@ -539,14 +552,16 @@ impl SceneRenderer {
             slot.key = Some(key);
             slot.map_changed = true;
             match outcome {
-                Ok((caustics, backend)) => {
+                Ok((caustics, backend, walls)) => {
                     slot.backend = backend;
                     slot.error = None;
                     slot.caustics = Some(caustics);
+                    slot.walls = walls;
                 }
                 Err(e) => {
                     slot.error = Some(format!("{e:#}"));
                     slot.caustics = None;
+                    slot.walls = None;
                 }
             }
         }
@@ -563,6 +578,7 @@ impl SceneRenderer {
                         SceneCaustics::EyeSpace(_) => None,
                     }),
                 )?;
+                frame.renderer.set_walls(ctx, k, slot.walls.as_ref())?;
             }
         }
         let t0 = Instant::now();
@@ -652,13 +668,13 @@ impl SceneRenderer {
         water_input: Option<(&dyn Surface, &WaterState)>,
         sun: DVec3,
         quality: Quality,
-    ) -> Result<(SceneCaustics, &'static str)> {
+    ) -> Result<(SceneCaustics, &'static str, Option<WallMaps>)> {
         let cells = cells_per_texel.max(1);
         let Some((surface, water)) = water_input else {
             let o = self
                 .runner
                 .run_scene(spec, &self.scene, None, cells, &|_, _| {})?;
-            return Ok((SceneCaustics::Floor(o.map), o.backend));
+            return Ok((SceneCaustics::Floor(o.map), o.backend, o.walls));
         };
         let w = water.technique_water();
         // `volumes` and the reference see the objects (their floor maps hold the shadows).
@@ -672,11 +688,11 @@ impl SceneRenderer {
                 let o = self
                     .runner
                     .run_scene(spec, &scene, Some(surface), cells, &|_, _| {})?;
-                return Ok((SceneCaustics::Floor(o.map), o.backend));
+                return Ok((SceneCaustics::Floor(o.map), o.backend, o.walls));
             }
             let grid = cascaded_heights(w, surface);
             let o = self.runner.run_cascaded(spec, &scene, &grid)?;
-            return Ok((o.caustics, o.backend));
+            return Ok((o.caustics, o.backend, o.walls));
         }
         let job = Job {
             water: w,
@@ -688,21 +704,23 @@ impl SceneRenderer {
             cells_per_texel: cells,
         };
         let o = self.runner.run(spec, &job)?;
-        Ok((SceneCaustics::Floor(o.map), o.backend))
+        Ok((SceneCaustics::Floor(o.map), o.backend, o.walls))
     }
 
     fn final_image(
         &mut self,
         surface: Option<&dyn Surface>,
         caustics: Option<Caustics>,
+        walls: Option<&WallMaps>,
         options: &RenderOptions,
     ) -> Result<Image> {
         if let (Some(f), Some(ctx)) = (&self.final_image, self.runner.gpu.as_ref()) {
-            match f.render_with(
+            match f.render_with_walls(
                 ctx,
                 &self.scene,
                 surface,
                 caustics,
+                walls,
                 options,
                 self.timer.as_mut(),
             ) {
@@ -714,10 +732,11 @@ impl SceneRenderer {
                 }
             }
         }
-        Ok(render_with(
+        Ok(render_with_walls(
             &self.scene,
             surface,
             caustics,
+            walls,
             options,
             &|_, _| {},
         ))
