@@ -425,7 +425,10 @@ mod tests {
     /// at most 2.2) of one of ours.
     #[test]
     fn pool_waves_agree_with_the_reference() {
-        let scene = Scene::builtin("pool").unwrap();
+        let mut scene = Scene::builtin("pool").unwrap();
+        // The floor map alone, as this twin makes it (the pool's walls are off: nothing lost to
+        // them, and the light wraps round as here).
+        scene.floor.walls = false;
         let water = scene.water.as_ref().unwrap();
         let surface = water.surface_at(scene.time).unwrap();
         let res = 256;
