@@ -519,8 +519,11 @@ impl BoxNet {
     fn deposit(&self, acc: &mut [DVec3], r: u8, poly: &[DVec2], flux: DVec3) {
         if r == FLOOR {
             let (w, h) = (self.width as i64, self.height as i64);
-            let q: Vec<DVec2> = poly.iter().map(|v| *v / self.texel).collect();
-            spread(&q, flux, &mut |i, j, v| {
+            let mut q = [DVec2::ZERO; 16];
+            for (q, v) in q.iter_mut().zip(poly) {
+                *q = *v / self.texel;
+            }
+            spread(&q[..poly.len()], flux, &mut |i, j, v| {
                 acc[(i.clamp(0, h - 1) * w + j.clamp(0, w - 1)) as usize] += v;
             });
             return;
@@ -529,12 +532,12 @@ impl BoxNet {
         let (cols, rows) = (self.cols[k] as i64, self.rows as i64);
         let along = self.size / self.cols[k] as f64;
         let base = self.offsets[k];
-        let q: Vec<DVec2> = poly
-            .iter()
-            .map(|v| DVec2::new(v.x / along, v.y / self.hz))
-            .collect();
+        let mut q = [DVec2::ZERO; 16];
+        for (q, v) in q.iter_mut().zip(poly) {
+            *q = DVec2::new(v.x / along, v.y / self.hz);
+        }
         // Rows past the top are light meeting the wall above the rest level: its top row.
-        spread(&q, flux, &mut |i, j, v| {
+        spread(&q[..poly.len()], flux, &mut |i, j, v| {
             acc[base + (i.clamp(0, rows - 1) * cols + j.clamp(0, cols - 1)) as usize] += v;
         });
     }
