@@ -279,10 +279,10 @@ pub fn reference_with_walls(
     };
     let light_z = -light.z;
     let wall_maps = walls.then(|| WallMaps::for_floor_map(width, height, size, water.depth));
-    let net = wall_maps
+    let receivers = wall_maps
         .as_ref()
-        .map(|m| BoxNet::new(m, width, height, texel, size));
-    let acc_len = width * height + net.as_ref().map_or(0, |n| n.wall_texels);
+        .map(|m| PoolReceivers::new(m, width, height, texel, size));
+    let acc_len = width * height + receivers.as_ref().map_or(0, |n| n.wall_texels);
     // One accumulator per worker thread (bands interleaved between them) and one for the sum, fewer
     // workers where memory would not hold them, and a clear refusal where not even two fit.
     let map_bytes = acc_len as u64 * std::mem::size_of::<DVec3>() as u64;
@@ -334,8 +334,8 @@ pub fn reference_with_walls(
                             }
                             let w = (tri[0].weight + tri[1].weight + tri[2].weight) / 3.0;
                             transmitted += flux * w;
-                            match &net {
-                                Some(net) => net.triangle(&mut acc, &tri, flux * w),
+                            match &receivers {
+                                Some(r) => r.triangle(&mut acc, &tri, flux * w),
                                 None => deposit.triangle(
                                     &mut acc,
                                     [tri[0].floor, tri[1].floor, tri[2].floor],
@@ -372,12 +372,12 @@ pub fn reference_with_walls(
             *t = [e.x as f32, e.y as f32, e.z as f32];
         }
     }
-    let walls = match (wall_maps, &net) {
-        (Some(mut maps), Some(net)) => {
+    let walls = match (wall_maps, &receivers) {
+        (Some(mut maps), Some(receivers)) => {
             for w in Wall::ALL {
                 let m = maps.get_mut(w);
                 let area = m.texel_area();
-                let base = net.offsets[w.index()];
+                let base = receivers.offsets[w.index()];
                 for (k, t) in m.texels.iter_mut().enumerate() {
                     let e = acc[base + k] / area;
                     *t = [e.x as f32, e.y as f32, e.z as f32];
@@ -397,7 +397,7 @@ pub fn reference_with_walls(
 /// Exact area deposit of the triangles of the pool's receivers (floor and walls) into their
 /// texels, all in one accumulator: the floor's `width x height` texels, then each wall's (in
 /// [`Wall::ALL`]'s order).
-struct BoxNet {
+struct PoolReceivers {
     width: usize,
     height: usize,
     texel: DVec2,
@@ -410,7 +410,7 @@ struct BoxNet {
     wall_texels: usize,
 }
 
-impl BoxNet {
+impl PoolReceivers {
     fn new(maps: &WallMaps, width: usize, height: usize, texel: DVec2, size: f64) -> Self {
         let mut offsets = [0; 4];
         let mut next = width * height;
@@ -419,7 +419,7 @@ impl BoxNet {
             next += maps.get(w).texels.len();
         }
         let m = maps.get(Wall::X0);
-        BoxNet {
+        PoolReceivers {
             width,
             height,
             texel,
@@ -519,8 +519,11 @@ impl BoxNet {
     fn deposit(&self, acc: &mut [DVec3], r: u8, poly: &[DVec2], flux: DVec3) {
         if r == FLOOR {
             let (w, h) = (self.width as i64, self.height as i64);
-            let q: Vec<DVec2> = poly.iter().map(|v| *v / self.texel).collect();
-            spread(&q, flux, &mut |i, j, v| {
+            let mut q = [DVec2::ZERO; 16];
+            for (q, v) in q.iter_mut().zip(poly) {
+                *q = *v / self.texel;
+            }
+            spread(&q[..poly.len()], flux, &mut |i, j, v| {
                 acc[(i.clamp(0, h - 1) * w + j.clamp(0, w - 1)) as usize] += v;
             });
             return;
@@ -529,12 +532,12 @@ impl BoxNet {
         let (cols, rows) = (self.cols[k] as i64, self.rows as i64);
         let along = self.size / self.cols[k] as f64;
         let base = self.offsets[k];
-        let q: Vec<DVec2> = poly
-            .iter()
-            .map(|v| DVec2::new(v.x / along, v.y / self.hz))
-            .collect();
+        let mut q = [DVec2::ZERO; 16];
+        for (q, v) in q.iter_mut().zip(poly) {
+            *q = DVec2::new(v.x / along, v.y / self.hz);
+        }
         // Rows past the top are light meeting the wall above the rest level: its top row.
-        spread(&q, flux, &mut |i, j, v| {
+        spread(&q[..poly.len()], flux, &mut |i, j, v| {
             acc[base + (i.clamp(0, rows - 1) * cols + j.clamp(0, cols - 1)) as usize] += v;
         });
     }

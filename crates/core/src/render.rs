@@ -928,6 +928,55 @@ mod tests {
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
     use crate::techniques::cascaded::{CascadedParams, CascadedSetup, eye_pass};
 
+    /// The reference's walls' maps light the pool's walls the camera sees under a low sun, and
+    /// only where the scene's walls are on.
+    #[test]
+    fn walls_maps_light_the_walls() {
+        let mut scene = Scene::builtin("pool").unwrap();
+        scene.camera.width = 160;
+        scene.camera.height = 90;
+        scene.caustics.width = 64;
+        scene.caustics.height = 64;
+        scene.light.direction = DVec3::new(0.8, 0.6, -0.6).normalize();
+        let water = scene.water.as_ref().unwrap();
+        let surface = water.surface_at(scene.time).unwrap();
+        let input = ReferenceInput::from_scene(&scene, surface.as_ref()).unwrap();
+        let options = ReferenceOptions {
+            cells_per_texel: 2,
+            ..Default::default()
+        };
+        let out = crate::reference::reference_with_walls(&input, &options, &|_, _| {}).unwrap();
+        let walls = out.walls.as_ref().unwrap();
+        let caustics = Some(Caustics::Floor(&out.floor));
+        let options = RenderOptions {
+            supersampling: 1,
+            ..Default::default()
+        };
+        let s = Some(surface.as_ref());
+        let none = |_: usize, _: usize| {};
+        let unlit = render_with(&scene, s, caustics, &options, &none);
+        let lit = render_with_walls(&scene, s, caustics, Some(walls), &options, &none);
+        let (mut brighter, mut darker, mut sum) = (0, 0, 0.0);
+        for (a, b) in unlit.rgb.iter().zip(&lit.rgb) {
+            brighter += (b > a) as usize;
+            darker += (b < a) as usize;
+            sum += a.abs_diff(*b) as f64;
+        }
+        let mean = sum / lit.rgb.len() as f64;
+        eprintln!(
+            "walls' maps: mean change {mean:.2} steps, {brighter} channels brighter, {darker} darker"
+        );
+        // Measured 1.90 steps, every changed channel brighter: light is only added.
+        assert!(mean > 0.5, "{mean}");
+        assert_eq!(darker, 0);
+        scene.floor.walls = false;
+        let off = render_with_walls(&scene, s, caustics, Some(walls), &options, &none);
+        assert_eq!(
+            off.rgb,
+            render_with(&scene, s, caustics, &options, &none).rgb
+        );
+    }
+
     /// A floor map projected to the eye (each pixel holds the map at its straight ray's floor
     /// point, as `cascaded` makes its image) and read back as eye-space caustics lights the final
     /// image as the map itself does: the two differ only where a refracted ray's floor point is
