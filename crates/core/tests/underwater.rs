@@ -116,6 +116,7 @@ fn draw(scene: &Scene, surface: Option<&dyn Surface>, exposure: f64) -> Image {
     let options = RenderOptions {
         supersampling: 1,
         exposure,
+        tone_map: Default::default(),
     };
     render_with(scene, surface, None, &options, &|_, _| {})
 }

@@ -981,6 +981,8 @@ mod tests {
         scene.camera.width = 64;
         scene.camera.height = 36;
         scene.water.as_mut().unwrap().absorption = DVec3::ZERO;
+        // The floor alone: a wall under flat water holds tan θt, not one.
+        scene.floor.walls = false;
         let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
         let choice = TechniqueChoice::parse("cascaded:resolution=64", 1).unwrap();
         let input = input_for(&choice, &scene, Some(surface.as_ref()));

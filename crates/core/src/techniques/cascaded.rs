@@ -1271,14 +1271,15 @@ mod tests {
             let q = o + s.light * texel[0] as f64;
             let (h, grad) = water.sample(q.truncate(), s.size, Edge::Wrap);
             worst_h = worst_h.max((q.z - s.level - h).abs());
-            // measured at most 4.42e-7 (f32 distance along the ray)
-            assert!((q.z - s.level - h).abs() < 4.4e-6, "{}", q.z - s.level - h);
             let n = height_field_normal(grad);
             let e = (n - DVec3::new(texel[1] as f64, texel[2] as f64, texel[3] as f64)).length();
             worst_n = worst_n.max(e);
-            assert!(e < 6.5e-7, "{e}"); // measured at most 6.49e-8
         }
         eprintln!("water g-buffer: worst height {worst_h:.2e}, normal {worst_n:.2e}");
+        // Measured on the shore's 2 m/s ocean: height 4.67e-7 (f32 distance along the ray), normal
+        // 1.12e-6 (f32 normals of its short wavelets); 10x.
+        assert!(worst_h < 4.6e-6, "{worst_h}");
+        assert!(worst_n < 1.1e-5, "{worst_n}");
     }
 
     #[test]
