@@ -800,7 +800,11 @@ fn render_pool_with_caustic_triangles_uses_the_water_as_generator() {
     // The floor map alone, wrapping round the square (the pool's walls, on in the built-in scene,
     // would take the light that leaves it).
     let text = std::fs::read_to_string(d.join(&scene)).unwrap();
-    std::fs::write(d.join(&scene), text.replace("walls = true", "walls = false")).unwrap();
+    std::fs::write(
+        d.join(&scene),
+        text.replace("walls = true", "walls = false"),
+    )
+    .unwrap();
     let o = caustics(
         &[
             "render",
