@@ -769,28 +769,8 @@ impl Tracer<'_> {
             let p = o + d * t;
             p.z - level - s.height(p.truncate())
         };
-        let steps = 24;
-        let dt = (t1 - t0) / steps as f64;
-        let mut a = t0;
-        for k in 1..=steps {
-            let b = t0 + dt * k as f64;
-            let fb = f(b);
-            if fb <= 0.0 {
-                let (mut lo, mut hi) = (a, b);
-                for _ in 0..30 {
-                    let m = 0.5 * (lo + hi);
-                    if f(m) > 0.0 {
-                        lo = m;
-                    } else {
-                        hi = m;
-                    }
-                }
-                let t = 0.5 * (lo + hi);
-                return Some((t, o + d * t));
-            }
-            a = b;
-        }
-        None
+        let t = first_crossing(f, t0, t1)?;
+        Some((t, o + d * t))
     }
 
     /// The first crossing of a rising underwater ray with `z = level + h(x, y)` (the rest plane
@@ -815,27 +795,8 @@ impl Tracer<'_> {
             let p = o + d * t;
             level + s.height(p.truncate()) - p.z
         };
-        let steps = 24;
-        let dt = (t1 - t0) / steps as f64;
-        let mut a = t0;
-        for k in 1..=steps {
-            let b = t0 + dt * k as f64;
-            if f(b) <= 0.0 {
-                let (mut lo, mut hi) = (a, b);
-                for _ in 0..30 {
-                    let m = 0.5 * (lo + hi);
-                    if f(m) > 0.0 {
-                        lo = m;
-                    } else {
-                        hi = m;
-                    }
-                }
-                let t = 0.5 * (lo + hi);
-                return Some((t, o + d * t));
-            }
-            a = b;
-        }
-        Some((t1, o + d * t1))
+        let t = first_crossing(f, t0, t1).unwrap_or(t1);
+        Some((t, o + d * t))
     }
 
     /// Radiance arriving along `d` at point `p` of the surface, seen from below: the air's through
@@ -900,6 +861,33 @@ impl Tracer<'_> {
 
 fn inside(p: DVec2, size: f64) -> bool {
     p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size
+}
+
+/// The first `t` in `[t0, t1]` where `f` (a ray's signed distance to the water surface, positive
+/// on the side it starts) reaches 0: 24 march steps, then 30 bisections of the step that crossed.
+/// Both crossings, from above and from below, use it; the GPU twin is `first_crossing` in
+/// final_image.wgsl.
+fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64) -> Option<f64> {
+    let steps = 24;
+    let dt = (t1 - t0) / steps as f64;
+    let mut a = t0;
+    for k in 1..=steps {
+        let b = t0 + dt * k as f64;
+        if f(b) <= 0.0 {
+            let (mut lo, mut hi) = (a, b);
+            for _ in 0..30 {
+                let m = 0.5 * (lo + hi);
+                if f(m) > 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            return Some(0.5 * (lo + hi));
+        }
+        a = b;
+    }
+    None
 }
 
 /// Distance along the ray to the wall of the pool square it leaves through.

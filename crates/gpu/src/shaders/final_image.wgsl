@@ -399,32 +399,36 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     }
     let t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
+    let t = first_crossing(o, d, t0, t1, 1.0);
+    if t < 0.0 {
+        return vec4<f32>(o, -1.0);
+    }
+    return vec4<f32>(o + d * t, t);
+}
+
+// render.rs `first_crossing`: the first t in [t0, t1] where the ray's signed distance to the
+// surface, `side * water_gap` (side 1: from above, -1: from below), reaches 0; -1 for none.
+fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
     let dt = (t1 - t0) / f32(WATER_STEPS);
     var a = t0;
     for (var k = 1u; k <= WATER_STEPS; k++) {
         let b = t0 + dt * f32(k);
-        if water_gap(o, d, b) <= 0.0 {
+        if side * water_gap(o, d, b) <= 0.0 {
             var lo = a;
             var hi = b;
             for (var s = 0u; s < BISECTIONS; s++) {
                 let m = 0.5 * (lo + hi);
-                if water_gap(o, d, m) > 0.0 {
+                if side * water_gap(o, d, m) > 0.0 {
                     lo = m;
                 } else {
                     hi = m;
                 }
             }
-            let t = 0.5 * (lo + hi);
-            return vec4<f32>(o + d * t, t);
+            return 0.5 * (lo + hi);
         }
         a = b;
     }
-    return vec4<f32>(o, -1.0);
-}
-
-// Depth of the ray below the water surface at distance t.
-fn water_depth_along(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
-    return -water_gap(o, d, t);
+    return -1.0;
 }
 
 // render.rs `hit_water_from_below`: the first crossing of a rising underwater ray with
@@ -444,27 +448,11 @@ fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     }
     let t0 = max((bottom - o.z) / d.z, 0.0);
     let t1 = (top - o.z) / d.z;
-    let dt = (t1 - t0) / f32(WATER_STEPS);
-    var a = t0;
-    for (var k = 1u; k <= WATER_STEPS; k++) {
-        let b = t0 + dt * f32(k);
-        if water_depth_along(o, d, b) <= 0.0 {
-            var lo = a;
-            var hi = b;
-            for (var s = 0u; s < BISECTIONS; s++) {
-                let m = 0.5 * (lo + hi);
-                if water_depth_along(o, d, m) > 0.0 {
-                    lo = m;
-                } else {
-                    hi = m;
-                }
-            }
-            let t = 0.5 * (lo + hi);
-            return vec4<f32>(o + d * t, t);
-        }
-        a = b;
+    var t = first_crossing(o, d, t0, t1, -1.0);
+    if t < 0.0 {
+        t = t1;
     }
-    return vec4<f32>(o + d * t1, t1);
+    return vec4<f32>(o + d * t, t);
 }
 
 // render.rs `leave_water` with `from_below`: a ray meeting the surface at `p` from below splits by
