@@ -464,16 +464,19 @@ impl Runner {
                 };
                 let input = volumes::VolumesInput::from_scene(scene)?;
                 let setup = volumes::VolumesSetup::new(&volumes::VolumesParams::default(), &input)?;
-                let options = volumes::reference::MeshReferenceOptions::per_texel(
-                    &setup,
-                    (MESH_REFERENCE_PHOTONS * cells_per_texel.clamp(1, 8)) as f64,
-                );
+                let options = volumes::reference::MeshReferenceOptions {
+                    walls: scene.floor.walls,
+                    ..volumes::reference::MeshReferenceOptions::per_texel(
+                        &setup,
+                        (MESH_REFERENCE_PHOTONS * cells_per_texel.clamp(1, 8)) as f64,
+                    )
+                };
                 let r = volumes::reference::mesh_reference(&setup, &input, surface, &options);
                 progress(1, 1);
                 Ok(Outcome {
                     map: r.floor,
                     backend: "CPU",
-                    walls: None,
+                    walls: r.walls,
                 })
             }
             // Paper 3: its floor map (the illumination volumes cut by the floor, the objects' shadows

@@ -19,6 +19,15 @@
 //!   into: the surface behind one texel has area `A_texel / |n · v|`, so the sum is the irradiance
 //!   averaged over that surface.
 //!
+//! # Walls
+//! With `walls` (the scene's `[floor] walls = true`, issue 18) the pool's four walls are receivers as
+//! in [`crate::reference`]: only photons that enter through the water's square `[0, size]²` are
+//! traced, and each ends at the first thing its straight ray meets, an object, the floor or a wall
+//! plane (the wall the ray's horizontal part leaves the square through, [`Wall::exit`]). A photon on
+//! a wall adds `weight / A_texel` to the wall texel at its `(along, z)`; one above the rest level (a
+//! crest's own edge) goes to the top row, as the reference does. The objects shadow the walls as
+//! they shadow the floor, and a wall stops light before it reaches an object behind it.
+//!
 //! # Convergence
 //! The grid is stratified, so the noise falls faster than `1/√photons` away from the caustics'
 //! singular curves; `docs/volumes.md` gives the difference between runs at `s` and `s/2`.
@@ -31,6 +40,7 @@ use super::{CellRect, VolumesInput, VolumesSetup};
 use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
 #[derive(Clone, Debug)]
@@ -40,6 +50,8 @@ pub struct MeshReferenceOptions {
     /// Photon spacing on the water for the objects' maps, world units.
     pub object_spacing: f64,
     pub seed: u64,
+    /// The pool's walls receive light and stop it (see the module's "Walls").
+    pub walls: bool,
 }
 
 impl MeshReferenceOptions {
@@ -55,6 +67,7 @@ impl MeshReferenceOptions {
             floor_spacing: floor / per_texel,
             object_spacing: object / per_texel,
             seed: 1,
+            walls: false,
         }
     }
 }
@@ -63,6 +76,8 @@ pub struct MeshReference {
     /// Per object, relative irradiance in the technique's texels (zero where the object is not seen).
     pub objects: Vec<Vec<[f32; 3]>>,
     pub floor: CausticsMap,
+    /// The walls' maps ([`WallMaps::for_floor_map`] of the floor map) with `walls`.
+    pub walls: Option<WallMaps>,
     pub photons: u64,
 }
 
@@ -104,6 +119,45 @@ fn photon(setup: &VolumesSetup, surface: &dyn Surface, p: DVec2, area: f64) -> O
     })
 }
 
+/// Where a photon's ray ends when no object stops it.
+enum End {
+    /// The floor point `(x, y)`.
+    Floor(DVec2),
+    /// A wall, at `(along, z)` on it.
+    Wall(Wall, f64, f64),
+}
+
+/// The receiver a photon's ray meets first, objects aside, and its path to it: the floor, or with
+/// `walls` the wall its horizontal part leaves the square through when it gets there before the
+/// floor. A refracted ray always runs down, so it always ends somewhere.
+fn end_of(setup: &VolumesSetup, ph: &Photon, walls: bool) -> (End, f64) {
+    let d_floor = ph.start.z / -ph.dir.z;
+    if walls
+        && let Some((wall, u)) = Wall::exit(ph.start.truncate(), ph.dir.truncate(), setup.size)
+        && u < d_floor
+    {
+        let hit = ph.start + ph.dir * u;
+        return (End::Wall(wall, wall.along(hit), hit.z), u);
+    }
+    (
+        End::Floor((ph.start + ph.dir * d_floor).truncate()),
+        d_floor,
+    )
+}
+
+/// Whether a photon starting over `p` enters through the pool's square (the only way in with walls).
+fn inside(p: DVec2, size: f64) -> bool {
+    (0.0..size).contains(&p.x) && (0.0..size).contains(&p.y)
+}
+
+/// The texel of wall map `m` at `(along, z)`: a point above the rest level (a crest's edge) in the
+/// top row, as [`crate::reference`] puts it.
+fn wall_texel(m: &crate::walls::WallMap, along: f64, z: f64) -> usize {
+    let col = ((along / m.length * m.cols as f64).floor().max(0.0) as usize).min(m.cols - 1);
+    let row = ((z / m.height * m.rows as f64).floor().max(0.0) as usize).min(m.rows - 1);
+    row * m.cols + col
+}
+
 /// The jittered photon positions over a rectangle of lattice cells, by rows of squares.
 struct Strata {
     origin: DVec2,
@@ -114,13 +168,34 @@ struct Strata {
 }
 
 impl Strata {
-    fn over(setup: &VolumesSetup, cells: CellRect, spacing: f64, seed: u64) -> Strata {
+    /// Over the lattice cells `cells`; with `walls`, over their part inside the square (light
+    /// enters the pool only through it), where a side the lattice clamped (the cells run to its
+    /// edge) reaches to the square's edge: the lattice is placed for the floor, shifted back along
+    /// the sun, and can stop short of the square's far side.
+    fn over(setup: &VolumesSetup, cells: CellRect, spacing: f64, seed: u64, walls: bool) -> Strata {
         let lat = &setup.lattice;
-        let origin = lat.position(cells.i0, cells.j0);
-        let side =
-            DVec2::new((cells.j1 - cells.j0) as f64, (cells.i1 - cells.i0) as f64) * lat.cell;
+        let mut lo = lat.position(cells.i0, cells.j0);
+        let mut hi = lat.position(cells.i1, cells.j1);
+        if walls {
+            let size = DVec2::splat(setup.size);
+            if cells.j0 == 0 {
+                lo.x = 0.0;
+            }
+            if cells.i0 == 0 {
+                lo.y = 0.0;
+            }
+            if cells.j1 == lat.nx {
+                hi.x = size.x;
+            }
+            if cells.i1 == lat.ny {
+                hi.y = size.y;
+            }
+            lo = lo.clamp(DVec2::ZERO, size);
+            hi = hi.clamp(DVec2::ZERO, size);
+        }
+        let side = (hi - lo).max(DVec2::ZERO);
         Strata {
-            origin,
+            origin: lo,
             spacing,
             nx: (side.x / spacing).ceil() as usize,
             ny: (side.y / spacing).ceil() as usize,
@@ -158,7 +233,7 @@ pub fn mesh_reference(
     let absorb = |d: f64| (-setup.absorption * d).exp();
     let mut photons = 0u64;
 
-    // The floor.
+    // The floor, and the walls with them.
     let (w, h) = (setup.width, setup.height);
     let texel = DVec2::new(setup.size / w as f64, setup.size / h as f64);
     let strata = Strata::over(
@@ -166,42 +241,77 @@ pub fn mesh_reference(
         setup.all_cells(),
         options.floor_spacing,
         options.seed,
+        options.walls,
     );
     let area = options.floor_spacing * options.floor_spacing;
     photons += (strata.nx * strata.ny) as u64;
-    let floor_acc = (0..strata.ny)
+    let mut wall_maps = options
+        .walls
+        .then(|| WallMaps::for_floor_map(w, h, setup.size, setup.depth));
+    // One accumulator for the floor's texels, then each wall's.
+    let mut offsets = [w * h; 5];
+    if let Some(maps) = &wall_maps {
+        for (k, m) in maps.maps.iter().enumerate() {
+            offsets[k + 1] = offsets[k] + m.cols * m.rows;
+        }
+    }
+    let total = offsets[4];
+    let acc = (0..strata.ny)
         .into_par_iter()
         .fold(
-            || vec![DVec3::ZERO; w * h],
+            || vec![DVec3::ZERO; total],
             |mut acc, i| {
                 for j in 0..strata.nx {
-                    let Some(ph) = photon(setup, surface, strata.point(i, j), area) else {
+                    let p = strata.point(i, j);
+                    if options.walls && !inside(p, setup.size) {
+                        continue;
+                    }
+                    let Some(ph) = photon(setup, surface, p, area) else {
                         continue;
                     };
-                    let t_floor = ph.start.z / -ph.dir.z;
-                    if nearest(ph.start, ph.dir, t_floor).is_some() {
+                    let (end, d) = end_of(setup, &ph, options.walls);
+                    if nearest(ph.start, ph.dir, d).is_some() {
                         continue;
                     }
-                    let p = (ph.start + ph.dir * t_floor).truncate() / texel;
-                    let (jj, ii) = (p.x.floor(), p.y.floor());
-                    if jj >= 0.0 && ii >= 0.0 && (jj as usize) < w && (ii as usize) < h {
-                        acc[ii as usize * w + jj as usize] += absorb(t_floor) * ph.flux;
-                    }
+                    let k = match end {
+                        End::Floor(q) => {
+                            let q = q / texel;
+                            let (jj, ii) = (q.x.floor(), q.y.floor());
+                            if !(jj >= 0.0 && ii >= 0.0 && (jj as usize) < w && (ii as usize) < h) {
+                                continue;
+                            }
+                            ii as usize * w + jj as usize
+                        }
+                        End::Wall(wall, along, z) => {
+                            let m = wall_maps.as_ref().expect("walls on").get(wall);
+                            offsets[wall.index()] + wall_texel(m, along, z)
+                        }
+                    };
+                    acc[k] += absorb(d) * ph.flux;
                 }
                 acc
             },
         )
         .reduce(
-            || vec![DVec3::ZERO; w * h],
+            || vec![DVec3::ZERO; total],
             |mut a, b| {
                 a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
                 a
             },
         );
+    let irradiance = |e: &DVec3, ta: f64| [(e.x / ta) as f32, (e.y / ta) as f32, (e.z / ta) as f32];
     let mut floor = CausticsMap::new(w, h, setup.size);
     let ta = texel.x * texel.y;
-    for (t, e) in floor.texels.iter_mut().zip(floor_acc) {
-        *t = [(e.x / ta) as f32, (e.y / ta) as f32, (e.z / ta) as f32];
+    for (t, e) in floor.texels.iter_mut().zip(&acc) {
+        *t = irradiance(e, ta);
+    }
+    if let Some(maps) = &mut wall_maps {
+        for (k, m) in maps.maps.iter_mut().enumerate() {
+            let ta = m.texel_area();
+            for (t, e) in m.texels.iter_mut().zip(&acc[offsets[k]..offsets[k + 1]]) {
+                *t = irradiance(e, ta);
+            }
+        }
     }
 
     // The objects, each from the photons of its own footprint.
@@ -214,6 +324,7 @@ pub fn mesh_reference(
             o.cells,
             options.object_spacing,
             options.seed + 1 + k as u64,
+            options.walls,
         );
         let area = options.object_spacing * options.object_spacing;
         photons += (strata.nx * strata.ny) as u64;
@@ -225,11 +336,15 @@ pub fn mesh_reference(
                 || vec![DVec3::ZERO; res * res],
                 |mut acc, i| {
                     for j in 0..strata.nx {
-                        let Some(ph) = photon(setup, surface, strata.point(i, j), area) else {
+                        let p = strata.point(i, j);
+                        if options.walls && !inside(p, setup.size) {
+                            continue;
+                        }
+                        let Some(ph) = photon(setup, surface, p, area) else {
                             continue;
                         };
-                        let t_floor = ph.start.z / -ph.dir.z;
-                        let Some((hit, t, n)) = nearest(ph.start, ph.dir, t_floor) else {
+                        let (_, limit) = end_of(setup, &ph, options.walls);
+                        let Some((hit, t, n)) = nearest(ph.start, ph.dir, limit) else {
                             continue;
                         };
                         if hit != k {
@@ -271,6 +386,7 @@ pub fn mesh_reference(
     MeshReference {
         objects,
         floor,
+        walls: wall_maps,
         photons,
     }
 }
