@@ -432,6 +432,13 @@ impl Renderer {
         side.technique.as_ref().ok()?.output()
     }
 
+    /// Side `k`'s GPU technique's maps of the pool's walls, when it lights them.
+    pub fn walls(&self, k: usize) -> Option<WallsOutput<'_>> {
+        let side = self.sides.get(k)?;
+        side.configured.as_ref()?;
+        side.technique.as_ref().ok()?.walls()
+    }
+
     /// Why side `k` has no caustics, if it has a technique that could not be made or configured.
     pub fn error(&self, k: usize) -> Option<&str> {
         let side = self.sides.get(k)?;

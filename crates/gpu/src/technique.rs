@@ -9,6 +9,7 @@
 //! (`caustics techniques` lists them) and never matches names itself.
 
 use caustics_core::scene::Scene;
+use caustics_core::walls::{Wall, WallMaps};
 
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -69,6 +70,37 @@ impl<'a> Output<'a> {
 pub struct WallsOutput<'a> {
     pub texture: &'a wgpu::Texture,
     pub cols: [u32; 4],
+}
+
+impl WallsOutput<'_> {
+    /// The four maps read back into `maps`' layout ([`WallMaps::for_floor_map`] of the floor map
+    /// the technique made): a readback, for tools and the viewer's map window, never the frame.
+    pub fn read(&self, ctx: &GpuContext, maps: &mut WallMaps) -> Result<(), GpuError> {
+        let width = self.texture.width() as usize;
+        for wall in Wall::ALL {
+            let m = maps.get_mut(wall);
+            if self.cols[wall.index()] as usize != m.cols
+                || (self.texture.height() as usize) < m.rows
+            {
+                return Err(GpuError::Readback(format!(
+                    "wall {} is {} x {} texels on the GPU, {} x {} expected",
+                    wall.suffix(),
+                    self.cols[wall.index()],
+                    self.texture.height(),
+                    m.cols,
+                    m.rows
+                )));
+            }
+            let texels = ctx.read_rgba_f32_layer(self.texture, wall.index() as u32)?;
+            m.texels = (0..m.rows * m.cols)
+                .map(|k| {
+                    let t = texels[(k / m.cols) * width + k % m.cols];
+                    [t[0], t[1], t[2]]
+                })
+                .collect();
+        }
+        Ok(())
+    }
 }
 
 /// A caustics technique on the GPU. The scene gives the water's optics (`water`: size, depth,

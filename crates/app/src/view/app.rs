@@ -722,7 +722,7 @@ impl Viewer {
                 }
                 m.maps[k] = match (&slot.caustics, &slot.error) {
                     (Some(caustics), _) => {
-                        let p = buffers::caustics_picture(caustics);
+                        let p = buffers::caustics_picture(caustics, slot.walls.as_ref());
                         self.map_images[k].set(
                             ctx,
                             &mut self.egui_renderer,

@@ -594,6 +594,7 @@ impl SceneRenderer {
                 slot.error = frame.renderer.error(k).map(str::to_string);
                 // The map window reads the GPU's map back only while it is open (`read_maps`).
                 slot.caustics = None;
+                slot.walls = None;
                 slot.key = None;
                 slot.map_changed = true;
             }
@@ -630,7 +631,16 @@ impl SceneRenderer {
                 continue;
             };
             let size = self.scene.water.as_ref().map_or(1.0, |w| w.size);
-            slot.caustics = Some(SceneCaustics::read(ctx, output, size)?);
+            let caustics = SceneCaustics::read(ctx, output, size)?;
+            slot.walls = match (frame.renderer.walls(k), &caustics, &self.scene.water) {
+                (Some(out), SceneCaustics::Floor(m), Some(water)) => {
+                    let mut maps = WallMaps::for_floor_map(m.width, m.height, size, water.depth);
+                    out.read(ctx, &mut maps)?;
+                    Some(maps)
+                }
+                _ => None,
+            };
+            slot.caustics = Some(caustics);
             slot.map_changed = true;
         }
         Ok(())
