@@ -590,10 +590,26 @@ fn check_walls(scene: &Scene, technique: &str) -> Result<()> {
             scene.name
         );
     }
-    if techniques::info(technique).is_some_and(|i| i.floor_only) {
+    let info = techniques::info(technique);
+    let mapped = || {
+        techniques::TECHNIQUES
+            .iter()
+            .filter(|i| !i.floor_only && i.input != techniques::Input::EyeSpace)
+            .map(|i| i.name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if info.is_some_and(|i| i.floor_only) {
         bail!(
-            "--raw-walls: {technique} maps the floor only; --raw-walls needs reference, \
-             caustic-triangles, volumes or cascaded"
+            "--raw-walls: {technique} maps the floor only; --raw-walls needs one of {}",
+            mapped()
+        );
+    }
+    if info.is_some_and(|i| i.input == techniques::Input::EyeSpace) {
+        bail!(
+            "--raw-walls: {technique} lights the walls in the camera's image, not in wall maps; \
+             --raw-walls needs one of {}",
+            mapped()
         );
     }
     Ok(())

@@ -995,7 +995,18 @@ fn render_writes_the_pools_walls() {
                 "--raw-walls",
                 "w",
             ],
-            "yuksel maps the floor only; --raw-walls needs reference",
+            "yuksel maps the floor only; --raw-walls needs one of reference, ",
+        ),
+        (
+            vec![
+                "--scene",
+                "low.toml",
+                "--technique",
+                "cascaded",
+                "--raw-walls",
+                "w",
+            ],
+            "cascaded lights the walls in the camera's image, not in wall maps",
         ),
         (
             vec!["--scene", "low.toml", "--raw-walls", "nowhere/w"],
