@@ -471,8 +471,9 @@ impl Runner {
                         (MESH_REFERENCE_PHOTONS * cells_per_texel.clamp(1, 8)) as f64,
                     )
                 };
-                let r = volumes::reference::mesh_reference(&setup, &input, surface, &options);
-                progress(1, 1);
+                let r = volumes::reference::mesh_reference_with_progress(
+                    &setup, &input, surface, &options, progress,
+                );
                 Ok(Outcome {
                     map: r.floor,
                     backend: "CPU",

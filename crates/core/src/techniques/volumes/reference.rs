@@ -219,6 +219,18 @@ pub fn mesh_reference(
     surface: &dyn Surface,
     options: &MeshReferenceOptions,
 ) -> MeshReference {
+    mesh_reference_with_progress(setup, input, surface, options, &|_, _| {})
+}
+
+/// [`mesh_reference`], calling `progress(done, total)` as rows of photons finish (the floor's,
+/// then each object's): at a 512² map it traces millions of photons through the meshes.
+pub fn mesh_reference_with_progress(
+    setup: &VolumesSetup,
+    input: &VolumesInput,
+    surface: &dyn Surface,
+    options: &MeshReferenceOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> MeshReference {
     let bvhs: Vec<MeshBvh> = input.objects.iter().map(|o| o.mesh.bvh()).collect();
     let nearest = |o: DVec3, d: DVec3, t_max: f64| {
         let mut best: Option<(usize, f64, DVec3)> = None;
@@ -232,6 +244,21 @@ pub fn mesh_reference(
     };
     let absorb = |d: f64| (-setup.absorption * d).exp();
     let mut photons = 0u64;
+    let object_strata: Vec<Strata> = setup
+        .objects
+        .iter()
+        .enumerate()
+        .map(|(k, o)| {
+            Strata::over(
+                setup,
+                o.cells,
+                options.object_spacing,
+                options.seed + 1 + k as u64,
+                options.walls,
+            )
+        })
+        .collect();
+    let done = std::sync::atomic::AtomicUsize::new(0);
 
     // The floor, and the walls with them.
     let (w, h) = (setup.width, setup.height);
@@ -245,6 +272,11 @@ pub fn mesh_reference(
     );
     let area = options.floor_spacing * options.floor_spacing;
     photons += (strata.nx * strata.ny) as u64;
+    let rows = strata.ny + object_strata.iter().map(|s| s.ny).sum::<usize>();
+    let row_done = || {
+        let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        progress(d, rows);
+    };
     let mut wall_maps = options
         .walls
         .then(|| WallMaps::for_floor_map(w, h, setup.size, setup.depth));
@@ -289,6 +321,7 @@ pub fn mesh_reference(
                     };
                     acc[k] += absorb(d) * ph.flux;
                 }
+                row_done();
                 acc
             },
         )
@@ -319,13 +352,7 @@ pub fn mesh_reference(
     for (k, o) in setup.objects.iter().enumerate() {
         let view = &o.view;
         let res = view.res;
-        let strata = Strata::over(
-            setup,
-            o.cells,
-            options.object_spacing,
-            options.seed + 1 + k as u64,
-            options.walls,
-        );
+        let strata = &object_strata[k];
         let area = options.object_spacing * options.object_spacing;
         photons += (strata.nx * strata.ny) as u64;
         let mesh = &input.objects[k].mesh;
@@ -365,6 +392,7 @@ pub fn mesh_reference(
                                 absorb(t) * ph.flux * n.dot(view.v).abs();
                         }
                     }
+                    row_done();
                     acc
                 },
             )
