@@ -466,6 +466,7 @@ impl Runner {
                 let setup = volumes::VolumesSetup::new(&volumes::VolumesParams::default(), &input)?;
                 let options = volumes::reference::MeshReferenceOptions {
                     walls: scene.floor.walls,
+                    object_maps: false,
                     ..volumes::reference::MeshReferenceOptions::per_texel(
                         &setup,
                         (MESH_REFERENCE_PHOTONS * cells_per_texel.clamp(1, 8)) as f64,

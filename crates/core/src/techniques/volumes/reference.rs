@@ -52,6 +52,9 @@ pub struct MeshReferenceOptions {
     pub seed: u64,
     /// The pool's walls receive light and stop it (see the module's "Walls").
     pub walls: bool,
+    /// Trace the objects' own maps; off where only the floor and walls are wanted (the objects
+    /// still stop light), which at the default spacing is most of the work.
+    pub object_maps: bool,
 }
 
 impl MeshReferenceOptions {
@@ -68,12 +71,14 @@ impl MeshReferenceOptions {
             object_spacing: object / per_texel,
             seed: 1,
             walls: false,
+            object_maps: true,
         }
     }
 }
 
 pub struct MeshReference {
-    /// Per object, relative irradiance in the technique's texels (zero where the object is not seen).
+    /// Per object, relative irradiance in the technique's texels (zero where the object is not
+    /// seen); empty without [`MeshReferenceOptions::object_maps`].
     pub objects: Vec<Vec<[f32; 3]>>,
     pub floor: CausticsMap,
     /// The walls' maps ([`WallMaps::for_floor_map`] of the floor map) with `walls`.
@@ -247,6 +252,7 @@ pub fn mesh_reference_with_progress(
     let object_strata: Vec<Strata> = setup
         .objects
         .iter()
+        .take(if options.object_maps { usize::MAX } else { 0 })
         .enumerate()
         .map(|(k, o)| {
             Strata::over(
@@ -349,7 +355,7 @@ pub fn mesh_reference_with_progress(
 
     // The objects, each from the photons of its own footprint.
     let mut objects = Vec::new();
-    for (k, o) in setup.objects.iter().enumerate() {
+    for (k, o) in setup.objects.iter().enumerate().take(object_strata.len()) {
         let view = &o.view;
         let res = view.res;
         let strata = &object_strata[k];
