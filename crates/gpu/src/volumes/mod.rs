@@ -802,6 +802,20 @@ impl Volumes {
                         ..Default::default()
                     })
                 };
+                // Without walls the view binds a one-texel stand-in it never reads (flags.z = 0).
+                let stand_in;
+                let walls_texture = match &walls {
+                    Some(w) => &w.texture,
+                    None => {
+                        stand_in = ctx.texture_2d(
+                            "volumes wall maps stand-in",
+                            (1, 1, 1),
+                            self.map_format,
+                            U::TEXTURE_BINDING,
+                        );
+                        &stand_in
+                    }
+                };
                 let bind = bind_group(
                     ctx,
                     "volumes view",
@@ -815,6 +829,7 @@ impl Volumes {
                         View(&array_view(&images)),
                         View(&floor.create_view(&Default::default())),
                         View(&image.create_view(&Default::default())),
+                        View(&array_view(walls_texture)),
                     ],
                 );
                 Some((image, bind, object_buf))
