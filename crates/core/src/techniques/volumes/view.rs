@@ -148,7 +148,8 @@ pub fn view_pass(
 /// [`view_pass`] seeing the pool's walls (issue 18) when `walls` holds their maps: a refracted ray
 /// from the pool's surface that leaves the square through a wall before it reaches the floor sees
 /// that wall, lit by its map's nearest texel (`albedo (E + Ia)`, the floor's albedo: the pool is
-/// one material). Rays from the surface beyond the square see the floor as without walls.
+/// one material). The pool is sunk into a deck, as in the project's final image: a ray that meets
+/// the deck's plane beyond the square, or the water's beyond it, sees the deck ([`deck`]).
 #[allow(clippy::too_many_arguments)]
 pub fn view_pass_with_walls(
     setup: &VolumesSetup,
@@ -172,7 +173,17 @@ pub fn view_pass_with_walls(
             if d.z >= 0.0 || o.z <= setup.depth {
                 return sky.as_vec3().to_array();
             }
+            if walls.is_some()
+                && let Some(c) = deck(setup, o + d * ((deck_height(setup) - o.z) / d.z).max(0.0))
+            {
+                return c.as_vec3().to_array();
+            }
             let (s, grad) = surface_hit(setup, heights, wrap, o, d);
+            if walls.is_some()
+                && let Some(c) = deck(setup, s)
+            {
+                return c.as_vec3().to_array();
+            }
             let n = height_field_normal(grad);
             let cos_i = -d.dot(n);
             let (Some(r), true) = (refract(d, n, setup.eta), cos_i > 0.0) else {
@@ -201,6 +212,24 @@ pub fn view_pass_with_walls(
             c.as_vec3().to_array()
         })
         .collect()
+}
+
+/// The deck's height: the final image's (`crates/core/src/render.rs`, `shade_above`) less its
+/// bound on the waves' height, which the view does not know.
+pub fn deck_height(setup: &VolumesSetup) -> f64 {
+    setup.depth + 0.1 * setup.size.min(1.0)
+}
+
+/// The deck around the pool at `p` when `p` lies beyond the pool's square (`None` over the pool):
+/// the final image's grey checker of 1/3 m squares, in the sun's full light (relative to the
+/// floor's under flat water: `1 / T(θ0)`, no water on the way) plus `Ia`.
+pub fn deck(setup: &VolumesSetup, p: DVec3) -> Option<DVec3> {
+    let inside = (0.0..=setup.size).contains(&p.x) && (0.0..=setup.size).contains(&p.y);
+    if inside {
+        return None;
+    }
+    let v = ((p.x * 3.0).floor() + (p.y * 3.0).floor()).rem_euclid(2.0);
+    Some(DVec3::splat(0.32 + 0.04 * v) * (1.0 / setup.t_flat + setup.params.ambient))
 }
 
 /// Where the refracted ray `s + t r` from the surface inside the pool's square leaves it through a

@@ -4,7 +4,8 @@
 // the accepted texel of the object's final image, or the floor lit by its caustics map, attenuated
 // along the view path, with the sky mixed in by the water's Fresnel reflectance; with the pool's
 // walls (flags.z), a ray from the surface inside the square that leaves it through a wall before the
-// floor sees that wall lit by its map. CPU twin: `view_pass_with_walls` in
+// floor sees that wall lit by its map, and the pool is sunk into a deck. CPU twin:
+// `view_pass_with_walls` in
 // caustics-core/src/techniques/volumes/view.rs.
 
 struct Camera {
@@ -55,6 +56,17 @@ fn wall_exit(p: vec2<f32>, d: vec2<f32>, size: f32) -> vec2<f32> {
         return vec2<f32>(ty, wy);
     }
     return vec2<f32>(-1.0, 0.0);
+}
+
+// The deck at p beyond the pool's square (`deck` in the CPU twin); w < 0 over the pool.
+fn deck(p: vec3<f32>) -> vec4<f32> {
+    let size = c.lattice.w;
+    if p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size {
+        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    }
+    let v = (floor(p.x * 3.0) + floor(p.y * 3.0)) % 2.0;
+    let albedo = 0.32 + 0.04 * select(v, v + 2.0, v < 0.0);
+    return vec4<f32>(vec3<f32>(albedo * (1.0 / c.absorption.w + cam.position.w)), 1.0);
 }
 
 // Wall k's map's nearest texel at the wall point q (the top row above the rest level).
@@ -111,7 +123,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let o = cam.position.xyz;
     var colour = SKY;
     let wrap = c.flags.x != 0u;
-    if d.z < 0.0 && o.z > c.params.x {
+    let walls = c.flags.z != 0u;
+    var on_deck = vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    if walls && d.z < 0.0 && o.z > c.params.x {
+        let deck_height = c.params.x + 0.1 * min(c.lattice.w, 1.0);
+        on_deck = deck(o + d * max((deck_height - o.z) / d.z, 0.0));
+    }
+    if on_deck.w >= 0.0 {
+        colour = on_deck.xyz;
+    } else if d.z < 0.0 && o.z > c.params.x {
         var t = (c.params.x - o.z) / d.z;
         var hg = grid_sample(heights, (o + d * t).xy, c.lattice.w, wrap);
         for (var k = 0u; k < SURFACE_STEPS; k++) {
@@ -122,7 +142,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let n = height_field_normal(hg.yz);
         let cos_i = -dot(d, n);
         let r = refract_dir(d, n, c.light.w);
-        if r.w != 0.0 && cos_i > 0.0 {
+        let beyond = deck(s);
+        if walls && beyond.w >= 0.0 {
+            colour = beyond.xyz;
+        } else if r.w != 0.0 && cos_i > 0.0 {
             let tr = fresnel_transmittance(cos_i, 1.0, c.params.y);
             let t_floor = s.z / -r.z;
             var t_end = t_floor;
