@@ -663,13 +663,14 @@ fn volumes_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Res
         }
         None => {
             let o = volumes::caustics(&setup, &input, &heights, water.wrap);
-            let rgb = view::view_pass(
+            let rgb = view::view_pass_with_walls(
                 &setup,
                 &camera,
                 &heights,
                 water.wrap,
                 &o.objects,
                 &o.floor,
+                o.walls.as_ref(),
                 floor_albedo,
             );
             (rgb, "CPU")

@@ -482,7 +482,8 @@ impl Runner {
                 })
             }
             // Paper 3: its floor map (the illumination volumes cut by the floor, the objects' shadows
-            // in it); the objects' own caustics maps and the refracted view are the technique's
+            // in it) and, with the scene's walls, the walls' maps (the volumes cut by the walls'
+            // planes); the objects' own caustics maps and the refracted view are the technique's
             // (caustics_gpu::volumes, docs/volumes.md).
             "volumes" => {
                 use caustics_core::techniques::volumes;
@@ -497,25 +498,25 @@ impl Runner {
                 let setup = volumes::VolumesSetup::new(&params, &input)?;
                 let n = (input.size / setup.lattice.cell).round() as usize;
                 let heights = sample_grid(surface, n, n, water.size);
-                let (map, backend) = match &self.gpu {
+                let (map, walls, backend) = match &self.gpu {
                     Some(ctx) => {
                         if self.volumes.is_none() {
                             self.volumes = Some(caustics_gpu::volumes::Volumes::new(ctx)?);
                         }
                         let v = self.volumes.as_ref().expect("just made");
                         let out = v.run(ctx, &setup, &input, &heights, water.wrap, None)?;
-                        (out.floor, "GPU")
+                        (out.floor, out.walls, "GPU")
                     }
-                    None => (
-                        volumes::caustics(&setup, &input, &heights, water.wrap).floor,
-                        "CPU",
-                    ),
+                    None => {
+                        let out = volumes::caustics(&setup, &input, &heights, water.wrap);
+                        (out.floor, out.walls, "CPU")
+                    }
                 };
                 progress(1, 1);
                 Ok(Outcome {
                     map,
                     backend,
-                    walls: None,
+                    walls,
                 })
             }
             "cascaded" => bail!(
@@ -706,7 +707,8 @@ impl Runner {
                 })
             }
             // Paper 3 on a water job alone (no objects to receive it: `caustics compare`, the
-            // viewer's water): its floor pass, the illumination volumes cut by the floor.
+            // viewer's water): its floor pass, the illumination volumes cut by the floor, and with
+            // the job's walls its wall pass.
             "volumes" => {
                 use caustics_core::techniques::volumes;
                 if job.floor.terrain.is_some() {
@@ -726,6 +728,7 @@ impl Runner {
                     camera: DVec3::new(0.5 * w.size, 0.5 * w.size, 2.0 * w.depth + w.size),
                     width: job.width,
                     height: job.height,
+                    walls: job.floor.walls,
                 };
                 let setup = volumes::VolumesSetup::new(&params, &input)?;
                 let n = (input.size / setup.lattice.cell).round() as usize;
@@ -736,17 +739,21 @@ impl Runner {
                             self.volumes = Some(caustics_gpu::volumes::Volumes::new(ctx)?);
                         }
                         let v = self.volumes.as_ref().expect("just made");
+                        let out = v.run(ctx, &setup, &input, &heights, w.wrap, None)?;
                         Ok(Outcome {
-                            map: v.run(ctx, &setup, &input, &heights, w.wrap, None)?.floor,
+                            map: out.floor,
                             backend: "GPU",
-                            walls: None,
+                            walls: out.walls,
                         })
                     }
-                    None => Ok(Outcome {
-                        map: volumes::caustics(&setup, &input, &heights, w.wrap).floor,
-                        backend: "CPU",
-                        walls: None,
-                    }),
+                    None => {
+                        let out = volumes::caustics(&setup, &input, &heights, w.wrap);
+                        Ok(Outcome {
+                            map: out.floor,
+                            backend: "CPU",
+                            walls: out.walls,
+                        })
+                    }
                 }
             }
             other => bail!(

@@ -1,8 +1,8 @@
 //! The techniques that light the pool's walls (issue 18) against the reference on each receiver:
-//! the built-in pool, 128² maps (cascaded: its eye-space image at 192 x 108 against the reference's
-//! maps read at each pixel's receiver point), a sun 0°, 30° and 60° from the zenith. Prints the per-receiver
-//! table of docs/results.md ("Walls") and holds floor + walls flux to the reference's. Run with
-//! `--release`.
+//! caustic-triangles, volumes and cascaded on the built-in pool, 128² maps (cascaded: its
+//! eye-space image at 192 x 108 against the reference's maps read at each pixel's receiver point),
+//! a sun 0°, 30° and 60° from the zenith. Prints the per-receiver table of docs/results.md
+//! ("Walls") and holds floor + walls flux to the reference's. Run with `--release`.
 
 use caustics_core::map::CausticsMap;
 use caustics_core::metrics::{compare, compare_grids};
@@ -175,4 +175,29 @@ fn cascaded_floor_and_walls_against_the_reference() {
     // Measured: −1.19e-2, −4.6e-3, +4.5e-3 (0°, 30°, 60°) over the pixels that see floor or
     // walls; bound 10x the worst.
     assert!(worst < 0.12, "floor + walls seen {worst}");
+}
+
+/// Volumes (paper 3): its floor pass and wall pass (the illumination volumes cut by the floor and
+/// each wall's plane) on the pool's water, the default parameters (no objects in the pool).
+#[test]
+fn volumes_floor_and_walls_against_the_reference() {
+    use caustics_core::techniques::volumes::{self, VolumesParams};
+    let params = VolumesParams::default();
+    let mut worst: f64 = 0.0;
+    for zenith in ZENITHS {
+        let scene = pool(zenith);
+        let truth = reference(&scene);
+        let out = volumes::render(&scene, &params).unwrap();
+        let err = rows(
+            "volumes",
+            zenith,
+            &out.floor,
+            &out.walls.expect("the pool's walls"),
+            &truth,
+        );
+        worst = worst.max(err.abs());
+    }
+    // Measured: floor + walls +1.84e-2, +1.01e-3, +5.21e-3 of the reference's (0°, 30°, 60°;
+    // the overhead sun's excess is the floor's, +1.7e-2); bound 10x the worst.
+    assert!(worst < 0.18, "floor + walls flux {worst}");
 }

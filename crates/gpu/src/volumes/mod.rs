@@ -9,6 +9,7 @@
 //! | water (compute) | `shaders/volumes/water.wgsl` | `illumination::water_pass` |
 //! | illumination volumes × reference planes (raster, additive) | `shaders/volumes/slices.wgsl` | `illumination::slice_pass` |
 //! | floor map (raster, additive) | `shaders/volumes/floor.wgsl` | `illumination::floor_pass` |
+//! | walls' maps, with walls (raster, additive, one layer per wall) | `shaders/volumes/walls.wgsl` | `illumination::wall_pass` |
 //! | diffuse map and Eq. 4 (compute) | `shaders/volumes/shade.wgsl` | `diffuse_map`, `shade_pass` |
 //! | refracted view, §3.3 (compute) | `shaders/volumes/view.wgsl` | `view::view_pass` |
 //!
@@ -30,7 +31,9 @@ use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, Vo
 use crate::final_image::{BVH, GpuBvhNode, GpuBvhTriangle};
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::technique::WallsOutput;
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+use caustics_core::walls::{Wall, WallMaps};
 
 pub mod technique;
 
@@ -55,6 +58,11 @@ pub const FLOOR: PassSource = PassSource {
     name: "volumes floor",
     shared: &[COMMON],
     source: include_str!("../shaders/volumes/floor.wgsl"),
+};
+pub const WALLS: PassSource = PassSource {
+    name: "volumes walls",
+    shared: &[COMMON],
+    source: include_str!("../shaders/volumes/walls.wgsl"),
 };
 pub const VIEW: PassSource = PassSource {
     name: "volumes view",
@@ -155,7 +163,12 @@ impl VolumesUniform {
                 s.width as u32,
                 s.height as u32,
             ],
-            flags: [wrap as u32, s.shadow.is_some() as u32, 0, 0],
+            flags: [
+                wrap as u32,
+                s.shadow.is_some() as u32,
+                s.walls as u32,
+                s.wall_layout().map_or(0, |w| w.maps[0].rows as u32),
+            ],
             shadow: s
                 .shadow
                 .as_ref()
@@ -280,6 +293,7 @@ pub struct Volumes {
     water: wgpu::ComputePipeline,
     slices: wgpu::RenderPipeline,
     floor: wgpu::RenderPipeline,
+    walls: wgpu::RenderPipeline,
     shade: wgpu::ComputePipeline,
     view: wgpu::ComputePipeline,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float`.
@@ -321,6 +335,8 @@ pub struct Frame {
     floor_bind: wgpu::BindGroup,
     pub floor: wgpu::Texture,
     floor_view: wgpu::TextureView,
+    /// The walls' maps when the setup has walls.
+    pub walls: Option<WallsFrame>,
     /// Every object's depth texture and final image (Eq. 4), one layer each.
     depths: wgpu::Texture,
     images: wgpu::Texture,
@@ -350,6 +366,7 @@ impl Frame {
     pub fn fits(&self, setup: &VolumesSetup) -> bool {
         let s = &self.setup;
         setup.params == s.params
+            && setup.walls == s.walls
             && (setup.width, setup.height) == (s.width, s.height)
             && (setup.lattice.nx, setup.lattice.ny) == (s.lattice.nx, s.lattice.ny)
             && setup.shadow.as_ref().map(|v| v.res) == s.shadow.as_ref().map(|v| v.res)
@@ -395,6 +412,27 @@ impl Frame {
     }
 }
 
+/// The pool's walls as receivers of a frame (issue 18, CPU twin `illumination::wall_pass`): one
+/// layer per wall of a 2-D array texture in `Wall::ALL`'s order, as wide as the widest wall map
+/// and as tall as the maps ([`crate::technique::Technique::walls`]'s layout), made once.
+pub struct WallsFrame {
+    pub texture: wgpu::Texture,
+    /// Empty maps: the walls' sizes.
+    pub layout: WallMaps,
+    layers: Vec<wgpu::TextureView>,
+    bind: wgpu::BindGroup,
+}
+
+impl WallsFrame {
+    /// The final image's view of the maps.
+    pub fn output(&self) -> WallsOutput<'_> {
+        WallsOutput {
+            texture: &self.texture,
+            cols: self.layout.maps.each_ref().map(|m| m.cols as u32),
+        }
+    }
+}
+
 /// Vertices of an object's slice draw (one triangle per reference plane and lattice triangle of its
 /// cells), `None` beyond what one draw can take.
 fn slice_vertices(o: &caustics_core::techniques::volumes::ObjectView) -> Option<u32> {
@@ -405,6 +443,8 @@ fn slice_vertices(o: &caustics_core::techniques::volumes::ObjectView) -> Option<
 pub struct GpuOutput {
     pub objects: Vec<ObjectMaps>,
     pub floor: CausticsMap,
+    /// The walls' maps, `None` without walls.
+    pub walls: Option<WallMaps>,
     pub shadow: Vec<[f32; 4]>,
     pub water: Vec<WaterVertex>,
     /// The refracted view, row 0 at the top (empty without one).
@@ -436,6 +476,7 @@ impl Volumes {
             water: compute_pipeline(ctx, &WATER_PASS),
             slices: additive_pipeline(ctx, &SLICES, map_format),
             floor: additive_pipeline(ctx, &FLOOR, map_format),
+            walls: additive_pipeline(ctx, &WALLS, map_format),
             shade: compute_pipeline(ctx, &SHADE),
             view: compute_pipeline(ctx, &VIEW),
             map_format,
@@ -596,6 +637,48 @@ impl Volumes {
             ],
         );
 
+        let walls = match setup.wall_layout() {
+            None => None,
+            Some(layout) => {
+                let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
+                let rows = layout.maps[0].rows as u32;
+                ctx.check_texture_size("volumes wall maps", cols, rows)?;
+                let texture = ctx.texture_2d(
+                    "volumes wall maps",
+                    (cols, rows, 4),
+                    self.map_format,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+                );
+                bytes += (cols * rows * 4) as u64 * texel_bytes;
+                let layers = (0..4)
+                    .map(|k| {
+                        texture.create_view(&wgpu::TextureViewDescriptor {
+                            dimension: Some(wgpu::TextureViewDimension::D2),
+                            base_array_layer: k,
+                            array_layer_count: Some(1),
+                            ..Default::default()
+                        })
+                    })
+                    .collect();
+                let bind = bind_group(
+                    ctx,
+                    "volumes walls",
+                    &self.walls.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        water.as_entire_binding(),
+                        View(&shadow_view),
+                    ],
+                );
+                Some(WallsFrame {
+                    texture,
+                    layout,
+                    layers,
+                    bind,
+                })
+            }
+        };
+
         // One layer per object (all objects share the texture size); one unused layer without any.
         let res_all = setup.params.texture;
         ctx.check_texture_size("volumes depth texture", res_all, res_all)?;
@@ -719,6 +802,20 @@ impl Volumes {
                         ..Default::default()
                     })
                 };
+                // Without walls the view binds a one-texel stand-in it never reads (flags.z = 0).
+                let stand_in;
+                let walls_texture = match &walls {
+                    Some(w) => &w.texture,
+                    None => {
+                        stand_in = ctx.texture_2d(
+                            "volumes wall maps stand-in",
+                            (1, 1, 1),
+                            self.map_format,
+                            U::TEXTURE_BINDING,
+                        );
+                        &stand_in
+                    }
+                };
                 let bind = bind_group(
                     ctx,
                     "volumes view",
@@ -732,6 +829,7 @@ impl Volumes {
                         View(&array_view(&images)),
                         View(&floor.create_view(&Default::default())),
                         View(&image.create_view(&Default::default())),
+                        View(&array_view(walls_texture)),
                     ],
                 );
                 Some((image, bind, object_buf))
@@ -751,6 +849,7 @@ impl Volumes {
             floor_bind,
             floor_view: floor.create_view(&Default::default()),
             floor,
+            walls,
             depths,
             images,
             view,
@@ -814,6 +913,27 @@ impl Volumes {
             let triangles = 2 * frame.setup.lattice.nx * frame.setup.lattice.ny;
             pass.draw(0..(3 * triangles) as u32, 0..1);
         }
+        if let Some(walls) = &frame.walls {
+            let triangles = 2 * frame.setup.lattice.nx * frame.setup.lattice.ny;
+            for (k, (layer, map)) in walls.layers.iter().zip(&walls.layout.maps).enumerate() {
+                let label = format!("volumes wall {}", Wall::ALL[k].suffix());
+                let label = label.as_str();
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some(label),
+                    color_attachments: &[color_attachment(layer)],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&self.walls);
+                pass.set_bind_group(0, &walls.bind, &[]);
+                // The wall's own columns: the shader's clip space spans them, the rest of a
+                // narrower wall's layer stays clear.
+                pass.set_viewport(0.0, 0.0, map.cols as f32, map.rows as f32, 0.0, 1.0);
+                pass.draw(0..(3 * triangles) as u32, k as u32..k as u32 + 1);
+            }
+        }
         if !frame.objects.is_empty() {
             let mut pass = begin_compute(encoder, &mut timer, "volumes shade");
             pass.set_pipeline(&self.shade);
@@ -867,6 +987,10 @@ impl Volumes {
                 size: s.size,
                 texels: self.read_map(ctx, &frame.floor)?,
             },
+            walls: match &frame.walls {
+                Some(w) => Some(read_walls(ctx, w)?),
+                None => None,
+            },
             shadow: match &frame.shadow {
                 Some((tex, _, _)) => ctx.read_texture(tex)?,
                 None => Vec::new(),
@@ -899,6 +1023,23 @@ impl Volumes {
         ctx.wait()?;
         self.read(ctx, &frame)
     }
+}
+
+/// The walls' maps of a frame, each wall's columns of its layer.
+fn read_walls(ctx: &GpuContext, walls: &WallsFrame) -> Result<WallMaps, GpuError> {
+    let mut maps = walls.layout.clone();
+    let width = walls.texture.width() as usize;
+    for wall in Wall::ALL {
+        let texels = ctx.read_rgba_f32_layer(&walls.texture, wall.index() as u32)?;
+        let m = maps.get_mut(wall);
+        m.texels = (0..m.rows * m.cols)
+            .map(|k| {
+                let t = texels[(k / m.cols) * width + k % m.cols];
+                [t[0], t[1], t[2]]
+            })
+            .collect();
+    }
+    Ok(maps)
 }
 
 /// Layer `layer` of a 2-D array texture (`Rgba32Float`, `COPY_SRC`), read back through a copy.

@@ -1,13 +1,13 @@
 //! Paper 3 behind [`Technique`]: its floor map (the illumination volumes cut by the floor, the
-//! objects' shadows in it), the objects' trees built once in configure, the caller's heights, a new
-//! sun or camera as uniform writes.
+//! objects' shadows in it) and, on a scene with walls, the walls' maps; the objects' trees built
+//! once in configure, the caller's heights, a new sun or camera as uniform writes.
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::volumes::{VolumesInput, VolumesParams, VolumesSetup};
 use glam::DVec3;
 
 use super::{Frame, Volumes};
-use crate::technique::{Output, Technique, WaterTextures};
+use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct VolumesTechnique {
@@ -36,6 +36,7 @@ struct SceneKey {
     ior: f64,
     absorption: DVec3,
     wrap: bool,
+    walls: bool,
     light: DVec3,
     camera: DVec3,
 }
@@ -58,6 +59,7 @@ impl SceneKey {
             ior: w.ior,
             absorption: w.absorption,
             wrap: w.wrap,
+            walls: scene.floor.walls,
             light: scene.light.direction,
             camera: scene.camera.position,
         })
@@ -73,6 +75,7 @@ impl SceneKey {
         input.camera = self.camera;
         input.width = self.width as usize;
         input.height = self.height as usize;
+        input.walls = self.walls;
     }
 }
 
@@ -153,6 +156,17 @@ impl Technique for VolumesTechnique {
 
     fn output(&self) -> Option<Output<'_>> {
         self.frame.as_ref().map(|c| Output::Floor(&c.frame.floor))
+    }
+
+    /// The walls' maps on a scene with walls, in the floor map's format (`Rgba16Float` where the
+    /// device cannot blend 32-bit floats).
+    fn walls(&self) -> Option<WallsOutput<'_>> {
+        self.frame
+            .as_ref()?
+            .frame
+            .walls
+            .as_ref()
+            .map(|w| w.output())
     }
 
     fn bytes(&self) -> u64 {

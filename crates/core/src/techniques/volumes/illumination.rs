@@ -1,6 +1,6 @@
 //! The illumination volumes of §3.2: the refracted light at the water lattice's vertices, the slices
 //! of each triangle's volume by the reference planes drawn into an object's caustics map, the floor
-//! map, and Eq. 4. GPU twins: `shaders/volumes/{water,slices,floor,shade}.wgsl`.
+//! map, the walls' maps, and Eq. 4. GPU twins: `shaders/volumes/{water,slices,floor,walls,shade}.wgsl`.
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -10,6 +10,7 @@ use super::{CellRect, ObjectView, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::walls::{Wall, WallMaps};
 
 /// One lattice vertex after refraction: `[x, y, z, weight, tx, ty, tz, 0]`: the point on the surface,
 /// the Fresnel weight `T(θi) / T(θ0)` (0 where no light enters: the surface faces away from the sun)
@@ -312,6 +313,91 @@ pub fn floor_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4
         *t = [e.x as f32, e.y as f32, e.z as f32];
     }
     map
+}
+
+/// The wall pass (issue 18): every illumination volume of the water cut by each wall's plane
+/// `{x : n · x = c}` (`n = −wall.normal()`, the side the light travels to) and drawn into that
+/// wall's map in its texel space `(along, z)`, fragments kept where the shadow map lets the sun
+/// through; a fragment carries `Ic · (t · n)`, the irradiance on the wall (as `Ic · cos θt` on the
+/// floor: the flux over the area it lands on).
+///
+/// # Every receiver gets the whole volume, the clip keeps the light that ends there
+/// The water is the pool's square (the lattice with walls), so a ray leaves the surface inside the
+/// box of floor and walls and ends on the first of its faces it meets; from inside a convex box
+/// that is the one face whose plane it meets within the face's rectangle. Each wall's plane
+/// therefore takes every volume extended to it (past the floor, or beyond another wall, where the
+/// rays end elsewhere), and clipping the slice to the wall's rectangle (`along` in `[0, size]`,
+/// `z` in `[0, depth]`) keeps exactly the part whose light ends on that wall; the floor pass,
+/// clipped to `[0, size]²`, keeps exactly the part that ends on the floor, since a ray meeting the
+/// floor plane outside the square has crossed a wall on the way. A volume straddling the
+/// floor-wall edge is split along it, each part drawn with its own plane's Eq. 3 intensities.
+///
+/// A slice is dropped where a vertex's ray runs parallel to or away from the wall (no point on the
+/// plane: [`slice`]), and where a vertex meets the wall plane more than `size` below the floor (a
+/// near-vertical ray whose extension would put a far vertex into the rasteriser), as
+/// caustic-triangles drops such photons: the slice's share on the wall is then a sliver at its
+/// edge, and the flux lost is measured in the tests. Light meeting a wall above the rest water
+/// level (near a crest at the wall) is outside the map and lost as well. The shadow test uses the
+/// objects' depth tolerance (`shadow_bias`), not [`FLOOR_BIAS`]: along `t₀` an object may lie
+/// beyond a wall point (the wall the sun faces), and must not shadow it.
+pub fn wall_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4]]) -> WallMaps {
+    let mut maps = WallMaps::for_floor_map(setup.width, setup.height, setup.size, setup.depth);
+    let cells: CellRect = setup.all_cells();
+    let shadow_view = setup.shadow.as_ref();
+    let rows: Vec<usize> = (cells.i0..cells.i1).collect();
+    for wall in Wall::ALL {
+        let map = maps.get_mut(wall);
+        let (cols, height) = (map.cols, map.rows);
+        let scale = DVec2::new(cols as f64 / setup.size, height as f64 / setup.depth);
+        let n = -wall.normal();
+        let c = n.dot(wall.point(0.0, 0.0, setup.size));
+        let acc = rows
+            .par_chunks(8)
+            .fold(
+                || vec![DVec3::ZERO; cols * height],
+                |mut acc, band| {
+                    for &ci in band {
+                        for cj in cells.j0..cells.j1 {
+                            for which in 0..2 {
+                                let idx = setup.lattice.triangle(ci, cj, which);
+                                let tri = idx.map(|i| &water[i]);
+                                let Some(s) = slice(setup, tri, n, c) else {
+                                    continue;
+                                };
+                                if s.points.iter().any(|p| p.z < -setup.size) {
+                                    continue;
+                                }
+                                let px = s.points.map(|p| DVec2::new(wall.along(p), p.z) * scale);
+                                raster(cols, height, px, |i, j, b| {
+                                    let dir = interpolate(&s.dirs, b).normalize();
+                                    let p = wall.point(
+                                        (j as f64 + 0.5) / scale.x,
+                                        (i as f64 + 0.5) / scale.y,
+                                        setup.size,
+                                    );
+                                    if !lit(shadow_view, shadow, p, setup.shadow_bias) {
+                                        return;
+                                    }
+                                    acc[i * cols + j] += interpolate(&s.intensity, b) * dir.dot(n);
+                                });
+                            }
+                        }
+                    }
+                    acc
+                },
+            )
+            .reduce(
+                || vec![DVec3::ZERO; cols * height],
+                |mut a, b| {
+                    a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
+                    a
+                },
+            );
+        for (t, e) in map.texels.iter_mut().zip(acc) {
+            *t = [e.x as f32, e.y as f32, e.z as f32];
+        }
+    }
+    maps
 }
 
 /// Eq. 4 over the diffuse map: `Io = Id (Ic + Ia)` where the object covers the texel.

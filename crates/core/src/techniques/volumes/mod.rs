@@ -38,6 +38,11 @@
 //!   as its depth texture and diffuse map.
 //! - The *floor map*: the caustics-map square `[0, size]²` of the scene (like every other technique's),
 //!   drawn from the same illumination volumes cut by the floor plane `z = 0`.
+//! - With the pool's walls ([`VolumesInput::walls`], issue 18), the *walls' maps*
+//!   ([`crate::walls`]'s layout): the same volumes cut by each wall's plane, drawn in the wall's
+//!   texel space `(along, z)`; the water is then the square alone and nothing reaches the floor
+//!   from beyond it ([`illumination::wall_pass`] argues why floor and walls each keep exactly
+//!   their light).
 //!
 //! # Beyond the paper (stated)
 //! - Shadows: one orthographic depth texture of all objects along the flat-water refracted sun `t₀`
@@ -56,8 +61,8 @@
 //! Passes (GPU twin in `caustics-gpu/src/volumes`): [`representation::depth_pass`] (depth texture,
 //! diffuse map, shadow map), [`illumination::water_pass`] (refracted rays at the lattice vertices),
 //! [`illumination::slice_pass`] (illumination volumes × reference planes → object caustics map),
-//! [`illumination::floor_pass`], [`illumination::shade_pass`] (Eq. 4), and the refracted view of §3.3,
-//! [`view::view_pass`].
+//! [`illumination::floor_pass`], [`illumination::wall_pass`] (with walls),
+//! [`illumination::shade_pass`] (Eq. 4), and the refracted view of §3.3, [`view::view_pass`].
 
 pub mod illumination;
 pub mod reference;
@@ -75,6 +80,7 @@ use crate::map::CausticsMap;
 use crate::mesh::{MeshBvh, TriangleMesh};
 use crate::optics::{fresnel_transmittance, refract};
 use crate::scene::{Material, Scene};
+use crate::walls::WallMaps;
 
 pub use representation::OrthoView;
 
@@ -178,6 +184,9 @@ pub struct VolumesInput {
     /// Floor map resolution.
     pub width: usize,
     pub height: usize,
+    /// The pool's walls receive light (`[floor] walls`, issue 18): the water is the square alone
+    /// and the wall pass draws the walls' maps ([`illumination::wall_pass`]).
+    pub walls: bool,
 }
 
 impl VolumesInput {
@@ -219,6 +228,7 @@ impl VolumesInput {
             camera: scene.camera.position,
             width: scene.caustics.width as usize,
             height: scene.caustics.height as usize,
+            walls: scene.floor.walls,
         })
     }
 }
@@ -333,6 +343,8 @@ pub struct VolumesSetup {
     pub shadow: Option<OrthoView>,
     /// Depth tolerance of the shadow test: three shadow-map texels.
     pub shadow_bias: f64,
+    /// The pool's walls receive light ([`VolumesInput::walls`]).
+    pub walls: bool,
 }
 
 /// A mesh the technique can use: not empty, not larger than the pool, under the water. An open mesh
@@ -410,16 +422,27 @@ impl VolumesSetup {
             params.water_cells as usize
         };
         let cell = input.size / cells as f64;
-        // Shifted back by the mean travel of the refracted light, widened by the waves' deflection,
-        // as the reference's traced domain.
-        let travel = -t0.truncate() * (input.depth / -t0.z);
-        let margin = 0.3 * input.depth + 2.0 * cell;
-        let n = ((input.size + 2.0 * margin) / cell).ceil() as usize;
-        let lattice = Lattice {
-            origin: travel - DVec2::splat(margin),
-            cell,
-            nx: n,
-            ny: n,
+        let lattice = if input.walls {
+            // With walls the light enters the pool through its own surface only (as the
+            // reference's traced domain with walls): the water square, nothing from beyond it.
+            Lattice {
+                origin: DVec2::ZERO,
+                cell,
+                nx: cells,
+                ny: cells,
+            }
+        } else {
+            // Shifted back by the mean travel of the refracted light, widened by the waves'
+            // deflection, as the reference's traced domain.
+            let travel = -t0.truncate() * (input.depth / -t0.z);
+            let margin = 0.3 * input.depth + 2.0 * cell;
+            let n = ((input.size + 2.0 * margin) / cell).ceil() as usize;
+            Lattice {
+                origin: travel - DVec2::splat(margin),
+                cell,
+                nx: n,
+                ny: n,
+            }
         };
         let objects = input
             .objects
@@ -466,7 +489,14 @@ impl VolumesSetup {
             objects,
             shadow,
             shadow_bias,
+            walls: input.walls,
         })
+    }
+
+    /// The walls' empty maps (their sizes) when the walls receive light.
+    pub fn wall_layout(&self) -> Option<WallMaps> {
+        self.walls
+            .then(|| WallMaps::for_floor_map(self.width, self.height, self.size, self.depth))
     }
 
     /// All cells of the lattice: what the floor pass draws.
@@ -524,6 +554,8 @@ pub struct ObjectMaps {
 pub struct VolumesOutput {
     pub objects: Vec<ObjectMaps>,
     pub floor: CausticsMap,
+    /// The walls' maps ([`illumination::wall_pass`]), `None` without walls.
+    pub walls: Option<WallMaps>,
     /// The shadow map (`[depth, n]` as a depth texture), empty without shadows.
     pub shadow: Vec<[f32; 4]>,
 }
@@ -562,9 +594,13 @@ pub fn caustics(
         })
         .collect();
     let floor = illumination::floor_pass(setup, &water, &shadow);
+    let walls = setup
+        .walls
+        .then(|| illumination::wall_pass(setup, &water, &shadow));
     VolumesOutput {
         objects,
         floor,
+        walls,
         shadow,
     }
 }

@@ -6,7 +6,9 @@
 //!
 //! Beyond the paper (stated): the water's Fresnel reflectance mixes in a constant sky colour, the view
 //! path is attenuated by `exp(−K d)`, and the floor is seen with one uniform albedo lit by its caustics
-//! map (`albedo (E + Ia)`; flat-water light beyond the map's square), so the picture is whole.
+//! map (`albedo (E + Ia)`; flat-water light beyond the map's square), so the picture is whole; with
+//! the pool's walls the rays that leave the square through a wall see it lit by its map
+//! ([`view_pass_with_walls`]).
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -17,6 +19,7 @@ use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::scene::Camera;
+use crate::walls::{Wall, WallMaps};
 
 /// The sky the water reflects.
 pub const SKY: [f64; 3] = [0.55, 0.7, 0.9];
@@ -130,6 +133,34 @@ pub fn view_pass(
     floor: &CausticsMap,
     floor_albedo: DVec3,
 ) -> Vec<[f32; 3]> {
+    view_pass_with_walls(
+        setup,
+        camera,
+        heights,
+        wrap,
+        objects,
+        floor,
+        None,
+        floor_albedo,
+    )
+}
+
+/// [`view_pass`] seeing the pool's walls (issue 18) when `walls` holds their maps: a refracted ray
+/// from the pool's surface that leaves the square through a wall before it reaches the floor sees
+/// that wall, lit by its map's nearest texel (`albedo (E + Ia)`, the floor's albedo: the pool is
+/// one material). The pool is sunk into a deck, as in the project's final image: a ray that meets
+/// the deck's plane beyond the square, or the water's beyond it, sees the deck ([`deck`]).
+#[allow(clippy::too_many_arguments)]
+pub fn view_pass_with_walls(
+    setup: &VolumesSetup,
+    camera: &ViewCamera,
+    heights: &Grid,
+    wrap: bool,
+    objects: &[ObjectMaps],
+    floor: &CausticsMap,
+    walls: Option<&WallMaps>,
+    floor_albedo: DVec3,
+) -> Vec<[f32; 3]> {
     let depths: Vec<&[[f32; 4]]> = objects.iter().map(|o| o.depth.as_slice()).collect();
     let sky = DVec3::from(SKY);
     let flat = flat_floor_light(setup);
@@ -142,7 +173,17 @@ pub fn view_pass(
             if d.z >= 0.0 || o.z <= setup.depth {
                 return sky.as_vec3().to_array();
             }
+            if walls.is_some()
+                && let Some(c) = deck(setup, o + d * ((deck_height(setup) - o.z) / d.z).max(0.0))
+            {
+                return c.as_vec3().to_array();
+            }
             let (s, grad) = surface_hit(setup, heights, wrap, o, d);
+            if walls.is_some()
+                && let Some(c) = deck(setup, s)
+            {
+                return c.as_vec3().to_array();
+            }
             let n = height_field_normal(grad);
             let cos_i = -d.dot(n);
             let (Some(r), true) = (refract(d, n, setup.eta), cos_i > 0.0) else {
@@ -150,10 +191,16 @@ pub fn view_pass(
             };
             let tr = fresnel_transmittance(cos_i, 1.0, setup.ior);
             let t_floor = s.z / -r.z;
+            let wall = walls.and_then(|maps| wall_hit(maps, setup.size, s, r));
+            let t_end = wall.map_or(t_floor, |w| w.0.min(t_floor));
             let (path, under) = match trace_objects(setup, &depths, s, r) {
-                Some((u, obj, texel)) if u < t_floor => {
+                Some((u, obj, texel)) if u < t_end => {
                     let c = objects[obj].image[texel];
                     (u, DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64))
+                }
+                _ if t_end < t_floor => {
+                    let e = wall.expect("nearer than the floor").1;
+                    (t_end, floor_albedo * (e + setup.params.ambient))
                 }
                 _ => {
                     let p = (s + r * t_floor).truncate();
@@ -165,6 +212,45 @@ pub fn view_pass(
             c.as_vec3().to_array()
         })
         .collect()
+}
+
+/// The deck's height: the final image's (`crates/core/src/render.rs`, `shade_above`) less its
+/// bound on the waves' height, which the view does not know.
+pub fn deck_height(setup: &VolumesSetup) -> f64 {
+    setup.depth + 0.1 * setup.size.min(1.0)
+}
+
+/// The deck around the pool at `p` when `p` lies beyond the pool's square (`None` over the pool):
+/// the final image's grey checker of 1/3 m squares, in the sun's full light (relative to the
+/// floor's under flat water: `1 / T(θ0)`, no water on the way) plus `Ia`.
+pub fn deck(setup: &VolumesSetup, p: DVec3) -> Option<DVec3> {
+    let inside = (0.0..=setup.size).contains(&p.x) && (0.0..=setup.size).contains(&p.y);
+    if inside {
+        return None;
+    }
+    let v = ((p.x * 3.0).floor() + (p.y * 3.0).floor()).rem_euclid(2.0);
+    Some(DVec3::splat(0.32 + 0.04 * v) * (1.0 / setup.t_flat + setup.params.ambient))
+}
+
+/// Where the refracted ray `s + t r` from the surface inside the pool's square leaves it through a
+/// wall: `t` and that wall's map's nearest texel there (the top row for a hit above the rest level,
+/// near a crest); `None` from beyond the square or for a vertical ray.
+pub fn wall_hit(walls: &WallMaps, size: f64, s: DVec3, r: DVec3) -> Option<(f64, DVec3)> {
+    let inside = (0.0..=size).contains(&s.x) && (0.0..=size).contains(&s.y);
+    if !inside {
+        return None;
+    }
+    let (wall, t) = Wall::exit(s.truncate(), r.truncate(), size)?;
+    let q = s + r * t;
+    let m = walls.get(wall);
+    let j = (wall.along(q) / m.length * m.cols as f64)
+        .floor()
+        .clamp(0.0, (m.cols - 1) as f64);
+    let i = (q.z / m.height * m.rows as f64)
+        .floor()
+        .clamp(0.0, (m.rows - 1) as f64);
+    let e = m.texels[i as usize * m.cols + j as usize];
+    Some((t, DVec3::new(e[0] as f64, e[1] as f64, e[2] as f64)))
 }
 
 /// The floor map's nearest texel at `p`; `None` beyond the map's square, where the view pass uses

@@ -17,7 +17,7 @@ struct Volumes {
     lattice: vec4<f32>,     // xy: origin; z: cell; w: scene size
     params: vec4<f32>,      // x: water depth; y: ior; z: shadow bias; w: 1 with Fresnel
     dims: vec4<u32>,        // x, y: lattice cells; z, w: floor map size
-    flags: vec4<u32>,       // x: wrapped surface; y: shadows on
+    flags: vec4<u32>,       // x: wrapped surface; y: shadows on; z: walls on; w: wall map rows
     shadow: View,
 }
 

@@ -2,8 +2,11 @@
 // the water (fixed-point steps from the rest plane to the waves), is refracted, and is traced against
 // every object's reference planes and depth texture with the acceptance test of §3.1; the pixel takes
 // the accepted texel of the object's final image, or the floor lit by its caustics map, attenuated
-// along the view path, with the sky mixed in by the water's Fresnel reflectance. CPU twin:
-// `view_pass` in caustics-core/src/techniques/volumes/view.rs.
+// along the view path, with the sky mixed in by the water's Fresnel reflectance; with the pool's
+// walls (flags.z), a ray from the surface inside the square that leaves it through a wall before the
+// floor sees that wall lit by its map, and the pool is sunk into a deck. CPU twin:
+// `view_pass_with_walls` in
+// caustics-core/src/techniques/volumes/view.rs.
 
 struct Camera {
     position: vec4<f32>,      // xyz; w: ambient Ia
@@ -24,6 +27,57 @@ const SURFACE_STEPS: u32 = 4u;
 @group(0) @binding(5) var images: texture_2d_array<f32>;
 @group(0) @binding(6) var floor_map: texture_2d<f32>;
 @group(0) @binding(7) var out_view: texture_storage_2d<rgba32float, write>;
+// The walls' maps, one layer per wall in `Wall::ALL`'s order (a stand-in without walls).
+@group(0) @binding(8) var walls_map: texture_2d_array<f32>;
+
+// (t, wall) of the wall the ray s + t d (horizontal part) leaves the square through, as
+// `Wall::exit` (a corner goes to the x-wall); t < 0 for a vertical ray.
+fn wall_exit(p: vec2<f32>, d: vec2<f32>, size: f32) -> vec2<f32> {
+    var tx = -1.0;
+    var wx = 0.0;
+    if d.x > 0.0 {
+        tx = (size - p.x) / d.x;
+        wx = 1.0;
+    } else if d.x < 0.0 {
+        tx = -p.x / d.x;
+    }
+    var ty = -1.0;
+    var wy = 2.0;
+    if d.y > 0.0 {
+        ty = (size - p.y) / d.y;
+        wy = 3.0;
+    } else if d.y < 0.0 {
+        ty = -p.y / d.y;
+    }
+    if tx >= 0.0 && (ty < 0.0 || tx <= ty) {
+        return vec2<f32>(tx, wx);
+    }
+    if ty >= 0.0 {
+        return vec2<f32>(ty, wy);
+    }
+    return vec2<f32>(-1.0, 0.0);
+}
+
+// The deck at p beyond the pool's square (`deck` in the CPU twin); w < 0 over the pool.
+fn deck(p: vec3<f32>) -> vec4<f32> {
+    let size = c.lattice.w;
+    if p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size {
+        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    }
+    let v = (floor(p.x * 3.0) + floor(p.y * 3.0)) % 2.0;
+    let albedo = 0.32 + 0.04 * select(v, v + 2.0, v < 0.0);
+    return vec4<f32>(vec3<f32>(albedo * (1.0 / c.absorption.w + cam.position.w)), 1.0);
+}
+
+// Wall k's map's nearest texel at the wall point q (the top row above the rest level).
+fn wall_light(k: u32, q: vec3<f32>) -> vec3<f32> {
+    let cols = f32(select(c.dims.z, c.dims.w, k < 2u));
+    let rows = f32(c.flags.w);
+    let along = select(q.x, q.y, k < 2u);
+    let j = clamp(floor(along / c.lattice.w * cols), 0.0, cols - 1.0);
+    let i = clamp(floor(q.z / c.params.x * rows), 0.0, rows - 1.0);
+    return textureLoad(walls_map, vec2<i32>(i32(j), i32(i)), i32(k), 0).xyz;
+}
 
 // (path, object, texel x, texel y) of the nearest accepted plane point, path < 0 when none.
 fn trace_objects(s: vec3<f32>, r: vec3<f32>) -> vec4<f32> {
@@ -69,7 +123,15 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let o = cam.position.xyz;
     var colour = SKY;
     let wrap = c.flags.x != 0u;
-    if d.z < 0.0 && o.z > c.params.x {
+    let walls = c.flags.z != 0u;
+    var on_deck = vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    if walls && d.z < 0.0 && o.z > c.params.x {
+        let deck_height = c.params.x + 0.1 * min(c.lattice.w, 1.0);
+        on_deck = deck(o + d * max((deck_height - o.z) / d.z, 0.0));
+    }
+    if on_deck.w >= 0.0 {
+        colour = on_deck.xyz;
+    } else if d.z < 0.0 && o.z > c.params.x {
         var t = (c.params.x - o.z) / d.z;
         var hg = grid_sample(heights, (o + d * t).xy, c.lattice.w, wrap);
         for (var k = 0u; k < SURFACE_STEPS; k++) {
@@ -80,15 +142,31 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let n = height_field_normal(hg.yz);
         let cos_i = -dot(d, n);
         let r = refract_dir(d, n, c.light.w);
-        if r.w != 0.0 && cos_i > 0.0 {
+        let beyond = deck(s);
+        if walls && beyond.w >= 0.0 {
+            colour = beyond.xyz;
+        } else if r.w != 0.0 && cos_i > 0.0 {
             let tr = fresnel_transmittance(cos_i, 1.0, c.params.y);
             let t_floor = s.z / -r.z;
+            var t_end = t_floor;
+            var wall = 0u;
+            let size = c.lattice.w;
+            if c.flags.z != 0u && s.x >= 0.0 && s.y >= 0.0 && s.x <= size && s.y <= size {
+                let exit = wall_exit(s.xy, r.xy, size);
+                if exit.x >= 0.0 && exit.x < t_floor {
+                    t_end = exit.x;
+                    wall = u32(exit.y);
+                }
+            }
             let hit = trace_objects(s, r.xyz);
             var path = t_floor;
             var under: vec3<f32>;
-            if hit.x >= 0.0 && hit.x < t_floor {
+            if hit.x >= 0.0 && hit.x < t_end {
                 path = hit.x;
                 under = textureLoad(images, vec2<i32>(hit.zw), i32(hit.y), 0).xyz;
+            } else if t_end < t_floor {
+                path = t_end;
+                under = cam.floor_albedo.xyz * (wall_light(wall, s + r.xyz * t_end) + cam.position.w);
             } else {
                 let size = vec2<f32>(textureDimensions(floor_map));
                 let px = floor((s + r.xyz * t_floor).xy / c.lattice.w * size);
