@@ -38,7 +38,12 @@ enum Command {
     /// Render a scene: the final image from its camera and/or the raw caustics map.
     Render(render::RenderArgs),
     /// List the caustics techniques.
-    Techniques,
+    Techniques {
+        /// Print only the names of the GPU techniques and variants as registered
+        /// (`yuksel-gather`, `procedural-vertex`, ...), one a line, for scripts.
+        #[arg(long)]
+        gpu_names: bool,
+    },
     /// Every technique against the reference on generated surfaces: Markdown, CSV, pictures.
     Compare(compare::CompareArgs),
     /// Every technique and the whole frame timed (GPU per pass, wall, memory), or with --tradeoff
@@ -148,7 +153,13 @@ fn run(cli: Cli) -> Result<()> {
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
         Command::View(args) => view::run(args),
-        Command::Techniques => {
+        Command::Techniques { gpu_names: true } => {
+            for r in caustics_gpu::technique::REGISTRY {
+                println!("{}", r.name);
+            }
+            Ok(())
+        }
+        Command::Techniques { gpu_names: false } => {
             println!(
                 "{:<18} {:<6} {:<20} description",
                 "technique", "paper", "input -> output"

@@ -392,6 +392,19 @@ fn scene_check_and_techniques() {
     ] {
         assert!(out.contains(t), "{t} missing from:\n{out}");
     }
+    // The GPU registry's names, one a line, each one `render --technique` accepts (CI's
+    // validation pass renders every one of them).
+    let o = caustics(&["techniques", "--gpu-names"], &d);
+    let names: Vec<String> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(str::to_string)
+        .collect();
+    let registry: Vec<&str> = caustics_gpu::technique::REGISTRY
+        .iter()
+        .map(|r| r.name)
+        .collect();
+    assert_eq!(names, registry);
+    assert!(names.contains(&"yuksel-gather".to_string()), "{names:?}");
 }
 
 /// A small `caustics compare`: the files appear, the reference against itself scores exactly zero
