@@ -101,10 +101,13 @@ pub use scene::{
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum AreaRule {
-    /// Half the area of the triangles spanned with the 4-neighbours (the paper, §4.2).
+    /// Half the area of the triangles spanned with the 4-neighbours (the paper, §4.2). The
+    /// default: as local as the hat rule is flux-true, and better in L1 on smooth water
+    /// (docs/caustic-triangles.md, "The two area rules").
     #[default]
     Paper,
-    /// A third of the area of the drawn triangles around the vertex (exact flux).
+    /// A third of the area of the drawn triangles around the vertex: the drawn flux is the
+    /// photons' (a water lattice's edge photons: [`CausticTrianglesSetup::lattice_share`]).
     Hat,
 }
 
