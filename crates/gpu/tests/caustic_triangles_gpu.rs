@@ -703,7 +703,8 @@ fn merging_matches_the_cpu_twin() {
 
 /// The water surface as the generator: the pool's waves through the water photon pass, its
 /// photons, path lengths and maps (triangles and splats, wrapped, with absorption) against the CPU
-/// twin; and clamped water's single copy.
+/// twin; and clamped water's single copy. Both area rules: the hat rule's edge vertices differ
+/// between tiling water (their rings reach across the edges) and clamped water (half shares).
 fn water_generator_matches_the_cpu_twin() {
     use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
     let ctx = test_gpu();
@@ -712,10 +713,17 @@ fn water_generator_matches_the_cpu_twin() {
     let mut w = scene.water.clone().unwrap();
     let surface = w.surface_at(scene.time).unwrap();
     let heights = water::heights(&w, surface.as_ref(), 256, 256);
-    for wrap in [true, false] {
+    // The hat rule with wrap (edge rings across the edges) and without (edge photons' share).
+    for (wrap, area_rule) in [
+        (true, AreaRule::Paper),
+        (false, AreaRule::Paper),
+        (true, AreaRule::Hat),
+        (false, AreaRule::Hat),
+    ] {
         w.wrap = wrap;
         let params = CausticTrianglesParams {
             photon_image: 96,
+            area_rule,
             ..Default::default()
         };
         let ws = WaterSetup::new(&params, &w, scene.light.direction, 128, 128).unwrap();
@@ -731,17 +739,17 @@ fn water_generator_matches_the_cpu_twin() {
             .map(|(a, b)| (a - b).abs())
             .fold(0.0f32, f32::max);
         eprintln!(
-            "wrap {wrap}: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}"
+            "wrap {wrap}, {area_rule:?}: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}"
         );
         assert_eq!(flips, 0.0);
-        // f32 against f64 on a 4 m square: micrometres. Measured (lavapipe, both wraps): p99
-        // position 4.8e-7, power 2.0e-7, path 2.4e-7; triangles map relative L1 2.5e-6, flux
-        // 1.3e-7; splats relative L1 3.7e-3, flux 1.5e-7. Bounds 10x.
+        // f32 against f64 on a 4 m square: micrometres. Measured (lavapipe, both wraps, both
+        // rules): p99 position 4.8e-7, power 2.0e-7, path 2.4e-7; triangles map relative L1
+        // 2.5e-6, flux 1.3e-7 (the hat rule: 2.4e-6, 9.6e-8); splats relative L1 3.7e-3, flux 1.5e-7. Bounds 10x.
         assert!(dpos < 4.8e-6, "positions {dpos}");
         assert!(dpow < 2e-6, "powers {dpow}");
         assert!(dpath < 2.4e-6, "paths {dpath}");
         let m = compare(&gpu.map, &cpu.map);
-        eprintln!("wrap {wrap}: triangles GPU vs CPU {m:?}");
+        eprintln!("wrap {wrap}, {area_rule:?}: triangles GPU vs CPU {m:?}");
         assert!(
             m.relative_l1 < 2.5e-5 && m.flux_error.abs() < 1.3e-6,
             "{m:?}"
@@ -754,7 +762,7 @@ fn water_generator_matches_the_cpu_twin() {
             .expect("gpu splats");
         let cs = ct::splat_pass_with_paths(&ws.setup, &cpu.photons, Some(&cpu.paths));
         let s = compare(&gs.map, &cs);
-        eprintln!("wrap {wrap}: splats GPU vs CPU {s:?}");
+        eprintln!("wrap {wrap}, {area_rule:?}: splats GPU vs CPU {s:?}");
         assert!(s.relative_l1 < 0.01 && s.flux_error.abs() < 1.5e-6, "{s:?}");
         if wrap {
             // Every photon cell's light lands in the square: the map holds the photons' power.
@@ -859,7 +867,11 @@ mod through_the_trait {
     }
 
     fn water_setup(scene: &Scene) -> WaterSetup {
-        let p = CausticTrianglesParams::from_table(&params(WATER_PARAMS)).unwrap();
+        water_setup_with(scene, WATER_PARAMS)
+    }
+
+    fn water_setup_with(scene: &Scene, text: &str) -> WaterSetup {
+        let p = CausticTrianglesParams::from_table(&params(text)).unwrap();
         let w = scene.water.as_ref().unwrap();
         WaterSetup::new(&p, w, scene.light.direction, MAP, MAP).unwrap()
     }
@@ -981,14 +993,23 @@ mod through_the_trait {
     /// moving sun create and read nothing; the last frame's floor map and the four wall maps of
     /// [`Technique::walls`] (layer k = `Wall::ALL[k]`) equal the CPU twin's `wall_caustics`.
     pub fn walls_through_the_trait_match_the_cpu_twin() {
+        // The hat rule too: the floor's periodic rings and the walls' half shares of edge photons.
+        for text in [
+            WATER_PARAMS,
+            "[caustic-triangles]\nphoton_image = 48\narea_rule = \"hat\"\n",
+        ] {
+            walls_match(text);
+        }
+    }
+
+    fn walls_match(text: &str) {
         use caustics_core::metrics::compare_grids;
         use caustics_core::walls::Wall;
         let ctx = test_gpu();
         let mut scene = pool(0.0);
         scene.floor.walls = true;
         let mut t =
-            caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
-                .unwrap();
+            caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(text)).unwrap();
         let h = heights(t.as_ref(), &scene);
         let tex = ctx.upload_grid("test heights", &h).unwrap();
         t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
@@ -1011,11 +1032,11 @@ mod through_the_trait {
         assert_eq!(d.created(), 0, "{d:?}");
         assert_eq!(d.readbacks, 0, "{d:?}");
         assert!(d.uploaded_bytes <= 10 * 4096, "{d:?}");
-        let ws = water_setup(&scene).with_walls(true);
+        let ws = water_setup_with(&scene, text).with_walls(true);
         let gpu = read_floor(&ctx, t.as_ref(), &scene);
         let cpu = water::caustics(&ws, &h).unwrap().map;
         let m = compare(&gpu, &cpu);
-        eprintln!("walls: floor GPU vs CPU {m:?}");
+        eprintln!("walls, {text:?}: floor GPU vs CPU {m:?}");
         let cpu_walls = water::wall_caustics(&ws, &h).unwrap();
         let out = t.walls().expect("the pool's walls are lit");
         let texture = out.texture;
@@ -1043,7 +1064,8 @@ mod through_the_trait {
             "the sun lights the wall x = size"
         );
         // Measured (lavapipe, Rgba32Float): relative L1 floor 2.1e-6, x1 8.2e-7, y1 1.3e-6;
-        // flux floor 4.1e-7, x1 3.3e-7, y1 1.1e-6 (x0, y0 dark on both); bounds 10x the worst.
+        // flux floor 4.1e-7, x1 3.3e-7, y1 1.1e-6 (x0, y0 dark on both); the hat rule: L1 2.0e-6,
+        // 8.4e-7, 1.3e-6, flux 4.4e-7, 3.6e-7, 1.2e-6; bounds 10x the worst.
         assert!(worst.0 < 2.1e-5 && worst.1 < 1.1e-5, "{worst:?}");
     }
 

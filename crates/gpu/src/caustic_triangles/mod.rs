@@ -137,7 +137,9 @@ pub struct CausticTrianglesUniform {
     pub absorption: [f32; 4],
     /// Quads from an edge a shifted copy is drawn for (`WaterTransport::band`).
     pub band: u32,
-    pub _pad: [u32; 3],
+    /// 1: the photon image tiles in the receiver's plane (`WaterTransport::periodic`).
+    pub periodic: u32,
+    pub _pad: [u32; 2],
 }
 
 impl CausticTrianglesUniform {
@@ -186,7 +188,8 @@ impl CausticTrianglesUniform {
             wrap: s.water.is_some_and(|w| w.wrap) as u32,
             absorption: v4(s.absorption(), 0.0),
             band: s.water.map_or(0, |w| w.band as u32),
-            _pad: [0; 3],
+            periodic: s.water.is_some_and(|w| w.periodic) as u32,
+            _pad: [0; 2],
         }
     }
 }

@@ -46,7 +46,9 @@
 //! It is not exactly flux conserving once the hits are distorted: Gouraud shading integrates to
 //! `Σ_v E_v ∫ φ_v`, and the hat function `φ_v` of vertex `v` integrates to a third of the area of the
 //! drawn triangles around it. [`AreaRule::Hat`] takes that, `ΔA = ⅓ Σ_{drawn t ∋ v} A_t`, so the
-//! drawn triangles carry every photon's power exactly (up to rasterisation at texel centres).
+//! drawn triangles carry every photon's power exactly (up to rasterisation at texel centres). A
+//! water generator's photons on the lattice's edges carry the share of their power that belongs
+//! to the square ([`CausticTrianglesSetup::lattice_share`]), so the drawn flux is the surface's.
 //!
 //! # Departures from the paper
 //! - The receiver of the caustics is the floor plane `z = 0`: the photon stores its floor position,
@@ -99,10 +101,13 @@ pub use scene::{
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum AreaRule {
-    /// Half the area of the triangles spanned with the 4-neighbours (the paper, §4.2).
+    /// Half the area of the triangles spanned with the 4-neighbours (the paper, §4.2). The
+    /// default: as local as the hat rule is flux-true, and better in L1 on smooth water
+    /// (docs/caustic-triangles.md, "The two area rules").
     #[default]
     Paper,
-    /// A third of the area of the drawn triangles around the vertex (exact flux).
+    /// A third of the area of the drawn triangles around the vertex: the drawn flux is the
+    /// photons' (a water lattice's edge photons: [`CausticTrianglesSetup::lattice_share`]).
     Hat,
 }
 
@@ -300,6 +305,12 @@ pub struct WaterTransport {
     /// bound from the surface's steepest slope): a copy shifted by `±size` is drawn for those
     /// quads only ([`CausticTrianglesSetup::copy_rect`]), the others' copies would miss the square.
     pub band: usize,
+    /// The photon image tiles in the receiver's plane: photon `(P, j)` is photon `(0, j)` moved
+    /// by `size` in y, `(i, P)` is `(i, 0)` moved in x. A tiling surface seen on the floor (with or
+    /// without walls); not a clamped surface, nor a wall's plane, which the moved photons meet
+    /// elsewhere. The hat rule then takes an edge vertex's triangles across the edge too
+    /// ([`CausticTrianglesSetup::lattice_share`]).
+    pub periodic: bool,
 }
 
 impl CausticTrianglesSetup {
@@ -335,6 +346,26 @@ impl CausticTrianglesSetup {
         let (i0, i1) = range(k / 3);
         let (j0, j1) = range(k % 3);
         (i0, i1, j0, j1)
+    }
+
+    /// The share of photon `(i, j)`'s power the hat rule draws. A water photon sits on a lattice
+    /// corner and carries a whole cell `Δ²` of light (what the paper rule, which extrapolates an
+    /// edge vertex's `ΔA` to a whole cell, and the splats need); the `(P + 1)²` photons' power is
+    /// `(P + 1)² / P²` of the square's, `+2/P` (+1.56 % at `P = 128`), which the hat rule, drawing
+    /// every photon's power, drew. With a periodic photon image ([`WaterTransport::periodic`]) an
+    /// edge vertex's `ΔA` is its whole ring, the triangles across the edge included, and it and its
+    /// twin on the opposite edge each draw their side of the hat: together one photon, share 1.
+    /// Otherwise (clamped water, a wall's plane) only the part of an edge vertex's cell inside the
+    /// square is drawn: ½ per lattice edge it lies on (¼ at a corner), the trapezoid rule of the
+    /// surface's outgoing flux over the square. Glass: 1.
+    pub fn lattice_share(&self, i: usize, j: usize) -> f64 {
+        match self.water {
+            Some(w) if !w.periodic => {
+                let edge = |k: usize| if k == 0 || k == w.lattice { 0.5 } else { 1.0 };
+                edge(i) * edge(j)
+            }
+            _ => 1.0,
+        }
     }
 
     /// Beer-Lambert absorption per channel (zero for glass).
@@ -582,9 +613,15 @@ pub fn vertex_irradiance(
             (me[2] as f64 / da.max(1e-30)) as f32
         }
         AreaRule::Hat => {
+            // A periodic image's quads past an edge are those at the opposite edge (triangle
+            // areas do not see the shift by `size`).
+            let wrap = setup.water.filter(|w| w.periodic).map(|w| w.lattice as i64);
             // The quads around the vertex; in quad (qi, qj) the vertex is corner (ci, cj).
             for (ci, cj) in [(0i64, 0i64), (0, 1), (1, 0), (1, 1)] {
-                let (qi, qj) = (i as i64 - ci, j as i64 - cj);
+                let (mut qi, mut qj) = (i as i64 - ci, j as i64 - cj);
+                if let Some(l) = wrap {
+                    (qi, qj) = (qi.rem_euclid(l), qj.rem_euclid(l));
+                }
                 if !quad_valid(photons, p, qi, qj) {
                     continue;
                 }
@@ -606,7 +643,7 @@ pub fn vertex_irradiance(
                 return -1.0;
             }
             let da = sum / 3.0;
-            (me[2] as f64 / da.max(1e-30)) as f32
+            (me[2] as f64 * setup.lattice_share(i, j) / da.max(1e-30)) as f32
         }
     }
 }

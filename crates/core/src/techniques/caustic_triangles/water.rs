@@ -140,6 +140,8 @@ impl WaterSetup {
                 wrap: water.wrap,
                 // Every quad until the heights are known ([`WaterSetup::fit_band`]).
                 band: lattice,
+                // A tiling surface's moved photons meet the floor plane moved alike.
+                periodic: water.wrap,
             }),
         };
         let t_flat = if params.fresnel {
@@ -186,6 +188,10 @@ impl WaterSetup {
                 width: m.cols,
                 height: m.rows,
             };
+            // The moved photons meet a wall's plane at another height or not at all.
+            if let Some(w) = setup.water.as_mut() {
+                w.periodic = false;
+            }
         }
         setup
     }
@@ -790,6 +796,66 @@ mod tests {
         assert!((f - 1.0).abs() < 1e-4, "{f}");
     }
 
+    /// The hat rule draws exactly the light the surface lets through: its edge photons carry only
+    /// the half of their cell inside the square ([`CausticTrianglesSetup::lattice_share`]). Flat
+    /// tiling water gives 1 on every texel and `size²` in all; with walls floor plus walls hold
+    /// `size²`; smooth tiling waves give the surface's outgoing flux (each quad the mean of its
+    /// corners' power). Without the share the edge vertices' `E` doubled: `+2/P` of flux.
+    #[test]
+    fn the_hat_rule_draws_the_surface_flux() {
+        let light = DVec3::new(0.3, 0.1, -1.0).normalize();
+        let p = CausticTrianglesParams {
+            area_rule: super::super::AreaRule::Hat,
+            ..params(48)
+        };
+        let water = flat_water(true, DVec3::ZERO);
+        let flat = Grid::new(16, 16);
+        let ws = WaterSetup::new(&p, &water, light, 96, 96).unwrap();
+        let map = caustics(&ws, &flat).unwrap().map;
+        let worst = map
+            .texels
+            .iter()
+            .map(|t| (t[1] as f64 - 1.0).abs())
+            .fold(0.0, f64::max);
+        let flux = map_flux(&map) / 4.0 - 1.0;
+        eprintln!("hat, flat, wrap: worst texel {worst:.2e}, flux {flux:+.2e}");
+        // Measured: worst texel 2.9e-6, flux +6.2e-8 (every edge photon's whole power, the rings
+        // cut at the edges: worst texel 3.1, flux +4.2e-2 = 49²/48² − 1).
+        assert!(worst < 2.9e-5, "worst texel off by {worst}");
+        assert!(flux.abs() < 6.2e-7, "flux {flux}");
+
+        let ws = ws.with_walls(true);
+        let floor = caustics(&ws, &flat).unwrap().map;
+        let walls = wall_caustics(&ws, &flat).unwrap();
+        let total = (map_flux(&floor) + walls.flux()) / 4.0 - 1.0;
+        eprintln!("hat, flat, walls: floor + walls {total:+.2e}");
+        // Measured: +8.6e-3, the floor's rasterised upwind edges (as for the paper rule in
+        // `flat_water_lights_the_walls_it_faces`).
+        assert!(total.abs() < 0.02, "floor + walls {total}");
+
+        // Gentle tiling waves, one and two periods across the 2 m square.
+        let waves = Grid::from_fn(64, 64, |i, j| {
+            let (x, y) = ((j as f64 + 0.5) / 64.0, (i as f64 + 0.5) / 64.0);
+            let tau = std::f64::consts::TAU;
+            (0.01 * (tau * x).sin() + 0.006 * (tau * (2.0 * y + x) + 0.4).cos()) as f32
+        });
+        let ws = WaterSetup::new(&p, &water, light, 96, 96).unwrap();
+        let out = caustics(&ws, &waves).unwrap();
+        let n = ws.setup.p;
+        let mut surface = 0.0;
+        for i in 0..n - 1 {
+            for j in 0..n - 1 {
+                let c = [(0, 0), (0, 1), (1, 0), (1, 1)]
+                    .map(|(a, b)| out.photons[(i + a) * n + j + b][2] as f64);
+                surface += c.iter().sum::<f64>() / 4.0;
+            }
+        }
+        let flux = map_flux(&out.map) / surface - 1.0;
+        eprintln!("hat, waves, wrap: flux {flux:+.2e} of the surface's {surface:.5}");
+        // Measured: +8.1e-6.
+        assert!(flux.abs() < 8.1e-5, "flux {flux}");
+    }
+
     /// The pool's waves with walls and a low sun: light leaving the surface (every photon's power
     /// over its quads, the hat rule's exact flux) ends on the floor or a wall, the straddling
     /// triangles split between them.
@@ -837,12 +903,12 @@ mod tests {
                  {err:+.2e} of the outgoing light, {split:+.2e} of the map without walls",
                 map_flux(&floor)
             );
-            // Measured: −2e-5, +2.6e-4, −9.8e-4: what the split along the floor-wall edges
-            // and the walls' cut-off photons move or lose.
+            // Measured: +2.4e-4, −1.7e-3, −5.7e-3 (the built-in pool's wind ripples): what the
+            // split along the floor-wall edges and the walls' cut-off photons move or lose.
             assert!(split.abs() < 1e-2, "zenith {zenith}: {split}");
-            // Measured: +1.42e-2, +1.45e-2, +1.77e-2, as without walls (+1.42e-2 .. +1.77e-2):
-            // the texel-centre rasterisation of a 128² lattice's thin bright triangles on a 128²
-            // map, not the walls.
+            // Measured: +1.30e-2, −2.4e-3, −9.7e-3 (+2.84e-2, +1.44e-2, +6.3e-3 with every edge
+            // photon's whole power, `lattice_share`): the texel-centre rasterisation of a 128²
+            // lattice's thin bright triangles on a 128² map, and the walls' cut-off photons.
             assert!(err.abs() < 0.05, "zenith {zenith}: {err}");
             if zenith > 0.0 {
                 // The sun shines towards +x, +y: the walls x = 0, y = 0 are in their own shadow.

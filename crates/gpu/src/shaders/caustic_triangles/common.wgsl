@@ -28,6 +28,7 @@ struct CausticTriangles {
     wrap: u32,          // 1: tiling water, every primitive drawn at nine offsets of +-size
     absorption: vec4<f32>, // xyz: the water's K per channel (0 for glass)
     band: u32,          // quads from an edge a shifted copy is drawn for (tiling water)
+    periodic: u32,      // 1: the photon image tiles in the receiver's plane (a tiling surface's floor)
 }
 
 // The quads copy k is drawn for, (i0, i1, j0, j1): all for the unshifted copy, the `band` quads

@@ -35,6 +35,18 @@ fn quad_valid(qi: i32, qj: i32) -> bool {
         && d.w == a.w;
 }
 
+// The share of photon (i, j)'s power the hat rule draws: 1 for glass and for a periodic water
+// image (an edge vertex's ring reaches across the edge, its twin draws the other side), else 1/2
+// per lattice edge the photon lies on (CPU twin: `CausticTrianglesSetup::lattice_share`, where it
+// is derived).
+fn lattice_share(i: i32, j: i32) -> f32 {
+    if u.lattice == 0u || u.periodic != 0u {
+        return 1.0;
+    }
+    let l = i32(u.lattice);
+    return select(1.0, 0.5, i == 0 || i == l) * select(1.0, 0.5, j == 0 || j == l);
+}
+
 fn vertex_irradiance(i: i32, j: i32) -> f32 {
     let me = photon_at(i, j);
     if me.z < 0.0 {
@@ -62,8 +74,14 @@ fn vertex_irradiance(i: i32, j: i32) -> f32 {
     var corners = array<vec2<i32>, 4>(vec2<i32>(0, 0), vec2<i32>(0, 1), vec2<i32>(1, 0), vec2<i32>(1, 1));
     for (var k = 0u; k < 4u; k++) {
         let cc = corners[k];
-        let qi = i - cc.x;
-        let qj = j - cc.y;
+        var qi = i - cc.x;
+        var qj = j - cc.y;
+        if u.periodic != 0u {
+            // The quads past an edge are those at the opposite edge (areas ignore the shift).
+            let l = i32(u.lattice);
+            qi = (qi + l) % l;
+            qj = (qj + l) % l;
+        }
         if !quad_valid(qi, qj) {
             continue;
         }
@@ -84,7 +102,7 @@ fn vertex_irradiance(i: i32, j: i32) -> f32 {
     if count == 0u {
         return -1.0;
     }
-    return me.z / max(sum / 3.0, 1e-30);
+    return me.z * lattice_share(i, j) / max(sum / 3.0, 1e-30);
 }
 
 @compute @workgroup_size(8, 8)
