@@ -7,7 +7,8 @@
 //! `P_C = P_G + h L'` (Eq. 1), where `L'` is the flat-water refracted light direction scaled to climb
 //! the rest depth `h`. `R` is sampled with one sample per map pixel; each sample's area is refracted
 //! with the sample's own normal, constant over the area (§3), and lands as a pixel-sized square
-//! whose overlap `α` with the pixel is its contribution (Eq. 4).
+//! whose overlap `α` with the pixel is its contribution (Eq. 4). (Our default samples more
+//! finely and lands each sample on its footprint: below.)
 //!
 //! - **Pre-pass** (§5, "an additional pass before the first pass"): the refracted ray of every sample
 //!   and its intersection with the floor, computed once and stored as the offset of where its
@@ -48,12 +49,23 @@
 //!   computes the same region in a one-workgroup pass (`region.wgsl`), so no frame reads heights
 //!   back. `preset = "paper"` keeps the paper's 7 and 6.
 //!
+//! - **Samples and footprints** (default, `preset = "water"`; the paper's preset keeps one
+//!   sample per pixel and pixel boxes): each pixel of the water is sampled `k × k` times
+//!   ([`DEFAULT_SUBSAMPLES`]), each sample carrying `1/k²` of the pixel's flux, and each sample's
+//!   light lands on its *footprint*, the box its patch of water maps to on the floor (between
+//!   the hits of the patch's edge midpoints, `footprint`), shared among the pixels it overlaps
+//!   in proportion ([`box_share`]): flux is conserved exactly, and light focused narrower than a
+//!   pixel stays in one pixel instead of being spread over two as a pixel box spreads it.
+//!
 //! # Where it departs from the reference
-//! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost; each
-//! sample's flux lands as a box the size of a pixel (a box filter) instead of the true, stretched or
-//! squeezed footprint; and the normal is constant over each sample, so focusing within a pixel is
-//! invisible (the caustic is blurred to the pixel scale). The sample spacing is the map's pixel, so
-//! the map's resolution sets how finely the water is sampled, independent of the height field's.
+//! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost
+//! (with the paper's fixed region). The footprint is an axis-aligned box from the ray map's
+//! stretch along x and along y, not the true quadrilateral, so light sheared across the axes is
+//! placed within the box only; and the normal is constant over each sample, so focusing within
+//! a sample's patch is invisible. With the paper's settings each sample is a pixel-sized box (a
+//! box filter), which blurs caustics sharper than a pixel. The sample spacing is the map's
+//! pixel over `k` (times `2^level` where the region needs a coarser level), independent of the
+//! height field's.
 
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -512,7 +524,7 @@ fn hit(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, f64)> {
 
 /// `x` rounded to the nearest `f16` (ties to even), as its bits: the GPU packs a footprint's two
 /// half-widths into one 32-bit channel with WGSL's `pack2x16float`. For the positive normal
-/// values [`footprint`] makes.
+/// values `footprint` makes.
 fn f16_bits(x: f32) -> u32 {
     let b = x.to_bits();
     let r = b + 0xfff + ((b >> 13) & 1);
@@ -578,7 +590,7 @@ fn footprint(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, [f
 
 /// Pre-pass: for sample `(a, b)` (of `k × k`) of the pixel of pre-pass texel `(r, c)` (texel
 /// `(r·k + b, c·k + a)`; map pixel `(r − M/2 + shift.y, c − N/2 + shift.x)`), where its light
-/// lands ([`footprint`]): `[centre x, centre y, half-widths packed, flux / k²]`, the centre
+/// lands (`footprint`): `[centre x, centre y, half-widths packed, flux / k²]`, the centre
 /// relative to the pixel's centre, in pixels.
 pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
     let (pw, ph) = setup.prepass_size();
