@@ -204,10 +204,10 @@ fn yuksel_follows_steeper_water_without_new_resources() {
             .flat_map(|(g, c)| (0..3).map(move |k| (g[k] - c[k]).abs()))
             .fold(0.0f32, f32::max)
             / mean;
-        // measured 5.56e-4 of the mean on lavapipe 25.0.7 (Mesa), both variants (5 x 5 at level 0
+        // measured 2.36e-4 of the mean on lavapipe 25.0.7 (Mesa), both variants (5 x 5 at level 0
         // -> 17 x 19, shifted, at level 1: the level's offsets count twice in map pixels)
         eprintln!("{name}: worst texel difference {worst:.2e} of the mean");
-        assert!(worst < 3.0e-3, "{name}: worst texel difference {worst}");
+        assert!(worst < 2.0e-3, "{name}: worst texel difference {worst}");
     }
 }
 

@@ -247,12 +247,12 @@ fn the_gpu_chooses_the_cpus_region() {
                 size: 1.0,
                 texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
             };
-            // measured at most 2.02e-3 of the mean on lavapipe 25.0.7 (Mesa) (f32 against f64,
-            // the footprints' half-widths as f16; the largest at level 3, sun 80, depth 4, where
-            // a sample's offsets are 8 map pixels per level pixel).
+            // measured at most 6.34e-4 of the mean on lavapipe 25.0.7 (Mesa) (f32 against f64,
+            // the footprints' half-widths as f16; the largest at sun 80, depth 0.8; 6.22e-4 at
+            // level 3, sun 80, depth 4, where a level pixel's 8 x 8 samples share 8 x 8 pixels).
             let d = worst(&cpu, &gpu);
             eprintln!("sun {zenith}, {variant:?}: {d:.2e}");
-            assert!(d < 5e-3, "sun {zenith}, {variant:?}: {d}");
+            assert!(d < 2.2e-3, "sun {zenith}, {variant:?}: {d}");
         }
         eprintln!("sun {zenith}, depth {depth}: {cpu_region:?}");
     }

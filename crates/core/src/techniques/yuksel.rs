@@ -90,6 +90,10 @@ pub const MAX_SUBSAMPLES: u32 = 4;
 /// `caustics compare` case within 5 % of the reference where 2 × 2 leaves the FFT ocean at 80°
 /// over 8 % (docs/yuksel.md).
 pub const DEFAULT_SUBSAMPLES: u32 = 4;
+/// The most samples per level pixel along each axis at a coarser level: there `k` grows with the
+/// level (`k · 2^level`, up to this) so that the map's pixels keep `(8 / 2^level)²` samples at
+/// least where a region forces a coarser level; GPU time grows with its square.
+pub const MAX_LEVEL_SUBSAMPLES: u32 = 8;
 /// The narrowest half-width of a footprint, in pixels: a sample whose light meets in a point
 /// (a caustic's fold) still lands on a box of positive area, so its flux is counted once; and
 /// the half-width stays a normal `f16` (the GPU packs the two half-widths into one channel).
@@ -439,11 +443,19 @@ impl YukselSetup {
         }
     }
 
-    /// This setup's passes at `level`: a map `2^level` times coarser over the same square.
+    /// Samples per pixel along each axis at `level`: `k · 2^level`, at most
+    /// [`MAX_LEVEL_SUBSAMPLES`] (or `k` where it is larger).
+    pub fn subsamples_at(&self, level: u32) -> usize {
+        (self.subsamples << level).min(self.subsamples.max(MAX_LEVEL_SUBSAMPLES as usize))
+    }
+
+    /// This setup's passes at `level`: a map `2^level` times coarser over the same square, sampled
+    /// [`subsamples_at`](Self::subsamples_at) times along each axis per pixel.
     pub fn at_level(&self, level: u32) -> YukselSetup {
         YukselSetup {
             width: self.width >> level,
             height: self.height >> level,
+            subsamples: self.subsamples_at(level),
             pixel: self.pixel * (1u32 << level) as f64,
             ..self.clone()
         }
@@ -644,7 +656,7 @@ pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]], phase: usize) -> Vec<f32> {
     let (pw, _) = coarse.prepass_size();
     let r0 = setup.region;
     let ch = r0.m + 1;
-    let (n, sub) = (r0.n, setup.subsamples);
+    let (n, sub) = (r0.n, coarse.subsamples);
     // Column offset of sample `s` from the pixel; row offset of channel `k`'s pixel from the row.
     let col0 = r0.shift[0] as f32 - (n / 2) as f32;
     let row0 = -((r0.m / 2) as f32) - r0.shift[1] as f32;
@@ -756,8 +768,8 @@ mod tests {
             fresnel: false,
             ..YukselParams::paper()
         };
-        // measured mean − 1: −7.45e-9 (4 × 4 footprints, level 0), −8.85e-9 (at level 1, where
-        // a level pixel's samples spread over 2 × 2 map pixels), −8.38e-9 (the paper's); max
+        // measured mean − 1: −7.45e-9 (4 × 4 footprints, level 0), −1.12e-8 (at level 1, where
+        // a level pixel's 8 × 8 samples spread over 2 × 2 map pixels), −8.38e-9 (the paper's); max
         // 1.044, 1.044, 1.081
         for (label, params, level) in [
             ("footprints", &water, 0),

@@ -645,11 +645,18 @@ impl Yuksel {
     }
 }
 
-/// The pre-pass texture's size for the largest region: `k × k` samples per pixel.
+/// The pre-pass texture's size for the largest region at any level the setup may choose: the
+/// level's `k × k` samples per pixel of the level's map and apron.
 fn prepass_capacity(setup: &YukselSetup) -> (usize, usize) {
     let (cap_n, cap_m) = setup.capacity();
-    let k = setup.subsamples;
-    ((setup.width + cap_n - 1) * k, (setup.height + cap_m) * k)
+    let levels = setup.phases().trailing_zeros();
+    (0..=levels).fold((0, 0), |(w, h), level| {
+        let k = setup.subsamples_at(level);
+        (
+            w.max(((setup.width >> level) + cap_n - 1) * k),
+            h.max(((setup.height >> level) + cap_m) * k),
+        )
+    })
 }
 
 fn color_attachment(

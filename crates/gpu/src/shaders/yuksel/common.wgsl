@@ -37,6 +37,12 @@ struct YukselRegion {
     _pad1: u32,
 }
 
+// Samples per pixel along each axis at `level`: k 2^level, at most 8 (or k where it is larger).
+// CPU twin: `YukselSetup::subsamples_at` (`MAX_LEVEL_SUBSAMPLES`).
+fn level_subsamples(level: u32) -> u32 {
+    return min(u.subsamples << level, max(u.subsamples, 8u));
+}
+
 // The coarse map's size and pixel at `level`.
 fn level_size(width: u32, height: u32, level: u32) -> vec2<u32> {
     return vec2<u32>(width >> level, height >> level);

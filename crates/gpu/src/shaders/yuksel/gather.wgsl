@@ -47,13 +47,14 @@ fn main(
     var e: array<f32, 64>;
     // One of the k x k samples of every pixel at a time, so that workgroup memory holds one
     // sample per pixel of the tile and apron whatever k.
-    for (var phase = 0u; phase < u.subsamples * u.subsamples; phase++) {
-        let a = phase % u.subsamples;
-        let b = phase / u.subsamples;
+    let sub = level_subsamples(region.level);
+    for (var phase = 0u; phase < sub * sub; phase++) {
+        let a = phase % sub;
+        let b = phase / sub;
         for (var t = local; t < cols * rows; t += TILE * TILE) {
             let c = t % cols;
             let r = t / cols;
-            let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r), a, b, level_pixel);
+            let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r), a, b, sub, level_pixel);
             tile_dx[r * SPAN + c] = s.x;
             tile_dy[r * SPAN + c] = s.y;
             tile_half[r * SPAN + c] = bitcast<u32>(s.z);

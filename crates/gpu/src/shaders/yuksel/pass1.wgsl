@@ -35,7 +35,7 @@ fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
     let row0 = -i32(region.m / 2u) - region.shift.y;
     let base = i32(u.channel_base);
     let last = min(base + count, i32(region.m) + 1);
-    let sub = i32(u.subsamples);
+    let sub = i32(level_subsamples(region.level));
     for (var b = 0; b < sub; b++) {
         for (var s = 0; s < i32(region.n) * sub; s++) {
             let p = textureLoad(pre, vec2<i32>(jc * sub + s, r * sub + b), 0);

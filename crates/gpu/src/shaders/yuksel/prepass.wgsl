@@ -9,7 +9,7 @@
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let dims = textureDimensions(pre_out);
     let size = level_size(u.width, u.height, region.level);
-    let k = u.subsamples;
+    let k = level_subsamples(region.level);
     let used = vec2<u32>(size.x + region.n - 1u, size.y + region.m) * k;
     if id.x >= min(dims.x, used.x) || id.y >= min(dims.y, used.y) {
         return;
@@ -17,5 +17,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let c = i32(id.x / k) - i32(region.n / 2u) + region.shift.x;
     let r = i32(id.y / k) - i32(region.m / 2u) + region.shift.y;
     let pixel = u.pixel * f32(1u << region.level);
-    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r, id.x % k, id.y % k, pixel));
+    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r, id.x % k, id.y % k, k, pixel));
 }

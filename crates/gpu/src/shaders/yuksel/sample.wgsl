@@ -29,14 +29,14 @@ fn yuksel_hit(s: vec2<f32>) -> vec4<f32> {
     return vec4<f32>(s + t.xy * (z / -t.z), seen * fresnel, 1.0);
 }
 
-// Sample (a, b) of the k x k of map pixel (column c, row r), which may lie outside the map: where
+// Sample (a, b) of the k x k (k = `sub`) of map pixel (column c, row r), which may lie outside the map: where
 // its light lands, x y the box's centre relative to the pixel's centre (pixels), z its two
 // half-widths packed, w the flux it carries relative to a flat-water pixel. The box is the
 // sample's footprint (its patch of water, 1/k of a pixel each way, maps to the floor between the
 // hits of the patch's edge midpoints) or, without `footprint`, a box of the patch's size around
 // its hit (the paper). `pixel`: the map pixel at the region's level.
-fn yuksel_sample(c: i32, r: i32, a: u32, b: u32, pixel: vec2<f32>) -> vec4<f32> {
-    let k = f32(u.subsamples);
+fn yuksel_sample(c: i32, r: i32, a: u32, b: u32, sub: u32, pixel: vec2<f32>) -> vec4<f32> {
+    let k = f32(sub);
     let pixel_centre = (vec2<f32>(f32(c), f32(r)) + 0.5) * pixel;
     let within = (vec2<f32>(f32(a), f32(b)) + 0.5) / k - 0.5;
     let s = pixel_centre + within * pixel + u.centre_offset;
