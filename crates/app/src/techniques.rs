@@ -592,7 +592,7 @@ impl Runner {
                     w.wrap,
                     job.light,
                 )?;
-                let heights = heights_for(w, job.surface, job.width, job.height);
+                let heights = lattice_heights(w, job.surface, job.width, job.height);
                 match &self.gpu {
                     Some(ctx) => {
                         if self.yuksel.is_none() {
@@ -822,6 +822,19 @@ pub fn heights_for(water: &Water, surface: &dyn Surface, width: usize, height: u
         WaterSource::HeightField(g) => g.clone(),
         _ => sample_grid(surface, width, height, water.size),
     }
+}
+
+/// The heights `yuksel` reads: a water that is itself a grid read bicubically (the FFT ocean, the
+/// ripples) sampled at its own lattice, so that yuksel's bicubic surface is the water's own;
+/// others as [`heights_for`]. Sampled at the map's resolution instead, the 128² ocean is
+/// re-interpolated, and its sharpest caustics move (9 % rel. L1 at 60°, deep, 256²; docs/yuksel.md).
+pub fn lattice_heights(water: &Water, surface: &dyn Surface, width: usize, height: usize) -> Grid {
+    let n = match &water.source {
+        WaterSource::Ocean(o) => o.params().resolution,
+        WaterSource::Ripple(p) => p.resolution,
+        _ => return heights_for(water, surface, width, height),
+    };
+    sample_grid(surface, n, n, water.size)
 }
 
 /// The height grid technique `procedural` reads (the job carries the frozen surface, not its time,

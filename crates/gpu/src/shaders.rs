@@ -83,7 +83,6 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::yuksel::PASS2,
     &crate::yuksel::GATHER,
     &crate::yuksel::REGION,
-    &crate::yuksel::UPSAMPLE,
     &crate::cascaded::EYE,
     &crate::cascaded::WATER_GBUFFER,
     &crate::cascaded::TERRAIN_GBUFFER,

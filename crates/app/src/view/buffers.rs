@@ -387,8 +387,10 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
         input.light,
     )?;
     setup.fit_region(&heights);
-    let pre = yuksel::prepass(&setup, &heights);
-    let (pw, ph) = setup.prepass_size();
+    // The samples are the region's level's (k × k per pixel of it).
+    let coarse = setup.at_level(setup.region.level);
+    let pre = yuksel::prepass(&coarse, &heights);
+    let (pw, ph) = coarse.prepass_size();
     match buffer {
         Buffer::YukselOffset => {
             // δ in pixels: red for x, green for y, mid-grey at no offset, saturating at N/2.
@@ -409,7 +411,7 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
             let g = Grid {
                 cols: pw,
                 rows: ph,
-                data: pre.iter().map(|p| p[2]).collect(),
+                data: pre.iter().map(|p| p[3]).collect(),
             };
             let (_, max) = g.min_max();
             let top = max.max(1.5);
@@ -419,7 +421,7 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
             })
         }
         Buffer::YukselChannel(k) => {
-            let p1 = yuksel::pass1(&setup, &pre);
+            let p1 = yuksel::pass1(&setup, &pre, 0);
             let (w1, h1) = setup.pass1_size();
             let ch = setup.region.m + 1;
             let k = (k as usize).min(setup.region.m);

@@ -7,11 +7,12 @@
 //! `P_C = P_G + h L'` (Eq. 1), where `L'` is the flat-water refracted light direction scaled to climb
 //! the rest depth `h`. `R` is sampled with one sample per map pixel; each sample's area is refracted
 //! with the sample's own normal, constant over the area (§3), and lands as a pixel-sized square
-//! whose overlap `α` with the pixel is its contribution (Eq. 4).
+//! whose overlap `α` with the pixel is its contribution (Eq. 4). (Our default samples more
+//! finely and lands each sample on its footprint: below.)
 //!
 //! - **Pre-pass** (§5, "an additional pass before the first pass"): the refracted ray of every sample
-//!   and its intersection with the floor, computed once and stored as the offset `δ` of the hit from
-//!   the sample's own pixel centre (in pixels) and the flux the sample carries.
+//!   and its intersection with the floor, computed once and stored as the offset of where its
+//!   light lands from the sample's own pixel centre (in pixels) and the flux the sample carries.
 //! - **Pass 1** (Fig. 5): for each pixel, the `N` samples along x around its illumination centre; each
 //!   adds its overlap `ax · ay` with the pixel and with the `M` pixels beside it along y to `M + 1`
 //!   channels, written through multiple render targets on the GPU.
@@ -41,18 +42,30 @@
 //!   or `m` is given, the region is chosen each frame from a bound on the largest deflection
 //!   ([`region_bound`]: every texel's deflection from its slope, height, the depth and the sun,
 //!   with a margin), and shifted along the refracted sun (`shift`) where the deflections lean one
-//!   way. Its cost: GPU time grows with `N × (M + 1)`. Past [`MAX_N`] or [`MAX_M`] the passes run
-//!   on a map 2, 4 or 8 times coarser ([`Region::level`]) and [`upsample`] brings it back: the
-//!   light is kept, detail lost; past that, the region is clamped with a warning. The GPU
+//!   way. Its cost: GPU time grows with `N × (M + 1) × k²`. Past [`MAX_N`] or [`MAX_M`] the
+//!   samples are taken on a map 2, 4 or 8 times coarser ([`Region::level`]) while the light still
+//!   lands in the map's own pixels ([`pass1`]): the light is kept, sample density lost; past that,
+//!   the region is clamped with a warning. The GPU
 //!   computes the same region in a one-workgroup pass (`region.wgsl`), so no frame reads heights
 //!   back. `preset = "paper"` keeps the paper's 7 and 6.
 //!
+//! - **Samples and footprints** (default, `preset = "water"`; the paper's preset keeps one
+//!   sample per pixel and pixel boxes): each pixel of the water is sampled `k × k` times
+//!   ([`DEFAULT_SUBSAMPLES`]), each sample carrying `1/k²` of the pixel's flux, and each sample's
+//!   light lands on its *footprint*, the box its patch of water maps to on the floor (between
+//!   the hits of the patch's edge midpoints, `footprint`), shared among the pixels it overlaps
+//!   in proportion ([`box_share`]): flux is conserved exactly, and light focused narrower than a
+//!   pixel stays in one pixel instead of being spread over two as a pixel box spreads it.
+//!
 //! # Where it departs from the reference
-//! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost; each
-//! sample's flux lands as a box the size of a pixel (a box filter) instead of the true, stretched or
-//! squeezed footprint; and the normal is constant over each sample, so focusing within a pixel is
-//! invisible (the caustic is blurred to the pixel scale). The sample spacing is the map's pixel, so
-//! the map's resolution sets how finely the water is sampled, independent of the height field's.
+//! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost
+//! (with the paper's fixed region). The footprint is an axis-aligned box from the ray map's
+//! stretch along x and along y, not the true quadrilateral, so light sheared across the axes is
+//! placed within the box only; and the normal is constant over each sample, so focusing within
+//! a sample's patch is invisible. With the paper's settings each sample is a pixel-sized box (a
+//! box filter), which blurs caustics sharper than a pixel. The sample spacing is the map's
+//! pixel over `k` (times `2^level` where the region needs a coarser level), independent of the
+//! height field's.
 
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -71,6 +84,20 @@ pub const MAX_N: u32 = 31;
 pub const MAX_M: u32 = MAX_CHANNELS - 2;
 /// The coarsest level the region may be sampled at: pixels `2^level` times the map's.
 pub const MAX_LEVEL: u32 = 3;
+/// The most samples per pixel along each axis: GPU time grows with their square.
+pub const MAX_SUBSAMPLES: u32 = 4;
+/// The default samples per pixel along each axis (region from the water): 4 × 4 keeps every
+/// `caustics compare` case within 5 % of the reference where 2 × 2 leaves the FFT ocean at 80°
+/// over 8 % (docs/yuksel.md).
+pub const DEFAULT_SUBSAMPLES: u32 = 4;
+/// The most samples per level pixel along each axis at a coarser level: there `k` grows with the
+/// level (`k · 2^level`, up to this) so that the map's pixels keep `(8 / 2^level)²` samples at
+/// least where a region forces a coarser level; GPU time grows with its square.
+pub const MAX_LEVEL_SUBSAMPLES: u32 = 8;
+/// The narrowest half-width of a footprint, in pixels: a sample whose light meets in a point
+/// (a caustic's fold) still lands on a box of positive area, so its flux is counted once; and
+/// the half-width stays a normal `f16` (the GPU packs the two half-widths into one channel).
+const MIN_HALF_WIDTH: f32 = 1.0e-3;
 
 /// How the region is chosen where `n` or `m` is not given.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -98,6 +125,16 @@ pub struct YukselParams {
     /// tall. Given, it is fixed and centred.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub m: Option<u32>,
+    /// Samples per map pixel along each axis (1 to [`MAX_SUBSAMPLES`]), each carrying `1/k²`
+    /// of the pixel's light. Default: [`DEFAULT_SUBSAMPLES`] with the region from the water,
+    /// the paper's 1 with `preset = "paper"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subsamples: Option<u32>,
+    /// Whether each sample's light lands on its footprint (the box its patch of water really
+    /// maps to) rather than the paper's box of the sample's size. Default: true with the region
+    /// from the water, false with `preset = "paper"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub footprint: Option<bool>,
     pub fresnel: bool,
     pub absorption: bool,
 }
@@ -123,6 +160,8 @@ impl YukselParams {
             preset: Preset::Water,
             n: None,
             m: None,
+            subsamples: None,
+            footprint: None,
             fresnel: true,
             absorption: true,
         }
@@ -161,7 +200,30 @@ impl YukselParams {
                 ),
             ));
         }
+        if let Some(k) = self.subsamples
+            && !(1..=MAX_SUBSAMPLES).contains(&k)
+        {
+            return Err(Error::field(
+                "caustics.yuksel.subsamples",
+                format!(
+                    "must be between 1 and {MAX_SUBSAMPLES} (samples per pixel along each axis), got {k}"
+                ),
+            ));
+        }
         Ok(())
+    }
+
+    /// Samples per pixel along each axis and whether they land on their footprints: given, or
+    /// the preset's (the paper's: 1, pixel boxes).
+    pub fn sampling(&self) -> (u32, bool) {
+        let (k, footprint) = match self.preset {
+            Preset::Paper => (1, false),
+            Preset::Water => (DEFAULT_SUBSAMPLES, true),
+        };
+        (
+            self.subsamples.unwrap_or(k),
+            self.footprint.unwrap_or(footprint),
+        )
     }
 
     /// The fixed N and M: given, or the paper's; `None` where the water chooses.
@@ -181,9 +243,10 @@ pub struct Region {
     pub n: usize,
     pub m: usize,
     pub shift: [i32; 2],
-    /// The passes run on a map `2^level` times coarser (N, M and the shift in its pixels), then
-    /// [`upsample`] brings it to the map's size: where the deflection passes the largest region
-    /// at the map's own pixels, a coarser level keeps the light at the cost of detail.
+    /// The samples are those of a map `2^level` times coarser (N, M and the shift in its pixels),
+    /// their light landing in the map's own pixels: where the deflection passes the largest
+    /// region at the map's own pixels, a coarser level keeps the light at the cost of sample
+    /// density (`(k / 2^level)²` per map pixel).
     pub level: u32,
     /// Whether the bound asked for more than [`MAX_N`] or [`MAX_M`] even at [`MAX_LEVEL`]:
     /// light is lost.
@@ -259,6 +322,10 @@ pub struct YukselSetup {
     pub region: Region,
     /// N and M given (or the paper's); `None` where the water chooses.
     pub fixed: (Option<u32>, Option<u32>),
+    /// Samples per pixel along each axis ([`YukselParams::sampling`]).
+    pub subsamples: usize,
+    /// Each sample's light on its footprint (true) or on a box of the sample's size (the paper).
+    pub footprint: bool,
     /// Map pixel size, world units.
     pub pixel: DVec2,
     /// `h L'` in world units: from a floor point to its illumination centre on the rest surface.
@@ -295,7 +362,10 @@ impl YukselSetup {
         let t0 = refract(light, DVec3::Z, eta).expect("air to water never reflects totally");
         let d0 = depth / -t0.z;
         let fixed = params.fixed();
+        let (subsamples, footprint) = params.sampling();
         Ok(YukselSetup {
+            subsamples: subsamples as usize,
+            footprint,
             width,
             height,
             region: Region {
@@ -373,11 +443,19 @@ impl YukselSetup {
         }
     }
 
-    /// This setup's passes at `level`: a map `2^level` times coarser over the same square.
+    /// Samples per pixel along each axis at `level`: `k · 2^level`, at most
+    /// [`MAX_LEVEL_SUBSAMPLES`] (or `k` where it is larger).
+    pub fn subsamples_at(&self, level: u32) -> usize {
+        (self.subsamples << level).min(self.subsamples.max(MAX_LEVEL_SUBSAMPLES as usize))
+    }
+
+    /// This setup's passes at `level`: a map `2^level` times coarser over the same square, sampled
+    /// [`subsamples_at`](Self::subsamples_at) times along each axis per pixel.
     pub fn at_level(&self, level: u32) -> YukselSetup {
         YukselSetup {
             width: self.width >> level,
             height: self.height >> level,
+            subsamples: self.subsamples_at(level),
             pixel: self.pixel * (1u32 << level) as f64,
             ..self.clone()
         }
@@ -399,6 +477,16 @@ impl YukselSetup {
         }
     }
 
+    /// The row phases the GPU records: `2^level` of the largest level this setup may choose
+    /// (pass 1 and pass 2 of a phase past the frame's level draw nothing).
+    pub fn phases(&self) -> u32 {
+        if self.fixed.0.is_none() && self.fixed.1.is_none() {
+            1 << MAX_LEVEL
+        } else {
+            1
+        }
+    }
+
     /// The largest region the GPU may choose: its textures are allocated for it.
     pub fn capacity(&self) -> (usize, usize) {
         (
@@ -407,84 +495,191 @@ impl YukselSetup {
         )
     }
 
-    /// Pre-pass texture size: samples for `N − 1` extra columns and `M` extra rows.
+    /// Pre-pass texture size: `k × k` samples for each pixel of the map, `N − 1` extra columns
+    /// and `M` extra rows.
     pub fn prepass_size(&self) -> (usize, usize) {
-        (self.width + self.region.n - 1, self.height + self.region.m)
+        let k = self.subsamples;
+        (
+            (self.width + self.region.n - 1) * k,
+            (self.height + self.region.m) * k,
+        )
     }
 
-    /// Pass-1 texture size: every map column, `M` extra rows.
+    /// Pass-1 texture size: every map column, the level's rows and `M` extra.
     pub fn pass1_size(&self) -> (usize, usize) {
-        (self.width, self.height + self.region.m)
+        (
+            self.width,
+            (self.height >> self.region.level) + self.region.m,
+        )
     }
 }
 
-/// Pre-pass: for the sample of pre-pass texel `(r, c)` (map pixel `(r − M/2 + shift.y, c − N/2 +
-/// shift.x)`), the hit offset `δ` in pixels and the flux it carries relative to flat water:
-/// `[δx, δy, flux, 0]`.
+/// The floor hit of the water at `s` (world units) and the flux its area carries relative to
+/// flat water (the area as the sun sees the tilted water, times Fresnel): `None` where the sun
+/// cannot light it. Mirrors `yuksel_hit` in `shaders/yuksel/sample.wgsl`.
+fn hit(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, f64)> {
+    let edge = if setup.wrap { Edge::Wrap } else { Edge::Clamp };
+    let l = setup.light;
+    let (h, grad) = heights.sample(s, setup.size, edge);
+    let normal = height_field_normal(grad);
+    let cos_i = -l.dot(normal);
+    let seen = 1.0 + l.truncate().dot(grad) / -l.z;
+    let t = refract(l, normal, setup.eta).filter(|_| cos_i > 0.0 && seen > 0.0)?;
+    let hit = s + t.truncate() * ((setup.depth + h) / -t.z);
+    let fresnel = if setup.fresnel {
+        fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
+    } else {
+        1.0
+    };
+    Some((hit, seen * fresnel))
+}
+
+/// `x` rounded to the nearest `f16` (ties to even), as its bits: the GPU packs a footprint's two
+/// half-widths into one 32-bit channel with WGSL's `pack2x16float`. For the positive normal
+/// values `footprint` makes.
+fn f16_bits(x: f32) -> u32 {
+    let b = x.to_bits();
+    let r = b + 0xfff + ((b >> 13) & 1);
+    let exponent = ((r >> 23) & 0xff) - 127 + 15;
+    (exponent << 10) | ((r >> 13) & 0x3ff)
+}
+
+fn f16_value(h: u32) -> f32 {
+    f32::from_bits(((((h >> 10) & 0x1f) + 127 - 15) << 23) | ((h & 0x3ff) << 13))
+}
+
+/// Two half-widths in one channel, as `bitcast<f32>(pack2x16float(half))` on the GPU.
+pub fn pack_half_widths(half: [f32; 2]) -> f32 {
+    let [x, y] = half.map(|v| f16_bits(v.clamp(MIN_HALF_WIDTH, 6.0e4)));
+    f32::from_bits(x | (y << 16))
+}
+
+/// The half-widths [`pack_half_widths`] packed.
+pub fn unpack_half_widths(packed: f32) -> [f32; 2] {
+    let b = packed.to_bits();
+    [f16_value(b & 0xffff), f16_value(b >> 16)]
+}
+
+/// The share of a box of centre `c` and half-width `h` (pixels) that lies in the pixel
+/// `[−1/2, 1/2]`: summed over the pixels it covers, exactly 1, so no flux is lost or doubled.
+/// With `h = 1/2` (the paper's pixel box) it is the overlap `1 − |c|` of two pixel squares.
+pub fn box_share(c: f32, h: f32) -> f32 {
+    ((c + h).min(0.5) - (c - h).max(-0.5)).max(0.0) / (2.0 * h)
+}
+
+/// One sample's record: where its light lands, relative to its pixel's centre, in pixels.
+/// `centre`: the box's centre; `half`: its half-widths; `flux`: relative to a flat-water pixel.
+/// The box is the sample's *footprint* (ours, beyond the paper): its patch of water
+/// (`1/k` of a pixel each way around it) maps to the floor between the hits of the patch's edge
+/// midpoints, taken along x for the width and along y for the height, min/max so that a folded
+/// patch (rays crossing) stays positive. Without the footprint (the paper, §3), a box the
+/// patch's own size around the sample's hit.
+fn footprint(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, [f32; 2], f64)> {
+    let (centre_hit, flux) = hit(setup, heights, s)?;
+    let k = setup.subsamples as f64;
+    let patch = setup.pixel / k;
+    if !setup.footprint {
+        let half = (0.5 / k) as f32;
+        return Some((centre_hit, [half, half], flux));
+    }
+    // An edge the sun cannot light (or whose ray reflects) takes the sample's own hit.
+    let edge = |d: DVec2| hit(setup, heights, s + d).map_or(centre_hit, |(h, _)| h);
+    let (xm, xp) = (
+        edge(DVec2::new(-0.5 * patch.x, 0.0)),
+        edge(DVec2::new(0.5 * patch.x, 0.0)),
+    );
+    let (ym, yp) = (
+        edge(DVec2::new(0.0, -0.5 * patch.y)),
+        edge(DVec2::new(0.0, 0.5 * patch.y)),
+    );
+    let centre = DVec2::new(xm.x + xp.x, ym.y + yp.y) * 0.5;
+    let half = [
+        ((xp.x - xm.x).abs() * 0.5 / setup.pixel.x) as f32,
+        ((yp.y - ym.y).abs() * 0.5 / setup.pixel.y) as f32,
+    ];
+    Some((centre, half, flux))
+}
+
+/// Pre-pass: for sample `(a, b)` (of `k × k`) of the pixel of pre-pass texel `(r, c)` (texel
+/// `(r·k + b, c·k + a)`; map pixel `(r − M/2 + shift.y, c − N/2 + shift.x)`), where its light
+/// lands (`footprint`): `[centre x, centre y, half-widths packed, flux / k²]`, the centre
+/// relative to the pixel's centre, in pixels.
 pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
     let (pw, ph) = setup.prepass_size();
-    let edge = if setup.wrap { Edge::Wrap } else { Edge::Clamp };
+    let k = setup.subsamples;
     let r0 = setup.region;
     let first = DVec2::new(
         r0.shift[0] as f64 - (r0.n / 2) as f64,
         r0.shift[1] as f64 - (r0.m / 2) as f64,
     );
-    let l = setup.light;
     let mut out = Vec::with_capacity(pw * ph);
     for r in 0..ph {
         for c in 0..pw {
-            let pixel_centre = (DVec2::new(c as f64, r as f64) + first + 0.5) * setup.pixel;
-            let s = pixel_centre + setup.centre_offset;
-            let (h, grad) = heights.sample(s, setup.size, edge);
-            let normal = height_field_normal(grad);
-            let cos_i = -l.dot(normal);
-            let seen = 1.0 + l.truncate().dot(grad) / -l.z;
-            let t = refract(l, normal, setup.eta);
-            let texel = match t {
-                Some(t) if cos_i > 0.0 && seen > 0.0 => {
-                    let z = setup.depth + h;
-                    let hit = s + t.truncate() * (z / -t.z);
-                    let delta = (hit - pixel_centre) / setup.pixel;
-                    let fresnel = if setup.fresnel {
-                        fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
-                    } else {
-                        1.0
-                    };
-                    [delta.x as f32, delta.y as f32, (seen * fresnel) as f32, 0.0]
+            let (pc, pr) = ((c / k) as f64, (r / k) as f64);
+            let pixel_centre = (DVec2::new(pc, pr) + first + 0.5) * setup.pixel;
+            let within = (DVec2::new((c % k) as f64, (r % k) as f64) + 0.5) / k as f64 - 0.5;
+            let s = pixel_centre + within * setup.pixel + setup.centre_offset;
+            out.push(match footprint(setup, heights, s) {
+                Some((centre, half, flux)) => {
+                    let d = (centre - pixel_centre) / setup.pixel;
+                    [
+                        d.x as f32,
+                        d.y as f32,
+                        pack_half_widths(half),
+                        (flux / (k * k) as f64) as f32,
+                    ]
                 }
-                _ => [0.0, 0.0, 0.0, 0.0],
-            };
-            out.push(texel);
+                None => [0.0, 0.0, pack_half_widths([0.5, 0.5]), 0.0],
+            });
         }
     }
     out
 }
 
-/// Pass 1 (Fig. 5): pass-1 texel `(r, j)` holds, in channel `k`, what the `N` samples of sample row
-/// `R = r − M/2 + shift.y` at columns `j + shift.x + [−N/2, N/2]` give map pixel
-/// `(R + k − M/2 − shift.y, j)`. Channels are contiguous per texel: `M + 1` floats each.
-pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]]) -> Vec<f32> {
+/// Pass 1 (Fig. 5) for the map's rows `phase` modulo `2^level`: pass-1 texel `(r, j)` (`j` a
+/// column of the map, `r` a row of the level's map) holds, in channel `k`, the share of the light
+/// of the samples (`k × k` each) of the level's sample row `R = r − M/2 + shift.y` at the level's
+/// columns `j / 2^level + shift.x + [−N/2, N/2]` that falls in map pixel
+/// `(2^level (R + k − M/2 − shift.y) + phase, j)`. At level 0 (one phase) these are the paper's
+/// pass 1; at a coarser level the samples are the level's (the region's pixels are `2^level`
+/// map pixels) and the light lands in the map's own pixels, so the level costs sample density,
+/// not the map's detail. Channels are contiguous per texel: `M + 1` floats each.
+pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]], phase: usize) -> Vec<f32> {
+    let level = setup.region.level;
+    let coarse = setup.at_level(level);
+    let f = 1usize << level;
+    let scale = f as f32;
+    let centre = (scale - 1.0) * 0.5;
+    // A level's pixel holds the light of `4^level` map pixels.
+    let area = scale * scale;
     let (w, h1) = setup.pass1_size();
-    let (pw, _) = setup.prepass_size();
+    let (pw, _) = coarse.prepass_size();
     let r0 = setup.region;
     let ch = r0.m + 1;
-    let n = r0.n;
+    let (n, sub) = (r0.n, coarse.subsamples);
     // Column offset of sample `s` from the pixel; row offset of channel `k`'s pixel from the row.
     let col0 = r0.shift[0] as f32 - (n / 2) as f32;
     let row0 = -((r0.m / 2) as f32) - r0.shift[1] as f32;
     let mut out = vec![0.0f32; w * h1 * ch];
     for r in 0..h1 {
         for j in 0..w {
+            let (jc, qx) = (j / f, (j % f) as f32);
             let texel = &mut out[(r * w + j) * ch..(r * w + j + 1) * ch];
-            for s in 0..n {
-                let p = pre[r * pw + j + s];
-                let ax = (1.0 - (s as f32 + col0 + p[0]).abs()).max(0.0);
-                if ax == 0.0 {
-                    continue;
-                }
-                for (k, t) in texel.iter_mut().enumerate() {
-                    let ay = (1.0 - (p[1] - (k as f32 + row0)).abs()).max(0.0);
-                    *t += ax * ay * p[2];
+            for b in 0..sub {
+                for s in 0..n * sub {
+                    let p = pre[(r * sub + b) * pw + jc * sub + s];
+                    let [hx, hy] = unpack_half_widths(p[2]);
+                    // In map pixels from the map pixel's centre.
+                    let x = ((s / sub) as f32 + col0 + p[0]) * scale + centre - qx;
+                    let ax = box_share(x, hx * scale);
+                    if ax == 0.0 {
+                        continue;
+                    }
+                    for (k, t) in texel.iter_mut().enumerate() {
+                        let y = (p[1] - (k as f32 + row0)) * scale + centre - phase as f32;
+                        let ay = box_share(y, hy * scale);
+                        *t += ax * ay * p[3] * area;
+                    }
                 }
             }
         }
@@ -492,27 +687,25 @@ pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]]) -> Vec<f32> {
     out
 }
 
-/// Pass 2 (Fig. 6): map pixel `(i, j)` sums channel `k` of pass-1 row `i + M − k`, then applies the
-/// absorption (the shift cancels: row `i + M − k` holds sample row `i − (k − M/2 − shift.y)`).
-pub fn pass2(setup: &YukselSetup, p1: &[f32]) -> CausticsMap {
-    let (w, h) = (setup.width, setup.height);
+/// Pass 2 (Fig. 6) for the map's rows `phase` modulo `2^level`: map pixel `(i, j)` sums channel `k`
+/// of pass-1 row `i / 2^level + M − k`, then applies the absorption (the shift cancels: that row
+/// holds the level's sample row `i / 2^level − (k − M/2 − shift.y)`).
+pub fn pass2(setup: &YukselSetup, p1: &[f32], phase: usize, map: &mut CausticsMap) {
+    let w = setup.width;
     let m = setup.region.m;
+    let f = 1usize << setup.region.level;
     let ch = m + 1;
-    let h1 = h + m;
-    let mut map = CausticsMap::new(w, h, setup.size);
     let a = setup.attenuation;
-    for i in 0..h {
+    for i in (phase..setup.height).step_by(f) {
         for j in 0..w {
             let mut e = 0.0f32;
             for k in 0..ch {
-                let r = i + m - k;
-                debug_assert!(r < h1);
+                let r = i / f + m - k;
                 e += p1[(r * w + j) * ch + k];
             }
             map.texels[i * w + j] = [e * a.x as f32, e * a.y as f32, e * a.z as f32];
         }
     }
-    map
 }
 
 /// The whole technique on the CPU: the surface sampled as `heights` over the map's square, with
@@ -523,51 +716,14 @@ pub fn caustics(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     caustics_in_region(&setup, heights)
 }
 
-/// The three passes in `setup`'s region as it stands, at its level, brought to the map's size.
+/// The passes in `setup`'s region as it stands: the pre-pass at its level, then pass 1 and pass 2
+/// once per row phase (`2^level` of them) into the map's own pixels.
 pub fn caustics_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
-    let level = setup.region.level;
-    let coarse = setup.at_level(level);
-    let pre = prepass(&coarse, heights);
-    let p1 = pass1(&coarse, &pre);
-    let map = pass2(&coarse, &p1);
-    if level == 0 {
-        map
-    } else {
-        upsample(&map, setup, level)
-    }
-}
-
-/// The map of a level `level` times coarser, bilinear at each of `setup`'s pixel centres (wrapped
-/// or clamped at the edges as the water is): it keeps the flux of a periodic map. GPU twin:
-/// `shaders/yuksel/upsample.wgsl`.
-pub fn upsample(coarse: &CausticsMap, setup: &YukselSetup, level: u32) -> CausticsMap {
-    let (cw, ch) = (coarse.width as i64, coarse.height as i64);
-    let scale = (1u32 << level) as f32;
-    let index = |k: i64, n: i64| {
-        if setup.wrap {
-            k.rem_euclid(n)
-        } else {
-            k.clamp(0, n - 1)
-        }
-    };
+    let pre = prepass(&setup.at_level(setup.region.level), heights);
     let mut map = CausticsMap::new(setup.width, setup.height, setup.size);
-    for i in 0..setup.height {
-        for j in 0..setup.width {
-            let x = (j as f32 + 0.5) / scale - 0.5;
-            let y = (i as f32 + 0.5) / scale - 0.5;
-            let (x0, y0) = (x.floor(), y.floor());
-            let (fx, fy) = (x - x0, y - y0);
-            let (c0, c1) = (index(x0 as i64, cw), index(x0 as i64 + 1, cw));
-            let (r0, r1) = (index(y0 as i64, ch), index(y0 as i64 + 1, ch));
-            let at = |r: i64, c: i64| coarse.texels[(r * cw + c) as usize];
-            let (a, b, c, d) = (at(r0, c0), at(r0, c1), at(r1, c0), at(r1, c1));
-            let t = &mut map.texels[i * setup.width + j];
-            for k in 0..3 {
-                let top = a[k] + (b[k] - a[k]) * fx;
-                let bottom = c[k] + (d[k] - c[k]) * fx;
-                t[k] = top + (bottom - top) * fy;
-            }
-        }
+    for phase in 0..1usize << setup.region.level {
+        let p1 = pass1(setup, &pre, phase);
+        pass2(setup, &p1, phase, &mut map);
     }
     map
 }
@@ -604,17 +760,37 @@ mod tests {
             let y = (i as f64 + 0.5) / n as f64;
             (0.002 * (std::f64::consts::TAU * (2.0 * x + y)).sin()) as f32
         });
-        let params = YukselParams {
+        let water = YukselParams {
             fresnel: false,
             ..Default::default()
         };
-        let s = setup(&params, 64, DVec3::new(0.2, 0.1, -1.0));
-        let m = caustics(&s, &g);
-        let mean = m.texels.iter().map(|t| t[0] as f64).sum::<f64>() / m.texels.len() as f64;
-        let max = m.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
-        eprintln!("periodic waves: mean - 1 = {:.2e}, max {max}", mean - 1.0);
-        assert!((mean - 1.0).abs() < 7.5e-8, "mean {mean}"); // measured -7.45e-9
-        assert!(max > 1.05, "waves focus: {max}");
+        let paper = YukselParams {
+            fresnel: false,
+            ..YukselParams::paper()
+        };
+        // measured mean − 1: −7.45e-9 (4 × 4 footprints, level 0), −1.12e-8 (at level 1, where
+        // a level pixel's 8 × 8 samples spread over 2 × 2 map pixels), −8.38e-9 (the paper's); max
+        // 1.044, 1.044, 1.081
+        for (label, params, level) in [
+            ("footprints", &water, 0),
+            ("level 1", &water, 1),
+            ("paper", &paper, 0),
+        ] {
+            let mut s = setup(params, 64, DVec3::new(0.2, 0.1, -1.0));
+            s.region = Region {
+                level,
+                ..s.region_for(&g)
+            };
+            let m = caustics_in_region(&s, &g);
+            let mean = m.texels.iter().map(|t| t[0] as f64).sum::<f64>() / m.texels.len() as f64;
+            let max = m.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+            eprintln!(
+                "periodic waves, {label}: mean - 1 = {:.2e}, max {max}",
+                mean - 1.0
+            );
+            assert!((mean - 1.0).abs() < 8.9e-8, "{label}: mean {mean}");
+            assert!(max > 1.03, "{label}: waves focus: {max}");
+        }
     }
 
     #[test]
@@ -669,14 +845,22 @@ mod tests {
         let mut fitted = s.clone();
         fitted.fit_region(&waves);
         let pre = prepass(&fitted, &waves);
-        // A hit δ pixels off reaches the pixels at offsets ⌊δ⌋ and ⌈δ⌉: both within the region.
-        let inside = |d: f32, half: usize, shift: i32| {
+        // A box from `e0` to `e1` pixels off its pixel's centre reaches the pixels at offsets
+        // `o` with `o + e0 < 1/2` and `o + e1 > −1/2`: all within the region.
+        let inside = |e0: f32, e1: f32, half: usize, shift: i32| {
             let (lo, hi) = ((shift - half as i32) as f32, (shift + half as i32) as f32);
-            -d.ceil() >= lo && -d.floor() <= hi
+            (-0.5 - e1).floor() + 1.0 >= lo && (0.5 - e0).ceil() - 1.0 <= hi
         };
-        for p in pre.iter().filter(|p| p[2] > 0.0) {
-            assert!(inside(p[0], r.n / 2, r.shift[0]), "{p:?} {r:?}");
-            assert!(inside(p[1], r.m / 2, r.shift[1]), "{p:?} {r:?}");
+        for p in pre.iter().filter(|p| p[3] > 0.0) {
+            let [hx, hy] = unpack_half_widths(p[2]);
+            assert!(
+                inside(p[0] - hx, p[0] + hx, r.n / 2, r.shift[0]),
+                "{p:?} {r:?}"
+            );
+            assert!(
+                inside(p[1] - hy, p[1] + hy, r.m / 2, r.shift[1]),
+                "{p:?} {r:?}"
+            );
         }
         // The paper's preset, and a given N, stay fixed.
         let paper = setup(&YukselParams::paper(), 64, light).region_for(&waves);

@@ -9,7 +9,6 @@
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
 //! | fused variant (compute, workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
-//! | upsample (compute): the level's map to the map's size | `shaders/yuksel/upsample.wgsl` | `upsample` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
@@ -51,11 +50,6 @@ pub const REGION: PassSource = PassSource {
     name: "yuksel region",
     shared: &[OPTICS, COMMON],
     source: include_str!("../shaders/yuksel/region.wgsl"),
-};
-pub const UPSAMPLE: PassSource = PassSource {
-    name: "yuksel upsample",
-    shared: &[COMMON],
-    source: include_str!("../shaders/yuksel/upsample.wgsl"),
 };
 pub const GATHER: PassSource = PassSource {
     name: "yuksel gather",
@@ -118,7 +112,10 @@ pub struct YukselUniform {
     pub m: u32,
     pub wrap: u32,
     pub channel_base: u32,
-    pub _pad: [u32; 2],
+    pub subsamples: u32,
+    pub footprint: u32,
+    pub phase: u32,
+    pub _pad: [u32; 3],
 }
 
 /// Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`: what the region pass writes.
@@ -147,7 +144,7 @@ impl From<YukselRegion> for Region {
 
 impl YukselUniform {
     /// `n` = 0 and `m` = `u32::MAX` ask the region pass to choose them from the water.
-    pub fn new(s: &YukselSetup, channel_base: u32) -> Self {
+    pub fn new(s: &YukselSetup, channel_base: u32, phase: u32) -> Self {
         YukselUniform {
             light: [
                 s.light.x as f32,
@@ -173,7 +170,10 @@ impl YukselUniform {
             m: s.fixed.1.unwrap_or(u32::MAX),
             wrap: s.wrap as u32,
             channel_base,
-            _pad: [0; 2],
+            subsamples: s.subsamples as u32,
+            footprint: s.footprint as u32,
+            phase,
+            _pad: [0; 3],
         }
     }
 }
@@ -181,7 +181,6 @@ impl YukselUniform {
 /// The technique's pipelines, built once per device.
 pub struct Yuksel {
     region: wgpu::ComputePipeline,
-    upsample: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
     gather: wgpu::ComputePipeline,
@@ -235,12 +234,12 @@ pub struct Frame {
     /// The heights it uploaded itself ([`Yuksel::frame`]); `None` when it reads the caller's
     /// ([`Yuksel::frame_with_water`]).
     heights: Option<wgpu::Texture>,
-    /// Every uniform buffer with the channel base it carries (one per pass-1 draw).
-    uniforms: Vec<(wgpu::Buffer, u32)>,
+    /// Every uniform buffer with the channel base and row phase it carries (one per pass-1 and
+    /// pass-2 draw).
+    uniforms: Vec<(wgpu::Buffer, u32, u32)>,
     /// This frame's gather region ([`YukselRegion`]), written by the region pass.
     pub region: wgpu::Buffer,
     region_bind: wgpu::BindGroup,
-    upsample_bind: wgpu::BindGroup,
     pub map: wgpu::Texture,
     setup: YukselSetup,
     pub variant: Variant,
@@ -254,16 +253,21 @@ enum FramePasses {
     },
     RenderTargets {
         prepass: wgpu::BindGroup,
-        /// Per pass-1 draw: its pipeline, bind group (with its own channel base) and target views.
-        draws: Vec<(
-            wgpu::RenderPipeline,
-            wgpu::BindGroup,
-            Vec<wgpu::TextureView>,
-        )>,
-        pass2: wgpu::BindGroup,
-        /// The level's map.
+        phases: Vec<Phase>,
+        /// The map.
         target: wgpu::TextureView,
     },
+}
+
+/// The draws of one row phase: the map's rows `phase` modulo `2^level`.
+struct Phase {
+    /// Per pass-1 draw: its pipeline, bind group (with its own channel base) and target views.
+    draws: Vec<(
+        wgpu::RenderPipeline,
+        wgpu::BindGroup,
+        Vec<wgpu::TextureView>,
+    )>,
+    pass2: wgpu::BindGroup,
 }
 
 impl Frame {
@@ -283,21 +287,22 @@ impl Frame {
         &self.setup
     }
 
-    /// Whether `setup` fits this frame's textures (the same map size and the same largest region),
+    /// Whether `setup` fits this frame's textures (the same map size, largest region and samples
+    /// per pixel),
     /// so that [`set_setup`](Self::set_setup) can take it.
     pub fn fits(&self, setup: &YukselSetup) -> bool {
-        (setup.width, setup.height, setup.capacity())
-            == (self.setup.width, self.setup.height, self.setup.capacity())
+        let key = |s: &YukselSetup| (s.width, s.height, s.capacity(), s.subsamples);
+        key(setup) == key(&self.setup)
     }
 
     /// Take a new sun or depth (a setup that [`fits`](Self::fits)): uniform writes only.
     pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
         debug_assert!(self.fits(setup));
-        for (buffer, base) in &self.uniforms {
+        for (buffer, base, phase) in &self.uniforms {
             ctx.write_buffer(
                 buffer,
                 0,
-                bytemuck::bytes_of(&YukselUniform::new(setup, *base)),
+                bytemuck::bytes_of(&YukselUniform::new(setup, *base, *phase)),
             );
         }
         self.setup = setup.clone();
@@ -312,7 +317,6 @@ impl Yuksel {
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
             region: compute_pipeline(ctx, &REGION),
-            upsample: compute_pipeline(ctx, &UPSAMPLE),
             prepass: compute_pipeline(ctx, &PREPASS),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
             gather: compute_pipeline(ctx, &GATHER),
@@ -367,23 +371,23 @@ impl Yuksel {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         // Sized for the largest region the region pass may choose.
-        let (cap_n, cap_m) = setup.capacity();
-        let (pw, ph) = (setup.width + cap_n - 1, setup.height + cap_m);
+        let (_, cap_m) = setup.capacity();
+        let (pw, ph) = prepass_capacity(setup);
         let (p1w, p1h) = (setup.width, setup.height + cap_m);
         ctx.check_texture_size("yuksel caustics map", w, h)?;
         ctx.check_texture_size("yuksel pre-pass texture", pw as u32, ph as u32)?;
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
         let mut uniforms = Vec::new();
-        let mut uniform_for = |channel_base: u32| {
+        let mut uniform_for = |channel_base: u32, phase: u32| {
             let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("yuksel uniform"),
-                contents: bytemuck::bytes_of(&YukselUniform::new(setup, channel_base)),
+                contents: bytemuck::bytes_of(&YukselUniform::new(setup, channel_base, phase)),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
-            uniforms.push((buffer.clone(), channel_base));
+            uniforms.push((buffer.clone(), channel_base, phase));
             buffer
         };
-        let uniform = uniform_for(0);
+        let uniform = uniform_for(0, 0);
         let heights_view = &water.heights;
         let region = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("yuksel region"),
@@ -408,26 +412,7 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        // What the passes write: the map at the region's level, in its top-left corner.
-        let coarse = ctx.texture_2d(
-            "yuksel level map",
-            (w, h, 1),
-            MAP_FORMAT,
-            U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::TEXTURE_BINDING,
-        );
-        let coarse_view = coarse.create_view(&Default::default());
-        let upsample_bind = bind_group(
-            ctx,
-            "yuksel upsample",
-            &self.upsample.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                region.as_entire_binding(),
-                View(&coarse_view),
-                View(&map_view),
-            ],
-        );
-        let mut bytes = 2 * (w * h) as u64 * 16 + uniform.size() + region.size();
+        let mut bytes = (w * h) as u64 * 16 + uniform.size() + region.size();
         let passes = match variant {
             Variant::Gather => FramePasses::Gather {
                 bind: bind_group(
@@ -437,7 +422,7 @@ impl Yuksel {
                     &[
                         uniform.as_entire_binding(),
                         View(heights_view),
-                        View(&coarse_view),
+                        View(&map_view),
                         region.as_entire_binding(),
                     ],
                 ),
@@ -469,56 +454,62 @@ impl Yuksel {
                         region.as_entire_binding(),
                     ],
                 );
-                // Pass 1: as many layers per draw as the device allows.
-                let per_draw = self.targets_per_draw.min(layers);
-                let mut draws = Vec::new();
-                let mut first = 0;
-                while first < layers {
-                    let count = per_draw.min(layers - first);
-                    let pipeline = self.pass1_pipeline(ctx, count);
-                    let draw_uniform = uniform_for(4 * first);
-                    let bind = bind_group(
-                        ctx,
-                        "yuksel pass 1",
-                        &pipeline.get_bind_group_layout(0),
-                        &[
-                            draw_uniform.as_entire_binding(),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                        ],
-                    );
-                    let views = (first..first + count)
-                        .map(|layer| {
-                            channels.create_view(&wgpu::TextureViewDescriptor {
-                                dimension: Some(wgpu::TextureViewDimension::D2),
-                                base_array_layer: layer,
-                                array_layer_count: Some(1),
-                                ..Default::default()
-                            })
-                        })
-                        .collect();
-                    draws.push((pipeline, bind, views));
-                    first += count;
-                }
                 let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
                     dimension: Some(wgpu::TextureViewDimension::D2Array),
                     ..Default::default()
                 });
-                let pass2 = bind_group(
-                    ctx,
-                    "yuksel pass 2",
-                    &self.pass2.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        View(&channels_view),
-                        region.as_entire_binding(),
-                    ],
-                );
+                // Per row phase (one at level 0, up to 2^MAX_LEVEL where the water chooses the
+                // level; phases past this frame's level draw nothing): pass 1, as many layers per
+                // draw as the device allows, then pass 2 into the map's rows of that phase.
+                let per_draw = self.targets_per_draw.min(layers);
+                let mut phases = Vec::new();
+                for phase in 0..setup.phases() {
+                    let mut draws = Vec::new();
+                    let mut first = 0;
+                    while first < layers {
+                        let count = per_draw.min(layers - first);
+                        let pipeline = self.pass1_pipeline(ctx, count);
+                        let draw_uniform = uniform_for(4 * first, phase);
+                        let bind = bind_group(
+                            ctx,
+                            "yuksel pass 1",
+                            &pipeline.get_bind_group_layout(0),
+                            &[
+                                draw_uniform.as_entire_binding(),
+                                View(&pre_view),
+                                region.as_entire_binding(),
+                            ],
+                        );
+                        let views = (first..first + count)
+                            .map(|layer| {
+                                channels.create_view(&wgpu::TextureViewDescriptor {
+                                    dimension: Some(wgpu::TextureViewDimension::D2),
+                                    base_array_layer: layer,
+                                    array_layer_count: Some(1),
+                                    ..Default::default()
+                                })
+                            })
+                            .collect();
+                        draws.push((pipeline, bind, views));
+                        first += count;
+                    }
+                    let pass2_uniform = uniform_for(0, phase);
+                    let pass2 = bind_group(
+                        ctx,
+                        "yuksel pass 2",
+                        &self.pass2.get_bind_group_layout(0),
+                        &[
+                            pass2_uniform.as_entire_binding(),
+                            View(&channels_view),
+                            region.as_entire_binding(),
+                        ],
+                    );
+                    phases.push(Phase { draws, pass2 });
+                }
                 FramePasses::RenderTargets {
                     prepass,
-                    draws,
-                    pass2,
-                    target: coarse_view,
+                    phases,
+                    target: map_view,
                 }
             }
         };
@@ -528,7 +519,6 @@ impl Yuksel {
             uniforms,
             region,
             region_bind,
-            upsample_bind,
             map,
             setup: setup.clone(),
             variant,
@@ -560,52 +550,53 @@ impl Yuksel {
             }
             FramePasses::RenderTargets {
                 prepass,
-                draws,
-                pass2,
+                phases,
                 target,
             } => {
                 {
                     let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
                     pass.set_pipeline(&self.prepass);
                     pass.set_bind_group(0, prepass, &[]);
-                    let (cap_n, cap_m) = frame.setup.capacity();
-                    let (pw, ph) = (frame.setup.width + cap_n - 1, frame.setup.height + cap_m);
+                    let (pw, ph) = prepass_capacity(&frame.setup);
                     pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
                 }
-                for (pipeline, bind, views) in draws {
-                    let attachments: Vec<_> = views.iter().map(color_attachment).collect();
+                for phase in phases {
+                    for (pipeline, bind, views) in &phase.draws {
+                        let attachments: Vec<_> = views
+                            .iter()
+                            .map(|v| color_attachment(v, wgpu::LoadOp::Clear(Default::default())))
+                            .collect();
+                        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                            label: Some("yuksel pass 1"),
+                            color_attachments: &attachments,
+                            depth_stencil_attachment: None,
+                            timestamp_writes: timer
+                                .as_mut()
+                                .and_then(|t| t.render_pass("yuksel pass 1")),
+                            occlusion_query_set: None,
+                            multiview_mask: None,
+                        });
+                        pass.set_pipeline(pipeline);
+                        pass.set_bind_group(0, bind, &[]);
+                        pass.draw(0..3, 0..1);
+                    }
+                    // Each phase writes its own rows and keeps the others'.
                     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("yuksel pass 1"),
-                        color_attachments: &attachments,
+                        label: Some("yuksel pass 2"),
+                        color_attachments: &[color_attachment(target, wgpu::LoadOp::Load)],
                         depth_stencil_attachment: None,
                         timestamp_writes: timer
                             .as_mut()
-                            .and_then(|t| t.render_pass("yuksel pass 1")),
+                            .and_then(|t| t.render_pass("yuksel pass 2")),
                         occlusion_query_set: None,
                         multiview_mask: None,
                     });
-                    pass.set_pipeline(pipeline);
-                    pass.set_bind_group(0, bind, &[]);
+                    pass.set_pipeline(&self.pass2);
+                    pass.set_bind_group(0, &phase.pass2, &[]);
                     pass.draw(0..3, 0..1);
                 }
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("yuksel pass 2"),
-                    color_attachments: &[color_attachment(target)],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("yuksel pass 2")),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(&self.pass2);
-                pass.set_bind_group(0, pass2, &[]);
-                pass.draw(0..3, 0..1);
             }
         }
-        let mut pass = begin_compute(encoder, &mut timer, "yuksel upsample");
-        pass.set_pipeline(&self.upsample);
-        pass.set_bind_group(0, &frame.upsample_bind, &[]);
-        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
-        drop(pass);
         &frame.map
     }
 
@@ -654,13 +645,30 @@ impl Yuksel {
     }
 }
 
-fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+/// The pre-pass texture's size for the largest region at any level the setup may choose: the
+/// level's `k × k` samples per pixel of the level's map and apron.
+fn prepass_capacity(setup: &YukselSetup) -> (usize, usize) {
+    let (cap_n, cap_m) = setup.capacity();
+    let levels = setup.phases().trailing_zeros();
+    (0..=levels).fold((0, 0), |(w, h), level| {
+        let k = setup.subsamples_at(level);
+        (
+            w.max(((setup.width >> level) + cap_n - 1) * k),
+            h.max(((setup.height >> level) + cap_m) * k),
+        )
+    })
+}
+
+fn color_attachment(
+    view: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+) -> Option<wgpu::RenderPassColorAttachment<'_>> {
     Some(wgpu::RenderPassColorAttachment {
         view,
         depth_slice: None,
         resolve_target: None,
         ops: wgpu::Operations {
-            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            load,
             store: wgpu::StoreOp::Store,
         },
     })

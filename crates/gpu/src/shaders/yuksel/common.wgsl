@@ -15,8 +15,12 @@ struct Yuksel {
     m: u32,                   // M given; 0xffffffff: the region pass chooses it
     wrap: u32,
     channel_base: u32,        // pass 1: first channel this draw writes
+    subsamples: u32,          // k: samples per pixel along each axis
+    footprint: u32,           // 1: each sample's light on its footprint; 0: a box of its size
+    phase: u32,               // pass 1 and 2: the map's rows this draw serves, modulo 2^level
     _pad0: u32,
     _pad1: u32,
+    _pad2: u32,
 }
 
 // The gather region, written by the region pass (`region.wgsl`) and read by every other pass.
@@ -27,10 +31,16 @@ struct YukselRegion {
     n: u32,
     m: u32,
     shift: vec2<i32>,
-    level: u32,               // the passes run on a map 2^level times coarser, then upsample.wgsl
+    level: u32,               // samples of a map 2^level times coarser, light in the map's pixels
     clamped: u32,
     _pad0: u32,
     _pad1: u32,
+}
+
+// Samples per pixel along each axis at `level`: k 2^level, at most 8 (or k where it is larger).
+// CPU twin: `YukselSetup::subsamples_at` (`MAX_LEVEL_SUBSAMPLES`).
+fn level_subsamples(level: u32) -> u32 {
+    return min(u.subsamples << level, max(u.subsamples, 8u));
 }
 
 // The coarse map's size and pixel at `level`.
@@ -38,7 +48,14 @@ fn level_size(width: u32, height: u32, level: u32) -> vec2<u32> {
     return vec2<u32>(width >> level, height >> level);
 }
 
-// The overlap of two pixel-sized squares whose centres are `d` pixels apart along one axis.
-fn box_overlap(d: f32) -> f32 {
-    return max(0.0, 1.0 - abs(d));
+// The share of a box of centre `c` and half-width `h` (pixels) in the pixel [-1/2, 1/2]: summed
+// over the pixels it covers, exactly 1. With h = 1/2 (the paper's pixel box) the overlap 1 - |c|
+// of two pixel squares. CPU twin: `box_share`.
+fn box_share(c: f32, h: f32) -> f32 {
+    return max(min(c + h, 0.5) - max(c - h, -0.5), 0.0) / (2.0 * h);
+}
+
+// A sample's two half-widths, packed by `yuksel_sample` into one channel.
+fn half_widths(packed: f32) -> vec2<f32> {
+    return unpack2x16float(bitcast<u32>(packed));
 }

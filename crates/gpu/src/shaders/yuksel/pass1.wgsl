@@ -1,6 +1,7 @@
-// Technique `yuksel`, pass 1 (paper Fig. 5): for pass-1 texel (j, r), the N samples of sample row
-// R = r - M/2 + shift.y at columns j + shift.x + [-N/2, N/2], and their overlap with map pixel
-// (j, R + k - M/2 - shift.y) in channel k. The
+// Technique `yuksel`, pass 1 (paper Fig. 5): for pass-1 texel (j, r), the samples (k x k each) of
+// sample row R = r - M/2 + shift.y at columns j + shift.x + [-N/2, N/2], and the share of their
+// light in map pixel (j, 2^level (R + k - M/2 - shift.y) + phase) in channel k, R and the columns
+// counted in the level's pixels (j / 2^level + shift.x + [-N/2, N/2] at a coarser level). The
 // channels leave through multiple render targets; the output struct (`Pass1Out`, one vec4 per
 // target) and `fs_main` that fills it are generated for the number of targets one draw writes.
 
@@ -19,22 +20,34 @@ fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
 fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
     var intensity: array<f32, 32>;
     // The texture holds the largest region's rows; rows past this frame's are never read.
-    if r >= i32(level_size(u.width, u.height, region.level).y + region.m) {
+    // Phases past this frame's level serve no rows.
+    if r >= i32(level_size(u.width, u.height, region.level).y + region.m) || u.phase >= (1u << region.level) {
         return intensity;
     }
+    // In map pixels: the level's pixel, and the map pixel's centre within the level's.
+    let scale = f32(1u << region.level);
+    let centre = (scale - 1.0) * 0.5;
+    // A level's pixel holds the light of 4^level map pixels.
+    let area = scale * scale;
+    let jc = j >> region.level;
+    let qx = f32(j - (jc << region.level));
     let col0 = region.shift.x - i32(region.n / 2u);
     let row0 = -i32(region.m / 2u) - region.shift.y;
     let base = i32(u.channel_base);
     let last = min(base + count, i32(region.m) + 1);
-    for (var s = 0; s < i32(region.n); s++) {
-        let p = textureLoad(pre, vec2<i32>(j + s, r), 0);
-        let ax = box_overlap(f32(s + col0) + p.x);
-        if ax == 0.0 {
-            continue;
-        }
-        for (var k = base; k < last; k++) {
-            let ay = box_overlap(p.y - f32(k + row0));
-            intensity[k - base] += ax * ay * p.z;
+    let sub = i32(level_subsamples(region.level));
+    for (var b = 0; b < sub; b++) {
+        for (var s = 0; s < i32(region.n) * sub; s++) {
+            let p = textureLoad(pre, vec2<i32>(jc * sub + s, r * sub + b), 0);
+            let half = half_widths(p.z) * scale;
+            let ax = box_share((f32(s / sub + col0) + p.x) * scale + centre - qx, half.x);
+            if ax == 0.0 {
+                continue;
+            }
+            for (var k = base; k < last; k++) {
+                let ay = box_share((p.y - f32(k + row0)) * scale + centre - f32(u.phase), half.y);
+                intensity[k - base] += ax * ay * p.w * area;
+            }
         }
     }
     return intensity;

@@ -1,6 +1,6 @@
-// Technique `yuksel`, pass 2 (paper Fig. 6): map pixel (j, i) sums channel k of pass-1 row
-// i + M - k (the row whose samples gave pixel i that channel; the region's shift cancels), then the
-// absorption.
+// Technique `yuksel`, pass 2 (paper Fig. 6): map pixel (j, i) of this draw's row phase sums channel
+// k of pass-1 row i / 2^level + M - k (the row whose samples gave pixel i that channel; the
+// region's shift cancels), then the absorption. The other rows are left to their phases' draws.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var channels: texture_2d_array<f32>;
@@ -15,11 +15,15 @@ fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
 @fragment
 fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
     let j = i32(frag.x);
-    let i = i32(frag.y);
+    let i = u32(frag.y);
+    if (i & ((1u << region.level) - 1u)) != u.phase {
+        discard;
+    }
+    let row = i32(i >> region.level);
     var e = 0.0;
     let m = i32(region.m);
     for (var k = 0; k <= m; k++) {
-        let texel = textureLoad(channels, vec2<i32>(j, i + m - k), k / 4, 0);
+        let texel = textureLoad(channels, vec2<i32>(j, row + m - k), k / 4, 0);
         e += texel[k % 4];
     }
     return vec4<f32>(e * u.attenuation.rgb, 1.0);
