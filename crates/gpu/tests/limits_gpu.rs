@@ -18,14 +18,19 @@ const MAX_STORAGE: u64 = 16 << 20;
 /// A device on the test adapter with `MAX_2D` and `MAX_STORAGE` in place of the adapter's limits,
 /// wrapped as an application would wrap its own.
 fn small_device() -> Option<GpuContext> {
+    device_with(|adapter| wgpu::Limits {
+        max_texture_dimension_2d: MAX_2D,
+        max_storage_buffer_binding_size: MAX_STORAGE,
+        ..adapter
+    })
+}
+
+/// A device on the test adapter with the limits `limits` makes of the adapter's.
+fn device_with(limits: impl Fn(wgpu::Limits) -> wgpu::Limits) -> Option<GpuContext> {
     caustics_gpu::context::test_context()?;
     let instance = GpuContext::instance(&GpuOptions::default()).unwrap();
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).unwrap();
-    let limits = wgpu::Limits {
-        max_texture_dimension_2d: MAX_2D,
-        max_storage_buffer_binding_size: MAX_STORAGE,
-        ..adapter.limits()
-    };
+    let limits = limits(adapter.limits());
     let features = adapter.features()
         & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::FLOAT32_BLENDABLE);
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -35,9 +40,7 @@ fn small_device() -> Option<GpuContext> {
         ..Default::default()
     }))
     .unwrap();
-    let ctx = GpuContext::from_parts(instance, adapter, device, queue);
-    assert_eq!(ctx.limits().max_texture_dimension_2d, MAX_2D);
-    Some(ctx)
+    Some(GpuContext::from_parts(instance, adapter, device, queue))
 }
 
 /// The built-in scene `name` with a `side`² caustics map and camera image.
@@ -110,9 +113,31 @@ fn assert_too_large(result: Result<(), GpuError>, case: &str, names: &str) {
     }
 }
 
+/// WebGPU's default 16 KiB of workgroup memory: the gather variant's tile does not fit, so
+/// `yuksel-gather` is refused by name while `yuksel` (render targets) runs on the same device.
+#[test]
+fn yuksel_gather_needs_its_workgroup_memory() {
+    let Some(ctx) = device_with(|adapter| wgpu::Limits {
+        max_compute_workgroup_storage_size: 16 << 10,
+        ..adapter
+    }) else {
+        return;
+    };
+    // Within the 32 KiB of Apple's GPUs (and lavapipe), above the 16 KiB here.
+    assert!((16 << 10..=32 << 10).contains(&caustics_gpu::yuksel::GATHER_WORKGROUP_BYTES));
+    configure(&ctx, "yuksel", &scene("pool", 64), "").expect("yuksel runs");
+    assert_too_large(
+        configure(&ctx, "yuksel-gather", &scene("pool", 64), ""),
+        "yuksel-gather",
+        "workgroup tile",
+    );
+    ctx.check().expect("wgpu saw nothing");
+}
+
 #[test]
 fn every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit() {
     let Some(ctx) = small_device() else { return };
+    assert_eq!(ctx.limits().max_texture_dimension_2d, MAX_2D);
     for r in REGISTRY {
         let home = scene_for(r.name);
         configure(&ctx, r.name, &scene(home, 64), "")

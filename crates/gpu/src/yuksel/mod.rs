@@ -183,7 +183,9 @@ pub struct Yuksel {
     region: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
-    gather: wgpu::ComputePipeline,
+    /// `None` where the device's workgroup memory cannot hold the gather's tile
+    /// ([`GATHER_WORKGROUP_BYTES`]): the render-target variant still runs there.
+    gather: Option<wgpu::ComputePipeline>,
     /// Pass 1 per number of targets per draw.
     pass1: Mutex<HashMap<u32, wgpu::RenderPipeline>>,
     /// Render targets one pass-1 draw may write on this device.
@@ -309,6 +311,14 @@ impl Frame {
     }
 }
 
+/// Workgroup memory of the gather variant's tile (`gather.wgsl`: four arrays of (14 + 30)² words,
+/// the tile and its widest apron): within the 32 KiB of Metal on Apple GPUs and of lavapipe, above
+/// WebGPU's default 16 KiB.
+pub const GATHER_WORKGROUP_BYTES: u32 = 4 * 44 * 44 * 4;
+
+/// The gather variant's tile side (`gather.wgsl`'s `TILE` and workgroup size).
+const GATHER_TILE: u32 = 14;
+
 impl Yuksel {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let limits = ctx.limits();
@@ -319,12 +329,25 @@ impl Yuksel {
             region: compute_pipeline(ctx, &REGION),
             prepass: compute_pipeline(ctx, &PREPASS),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
-            gather: compute_pipeline(ctx, &GATHER),
+            gather: (limits.max_compute_workgroup_storage_size >= GATHER_WORKGROUP_BYTES)
+                .then(|| compute_pipeline(ctx, &GATHER)),
             pass1: Mutex::new(HashMap::new()),
             targets_per_draw,
         };
         ctx.check()?;
         Ok(y)
+    }
+
+    /// The gather variant's pipeline, or why this device cannot run it.
+    fn gather_pipeline(&self, ctx: &GpuContext) -> Result<&wgpu::ComputePipeline, GpuError> {
+        self.gather.as_ref().ok_or_else(|| GpuError::TooLarge {
+            what: "yuksel-gather's workgroup tile".into(),
+            size: format!("{GATHER_WORKGROUP_BYTES} bytes"),
+            limit: format!(
+                "{} bytes of workgroup memory; technique `yuksel` (render targets) runs here",
+                ctx.limits().max_compute_workgroup_storage_size
+            ),
+        })
     }
 
     fn pass1_pipeline(&self, ctx: &GpuContext, targets: u32) -> wgpu::RenderPipeline {
@@ -418,7 +441,7 @@ impl Yuksel {
                 bind: bind_group(
                     ctx,
                     "yuksel gather",
-                    &self.gather.get_bind_group_layout(0),
+                    &self.gather_pipeline(ctx)?.get_bind_group_layout(0),
                     &[
                         uniform.as_entire_binding(),
                         View(heights_view),
@@ -544,9 +567,13 @@ impl Yuksel {
         match &frame.passes {
             FramePasses::Gather { bind } => {
                 let mut pass = begin_compute(encoder, &mut timer, "yuksel gather");
-                pass.set_pipeline(&self.gather);
+                pass.set_pipeline(
+                    self.gather
+                        .as_ref()
+                        .expect("a gather frame has its pipeline"),
+                );
                 pass.set_bind_group(0, bind, &[]);
-                pass.dispatch_workgroups(w.div_ceil(16), h.div_ceil(16), 1);
+                pass.dispatch_workgroups(w.div_ceil(GATHER_TILE), h.div_ceil(GATHER_TILE), 1);
             }
             FramePasses::RenderTargets {
                 prepass,
