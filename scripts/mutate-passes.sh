@@ -72,6 +72,7 @@ final image x1.01 @@ $S/final_image.wgsl @@ vec4<f32>(tone_map(c), 1.0) @@ vec4<
 final image slab bound 1 % low @@ $S/final_image_slab.wgsl @@ bitcast<u32>(abs(h)) @@ bitcast<u32>(abs(h) * 0.99) @@ $FI
 triangles photon x1.01 @@ $S/caustic_triangles/photon.wgsl @@ = trace_photon(id.y, id.x); @@ = trace_photon(id.y, id.x) * 1.01; @@ $CT
 triangles irradiance x1.01 @@ $S/caustic_triangles/irradiance.wgsl @@ = vertex_irradiance(i32(id.y), i32(id.x)); @@ = vertex_irradiance(i32(id.y), i32(id.x)) * 1.01; @@ $CT
+triangles hat edge share 1 % more @@ $S/caustic_triangles/irradiance.wgsl @@ select(1.0, 0.5, i == 0 || i == l) @@ select(1.0, 0.505, i == 0 || i == l) @@ $CT
 triangles triangles x1.01 @@ $S/caustic_triangles/triangles.wgsl @@ vec4<f32>(in.e * exp @@ vec4<f32>(in.e * 1.01 * exp @@ $CT
 triangles splat x1.01 @@ $S/caustic_triangles/splat.wgsl @@ vec4<f32>(in.e, 1.0) @@ vec4<f32>(in.e * 1.01, 1.0) @@ $CT
 triangles pyramid x1.01 @@ $S/caustic_triangles/pyramid.wgsl @@ = vec4<f32>(phi, @@ = vec4<f32>(phi * 1.01, @@ $CT
@@ -90,6 +91,9 @@ volumes floor x1.01 @@ $S/volumes/floor.wgsl @@ vec4<f32>(in.intensity * -normal
 volumes shade diffuse x1.01 @@ $S/volumes/shade.wgsl @@ textureStore(out_diffuse, ij, d); @@ textureStore(out_diffuse, ij, d * 1.01); @@ $VO
 volumes shade image x1.01 @@ $S/volumes/shade.wgsl @@ textureStore(out_image, ij, io); @@ textureStore(out_image, ij, io * 1.01); @@ $VO
 volumes view x1.01 @@ $S/volumes/view.wgsl @@ vec4<f32>(colour, 1.0) @@ vec4<f32>(colour * 1.01, 1.0) @@ $VO
+volumes walls x1.01 @@ $S/volumes/walls.wgsl @@ vec4<f32>(in.intensity * dot(normalize(in.dir), wall_normal(in.wall)), 0.0) @@ vec4<f32>(in.intensity * dot(normalize(in.dir), wall_normal(in.wall)) * 1.01, 0.0) @@ $VO
+volumes walls last wall lost @@ $S/volumes/walls.wgsl @@ if !s.ok || @@ if wall == 3u || !s.ok || @@ $VO
+volumes view wall light x1.01 @@ $S/volumes/view.wgsl @@ i32(k), 0).xyz; @@ i32(k), 0).xyz * 1.01; @@ $VO
 EOF
 )
 

@@ -408,15 +408,20 @@ pub fn buffer_picture(buffer: Buffer, input: &BufferInput) -> anyhow::Result<Pic
             })
         }
         Buffer::YukselFlux => {
+            // Each of a pixel's k × k samples carries 1 / k² of its light: times k², 1 is what
+            // flat water gives a whole pixel, whatever k.
+            let k2 = (coarse.subsamples * coarse.subsamples) as f32;
             let g = Grid {
                 cols: pw,
                 rows: ph,
-                data: pre.iter().map(|p| p[3]).collect(),
+                data: pre.iter().map(|p| p[3] * k2).collect(),
             };
             let (_, max) = g.min_max();
             let top = max.max(1.5);
             Ok(Picture {
-                legend: format!("sample flux: black 0, white {top:.2}"),
+                legend: format!(
+                    "sample flux x {k2} (its k x k share of a pixel; 1: flat water): black 0, white {top:.2}"
+                ),
                 ..scalar_picture(&g, |v| heat(v / top))
             })
         }
@@ -1013,11 +1018,12 @@ mod tests {
         scene
     }
 
-    /// Under flat water each yuksel sample carries the flux of flat water (1: the flux picture is
-    /// one colour, the ramp at 1 / 1.5), lands at the same offset from its pixel (one colour), and
-    /// pass 1 puts it into the one or two channels that offset straddles, the same in every texel:
-    /// each channel's picture is black or uniformly white, and a wrong channel, offset or flux
-    /// changes the colours.
+    /// Under flat water each yuksel sample carries its share of flat water's flux (1 once times
+    /// k²: the flux picture is one colour, the ramp at 1 / 1.5), each of a pixel's k × k samples
+    /// lands at its own offset, the same in every pixel (a pattern of period k), and with one sample
+    /// a pixel pass 1 puts it into the one or two channels that offset straddles, the same in
+    /// every texel: each channel's picture is black or uniformly white, and a wrong channel,
+    /// offset or flux changes the colours.
     #[test]
     fn yuksel_buffers_under_flat_water_show_its_uniform_light() {
         let scene = flat_pool();
@@ -1035,9 +1041,24 @@ mod tests {
         eprintln!("flux picture: largest step from the ramp at 1 / 1.5: {off}");
         // measured 0 steps
         assert_eq!(off, 0, "flux picture departs from flat water's flux");
+        // Each pixel's k × k samples sit at their own places in it, the same in every pixel.
         let offset = buffer_picture(Buffer::YukselOffset, &input).unwrap();
-        let first = &offset.rgba[..4];
-        assert!(offset.rgba.chunks(4).all(|t| t == first), "offsets differ");
+        let k = yuksel::DEFAULT_SUBSAMPLES as usize;
+        let w = offset.width as usize;
+        let texel = |y: usize, x: usize| &offset.rgba[(y * w + x) * 4..(y * w + x) * 4 + 4];
+        for y in 0..offset.height as usize {
+            for x in 0..w {
+                assert_eq!(texel(y, x), texel(y % k, x % k), "offset at ({y}, {x})");
+            }
+        }
+        assert_ne!(
+            texel(0, 0),
+            texel(0, 1),
+            "the samples of a pixel at one place"
+        );
+        // One sample a pixel: it lands whole in the one or two channels its offset straddles.
+        let one = TechniqueChoice::parse("yuksel:n=5,m=4,subsamples=1", 1).unwrap();
+        let input = input_for(&one, &scene, Some(surface.as_ref()));
         let mut lit = Vec::new();
         for k in 0..5 {
             let p = buffer_picture(Buffer::YukselChannel(k), &input).unwrap();
