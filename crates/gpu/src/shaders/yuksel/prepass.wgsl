@@ -17,5 +17,5 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let c = i32(id.x / k) - i32(region.n / 2u) + region.shift.x;
     let r = i32(id.y / k) - i32(region.m / 2u) + region.shift.y;
     let pixel = u.pixel * f32(1u << region.level);
-    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r, id.x % k, id.y % k, k, pixel) * 1.01);
+    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r, id.x % k, id.y % k, k, pixel));
 }
