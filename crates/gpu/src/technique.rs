@@ -72,7 +72,15 @@ pub struct WallsOutput<'a> {
     pub cols: [u32; 4],
 }
 
-impl WallsOutput<'_> {
+impl<'a> WallsOutput<'a> {
+    /// The maps in `texture`, laid out as `layout` (one layer per wall, its first columns).
+    pub fn of(texture: &'a wgpu::Texture, layout: &WallMaps) -> Self {
+        WallsOutput {
+            texture,
+            cols: layout.maps.each_ref().map(|m| m.cols as u32),
+        }
+    }
+
     /// The four maps read back into `maps`' layout ([`WallMaps::for_floor_map`] of the floor map
     /// the technique made): a readback, for tools and the viewer's map window, never the frame.
     pub fn read(&self, ctx: &GpuContext, maps: &mut WallMaps) -> Result<(), GpuError> {

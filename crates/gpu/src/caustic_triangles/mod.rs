@@ -1069,17 +1069,7 @@ impl CausticTriangles {
             return Ok(None);
         };
         let mut maps = walls.layout.clone();
-        let width = walls.texture.width() as usize;
-        for wall in Wall::ALL {
-            let texels = ctx.read_rgba_f32_layer(&walls.texture, wall.index() as u32)?;
-            let m = maps.get_mut(wall);
-            m.texels = (0..m.rows * m.cols)
-                .map(|k| {
-                    let t = texels[(k / m.cols) * width + k % m.cols];
-                    [t[0], t[1], t[2]]
-                })
-                .collect();
-        }
+        crate::technique::WallsOutput::of(&walls.texture, &walls.layout).read(ctx, &mut maps)?;
         Ok(Some(maps))
     }
 

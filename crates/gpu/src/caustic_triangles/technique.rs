@@ -328,10 +328,10 @@ impl Technique for CausticTrianglesTechnique {
     /// floor map's format (`Rgba16Float` where the device cannot blend 32-bit floats).
     fn walls(&self) -> Option<WallsOutput<'_>> {
         match self.state.as_ref()? {
-            State::Water { frame, .. } => frame.walls.as_ref().map(|w| WallsOutput {
-                texture: &w.texture,
-                cols: w.layout.maps.each_ref().map(|m| m.cols as u32),
-            }),
+            State::Water { frame, .. } => frame
+                .walls
+                .as_ref()
+                .map(|w| WallsOutput::of(&w.texture, &w.layout)),
             State::Glass { .. } => None,
         }
     }

@@ -426,10 +426,7 @@ pub struct WallsFrame {
 impl WallsFrame {
     /// The final image's view of the maps.
     pub fn output(&self) -> WallsOutput<'_> {
-        WallsOutput {
-            texture: &self.texture,
-            cols: self.layout.maps.each_ref().map(|m| m.cols as u32),
-        }
+        WallsOutput::of(&self.texture, &self.layout)
     }
 }
 
@@ -970,9 +967,9 @@ impl Volumes {
     pub fn read(&self, ctx: &GpuContext, frame: &Frame) -> Result<GpuOutput, GpuError> {
         let mut objects = Vec::new();
         for o in &frame.objects {
-            let image = read_layer(ctx, &frame.images, o.layer)?;
+            let image: Vec<[f32; 4]> = ctx.read_texture_layer(&frame.images, o.layer)?;
             objects.push(ObjectMaps {
-                depth: read_layer(ctx, &frame.depths, o.layer)?,
+                depth: ctx.read_texture_layer(&frame.depths, o.layer)?,
                 diffuse: ctx.read_texture(&o.diffuse)?,
                 caustics: self.read_map(ctx, &o.caustics)?,
                 image: image.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
@@ -1025,57 +1022,11 @@ impl Volumes {
     }
 }
 
-/// The walls' maps of a frame, each wall's columns of its layer.
+/// The walls' maps of a frame, read back.
 fn read_walls(ctx: &GpuContext, walls: &WallsFrame) -> Result<WallMaps, GpuError> {
     let mut maps = walls.layout.clone();
-    let width = walls.texture.width() as usize;
-    for wall in Wall::ALL {
-        let texels = ctx.read_rgba_f32_layer(&walls.texture, wall.index() as u32)?;
-        let m = maps.get_mut(wall);
-        m.texels = (0..m.rows * m.cols)
-            .map(|k| {
-                let t = texels[(k / m.cols) * width + k % m.cols];
-                [t[0], t[1], t[2]]
-            })
-            .collect();
-    }
+    walls.output().read(ctx, &mut maps)?;
     Ok(maps)
-}
-
-/// Layer `layer` of a 2-D array texture (`Rgba32Float`, `COPY_SRC`), read back through a copy.
-fn read_layer(
-    ctx: &GpuContext,
-    array: &wgpu::Texture,
-    layer: u32,
-) -> Result<Vec<[f32; 4]>, GpuError> {
-    let (w, h) = (array.width(), array.height());
-    let one = ctx.texture_2d(
-        "volumes layer readback",
-        (w, h, 1),
-        array.format(),
-        wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::COPY_SRC,
-    );
-    let mut encoder = ctx.device.create_command_encoder(&Default::default());
-    encoder.copy_texture_to_texture(
-        wgpu::TexelCopyTextureInfo {
-            texture: array,
-            mip_level: 0,
-            origin: wgpu::Origin3d {
-                x: 0,
-                y: 0,
-                z: layer,
-            },
-            aspect: wgpu::TextureAspect::All,
-        },
-        one.as_image_copy(),
-        wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
-    );
-    ctx.queue.submit([encoder.finish()]);
-    ctx.read_texture(&one)
 }
 
 fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
