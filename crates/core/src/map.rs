@@ -48,6 +48,17 @@ impl CausticsMap {
         }
     }
 
+    /// Flux on the floor square (channel mean): relative irradiance times area, the unit of
+    /// [`crate::walls::WallMap::flux`], so floor and walls add up.
+    pub fn flux(&self) -> f64 {
+        let sum: f64 = self
+            .texels
+            .iter()
+            .map(|t| (t[0] + t[1] + t[2]) as f64 / 3.0)
+            .sum();
+        sum * self.size * self.size / (self.width * self.height) as f64
+    }
+
     pub fn channel(&self, c: usize) -> Grid {
         Grid {
             cols: self.width,

@@ -38,16 +38,6 @@ fn reference(scene: &Scene) -> (CausticsMap, WallMaps) {
     (out.floor, out.walls.expect("the pool's walls"))
 }
 
-/// Flux of a floor map (channel mean), the unit of [`WallMaps::flux`].
-fn floor_flux(m: &CausticsMap) -> f64 {
-    let sum: f64 = m
-        .texels
-        .iter()
-        .map(|t| (t[0] + t[1] + t[2]) as f64 / 3.0)
-        .sum();
-    sum * m.size * m.size / (m.width * m.height) as f64
-}
-
 /// Prints one table row per receiver (relative L1, flux error against the reference) and returns
 /// floor + walls flux relative to the reference's, minus 1.
 fn rows(
@@ -62,7 +52,7 @@ fn rows(
         "| {name} | {zenith:.0}° | floor | {:.3} | {:+.2e} | {:.4} |",
         m.relative_l1,
         m.flux_error,
-        floor_flux(&truth.0)
+        truth.0.flux()
     );
     for w in Wall::ALL {
         let (a, r) = (walls.get(w), truth.1.get(w));
@@ -83,8 +73,8 @@ fn rows(
             r.flux()
         );
     }
-    let ours = floor_flux(floor) + walls.flux();
-    let theirs = floor_flux(&truth.0) + truth.1.flux();
+    let ours = floor.flux() + walls.flux();
+    let theirs = truth.0.flux() + truth.1.flux();
     eprintln!(
         "| {name} | {zenith:.0}° | floor + walls | | {:+.2e} | {theirs:.4} |",
         ours / theirs - 1.0

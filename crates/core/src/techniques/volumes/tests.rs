@@ -639,16 +639,6 @@ fn with_walls(light: DVec3, res: usize) -> VolumesInput {
     }
 }
 
-/// Flux of a floor map (channel mean), the unit of [`WallMaps::flux`].
-fn floor_flux(m: &CausticsMap) -> f64 {
-    let sum: f64 = m
-        .texels
-        .iter()
-        .map(|t| (t[0] + t[1] + t[2]) as f64 / 3.0)
-        .sum();
-    sum * m.size * m.size / (m.width * m.height) as f64
-}
-
 /// Flat water under a sun 60° from the zenith heading +x, in a pool with walls: the refracted
 /// light `t₀` meets the wall x = size with irradiance `|t₀ · x| / |t₀_z| = tan θt` in the floor
 /// map's unit (the cosine law on a vertical receiver), all the way up (the pool is wider than
@@ -718,14 +708,14 @@ fn floor_and_walls_hold_the_light_that_leaves_the_surface() {
         }
         let floor = floor_pass(&setup, &water, &[]);
         let walls = illumination::wall_pass(&setup, &water, &[]);
-        let received = floor_flux(&floor) + walls.flux();
+        let received = floor.flux() + walls.flux();
         let err = received / leaving - 1.0;
         eprintln!(
             "sun {zenith}°: leaving {leaving:.6}, floor {:.6} + walls {:.6} (the floor clip leaves \
              {:.6} to the walls): {err:+.2e}",
-            floor_flux(&floor),
+            floor.flux(),
             walls.flux(),
-            leaving - floor_flux(&floor)
+            leaving - floor.flux()
         );
         worst = worst.max(err.abs());
     }
