@@ -7,7 +7,9 @@ use caustics_core::map::CausticsMap;
 use caustics_core::metrics::{compare, compare_grids};
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference_with_walls};
 use caustics_core::scene::Scene;
-use caustics_core::techniques::volumes::reference::{MeshReferenceOptions, mesh_reference};
+use caustics_core::techniques::volumes::reference::{
+    MeshReferenceOptions, mesh_reference, mesh_reference_with_progress,
+};
 use caustics_core::techniques::volumes::{
     VolumesInput, VolumesObject, VolumesParams, VolumesSetup,
 };
@@ -154,4 +156,52 @@ fn a_ball_shadows_the_far_wall() {
     );
     // Measured: 0 to the f32 maps' precision.
     assert!((total / 16.0 - 1.0).abs() < 1e-6, "{total}");
+}
+
+/// Without the objects' own maps (what render, compare and the viewer ask for) the floor and the
+/// walls are the same to the bit, the objects still stop the light, and progress counts every row
+/// of photons once, ending at the total.
+#[test]
+fn floor_and_walls_do_not_need_the_objects_maps() {
+    let scene = pool(60.0);
+    let mut input = VolumesInput::from_scene(&scene).unwrap();
+    input.objects.push(VolumesObject {
+        mesh: caustics_core::mesh::sphere(0.15, 24, 12)
+            .transformed(DAffine3::from_translation(DVec3::new(3.7, 2.0, 0.75))),
+        albedo: DVec3::splat(0.8),
+    });
+    let setup = VolumesSetup::new(&VolumesParams::default(), &input).unwrap();
+    let all = MeshReferenceOptions {
+        walls: true,
+        ..MeshReferenceOptions::per_texel(&setup, 2.0)
+    };
+    let calls = std::sync::Mutex::new(Vec::new());
+    let with = mesh_reference_with_progress(&setup, &input, &Flat, &all, &|d, t| {
+        calls.lock().unwrap().push((d, t))
+    });
+    let without = mesh_reference(
+        &setup,
+        &input,
+        &Flat,
+        &MeshReferenceOptions {
+            object_maps: false,
+            ..all.clone()
+        },
+    );
+    assert_eq!(with.objects.len(), 1);
+    assert!(without.objects.is_empty());
+    assert_eq!(with.floor.texels, without.floor.texels);
+    assert_eq!(with.walls, without.walls);
+    assert!(without.photons < with.photons);
+    // The ball's shadow is on the wall without its map too.
+    let x1 = without.walls.as_ref().unwrap().get(Wall::X1);
+    assert!(x1.texels.iter().any(|t| t[0] == 0.0));
+    let mut calls = calls.into_inner().unwrap();
+    calls.sort();
+    let total = calls[0].1;
+    assert!(calls.iter().all(|&(_, t)| t == total));
+    assert_eq!(
+        calls.iter().map(|c| c.0).collect::<Vec<_>>(),
+        (1..=total).collect::<Vec<_>>()
+    );
 }
