@@ -23,14 +23,14 @@ use clap::Args;
 
 use caustics_core::render::RenderOptions;
 use caustics_core::scene::Scene;
-use caustics_core::techniques::{self as core_techniques, Input};
+use caustics_core::techniques::Input;
 use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
 use caustics_gpu::technique::{self, REGISTRY, WaterTextures};
 use caustics_gpu::water::field::GpuWater;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 use crate::progress;
-use crate::techniques::{Runner, Spec};
+use crate::techniques::{Job, Runner, Spec};
 
 #[derive(Args)]
 pub struct BenchArgs {
@@ -100,22 +100,16 @@ fn parse_res(s: &str) -> Result<(u32, u32)> {
     Ok((w, h))
 }
 
-/// The name `spec` is registered under (`yuksel-gather`, `procedural-texture`): its label up to
-/// the parameters.
-pub(crate) fn registry_name(spec: &Spec) -> &str {
-    spec.label.split(':').next().unwrap_or(&spec.label)
-}
-
 /// Every registered technique, as specs with default parameters.
 pub(crate) fn registered() -> Result<Vec<Spec>> {
-    REGISTRY.iter().map(|r| r.name.parse()).collect()
+    REGISTRY.iter().map(|r| Ok(r.name().parse()?)).collect()
 }
 
 /// The built-in scenes `spec` applies to: the pool (its water) for every technique, and the glass
 /// scene (its objects) for those that take glass generators.
 pub(crate) fn scenes_for(spec: &Spec) -> Result<Vec<Scene>> {
     let mut out = vec![Scene::builtin("pool")?];
-    if core_techniques::info(&spec.name).is_some_and(|t| t.input == Input::GlassOrWater) {
+    if spec.entry.input == Input::GlassOrWater {
         out.push(Scene::builtin("glass")?);
     }
     Ok(out)
@@ -282,7 +276,7 @@ pub(crate) fn time_technique(
     spec: &Spec,
     timing: &Timing,
 ) -> Result<Measurement> {
-    let mut t = technique::create(ctx, registry_name(spec), &spec.params)?;
+    let mut t = technique::create(ctx, spec.name(), &spec.params)?;
     let mut water = scene
         .water
         .as_ref()
@@ -335,7 +329,7 @@ fn time_frame(
     renderer.set_techniques(
         ctx,
         &[Some(TechniqueSpec {
-            name: registry_name(spec).to_string(),
+            name: spec.name().to_string(),
             params: spec.params.clone(),
         })],
     );
@@ -442,7 +436,7 @@ fn time_cpu(
     let mut walls = Vec::new();
     for _ in 0..timing.frames.min(5) {
         let started = Instant::now();
-        runner.run_scene_caustics(spec, scene, surface.as_deref(), 1, &|_, _| {})?;
+        runner.run(spec, &Job::new(scene, surface.as_deref(), 1), &|_, _| {})?;
         walls.push(started.elapsed().as_secs_f64() * 1e3);
     }
     walls.sort_by(f64::total_cmp);
@@ -453,7 +447,7 @@ fn time_cpu(
         height: scene.caustics.height,
         backend: "CPU",
         passes: vec![(
-            format!("{} (CPU twin)", spec.name),
+            format!("{} (CPU twin)", spec.name()),
             wall,
             walls[0],
             walls[walls.len() - 1],

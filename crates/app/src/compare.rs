@@ -14,6 +14,8 @@ use caustics_core::map::CausticsMap;
 use caustics_core::metrics::{Metrics, compare};
 
 use crate::progress;
+use caustics_core::techniques::{reference, water_scene};
+
 use crate::techniques::{Job, Runner, Spec};
 
 #[derive(Args)]
@@ -83,26 +85,30 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
     for case in &cases {
         let surface = case.water.surface_at(case.time)?;
         for (k, &res) in args.resolution.iter().enumerate() {
-            let job = Job {
-                water: &case.water,
-                floor: &case.floor,
-                surface: surface.as_ref(),
-                light: case.light,
-                width: res as usize,
-                height: res as usize,
-                cells_per_texel: args.cells_per_texel,
-            };
-            let truth = runner.run(&"reference".parse()?, &job)?.map;
+            let scene = water_scene(
+                &case.name,
+                &case.water,
+                &case.floor,
+                case.light,
+                (res, res),
+                case.time,
+            );
+            let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);
+            let truth = runner
+                .run(&reference(), &job, &|_, _| {})?
+                .map(reference().name())?;
             for spec in &specs {
                 let out = runner
-                    .run(spec, &job)
+                    .run(spec, &job, &|_, _| {})
                     .with_context(|| format!("{} on {}", spec.label, case.name))?;
-                let metrics = compare(&out.map, &truth);
+                let backend = out.backend;
+                let map = out.map(spec.name())?;
+                let metrics = compare(&map, &truth);
                 let wanted =
                     args.picture_cases.is_empty() || args.picture_cases.contains(&case.name);
                 let (picture, diff_range) = if wanted && (k == 0 || args.all_pictures) {
                     let name = format!("{}-{}-{}.png", case.name, file_safe(&spec.label), res);
-                    let range = write_triptych(&args.out.join(&name), &out.map, &truth)?;
+                    let range = write_triptych(&args.out.join(&name), &map, &truth)?;
                     (Some(name), range)
                 } else {
                     (None, 0.0)
@@ -111,7 +117,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                     case: case.name.clone(),
                     technique: spec.label.clone(),
                     resolution: res,
-                    backend: out.backend,
+                    backend,
                     metrics,
                     picture,
                     diff_range,
@@ -141,11 +147,8 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
 fn default_specs() -> Result<Vec<Spec>> {
     caustics_gpu::technique::REGISTRY
         .iter()
-        .filter(|r| {
-            caustics_core::techniques::info(r.params)
-                .is_some_and(|t| t.input != caustics_core::techniques::Input::EyeSpace)
-        })
-        .map(|r| r.name.parse())
+        .filter(|r| !r.describe.eye_space())
+        .map(|r| Ok(r.name().parse()?))
         .collect()
 }
 

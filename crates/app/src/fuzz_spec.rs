@@ -1,7 +1,7 @@
 //! The technique spec parser (`--technique name[:key=value,...]`, [`Spec`]'s `FromStr`) fed
 //! arbitrary text: mutated valid specs, with the parser's own punctuation and TOML's nesting
 //! spliced in. A case passes when parsing returns, `Ok` or `Err`, without a panic and quickly, and
-//! an accepted spec goes on through `over` and `gpu_name` as `caustics render` takes it.
+//! an accepted spec goes on through `over` as `caustics render` takes it.
 //!
 //! CI runs `CASES` cases from a fixed seed; a long run:
 //! `CAUSTICS_FUZZ_SECS=600 cargo test --release -p caustics --bin caustics fuzz_spec -- --nocapture`
@@ -17,18 +17,40 @@ const CASES: u64 = 5000;
 /// milliseconds; the slowest of 7.3 million cases on a loaded machine under `nice` took 1.05 s.
 const SLOW: Duration = Duration::from_secs(10);
 
-const SEEDS: [&str; 10] = [
-    "yuksel",
-    "yuksel-gather:n=15,m=20",
-    "procedural-texture:target_resolution=256,anisotropy=4",
-    "procedural:variant=\"screen\",follow_sun=true",
-    "cascaded:resolution=512,near=0.1,far=30.0",
-    "volumes:planes=5,texture=64,shadow=0",
-    "caustic-triangles:photon_image=64,layers=2",
-    "reference",
-    "yuksel:n=[1,2,3],m={a=1}",
-    "procedural-vertex:sun_diameter=0.5,light_map=\"map.png\"",
-];
+/// The seeds, from the registry: every entry bare, every entry with every parameter at a value
+/// its descriptor accepts, and each entry's first parameter given a table and an array.
+fn seeds() -> Vec<String> {
+    use caustics_core::techniques::REGISTRY;
+    let mut out = Vec::new();
+    for d in REGISTRY {
+        out.push(d.name.to_string());
+        let kv: Vec<String> = d
+            .params
+            .iter()
+            .filter_map(|p| {
+                let v = p.default.value().or_else(|| match p.kind {
+                    caustics_core::techniques::describe::Kind::Int { max, .. } => {
+                        Some(toml::Value::Integer(max))
+                    }
+                    caustics_core::techniques::describe::Kind::Path => {
+                        Some(toml::Value::String("map.png".into()))
+                    }
+                    _ => None,
+                })?;
+                Some(format!("{}={v}", p.key))
+            })
+            .collect();
+        if !kv.is_empty() {
+            out.push(format!("{}:{}", d.name, kv.join(",")));
+        }
+        if let Some(p) = d.params.first() {
+            out.push(format!("{}:{}=[1,2,3],{}={{a=1}}", d.name, p.key, p.key));
+        }
+    }
+    out
+}
+
+static SEEDS: std::sync::LazyLock<Vec<String>> = std::sync::LazyLock::new(seeds);
 
 /// Fragments the parser splits on or hands to TOML.
 const TOKENS: [&str; 20] = [
@@ -122,12 +144,13 @@ fn mutate(rng: &mut Rng, data: &mut Vec<u8>) {
 /// Parse `text` as `caustics render --technique` does, and use what it accepts.
 fn exercise(text: &str) {
     if let Ok(spec) = text.parse::<Spec>() {
-        let _ = spec.gpu_name();
-        let base: toml::Table = "yuksel = { n = 9 }\nprocedural = { variant = \"vertex\" }"
-            .parse()
-            .unwrap();
+        let _ = spec.own();
+        let mut base = toml::Table::new();
+        for d in caustics_core::techniques::REGISTRY {
+            base.insert(d.table.to_string(), toml::Value::Table(d.defaults()));
+        }
         let merged = spec.over(&base);
-        assert!(merged.params.contains_key(&merged.name), "{text:?}");
+        assert!(merged.params.contains_key(merged.entry.table), "{text:?}");
     }
 }
 

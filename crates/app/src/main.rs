@@ -17,7 +17,7 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 
 use caustics_core::scene::{BUILTIN_SCENES, Scene};
-use caustics_core::techniques::TECHNIQUES;
+use caustics_core::techniques::REGISTRY;
 
 #[derive(Parser)]
 #[command(
@@ -43,6 +43,9 @@ enum Command {
         /// (`yuksel-gather`, `procedural-vertex`, ...), one a line, for scripts.
         #[arg(long)]
         gpu_names: bool,
+        /// Print the README's table of techniques (Markdown), made from the registry.
+        #[arg(long, conflicts_with = "gpu_names")]
+        markdown: bool,
     },
     /// Every technique against the reference on generated surfaces: Markdown, CSV, pictures.
     Compare(compare::CompareArgs),
@@ -153,31 +156,45 @@ fn run(cli: Cli) -> Result<()> {
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
         Command::View(args) => view::run(args),
-        Command::Techniques { gpu_names: true } => {
+        Command::Techniques {
+            gpu_names: true, ..
+        } => {
             for r in caustics_gpu::technique::REGISTRY {
-                println!("{}", r.name);
+                println!("{}", r.name());
             }
             Ok(())
         }
-        Command::Techniques { gpu_names: false } => {
+        Command::Techniques { markdown: true, .. } => {
+            print!("{}", caustics_core::techniques::describe::markdown_table());
+            Ok(())
+        }
+        Command::Techniques { .. } => {
             println!(
-                "{:<18} {:<6} {:<20} description",
+                "{:<20} {:<6} {:<28} description",
                 "technique", "paper", "input -> output"
             );
-            for t in TECHNIQUES {
-                let status = match (t.implemented, t.floor_only) {
-                    (false, _) => " [not yet implemented]",
-                    (true, true) => " [floor only: no light on a pool's walls]",
-                    (true, false) => "",
+            for t in REGISTRY {
+                let status = match (caustics_gpu::technique::find(t.name), t.floor_only()) {
+                    (None, _) => " [CPU only]",
+                    (Some(_), true) => " [floor only: no light on a pool's walls]",
+                    (Some(_), false) => "",
                 };
                 println!(
-                    "{:<18} {:<6} {:<20} {}{}",
+                    "{:<20} {:<6} {:<28} {}{}",
                     t.name,
                     t.paper,
                     t.input.describe(),
                     t.summary,
                     status
                 );
+                for p in t.params {
+                    let unit = if p.unit.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" {}", p.unit)
+                    };
+                    println!("{:<20}   {} = {}{unit}: {}", "", p.key, p.default, p.doc);
+                }
             }
             Ok(())
         }

@@ -12,13 +12,14 @@ use clap::Args;
 
 use caustics_core::render::{Caustics, RenderOptions, render_with_walls};
 use caustics_core::scene::{Scene, WaterSource};
-use caustics_core::techniques;
+use caustics_core::techniques::describe::Receiver;
+use caustics_core::techniques::{self, Descriptor};
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
 
 use crate::progress;
-use crate::techniques::{Runner, SceneCaustics, Spec};
+use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -172,15 +173,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         Some(t) => t.parse::<Spec>()?.over(&scene.caustics.params),
         None => Spec::from_scene(&scene.caustics)?,
     };
-    let info = techniques::info(&spec.name).expect("parsed");
-    if !info.implemented {
-        bail!(
-            "technique `{}` (paper {}) is not implemented yet; `caustics techniques` lists what is",
-            info.name,
-            info.paper
-        );
-    }
-    techniques::check_light(&spec.name, &scene.light)?;
+    spec.entry.check_light(&scene.light)?;
     if let Some([w, h]) = args.resolution {
         check_size("--resolution", w, h)?;
         scene.caustics.width = w;
@@ -215,7 +208,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         .as_deref()
         .map(caustics_core::walls::WallMaps::raw_paths);
     if wall_paths.is_some() {
-        check_walls(&scene, &spec.name)?;
+        check_walls(&scene, spec.entry)?;
     }
     let inputs = inputs_of(&args.scene);
     for o in out
@@ -255,26 +248,33 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // adapter is named first; the technique and the final image share it.
     let ctx = if args.cpu { None } else { gpu_context(&args)? };
     let mut runner = Runner::new(ctx);
-    // Paper 4 ends in its own camera pass (§4.3): the technique's final image, lit through the
-    // light cube map of a point light or the floor map of the sun. With water, the water surface
-    // is its generator and its floor map lights the general final image.
-    if let (Some(out), None, None, "caustic-triangles", None) = (
-        &out,
-        &args.raw,
-        &args.raw_walls,
-        spec.name.as_str(),
-        &scene.water,
-    ) {
-        return caustic_triangles_image(&runner, &scene, &spec, out);
-    }
-    // Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the
-    // water where refraction puts them, the floor lit by its map. That view looks down through the
-    // surface; a camera under the water gets the general final image of the volumes' map.
-    let under = caustics_core::render::camera_under_water(&scene, None);
-    if let (Some(out), None, None, "volumes", false) =
-        (&out, &args.raw, &args.raw_walls, spec.name.as_str(), under)
+    // A technique that ends in its own final image (paper 4's camera pass, paper 3's refracted
+    // view) makes it where the scene is one it has it for.
+    if let (Some(out), None, None) = (&out, &args.raw, &args.raw_walls)
+        && let Some(make) = caustics_gpu::technique::find(spec.name()).and_then(|r| r.image)
     {
-        return volumes_image(&runner, &scene, &spec, out);
+        let started = Instant::now();
+        if let Some(image) = make(runner.gpu.as_ref(), &scene, &spec.params)? {
+            caustics_core::techniques::caustic_triangles::camera::write_png(
+                out,
+                image.width,
+                image.height,
+                &image.rgb,
+                scene.look.exposure,
+                scene.look.tone_map,
+            )?;
+            eprintln!(
+                "wrote {} ({} x {}, {} {}, {:.2} s on the {})",
+                out.display(),
+                image.width,
+                image.height,
+                spec.name(),
+                image.what,
+                started.elapsed().as_secs_f64(),
+                image.backend
+            );
+            return Ok(());
+        }
     }
 
     // The GPU frame: water, technique and final image on the GPU, read back once as the output.
@@ -282,9 +282,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(ctx) = runner.gpu.as_ref()
         && scene.water.is_some()
         && args.raw_walls.is_none()
-        && caustics_gpu::technique::REGISTRY
-            .iter()
-            .any(|r| r.name == spec.gpu_name())
+        && caustics_gpu::technique::find(spec.name()).is_some()
     {
         return render_frame(ctx, &scene, &spec, &args, out.as_deref());
     }
@@ -299,24 +297,22 @@ pub fn run(args: RenderArgs) -> Result<()> {
         None => None,
     };
     // A map when the scene has a caustic generator the technique handles: water, or glass objects
-    // (caustic-triangles, and the reference there: paper 4's photon tracer against the exact
-    // geometry, so that the glass scene's own technique draws its foci and shadows).
+    // (a technique that reads glass, and the reference there: paper 4's photon tracer against the
+    // exact geometry, so that the glass scene's own technique draws its foci and shadows).
     let glass = scene
         .objects
         .iter()
         .any(|o| matches!(o.material, caustics_core::scene::Material::Glass { .. }));
     let has_generator = scene.water.is_some()
-        || spec.name == "caustic-triangles"
-        || (spec.name == "reference" && glass);
+        || spec.entry.input == caustics_core::techniques::Input::GlassOrWater
+        || (spec.entry.reference && glass);
     let mut walls = None;
     let caustics = if has_generator {
         let started = Instant::now();
         let bar = progress::bar("caustics");
-        let outcome = runner.run_scene_caustics(
+        let outcome = runner.run(
             &spec,
-            &scene,
-            surface.as_deref(),
-            args.cells_per_texel,
+            &Job::new(&scene, surface.as_deref(), args.cells_per_texel),
             &progress::callback(&bar),
         )?;
         bar.finish_and_clear();
@@ -445,7 +441,7 @@ fn render_frame(
     renderer.set_techniques(
         ctx,
         &[Some(TechniqueSpec {
-            name: spec.gpu_name(),
+            name: spec.name().to_string(),
             params: spec.params.clone(),
         })],
     );
@@ -477,7 +473,7 @@ fn render_frame(
     );
     if let Some(raw) = &args.raw {
         let size = scene.water.as_ref().map_or(1.0, |w| w.size);
-        match SceneCaustics::read(ctx, output, size)? {
+        match crate::techniques::read_output(ctx, output, size)? {
             SceneCaustics::Floor(m) => m.write_raw(raw)?,
             SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
         }
@@ -583,32 +579,32 @@ fn render_on_gpu(
 
 /// `--raw-walls` asks for light on the pool's walls: refused before any work when the scene's walls
 /// are off or the technique maps the floor only.
-fn check_walls(scene: &Scene, technique: &str) -> Result<()> {
+fn check_walls(scene: &Scene, technique: &Descriptor) -> Result<()> {
     if !scene.floor.walls {
         bail!(
             "--raw-walls: the scene's walls are off: set `[floor] walls = true` in scene `{}`",
             scene.name
         );
     }
-    let info = techniques::info(technique);
     let mapped = || {
-        techniques::TECHNIQUES
+        techniques::REGISTRY
             .iter()
-            .filter(|i| !i.floor_only && i.input != techniques::Input::EyeSpace)
-            .map(|i| i.name)
+            .filter(|d| d.receivers.contains(&Receiver::Walls))
+            .map(|d| d.name)
             .collect::<Vec<_>>()
             .join(", ")
     };
-    if info.is_some_and(|i| i.floor_only) {
+    let name = technique.name;
+    if technique.eye_space() {
         bail!(
-            "--raw-walls: {technique} maps the floor only; --raw-walls needs one of {}",
+            "--raw-walls: {name} lights the walls in the camera's image, not in wall maps; \
+             --raw-walls needs one of {}",
             mapped()
         );
     }
-    if info.is_some_and(|i| i.input == techniques::Input::EyeSpace) {
+    if technique.floor_only() {
         bail!(
-            "--raw-walls: {technique} lights the walls in the camera's image, not in wall maps; \
-             --raw-walls needs one of {}",
+            "--raw-walls: {name} maps the floor only; --raw-walls needs one of {}",
             mapped()
         );
     }
@@ -620,104 +616,5 @@ fn check_size(flag: &str, w: u32, h: u32) -> Result<()> {
     if w == 0 || h == 0 || w > max || h > max {
         bail!("{flag} {w}x{h}: each side must be between 1 and {max}");
     }
-    Ok(())
-}
-
-/// `caustics render` with technique caustic-triangles: its camera pass (paper 4, §4.3) as the final
-/// image, on the GPU where one is, else on its CPU twin.
-/// Technique `volumes` to its refracted view (paper 3, §3.3) at the camera's size, on the GPU or its
-/// CPU twin. The floor is seen with the mean albedo of its pattern (the view pass takes one albedo).
-fn volumes_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Result<()> {
-    use caustics_core::techniques::caustic_triangles::camera::write_png;
-    use caustics_core::techniques::volumes::{self, view};
-    let params = volumes::VolumesParams::from_table(&spec.params)?;
-    let input = volumes::VolumesInput::from_scene(scene)?;
-    let setup = volumes::VolumesSetup::new(&params, &input)?;
-    let water = scene
-        .water
-        .as_ref()
-        .context("checked by VolumesInput::from_scene")?;
-    let surface = water.surface_at(scene.time)?;
-    let n = (input.size / setup.lattice.cell).round() as usize;
-    let heights = caustics_core::water::sample_grid(surface.as_ref(), n, n, water.size);
-    let samples = 64;
-    let floor_albedo = (0..samples * samples)
-        .map(|k| {
-            let p = (glam::DVec2::new((k % samples) as f64, (k / samples) as f64) + 0.5)
-                * (scene.size / samples as f64);
-            scene.floor.albedo.at(p, scene.size)
-        })
-        .sum::<glam::DVec3>()
-        / (samples * samples) as f64;
-    let camera = view::ViewCamera::new(&scene.camera);
-    let started = Instant::now();
-    let (rgb, on) = match runner.gpu.as_ref() {
-        Some(ctx) => {
-            let v = caustics_gpu::volumes::Volumes::new(ctx)?;
-            let options = caustics_gpu::volumes::ViewOptions {
-                camera,
-                floor_albedo,
-            };
-            let o = v.run(ctx, &setup, &input, &heights, water.wrap, Some(&options))?;
-            (o.view, "GPU")
-        }
-        None => {
-            let o = volumes::caustics(&setup, &input, &heights, water.wrap);
-            let rgb = view::view_pass_with_walls(
-                &setup,
-                &camera,
-                &heights,
-                water.wrap,
-                &o.objects,
-                &o.floor,
-                o.walls.as_ref(),
-                floor_albedo,
-            );
-            (rgb, "CPU")
-        }
-    };
-    write_png(
-        out,
-        scene.camera.width,
-        scene.camera.height,
-        &rgb,
-        scene.look.exposure,
-        scene.look.tone_map,
-    )?;
-    eprintln!(
-        "wrote {} ({} x {}, volumes through its refracted view, {:.2} s on the {on})",
-        out.display(),
-        scene.camera.width,
-        scene.camera.height,
-        started.elapsed().as_secs_f64()
-    );
-    Ok(())
-}
-
-fn caustic_triangles_image(runner: &Runner, scene: &Scene, spec: &Spec, out: &Path) -> Result<()> {
-    use caustics_core::techniques::caustic_triangles::{CausticTrianglesParams, camera};
-    let params = CausticTrianglesParams::from_table(&spec.params)?;
-    let started = Instant::now();
-    let (image, on) = caustics_gpu::caustic_triangles::camera::scene_image(
-        runner.gpu.as_ref(),
-        scene,
-        &params,
-        &camera::CameraParams::from_scene(scene),
-    )?;
-    camera::write_png(
-        out,
-        image.width,
-        image.height,
-        &image.rgb,
-        scene.look.exposure,
-        scene.look.tone_map,
-    )?;
-    eprintln!(
-        "wrote {} ({} x {}, caustic-triangles through its camera pass, {:.2} s on the {on})",
-        out.display(),
-        image.width,
-        image.height,
-        started.elapsed().as_secs_f64()
-    );
     Ok(())
 }

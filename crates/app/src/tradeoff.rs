@@ -25,7 +25,9 @@ use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::Scene;
 use caustics_core::techniques::cascaded::{CascadedParams, CascadedSetup, eye_pass};
 
-use crate::bench::{Timing, registry_name, time_technique};
+use caustics_core::techniques::{reference as reference_spec, water_scene};
+
+use crate::bench::{Timing, time_technique};
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
 /// One setting of one technique.
@@ -46,67 +48,37 @@ pub struct Point {
     pub pareto: bool,
 }
 
-/// The sweep: (technique as registered, the settings of its main knob).
-fn sweep(small: bool) -> Vec<(&'static str, Vec<&'static str>)> {
-    if small {
-        return vec![
-            ("yuksel", vec!["n=3,m=2", "n=7,m=6"]),
-            ("yuksel-gather", vec!["n=7,m=6"]),
-            ("procedural-screen", vec![""]),
-            ("procedural-vertex", vec!["mesh_resolution=32"]),
-            ("procedural-texture", vec!["target_resolution=64"]),
-            ("volumes", vec!["planes=5"]),
-            (
-                "caustic-triangles",
-                vec!["photon_image=32", "photon_image=64"],
-            ),
-            ("cascaded", vec!["resolution=64", "resolution=128"]),
-        ];
-    }
-    vec![
-        (
-            "yuksel",
-            vec!["n=3,m=2", "n=7,m=6", "n=15,m=14", "n=31,m=30"],
-        ),
-        (
-            "yuksel-gather",
-            vec!["n=3,m=2", "n=7,m=6", "n=15,m=14", "n=31,m=30"],
-        ),
-        ("procedural-screen", vec![""]),
-        (
-            "procedural-vertex",
-            vec![
-                "mesh_resolution=64",
-                "mesh_resolution=128",
-                "mesh_resolution=256",
-            ],
-        ),
-        (
-            "procedural-texture",
-            vec![
-                "target_resolution=128",
-                "target_resolution=256",
-                "target_resolution=512",
-            ],
-        ),
-        (
-            "volumes",
-            vec!["planes=5", "planes=10", "planes=25", "planes=50"],
-        ),
-        (
-            "caustic-triangles",
-            vec![
-                "photon_image=64",
-                "photon_image=128",
-                "photon_image=256",
-                "photon_image=512",
-            ],
-        ),
-        (
-            "cascaded",
-            vec!["resolution=256", "resolution=512", "resolution=1024"],
-        ),
-    ]
+/// The sweep: every registered GPU technique but the reference, each over the settings of the
+/// parameter its descriptor flags for sweeping (its `sweep` values; the first two for the small
+/// run), or once at its defaults where none is flagged. An entry whose variants are entries of
+/// their own (`procedural`) is swept through them.
+fn sweep(small: bool) -> Vec<(&'static str, Vec<String>)> {
+    use caustics_core::techniques::REGISTRY as DESCRIBED;
+    caustics_gpu::technique::REGISTRY
+        .iter()
+        .map(|r| r.describe)
+        .filter(|d| !d.reference)
+        .filter(|d| {
+            !(d.fixed.is_empty()
+                && DESCRIBED
+                    .iter()
+                    .any(|o| o.table == d.table && !o.fixed.is_empty()))
+        })
+        .map(|d| {
+            let settings = match d.params.iter().find(|p| !p.sweep.is_empty()) {
+                Some(p) => {
+                    let n = if small { 2 } else { p.sweep.len() };
+                    p.sweep
+                        .iter()
+                        .take(n)
+                        .map(|v| format!("{}={v}", p.key))
+                        .collect()
+                }
+                None => vec![String::new()],
+            };
+            (d.name, settings)
+        })
+        .collect()
 }
 
 struct Sizes {
@@ -160,8 +132,13 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, out: &Path) -> Result<()> {
     let mut truths = Vec::new();
     for case in cases {
         let surface = case.water.surface_at(case.time)?;
-        let job = job(case, surface.as_ref(), &s);
-        truths.push(runner.run(&"reference".parse()?, &job)?.map);
+        let scene = case_scene(case, &s);
+        let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
+        truths.push(
+            runner
+                .run(&reference_spec(), &job, &|_, _| {})?
+                .map(reference_spec().name())?,
+        );
     }
     let pool = pool_scene(&s);
     let mut points = Vec::new();
@@ -173,7 +150,7 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, out: &Path) -> Result<()> {
                 format!("{name}:{setting}")
             };
             let spec: Spec = text.parse()?;
-            let p = if spec.name == "cascaded" {
+            let p = if spec.entry.eye_space() {
                 cascaded_point(&mut runner, &spec, &pool, &s)
             } else {
                 floor_point(&mut runner, &spec, cases, &truths, &s)
@@ -205,20 +182,16 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, out: &Path) -> Result<()> {
     Ok(())
 }
 
-fn job<'a>(
-    case: &'a caustics_core::cases::Case,
-    surface: &'a dyn caustics_core::water::Surface,
-    s: &Sizes,
-) -> Job<'a> {
-    Job {
-        water: &case.water,
-        floor: &case.floor,
-        surface,
-        light: case.light,
-        width: s.map as usize,
-        height: s.map as usize,
-        cells_per_texel: s.cells_per_texel,
-    }
+/// A case as a scene of water alone at the sweep's map size.
+fn case_scene(case: &caustics_core::cases::Case, s: &Sizes) -> Scene {
+    water_scene(
+        &case.name,
+        &case.water,
+        &case.floor,
+        case.light,
+        (s.map, s.map),
+        case.time,
+    )
 }
 
 /// The pool with the eye-space sizes of the sweep and no parameters of its own.
@@ -243,21 +216,14 @@ fn floor_point(
     let mut error = 0.0;
     for (case, truth) in cases.iter().zip(truths) {
         let surface = case.water.surface_at(case.time)?;
-        let out = runner.run(spec, &job(case, surface.as_ref(), s))?;
-        error += compare(&out.map, truth).relative_l1;
+        let scene = case_scene(case, s);
+        let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
+        let map = runner.run(spec, &job, &|_, _| {})?.map(spec.name())?;
+        error += compare(&map, truth).relative_l1;
     }
     error /= cases.len() as f64;
-    // The first case as a scene: its water, floor and sun in the pool's frame.
-    let case = &cases[0];
-    let mut scene = Scene::builtin("pool")?;
-    scene.water = Some(case.water.clone());
-    scene.size = case.water.size;
-    scene.floor = case.floor.clone();
-    scene.light.direction = case.light;
-    scene.time = case.time;
-    scene.caustics.width = s.map;
-    scene.caustics.height = s.map;
-    scene.caustics.params = toml::Table::new();
+    // The first case's scene: its water, floor and sun.
+    let scene = case_scene(&cases[0], s);
     let ctx = runner.gpu.as_ref().expect("a GPU runner");
     let m = time_technique(ctx, &scene, spec, &s.timing)?;
     Ok(point(
@@ -280,7 +246,7 @@ fn cascaded_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) -> 
         ..Default::default()
     };
     let map = reference(&input, &options, &|_, _| {})?;
-    let out = runner.run_scene_caustics(spec, pool, Some(surface.as_ref()), 1, &|_, _| {})?;
+    let out = runner.run(spec, &Job::new(pool, Some(surface.as_ref()), 1), &|_, _| {})?;
     let SceneCaustics::EyeSpace(image) = out.caustics else {
         bail!("cascaded made a floor map");
     };
@@ -338,7 +304,7 @@ pub fn cost(gpu_ms: f64, wall_ms: f64) -> f64 {
 }
 
 fn point(spec: &Spec, size: String, error: f64, gpu_ms: f64, wall_ms: f64) -> Point {
-    let name = registry_name(spec).to_string();
+    let name = spec.name().to_string();
     let setting = spec
         .label
         .split_once(':')

@@ -37,7 +37,7 @@ fn gpu_bench_small_covers_every_technique_and_the_frame() {
         .map(|l| l.split('"').nth(1).unwrap_or("").to_string())
         .collect();
     for r in REGISTRY {
-        for row in [r.name.to_string(), format!("frame: {}", r.name)] {
+        for row in [r.name().to_string(), format!("frame: {}", r.name())] {
             assert!(labels.contains(&row), "no row `{row}` in:\n{csv}");
         }
     }

@@ -401,7 +401,7 @@ fn scene_check_and_techniques() {
         .collect();
     let registry: Vec<&str> = caustics_gpu::technique::REGISTRY
         .iter()
-        .map(|r| r.name)
+        .map(|r| r.name())
         .collect();
     assert_eq!(names, registry);
     assert!(names.contains(&"yuksel-gather".to_string()), "{names:?}");

@@ -48,6 +48,17 @@ impl CausticsMap {
         }
     }
 
+    /// This map plus `other` texel by texel (the caustics of several generators, each traced on
+    /// its own, on one floor).
+    pub fn added(mut self, other: &CausticsMap) -> CausticsMap {
+        for (a, b) in self.texels.iter_mut().zip(&other.texels) {
+            for c in 0..3 {
+                a[c] += b[c];
+            }
+        }
+        self
+    }
+
     /// Flux on the floor square (channel mean): relative irradiance times area, the unit of
     /// [`crate::walls::WallMap::flux`], so floor and walls add up.
     pub fn flux(&self) -> f64 {

@@ -50,6 +50,102 @@ use crate::scene::{Floor, Scene, Water};
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
+use crate::techniques::describe::{Descriptor, Receiver};
+use crate::techniques::{Input, Job, Made};
+
+/// The ground truth as registered: this module's flux tracing for water over the floor and
+/// walls; with diffuse objects under the water, the photon reference with mesh receivers
+/// (`volumes::reference`), so their shadows are in it; for glass objects without water, paper 4's
+/// photon tracer against the exact geometry.
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "reference",
+    table: "reference",
+    paper: "-",
+    summary: "physically based forward flux tracing: exact Snell + Fresnel at a fine triangulation of the surface, exact area deposit (CPU, the ground truth)",
+    docs: "docs/reference.md",
+    input: Input::Water,
+    receivers: &[Receiver::Floor, Receiver::Walls],
+    params: &[],
+    fixed: &[],
+    point_light: false,
+    buffers: &[],
+    reference: true,
+    validate: |_| Ok(()),
+    cpu: run_cpu,
+};
+
+/// Photons per texel side of the mesh-receiver reference, per cell per texel of the floor
+/// reference: 4 (8² photons per texel at the viewer's 2 cells), stratified, so its noise is a few
+/// per cent per texel where the floor reference's triangulation is exact.
+const MESH_REFERENCE_PHOTONS: u32 = 4;
+
+/// Photons per side of the light rectangle of one glass generator, per cell per texel, in the
+/// glass reference: 128² (2 cells per texel, the viewer's default, gives 256² per glass object,
+/// about two seconds for the `glass` scene on two cores).
+const GLASS_REFERENCE_PHOTONS: u32 = 128;
+
+fn run_cpu(
+    job: &Job,
+    _table: &toml::Table,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Made> {
+    use crate::techniques::{caustic_triangles as ct, volumes};
+    let scene = job.scene;
+    if scene.water.is_none() {
+        // A scene of glass objects: paper 4's photon tracer against the exact geometry, one
+        // generator at a time as the technique runs.
+        let generators = ct::glass_generators(scene)?;
+        let options = ct::reference::ReferenceOptions {
+            photons: GLASS_REFERENCE_PHOTONS * job.cells_per_texel.clamp(1, 16),
+            ..Default::default()
+        };
+        let mut total: Option<CausticsMap> = None;
+        for k in 0..generators {
+            let gs = ct::GlassScene::from_scene(scene, k)?;
+            let map = ct::reference::reference(&gs, &options).map;
+            total = Some(match total {
+                None => map,
+                Some(t) => t.added(&map),
+            });
+            progress(k + 1, generators);
+        }
+        return Ok(Made::floor(total.expect("one glass object at least"), None));
+    }
+    job.with_surface(DESCRIPTOR.name, |water, surface| {
+        if !scene.objects.is_empty() {
+            let input = volumes::VolumesInput::from_scene(scene)?;
+            let setup = volumes::VolumesSetup::new(&volumes::VolumesParams::default(), &input)?;
+            let options = volumes::reference::MeshReferenceOptions {
+                walls: scene.floor.walls,
+                object_maps: false,
+                ..volumes::reference::MeshReferenceOptions::per_texel(
+                    &setup,
+                    (MESH_REFERENCE_PHOTONS * job.cells_per_texel.clamp(1, 8)) as f64,
+                )
+            };
+            let r = volumes::reference::mesh_reference_with_progress(
+                &setup, &input, surface, &options, progress,
+            );
+            return Ok(Made::floor(r.floor, r.walls));
+        }
+        let (width, height) = job.size();
+        let input = ReferenceInput {
+            surface,
+            water,
+            floor: &scene.floor,
+            light: job.light(),
+            width,
+            height,
+        };
+        let options = ReferenceOptions {
+            cells_per_texel: job.cells_per_texel,
+            ..Default::default()
+        };
+        let out = reference_with_walls(&input, &options, progress)?;
+        Ok(Made::floor(out.floor, out.walls))
+    })
+}
+
 #[derive(Clone, Debug)]
 pub struct ReferenceOptions {
     /// Triangulation cells per map texel along each axis.

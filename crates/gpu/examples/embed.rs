@@ -278,8 +278,8 @@ fn parse_spec(spec: &str) -> Result<(String, toml::Table), Box<dyn std::error::E
     let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
     let key = REGISTRY
         .iter()
-        .find(|r| r.name == name)
-        .map_or(name, |r| r.params);
+        .find(|r| r.name() == name)
+        .map_or(name, |r| r.describe.table);
     let mut table = toml::Table::new();
     for kv in rest.split(',').filter(|s| !s.is_empty()) {
         let (k, v) = kv

@@ -5,10 +5,12 @@
 //! simulations' as much as an application's own), and the caustics go out as a texture the caller
 //! samples ([`Output`]). Nothing is read back on the way.
 //!
-//! Every technique registers itself once, in [`REGISTRY`]; the application finds it there by name
-//! (`caustics techniques` lists them) and never matches names itself.
+//! Every technique registers itself once, in [`REGISTRY`], pointing at its description in
+//! `caustics_core::techniques::REGISTRY`; the application finds it there by name (`caustics
+//! techniques` lists them) and never matches names itself.
 
 use caustics_core::scene::Scene;
+use caustics_core::techniques::{Descriptor, Job, Made};
 use caustics_core::walls::{Wall, WallMaps};
 
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -159,63 +161,77 @@ pub trait Technique {
 /// (`{ yuksel = { n = 15 } }`; a missing table means the defaults).
 pub type Create = fn(&GpuContext, &toml::Table) -> Result<Box<dyn Technique>, GpuError>;
 
-/// One entry of the registry.
-pub struct Registered {
-    /// As the command line spells it: a variant's name is its own entry.
-    pub name: &'static str,
-    /// The key of its parameter table (`yuksel` for `yuksel-gather`).
-    pub params: &'static str,
-    pub create: Create,
+/// A technique run once on a [`Job`] and read back (the tools' path: `caustics render --raw`,
+/// `compare`, the viewer's CPU-image mode), its pipelines kept between runs: the GPU twin of the
+/// descriptor's [`CpuRun`](caustics_core::techniques::describe::CpuRun).
+pub trait RunOnce {
+    fn run(
+        &mut self,
+        ctx: &GpuContext,
+        job: &Job,
+        params: &toml::Table,
+        timer: Option<&mut GpuTimer>,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError>;
 }
 
-/// Every GPU technique, in one place.
+/// Builds a technique's [`RunOnce`] (its pipelines) for the device.
+pub type CreateOnce = fn(&GpuContext) -> Result<Box<dyn RunOnce>, GpuError>;
+
+/// A technique's own final image (paper 4's camera pass, §4.3; paper 3's refracted view, §3.3),
+/// linear RGB at the scene camera's size.
+pub struct OwnImage {
+    pub width: u32,
+    pub height: u32,
+    pub rgb: Vec<[f32; 3]>,
+    /// "GPU" or "CPU".
+    pub backend: &'static str,
+    /// What the image is, for the log ("through its camera pass").
+    pub what: &'static str,
+}
+
+/// Makes a technique's own final image of a scene on the GPU (or its CPU twin without one), with
+/// the parameter tables keyed by technique; `None` where the scene is not one it has its own image
+/// for (the general final image then lights the scene with its map).
+pub type MakeOwnImage =
+    fn(Option<&GpuContext>, &Scene, &toml::Table) -> Result<Option<OwnImage>, GpuError>;
+
+/// One entry of the registry: the technique's description (core's, the one every front end
+/// reads) and its two GPU forms.
+pub struct Registered {
+    pub describe: &'static Descriptor,
+    /// The GPU-resident frame's form ([`Technique`]).
+    pub create: Create,
+    /// The run-once form.
+    pub once: CreateOnce,
+    /// Its own final image, where the paper ends in one.
+    pub image: Option<MakeOwnImage>,
+}
+
+impl Registered {
+    /// As the command line spells it.
+    pub fn name(&self) -> &'static str {
+        self.describe.name
+    }
+}
+
+/// Every GPU technique, in one place: one line each.
 pub const REGISTRY: &[Registered] = &[
-    Registered {
-        name: "yuksel",
-        params: "yuksel",
-        create: crate::yuksel::technique::create_render_targets,
-    },
-    Registered {
-        name: "yuksel-gather",
-        params: "yuksel",
-        create: crate::yuksel::technique::create_gather,
-    },
-    Registered {
-        name: "procedural",
-        params: "procedural",
-        create: crate::procedural::technique::create,
-    },
-    Registered {
-        name: "procedural-vertex",
-        params: "procedural",
-        create: crate::procedural::technique::create_vertex,
-    },
-    Registered {
-        name: "procedural-screen",
-        params: "procedural",
-        create: crate::procedural::technique::create_screen,
-    },
-    Registered {
-        name: "procedural-texture",
-        params: "procedural",
-        create: crate::procedural::technique::create_texture,
-    },
-    Registered {
-        name: "volumes",
-        params: "volumes",
-        create: crate::volumes::technique::create,
-    },
-    Registered {
-        name: "caustic-triangles",
-        params: "caustic-triangles",
-        create: crate::caustic_triangles::technique::create,
-    },
-    Registered {
-        name: "cascaded",
-        params: "cascaded",
-        create: crate::cascaded::technique::create,
-    },
+    crate::yuksel::technique::REGISTERED,
+    crate::yuksel::technique::GATHER,
+    crate::procedural::technique::REGISTERED,
+    crate::procedural::technique::VERTEX,
+    crate::procedural::technique::SCREEN,
+    crate::procedural::technique::TEXTURE,
+    crate::volumes::technique::REGISTERED,
+    crate::caustic_triangles::technique::REGISTERED,
+    crate::cascaded::technique::REGISTERED,
 ];
+
+/// The registry entry of `name`, if it has a GPU implementation.
+pub fn find(name: &str) -> Option<&'static Registered> {
+    REGISTRY.iter().find(|r| r.name() == name)
+}
 
 /// The registered technique `name` with the parameter tables `params` (keyed by technique, as in a
 /// scene file's `[caustics]`), its pipelines built for `ctx`.
@@ -224,12 +240,12 @@ pub fn create(
     name: &str,
     params: &toml::Table,
 ) -> Result<Box<dyn Technique>, GpuError> {
-    let Some(entry) = REGISTRY.iter().find(|r| r.name == name) else {
+    let Some(entry) = find(name) else {
         return Err(GpuError::BadOption(format!(
             "no GPU technique `{name}` (registered: {})",
             REGISTRY
                 .iter()
-                .map(|r| r.name)
+                .map(|r| r.name())
                 .collect::<Vec<_>>()
                 .join(", ")
         )));

@@ -139,20 +139,20 @@ fn every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit() {
     let Some(ctx) = small_device() else { return };
     assert_eq!(ctx.limits().max_texture_dimension_2d, MAX_2D);
     for r in REGISTRY {
-        let home = scene_for(r.name);
-        configure(&ctx, r.name, &scene(home, 64), "")
-            .unwrap_or_else(|e| panic!("{} at 64²: {e}", r.name));
+        let home = scene_for(r.name());
+        configure(&ctx, r.name(), &scene(home, 64), "")
+            .unwrap_or_else(|e| panic!("{} at 64²: {e}", r.name()));
         // A map (or, for the eye-space technique, a screen image) one texel past the limit.
-        let result = configure(&ctx, r.name, &scene(home, MAX_2D + 1), "");
-        let names = if r.name == "cascaded" {
+        let result = configure(&ctx, r.name(), &scene(home, MAX_2D + 1), "");
+        let names = if r.name() == "cascaded" {
             "screen"
         } else {
             "map"
         };
-        assert_too_large(result, r.name, names);
+        assert_too_large(result, r.name(), names);
         // Nothing reached wgpu's validation: the refusal came first.
         ctx.check()
-            .unwrap_or_else(|e| panic!("{}: wgpu saw it: {e}", r.name));
+            .unwrap_or_else(|e| panic!("{}: wgpu saw it: {e}", r.name()));
     }
 }
 

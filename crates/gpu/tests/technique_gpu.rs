@@ -39,9 +39,9 @@ fn read_floor(ctx: &GpuContext, out: Output) -> Vec<[f32; 4]> {
 fn the_registry_names_are_unique_and_unknown_names_are_refused() {
     for (k, r) in REGISTRY.iter().enumerate() {
         assert!(
-            REGISTRY[..k].iter().all(|o| o.name != r.name),
+            REGISTRY[..k].iter().all(|o| o.name() != r.name()),
             "{} twice",
-            r.name
+            r.name()
         );
     }
     let ctx = test_gpu();

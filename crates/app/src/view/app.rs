@@ -576,7 +576,7 @@ impl Viewer {
                     let name = self
                         .renderer
                         .gpu_technique_name(k)
-                        .unwrap_or(&self.model.slots[k].choice.name);
+                        .unwrap_or(self.model.slots[k].choice.name());
                     println!(
                         "traffic {name}: created {}, uploaded {} bytes, readbacks {} per frame (frames {} to {})",
                         per_frame(d.created(), n),
@@ -623,7 +623,9 @@ impl Viewer {
                             let max = g.fold(0.0, f64::max);
                             println!(
                                 "map {}: {} x {}, mean {mean:.4}, max {max:.3}",
-                                slot.choice.name, m.width, m.height
+                                slot.choice.name(),
+                                m.width,
+                                m.height
                             );
                         }
                     }

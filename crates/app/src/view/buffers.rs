@@ -24,7 +24,7 @@ use caustics_core::walls::{Wall, WallMaps};
 use caustics_core::water::{Surface, sample_grid};
 
 use super::frame::TechniqueChoice;
-use crate::techniques::{SceneCaustics, cascaded_heights, heights_for};
+use caustics_core::techniques::{SceneCaustics, heights_for};
 
 /// A buffer the view can show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -129,30 +129,32 @@ impl Buffer {
         if water {
             v.push(Buffer::Heights);
         }
-        match choice.base() {
-            "yuksel" => v.extend([
-                Buffer::YukselOffset,
-                Buffer::YukselFlux,
-                Buffer::YukselChannel(0),
-            ]),
-            "caustic-triangles" => {
-                v.extend([
-                    Buffer::PhotonHits,
-                    Buffer::PhotonPower,
-                    Buffer::VertexIrradiance,
-                ]);
-                // The water surface is traced as a height field, the glass through its map.
-                if !water {
-                    v.push(Buffer::DistanceLayer(0));
+        // Every buffer the technique's descriptor lists, where the scene has what it shows: the
+        // distance map of glass (the water is traced as a height field), a point light's cube,
+        // objects' maps.
+        let all = [
+            Buffer::YukselOffset,
+            Buffer::YukselFlux,
+            Buffer::YukselChannel(0),
+            Buffer::PhotonHits,
+            Buffer::PhotonPower,
+            Buffer::VertexIrradiance,
+            Buffer::DistanceLayer(0),
+            Buffer::LightCube,
+            Buffer::ObjectCaustics(0),
+            Buffer::CascadeMap(0),
+        ];
+        v.extend(all.into_iter().filter(|b| {
+            let key = b.key();
+            let name = key.split(':').next().unwrap_or(&key);
+            choice.entry.buffers.contains(&name)
+                && match b {
+                    Buffer::DistanceLayer(_) => !water,
+                    Buffer::LightCube => has.point_light,
+                    Buffer::ObjectCaustics(_) => has.objects,
+                    _ => true,
                 }
-                if has.point_light {
-                    v.push(Buffer::LightCube);
-                }
-            }
-            "volumes" if has.objects => v.push(Buffer::ObjectCaustics(0)),
-            "cascaded" => v.push(Buffer::CascadeMap(0)),
-            _ => {}
-        }
+        }));
         v
     }
 }
@@ -641,10 +643,8 @@ fn cascade_picture(k: usize, input: &BufferInput) -> anyhow::Result<Picture> {
         );
     }
     let spec = input.choice.spec()?;
-    let params = cascaded::CascadedParams::from_table(&spec.params)?;
-    let setup = cascaded::CascadedSetup::from_scene(&scene, &params)?;
-    let water = scene.water.as_ref().expect("set above");
-    let grid = cascaded_heights(water, surface);
+    let job = caustics_core::techniques::Job::new(&scene, Some(surface), 1);
+    let (setup, grid) = cascaded::job_setup(&job, &spec.params)?;
     let frame = cascaded::caustics(&setup, &grid, scene.floor.terrain.as_ref());
     let map = frame.cascade_map(&setup, k);
     Ok(rgb_picture(

@@ -19,12 +19,7 @@ use glam::DVec3;
 use caustics_core::map::CausticsMap;
 use caustics_core::render::{Caustics, Image, RenderOptions, render_with_walls};
 use caustics_core::scene::{Material, Scene};
-use caustics_core::techniques::cascaded::CascadedParams;
-use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
-use caustics_core::techniques::procedural::ProceduralCausticsParams;
-use caustics_core::techniques::volumes::VolumesParams;
-use caustics_core::techniques::yuksel::YukselParams;
-use caustics_core::techniques::{self, Input, TECHNIQUES};
+use caustics_core::techniques::{self, Descriptor, Input};
 use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
@@ -32,33 +27,26 @@ use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 use super::camera::OrbitCamera;
 use super::water::{SurfaceKey, WaterState};
-use crate::techniques::{Job, Runner, SceneCaustics, Spec, cascaded_heights};
+use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
-/// A technique with its parameters as the panel edits them: a name (`yuksel`, `yuksel-gather`,
-/// ...) and the technique's own table (`n`, `m`, ...), turned into a [`Spec`] when run.
-#[derive(Clone, Debug, PartialEq)]
+/// A technique with its parameters as the panel edits them: a registered entry and its own
+/// table (`n`, `m`, ...), turned into a [`Spec`] when run.
+#[derive(Clone, Debug)]
 pub struct TechniqueChoice {
-    pub name: String,
+    pub entry: &'static Descriptor,
+    /// Its table, its defaults filled in (a parameter whose default is chosen by the technique
+    /// is absent until set).
     pub params: toml::Table,
     /// The reference's triangulation cells per map texel along each axis (its quality knob, a
     /// `Job` field rather than a technique parameter).
     pub cells_per_texel: u32,
 }
 
-/// The parameters a technique starts with in the panel: its defaults where the core has them, so
-/// every knob shows (a technique without a parameter table shows none).
-fn default_params(base: &str) -> toml::Table {
-    match base {
-        "yuksel" => toml::Table::try_from(YukselParams::default()).unwrap_or_default(),
-        "caustic-triangles" => {
-            toml::Table::try_from(CausticTrianglesParams::default()).unwrap_or_default()
-        }
-        "volumes" => toml::Table::try_from(VolumesParams::default()).unwrap_or_default(),
-        "cascaded" => toml::Table::try_from(CascadedParams::default()).unwrap_or_default(),
-        "procedural" => {
-            toml::Table::try_from(ProceduralCausticsParams::default()).unwrap_or_default()
-        }
-        _ => toml::Table::new(),
+impl PartialEq for TechniqueChoice {
+    fn eq(&self, other: &Self) -> bool {
+        self.entry.name == other.entry.name
+            && self.params == other.params
+            && self.cells_per_texel == other.cells_per_texel
     }
 }
 
@@ -66,51 +54,47 @@ impl TechniqueChoice {
     /// From the CLI's spelling, `name` or `name:key=value,...`, with the defaults filled in.
     pub fn parse(s: &str, cells_per_texel: u32) -> Result<Self> {
         let spec: Spec = s.parse()?;
-        let name = if spec.gather {
-            format!("{}-gather", spec.name)
-        } else {
-            spec.name.clone()
-        };
-        let mut params = default_params(&spec.name);
-        if let Some(toml::Value::Table(given)) = spec.params.get(&spec.name) {
-            for (k, v) in given {
-                params.insert(k.clone(), v.clone());
-            }
-        }
+        let mut params = spec.entry.defaults();
+        params.extend(spec.own());
         Ok(TechniqueChoice {
-            name,
+            entry: spec.entry,
             params,
             cells_per_texel,
         })
     }
 
-    /// The technique's name without a variant suffix: the key of its parameter table.
-    pub fn base(&self) -> &str {
-        self.name.strip_suffix("-gather").unwrap_or(&self.name)
+    /// As registered (`yuksel-gather`).
+    pub fn name(&self) -> &'static str {
+        self.entry.name
+    }
+
+    /// The key of its parameter table, which its variants share.
+    pub fn base(&self) -> &'static str {
+        self.entry.table
     }
 
     /// `name:key=value,...`, as `--technique` takes it.
     pub fn label(&self) -> String {
         if self.params.is_empty() {
-            return self.name.clone();
+            return self.entry.name.to_string();
         }
         let kv: Vec<String> = self
             .params
             .iter()
             .map(|(k, v)| format!("{k}={v}"))
             .collect();
-        format!("{}:{}", self.name, kv.join(","))
+        format!("{}:{}", self.entry.name, kv.join(","))
     }
 
     pub fn spec(&self) -> Result<Spec> {
-        self.label().parse()
+        Ok(self.label().parse()?)
     }
 }
 
-/// The technique names the panel offers for `scene`: every implemented technique of the registry
-/// that computes caustics from what the scene has (its water: floor maps, `caustic-triangles` with
-/// the water surface as its generator, and `cascaded`'s eye-space image; else its glass objects), and its variants, as far as [`Spec`] accepts them; `reference`
-/// always (for glass, paper 4's photon tracer).
+/// The technique names the panel offers for `scene`: every registered technique that computes
+/// caustics from what the scene has (its water: floor maps, a technique whose generator may be
+/// the water surface, and eye-space images; else its glass objects), the reference always (for
+/// glass, paper 4's photon tracer), after the others.
 pub fn technique_names(scene: &Scene) -> Vec<String> {
     let inputs: &[Input] = if scene.water.is_some() {
         &[Input::Water, Input::GlassOrWater, Input::EyeSpace]
@@ -123,21 +107,20 @@ pub fn technique_names(scene: &Scene) -> Vec<String> {
     } else {
         return Vec::new();
     };
-    let mut names: Vec<String> = TECHNIQUES
+    let mut entries: Vec<&Descriptor> = techniques::REGISTRY
         .iter()
-        .filter(|t| t.implemented && (inputs.contains(&t.input) || t.name == "reference"))
-        .flat_map(|t| [t.name.to_string(), format!("{}-gather", t.name)])
-        .filter(|n| n.parse::<Spec>().is_ok())
+        .copied()
+        .filter(|d| inputs.contains(&d.input) || d.reference)
         .collect();
-    // The technique first, the reference it is judged against after.
-    names.sort_by_key(|n| n == "reference");
-    names
+    // The techniques first, the reference they are judged against after.
+    entries.sort_by_key(|d| d.reference);
+    entries.iter().map(|d| d.name.to_string()).collect()
 }
 
-/// Whether technique `name` (a base name) computes its caustics in the eye camera's screen space
-/// (`cascaded`): its image follows the camera and the view's size, not only the water and the sun.
+/// Whether technique `name` computes its caustics in the eye camera's screen space: its image
+/// follows the camera and the view's size, not only the water and the sun.
 pub fn eye_space(name: &str) -> bool {
-    techniques::info(name).is_some_and(|t| t.input == Input::EyeSpace)
+    techniques::find(name).is_some_and(|d| d.eye_space())
 }
 
 /// What a map was computed from: while it holds, the map is reused.
@@ -514,11 +497,8 @@ impl SceneRenderer {
             slot.map_changed = false;
             slot.technique_ms = None;
             let spec = slot.choice.spec()?;
-            let name = slot.choice.name.clone();
-            if caustics_gpu::technique::REGISTRY
-                .iter()
-                .any(|r| r.name == name)
-            {
+            let name = slot.choice.name().to_string();
+            if caustics_gpu::technique::find(&name).is_some() {
                 specs.push(Some(caustics_gpu::renderer::TechniqueSpec {
                     name,
                     params: spec.params.clone(),
@@ -631,7 +611,7 @@ impl SceneRenderer {
                 continue;
             };
             let size = self.scene.water.as_ref().map_or(1.0, |w| w.size);
-            let caustics = SceneCaustics::read(ctx, output, size)?;
+            let caustics = crate::techniques::read_output(ctx, output, size)?;
             slot.walls = match (frame.renderer.walls(k), &caustics, &self.scene.water) {
                 (Some(out), SceneCaustics::Floor(m), Some(water)) => {
                     let mut maps = WallMaps::for_floor_map(m.width, m.height, size, water.depth);
@@ -685,38 +665,20 @@ impl SceneRenderer {
         let Some((surface, water)) = water_input else {
             let o = self
                 .runner
-                .run_scene(spec, &self.scene, None, cells, &|_, _| {})?;
-            return Ok((SceneCaustics::Floor(o.map), o.backend, o.walls));
-        };
-        let w = water.technique_water();
-        // `volumes` and the reference see the objects (their floor maps hold the shadows).
-        let with_objects =
-            matches!(spec.name.as_str(), "volumes" | "reference") && !self.scene.objects.is_empty();
-        if eye_space(&spec.name) || with_objects {
-            // The scene as the technique sees it: the water as animated, not as loaded.
-            let mut scene = self.scene.clone();
-            scene.water = Some(w.clone());
-            if with_objects {
-                let o = self
-                    .runner
-                    .run_scene(spec, &scene, Some(surface), cells, &|_, _| {})?;
-                return Ok((SceneCaustics::Floor(o.map), o.backend, o.walls));
-            }
-            let grid = cascaded_heights(w, surface);
-            let o = self.runner.run_cascaded(spec, &scene, &grid)?;
+                .run(spec, &Job::new(&self.scene, None, cells), &|_, _| {})?;
             return Ok((o.caustics, o.backend, o.walls));
-        }
-        let job = Job {
-            water: w,
-            floor: &self.scene.floor,
-            surface,
-            light: sun,
-            width: quality.map_size as usize,
-            height: quality.map_size as usize,
-            cells_per_texel: cells,
         };
-        let o = self.runner.run(spec, &job)?;
-        Ok((SceneCaustics::Floor(o.map), o.backend, o.walls))
+        // The scene as the technique sees it: the water as animated (the sun, map size and
+        // camera are the frame's already), its objects as receivers.
+        let mut scene = self.scene.clone();
+        scene.water = Some(water.technique_water().clone());
+        scene.light.direction = sun;
+        scene.caustics.width = quality.map_size;
+        scene.caustics.height = quality.map_size;
+        let o = self
+            .runner
+            .run(spec, &Job::new(&scene, Some(surface), cells), &|_, _| {})?;
+        Ok((o.caustics, o.backend, o.walls))
     }
 
     fn final_image(
@@ -779,7 +741,7 @@ mod tests {
     #[test]
     fn choices_round_trip_through_specs() {
         let c = TechniqueChoice::parse("yuksel:n=15", 2).unwrap();
-        assert_eq!(c.name, "yuksel");
+        assert_eq!(c.name(), "yuksel");
         assert_eq!(c.params.get("n").and_then(|v| v.as_integer()), Some(15));
         // The defaults fill the rest: M is not given, so the region's height comes from the water.
         assert_eq!(c.params.get("m"), None);
@@ -788,11 +750,10 @@ mod tests {
             Some("water")
         );
         let spec = c.spec().unwrap();
-        assert_eq!(spec.name, "yuksel");
-        assert!(!spec.gather);
+        assert_eq!(spec.name(), "yuksel");
         let g = TechniqueChoice::parse("yuksel-gather", 2).unwrap();
         assert_eq!(g.base(), "yuksel");
-        assert!(g.spec().unwrap().gather);
+        assert_eq!(g.spec().unwrap().name(), "yuksel-gather");
         assert_eq!(
             TechniqueChoice::parse("reference", 2).unwrap().label(),
             "reference"
@@ -818,17 +779,11 @@ mod tests {
             .get("procedural")
             .and_then(|v| v.as_table())
             .unwrap();
-        let p = ProceduralCausticsParams::from_table(&toml::Table::from_iter([(
-            "procedural".to_string(),
-            toml::Value::Table(table.clone()),
-        )]))
-        .unwrap();
+        // The technique's own reading of the table accepts it.
+        (spec.entry.validate)(&spec.params).unwrap();
         assert_eq!(
-            p,
-            ProceduralCausticsParams {
-                variant: caustics_core::techniques::procedural::Variant::Texture,
-                ..Default::default()
-            }
+            table.get("variant").and_then(|v| v.as_str()),
+            Some("texture")
         );
     }
 
@@ -875,21 +830,10 @@ mod tests {
                 Some(&toml::Value::Table(c.params.clone()))
             );
         }
-        CascadedParams::from_table(
-            &TechniqueChoice::parse("cascaded", 1)
-                .unwrap()
-                .spec()
-                .unwrap()
-                .params,
-        )
-        .unwrap();
-        VolumesParams::from_table(
-            &TechniqueChoice::parse("volumes", 1)
-                .unwrap()
-                .spec()
-                .unwrap()
-                .params,
-        )
-        .unwrap();
+        // Every registered entry's panel table is one its technique reads.
+        for d in techniques::REGISTRY {
+            let spec = TechniqueChoice::parse(d.name, 1).unwrap().spec().unwrap();
+            (d.validate)(&spec.params).unwrap_or_else(|e| panic!("{}: {e}", d.name));
+        }
     }
 }

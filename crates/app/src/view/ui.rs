@@ -14,6 +14,7 @@ use super::buffers::{Buffer, SceneHas};
 use super::camera::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
 use super::frame::{Quality, Slot, TechniqueChoice};
 use super::water::{Mode, WaterState};
+use caustics_core::techniques::describe::{Default, Kind, Param};
 
 /// Texture ids of everything the UI draws, registered once and updated in place.
 #[derive(Clone, Copy, Debug)]
@@ -219,10 +220,10 @@ fn controls(ui: &mut egui::Ui, m: &mut Model) {
     );
 }
 
-/// A technique menu and its parameters. Switching keeps the parameters when the base technique
-/// stays (`yuksel` to `yuksel-gather`).
+/// A technique menu and its parameters, every widget made from the technique's descriptors.
+/// Switching keeps the parameters the two entries share (`yuksel` to `yuksel-gather`).
 fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Slot) {
-    let mut name = slot.choice.name.clone();
+    let mut name = slot.choice.name().to_string();
     egui::ComboBox::from_id_salt(id)
         .selected_text(&name)
         .show_ui(ui, |ui| {
@@ -230,59 +231,23 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
                 ui.selectable_value(&mut name, n.clone(), n);
             }
         });
-    if name != slot.choice.name
+    if name != slot.choice.name()
         && let Ok(mut next) = TechniqueChoice::parse(&name, slot.choice.cells_per_texel)
     {
         if next.base() == slot.choice.base() {
-            next.params = slot.choice.params.clone();
+            let pinned: Vec<&str> = next.entry.fixed.iter().map(|(k, _)| *k).collect();
+            for (k, v) in &slot.choice.params {
+                if next.entry.params.iter().any(|p| p.key == k) && !pinned.contains(&k.as_str()) {
+                    next.params.insert(k.clone(), v.clone());
+                }
+            }
         }
         slot.choice = next;
     }
-    let base = slot.choice.base().to_string();
-    let mut keys: Vec<String> = slot.choice.params.keys().cloned().collect();
-    keys.sort_by_key(|k| param_order(&base, k));
-    for k in keys {
-        let Some(v) = slot.choice.params.get_mut(&k) else {
-            continue;
-        };
-        let (label, hint) = param_label(&base, &k);
-        let response = match v {
-            toml::Value::Integer(i) => {
-                let (lo, hi, parity) = integer_range(&base, &k);
-                // A slider clamps what it shows: never let its range change a value it was given.
-                let (lo, hi) = (lo.min(*i), hi.max(*i));
-                let r = ui.add(egui::Slider::new(i, lo..=hi).text(label));
-                if let Some(p) = parity
-                    && i.rem_euclid(2) != p
-                {
-                    // Odd N, even M: step to the nearest allowed value in range.
-                    *i = if *i < hi { *i + 1 } else { *i - 1 };
-                }
-                r
-            }
-            toml::Value::Float(f) => ui.add(
-                egui::DragValue::new(f)
-                    .speed(0.01)
-                    .prefix(format!("{label} ")),
-            ),
-            toml::Value::Boolean(b) => ui.checkbox(b, label),
-            toml::Value::String(text) if !choices(&base, &k).is_empty() => {
-                let r = egui::ComboBox::from_id_salt((id, k.as_str()))
-                    .selected_text(format!("{label}: {text}"))
-                    .show_ui(ui, |ui| {
-                        for c in choices(&base, &k) {
-                            ui.selectable_value(text, c.to_string(), *c);
-                        }
-                    });
-                r.response
-            }
-            other => ui.label(format!("{label} = {other}")),
-        };
-        if !hint.is_empty() {
-            response.on_hover_text(hint);
-        }
+    for param in slot.choice.entry.params {
+        param_widget(ui, id, param, &mut slot.choice.params);
     }
-    if base == "reference" {
+    if slot.choice.entry.reference {
         ui.add(egui::Slider::new(&mut slot.choice.cells_per_texel, 1..=8).text("cells per texel"));
     }
     match (&slot.error, slot.technique_ms) {
@@ -296,145 +261,125 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
     }
 }
 
-/// Where a parameter stands in the panel: the paper's order where we know it, then the rest.
-fn param_order(technique: &str, key: &str) -> (usize, String) {
-    let known: &[&str] = match technique {
-        "yuksel" => &["preset", "n", "m", "fresnel", "absorption"],
-        "volumes" => &["planes", "texture", "shadow", "fresnel", "absorption"],
-        "cascaded" => &[
-            "resolution",
-            "placement",
-            "dispersion",
-            "splat",
-            "brightness",
-        ],
-        "caustic-triangles" => &[
-            "photon_image",
-            "cube_resolution",
-            "layers",
-            "linear_steps",
-            "secant_iterations",
-            "depth",
-            "fresnel",
-            "area_rule",
-        ],
-        _ => &[],
+/// The widget of one parameter, as its descriptor says: a slider over an integer's range (in
+/// its parity, a power of two where it must be), a number within its range, a checkbox, a menu
+/// of choices, a file path. A parameter the technique chooses itself (`auto`) shows a checkbox
+/// that hands it to the user.
+fn param_widget(ui: &mut egui::Ui, id: &str, param: &Param, params: &mut toml::Table) {
+    let hint = if param.unit.is_empty() {
+        param.doc.to_string()
+    } else {
+        format!("{} ({})", param.doc, param.unit)
     };
-    let rank = known.iter().position(|k| *k == key).unwrap_or(known.len());
-    (rank, key.to_string())
+    if let Default::Auto(how) = param.default {
+        let mut auto = !params.contains_key(param.key);
+        let r = ui.checkbox(&mut auto, format!("{}: auto", param.label));
+        r.on_hover_text(format!("{hint}; auto: {how}"));
+        match (auto, params.contains_key(param.key)) {
+            (true, true) => {
+                params.remove(param.key);
+            }
+            (false, false) => {
+                if let Some(v) = first_value(param.kind) {
+                    params.insert(param.key.to_string(), v);
+                }
+            }
+            _ => {}
+        }
+        if auto {
+            return;
+        }
+    }
+    let Some(v) = params.get_mut(param.key) else {
+        return;
+    };
+    let label = param.label;
+    let response = match (param.kind, v) {
+        (
+            Kind::Int {
+                min,
+                max,
+                parity,
+                power_of_two,
+            },
+            toml::Value::Integer(i),
+        ) => {
+            // A slider clamps what it shows: never let its range change a value it was given.
+            let (lo, hi) = (min.min(*i), max.max(*i));
+            let mut slider = egui::Slider::new(i, lo..=hi).text(label);
+            if hi > 64 * lo.max(1) {
+                slider = slider.logarithmic(true);
+            }
+            let r = ui.add(slider);
+            if let Some(p) = parity
+                && i.rem_euclid(2) != p
+            {
+                // Odd N, even M: step to the nearest allowed value in range.
+                *i = if *i < hi { *i + 1 } else { *i - 1 };
+            }
+            if power_of_two && *i > 0 && (*i & (*i - 1)) != 0 {
+                let up = (*i as u64).next_power_of_two() as i64;
+                *i = if up - *i < *i - up / 2 { up } else { up / 2 };
+            }
+            r
+        }
+        (Kind::Float { min, max }, value @ (toml::Value::Float(_) | toml::Value::Integer(_))) => {
+            let mut f = value
+                .as_float()
+                .unwrap_or_else(|| value.as_integer().unwrap_or(0) as f64);
+            let speed = ((max - min) / 500.0).clamp(1e-3, 1.0);
+            let r = ui.add(
+                egui::DragValue::new(&mut f)
+                    .range(min..=max)
+                    .speed(speed)
+                    .prefix(format!("{label} ")),
+            );
+            *value = toml::Value::Float(f);
+            r
+        }
+        (Kind::Bool, toml::Value::Boolean(b)) => ui.checkbox(b, label),
+        (Kind::Choice(words), toml::Value::String(text)) => {
+            egui::ComboBox::from_id_salt((id, param.key))
+                .selected_text(format!("{label}: {text}"))
+                .show_ui(ui, |ui| {
+                    for w in words {
+                        ui.selectable_value(text, w.to_string(), *w);
+                    }
+                })
+                .response
+        }
+        (Kind::Path, toml::Value::String(text)) => {
+            ui.horizontal(|ui| {
+                ui.label(label);
+                ui.text_edit_singleline(text)
+            })
+            .inner
+        }
+        (_, other) => ui.label(format!("{label} = {other}")),
+    };
+    response.on_hover_text(hint);
 }
 
-/// A parameter's label and hover text: the paper's names where it has them.
-fn param_label(technique: &str, key: &str) -> (String, &'static str) {
-    match (technique, key) {
-        ("yuksel", "n") => (
-            "N".into(),
-            "samples along x per pixel (odd): region R is N pixels wide",
-        ),
-        ("yuksel", "m") => (
-            "M".into(),
-            "neighbouring rows (even): M + 1 channels in pass 1",
-        ),
-        ("yuksel", "fresnel") => (
-            "Fresnel".into(),
-            "each sample carries its Fresnel transmittance",
-        ),
-        ("yuksel", "absorption") => ("absorption".into(), "exp(-K d) along the flat-water path"),
-        ("caustic-triangles", "photon_image") => (
-            "photon image".into(),
-            "side of the photon hit location image (§4.1; the paper: 128)",
-        ),
-        ("caustic-triangles", "cube_resolution") => (
-            "cube map".into(),
-            "texels per face side of the layered distance map (§3; the paper: 512)",
-        ),
-        ("caustic-triangles", "layers") => ("layers".into(), "layers of the distance map (§3)"),
-        ("caustic-triangles", "linear_steps") => (
-            "linear steps".into(),
-            "linear search steps per ray in the distance map (§3)",
-        ),
-        ("caustic-triangles", "secant_iterations") => (
-            "secant steps".into(),
-            "secant search iterations after the linear search (§3)",
-        ),
-        ("caustic-triangles", "depth") => (
-            "depth".into(),
-            "most refractions / reflections along a photon path (§4.1)",
-        ),
-        ("volumes", "planes") => (
-            "reference planes".into(),
-            "reference planes per object (§3.1; the paper's Fig. 6: 5 and 50)",
-        ),
-        ("volumes", "texture") => (
-            "object texture".into(),
-            "side of each object's depth, diffuse and caustics textures",
-        ),
-        ("cascaded", "resolution") => (
-            "cascade resolution".into(),
-            "caustic-map texels per side of each of the four cascades (§3.3)",
-        ),
-        ("cascaded", "placement") => (
-            "cascade placement".into(),
-            "eq33: the split of Eq. 3.3; plane: practical split planes",
-        ),
-        ("yuksel", "preset") => (
-            "region".into(),
-            "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6",
-        ),
-        ("cascaded", "dispersion") => (
-            "dispersion".into(),
-            "none; wavelength: one IOR per channel (§3.5); post: a screen-space shift",
-        ),
-        ("cascaded", "splat") => (
-            "splat".into(),
-            "footprint: a tent the size of the photon's floor area; point: one pixel",
-        ),
-        ("cascaded", "brightness") => (
-            "brightness".into(),
-            "physical: relative irradiance; ramps: the paper's depth ramps (§3.4.3)",
-        ),
-        _ => (key.to_string(), ""),
-    }
-}
-
-/// The values a text parameter takes (the serde names of the technique's enums).
-fn choices(technique: &str, key: &str) -> &'static [&'static str] {
-    match (technique, key) {
-        ("caustic-triangles", "area_rule") => &["paper", "hat"],
-        ("cascaded", "placement") => &["eq33", "plane"],
-        ("cascaded", "brightness") => &["physical", "ramps"],
-        ("cascaded", "dispersion") => &["none", "wavelength", "post"],
-        ("cascaded", "splat") => &["footprint", "point"],
-        ("procedural", "variant") => &["vertex", "screen", "texture"],
-        ("yuksel", "preset") => &["water", "paper"],
-        _ => &[],
-    }
-}
-
-/// The range of an integer parameter and the parity it must have, where the technique's checks
-/// want one (yuksel: `N` odd, `M` even).
-fn integer_range(technique: &str, key: &str) -> (i64, i64, Option<i64>) {
-    match (technique, key) {
-        ("yuksel", "n") => (1, 31, Some(1)),
-        ("yuksel", "m") => (0, 30, Some(0)),
-        ("caustic-triangles", "photon_image") => (2, 512, None),
-        ("caustic-triangles", "cube_resolution") => (16, 1024, None),
-        ("caustic-triangles", "layers") => (1, 8, None),
-        ("caustic-triangles", "linear_steps") => (1, 256, None),
-        ("caustic-triangles", "secant_iterations") => (0, 32, None),
-        ("caustic-triangles", "depth") => (1, 16, None),
-        ("caustic-triangles", "light_cube") => (2, 2048, None),
-        ("caustic-triangles", "merge_levels") => (0, 6, None),
-        ("volumes", "planes") => (1, 64, None),
-        ("volumes", "texture") => (16, 1024, None),
-        ("volumes", "water_cells") => (0, 1024, None),
-        ("volumes", "shadow") => (0, 2048, None),
-        ("cascaded", "resolution") => (16, 2048, None),
-        ("procedural", "mesh_resolution") => (1, 1024, None),
-        ("procedural", "anisotropy") => (1, 16, None),
-        ("procedural", "light_map_resolution") => (16, 1024, None),
-        _ => (0, 64, None),
-    }
+/// The value a parameter takes when the user takes it over from `auto`: the middle of an
+/// integer's range in its parity, the low end of a number's, on, the first choice.
+fn first_value(kind: Kind) -> Option<toml::Value> {
+    Some(match kind {
+        Kind::Int {
+            min, max, parity, ..
+        } => {
+            let mut i = min.max(1).min(max);
+            if let Some(p) = parity
+                && i.rem_euclid(2) != p
+            {
+                i += 1;
+            }
+            toml::Value::Integer(i.min(max))
+        }
+        Kind::Float { min, .. } => toml::Value::Float(min),
+        Kind::Bool => toml::Value::Boolean(true),
+        Kind::Choice(words) => toml::Value::String(words.first()?.to_string()),
+        Kind::Path => return None,
+    })
 }
 
 fn water_controls(ui: &mut egui::Ui, w: &mut WaterState) {
@@ -509,7 +454,7 @@ fn views(ui: &mut egui::Ui, m: &mut Model) {
         ui.painter()
             .image(m.textures.main[k], r, full_uv, Color32::WHITE);
         if sides == 2 {
-            let label = m.slots[k].choice.name.clone();
+            let label = m.slots[k].choice.name().to_string();
             ui.painter().text(
                 r.center_top() + Vec2::new(0.0, 6.0),
                 egui::Align2::CENTER_TOP,
@@ -628,7 +573,7 @@ fn overlay(ctx: &egui::Context, m: &Model, at: Pos2) {
                                 }
                                 None => "  (unchanged)".into(),
                             };
-                            mono(ui, format!("{:<10} {t}", short(&slot.choice.name, 14)));
+                            mono(ui, format!("{:<10} {t}", short(slot.choice.name(), 14)));
                         }
                         mono(ui, format!("image      {:7.1} ms", s.image_ms));
                     } else {
@@ -679,7 +624,7 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
         .default_width(WINDOW_WIDTH)
         .show(ctx, |ui| {
             for k in 0..m.sides() {
-                ui.label(format!("{} map", m.slots[k].choice.name));
+                ui.label(format!("{} map", m.slots[k].choice.name()));
                 picture(ui, m.textures.map[k], &m.maps[k]);
             }
             if m.split {
@@ -738,7 +683,7 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
                     .max(1) as u32;
                 ui.add(egui::Slider::new(k, 0..=layers - 1).text("layer"));
             }
-            ui.small(format!("of the left side's technique, `{}`", choice.name));
+            ui.small(format!("of the left side's technique, `{}`", choice.name()));
             if Buffer::available(choice, m.has).is_empty() {
                 ui.small("it has no intermediate buffers to show");
             } else {
@@ -790,34 +735,105 @@ mod tests {
         assert_eq!(pass_name("eye depth"), "eye depth");
     }
 
-    /// Every value a text parameter's menu offers is one its technique accepts, and the technique
-    /// accepts no value the menu leaves out of its enum's names.
+    /// Every value a choice parameter's menu offers is one its technique accepts, and the
+    /// technique accepts no value the menu leaves out: every choice of every registered entry.
     #[test]
-    fn text_parameter_menus_offer_what_the_techniques_accept() {
-        for (technique, key) in [
-            ("caustic-triangles", "area_rule"),
-            ("cascaded", "placement"),
-            ("cascaded", "brightness"),
-            ("cascaded", "dispersion"),
-            ("cascaded", "splat"),
-        ] {
-            let offered = choices(technique, key);
-            assert!(offered.len() >= 2, "{technique}.{key}");
-            for value in offered.iter().chain(&["no-such-value"]) {
-                let spec = format!("{technique}:{key}=\"{value}\"");
-                let spec: crate::techniques::Spec = spec.parse().unwrap();
-                let ok = match technique {
-                    "cascaded" => caustics_core::techniques::cascaded::CascadedParams::from_table(
-                        &spec.params,
-                    )
-                    .is_ok(),
-                    _ => caustics_core::techniques::caustic_triangles::CausticTrianglesParams::from_table(
-                        &spec.params,
-                    )
-                    .is_ok(),
+    fn choice_menus_offer_what_the_techniques_accept() {
+        let mut checked = 0;
+        for d in caustics_core::techniques::REGISTRY {
+            for p in d.params {
+                let Kind::Choice(words) = p.kind else {
+                    continue;
                 };
-                assert_eq!(ok, *value != "no-such-value", "{technique}.{key} = {value}");
+                assert!(words.len() >= 2, "{}.{}", d.name, p.key);
+                for value in words.iter().chain(&["no-such-value"]) {
+                    let text = format!("{}:{}=\"{value}\"", d.name, p.key);
+                    let parsed = text.parse::<crate::techniques::Spec>();
+                    let pinned = d.fixed.iter().any(|(k, v)| *k == p.key && v != value);
+                    // The technique's own parse of its table (serde and its checks).
+                    let ok = parsed.is_ok_and(|spec| (d.validate)(&spec.params).is_ok());
+                    assert_eq!(
+                        ok,
+                        *value != "no-such-value" && !pinned,
+                        "{}.{} = {value}",
+                        d.name,
+                        p.key
+                    );
+                    checked += 1;
+                }
             }
         }
+        assert!(checked >= 20, "{checked}");
+    }
+
+    /// Taking a parameter over from `auto` gives a value its descriptor accepts.
+    #[test]
+    fn auto_parameters_start_from_an_accepted_value() {
+        for d in caustics_core::techniques::REGISTRY {
+            for p in d.params {
+                if let Some(v) = first_value(p.kind) {
+                    caustics_core::techniques::describe::check_value(p, &v, p.key)
+                        .unwrap_or_else(|e| panic!("{}.{}: {e}", d.name, p.key));
+                }
+            }
+        }
+    }
+
+    /// The texts an egui frame drew.
+    fn texts(shapes: &[egui::epaint::ClippedShape]) -> Vec<String> {
+        fn walk(shape: &egui::Shape, out: &mut Vec<String>) {
+            match shape {
+                egui::Shape::Text(t) => out.push(t.galley.text().to_string()),
+                egui::Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
+                _ => {}
+            }
+        }
+        let mut out = Vec::new();
+        for s in shapes {
+            walk(&s.shape, &mut out);
+        }
+        out
+    }
+
+    /// The panel shows every registered technique's every parameter, made from its descriptors:
+    /// a label (or, for a parameter the technique chooses itself, its `auto` checkbox) per
+    /// parameter, drawn by a headless egui frame.
+    #[test]
+    fn the_panel_shows_every_parameter_of_every_technique() {
+        let ctx = egui::Context::default();
+        let names: Vec<String> = caustics_core::techniques::REGISTRY
+            .iter()
+            .map(|d| d.name.to_string())
+            .collect();
+        let mut shown = 0;
+        for d in caustics_core::techniques::REGISTRY {
+            let mut slot = Slot::new(TechniqueChoice::parse(d.name, 2).unwrap());
+            let out = ctx.run_ui(egui::RawInput::default(), |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    technique_picker(ui, "test", &names, &mut slot);
+                });
+            });
+            let texts = texts(&out.shapes);
+            for p in d.params {
+                let auto = format!("{}: auto", p.label);
+                assert!(
+                    texts
+                        .iter()
+                        .any(|t| t.contains(p.label) || t.contains(&auto)),
+                    "{}: no widget for `{}` among {texts:?}",
+                    d.name,
+                    p.key
+                );
+                shown += 1;
+            }
+            if d.reference {
+                assert!(texts.iter().any(|t| t.contains("cells per texel")));
+            }
+        }
+        let total: usize = caustics_core::techniques::REGISTRY
+            .iter()
+            .map(|d| d.params.len())
+            .sum();
+        assert_eq!(shown, total);
     }
 }

@@ -65,23 +65,15 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
 
     resolution("caustics.resolution", file.caustics.resolution)?;
     let technique = file.caustics.technique.clone();
-    if !crate::techniques::is_known(&technique) {
-        return Err(Error::field(
-            "caustics.technique",
-            format!(
-                "unknown technique `{technique}` (known: {})",
-                crate::techniques::names().join(", ")
-            ),
-        ));
-    }
-    for (key, value) in &file.caustics.params {
-        if !crate::techniques::is_known(key) || !value.is_table() {
-            return Err(Error::field(
-                format!("caustics.{key}"),
-                "is not a known setting: expected `resolution`, `technique`, or a table named after a technique",
-            ));
-        }
-    }
+    // One parser for a scene's `technique` (`name` or `name:key=value,...`, as `--technique`
+    // takes it) and its `[caustics.<name>]` tables: the registry's descriptors.
+    technique
+        .parse::<crate::techniques::Spec>()
+        .map_err(|e| match e {
+            Error::InvalidParameter(problem) => Error::field("caustics.technique", problem),
+            other => other,
+        })?;
+    crate::techniques::describe::check_tables(&file.caustics.params)?;
 
     let floor = validate_floor(&file.floor, base, size)?;
     if floor.walls && water.is_none() {

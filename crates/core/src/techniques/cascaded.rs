@@ -96,6 +96,216 @@ pub enum Placement {
     Plane,
 }
 
+use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::{Input, Job, Made, SceneCaustics};
+
+/// Paper 5 as registered: an image in the eye camera's screen space, not a floor map.
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "cascaded",
+    table: "cascaded",
+    paper: "5",
+    summary: "cascaded caustic maps for oceans: four light-view cascades, photons splatted in eye space, dispersion (Backlund)",
+    docs: "docs/cascaded.md",
+    input: Input::EyeSpace,
+    receivers: &[Receiver::EyeSpace],
+    params: &[
+        Param {
+            sweep: &["64", "128", "256", "512", "1024"],
+            ..param(
+                "resolution",
+                "cascade resolution",
+                Kind::int(16, 8192),
+                D::Int(512),
+                "texels per side",
+                "caustic-map texels per side of each of the four cascades (§3.3)",
+                Change::Reconfigure,
+            )
+        },
+        param(
+            "placement",
+            "cascade placement",
+            Kind::Choice(&["eq33", "plane"]),
+            D::Text("eq33"),
+            "",
+            "eq33: the photon placed by Eq. 3.3; plane: on the horizontal plane through the terrain hit (ours)",
+            Change::Uniform,
+        ),
+        param(
+            "dispersion",
+            "dispersion",
+            Kind::Choice(&["none", "wavelength", "post"]),
+            D::Text("none"),
+            "",
+            "none; wavelength: one IOR per channel (§3.6); post: a screen-space shift (ours)",
+            Change::Reconfigure,
+        ),
+        param(
+            "dispersion_scale",
+            "dispersion scale",
+            Kind::float(0.0, 1.0e3),
+            D::Float(1.0),
+            "",
+            "exaggeration of the dispersion (1: water's measured dispersion)",
+            Change::Uniform,
+        ),
+        param(
+            "splat",
+            "splat",
+            Kind::Choice(&["footprint", "point"]),
+            D::Text("footprint"),
+            "",
+            "footprint: a tent the size of the photon's floor area (ours); point: one pixel (§3.4)",
+            Change::Uniform,
+        ),
+        param(
+            "brightness",
+            "brightness",
+            Kind::Choice(&["physical", "ramps"]),
+            D::Text("physical"),
+            "",
+            "physical: relative irradiance; ramps: the paper's depth ramps (§3.4.3)",
+            Change::Uniform,
+        ),
+        param(
+            "near",
+            "near",
+            Kind::float(0.0, 1.0e6),
+            D::Float(0.1),
+            "world units",
+            "the eye's near plane (view depth)",
+            Change::Uniform,
+        ),
+        param(
+            "far",
+            "far",
+            Kind::float(0.0, 1.0e6),
+            D::Float(48.0),
+            "world units",
+            "the far plane of the last cascade (view depth)",
+            Change::Uniform,
+        ),
+        param(
+            "blend",
+            "blend",
+            Kind::float(0.0, 1.0),
+            D::Float(0.1),
+            "",
+            "fraction of each cascade's depth interval over which it blends into the next",
+            Change::Uniform,
+        ),
+        param(
+            "c",
+            "C",
+            Kind::float(-1.0e6, 1.0e6),
+            D::Float(1.0),
+            "",
+            "C of §3.4.3 (ramps)",
+            Change::Uniform,
+        ),
+        param(
+            "min_depth",
+            "min depth",
+            Kind::float(-1.0e6, 1.0e6),
+            D::Float(0.0),
+            "world units",
+            "MIN_DEPTH of §3.4.3 (ramps)",
+            Change::Uniform,
+        ),
+        param(
+            "max_depth",
+            "max depth",
+            Kind::float(0.0, 1.0e6),
+            D::Float(10.0),
+            "world units",
+            "MAX_DEPTH of §3.4.3 (ramps)",
+            Change::Uniform,
+        ),
+        param(
+            "shallow_ramp",
+            "shallow ramp",
+            Kind::float(0.0, 1.0e6),
+            D::Float(1.0),
+            "world units",
+            "width of the shallow ramp of §3.4.3 (the paper: 1)",
+            Change::Uniform,
+        ),
+        param(
+            "terrain_pass",
+            "terrain pass",
+            Kind::Bool,
+            D::Bool(true),
+            "",
+            "the terrain's light-view depth pass; off, the floor is the plane z = 0 (Fig. 4.3)",
+            Change::Uniform,
+        ),
+    ],
+    fixed: &[],
+    point_light: false,
+    buffers: &["cascade"],
+    reference: false,
+    validate: |t| CascadedParams::from_table(t).map(|_| ()),
+    cpu: run_cpu,
+};
+
+const fn param(
+    key: &'static str,
+    label: &'static str,
+    kind: Kind,
+    default: D,
+    unit: &'static str,
+    doc: &'static str,
+    change: Change,
+) -> Param {
+    Param {
+        key,
+        label,
+        kind,
+        default,
+        unit,
+        doc,
+        change,
+        sweep: &[],
+    }
+}
+
+/// Side of the height grid the technique reads a water surface through when the water gives
+/// neither an ocean's nor a file's own grid (the shore's ocean is 128²).
+pub const WATER_GRID: usize = 256;
+
+/// The setup and the water grid a job gives paper 5 (both twins): a file's own grid, an ocean
+/// read at its own lattice (its own grid, [`super::lattice_heights`]), any other surface sampled
+/// [`WATER_GRID`]² over the square.
+pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(CascadedSetup, Grid)> {
+    let params = CascadedParams::from_table(table)?;
+    let setup = CascadedSetup::from_scene(job.scene, &params)?;
+    let grid = job.with_surface(DESCRIPTOR.name, |water, surface| {
+        Ok(match &water.source {
+            WaterSource::HeightField(g) => g.clone(),
+            WaterSource::Ocean(_) => super::lattice_heights(water, surface, 0, 0),
+            _ => crate::water::sample_grid(surface, WATER_GRID, WATER_GRID, water.size),
+        })
+    })?;
+    Ok((setup, grid))
+}
+
+fn run_cpu(
+    job: &Job,
+    table: &toml::Table,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Made> {
+    let (setup, water) = job_setup(job, table)?;
+    let image = caustics(&setup, &water, job.scene.floor.terrain.as_ref()).image;
+    progress(1, 1);
+    Ok(Made {
+        caustics: SceneCaustics::EyeSpace(crate::render::EyeSpaceCaustics {
+            width: setup.eye.width,
+            height: setup.eye.height,
+            texels: image,
+        }),
+        walls: None,
+    })
+}
+
 /// Photon brightness (§3.4.3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -101,6 +101,323 @@ pub const MAX_TARGET_RESOLUTION: u32 = 8192;
 /// The sampler's anisotropy clamp, and the CPU twin's largest tap count.
 pub const MAX_ANISOTROPY: u32 = 16;
 
+use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::{Input, Job, Made};
+
+/// Paper 2 as registered: its variant from the table (the screen variant by default).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "procedural",
+    table: "procedural",
+    paper: "2",
+    summary: "aesthetic procedural caustics: vertical ray to the waves, refract, look up a sun map (Sanchez-Crespo); its variant from `variant`",
+    docs: "docs/procedural.md",
+    input: Input::Water,
+    receivers: &[Receiver::Floor],
+    params: &[
+        VARIANT,
+        MESH_RESOLUTION,
+        TARGET_RESOLUTION,
+        ANISOTROPY,
+        IOR,
+        FOLLOW_SUN,
+        ABSORPTION,
+        SUN_DIAMETER,
+        HALO_AREA_PARAM,
+        HALO_LEVEL,
+        LIGHT_MAP_RESOLUTION,
+        LIGHT_MAP,
+        LIGHT_MAP_EXTENT,
+        GROUND,
+    ],
+    fixed: &[],
+    point_light: false,
+    buffers: &[],
+    reference: false,
+    validate: |t| ProceduralCausticsParams::from_table(t).map(|_| ()),
+    cpu: run_cpu,
+};
+
+/// Paper 2 per vertex of a fine ground mesh.
+pub const VERTEX: Descriptor = Descriptor {
+    name: "procedural-vertex",
+    summary: "paper 2 per vertex of a fine ground mesh, interpolated over its triangles",
+    params: &[
+        Param {
+            sweep: &["32", "64", "128", "256"],
+            ..MESH_RESOLUTION
+        },
+        IOR,
+        FOLLOW_SUN,
+        ABSORPTION,
+        SUN_DIAMETER,
+        HALO_AREA_PARAM,
+        HALO_LEVEL,
+        LIGHT_MAP_RESOLUTION,
+        LIGHT_MAP,
+        LIGHT_MAP_EXTENT,
+        GROUND,
+    ],
+    fixed: &[("variant", "vertex")],
+    ..DESCRIPTOR
+};
+
+/// Paper 2 per pixel of the map.
+pub const SCREEN: Descriptor = Descriptor {
+    name: "procedural-screen",
+    summary: "paper 2 per pixel at the map's resolution, no filtering",
+    params: &[
+        IOR,
+        FOLLOW_SUN,
+        ABSORPTION,
+        SUN_DIAMETER,
+        HALO_AREA_PARAM,
+        HALO_LEVEL,
+        LIGHT_MAP_RESOLUTION,
+        LIGHT_MAP,
+        LIGHT_MAP_EXTENT,
+        GROUND,
+    ],
+    fixed: &[("variant", "screen")],
+    ..DESCRIPTOR
+};
+
+/// Paper 2 into a texture-space target, mipmapped.
+pub const TEXTURE: Descriptor = Descriptor {
+    name: "procedural-texture",
+    summary: "paper 2 per pixel into a fixed texture-space target, mipmapped, resampled into the map",
+    params: &[
+        Param {
+            sweep: &["64", "128", "256", "512"],
+            ..TARGET_RESOLUTION
+        },
+        ANISOTROPY,
+        IOR,
+        FOLLOW_SUN,
+        ABSORPTION,
+        SUN_DIAMETER,
+        HALO_AREA_PARAM,
+        HALO_LEVEL,
+        LIGHT_MAP_RESOLUTION,
+        LIGHT_MAP,
+        LIGHT_MAP_EXTENT,
+        GROUND,
+    ],
+    fixed: &[("variant", "texture")],
+    ..DESCRIPTOR
+};
+
+const fn param(
+    key: &'static str,
+    label: &'static str,
+    kind: Kind,
+    default: D,
+    unit: &'static str,
+    doc: &'static str,
+    change: Change,
+) -> Param {
+    Param {
+        key,
+        label,
+        kind,
+        default,
+        unit,
+        doc,
+        change,
+        sweep: &[],
+    }
+}
+
+const VARIANT: Param = param(
+    "variant",
+    "variant",
+    Kind::Choice(&["vertex", "screen", "texture"]),
+    D::Text("screen"),
+    "",
+    "vertex: a fine ground mesh; screen: per map pixel; texture: a mipmapped target",
+    Change::Reconfigure,
+);
+const MESH_RESOLUTION: Param = param(
+    "mesh_resolution",
+    "mesh",
+    Kind::int(1, MAX_MESH_RESOLUTION as i64),
+    D::Int(128),
+    "quads per side",
+    "the vertex variant's ground mesh",
+    Change::Reconfigure,
+);
+const TARGET_RESOLUTION: Param = param(
+    "target_resolution",
+    "target",
+    Kind::Int {
+        min: 1,
+        max: MAX_TARGET_RESOLUTION as i64,
+        parity: None,
+        power_of_two: true,
+    },
+    D::Int(256),
+    "texels per side",
+    "the texture variant's square render target (each mip level halves it)",
+    Change::Reconfigure,
+);
+const ANISOTROPY: Param = param(
+    "anisotropy",
+    "anisotropy",
+    Kind::int(1, MAX_ANISOTROPY as i64),
+    D::Int(MAX_ANISOTROPY as i64),
+    "",
+    "the texture variant's sampler clamp (1: plain trilinear)",
+    Change::Reconfigure,
+);
+const IOR: Param = param(
+    "ior",
+    "IOR",
+    Kind::float(1.0, 3.0),
+    D::Float(PAPER_IOR),
+    "",
+    "index of refraction of the water (the paper's 1.33333, not the scene's)",
+    Change::Uniform,
+);
+const FOLLOW_SUN: Param = param(
+    "follow_sun",
+    "follow the sun",
+    Kind::Bool,
+    D::Bool(false),
+    "",
+    "the scene's sun instead of the paper's overhead one",
+    Change::Uniform,
+);
+const ABSORPTION: Param = param(
+    "absorption",
+    "absorption",
+    Kind::Bool,
+    D::Bool(true),
+    "",
+    "exp(-K d) along the gathering ray, with the scene's K",
+    Change::Uniform,
+);
+const SUN_DIAMETER: Param = param(
+    "sun_diameter",
+    "sun diameter",
+    Kind::float(0.0, 30.0),
+    D::Float(SUN_DIAMETER_DEG),
+    "degrees",
+    "the sun disk of the generated light map",
+    Change::Reconfigure,
+);
+const HALO_AREA_PARAM: Param = param(
+    "halo_area",
+    "halo area",
+    Kind::float(1.0, 1000.0),
+    D::Float(HALO_AREA),
+    "",
+    "the halo's area over the sun disk's",
+    Change::Reconfigure,
+);
+const HALO_LEVEL: Param = param(
+    "halo_level",
+    "halo level",
+    Kind::float(0.0, 1.0),
+    D::Float(0.5),
+    "",
+    "halo brightness at the sun disk's edge, relative to the disk",
+    Change::Reconfigure,
+);
+const LIGHT_MAP_RESOLUTION: Param = param(
+    "light_map_resolution",
+    "light map",
+    Kind::int(2, 4096),
+    D::Int(128),
+    "texels per side",
+    "the generated light map",
+    Change::Reconfigure,
+);
+const LIGHT_MAP: Param = param(
+    "light_map",
+    "light map file",
+    Kind::Path,
+    D::Auto("generated from the sun and halo"),
+    "",
+    "a PNG light map instead of the generated one",
+    Change::Reconfigure,
+);
+const LIGHT_MAP_EXTENT: Param = param(
+    "light_map_extent",
+    "light map extent",
+    Kind::float(0.0, 80.0),
+    D::Auto("1.1 x the halo radius"),
+    "degrees",
+    "half-angle the PNG light map spans from its centre to its edges",
+    Change::Reconfigure,
+);
+const GROUND: Param = param(
+    "ground",
+    "ground",
+    Kind::float(0.0, 1.0),
+    D::Float(0.5),
+    "",
+    "share of the floor's light the sun map does not modulate (Listing 2's additive blend)",
+    Change::Uniform,
+);
+
+/// The setup and heights a job gives paper 2 (both twins).
+pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(ProceduralSetup, Grid)> {
+    job.flat_floor(
+        DESCRIPTOR.name,
+        "lights a flat floor at a constant depth (paper 2, \"Our Approach\")",
+    )?;
+    job.note_floor_only(&DESCRIPTOR);
+    let params = ProceduralCausticsParams::from_table(table)?;
+    let (width, height) = job.size();
+    job.with_surface(DESCRIPTOR.name, |w, surface| {
+        let setup = ProceduralSetup::new(
+            &params,
+            width,
+            height,
+            w.size,
+            w.depth,
+            w.absorption,
+            w.wrap,
+            job.light(),
+        )?;
+        let heights = job_heights(w, surface, &setup);
+        Ok((setup, heights))
+    })
+}
+
+/// The height grid paper 2 reads (the job carries the frozen surface, not its time, so the
+/// paper's wave function too is read through a grid): a file's own samples, or the surface sampled
+/// at least as finely as the lattice the variant evaluates on (the map, the mesh's vertices, or the
+/// texture-space target).
+pub fn job_heights(
+    water: &crate::scene::Water,
+    surface: &dyn Surface,
+    setup: &ProceduralSetup,
+) -> Grid {
+    let n = match setup.variant {
+        Variant::Vertex => setup.mesh + 1,
+        Variant::Screen => 0,
+        Variant::Texture => setup.target,
+    };
+    match &water.source {
+        crate::scene::WaterSource::HeightField(g) => g.clone(),
+        _ => {
+            crate::water::sample_grid(surface, setup.width.max(n), setup.height.max(n), water.size)
+        }
+    }
+}
+
+fn run_cpu(
+    job: &Job,
+    table: &toml::Table,
+    _progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Made> {
+    let (setup, heights) = job_setup(job, table)?;
+    Ok(Made::floor(
+        caustics(&setup, &SurfaceInput::Grid(&heights)),
+        None,
+    ))
+}
+
 /// Which of the paper's three implementations runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

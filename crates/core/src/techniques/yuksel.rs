@@ -75,6 +75,153 @@ use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 
+use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::{Input, Job, Made};
+
+/// Paper 1 as registered: the render-target passes (§4).
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "yuksel",
+    table: "yuksel",
+    paper: "1",
+    summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser)",
+    docs: "docs/yuksel.md",
+    input: Input::Water,
+    receivers: &[Receiver::Floor],
+    params: PARAMS,
+    fixed: &[],
+    point_light: false,
+    buffers: &["yuksel-offset", "yuksel-flux", "yuksel-channel"],
+    reference: false,
+    validate: |t| YukselParams::from_table(t).map(|_| ()),
+    cpu: run_cpu,
+};
+
+/// Paper 1's gather as one compute pass per tile (ours; the same maps).
+pub const GATHER: Descriptor = Descriptor {
+    name: "yuksel-gather",
+    summary: "paper 1's gather as one compute pass: each workgroup loads its tile's pre-pass apron into workgroup memory (ours; the same maps)",
+    buffers: &[],
+    ..DESCRIPTOR
+};
+
+const PARAMS: &[Param] = &[
+    Param {
+        key: "preset",
+        label: "region",
+        kind: Kind::Choice(&["water", "paper"]),
+        default: D::Text("water"),
+        unit: "",
+        doc: "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
+        change: Change::Reconfigure,
+        sweep: &[],
+    },
+    Param {
+        key: "n",
+        label: "N",
+        kind: Kind::Int {
+            min: 1,
+            max: MAX_N as i64,
+            parity: Some(1),
+            power_of_two: false,
+        },
+        default: D::Auto("from the preset"),
+        unit: "pixels",
+        doc: "samples along x per pixel (odd): region R is N pixels wide (§4)",
+        change: Change::Reconfigure,
+        sweep: &[],
+    },
+    Param {
+        key: "m",
+        label: "M",
+        kind: Kind::Int {
+            min: 0,
+            max: MAX_M as i64,
+            parity: Some(0),
+            power_of_two: false,
+        },
+        default: D::Auto("from the preset"),
+        unit: "pixels",
+        doc: "neighbouring rows (even): M + 1 channels in pass 1 (§4)",
+        change: Change::Reconfigure,
+        sweep: &[],
+    },
+    Param {
+        key: "subsamples",
+        label: "samples per side",
+        kind: Kind::int(1, MAX_SUBSAMPLES as i64),
+        default: D::Auto("4, the paper's preset 1"),
+        unit: "",
+        doc: "samples per map pixel along each axis, each carrying 1/k² of its light (ours)",
+        change: Change::Reconfigure,
+        sweep: &["1", "2", "4"],
+    },
+    Param {
+        key: "footprint",
+        label: "footprints",
+        kind: Kind::Bool,
+        default: D::Auto("on, the paper's preset off"),
+        unit: "",
+        doc: "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
+        change: Change::Uniform,
+        sweep: &[],
+    },
+    Param {
+        key: "fresnel",
+        label: "Fresnel",
+        kind: Kind::Bool,
+        default: D::Bool(true),
+        unit: "",
+        doc: "each sample carries its Fresnel transmittance",
+        change: Change::Uniform,
+        sweep: &[],
+    },
+    Param {
+        key: "absorption",
+        label: "absorption",
+        kind: Kind::Bool,
+        default: D::Bool(true),
+        unit: "",
+        doc: "exp(-K d) along the flat-water path",
+        change: Change::Uniform,
+        sweep: &[],
+    },
+];
+
+/// The setup and the heights a job gives paper 1 (both twins): the flat floor it maps, the water's
+/// own lattice where the water is a grid ([`super::lattice_heights`]).
+pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(YukselSetup, Grid)> {
+    job.flat_floor(
+        DESCRIPTOR.name,
+        "computes caustics on a flat floor (paper 1, §3)",
+    )?;
+    job.note_floor_only(&DESCRIPTOR);
+    let params = YukselParams::from_table(table)?;
+    let (width, height) = job.size();
+    job.with_surface(DESCRIPTOR.name, |w, surface| {
+        let setup = YukselSetup::new(
+            &params,
+            width,
+            height,
+            w.size,
+            w.depth,
+            w.ior,
+            w.absorption,
+            w.wrap,
+            job.light(),
+        )?;
+        Ok((setup, super::lattice_heights(w, surface, width, height)))
+    })
+}
+
+fn run_cpu(
+    job: &Job,
+    table: &toml::Table,
+    _progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Made> {
+    let (setup, heights) = job_setup(job, table)?;
+    Ok(Made::floor(caustics(&setup, &heights), None))
+}
+
 /// The largest channel count: 8 render targets of 4 channels.
 pub const MAX_CHANNELS: u32 = 32;
 /// The widest region a pixel gathers along x: the fused variant's workgroup apron holds

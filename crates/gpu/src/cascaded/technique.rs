@@ -9,10 +9,11 @@
 //! "has a value" is `alpha >= 0`, not the `alpha == 1` of [`Output::EyeSpace`]'s general note.
 
 use caustics_core::scene::{Scene, WaterSource};
-use caustics_core::techniques::cascaded::{CascadedParams, CascadedSetup};
+use caustics_core::techniques::cascaded::{self, CascadedParams, CascadedSetup};
+use caustics_core::techniques::{Job, Made, SceneCaustics};
 
 use super::{Cascaded, Frame};
-use crate::technique::{Output, Technique, WaterTextures};
+use crate::technique::{Output, Registered, RunOnce, Technique, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// Side of the height grid the technique reads a surface through when the scene gives neither an
@@ -113,5 +114,43 @@ impl Technique for CascadedTechnique {
 
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
+    }
+}
+
+/// Paper 5 in the registry.
+pub const REGISTERED: Registered = Registered {
+    describe: &cascaded::DESCRIPTOR,
+    create,
+    once: |ctx| Ok(Box::new(Once(Cascaded::new(ctx)?))),
+    image: None,
+};
+
+/// Paper 5 run once on a job: its eye-space image for the scene's camera.
+struct Once(Cascaded);
+
+impl RunOnce for Once {
+    fn run(
+        &mut self,
+        ctx: &GpuContext,
+        job: &Job,
+        params: &toml::Table,
+        timer: Option<&mut GpuTimer>,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError> {
+        let (setup, water) = cascaded::job_setup(job, params)?;
+        let terrain = job.scene.floor.terrain.as_ref();
+        let image = self
+            .0
+            .caustics_timed(ctx, &setup, &water, terrain, timer)?
+            .image;
+        progress(1, 1);
+        Ok(Made {
+            caustics: SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
+                width: setup.eye.width,
+                height: setup.eye.height,
+                texels: image,
+            }),
+            walls: None,
+        })
     }
 }

@@ -12,13 +12,17 @@
 //! (`caustics_core::techniques::caustic_triangles::render`).
 
 use caustics_core::scene::{Light, Scene, WaterSource};
+use caustics_core::techniques::caustic_triangles as ct;
 use caustics_core::techniques::caustic_triangles::water::{WaterSetup, check_flat_floor};
 use caustics_core::techniques::caustic_triangles::{
     CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, GlassScene, PointLight,
 };
+use caustics_core::techniques::{Job, Made};
 
 use super::{CausticTriangles, CausticTrianglesUniform, Frame, Reconstruction, WaterFrame};
-use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
+use crate::technique::{
+    Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
+};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct CausticTrianglesTechnique {
@@ -345,5 +349,91 @@ impl Technique for CausticTrianglesTechnique {
                 generators.iter().map(|g| g.frame.bytes()).sum()
             }
         }
+    }
+}
+
+/// Paper 4 in the registry.
+pub const REGISTERED: Registered = Registered {
+    describe: &ct::DESCRIPTOR,
+    create,
+    once: |ctx| Ok(Box::new(Once(CausticTriangles::new(ctx)?))),
+    image: Some(own_image),
+};
+
+/// Paper 4 ends in its own camera pass (§4.3) on a scene of glass objects: lit through the light
+/// cube map of a point light or the floor map of the sun. With water, the water surface is its
+/// generator and its floor map lights the general final image (`None`).
+fn own_image(
+    ctx: Option<&GpuContext>,
+    scene: &Scene,
+    params: &toml::Table,
+) -> Result<Option<OwnImage>, GpuError> {
+    if scene.water.is_some() {
+        return Ok(None);
+    }
+    let params = CausticTrianglesParams::from_table(params)?;
+    let (image, backend) = super::camera::scene_image(
+        ctx,
+        scene,
+        &params,
+        &ct::camera::CameraParams::from_scene(scene),
+    )?;
+    Ok(Some(OwnImage {
+        width: image.width,
+        height: image.height,
+        rgb: image.rgb,
+        backend,
+        what: "through its camera pass",
+    }))
+}
+
+/// Paper 4 run once on a job: the water surface as the generator where the scene has water,
+/// else each glass object in turn, their maps added.
+struct Once(CausticTriangles);
+
+impl RunOnce for Once {
+    fn run(
+        &mut self,
+        ctx: &GpuContext,
+        job: &Job,
+        params: &toml::Table,
+        mut timer: Option<&mut GpuTimer>,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError> {
+        let gpu = &self.0;
+        if job.scene.water.is_some() {
+            let (ws, heights) = ct::water_job_setup(job, params)?;
+            let (map, walls) = gpu.water_caustics_walls(ctx, &ws, &heights, timer)?;
+            progress(1, 1);
+            return Ok(Made::floor(map, walls));
+        }
+        let params = CausticTrianglesParams::from_table(params)?;
+        let glass = ct::glass_generators(job.scene)?;
+        let mut total: Option<caustics_core::map::CausticsMap> = None;
+        for k in 0..glass {
+            let gs = GlassScene::from_scene(job.scene, k)?;
+            let dm =
+                DistanceMap::build(&gs, params.cube_resolution as usize, params.layers as usize);
+            let setup = CausticTrianglesSetup::new(&params, &gs)?;
+            let frame = gpu.frame(ctx, &setup, &dm)?;
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            gpu.encode(
+                &frame,
+                &mut encoder,
+                timer.as_deref_mut(),
+                Reconstruction::Triangles,
+            );
+            if let Some(t) = &timer {
+                t.resolve(&mut encoder);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            let map = gpu.read_map(ctx, &frame)?;
+            total = Some(match total {
+                None => map,
+                Some(t) => t.added(&map),
+            });
+            progress(k + 1, glass);
+        }
+        Ok(Made::floor(total.expect("one glass object at least"), None))
     }
 }

@@ -3,11 +3,14 @@
 //! uploaded once).
 
 use caustics_core::scene::{Scene, WaterSource};
-use caustics_core::techniques::procedural::{ProceduralCausticsParams, ProceduralSetup, Variant};
+use caustics_core::techniques::procedural::{
+    self, ProceduralCausticsParams, ProceduralSetup, SurfaceInput, Variant,
+};
+use caustics_core::techniques::{Job, Made};
 use glam::DVec3;
 
 use super::{Frame, ProceduralCaustics};
-use crate::technique::{Output, Technique, WaterTextures};
+use crate::technique::{Output, Registered, RunOnce, Technique, WaterTextures};
 use crate::yuksel::technique::water;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -104,7 +107,7 @@ impl ProceduralTechnique {
                 "technique `procedural` lights a flat floor at a constant depth (paper 2, \"Our Approach\"); this scene has a terrain".into(),
             ));
         }
-        caustics_core::techniques::check_light("procedural", &scene.light)?;
+        caustics_core::techniques::procedural::DESCRIPTOR.check_light(&scene.light)?;
         let w = water(scene, "procedural")?;
         Ok(SceneKey {
             width: scene.caustics.width,
@@ -209,5 +212,60 @@ impl Technique for ProceduralTechnique {
 
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |(f, _, _)| f.bytes())
+    }
+}
+
+/// `procedural` in the registry: the variant its table names.
+pub const REGISTERED: Registered = Registered {
+    describe: &procedural::DESCRIPTOR,
+    create,
+    once: Once::create,
+    image: None,
+};
+
+pub const VERTEX: Registered = Registered {
+    describe: &procedural::VERTEX,
+    create: create_vertex,
+    once: Once::create,
+    image: None,
+};
+
+pub const SCREEN: Registered = Registered {
+    describe: &procedural::SCREEN,
+    create: create_screen,
+    once: Once::create,
+    image: None,
+};
+
+pub const TEXTURE: Registered = Registered {
+    describe: &procedural::TEXTURE,
+    create: create_texture,
+    once: Once::create,
+    image: None,
+};
+
+/// Paper 2 run once on a job (the variant from the table, which a variant's name pins).
+struct Once(ProceduralCaustics);
+
+impl Once {
+    fn create(ctx: &GpuContext) -> Result<Box<dyn RunOnce>, GpuError> {
+        Ok(Box::new(Once(ProceduralCaustics::new(ctx)?)))
+    }
+}
+
+impl RunOnce for Once {
+    fn run(
+        &mut self,
+        ctx: &GpuContext,
+        job: &Job,
+        params: &toml::Table,
+        timer: Option<&mut GpuTimer>,
+        _progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError> {
+        let (setup, heights) = procedural::job_setup(job, params)?;
+        let map = self
+            .0
+            .caustics_timed(ctx, &setup, &SurfaceInput::Grid(&heights), timer)?;
+        Ok(Made::floor(map, None))
     }
 }

@@ -3,11 +3,14 @@
 //! once in configure, the caller's heights, a new sun or camera as uniform writes.
 
 use caustics_core::scene::Scene;
-use caustics_core::techniques::volumes::{VolumesInput, VolumesParams, VolumesSetup};
+use caustics_core::techniques::volumes::{self, VolumesInput, VolumesParams, VolumesSetup};
+use caustics_core::techniques::{Job, Made};
 use glam::DVec3;
 
 use super::{Frame, Volumes};
-use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
+use crate::technique::{
+    Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
+};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct VolumesTechnique {
@@ -49,7 +52,7 @@ impl SceneKey {
                     .into(),
             ));
         }
-        caustics_core::techniques::check_light("volumes", &scene.light)?;
+        caustics_core::techniques::volumes::DESCRIPTOR.check_light(&scene.light)?;
         let w = crate::yuksel::technique::water(scene, "volumes")?;
         Ok(SceneKey {
             width: scene.caustics.width,
@@ -171,5 +174,99 @@ impl Technique for VolumesTechnique {
 
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |c| c.frame.bytes())
+    }
+}
+
+/// Paper 3 in the registry.
+pub const REGISTERED: Registered = Registered {
+    describe: &volumes::DESCRIPTOR,
+    create,
+    once: |ctx| Ok(Box::new(Once(Volumes::new(ctx)?))),
+    image: Some(own_image),
+};
+
+/// Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the
+/// water where refraction puts them, the floor lit by its map. That view looks down through the
+/// surface; a camera under the water gets the general final image of the volumes' map (`None`).
+/// The floor is seen with the mean albedo of its pattern (the view pass takes one albedo).
+fn own_image(
+    ctx: Option<&GpuContext>,
+    scene: &Scene,
+    params: &toml::Table,
+) -> Result<Option<OwnImage>, GpuError> {
+    use caustics_core::techniques::volumes::view;
+    if caustics_core::render::camera_under_water(scene, None) {
+        return Ok(None);
+    }
+    let params = VolumesParams::from_table(params)?;
+    let input = VolumesInput::from_scene(scene)?;
+    let setup = VolumesSetup::new(&params, &input)?;
+    let water = scene
+        .water
+        .as_ref()
+        .expect("checked by VolumesInput::from_scene");
+    let surface = water.surface_at(scene.time)?;
+    let n = (input.size / setup.lattice.cell).round() as usize;
+    let heights = caustics_core::water::sample_grid(surface.as_ref(), n, n, water.size);
+    let samples = 64;
+    let floor_albedo = (0..samples * samples)
+        .map(|k| {
+            let p = (glam::DVec2::new((k % samples) as f64, (k / samples) as f64) + 0.5)
+                * (scene.size / samples as f64);
+            scene.floor.albedo.at(p, scene.size)
+        })
+        .sum::<DVec3>()
+        / (samples * samples) as f64;
+    let camera = view::ViewCamera::new(&scene.camera);
+    let (rgb, backend) = match ctx {
+        Some(ctx) => {
+            let v = Volumes::new(ctx)?;
+            let options = super::ViewOptions {
+                camera,
+                floor_albedo,
+            };
+            let o = v.run(ctx, &setup, &input, &heights, water.wrap, Some(&options))?;
+            (o.view, "GPU")
+        }
+        None => {
+            let o = volumes::caustics(&setup, &input, &heights, water.wrap);
+            let rgb = view::view_pass_with_walls(
+                &setup,
+                &camera,
+                &heights,
+                water.wrap,
+                &o.objects,
+                &o.floor,
+                o.walls.as_ref(),
+                floor_albedo,
+            );
+            (rgb, "CPU")
+        }
+    };
+    Ok(Some(OwnImage {
+        width: scene.camera.width,
+        height: scene.camera.height,
+        rgb,
+        backend,
+        what: "through its refracted view",
+    }))
+}
+
+/// Paper 3 run once on a job: its floor map and, with walls, the walls' maps.
+struct Once(Volumes);
+
+impl RunOnce for Once {
+    fn run(
+        &mut self,
+        ctx: &GpuContext,
+        job: &Job,
+        params: &toml::Table,
+        _timer: Option<&mut GpuTimer>,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError> {
+        let (setup, input, heights, wrap) = volumes::job_setup(job, params)?;
+        let out = self.0.run(ctx, &setup, &input, &heights, wrap, None)?;
+        progress(1, 1);
+        Ok(Made::floor(out.floor, out.walls))
     }
 }

@@ -2,10 +2,11 @@
 //! writes.
 
 use caustics_core::scene::Scene;
-use caustics_core::techniques::yuksel::{YukselParams, YukselSetup};
+use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
+use caustics_core::techniques::{Job, Made};
 
 use super::{Frame, Variant, Yuksel};
-use crate::technique::{Output, Technique, WaterTextures};
+use crate::technique::{Output, Registered, RunOnce, Technique, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct YukselTechnique {
@@ -140,5 +141,53 @@ impl Technique for YukselTechnique {
 
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
+    }
+}
+
+/// Paper 1's render-target passes in the registry.
+pub const REGISTERED: Registered = Registered {
+    describe: &yuksel::DESCRIPTOR,
+    create: create_render_targets,
+    once: |ctx| Ok(Box::new(Once::new(ctx, Variant::RenderTargets)?)),
+    image: None,
+};
+
+/// The gather variant in the registry.
+pub const GATHER: Registered = Registered {
+    describe: &yuksel::GATHER,
+    create: create_gather,
+    once: |ctx| Ok(Box::new(Once::new(ctx, Variant::Gather)?)),
+    image: None,
+};
+
+/// Paper 1 run once on a job.
+struct Once {
+    pipelines: Yuksel,
+    variant: Variant,
+}
+
+impl Once {
+    fn new(ctx: &GpuContext, variant: Variant) -> Result<Self, GpuError> {
+        Ok(Once {
+            pipelines: Yuksel::new(ctx)?,
+            variant,
+        })
+    }
+}
+
+impl RunOnce for Once {
+    fn run(
+        &mut self,
+        ctx: &GpuContext,
+        job: &Job,
+        params: &toml::Table,
+        timer: Option<&mut GpuTimer>,
+        _progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError> {
+        let (setup, heights) = yuksel::job_setup(job, params)?;
+        let map = self
+            .pipelines
+            .caustics_timed(ctx, &setup, &heights, self.variant, timer)?;
+        Ok(Made::floor(map, None))
     }
 }

@@ -97,6 +97,230 @@ pub use scene::{
     FloorWindow, GlassScene, Occluder, PointLight, Shape, bounding_sphere, light_frame,
 };
 
+use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::{Input, Job, Made};
+
+/// Paper 4 as registered: the water surface as its generator where the scene has water, else
+/// the scene's glass objects.
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "caustic-triangles",
+    table: "caustic-triangles",
+    paper: "4",
+    summary: "layered distance maps, photon hit image, caustic triangles into a light cube map (Umenhoffer et al.)",
+    docs: "docs/caustic-triangles.md",
+    input: Input::GlassOrWater,
+    receivers: &[Receiver::Floor, Receiver::Walls],
+    params: &[
+        Param {
+            sweep: &["32", "64", "128", "256", "512"],
+            ..param(
+                "photon_image",
+                "photon image",
+                Kind::int(2, 4096),
+                D::Int(128),
+                "texels per side",
+                "the photon hit location image, P (§4.1; the paper: 128)",
+                Change::Reconfigure,
+            )
+        },
+        param(
+            "cube_resolution",
+            "cube map",
+            Kind::int(2, 2048),
+            D::Int(256),
+            "texels per face side",
+            "the generator's layered distance map (§3; the paper: 512)",
+            Change::Reconfigure,
+        ),
+        param(
+            "light_cube",
+            "light cube",
+            Kind::int(2, 4096),
+            D::Int(512),
+            "texels per face side",
+            "the light cube map a point light's caustic triangles are drawn into (§4)",
+            Change::Reconfigure,
+        ),
+        param(
+            "layers",
+            "layers",
+            Kind::int(1, MAX_LAYERS as i64),
+            D::Int(4),
+            "",
+            "layers of the distance map (§3)",
+            Change::Reconfigure,
+        ),
+        param(
+            "linear_steps",
+            "linear steps",
+            Kind::int(1, 4096),
+            D::Int(64),
+            "",
+            "linear search steps per ray segment in the distance map (§3)",
+            Change::Uniform,
+        ),
+        param(
+            "secant_iterations",
+            "secant steps",
+            Kind::int(0, 64),
+            D::Int(8),
+            "",
+            "secant search iterations after the linear search (§3)",
+            Change::Uniform,
+        ),
+        param(
+            "depth",
+            "depth",
+            Kind::int(1, 32),
+            D::Int(6),
+            "",
+            "most refractions / reflections along a photon path (§4.1)",
+            Change::Uniform,
+        ),
+        param(
+            "fresnel",
+            "Fresnel",
+            Kind::Bool,
+            D::Bool(true),
+            "",
+            "each photon carries its Fresnel transmittance",
+            Change::Uniform,
+        ),
+        param(
+            "area_rule",
+            "area rule",
+            Kind::Choice(&["paper", "hat"]),
+            D::Text("paper"),
+            "",
+            "paper: half the 4-neighbour triangles (§4.2); hat: a third of the drawn triangles, flux-true",
+            Change::Uniform,
+        ),
+        param(
+            "splat_size",
+            "splat size",
+            Kind::float(0.0, 64.0),
+            D::Float(2.0),
+            "texels",
+            "side of the baseline's square splats",
+            Change::Uniform,
+        ),
+        param(
+            "merge_levels",
+            "merge levels",
+            Kind::int(0, MAX_MERGE_LEVELS as i64),
+            D::Int(0),
+            "",
+            "levels of the §5 hierarchical merging of small caustic triangles (0: off)",
+            Change::Reconfigure,
+        ),
+        param(
+            "merge_texels",
+            "merge below",
+            Kind::float(0.0, 1.0e6),
+            D::Float(2.0),
+            "texels",
+            "a block of quads is merged when its quad covers less than this (§5)",
+            Change::Uniform,
+        ),
+    ],
+    fixed: &[],
+    point_light: true,
+    buffers: &[
+        "photon-hits",
+        "photon-power",
+        "vertex-irradiance",
+        "distance-layer",
+        "light-cube",
+    ],
+    reference: false,
+    validate: |t| CausticTrianglesParams::from_table(t).map(|_| ()),
+    cpu: run_cpu,
+};
+
+const fn param(
+    key: &'static str,
+    label: &'static str,
+    kind: Kind,
+    default: D,
+    unit: &'static str,
+    doc: &'static str,
+    change: Change,
+) -> Param {
+    Param {
+        key,
+        label,
+        kind,
+        default,
+        unit,
+        doc,
+        change,
+        sweep: &[],
+    }
+}
+
+/// The number of glass objects of a scene without water (its caustic generators), or an error
+/// naming the scene where it has none.
+pub fn glass_generators(scene: &crate::scene::Scene) -> Result<usize> {
+    let n = scene
+        .objects
+        .iter()
+        .filter(|o| matches!(o.material, crate::scene::Material::Glass { .. }))
+        .count();
+    if n == 0 {
+        return Err(Error::InvalidParameter(format!(
+            "scene `{}` has neither water nor a glass object: no caustics to compute",
+            scene.name
+        )));
+    }
+    Ok(n)
+}
+
+/// The water photon pass's setup and heights a job gives paper 4 with the water surface as its
+/// generator (both twins).
+pub fn water_job_setup(
+    job: &Job,
+    table: &toml::Table,
+) -> Result<(water::WaterSetup, crate::grid::Grid)> {
+    if !job.scene.light.is_sun() {
+        return Err(Error::InvalidParameter(format!(
+            "scene `{}`: caustic-triangles lights its water surface with the directional sun only (light.position is set)",
+            job.scene.name
+        )));
+    }
+    job.flat_floor(
+        DESCRIPTOR.name,
+        "draws the water's caustic triangles on the floor plane z = 0",
+    )?;
+    let params = CausticTrianglesParams::from_table(table)?;
+    let (width, height) = job.size();
+    job.with_surface(DESCRIPTOR.name, |w, surface| {
+        let ws = water::WaterSetup::new(&params, w, job.light(), width, height)?
+            .with_walls(job.floor().walls);
+        Ok((ws, super::heights_for(w, surface, width, height)))
+    })
+}
+
+fn run_cpu(
+    job: &Job,
+    table: &toml::Table,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Made> {
+    if job.scene.water.is_none() {
+        glass_generators(job.scene)?;
+        let params = CausticTrianglesParams::from_table(table)?;
+        return Ok(Made::floor(render(job.scene, &params)?, None));
+    }
+    let (ws, heights) = water_job_setup(job, table)?;
+    let walls = if ws.walls {
+        Some(water::wall_caustics(&ws, &heights)?)
+    } else {
+        None
+    };
+    let map = water::caustics(&ws, &heights)?.map;
+    progress(1, 1);
+    Ok(Made::floor(map, walls))
+}
+
 /// How a vertex's area `ΔA` is taken from the triangles around it (see the module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -456,7 +456,11 @@ fn point_and_spot_lights_are_validated_and_refused_by_the_sun_techniques() {
     // The sun, as before.
     let sun = load("direction = [0.3, 0.2, -1.0]").unwrap();
     assert!(sun.light.is_sun());
-    assert!(crate::techniques::check_light("yuksel", &sun.light).is_ok());
+    assert!(
+        crate::techniques::yuksel::DESCRIPTOR
+            .check_light(&sun.light)
+            .is_ok()
+    );
     assert!(err("color = [1.0, 1.0, 1.0]").contains("light.direction"));
     // A point light, and a spot.
     let lamp = load("position = [0.2, 0.3, 1.2]").unwrap();
@@ -480,12 +484,14 @@ fn point_and_spot_lights_are_validated_and_refused_by_the_sun_techniques() {
     }
     // Only caustic-triangles renders it.
     for name in ["reference", "yuksel", "procedural", "cascaded"] {
-        let e = crate::techniques::check_light(name, &lamp.light)
+        let e = crate::techniques::find(name)
+            .unwrap()
+            .check_light(&lamp.light)
             .unwrap_err()
             .to_string();
         assert!(e.contains("light.position") && e.contains(name), "{e}");
     }
-    assert!(crate::techniques::check_light("caustic-triangles", &lamp.light).is_ok());
+    assert!(super::DESCRIPTOR.check_light(&lamp.light).is_ok());
     // A light inside the generator's bounding sphere is refused with the reason.
     let inside = load("position = [0.5, 0.5, 0.25]").unwrap();
     let e = GlassScene::from_scene(&inside, 0).unwrap_err().to_string();

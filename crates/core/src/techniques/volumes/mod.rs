@@ -84,6 +84,124 @@ use crate::walls::WallMaps;
 
 pub use representation::OrthoView;
 
+use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::{Input, Job, Made};
+
+/// Paper 3 as registered.
+pub const DESCRIPTOR: Descriptor = Descriptor {
+    name: "volumes",
+    table: "volumes",
+    paper: "3",
+    summary: "illumination volumes against colour + depth textures and reference planes, caustics on underwater objects",
+    docs: "docs/volumes.md",
+    input: Input::Water,
+    receivers: &[Receiver::Floor, Receiver::Walls, Receiver::Objects],
+    params: &[
+        Param {
+            key: "planes",
+            label: "reference planes",
+            kind: Kind::int(1, MAX_PLANES as i64),
+            default: D::Int(10),
+            unit: "",
+            doc: "reference planes per object (§3.1; the paper's Fig. 6: 5 and 50)",
+            change: Change::Reconfigure,
+            sweep: &["5", "10", "25", "50"],
+        },
+        Param {
+            key: "texture",
+            label: "object texture",
+            kind: Kind::int(2, MAX_TEXTURE as i64),
+            default: D::Int(256),
+            unit: "texels per side",
+            doc: "each object's depth, diffuse and caustics textures",
+            change: Change::Reconfigure,
+            sweep: &[],
+        },
+        Param {
+            key: "shadow",
+            label: "shadow map",
+            kind: Kind::int(0, MAX_TEXTURE as i64),
+            default: D::Int(512),
+            unit: "texels per side",
+            doc: "the shadow map along the refracted sun; 0 turns shadows off",
+            change: Change::Reconfigure,
+            sweep: &[],
+        },
+        Param {
+            key: "water_cells",
+            label: "water cells",
+            kind: Kind::int(0, MAX_TEXTURE as i64),
+            default: D::Int(0),
+            unit: "per side",
+            doc: "water lattice cells along each side of the square; 0: the map's width",
+            change: Change::Reconfigure,
+            sweep: &[],
+        },
+        Param {
+            key: "fresnel",
+            label: "Fresnel",
+            kind: Kind::Bool,
+            default: D::Bool(true),
+            unit: "",
+            doc: "each volume carries its Fresnel transmittance",
+            change: Change::Uniform,
+            sweep: &[],
+        },
+        Param {
+            key: "absorption",
+            label: "absorption",
+            kind: Kind::Bool,
+            default: D::Bool(true),
+            unit: "",
+            doc: "exp(-K d) along each volume's path",
+            change: Change::Uniform,
+            sweep: &[],
+        },
+        Param {
+            key: "ambient",
+            label: "ambient",
+            kind: Kind::float(0.0, 1.0e6),
+            default: D::Float(0.2),
+            unit: "",
+            doc: "Ia of Eq. 4, relative to the sun through flat water",
+            change: Change::Uniform,
+            sweep: &[],
+        },
+    ],
+    fixed: &[],
+    point_light: false,
+    buffers: &["object"],
+    reference: false,
+    validate: |t| VolumesParams::from_table(t).map(|_| ()),
+    cpu: run_cpu,
+};
+
+/// What a job gives paper 3 (both twins): its input (the scene's diffuse objects as receivers),
+/// setup, and the water sampled on its lattice.
+pub fn job_setup(
+    job: &Job,
+    table: &toml::Table,
+) -> Result<(VolumesSetup, VolumesInput, Grid, bool)> {
+    let params = VolumesParams::from_table(table)?;
+    job.with_surface(DESCRIPTOR.name, |water, surface| {
+        let input = VolumesInput::from_scene(job.scene)?;
+        let setup = VolumesSetup::new(&params, &input)?;
+        let n = (input.size / setup.lattice.cell).round() as usize;
+        let heights = crate::water::sample_grid(surface, n, n, water.size);
+        Ok((setup, input, heights, water.wrap))
+    })
+}
+
+fn run_cpu(
+    job: &Job,
+    table: &toml::Table,
+    _progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Made> {
+    let (setup, input, heights, wrap) = job_setup(job, table)?;
+    let out = caustics(&setup, &input, &heights, wrap);
+    Ok(Made::floor(out.floor, out.walls))
+}
+
 /// The technique's parameters, `[caustics.volumes]` in a scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

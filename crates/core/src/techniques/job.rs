@@ -1,0 +1,215 @@
+//! The one input every technique's run takes ([`Job`]: a scene as the technique should see it
+//! this time) and what it gives back ([`Made`]), for the CPU twins here and the GPU runs of
+//! `caustics_gpu` alike.
+
+use glam::DVec3;
+
+use crate::grid::Grid;
+use crate::map::CausticsMap;
+use crate::render::{Caustics, EyeSpaceCaustics};
+use crate::scene::{Camera, CausticsSettings, Floor, Light, Look, Scene, Water, WaterSource};
+use crate::walls::WallMaps;
+use crate::water::{Surface, sample_grid};
+use crate::{Error, Result};
+
+/// A technique's input: the scene as it stands this time (its water as animated, the sun in
+/// `light.direction`, the map size in `caustics.width` x `caustics.height`, the camera an
+/// eye-space technique makes its image for, the objects that receive and shadow), the water
+/// surface, and the reference's quality.
+#[derive(Clone, Copy)]
+pub struct Job<'a> {
+    pub scene: &'a Scene,
+    /// The water surface, `None` for the scene's water at the scene's time.
+    pub surface: Option<&'a dyn Surface>,
+    /// The reference's triangulation cells per map texel along each axis (its quality knob).
+    pub cells_per_texel: u32,
+}
+
+impl<'a> Job<'a> {
+    pub fn new(scene: &'a Scene, surface: Option<&'a dyn Surface>, cells_per_texel: u32) -> Self {
+        Job {
+            scene,
+            surface,
+            cells_per_texel,
+        }
+    }
+
+    /// The map's texels along x and y.
+    pub fn size(&self) -> (usize, usize) {
+        (
+            self.scene.caustics.width as usize,
+            self.scene.caustics.height as usize,
+        )
+    }
+
+    /// The sun's direction of travel.
+    pub fn light(&self) -> DVec3 {
+        self.scene.light.direction
+    }
+
+    pub fn floor(&self) -> &'a Floor {
+        &self.scene.floor
+    }
+
+    /// The water, or an error naming the technique that needs it.
+    pub fn water(&self, technique: &str) -> Result<&'a Water> {
+        self.scene.water.as_ref().ok_or_else(|| {
+            Error::InvalidParameter(format!(
+                "scene `{}` has no water: technique `{technique}` computes caustics from a water surface",
+                self.scene.name
+            ))
+        })
+    }
+
+    /// `f` of the water surface: the given one, or the scene's water at its time.
+    pub fn with_surface<R>(
+        &self,
+        technique: &str,
+        f: impl FnOnce(&Water, &dyn Surface) -> Result<R>,
+    ) -> Result<R> {
+        let water = self.water(technique)?;
+        match self.surface {
+            Some(s) => f(water, s),
+            None => {
+                let owned = water.surface_at(self.scene.time)?;
+                f(water, owned.as_ref())
+            }
+        }
+    }
+
+    /// Refuses a floor with a terrain for a technique that draws on the plane z = 0.
+    pub fn flat_floor(&self, technique: &str, why: &str) -> Result<()> {
+        if self.scene.floor.terrain.is_some() {
+            return Err(Error::InvalidParameter(format!(
+                "technique `{technique}` {why}; this scene has a terrain"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Says once in the log that a floor technique leaves the scene's walls unlit.
+    pub fn note_floor_only(&self, technique: &super::Descriptor) {
+        if self.scene.floor.walls && technique.floor_only() {
+            tracing::warn!("{}", technique.floor_only_note());
+        }
+    }
+}
+
+/// What a technique made of a scene: a map of the floor square, or, for an eye-space technique
+/// (paper 5), an image in the scene camera's screen space. Both light the final image
+/// (`crate::render::render_with`) through [`caustics`](Self::caustics).
+#[derive(Clone, Debug)]
+pub enum SceneCaustics {
+    Floor(CausticsMap),
+    EyeSpace(EyeSpaceCaustics),
+}
+
+impl SceneCaustics {
+    pub fn caustics(&self) -> Caustics<'_> {
+        match self {
+            SceneCaustics::Floor(m) => Caustics::Floor(m),
+            SceneCaustics::EyeSpace(e) => Caustics::EyeSpace(e),
+        }
+    }
+
+    pub fn floor(&self) -> Option<&CausticsMap> {
+        match self {
+            SceneCaustics::Floor(m) => Some(m),
+            SceneCaustics::EyeSpace(_) => None,
+        }
+    }
+
+    /// The floor map, or an error naming the technique that made an eye-space image instead.
+    pub fn into_floor(self, technique: &str) -> Result<CausticsMap> {
+        match self {
+            SceneCaustics::Floor(m) => Ok(m),
+            SceneCaustics::EyeSpace(_) => Err(Error::InvalidParameter(format!(
+                "technique `{technique}` computes caustics in the eye camera's screen space, not as a map of the floor square"
+            ))),
+        }
+    }
+}
+
+/// A technique's output.
+#[derive(Clone, Debug)]
+pub struct Made {
+    pub caustics: SceneCaustics,
+    /// The pool's walls' maps, from a technique that lights them when the scene's walls are on;
+    /// `None` from a floor-only technique.
+    pub walls: Option<WallMaps>,
+}
+
+impl Made {
+    pub fn floor(map: CausticsMap, walls: Option<WallMaps>) -> Self {
+        Made {
+            caustics: SceneCaustics::Floor(map),
+            walls,
+        }
+    }
+}
+
+/// A scene of water alone over a floor under the sun, for the tools that measure techniques on
+/// generated cases (`caustics compare`, the error-against-cost sweep): no objects, a camera
+/// looking down at the square.
+pub fn water_scene(
+    name: &str,
+    water: &Water,
+    floor: &Floor,
+    light: DVec3,
+    (width, height): (u32, u32),
+    time: f64,
+) -> Scene {
+    let size = water.size;
+    Scene {
+        name: name.to_string(),
+        water: Some(water.clone()),
+        light: Light {
+            direction: light.normalize(),
+            color: DVec3::ONE,
+            intensity: 1.0,
+            position: None,
+            cone: None,
+        },
+        caustics: CausticsSettings {
+            width,
+            height,
+            technique: super::REGISTRY[0].name.to_string(),
+            params: toml::Table::new(),
+        },
+        floor: floor.clone(),
+        objects: Vec::new(),
+        camera: Camera {
+            position: DVec3::new(0.5 * size, -0.6 * size, water.depth + 1.2 * size),
+            target: DVec3::new(0.5 * size, 0.5 * size, 0.0),
+            fov_y: 45.0,
+            width: 640,
+            height: 360,
+        },
+        look: Look::default(),
+        time,
+        size,
+    }
+}
+
+/// The height field a grid-based technique reads: a file's own samples, or the surface sampled on
+/// the map's lattice.
+pub fn heights_for(water: &Water, surface: &dyn Surface, width: usize, height: usize) -> Grid {
+    match &water.source {
+        WaterSource::HeightField(g) => g.clone(),
+        _ => sample_grid(surface, width, height, water.size),
+    }
+}
+
+/// The heights a bicubic reader sees the water through: a water that is itself a grid read
+/// bicubically (the FFT ocean, the ripples) sampled at its own lattice, so that the technique's
+/// surface is the water's own; others as [`heights_for`]. Sampled at the map's resolution instead,
+/// the 128² ocean is re-interpolated, and its sharpest caustics move (9 % rel. L1 at 60°, deep,
+/// 256²; docs/yuksel.md).
+pub fn lattice_heights(water: &Water, surface: &dyn Surface, width: usize, height: usize) -> Grid {
+    let n = match &water.source {
+        WaterSource::Ocean(o) => o.params().resolution,
+        WaterSource::Ripple(p) => p.resolution,
+        _ => return heights_for(water, surface, width, height),
+    };
+    sample_grid(surface, n, n, water.size)
+}

@@ -1,0 +1,271 @@
+//! The registry's descriptors agree with the techniques they describe: the ranges the parser
+//! enforces are the ranges each technique's own checks accept, the defaults are the techniques'
+//! own, every parameter is reachable through the one spec parser, and the README's table is the
+//! registry's.
+
+use caustics_core::techniques::describe::{Default, Kind, check_value, markdown_table};
+use caustics_core::techniques::{REGISTRY, Spec, find};
+
+/// Every name once; every parameter key once within its entry; every entry found by name.
+#[test]
+fn names_and_keys_are_unique() {
+    for (k, d) in REGISTRY.iter().enumerate() {
+        assert!(
+            REGISTRY[..k].iter().all(|o| o.name != d.name),
+            "{} twice",
+            d.name
+        );
+        assert_eq!(find(d.name).unwrap().name, d.name);
+        for (j, p) in d.params.iter().enumerate() {
+            assert!(
+                d.params[..j].iter().all(|o| o.key != p.key),
+                "{}.{} twice",
+                d.name,
+                p.key
+            );
+            assert!(
+                !p.doc.is_empty() && !p.label.is_empty(),
+                "{}.{}",
+                d.name,
+                p.key
+            );
+        }
+    }
+    assert_eq!(REGISTRY.iter().filter(|d| d.reference).count(), 1);
+}
+
+/// An integer's range ends are accepted by the descriptor and by the technique's own reading
+/// of its table; one past each end is refused by the parser with an error naming the key and
+/// the range.
+#[test]
+fn integer_ranges_are_the_techniques_own() {
+    let mut checked = 0;
+    for d in REGISTRY {
+        for p in d.params {
+            let Kind::Int {
+                min,
+                max,
+                parity,
+                power_of_two,
+            } = p.kind
+            else {
+                continue;
+            };
+            let fit = |i: i64| {
+                let mut i = i;
+                if let Some(q) = parity
+                    && i.rem_euclid(2) != q
+                {
+                    i += if i == max { -1 } else { 1 };
+                }
+                if power_of_two {
+                    i = (i.max(1) as u64).next_power_of_two() as i64;
+                    if i > max {
+                        i /= 2;
+                    }
+                }
+                i
+            };
+            for i in [fit(min), fit(max)] {
+                let text = format!("{}:{}={i}", d.name, p.key);
+                let spec: Spec = text
+                    .parse()
+                    .unwrap_or_else(|e| panic!("{text} refused: {e}"));
+                (d.validate)(&spec.params).unwrap_or_else(|e| panic!("{text}: {e}"));
+            }
+            for i in [min - 1, max + 1] {
+                let text = format!("{}:{}={i}", d.name, p.key);
+                let e = text.parse::<Spec>().unwrap_err().to_string();
+                assert!(
+                    e.contains(p.key)
+                        && e.contains(&min.to_string())
+                        && e.contains(&max.to_string()),
+                    "{text}: {e}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked >= 40, "{checked}");
+}
+
+/// A number's range is refused past its ends; a wrong type and an unknown key are refused with
+/// the key named and, for an unknown key, the parameters listed.
+#[test]
+fn bad_values_and_keys_are_named() {
+    for d in REGISTRY {
+        for p in d.params {
+            if let Kind::Float { min, max } = p.kind {
+                for f in [min - 1.0, max * 2.0 + 1.0] {
+                    let e = format!("{}:{}={f:?}", d.name, p.key)
+                        .parse::<Spec>()
+                        .unwrap_err()
+                        .to_string();
+                    assert!(e.contains(p.key) && e.contains("between"), "{e}");
+                }
+            }
+            let wrong = match p.kind {
+                Kind::Bool | Kind::Int { .. } | Kind::Float { .. } => "\"text\"",
+                Kind::Choice(_) | Kind::Path => "[1, 2]",
+            };
+            let e = format!("{}:{}={wrong}", d.name, p.key)
+                .parse::<Spec>()
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(p.key), "{e}");
+        }
+        let e = format!("{}:no_such_key=1", d.name)
+            .parse::<Spec>()
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("no_such_key"), "{e}");
+        for p in d.params {
+            assert!(e.contains(p.key), "{e} does not list {}", p.key);
+        }
+    }
+    let e = "no-such-technique".parse::<Spec>().unwrap_err().to_string();
+    for d in REGISTRY {
+        assert!(e.contains(d.name), "{e}");
+    }
+}
+
+/// The defaults each descriptor states are the technique's own (its `Default`, serialized), and
+/// every choice's words are what its serde enum reads.
+#[test]
+fn defaults_are_the_techniques_own() {
+    use caustics_core::techniques::{cascaded, caustic_triangles, procedural, volumes, yuksel};
+    let own: [(&str, toml::Table); 5] = [
+        (
+            "yuksel",
+            toml::Table::try_from(yuksel::YukselParams::default()).unwrap(),
+        ),
+        (
+            "procedural",
+            toml::Table::try_from(procedural::ProceduralCausticsParams::default()).unwrap(),
+        ),
+        (
+            "volumes",
+            toml::Table::try_from(volumes::VolumesParams::default()).unwrap(),
+        ),
+        (
+            "caustic-triangles",
+            toml::Table::try_from(caustic_triangles::CausticTrianglesParams::default()).unwrap(),
+        ),
+        (
+            "cascaded",
+            toml::Table::try_from(cascaded::CascadedParams::default()).unwrap(),
+        ),
+    ];
+    let mut compared = 0;
+    for d in REGISTRY {
+        let Some((_, table)) = own.iter().find(|(t, _)| *t == d.table) else {
+            assert!(d.params.is_empty(), "{} has no serde table here", d.name);
+            continue;
+        };
+        for p in d.params {
+            if d.fixed.iter().any(|(k, _)| *k == p.key) {
+                continue;
+            }
+            match (p.default.value(), table.get(p.key)) {
+                (Some(a), Some(b)) => {
+                    let same = match (&a, b) {
+                        (toml::Value::Float(x), toml::Value::Float(y)) => (x - y).abs() < 1e-12,
+                        _ => a == *b,
+                    };
+                    assert!(same, "{}.{}: descriptor {a}, technique {b}", d.name, p.key);
+                    compared += 1;
+                }
+                (None, None) => assert!(matches!(p.default, Default::Auto(_))),
+                (a, b) => panic!("{}.{}: descriptor {a:?}, technique {b:?}", d.name, p.key),
+            }
+        }
+        // Every key of the technique's table is described.
+        for key in table.keys() {
+            assert!(
+                d.param(key).is_some(),
+                "{}: `{key}` has no descriptor",
+                d.table
+            );
+        }
+        // The entry's defaults are a table the technique reads.
+        let mut tables = toml::Table::new();
+        tables.insert(d.table.into(), toml::Value::Table(d.defaults()));
+        (d.validate)(&tables).unwrap_or_else(|e| panic!("{}: {e}", d.name));
+        for p in d.params {
+            if let Some(v) = p.default.value() {
+                check_value(p, &v, p.key).unwrap_or_else(|e| panic!("{}: {e}", d.name));
+            }
+        }
+    }
+    assert!(compared >= 40, "{compared}");
+}
+
+/// A variant's name pins its value; a contradiction is refused, and a scene's tables are
+/// checked by the same descriptors (an unknown table, key or range).
+#[test]
+fn variants_and_scene_tables_use_the_same_parser() {
+    for d in REGISTRY {
+        for (k, v) in d.fixed {
+            let spec: Spec = d.name.parse().unwrap();
+            assert_eq!(spec.own().get(*k).and_then(|x| x.as_str()), Some(*v));
+            let other = d
+                .param(k)
+                .and_then(|p| match p.kind {
+                    Kind::Choice(words) => words.iter().find(|w| *w != v),
+                    _ => None,
+                })
+                .unwrap();
+            assert!(
+                format!("{}:{k}=\"{other}\"", d.name)
+                    .parse::<Spec>()
+                    .is_err()
+            );
+        }
+    }
+    let scene = |caustics: &str| {
+        caustics_core::scene::Scene::from_toml(
+            &format!(
+                "[water]\nwaves = [{{ amplitude = 0.01, wavelength = 0.5, direction = [1.0, 0.0] }}]\ndepth = 1.0\n[light]\ndirection = [0.0, 0.0, -1.0]\n[caustics]\n{caustics}\n"
+            ),
+            std::path::Path::new("."),
+            "t",
+        )
+    };
+    let first = REGISTRY.iter().find(|d| !d.params.is_empty()).unwrap();
+    let p = &first.params[0];
+    scene(&format!("technique = \"{}\"", first.name)).unwrap();
+    // The same spelling as --technique.
+    let value = p.default.value().unwrap_or(toml::Value::Integer(1));
+    let ok = scene(&format!("technique = \"{}:{}={value}\"", first.name, p.key));
+    assert!(ok.is_ok(), "{:?}", ok.err());
+    let e = scene(&format!(
+        "technique = \"{}\"\n[caustics.{}]\nno_such_key = 1",
+        first.name, first.table
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("no_such_key") && e.contains(p.key), "{e}");
+    let e = scene("technique = \"no-such\"").unwrap_err().to_string();
+    assert!(
+        e.contains("caustics.technique") && e.contains("no-such"),
+        "{e}"
+    );
+    let e = scene("[caustics.no-such]\nx = 1").unwrap_err().to_string();
+    assert!(e.contains("caustics.no-such"), "{e}");
+}
+
+/// The README's table of techniques is the registry's (`caustics techniques --markdown`).
+#[test]
+fn the_readme_table_is_current() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let begin = "<!-- techniques: made by `caustics techniques --markdown` -->\n";
+    let end = "<!-- techniques end -->";
+    let a = readme.find(begin).expect("the README marks its table") + begin.len();
+    let b = a + readme[a..].find(end).expect("the table's end marker");
+    assert_eq!(
+        &readme[a..b],
+        markdown_table(),
+        "README.md's table of techniques is stale: paste `caustics techniques --markdown` between its markers"
+    );
+}
