@@ -248,7 +248,7 @@ fn cascaded_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) -> 
     let map = reference(&input, &options, &|_, _| {})?;
     let out = runner.run(spec, &Job::new(pool, Some(surface.as_ref()), 1), &|_, _| {})?;
     let SceneCaustics::EyeSpace(image) = out.caustics else {
-        bail!("cascaded made a floor map");
+        bail!("{} made a floor map, not an eye-space image", spec.name());
     };
     let params = CascadedParams::from_table(&spec.params)?;
     let setup = CascadedSetup::from_scene(pool, &params)?;

@@ -207,9 +207,7 @@ fn techniques() -> Vec<String> {
         .filter(|l| l.contains("water -> floor map") || l.contains("water -> eye space"))
         .filter_map(|l| l.split_whitespace().next().map(str::to_string))
         .collect();
-    if v.iter().any(|t| t == "yuksel") {
-        v.push("yuksel-gather".into());
-    }
+    v.dedup();
     v
 }
 
@@ -272,8 +270,8 @@ fn every_technique_shows_caustics_in_the_window() {
         let mut args = common.to_vec();
         // Paper 2's pattern is sparse (the 0.84° sun halo), and its default blend over the lit
         // ground halves it; the bare lookup shows whether the view draws the technique's pattern.
-        let spec = if t == "procedural" {
-            "procedural:ground=0".to_string()
+        let spec = if t.starts_with("procedural") {
+            format!("{t}:ground=0")
         } else {
             t.clone()
         };

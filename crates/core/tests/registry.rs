@@ -236,7 +236,7 @@ fn variants_and_scene_tables_use_the_same_parser() {
     scene(&format!("technique = \"{}\"", first.name)).unwrap();
     // The same spelling as --technique.
     let value = p.default.value().unwrap_or(toml::Value::Integer(1));
-    let ok = scene(&format!("technique = \"{}:{}={value}\"", first.name, p.key));
+    let ok = scene(&format!("technique = '{}:{}={value}'", first.name, p.key));
     assert!(ok.is_ok(), "{:?}", ok.err());
     let e = scene(&format!(
         "technique = \"{}\"\n[caustics.{}]\nno_such_key = 1",
@@ -268,4 +268,42 @@ fn the_readme_table_is_current() {
         markdown_table(),
         "README.md's table of techniques is stale: paste `caustics techniques --markdown` between its markers"
     );
+}
+
+/// A fixed-length array of a scene file with another length is refused, naming the length: every
+/// such field of the built-in scenes, one entry added.
+#[test]
+fn scene_arrays_have_their_length() {
+    let mut refused = 0;
+    for (name, text) in caustics_core::scene::BUILTIN_SCENES {
+        for (k, line) in text.lines().enumerate() {
+            let trimmed = line.trim_start();
+            // A key's inline array of numbers: `key = [a, b]` (also inside inline tables).
+            let Some(open) = trimmed.find("= [") else {
+                continue;
+            };
+            let Some(close) = trimmed[open..].find(']') else {
+                continue;
+            };
+            let inner = &trimmed[open + 3..open + close];
+            if inner.is_empty() || inner.contains('{') || inner.contains('"') {
+                continue;
+            }
+            let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+            let at = line.len() - trimmed.len() + open + close;
+            let extra = if inner.contains('.') { ", 1.0" } else { ", 1" };
+            lines[k].insert_str(at, extra);
+            let changed = lines.join("\n");
+            match caustics_core::scene::Scene::from_toml(&changed, std::path::Path::new("."), name)
+            {
+                Err(e) => {
+                    let e = e.to_string();
+                    assert!(e.contains("exactly"), "{name} line {}: {e}", k + 1);
+                    refused += 1;
+                }
+                Ok(_) => panic!("{name} line {}: `{}` accepted", k + 1, lines[k]),
+            }
+        }
+    }
+    assert!(refused >= 10, "{refused}");
 }

@@ -113,6 +113,16 @@ impl<'a> WallsOutput<'a> {
     }
 }
 
+/// What [`Technique::write_scene`] did with a frame's scene.
+#[derive(Debug)]
+pub enum Fit {
+    /// The new values are in its uniforms.
+    Written,
+    /// A size changed: it needs [`Technique::configure`] again, on this water (the one it was
+    /// configured with).
+    Reconfigure(WaterTextures),
+}
+
 /// A caustics technique on the GPU. The scene gives the water's optics (`water`: size, depth,
 /// index, absorption, wrap; its `source` is ignored, the heights come from [`WaterTextures`]), the
 /// floor, the sun (`light`), the map size (`caustics.width`, `caustics.height`), the camera (for
@@ -135,10 +145,22 @@ pub trait Technique {
         water: &WaterTextures,
     ) -> Result<(), GpuError>;
 
-    /// Take this frame's sun, camera and parameters: uniform writes only while the sizes hold. A
-    /// change that needs new resources (a larger gather region, a new map size) configures again
-    /// with the water it was configured with, and says so in the log.
-    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError>;
+    /// Take this frame's sun, camera and parameters as uniform writes where the configured
+    /// resources still fit them; [`Fit::Reconfigure`] (with the water it was configured with)
+    /// where they do not. An error before [`configure`](Self::configure).
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError>;
+
+    /// [`write_scene`](Self::write_scene), configuring again (and saying so in the log) when
+    /// the sizes changed: what a frame calls.
+    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+        match self.write_scene(ctx, scene)? {
+            Fit::Written => Ok(()),
+            Fit::Reconfigure(water) => {
+                tracing::debug!("{}: new sizes, configuring again", self.name());
+                self.configure(ctx, scene, &water)
+            }
+        }
+    }
 
     /// Record the technique's passes into the caller's encoder (after the water's own passes).
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>);

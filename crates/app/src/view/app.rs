@@ -1076,7 +1076,8 @@ fn initial_model(
         cells,
     )
     .context("--technique")?;
-    let second = TechniqueChoice::parse(args.compare.as_deref().unwrap_or("reference"), cells)
+    let reference = caustics_core::techniques::reference();
+    let second = TechniqueChoice::parse(args.compare.as_deref().unwrap_or(reference.name()), cells)
         .context("--compare")?;
     let water = match &scene.water {
         Some(w) => {

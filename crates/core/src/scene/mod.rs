@@ -6,6 +6,7 @@
 //! The built-in scenes live as TOML beside this file (`scenes/*.toml`) so they double as examples.
 
 mod builtin;
+pub mod exact;
 mod validate;
 
 use std::path::{Path, PathBuf};
@@ -52,6 +53,7 @@ pub struct WaterSpec {
     /// A height field file: `.npy` float32 (rows, cols), `.exr`, or 16-bit `.png`.
     pub heightfield: Option<PathBuf>,
     /// For 16-bit PNG height fields: the displacements that 0 and 65535 stand for.
+    #[serde(default, deserialize_with = "crate::scene::exact::option")]
     pub heightfield_range: Option<[f32; 2]>,
     pub waves: Option<Vec<Wave>>,
     pub procedural: Option<ProceduralParams>,
@@ -66,6 +68,7 @@ pub struct WaterSpec {
     pub wrap: bool,
     /// Absorption coefficient `K` per RGB channel, per world unit of path (Beer-Lambert `exp(-K d)`).
     #[serde(default)]
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub absorption: [f64; 3],
 }
 
@@ -75,17 +78,18 @@ pub struct LightSpec {
     /// The direction the sunlight travels; need not be normalised; must point down (z < 0).
     /// Required for the sun; with `position`, the axis of a spot light's cone (default straight
     /// down).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::scene::exact::option")]
     pub direction: Option<[f64; 3]>,
     /// A point light at this position instead of the sun (above the floor, z > 0). Only technique
     /// `caustic-triangles` renders it (paper 4, §4: the light cube map); the others refuse it.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "crate::scene::exact::option")]
     pub position: Option<[f64; 3]>,
     /// With `position`: a spot light, lighting the cone of this half-angle (degrees, in (0, 90])
     /// around `direction`.
     #[serde(default)]
     pub cone: Option<f64>,
     #[serde(default = "white")]
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub color: [f64; 3],
     #[serde(default = "one")]
     pub intensity: f64,
@@ -94,6 +98,7 @@ pub struct LightSpec {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CausticsSpec {
     #[serde(default = "default_resolution")]
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub resolution: [u32; 2],
     #[serde(default = "default_technique")]
     pub technique: String,
@@ -145,6 +150,7 @@ pub enum FloorPattern {
 pub struct TerrainSpec {
     /// A terrain height field file (same formats and centring as the water's); heights above z = 0.
     pub heightfield: Option<PathBuf>,
+    #[serde(default, deserialize_with = "crate::scene::exact::option")]
     pub heightfield_range: Option<[f32; 2]>,
     /// A generated beach: the floor rises from `deep` at x = 0 to `shallow` at x = size.
     pub beach: Option<BeachSpec>,
@@ -170,6 +176,7 @@ pub struct ObjectSpec {
     pub shape: ShapeSpec,
     /// Centre of the object's base (it rests at this point), world units.
     #[serde(default)]
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub position: [f64; 3],
     /// Uniform scale applied to the shape's native size.
     #[serde(default = "one")]
@@ -189,7 +196,10 @@ pub enum ShapeSpec {
     /// A sphere of radius 1 before scaling.
     Sphere,
     /// A box with the given half extents before scaling.
-    Cuboid { half_extents: [f64; 3] },
+    Cuboid {
+        #[serde(deserialize_with = "crate::scene::exact::array")]
+        half_extents: [f64; 3],
+    },
     /// A triangle mesh from an OBJ file.
     Mesh { path: PathBuf },
 }
@@ -197,8 +207,15 @@ pub enum ShapeSpec {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum MaterialSpec {
-    Diffuse { color: [f64; 3] },
-    Glass { ior: f64, tint: Option<[f64; 3]> },
+    Diffuse {
+        #[serde(deserialize_with = "crate::scene::exact::array")]
+        color: [f64; 3],
+    },
+    Glass {
+        ior: f64,
+        #[serde(default, deserialize_with = "crate::scene::exact::option")]
+        tint: Option<[f64; 3]>,
+    },
 }
 
 impl Default for MaterialSpec {
@@ -212,11 +229,14 @@ impl Default for MaterialSpec {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub position: [f64; 3],
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub target: [f64; 3],
     #[serde(default = "default_fov")]
     pub fov_y: f64,
     #[serde(default = "default_image")]
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub resolution: [u32; 2],
     /// The final image's exposure: radiance is multiplied by it before the tone curve.
     #[serde(default = "one")]

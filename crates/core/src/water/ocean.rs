@@ -69,6 +69,7 @@ pub struct OceanParams {
     /// `L = V² / g`.
     pub wind_speed: f64,
     /// Wind direction `ŵ` in the xy plane (need not be normalised).
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub wind_direction: [f64; 2],
     /// Time-averaged root-mean-square height of the surface, world units. The Phillips amplitude
     /// `A` is solved for it (see the module documentation). `None`: [`DEFAULT_RMS_FRACTION`] of the

@@ -33,6 +33,7 @@ pub struct ProceduralParams {
     /// Octave count `O`.
     pub octaves: u32,
     /// World-space offset of the function's origin, so the pattern can sit where the pool is.
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub origin: [f64; 2],
 }
 

@@ -63,6 +63,7 @@ pub struct RippleParams {
 #[serde(deny_unknown_fields)]
 pub struct Drop {
     /// Centre, world units.
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub position: [f64; 2],
     /// Radius of the bump, world units.
     pub radius: f64,

@@ -18,6 +18,7 @@ pub struct Wave {
     /// Crest-to-crest distance, world units.
     pub wavelength: f64,
     /// Direction of travel in the xy plane (need not be normalised).
+    #[serde(deserialize_with = "crate::scene::exact::array")]
     pub direction: [f64; 2],
     /// Phase offset, radians.
     #[serde(default)]

@@ -13,7 +13,7 @@ use caustics_core::techniques::cascaded::{self, CascadedParams, CascadedSetup};
 use caustics_core::techniques::{Job, Made, SceneCaustics};
 
 use super::{Cascaded, Frame};
-use crate::technique::{Output, Registered, RunOnce, Technique, WaterTextures};
+use crate::technique::{Fit, Output, Registered, RunOnce, Technique, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// Side of the height grid the technique reads a surface through when the scene gives neither an
@@ -84,7 +84,7 @@ impl Technique for CascadedTechnique {
     /// The cascades refitted to the camera and sun: uniform writes while the camera's size, the
     /// resolution, the terrain's presence and the dispersion mode hold. A new terrain is a new
     /// configure (the caller's: the terrain is not compared here).
-    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
         let setup = CascadedSetup::from_scene(scene, &self.params)?;
         let Some((frame, water)) = &mut self.frame else {
             return Err(GpuError::BadOption(
@@ -93,11 +93,9 @@ impl Technique for CascadedTechnique {
         };
         if frame.fits(&setup) {
             frame.set_setup(ctx, &setup);
-            return Ok(());
+            return Ok(Fit::Written);
         }
-        tracing::debug!("cascaded: new sizes, configuring again");
-        let water = water.clone();
-        self.configure(ctx, scene, &water)
+        Ok(Fit::Reconfigure(water.clone()))
     }
 
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {

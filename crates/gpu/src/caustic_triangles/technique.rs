@@ -21,7 +21,7 @@ use caustics_core::techniques::{Job, Made};
 
 use super::{CausticTriangles, CausticTrianglesUniform, Frame, Reconstruction, WaterFrame};
 use crate::technique::{
-    Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
+    Fit, Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
 };
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -233,7 +233,7 @@ impl Technique for CausticTrianglesTechnique {
 
     /// The sun (water) or the light (glass) as uniform writes, none when they did not change; a
     /// new map size, or water appearing or going, configures again.
-    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
         let water_scene = scene.water.is_some();
         let ws = if water_scene {
             Some(self.water_setup(scene)?)
@@ -249,7 +249,7 @@ impl Technique for CausticTrianglesTechnique {
             (Some(State::Water { frame, water }), Some(ws)) => {
                 if frame.fits(&ws) {
                     frame.set_setup(ctx, &ws);
-                    return Ok(());
+                    return Ok(Fit::Written);
                 }
                 water.clone()
             }
@@ -264,7 +264,7 @@ impl Technique for CausticTrianglesTechnique {
             ) => {
                 let key = LightKey::of(scene);
                 if key == *light {
-                    return Ok(());
+                    return Ok(Fit::Written);
                 }
                 if (key.width, key.height, key.size) == (light.width, light.height, light.size) {
                     let mut next = Vec::with_capacity(generators.len());
@@ -283,15 +283,14 @@ impl Technique for CausticTrianglesTechnique {
                         g.frame.setup = setup;
                     }
                     *light = key;
-                    return Ok(());
+                    return Ok(Fit::Written);
                 }
                 water.clone()
             }
             (Some(State::Water { water, .. }), None)
             | (Some(State::Glass { water, .. }), Some(_)) => water.clone(),
         };
-        tracing::debug!("caustic-triangles: new sizes or generators, configuring again");
-        self.configure(ctx, scene, &again)
+        Ok(Fit::Reconfigure(again))
     }
 
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {

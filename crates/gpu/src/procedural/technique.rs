@@ -10,7 +10,7 @@ use caustics_core::techniques::{Job, Made};
 use glam::DVec3;
 
 use super::{Frame, ProceduralCaustics};
-use crate::technique::{Output, Registered, RunOnce, Technique, WaterTextures};
+use crate::technique::{Fit, Output, Registered, RunOnce, Technique, WaterTextures};
 use crate::yuksel::technique::water;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -178,7 +178,7 @@ impl Technique for ProceduralTechnique {
         Ok(())
     }
 
-    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
         let key = Self::key(scene)?;
         let Some((frame, water, old)) = &mut self.frame else {
             return Err(GpuError::BadOption(
@@ -186,18 +186,16 @@ impl Technique for ProceduralTechnique {
             ));
         };
         if *old == key {
-            return Ok(());
+            return Ok(Fit::Written);
         }
         let mut setup = Self::setup(&self.sun_params, &key)?;
         setup.light = frame.setup().light.clone();
         if frame.fits(&setup) {
             frame.set_setup(ctx, &setup);
             *old = key;
-            return Ok(());
+            return Ok(Fit::Written);
         }
-        tracing::debug!("procedural: new sizes, configuring again");
-        let water = water.clone();
-        self.configure(ctx, scene, &water)
+        Ok(Fit::Reconfigure(water.clone()))
     }
 
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {

@@ -9,7 +9,7 @@ use glam::DVec3;
 
 use super::{Frame, Volumes};
 use crate::technique::{
-    Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
+    Fit, Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
 };
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -127,7 +127,7 @@ impl Technique for VolumesTechnique {
         Ok(())
     }
 
-    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
         let key = SceneKey::of(scene)?;
         let Some(c) = &mut self.frame else {
             return Err(GpuError::BadOption(
@@ -135,7 +135,7 @@ impl Technique for VolumesTechnique {
             ));
         };
         if c.key == key {
-            return Ok(());
+            return Ok(Fit::Written);
         }
         if c.key.wrap == key.wrap {
             key.apply(&mut c.input);
@@ -143,12 +143,10 @@ impl Technique for VolumesTechnique {
             if c.frame.fits(&setup) {
                 c.frame.set_setup(ctx, &setup);
                 c.key = key;
-                return Ok(());
+                return Ok(Fit::Written);
             }
         }
-        tracing::debug!("volumes: new sizes, configuring again");
-        let water = c.water.clone();
-        self.configure(ctx, scene, &water)
+        Ok(Fit::Reconfigure(c.water.clone()))
     }
 
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {

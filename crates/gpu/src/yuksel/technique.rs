@@ -6,7 +6,7 @@ use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
 use caustics_core::techniques::{Job, Made};
 
 use super::{Frame, Variant, Yuksel};
-use crate::technique::{Output, Registered, RunOnce, Technique, WaterTextures};
+use crate::technique::{Fit, Output, Registered, RunOnce, Technique, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 pub struct YukselTechnique {
@@ -110,7 +110,7 @@ impl Technique for YukselTechnique {
         Ok(())
     }
 
-    fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
         let setup = self.setup(scene)?;
         let Some((frame, water)) = &mut self.frame else {
             return Err(GpuError::BadOption(
@@ -118,15 +118,13 @@ impl Technique for YukselTechnique {
             ));
         };
         if *frame.setup() == setup {
-            return Ok(());
+            return Ok(Fit::Written);
         }
         if frame.fits(&setup) {
             frame.set_setup(ctx, &setup);
-            return Ok(());
+            return Ok(Fit::Written);
         }
-        tracing::debug!("yuksel: new sizes, configuring again");
-        let water = water.clone();
-        self.configure(ctx, scene, &water)
+        Ok(Fit::Reconfigure(water.clone()))
     }
 
     fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
