@@ -380,18 +380,30 @@ fn scene_check_and_techniques() {
     }
     let o = caustics(&["scene", "check", "missing.toml"], &d);
     assert!(!o.status.success() && stderr(&o).contains("missing.toml"));
+    // Every registered technique, and every parameter of each under it, from the registry.
     let o = caustics(&["techniques"], &d);
     let out = String::from_utf8_lossy(&o.stdout);
-    for t in [
-        "reference",
-        "yuksel",
-        "procedural",
-        "volumes",
-        "caustic-triangles",
-        "cascaded",
-    ] {
-        assert!(out.contains(t), "{t} missing from:\n{out}");
+    for t in caustics_core::techniques::REGISTRY {
+        let at = out
+            .lines()
+            .position(|l| l.split_whitespace().next() == Some(t.name))
+            .unwrap_or_else(|| panic!("{} missing from:\n{out}", t.name));
+        let below: Vec<&str> = out.lines().skip(at + 1).take(t.params.len()).collect();
+        for (p, line) in t.params.iter().zip(&below) {
+            assert!(
+                line.trim_start().starts_with(&format!("{} = ", p.key)),
+                "{}: `{}` missing: {line}",
+                t.name,
+                p.key
+            );
+        }
     }
+    // The README's table, as the registry makes it.
+    let o = caustics(&["techniques", "--markdown"], &d);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        caustics_core::techniques::describe::markdown_table()
+    );
     // The GPU registry's names, one a line, each one `render --technique` accepts (CI's
     // validation pass renders every one of them).
     let o = caustics(&["techniques", "--gpu-names"], &d);
