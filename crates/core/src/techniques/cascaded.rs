@@ -111,7 +111,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: &[
         Param {
             sweep: &["64", "128", "256", "512", "1024"],
-            ..param(
+            ..Param::new(
                 "resolution",
                 "cascade resolution",
                 Kind::int(16, 8192),
@@ -121,7 +121,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
                 Change::Reconfigure,
             )
         },
-        param(
+        Param::new(
             "placement",
             "cascade placement",
             Kind::Choice(&["eq33", "plane"]),
@@ -130,7 +130,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "eq33: the photon placed by Eq. 3.3; plane: on the horizontal plane through the terrain hit (ours)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "dispersion",
             "dispersion",
             Kind::Choice(&["none", "wavelength", "post"]),
@@ -139,7 +139,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "none; wavelength: one IOR per channel (§3.6); post: a screen-space shift (ours)",
             Change::Reconfigure,
         ),
-        param(
+        Param::new(
             "dispersion_scale",
             "dispersion scale",
             Kind::float(0.0, 1.0e3),
@@ -148,7 +148,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "exaggeration of the dispersion (1: water's measured dispersion)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "splat",
             "splat",
             Kind::Choice(&["footprint", "point"]),
@@ -157,7 +157,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "footprint: a tent the size of the photon's floor area (ours); point: one pixel (§3.4)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "brightness",
             "brightness",
             Kind::Choice(&["physical", "ramps"]),
@@ -166,7 +166,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "physical: relative irradiance; ramps: the paper's depth ramps (§3.4.3)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "near",
             "near",
             Kind::float(0.0, 1.0e6),
@@ -175,7 +175,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "the eye's near plane (view depth)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "far",
             "far",
             Kind::float(0.0, 1.0e6),
@@ -184,7 +184,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "the far plane of the last cascade (view depth)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "blend",
             "blend",
             Kind::float(0.0, 1.0),
@@ -193,7 +193,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "fraction of each cascade's depth interval over which it blends into the next",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "c",
             "C",
             Kind::float(-1.0e6, 1.0e6),
@@ -202,7 +202,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "C of §3.4.3 (ramps)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "min_depth",
             "min depth",
             Kind::float(-1.0e6, 1.0e6),
@@ -211,7 +211,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "MIN_DEPTH of §3.4.3 (ramps)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "max_depth",
             "max depth",
             Kind::float(0.0, 1.0e6),
@@ -220,7 +220,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "MAX_DEPTH of §3.4.3 (ramps)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "shallow_ramp",
             "shallow ramp",
             Kind::float(0.0, 1.0e6),
@@ -229,7 +229,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "width of the shallow ramp of §3.4.3 (the paper: 1)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "terrain_pass",
             "terrain pass",
             Kind::Bool,
@@ -246,27 +246,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     validate: |t| CascadedParams::from_table(t).map(|_| ()),
     cpu: run_cpu,
 };
-
-const fn param(
-    key: &'static str,
-    label: &'static str,
-    kind: Kind,
-    default: D,
-    unit: &'static str,
-    doc: &'static str,
-    change: Change,
-) -> Param {
-    Param {
-        key,
-        label,
-        kind,
-        default,
-        unit,
-        doc,
-        change,
-        sweep: &[],
-    }
-}
 
 /// Side of the height grid the technique reads a water surface through when the water gives
 /// neither an ocean's nor a file's own grid (the shore's ocean is 128²).

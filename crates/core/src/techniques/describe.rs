@@ -110,6 +110,30 @@ pub struct Param {
     pub sweep: &'static [&'static str],
 }
 
+impl Param {
+    /// A parameter that is not swept (`Param { sweep: &[..], ..Param::new(..) }` for one that is).
+    pub const fn new(
+        key: &'static str,
+        label: &'static str,
+        kind: Kind,
+        default: Default,
+        unit: &'static str,
+        doc: &'static str,
+        change: Change,
+    ) -> Param {
+        Param {
+            key,
+            label,
+            kind,
+            default,
+            unit,
+            doc,
+            change,
+            sweep: &[],
+        }
+    }
+}
+
 /// What a technique lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Receiver {

@@ -206,28 +206,7 @@ pub const TEXTURE: Descriptor = Descriptor {
     ..DESCRIPTOR
 };
 
-const fn param(
-    key: &'static str,
-    label: &'static str,
-    kind: Kind,
-    default: D,
-    unit: &'static str,
-    doc: &'static str,
-    change: Change,
-) -> Param {
-    Param {
-        key,
-        label,
-        kind,
-        default,
-        unit,
-        doc,
-        change,
-        sweep: &[],
-    }
-}
-
-const VARIANT: Param = param(
+const VARIANT: Param = Param::new(
     "variant",
     "variant",
     Kind::Choice(&["vertex", "screen", "texture"]),
@@ -236,7 +215,7 @@ const VARIANT: Param = param(
     "vertex: a fine ground mesh; screen: per map pixel; texture: a mipmapped target",
     Change::Reconfigure,
 );
-const MESH_RESOLUTION: Param = param(
+const MESH_RESOLUTION: Param = Param::new(
     "mesh_resolution",
     "mesh",
     Kind::int(1, MAX_MESH_RESOLUTION as i64),
@@ -245,7 +224,7 @@ const MESH_RESOLUTION: Param = param(
     "the vertex variant's ground mesh",
     Change::Reconfigure,
 );
-const TARGET_RESOLUTION: Param = param(
+const TARGET_RESOLUTION: Param = Param::new(
     "target_resolution",
     "target",
     Kind::Int {
@@ -259,7 +238,7 @@ const TARGET_RESOLUTION: Param = param(
     "the texture variant's square render target (each mip level halves it)",
     Change::Reconfigure,
 );
-const ANISOTROPY: Param = param(
+const ANISOTROPY: Param = Param::new(
     "anisotropy",
     "anisotropy",
     Kind::int(1, MAX_ANISOTROPY as i64),
@@ -268,7 +247,7 @@ const ANISOTROPY: Param = param(
     "the texture variant's sampler clamp (1: plain trilinear)",
     Change::Reconfigure,
 );
-const IOR: Param = param(
+const IOR: Param = Param::new(
     "ior",
     "IOR",
     Kind::float(1.0, 3.0),
@@ -277,7 +256,7 @@ const IOR: Param = param(
     "index of refraction of the water (the paper's 1.33333, not the scene's)",
     Change::Uniform,
 );
-const FOLLOW_SUN: Param = param(
+const FOLLOW_SUN: Param = Param::new(
     "follow_sun",
     "follow the sun",
     Kind::Bool,
@@ -286,7 +265,7 @@ const FOLLOW_SUN: Param = param(
     "the scene's sun instead of the paper's overhead one",
     Change::Uniform,
 );
-const ABSORPTION: Param = param(
+const ABSORPTION: Param = Param::new(
     "absorption",
     "absorption",
     Kind::Bool,
@@ -295,7 +274,7 @@ const ABSORPTION: Param = param(
     "exp(-K d) along the gathering ray, with the scene's K",
     Change::Uniform,
 );
-const SUN_DIAMETER: Param = param(
+const SUN_DIAMETER: Param = Param::new(
     "sun_diameter",
     "sun diameter",
     Kind::float(0.0, 30.0),
@@ -304,7 +283,7 @@ const SUN_DIAMETER: Param = param(
     "the sun disk of the generated light map",
     Change::Reconfigure,
 );
-const HALO_AREA_PARAM: Param = param(
+const HALO_AREA_PARAM: Param = Param::new(
     "halo_area",
     "halo area",
     Kind::float(1.0, 1000.0),
@@ -313,7 +292,7 @@ const HALO_AREA_PARAM: Param = param(
     "the halo's area over the sun disk's",
     Change::Reconfigure,
 );
-const HALO_LEVEL: Param = param(
+const HALO_LEVEL: Param = Param::new(
     "halo_level",
     "halo level",
     Kind::float(0.0, 1.0),
@@ -322,7 +301,7 @@ const HALO_LEVEL: Param = param(
     "halo brightness at the sun disk's edge, relative to the disk",
     Change::Reconfigure,
 );
-const LIGHT_MAP_RESOLUTION: Param = param(
+const LIGHT_MAP_RESOLUTION: Param = Param::new(
     "light_map_resolution",
     "light map",
     Kind::int(2, 4096),
@@ -331,7 +310,7 @@ const LIGHT_MAP_RESOLUTION: Param = param(
     "the generated light map",
     Change::Reconfigure,
 );
-const LIGHT_MAP: Param = param(
+const LIGHT_MAP: Param = Param::new(
     "light_map",
     "light map file",
     Kind::Path,
@@ -340,7 +319,7 @@ const LIGHT_MAP: Param = param(
     "a PNG light map instead of the generated one",
     Change::Reconfigure,
 );
-const LIGHT_MAP_EXTENT: Param = param(
+const LIGHT_MAP_EXTENT: Param = Param::new(
     "light_map_extent",
     "light map extent",
     Kind::float(0.0, 80.0),
@@ -349,7 +328,7 @@ const LIGHT_MAP_EXTENT: Param = param(
     "half-angle the PNG light map spans from its centre to its edges",
     Change::Reconfigure,
 );
-const GROUND: Param = param(
+const GROUND: Param = Param::new(
     "ground",
     "ground",
     Kind::float(0.0, 1.0),

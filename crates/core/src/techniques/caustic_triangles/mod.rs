@@ -113,7 +113,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: &[
         Param {
             sweep: &["32", "64", "128", "256", "512"],
-            ..param(
+            ..Param::new(
                 "photon_image",
                 "photon image",
                 Kind::int(2, 4096),
@@ -123,7 +123,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
                 Change::Reconfigure,
             )
         },
-        param(
+        Param::new(
             "cube_resolution",
             "cube map",
             Kind::int(2, 2048),
@@ -132,7 +132,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "the generator's layered distance map (§3; the paper: 512)",
             Change::Reconfigure,
         ),
-        param(
+        Param::new(
             "light_cube",
             "light cube",
             Kind::int(2, 4096),
@@ -141,7 +141,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "the light cube map a point light's caustic triangles are drawn into (§4)",
             Change::Reconfigure,
         ),
-        param(
+        Param::new(
             "layers",
             "layers",
             Kind::int(1, MAX_LAYERS as i64),
@@ -150,7 +150,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "layers of the distance map (§3)",
             Change::Reconfigure,
         ),
-        param(
+        Param::new(
             "linear_steps",
             "linear steps",
             Kind::int(1, 4096),
@@ -159,7 +159,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "linear search steps per ray segment in the distance map (§3)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "secant_iterations",
             "secant steps",
             Kind::int(0, 64),
@@ -168,7 +168,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "secant search iterations after the linear search (§3)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "depth",
             "depth",
             Kind::int(1, 32),
@@ -177,7 +177,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "most refractions / reflections along a photon path (§4.1)",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "fresnel",
             "Fresnel",
             Kind::Bool,
@@ -186,7 +186,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "each photon carries its Fresnel transmittance",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "area_rule",
             "area rule",
             Kind::Choice(&["paper", "hat"]),
@@ -195,7 +195,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "paper: half the 4-neighbour triangles (§4.2); hat: a third of the drawn triangles, flux-true",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "splat_size",
             "splat size",
             Kind::float(0.0, 64.0),
@@ -204,7 +204,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "side of the baseline's square splats",
             Change::Uniform,
         ),
-        param(
+        Param::new(
             "merge_levels",
             "merge levels",
             Kind::int(0, MAX_MERGE_LEVELS as i64),
@@ -213,7 +213,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "levels of the §5 hierarchical merging of small caustic triangles (0: off)",
             Change::Reconfigure,
         ),
-        param(
+        Param::new(
             "merge_texels",
             "merge below",
             Kind::float(0.0, 1.0e6),
@@ -236,27 +236,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     validate: |t| CausticTrianglesParams::from_table(t).map(|_| ()),
     cpu: run_cpu,
 };
-
-const fn param(
-    key: &'static str,
-    label: &'static str,
-    kind: Kind,
-    default: D,
-    unit: &'static str,
-    doc: &'static str,
-    change: Change,
-) -> Param {
-    Param {
-        key,
-        label,
-        kind,
-        default,
-        unit,
-        doc,
-        change,
-        sweep: &[],
-    }
-}
 
 /// The number of glass objects of a scene without water (its caustic generators), or an error
 /// naming the scene where it has none.
