@@ -16,7 +16,7 @@ use caustics_core::water::ripple::{Drop, RippleParams};
 use crate::final_image::{FinalImage, FinalImageFrame, upload_walls, water_grid_resolution};
 use crate::technique::{self, Output, Technique, WallsOutput, WaterTextures};
 use crate::water::field::GpuWater;
-use crate::{GpuContext, GpuError, GpuTimer};
+use crate::{GpuContext, GpuError, GpuTimer, TrafficCounts};
 
 /// A technique as the application names it: a registered name and its parameter tables, keyed by
 /// technique as in a scene file's `[caustics]`.
@@ -66,13 +66,20 @@ struct Side {
     image: Option<FinalImageFrame>,
     /// What the image frame was built from: caustics texture, water texture, image size.
     image_key: Option<ImageKey>,
+    /// Why the side's final image could not be made (a size beyond the device), for that key.
+    image_failed: Option<(String, ImageKey)>,
+    /// What this side's technique, its water grid, its uploaded maps and its image frame have
+    /// created and uploaded so far ([`Renderer::side_traffic`]).
+    traffic: TrafficCounts,
 }
 
 /// What a technique's configuration depends on beyond its parameters: the water texture, the map
 /// size, and the camera's image size and the sun (an eye-space image's size, a gather region).
 #[derive(Clone, PartialEq)]
 struct FailKey {
-    water: wgpu::TextureView,
+    /// The water texture, `None` when the side's grid could not be made.
+    water: Option<wgpu::TextureView>,
+    grid: (u32, u32),
     map: (u32, u32),
     view: (u32, u32),
     sun: [u64; 3],
@@ -84,6 +91,72 @@ struct ImageKey {
     walls: Option<wgpu::Texture>,
     water: Option<wgpu::TextureView>,
     size: (u32, u32),
+}
+
+/// Configure (or update) one side's technique for this frame. Whatever fails here (its water grid
+/// or its textures beyond the device, its parameters) fails this side alone, until what it
+/// depends on changes.
+fn configure_side(
+    ctx: &GpuContext,
+    scene: &Scene,
+    side: &mut Side,
+    water: Option<&mut (GpuWater, WaterSpec)>,
+    no_water: &WaterTextures,
+    grids: &mut Vec<(u32, u32)>,
+) {
+    let Ok(technique) = &mut side.technique else {
+        side.configured = None;
+        return;
+    };
+    let map = (scene.caustics.width, scene.caustics.height);
+    let water = match water {
+        Some((w, _)) => {
+            let (cols, rows) = technique.water_resolution(scene);
+            grids.push((cols, rows));
+            w.output(ctx, cols, rows)
+        }
+        None => Ok(no_water.clone()),
+    };
+    let key = |water: Option<&WaterTextures>| FailKey {
+        water: water.map(|w| w.heights.clone()),
+        grid: technique.water_resolution(scene),
+        map,
+        view: (scene.camera.width, scene.camera.height),
+        sun: scene.light.direction.to_array().map(f64::to_bits),
+    };
+    let water = match water {
+        Ok(w) => w,
+        Err(e) => {
+            side.configured = None;
+            side.failed = Some((e.to_string(), key(None)));
+            return;
+        }
+    };
+    let fail_key = key(Some(&water));
+    if side.failed.as_ref().is_some_and(|(_, k)| *k == fail_key) {
+        return;
+    }
+    let fresh = side
+        .configured
+        .as_ref()
+        .is_some_and(|(view, size)| *view == water.heights && *size == map);
+    let result = if fresh {
+        technique.update(ctx, scene)
+    } else {
+        technique
+            .configure(ctx, scene, &water)
+            .and_then(|()| technique.update(ctx, scene))
+    };
+    match result {
+        Ok(()) => {
+            side.configured = Some((water.heights.clone(), map));
+            side.failed = None;
+        }
+        Err(e) => {
+            side.configured = None;
+            side.failed = Some((e.to_string(), fail_key));
+        }
+    }
 }
 
 /// The GPU frame: water, up to two techniques, their final images.
@@ -165,6 +238,8 @@ impl Renderer {
                     external_walls: None,
                     image: None,
                     image_key: None,
+                    image_failed: None,
+                    traffic: TrafficCounts::default(),
                 },
             };
             if k < self.sides.len() {
@@ -239,49 +314,16 @@ impl Renderer {
             None => None,
         };
         for side in &mut self.sides {
-            let Ok(technique) = &mut side.technique else {
-                side.configured = None;
-                continue;
-            };
-            let map = (scene.caustics.width, scene.caustics.height);
-            let water = match &mut self.water {
-                Some((w, _)) => {
-                    let (cols, rows) = technique.water_resolution(scene);
-                    grids.push((cols, rows));
-                    w.output(ctx, cols, rows)?
-                }
-                None => self.no_water.clone(),
-            };
-            let fail_key = FailKey {
-                water: water.heights.clone(),
-                map,
-                view: (scene.camera.width, scene.camera.height),
-                sun: scene.light.direction.to_array().map(f64::to_bits),
-            };
-            if side.failed.as_ref().is_some_and(|(_, k)| *k == fail_key) {
-                continue;
-            }
-            let fresh = side
-                .configured
-                .as_ref()
-                .is_some_and(|(view, size)| *view == water.heights && *size == map);
-            let result = if fresh {
-                technique.update(ctx, scene)
-            } else {
-                technique
-                    .configure(ctx, scene, &water)
-                    .and_then(|()| technique.update(ctx, scene))
-            };
-            match result {
-                Ok(()) => {
-                    side.configured = Some((water.heights.clone(), map));
-                    side.failed = None;
-                }
-                Err(e) => {
-                    side.configured = None;
-                    side.failed = Some((e.to_string(), fail_key));
-                }
-            }
+            let before = ctx.traffic();
+            configure_side(
+                ctx,
+                scene,
+                side,
+                self.water.as_mut(),
+                &self.no_water,
+                &mut grids,
+            );
+            side.traffic += ctx.traffic().since(&before);
         }
         // Heights no side reads any more (an old map size, a technique switched away from) are
         // neither written nor kept.
@@ -311,21 +353,35 @@ impl Renderer {
                 water: image_water.as_ref().map(|w| w.heights.clone()),
                 size: (scene.camera.width, scene.camera.height),
             };
+            let before = ctx.traffic();
             if side.image_key.as_ref() == Some(&key)
                 && let Some(image) = &mut side.image
             {
                 image.update(ctx, scene, options);
-            } else {
-                side.image = Some(self.final_image.frame_with_walls(
+            } else if side.image_failed.as_ref().is_none_or(|(_, k)| *k != key) {
+                // A size beyond the device fails this side alone; a lost device ends the frame.
+                match self.final_image.frame_with_walls(
                     ctx,
                     scene,
                     image_water.as_ref(),
                     caustics,
                     walls,
                     options,
-                )?);
-                side.image_key = Some(key);
+                ) {
+                    Ok(image) => {
+                        side.image = Some(image);
+                        side.image_key = Some(key);
+                        side.image_failed = None;
+                    }
+                    Err(e @ GpuError::DeviceLost(_)) => return Err(e),
+                    Err(e) => {
+                        side.image = None;
+                        side.image_key = None;
+                        side.image_failed = Some((e.to_string(), key));
+                    }
+                }
             }
+            side.traffic += ctx.traffic().since(&before);
         }
 
         let mut encoder = ctx
@@ -372,6 +428,7 @@ impl Renderer {
             side.external = None;
             return Ok(());
         };
+        let before = ctx.traffic();
         let (w, h) = (map.width as u32, map.height as u32);
         if side
             .external
@@ -398,6 +455,7 @@ impl Renderer {
             },
             texture.size(),
         );
+        side.traffic += ctx.traffic().since(&before);
         Ok(())
     }
 
@@ -413,10 +471,12 @@ impl Renderer {
         let Some(side) = self.sides.get_mut(k) else {
             return Ok(());
         };
+        let before = ctx.traffic();
         side.external_walls = match walls {
             Some(w) => Some(upload_walls(ctx, w)?),
             None => None,
         };
+        side.traffic += ctx.traffic().since(&before);
         Ok(())
     }
 
@@ -439,14 +499,24 @@ impl Renderer {
         side.technique.as_ref().ok()?.walls()
     }
 
-    /// Why side `k` has no caustics, if it has a technique that could not be made or configured.
+    /// Why side `k` has no caustics or no image: a technique that could not be made or
+    /// configured (its water grid or a texture beyond the device included), or an image the
+    /// device cannot hold. The other side renders on.
     pub fn error(&self, k: usize) -> Option<&str> {
         let side = self.sides.get(k)?;
-        match (&side.technique, &side.failed) {
-            (Err(e), _) if !e.is_empty() => Some(e),
-            (Ok(_), Some((e, _))) => Some(e),
+        match (&side.technique, &side.failed, &side.image_failed) {
+            (Err(e), _, _) if !e.is_empty() => Some(e),
+            (Ok(_), Some((e, _)), _) => Some(e),
+            (_, _, Some((e, _))) => Some(e),
             _ => None,
         }
+    }
+
+    /// What side `k` has created and uploaded since its technique was made: its technique's
+    /// configuration and uniform writes, its water grid, its uploaded maps, its image frame. The
+    /// frame's shared work (the water source, the images' water) is in the context's total only.
+    pub fn side_traffic(&self, k: usize) -> Option<TrafficCounts> {
+        self.sides.get(k).map(|s| s.traffic)
     }
 
     /// The technique's registered name on side `k`.

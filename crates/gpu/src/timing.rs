@@ -5,8 +5,8 @@
 //! times), and the frame loop's [`GpuTimer::resolve_frame`] + [`GpuTimer::frame_submitted`] +
 //! [`GpuTimer::latest`], which copy each frame's stamps into a buffer of the timer's own and pick
 //! them up whenever the GPU has finished with them, a frame or two late, without stalling the queue
-//! or creating anything. Neither counts as a readback of the frame's data in
-//! [`crate::traffic`]: only [`GpuTimer::read`] waits, and it says so in its name.
+//! or creating anything. [`crate::traffic`] counts the first as a readback (it waits) and the
+//! second as a timestamp read of its own (one per frame it maps), apart from the frame's data.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -23,6 +23,7 @@ pub struct GpuTimer {
     staging: Option<wgpu::Buffer>,
     staged: Staged,
     latest: Vec<PassTime>,
+    traffic: Arc<crate::traffic::Traffic>,
 }
 
 const MAPPING: u8 = 0;
@@ -84,6 +85,7 @@ impl GpuTimer {
             staging,
             staged: Staged::Idle,
             latest: Vec::new(),
+            traffic: ctx.traffic.clone(),
         }
     }
 
@@ -110,6 +112,7 @@ impl GpuTimer {
             let Staged::Recorded(labels) = std::mem::replace(&mut self.staged, Staged::Idle) else {
                 unreachable!("matched above")
             };
+            self.traffic.timestamp_read();
             let done = Arc::new(AtomicU8::new(MAPPING));
             let flag = done.clone();
             staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {

@@ -4,8 +4,11 @@
 //! these counters are how the viewer (`caustics view --report-traffic`) and the tests show it.
 //!
 //! Every creation in `caustics-gpu` goes through the [`GpuContext`] methods below rather than
-//! `ctx.device` directly, so the counts are complete for this crate (an application's own
-//! resources, egui's, are not ours to count).
+//! `ctx.device` directly, so the counts are complete for this crate. Two more kinds are kept apart
+//! from the frame's: the timestamp copies a frame loop maps to show pass times without waiting
+//! ([`crate::GpuTimer::frame_submitted`]), and what the application reports of its own
+//! ([`GpuContext::count_app`]: the viewer's images, egui's buffers and textures), so that a
+//! traffic line sees everything that crosses the bus, and says whose it was.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -24,6 +27,9 @@ pub struct Traffic {
     query_sets: AtomicU64,
     uploaded_bytes: AtomicU64,
     readbacks: AtomicU64,
+    timestamp_reads: AtomicU64,
+    app_created: AtomicU64,
+    app_uploaded_bytes: AtomicU64,
 }
 
 /// A snapshot of [`Traffic`]; subtract two with [`since`](Self::since) for what a span of frames
@@ -37,7 +43,14 @@ pub struct TrafficCounts {
     pub samplers: u64,
     pub query_sets: u64,
     pub uploaded_bytes: u64,
+    /// Blocking reads of GPU data into the CPU (a map, a timer's [`read`](crate::GpuTimer::read)).
     pub readbacks: u64,
+    /// Timestamp copies mapped by a frame loop (a frame or two late, never waited on).
+    pub timestamp_reads: u64,
+    /// Resources the application says it created (not this crate's).
+    pub app_created: u64,
+    /// Bytes the application says it uploaded (not this crate's).
+    pub app_uploaded_bytes: u64,
 }
 
 impl TrafficCounts {
@@ -53,16 +66,29 @@ impl TrafficCounts {
 
     /// What happened between `earlier` and `self`.
     pub fn since(&self, earlier: &TrafficCounts) -> TrafficCounts {
+        self.zip(earlier, |a, b| a - b)
+    }
+
+    fn zip(&self, other: &TrafficCounts, f: impl Fn(u64, u64) -> u64) -> TrafficCounts {
         TrafficCounts {
-            textures: self.textures - earlier.textures,
-            buffers: self.buffers - earlier.buffers,
-            bind_groups: self.bind_groups - earlier.bind_groups,
-            pipelines: self.pipelines - earlier.pipelines,
-            samplers: self.samplers - earlier.samplers,
-            query_sets: self.query_sets - earlier.query_sets,
-            uploaded_bytes: self.uploaded_bytes - earlier.uploaded_bytes,
-            readbacks: self.readbacks - earlier.readbacks,
+            textures: f(self.textures, other.textures),
+            buffers: f(self.buffers, other.buffers),
+            bind_groups: f(self.bind_groups, other.bind_groups),
+            pipelines: f(self.pipelines, other.pipelines),
+            samplers: f(self.samplers, other.samplers),
+            query_sets: f(self.query_sets, other.query_sets),
+            uploaded_bytes: f(self.uploaded_bytes, other.uploaded_bytes),
+            readbacks: f(self.readbacks, other.readbacks),
+            timestamp_reads: f(self.timestamp_reads, other.timestamp_reads),
+            app_created: f(self.app_created, other.app_created),
+            app_uploaded_bytes: f(self.app_uploaded_bytes, other.app_uploaded_bytes),
         }
+    }
+}
+
+impl std::ops::AddAssign for TrafficCounts {
+    fn add_assign(&mut self, other: TrafficCounts) {
+        *self = self.zip(&other, |a, b| a + b);
     }
 }
 
@@ -82,11 +108,18 @@ impl Traffic {
             query_sets: l(&self.query_sets),
             uploaded_bytes: l(&self.uploaded_bytes),
             readbacks: l(&self.readbacks),
+            timestamp_reads: l(&self.timestamp_reads),
+            app_created: l(&self.app_created),
+            app_uploaded_bytes: l(&self.app_uploaded_bytes),
         }
     }
 
     pub(crate) fn readback(&self) {
         Self::add(&self.readbacks, 1);
+    }
+
+    pub(crate) fn timestamp_read(&self) {
+        Self::add(&self.timestamp_reads, 1);
     }
 }
 
@@ -96,6 +129,14 @@ impl GpuContext {
     /// Everything counted since the context was made.
     pub fn traffic(&self) -> TrafficCounts {
         self.traffic.snapshot()
+    }
+
+    /// The application's own traffic on this device, to be counted beside this crate's:
+    /// `created` resources and `uploaded` bytes (the viewer's images, egui's buffers and
+    /// textures).
+    pub fn count_app(&self, created: u64, uploaded: u64) {
+        Traffic::add(&self.traffic.app_created, created);
+        Traffic::add(&self.traffic.app_uploaded_bytes, uploaded);
     }
 
     pub fn create_buffer(&self, desc: &wgpu::BufferDescriptor) -> wgpu::Buffer {

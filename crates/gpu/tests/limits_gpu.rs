@@ -3,6 +3,9 @@
 //! `GpuError::TooLarge` naming what, before wgpu sees it, and still configures at sizes that fit.
 //! A GPU with a 2048 or 4096 texture limit (WebGPU's default is 8192) is what this stands for.
 
+#[macro_use]
+mod common;
+
 use caustics_core::grid::Grid;
 use caustics_core::scene::Scene;
 use caustics_core::water::sample_grid;
@@ -17,7 +20,7 @@ const MAX_STORAGE: u64 = 16 << 20;
 
 /// A device on the test adapter with `MAX_2D` and `MAX_STORAGE` in place of the adapter's limits,
 /// wrapped as an application would wrap its own.
-fn small_device() -> Option<GpuContext> {
+fn small_device() -> GpuContext {
     device_with(|adapter| wgpu::Limits {
         max_texture_dimension_2d: MAX_2D,
         max_storage_buffer_binding_size: MAX_STORAGE,
@@ -26,8 +29,8 @@ fn small_device() -> Option<GpuContext> {
 }
 
 /// A device on the test adapter with the limits `limits` makes of the adapter's.
-fn device_with(limits: impl Fn(wgpu::Limits) -> wgpu::Limits) -> Option<GpuContext> {
-    caustics_gpu::context::test_context()?;
+fn device_with(limits: impl Fn(wgpu::Limits) -> wgpu::Limits) -> GpuContext {
+    let _ = caustics_gpu::context::test_gpu();
     let instance = GpuContext::instance(&GpuOptions::default()).unwrap();
     let adapter = pollster::block_on(instance.request_adapter(&Default::default())).unwrap();
     let limits = limits(adapter.limits());
@@ -40,7 +43,7 @@ fn device_with(limits: impl Fn(wgpu::Limits) -> wgpu::Limits) -> Option<GpuConte
         ..Default::default()
     }))
     .unwrap();
-    Some(GpuContext::from_parts(instance, adapter, device, queue))
+    GpuContext::from_parts(instance, adapter, device, queue)
 }
 
 /// The built-in scene `name` with a `side`² caustics map and camera image.
@@ -115,14 +118,11 @@ fn assert_too_large(result: Result<(), GpuError>, case: &str, names: &str) {
 
 /// WebGPU's default 16 KiB of workgroup memory: the gather variant's tile does not fit, so
 /// `yuksel-gather` is refused by name while `yuksel` (render targets) runs on the same device.
-#[test]
 fn yuksel_gather_needs_its_workgroup_memory() {
-    let Some(ctx) = device_with(|adapter| wgpu::Limits {
+    let ctx = device_with(|adapter| wgpu::Limits {
         max_compute_workgroup_storage_size: 16 << 10,
         ..adapter
-    }) else {
-        return;
-    };
+    });
     // Within the 32 KiB of Apple's GPUs (and lavapipe), above the 16 KiB here.
     assert!((16 << 10..=32 << 10).contains(&caustics_gpu::yuksel::GATHER_WORKGROUP_BYTES));
     configure(&ctx, "yuksel", &scene("pool", 64), "").expect("yuksel runs");
@@ -134,9 +134,8 @@ fn yuksel_gather_needs_its_workgroup_memory() {
     ctx.check().expect("wgpu saw nothing");
 }
 
-#[test]
 fn every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit() {
-    let Some(ctx) = small_device() else { return };
+    let ctx = small_device();
     assert_eq!(ctx.limits().max_texture_dimension_2d, MAX_2D);
     for r in REGISTRY {
         let home = scene_for(r.name());
@@ -156,9 +155,8 @@ fn every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit() {
     }
 }
 
-#[test]
 fn cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused() {
-    let Some(ctx) = small_device() else { return };
+    let ctx = small_device();
     let cases = [
         (
             "cascaded",
@@ -195,15 +193,63 @@ fn cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused() {
     }
 }
 
+/// One side of the split frame asks for a water grid beyond the device (`procedural-texture`
+/// reads the water at its 2048² target): that side fails with the size named, the other renders
+/// on, and the frame goes on being drawn: a size error is the side's, never the viewer's end.
+fn a_side_beyond_the_device_fails_alone() {
+    use caustics_core::render::RenderOptions;
+    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    let ctx = small_device();
+    let scene = scene("pool", 64);
+    let mut renderer = Renderer::new(&ctx).expect("renderer");
+    renderer
+        .set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
+        .expect("water");
+    let spec = |name: &str, params: &str| {
+        Some(TechniqueSpec {
+            name: name.into(),
+            params: params.parse().unwrap(),
+        })
+    };
+    renderer.set_techniques(
+        &ctx,
+        &[
+            spec("yuksel", ""),
+            spec(
+                "procedural-texture",
+                "procedural = { target_resolution = 2048 }",
+            ),
+        ],
+    );
+    for frame in 0..3 {
+        let clock = WaterClock {
+            time: frame as f64 / 30.0,
+            amplitude: 1.0,
+            steps: 0,
+        };
+        renderer
+            .render(&ctx, &scene, clock, &RenderOptions::default())
+            .unwrap_or_else(|e| panic!("frame {frame}: one side's size ended the frame: {e}"));
+        assert_eq!(renderer.error(0), None, "frame {frame}");
+        assert!(renderer.caustics(0).is_some() && renderer.image(0).is_some());
+        let error = renderer.error(1).expect("the side beyond the device fails");
+        assert!(
+            error.contains("water height texture") && error.contains("2048"),
+            "{error}"
+        );
+        assert!(renderer.caustics(1).is_none());
+    }
+    ctx.check().expect("wgpu saw nothing");
+}
+
 /// A device lost mid-run (here destroyed, as a driver reset or a removed GPU would lose it) gives
 /// `GpuError::DeviceLost` from the next frame, from a technique created or configured after it,
 /// from a readback and from a wait on the queue: one error naming the loss, never a panic and never a validation
 /// error about the resources the lost device no longer holds.
-#[test]
 fn a_lost_device_gives_device_lost_errors() {
     use caustics_core::render::RenderOptions;
     use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
-    let Some(ctx) = small_device() else { return };
+    let ctx = small_device();
     let scene = scene("pool", 64);
     let mut renderer = Renderer::new(&ctx).expect("renderer");
     renderer
@@ -262,4 +308,12 @@ fn a_lost_device_gives_device_lost_errors() {
             .map(|texels| assert!(texels.is_empty())),
     );
     lost("waiting on the queue", ctx.wait());
+}
+
+test_main! {
+    gpu yuksel_gather_needs_its_workgroup_memory,
+    gpu every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit,
+    gpu cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused,
+    gpu a_side_beyond_the_device_fails_alone,
+    gpu a_lost_device_gives_device_lost_errors,
 }

@@ -188,6 +188,17 @@ fn check_caustics(
         .render_with(ctx, scene, surface, caustics, &options, Some(&mut timer))
         .expect("GPU render");
     let times = timer.read(ctx).expect("timestamps");
+    if ctx.timestamps {
+        // Both passes are timed, as `FinalImageFrame::encode` says: the slab's where there is water.
+        let labels: Vec<&str> = times.iter().map(|t| t.label.as_str()).collect();
+        let slab = caustics_gpu::final_image::FINAL_IMAGE_SLAB.name;
+        let expected: &[&str] = if surface.is_some() {
+            &[slab, "final image"]
+        } else {
+            &["final image"]
+        };
+        assert_eq!(labels, expected, "{what}");
+    }
     let time = times
         .iter()
         .find(|t| t.label == "final image")

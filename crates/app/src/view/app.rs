@@ -156,6 +156,7 @@ struct Script {
     cycle: Option<Vec<String>>,
     resize_every: Option<u64>,
     drop_every: Option<u64>,
+    show_map_at: Option<u64>,
     lose_device_at: Option<u64>,
     /// The window size asked for at the start, which resizes vary around.
     base_size: [u32; 2],
@@ -179,6 +180,8 @@ impl GpuImage {
     fn new(ctx: &GpuContext, renderer: &mut egui_wgpu::Renderer) -> Self {
         let texture = image_texture(ctx, 1, 1);
         write_rgba(ctx, &texture, &[24, 26, 30, 255]);
+        // egui's bind group for it.
+        ctx.count_app(1, 0);
         let id = renderer.register_native_texture(
             &ctx.device,
             &texture.create_view(&Default::default()),
@@ -202,6 +205,7 @@ impl GpuImage {
         if !self.own || (self.texture.width(), self.texture.height()) != (width, height) {
             self.texture = image_texture(ctx, width, height);
             self.own = true;
+            ctx.count_app(1, 0);
             renderer.update_egui_texture_from_wgpu_texture(
                 &ctx.device,
                 &self.texture.create_view(&Default::default()),
@@ -222,6 +226,7 @@ impl GpuImage {
         if self.texture != *texture {
             self.texture = texture.clone();
             self.own = false;
+            ctx.count_app(1, 0);
             renderer.update_egui_texture_from_wgpu_texture(
                 &ctx.device,
                 &self.texture.create_view(&Default::default()),
@@ -235,6 +240,7 @@ impl GpuImage {
 /// egui-wgpu reads a native texture as gamma-encoded `Rgba8Unorm`, which is what the final
 /// image's sRGB bytes are.
 fn image_texture(ctx: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
+    ctx.count_app(1, 0);
     ctx.device.create_texture(&wgpu::TextureDescriptor {
         label: Some("viewer image"),
         size: wgpu::Extent3d {
@@ -254,6 +260,7 @@ fn image_texture(ctx: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
 fn write_rgba(ctx: &GpuContext, texture: &wgpu::Texture, rgba: &[u8]) {
     let (w, h) = (texture.width(), texture.height());
     debug_assert_eq!(rgba.len(), (w * h * 4) as usize);
+    ctx.count_app(0, rgba.len() as u64);
     ctx.queue.write_texture(
         texture.as_image_copy(),
         rgba,
@@ -272,6 +279,87 @@ fn rgba_of(image: &Image) -> Vec<u8> {
         .chunks_exact(3)
         .flat_map(|p| [p[0], p[1], p[2], 255])
         .collect()
+}
+
+/// egui-wgpu 0.37's own traffic, counted into the context's app figures as its `update_texture`
+/// and `update_buffers` make it (it creates through the device, out of our sight): a full
+/// texture delta is a new texture and bind group, a partial one an upload; the vertex and index
+/// buffers are written whole every frame and grow to twice their size (or what is needed) when
+/// too small, from 1,024 vertices and 3,072 indices; its 16-byte uniform is written when the
+/// screen changes.
+struct EguiTraffic {
+    vertex_capacity: u64,
+    index_capacity: u64,
+    screen: Option<([u32; 2], u32)>,
+    /// egui's own share of the app figures so far: resources created, bytes uploaded.
+    created: u64,
+    uploaded: u64,
+}
+
+impl Default for EguiTraffic {
+    fn default() -> Self {
+        EguiTraffic {
+            vertex_capacity: VERTEX_BYTES * 1024,
+            index_capacity: 4 * 1024 * 3,
+            screen: None,
+            created: 0,
+            uploaded: 0,
+        }
+    }
+}
+
+/// `egui_wgpu`'s vertex: position and uv as `f32` pairs, colour as four bytes.
+const VERTEX_BYTES: u64 = 20;
+
+impl EguiTraffic {
+    fn count(&mut self, ctx: &GpuContext, created: u64, uploaded: u64) {
+        self.created += created;
+        self.uploaded += uploaded;
+        ctx.count_app(created, uploaded);
+    }
+
+    fn texture(&mut self, ctx: &GpuContext, delta: &egui::epaint::ImageDelta) {
+        let created = if delta.pos.is_none() { 2 } else { 0 };
+        let bytes = (delta.image.width() * delta.image.height() * 4) as u64;
+        self.count(ctx, created, bytes);
+    }
+
+    fn buffers(
+        &mut self,
+        ctx: &GpuContext,
+        jobs: &[egui::ClippedPrimitive],
+        screen: &egui_wgpu::ScreenDescriptor,
+    ) {
+        let (vertices, indices) =
+            jobs.iter()
+                .fold((0u64, 0u64), |(v, i), job| match &job.primitive {
+                    egui::epaint::Primitive::Mesh(m) => {
+                        (v + m.vertices.len() as u64, i + m.indices.len() as u64)
+                    }
+                    egui::epaint::Primitive::Callback(_) => (v, i),
+                });
+        let mut created = 0;
+        let mut grow = |capacity: &mut u64, needed: u64| {
+            if needed > 0 && *capacity < needed {
+                *capacity = (*capacity * 2).max(needed);
+                created += 1;
+            }
+        };
+        grow(&mut self.index_capacity, indices * 4);
+        grow(&mut self.vertex_capacity, vertices * VERTEX_BYTES);
+        let key = (screen.size_in_pixels, screen.pixels_per_point.to_bits());
+        let uniform = if self.screen != Some(key) {
+            self.screen = Some(key);
+            16
+        } else {
+            0
+        };
+        self.count(
+            ctx,
+            created,
+            indices * 4 + vertices * VERTEX_BYTES + uniform,
+        );
+    }
 }
 
 /// Everything the frame compares to decide whether to render the scene again.
@@ -301,6 +389,7 @@ struct Viewer {
     difference_image: GpuImage,
     buffer_image: GpuImage,
     egui_renderer: egui_wgpu::Renderer,
+    egui_traffic: EguiTraffic,
     egui_state: egui_winit::State,
     egui_ctx: egui::Context,
     surface: wgpu::Surface<'static>,
@@ -310,8 +399,8 @@ struct Viewer {
     model: Model,
     script: Option<Script>,
     report_memory: bool,
-    /// With --report-traffic: the counts at the start of the steady frames, and that frame.
-    report_traffic: Option<Option<(u64, caustics_gpu::TrafficCounts)>>,
+    /// With --report-traffic: the counts at the start of the steady frames, and egui's share.
+    report_traffic: Option<Option<(super::frame::Traffic, u64)>>,
     frame: u64,
     last_frame: Instant,
     last_render: Option<RenderKey>,
@@ -340,9 +429,20 @@ impl Viewer {
             adapter_name: args.adapter.clone(),
         };
         let instance = GpuContext::instance(&options)?;
-        let surface = instance
-            .create_surface(window.clone())
-            .context("cannot make a wgpu surface for the window")?;
+        let surface = match instance.create_surface(window.clone()) {
+            Ok(s) => s,
+            // Without a driver no backend makes a surface, and wgpu's words for it name no
+            // cause: say that there is no adapter where that is why.
+            Err(e) => {
+                if let Err(no_gpu) = GpuContext::headless(&options) {
+                    return Err(anyhow::Error::new(no_gpu)
+                        .context("the viewer needs a GPU adapter that can draw to the window"));
+                }
+                return Err(
+                    anyhow::Error::new(e).context("cannot make a wgpu surface for the window")
+                );
+            }
+        };
         let ctx = pollster::block_on(GpuContext::create(&options, Some((&instance, &surface))))
             .context("the viewer needs a GPU adapter that can draw to the window")?;
         let software = FinalImage::software_adapter(&ctx);
@@ -437,6 +537,7 @@ impl Viewer {
             cycle: args.cycle_techniques.clone(),
             resize_every: args.resize_every,
             drop_every: args.drop_every,
+            show_map_at: args.show_map_at,
             lose_device_at: args.lose_device_at,
             base_size: args.size,
             times: Vec::new(),
@@ -448,6 +549,7 @@ impl Viewer {
             difference_image,
             buffer_image,
             egui_renderer,
+            egui_traffic: EguiTraffic::default(),
             egui_state,
             egui_ctx,
             surface,
@@ -544,6 +646,7 @@ impl Viewer {
         });
         // The last frame's counts are taken before its screenshot is read back.
         let counts = self.renderer.gpu().map(|c| c.traffic());
+        let egui_uploaded = self.egui_traffic.uploaded;
         self.paint(full, capture.as_deref())?;
         self.frame += 1;
 
@@ -565,27 +668,42 @@ impl Viewer {
         if let (Some(traffic), Some(s)) = (self.report_traffic.as_mut(), self.script.as_ref()) {
             let first = steady_from(s.frames);
             if self.frame + 1 == first {
-                *traffic = Some((first, self.renderer.gpu().expect("a device").traffic()));
+                *traffic = Some((
+                    self.renderer.traffic(self.model.sides()),
+                    self.egui_traffic.uploaded,
+                ));
             }
             if self.frame == s.frames
-                && let (Some((first, start)), Some(end)) = (traffic, counts)
+                && let (Some((start, egui_start)), Some(end)) = (traffic.as_ref(), counts)
             {
-                let d = end.since(start);
-                let n = (s.frames + 1 - *first) as f64;
+                let n = (s.frames + 1 - first) as f64;
+                let range = format!("(frames {first} to {})", s.frames);
+                let sides = self.renderer.traffic(self.model.sides());
                 for k in 0..self.model.sides() {
                     let name = self
                         .renderer
                         .gpu_technique_name(k)
                         .unwrap_or(self.model.slots[k].choice.name());
-                    println!(
-                        "traffic {name}: created {}, uploaded {} bytes, readbacks {} per frame (frames {} to {})",
-                        per_frame(d.created(), n),
-                        per_frame(d.uploaded_bytes, n),
-                        per_frame(d.readbacks, n),
-                        first,
-                        s.frames
-                    );
+                    let d = match (sides.sides.get(k), start.sides.get(k)) {
+                        (Some(b), Some(a)) => b.since(a),
+                        _ => Default::default(),
+                    };
+                    println!("traffic {name}: {} {range}", traffic_figures(&d, n));
                 }
+                let d = end.since(&start.total);
+                println!(
+                    "traffic frame: {}, timestamp reads {} per frame {range}",
+                    traffic_figures(&d, n),
+                    per_frame(d.timestamp_reads, n),
+                );
+                let egui = egui_uploaded - egui_start;
+                println!(
+                    "traffic viewer: created {}, uploaded {} bytes per frame (images {} bytes, egui {} bytes) {range}",
+                    per_frame(d.app_created, n),
+                    per_frame(d.app_uploaded_bytes, n),
+                    per_frame(d.app_uploaded_bytes - egui, n),
+                    per_frame(egui, n),
+                );
             }
         }
         if let Some(s) = self.script.as_mut() {
@@ -709,11 +827,12 @@ impl Viewer {
     /// Refresh the map and buffer pictures whose windows are open and whose inputs changed.
     fn update_pictures(&mut self) -> Result<()> {
         let m = &mut self.model;
-        // The GPU frame's maps stay on the GPU: read back for the window (on the CPU path the
-        // slots already hold theirs).
-        if m.show_map && m.stats.rendered && !m.quality.cpu_image {
+        // The GPU frame's maps stay on the GPU: read back for the window when they are new or
+        // not yet read (the window opened on a still frame); on the CPU path the slots hold theirs.
+        if m.show_map && !m.quality.cpu_image {
             let sides = m.sides();
-            self.renderer.read_maps(&mut m.slots[..sides])?;
+            self.renderer
+                .read_maps(&mut m.slots[..sides], m.stats.rendered)?;
         }
         let ctx = self.renderer.gpu().expect("the viewer always has a device");
         if m.show_map {
@@ -778,6 +897,11 @@ impl Viewer {
                     },
                 };
             }
+            // Shown: a redraw without a new map (a still frame) builds and uploads nothing.
+            let sides = m.sides();
+            for slot in &mut m.slots[..sides] {
+                slot.map_changed = false;
+            }
         }
         if m.show_buffers
             && let Some(render) = self.last_render.as_ref()
@@ -841,6 +965,7 @@ impl Viewer {
         let jobs = self.egui_ctx.tessellate(full.shapes, ppp);
         for (id, deltas) in &full.textures_delta.set {
             for delta in deltas {
+                self.egui_traffic.texture(ctx, delta);
                 self.egui_renderer
                     .update_texture(&ctx.device, &ctx.queue, *id, delta);
             }
@@ -868,6 +993,7 @@ impl Viewer {
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("viewer panel"),
             });
+        self.egui_traffic.buffers(ctx, &jobs, &screen);
         let user = self.egui_renderer.update_buffers(
             &ctx.device,
             &ctx.queue,
@@ -876,6 +1002,7 @@ impl Viewer {
             &screen,
         );
         let offscreen = capture.map(|_| {
+            ctx.count_app(1, 0);
             ctx.device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("viewer screenshot"),
                 size: wgpu::Extent3d {
@@ -1001,6 +1128,9 @@ impl Viewer {
         let k = self.frame;
         if s.lose_device_at == Some(k) {
             self.ctx().device.destroy();
+        }
+        if s.show_map_at == Some(k) {
+            self.model.show_map = true;
         }
         let Some(s) = &self.script else {
             return;
@@ -1161,6 +1291,16 @@ fn initial_model(
 /// frame 11 on, or from its second half when shorter.
 fn steady_from(frames: u64) -> u64 {
     (frames / 2).min(10) + 1
+}
+
+/// What a side (or the frame) created, uploaded and read back, per frame over `frames` frames.
+fn traffic_figures(d: &caustics_gpu::TrafficCounts, frames: f64) -> String {
+    format!(
+        "created {}, uploaded {} bytes, readbacks {} per frame",
+        per_frame(d.created(), frames),
+        per_frame(d.uploaded_bytes, frames),
+        per_frame(d.readbacks, frames),
+    )
 }
 
 /// `total / frames`, as a whole number when it is one.

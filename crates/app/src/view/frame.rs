@@ -29,6 +29,12 @@ use super::camera::OrbitCamera;
 use super::water::{SurfaceKey, WaterState};
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
+/// A snapshot of the frame's traffic ([`SceneRenderer::traffic`]).
+pub struct Traffic {
+    pub total: caustics_gpu::TrafficCounts,
+    pub sides: Vec<caustics_gpu::TrafficCounts>,
+}
+
 /// A technique with its parameters as the panel edits them: a registered entry and its own
 /// table (`n`, `m`, ...), turned into a [`Spec`] when run.
 #[derive(Clone, Debug)]
@@ -179,6 +185,17 @@ impl Slot {
         }
     }
 
+    /// Whether the map window must read this slot's map back from the GPU frame: a GPU
+    /// technique's map after a frame that `rendered` it, or one never read since (its window
+    /// opened on a still frame). A map made on the CPU is the slot's already.
+    pub fn needs_read(&self, rendered: bool) -> bool {
+        match (&self.caustics, self.backend) {
+            (None, _) => true,
+            (Some(_), "GPU") => rendered,
+            (Some(_), _) => false,
+        }
+    }
+
     /// The floor map, for a technique that makes one.
     pub fn floor_map(&self) -> Option<&CausticsMap> {
         match &self.caustics {
@@ -245,8 +262,8 @@ impl SceneRenderer {
             Some(Err(e)) => (None, Some(format!("final image on the CPU: {e}"))),
             None => (None, Some("final image on the CPU: no GPU".to_string())),
         };
-        // Two sides, one final-image pass each.
-        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 2));
+        // Two sides, two final-image passes each (the water's slab bound, the image).
+        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 4));
         let gpu_frame = match ctx.map(GpuFrame::new) {
             Some(Ok(f)) => Some(f),
             Some(Err(e)) => {
@@ -587,6 +604,21 @@ impl SceneRenderer {
         Ok((Rendered::Gpu, stats))
     }
 
+    /// The counts so far: the device's total (the frame's shared work, the viewer's own and the
+    /// timestamp reads included) and each of the first `sides` sides' own.
+    pub fn traffic(&self, sides: usize) -> Traffic {
+        let total = self.gpu().map(|c| c.traffic()).unwrap_or_default();
+        let sides = (0..sides)
+            .map(|k| {
+                self.gpu_frame
+                    .as_ref()
+                    .and_then(|f| f.renderer.side_traffic(k))
+                    .unwrap_or_default()
+            })
+            .collect();
+        Traffic { total, sides }
+    }
+
     /// The GPU technique on side `k` as the registry names it (its variant included).
     pub fn gpu_technique_name(&self, k: usize) -> Option<&str> {
         self.gpu_frame.as_ref()?.renderer.technique_name(k)
@@ -598,13 +630,14 @@ impl SceneRenderer {
     }
 
     /// Read the GPU techniques' maps back into the slots, for the map window (while it is open: a
-    /// readback per frame, which the steady frame without it does not make).
-    pub fn read_maps(&mut self, slots: &mut [Slot]) -> Result<()> {
+    /// readback per rendered frame, which the steady frame without it does not make). After a
+    /// frame that `rendered` nothing, only a slot not read since its last render is read.
+    pub fn read_maps(&mut self, slots: &mut [Slot], rendered: bool) -> Result<()> {
         let (Some(frame), Some(ctx)) = (&self.gpu_frame, self.runner.gpu.as_ref()) else {
             return Ok(());
         };
         for (k, slot) in slots.iter_mut().enumerate() {
-            if slot.caustics.is_some() && slot.backend != "GPU" {
+            if !slot.needs_read(rendered) {
                 continue;
             }
             let Some(output) = frame.renderer.caustics(k) else {

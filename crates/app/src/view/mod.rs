@@ -113,6 +113,9 @@ pub struct ViewArgs {
     /// Smoke mode: drop a ripple as a click near the image's centre would, every K frames.
     #[arg(long, requires = "frames")]
     pub drop_every: Option<u64>,
+    /// Smoke mode: open the caustics-map window at frame N (as a click on its toggle would).
+    #[arg(long, requires = "frames", value_name = "N")]
+    pub show_map_at: Option<u64>,
     /// Smoke mode: destroy the GPU device at frame N, as a driver reset would lose it, to show
     /// how the viewer reports a lost device (the window's title says so, the run exits with the
     /// error).

@@ -569,8 +569,8 @@ impl FinalImage {
     /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with
     /// the same arguments (no progress: the image is one dispatch). `surface` is sampled on
     /// [`water_grid`]'s lattice; `caustics` is the floor's map (none: lit as if the water were
-    /// flat). With a `timer`, the pass is timed as "final image" and the timestamps resolved; read
-    /// them with [`GpuTimer::read`].
+    /// flat). With a `timer`, the passes are timed as [`encode`](FinalImageFrame::encode) says and
+    /// the timestamps resolved; read them with [`GpuTimer::read`].
     pub fn render(
         &self,
         ctx: &GpuContext,
@@ -722,8 +722,8 @@ impl FinalImageFrame {
     }
 
     /// Record the slab bound of the water (when there is water) and the image into `encoder`. With
-    /// a `timer`, the image pass is timed as "final image"; the slab pass (128² bicubic samples) is
-    /// left untimed so that a one-pass timer still times the image.
+    /// a `timer`, both passes are timed: the slab pass (128² bicubic samples) as "final image
+    /// slab", the image as "final image"; a timer needs room for two passes per image.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
         if let Some(group) = &self.slab_group {
             encoder.clear_buffer(&self.slab_max, 0, None);
