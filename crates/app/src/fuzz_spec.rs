@@ -52,13 +52,25 @@ fn seeds() -> Vec<String> {
 
 static SEEDS: std::sync::LazyLock<Vec<String>> = std::sync::LazyLock::new(seeds);
 
-/// Fragments the parser splits on or hands to TOML.
-const TOKENS: [&str; 20] = [
+/// Fragments the parser splits on or hands to TOML, and the pieces of the registry's names (a
+/// variant's suffix, a table's name with the dash a variant adds).
+static TOKENS: std::sync::LazyLock<Vec<String>> = std::sync::LazyLock::new(|| {
+    let mut t: Vec<String> = FIXED_TOKENS.iter().map(|s| s.to_string()).collect();
+    for d in caustics_core::techniques::REGISTRY {
+        if let Some(suffix) = d.name.strip_prefix(d.table).filter(|s| !s.is_empty()) {
+            t.push(suffix.to_string());
+            t.push(format!("{}-", d.table));
+        }
+    }
+    t.sort();
+    t.dedup();
+    t
+});
+
+const FIXED_TOKENS: [&str; 18] = [
     ":",
     ",",
     "=",
-    "-gather",
-    "procedural-",
     "\"",
     "'''",
     "[",
@@ -134,7 +146,7 @@ fn mutate(rng: &mut Rng, data: &mut Vec<u8>) {
             data.extend_from_slice(&other[b..]);
         }
         _ => {
-            let t = TOKENS[rng.below(TOKENS.len())];
+            let t = &TOKENS[rng.below(TOKENS.len())];
             let at = rng.below(len + 1);
             data.splice(at..at, t.bytes());
         }

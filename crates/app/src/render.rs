@@ -255,7 +255,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     {
         let started = Instant::now();
         if let Some(image) = make(runner.gpu.as_ref(), &scene, &spec.params)? {
-            caustics_core::techniques::caustic_triangles::camera::write_png(
+            caustics_core::render::write_png(
                 out,
                 image.width,
                 image.height,

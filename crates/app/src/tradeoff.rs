@@ -23,7 +23,6 @@ use caustics_core::cases::cases;
 use caustics_core::metrics::compare;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::Scene;
-use caustics_core::techniques::cascaded::{CascadedParams, CascadedSetup, eye_pass};
 
 use caustics_core::techniques::{reference as reference_spec, water_scene};
 
@@ -151,7 +150,7 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, out: &Path) -> Result<()> {
             };
             let spec: Spec = text.parse()?;
             let p = if spec.entry.eye_space() {
-                cascaded_point(&mut runner, &spec, &pool, &s)
+                eye_space_point(&mut runner, &spec, &pool, &s)
             } else {
                 floor_point(&mut runner, &spec, cases, &truths, &s)
             }
@@ -235,9 +234,9 @@ fn floor_point(
     ))
 }
 
-/// Cascaded on the pool through its camera against the reference map read where each pixel sees
-/// the floor.
-fn cascaded_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) -> Result<Point> {
+/// An eye-space technique on the pool through its camera against the reference map read where
+/// each pixel sees the floor.
+fn eye_space_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) -> Result<Point> {
     let water = pool.water.as_ref().expect("the pool has water");
     let surface = water.surface_at(pool.time)?;
     let input = ReferenceInput::from_scene(pool, surface.as_ref())?;
@@ -250,17 +249,13 @@ fn cascaded_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) -> 
     let SceneCaustics::EyeSpace(image) = out.caustics else {
         bail!("{} made a floor map, not an eye-space image", spec.name());
     };
-    let params = CascadedParams::from_table(&spec.params)?;
-    let setup = CascadedSetup::from_scene(pool, &params)?;
-    let eye = eye_pass(&setup, pool.floor.terrain.as_ref());
-    let e = &setup.eye;
+    let floor = caustics_core::render::eye_floor_points(pool)?;
     let (mut diff, mut total) = (0.0f64, 0.0f64);
-    for (p, (t, g)) in image.texels.iter().zip(&eye).enumerate() {
-        if t[3] < 0.0 || g[3] == 0.0 || !t[0].is_finite() {
+    for (t, f) in image.texels.iter().zip(&floor) {
+        let Some(f) = f else { continue };
+        if t[3] < 0.0 || !t[0].is_finite() {
             continue;
         }
-        let (x, y) = ((p % e.width) as f64 + 0.5, (p / e.width) as f64 + 0.5);
-        let f = e.position + e.ray(x, y) * g[0] as f64;
         if f.x < 0.0 || f.y < 0.0 || f.x > pool.size || f.y > pool.size {
             continue;
         }
@@ -275,8 +270,8 @@ fn cascaded_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) -> 
     if total <= 0.0 {
         bail!(
             "no pixel of the {} x {} image sees the lit floor",
-            e.width,
-            e.height
+            image.width,
+            image.height
         );
     }
     let ctx = runner.gpu.as_ref().expect("a GPU runner");

@@ -1064,3 +1064,56 @@ fn render_writes_the_pools_walls() {
         assert!(!stderr(&o).contains("caustics:"), "refused after the work");
     }
 }
+
+/// The app reaches techniques through the registry alone: outside comments and test modules its
+/// source names no registered technique in a string and reaches into no technique's module (a
+/// technique added to the registry appears in every front end without an edit here).
+#[test]
+fn the_app_source_names_no_technique() {
+    use caustics_core::techniques::REGISTRY;
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = vec![];
+    let mut dirs = vec![src];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                files.push(p);
+            }
+        }
+    }
+    assert!(files.len() > 10, "{files:?}");
+    let mut modules: Vec<String> = REGISTRY
+        .iter()
+        .map(|d| format!("techniques::{}", d.table.replace('-', "_")))
+        .collect();
+    modules.dedup();
+    let mut found = vec![];
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        let code = text.split("#[cfg(test)]").next().unwrap();
+        for (n, line) in code.lines().enumerate() {
+            let line = line.trim_start();
+            if line.starts_with("//") {
+                continue;
+            }
+            let quoted = REGISTRY
+                .iter()
+                .any(|d| line.contains(&format!("\"{}", d.name)));
+            // `techniques::reference()` is the registry's accessor, not the module.
+            let reached = modules
+                .iter()
+                .any(|m| line.contains(m.as_str()) && !line.contains(&format!("{m}(")));
+            if quoted || reached {
+                found.push(format!("{}:{}: {line}", f.display(), n + 1));
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "technique names in the app:\n{}",
+        found.join("\n")
+    );
+}

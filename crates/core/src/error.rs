@@ -19,6 +19,10 @@ pub enum Error {
     UnknownTechnique(String),
     #[error("invalid parameter: {0}")]
     InvalidParameter(String),
+    /// What was asked for does not exist here (an intermediate buffer of a scene without water,
+    /// object 5 of three).
+    #[error("{0}")]
+    Unavailable(String),
 }
 
 impl Error {

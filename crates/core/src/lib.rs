@@ -9,6 +9,7 @@ pub mod map;
 pub mod mesh;
 pub mod metrics;
 pub mod optics;
+pub mod plot;
 pub mod reference;
 pub mod render;
 pub mod scene;

@@ -69,6 +69,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     fixed: &[],
     point_light: false,
     buffers: &[],
+    draw_buffer: crate::techniques::buffers::no_buffers,
     reference: true,
     validate: |_| Ok(()),
     cpu: run_cpu,

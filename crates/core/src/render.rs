@@ -49,6 +49,25 @@ pub struct EyeSpaceCaustics {
     pub texels: Vec<[f32; 4]>,
 }
 
+/// Where each pixel of an image made for `scene`'s camera sees the floor: its straight ray's
+/// first hit on the floor or its terrain, `None` where it meets neither. These are the points an
+/// [`EyeSpaceCaustics`]'s texels describe, so that a front end can compare one with a floor map.
+pub fn eye_floor_points(scene: &Scene) -> crate::Result<Vec<Option<glam::DVec3>>> {
+    use crate::techniques::cascaded::{CascadedSetup, eye_pass};
+    let setup = CascadedSetup::from_scene(scene, &Default::default())?;
+    let e = &setup.eye;
+    Ok(eye_pass(&setup, scene.floor.terrain.as_ref())
+        .iter()
+        .enumerate()
+        .map(|(p, g)| {
+            (g[3] != 0.0).then(|| {
+                let (x, y) = ((p % e.width) as f64 + 0.5, (p / e.width) as f64 + 0.5);
+                e.position + e.ray(x, y) * g[0] as f64
+            })
+        })
+        .collect())
+}
+
 /// Smallest total weight of the valid texels around a lookup for [`EyeSpaceCaustics::sample`] to
 /// answer (below it the point lies off the image's valid part).
 pub const EYE_SPACE_MIN_WEIGHT: f64 = 1e-3;
@@ -910,6 +929,38 @@ fn wall_at(p: DVec3, size: f64) -> Wall {
     Wall::ALL[k]
 }
 
+/// Tone map (the final image's curve, [`tone_map`]) and sRGB-encode linear radiance.
+pub fn to_rgb8(linear: &[[f32; 3]], exposure: f64, curve: ToneMap) -> Vec<u8> {
+    linear
+        .iter()
+        .flat_map(|c| {
+            let c = glam::DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64) * exposure;
+            tone_map(c, curve)
+        })
+        .collect()
+}
+
+/// Tone map linear radiance ([`to_rgb8`]) and write it as an sRGB PNG.
+pub fn write_png(
+    path: &std::path::Path,
+    width: u32,
+    height: u32,
+    linear: &[[f32; 3]],
+    exposure: f64,
+    curve: crate::render::ToneMap,
+) -> crate::Result<()> {
+    image::save_buffer(
+        path,
+        &to_rgb8(linear, exposure, curve),
+        width,
+        height,
+        image::ExtendedColorType::Rgb8,
+    )
+    .map_err(|e| crate::Error::BadFile {
+        path: path.to_path_buf(),
+        problem: e.to_string(),
+    })
+}
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -37,7 +37,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         image.height,
         t0.elapsed().as_secs_f64()
     );
-    camera::write_png(
+    caustics_core::render::write_png(
         std::path::Path::new(out),
         image.width,
         image.height,

@@ -24,13 +24,14 @@ use caustics_core::scene::Scene;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
 
-use super::buffers::{self, Buffer, BufferInput, SceneHas};
 use super::camera::{OrbitCamera, Sun};
 use super::frame::{Quality, Rendered, SceneRenderer, Slot, TechniqueChoice, technique_names};
+use super::pictures;
 use super::ui::{self, Model, Shown, Stats, TextureIds};
 use super::water::{SurfaceKey, WaterState};
 use super::{ImageOn, ViewArgs};
 use crate::techniques::Runner;
+use caustics_core::techniques::buffers::{self, Buffer, BufferInput, SceneHas};
 
 pub fn run(args: ViewArgs) -> Result<()> {
     let event_loop = EventLoop::new().context("cannot connect to the display")?;
@@ -843,7 +844,7 @@ impl Viewer {
                 }
                 m.maps[k] = match (&slot.caustics, &slot.error) {
                     (Some(caustics), _) => {
-                        let p = buffers::caustics_picture(caustics, slot.walls.as_ref());
+                        let p = pictures::caustics_picture(caustics, slot.walls.as_ref());
                         self.map_images[k].set(
                             ctx,
                             &mut self.egui_renderer,
@@ -871,7 +872,7 @@ impl Viewer {
                 && (m.slots[0].map_changed || m.slots[1].map_changed || m.difference.size.is_none())
             {
                 m.difference = match (m.slots[0].floor_map(), m.slots[1].floor_map()) {
-                    (Some(a), Some(b)) => match buffers::difference_picture(a, b) {
+                    (Some(a), Some(b)) => match pictures::difference_picture(a, b) {
                         Some(p) => {
                             self.difference_image.set(
                                 ctx,
@@ -925,14 +926,16 @@ impl Viewer {
                     .as_ref()
                     .zip(self.renderer.surface.as_deref())
                     .map(|(w, s)| (w.technique_water(), s));
+                let choice = &m.slots[0].choice;
+                let spec = choice.spec()?;
                 let input = BufferInput {
-                    choice: &m.slots[0].choice,
+                    params: &spec.params,
                     scene: &self.renderer.scene,
                     water,
                     light: m.sun.direction(),
                     map_size: m.quality.map_size as usize,
                 };
-                m.buffer_shown = match buffers::buffer_picture(m.buffer, &input) {
+                m.buffer_shown = match buffers::picture(choice.entry, m.buffer, &input) {
                     Ok(p) => {
                         self.buffer_image.set(
                             ctx,
@@ -1228,16 +1231,18 @@ fn initial_model(
         (1.0, scene.caustics.width.max(scene.caustics.height), 2)
     };
     let first_choice = first.clone();
-    let available = Buffer::available(&first_choice, SceneHas::of(scene));
+    let available = Buffer::available(first_choice.entry, SceneHas::of(scene));
     let buffer = match &args.buffer {
         Some(name) => Buffer::parse(name, &available).context("--buffer")?,
-        None => available.first().copied().unwrap_or(Buffer::Heights),
+        None => available
+            .first()
+            .copied()
+            .unwrap_or(Buffer::new(&buffers::HEIGHTS)),
     };
     Ok(Model {
         scene_name: scene.name.clone(),
         technique_names: technique_names(scene),
         has: SceneHas::of(scene),
-        object_count: scene.objects.len() as u32,
         adapter,
         home: camera.clone(),
         camera,

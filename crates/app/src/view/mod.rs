@@ -18,13 +18,13 @@
 //!
 //! Module map: [`app`] the window, egui and the frame loop (and the scripted smoke mode);
 //! [`frame`] what one frame renders; [`camera`] the orbit camera, sun and picking; [`water`] the
-//! water sources; [`ui`] the panel, views and overlay; [`buffers`] the map and intermediate
-//! buffers as pictures.
+//! water sources; [`ui`] the panel, views and overlay; [`pictures`] the caustics maps as
+//! pictures (the techniques draw their intermediate buffers: `caustics_core::techniques::buffers`).
 
 mod app;
-mod buffers;
 mod camera;
 mod frame;
+mod pictures;
 mod ui;
 mod water;
 
@@ -82,9 +82,9 @@ pub struct ViewArgs {
     /// Open the intermediate-buffers window at the start.
     #[arg(long)]
     pub show_buffers: bool,
-    /// Open the intermediate-buffers window on this buffer of the first technique: `heights`,
-    /// `yuksel-offset`, `yuksel-flux`, `yuksel-channel:K`, `distance-layer:K`, `photon-hits`,
-    /// `photon-power`, `vertex-irradiance`, `light-cube`, `object:K`, `cascade:K`.
+    /// Open the intermediate-buffers window on this buffer of the first technique: `heights`, or
+    /// one of the technique's own, `KEY` or `KEY:INDEX` (a name it does not have is refused with
+    /// the list of those it has).
     #[arg(long, value_name = "NAME")]
     pub buffer: Option<String>,
     /// Where the final image is traced: `gpu` (the GPU frame: water, technique and final image on

@@ -10,10 +10,10 @@ use glam::DVec2;
 
 use caustics_gpu::PassTime;
 
-use super::buffers::{Buffer, SceneHas};
 use super::camera::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
 use super::frame::{Quality, Slot, TechniqueChoice};
 use super::water::{Mode, WaterState};
+use caustics_core::techniques::buffers::{Buffer, SceneHas};
 use caustics_core::techniques::describe::{Default, Kind, Param};
 
 /// Texture ids of everything the UI draws, registered once and updated in place.
@@ -60,7 +60,6 @@ pub struct Model {
     /// What the scene has that decides the buffers its techniques show.
     pub has: SceneHas,
     /// Objects in the scene (`volumes`' object maps).
-    pub object_count: u32,
     pub adapter: String,
     pub camera: OrbitCamera,
     /// The scene's own camera, for "reset view".
@@ -641,8 +640,8 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
         .default_width(WINDOW_WIDTH)
         .show(ctx, |ui| {
             let choice = &m.slots[0].choice;
-            let available = Buffer::available(choice, m.has);
-            if !available.iter().any(|b| same_kind(*b, m.buffer))
+            let available = Buffer::available(choice.entry, m.has);
+            if !available.iter().any(|b| b.same_kind(&m.buffer))
                 && let Some(first) = available.first()
             {
                 m.buffer = *first;
@@ -651,40 +650,18 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
                 .selected_text(m.buffer.name())
                 .show_ui(ui, |ui| {
                     for b in available {
-                        let selected = same_kind(b, m.buffer);
+                        let selected = b.same_kind(&m.buffer);
                         if ui.selectable_label(selected, b.name()).clicked() && !selected {
                             m.buffer = b;
                         }
                     }
                 });
-            if let Buffer::YukselChannel(k) = &mut m.buffer {
-                let channels = choice
-                    .params
-                    .get("m")
-                    .and_then(|v| v.as_integer())
-                    .unwrap_or(0)
-                    .max(0) as u32;
-                ui.add(egui::Slider::new(k, 0..=channels).text("channel"));
-            }
-            if let Buffer::CascadeMap(k) = &mut m.buffer {
-                let last = caustics_core::techniques::cascaded::CASCADES as u32 - 1;
-                ui.add(egui::Slider::new(k, 0..=last).text("cascade"));
-            }
-            if let Buffer::ObjectCaustics(k) = &mut m.buffer {
-                let last = m.object_count.saturating_sub(1);
-                ui.add(egui::Slider::new(k, 0..=last).text("object"));
-            }
-            if let Buffer::DistanceLayer(k) = &mut m.buffer {
-                let layers = choice
-                    .params
-                    .get("layers")
-                    .and_then(|v| v.as_integer())
-                    .unwrap_or(1)
-                    .max(1) as u32;
-                ui.add(egui::Slider::new(k, 0..=layers - 1).text("layer"));
+            if let Some(index) = &m.buffer.desc.index {
+                let last = m.buffer.count(&choice.params, &m.has).saturating_sub(1);
+                ui.add(egui::Slider::new(&mut m.buffer.index, 0..=last).text(index.name));
             }
             ui.small(format!("of the left side's technique, `{}`", choice.name()));
-            if Buffer::available(choice, m.has).is_empty() {
+            if Buffer::available(choice.entry, m.has).is_empty() {
                 ui.small("it has no intermediate buffers to show");
             } else {
                 picture(ui, m.textures.buffer, &m.buffer_shown);
@@ -695,10 +672,6 @@ fn windows(ctx: &egui::Context, m: &mut Model) {
 
 /// Width of the map and buffer windows, points.
 const WINDOW_WIDTH: f32 = 210.0;
-
-fn same_kind(a: Buffer, b: Buffer) -> bool {
-    std::mem::discriminant(&a) == std::mem::discriminant(&b)
-}
 
 fn picture(ui: &mut egui::Ui, id: egui::TextureId, shown: &Shown) {
     if let Some(e) = &shown.error {

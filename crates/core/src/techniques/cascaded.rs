@@ -96,8 +96,10 @@ pub enum Placement {
     Plane,
 }
 
+use super::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, check_index};
 use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
 use super::{Input, Job, Made, SceneCaustics};
+use crate::plot::{Picture, rgb_picture};
 
 /// Paper 5 as registered: an image in the eye camera's screen space, not a floor map.
 pub const DESCRIPTOR: Descriptor = Descriptor {
@@ -241,7 +243,16 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: false,
-    buffers: &["cascade"],
+    buffers: &[BufferDesc {
+        key: "cascade",
+        label: "cascade {k}: caustic map",
+        index: Some(Index {
+            name: "cascade",
+            count: |_, _| CASCADES as u32,
+        }),
+        needs: Needs::Anything,
+    }],
+    draw_buffer,
     reference: false,
     validate: |t| CascadedParams::from_table(t).map(|_| ()),
     cpu: run_cpu,
@@ -1381,6 +1392,23 @@ pub fn water_grid(scene: &Scene, n: usize) -> Result<Grid> {
         WaterSource::HeightField(g) => g.clone(),
         _ => crate::water::sample_grid(&*water.surface_at(scene.time)?, n, n, water.size),
     })
+}
+
+/// Cascade `k`'s own screen-space caustic map (§3.3), before the blend between cascades: where
+/// each cascade's photons land in the eye's image.
+fn draw_buffer(input: &BufferInput, buffer: Buffer) -> Result<Picture> {
+    let (scene, surface) = input.scene_with_water()?;
+    let k = check_index(buffer.index, CASCADES, "cascades")?;
+    let job = Job::new(&scene, Some(surface), 1);
+    let (setup, grid) = job_setup(&job, input.params)?;
+    let frame = caustics(&setup, &grid, scene.floor.terrain.as_ref());
+    let map = frame.cascade_map(&setup, k);
+    Ok(rgb_picture(
+        setup.eye.width,
+        setup.eye.height,
+        |t| (frame.eye[t][3] != 0.0).then(|| map[t]),
+        &format!("cascade {k} of {CASCADES}, relative irradiance"),
+    ))
 }
 
 #[cfg(test)]

@@ -181,8 +181,10 @@ pub struct Descriptor {
     /// Whether a point or spot light is rendered (paper 4's light cube map); the others need the
     /// directional sun.
     pub point_light: bool,
-    /// The intermediate buffers the viewer can show (their keys).
-    pub buffers: &'static [&'static str],
+    /// The intermediate buffers a view can show, beyond the water's heights.
+    pub buffers: &'static [super::buffers::BufferDesc],
+    /// Draws them, with the CPU twin's passes.
+    pub draw_buffer: super::buffers::DrawBuffer,
     /// The ground truth others are measured against (not a technique to pick for speed).
     pub reference: bool,
     /// The technique's own reading of the tables (its serde struct and its checks across

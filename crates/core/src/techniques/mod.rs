@@ -2,6 +2,7 @@
 //! [`Descriptor`] beside its technique's code), the job every technique takes, and the CPU twin of
 //! each (the oracle of its GPU implementation's tests and the fallback where no GPU adapter exists).
 
+pub mod buffers;
 pub mod cascaded;
 pub mod caustic_triangles;
 pub mod describe;

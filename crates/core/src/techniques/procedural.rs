@@ -132,6 +132,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     fixed: &[],
     point_light: false,
     buffers: &[],
+    draw_buffer: crate::techniques::buffers::no_buffers,
     reference: false,
     validate: |t| ProceduralCausticsParams::from_table(t).map(|_| ()),
     cpu: run_cpu,

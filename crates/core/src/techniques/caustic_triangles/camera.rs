@@ -26,7 +26,7 @@
 //! - Rays that meet nothing see a constant sky.
 //!
 //! Albedos are one colour for the floor and one for the occluders (the glass scenes' floor is
-//! plain); the glass is clear (its tint is not applied). All in linear RGB; [`to_rgb8`] tone maps.
+//! plain); the glass is clear (its tint is not applied). All in linear RGB; [`crate::render::to_rgb8`] tone maps.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -305,17 +305,6 @@ pub fn camera_pass(input: &CameraInput) -> Vec<[f32; 3]> {
         .collect()
 }
 
-/// Tone map (the final image's curve, [`crate::render::tone_map`]) and sRGB-encode linear radiance.
-pub fn to_rgb8(linear: &[[f32; 3]], exposure: f64, curve: crate::render::ToneMap) -> Vec<u8> {
-    linear
-        .iter()
-        .flat_map(|c| {
-            let c = glam::DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64) * exposure;
-            crate::render::tone_map(c, curve)
-        })
-        .collect()
-}
-
 impl CameraParams {
     /// The scene's light colour and intensity, and its floor's albedo at the square's centre (the
     /// glass scenes' floor is plain).
@@ -405,27 +394,5 @@ pub fn render_scene(
             super::cube::shadow_pass(&pairs, &mut cube);
             image(CameraLight::Point { light, cube: &cube })
         }
-    })
-}
-
-/// Tone map linear radiance ([`to_rgb8`]) and write it as an sRGB PNG.
-pub fn write_png(
-    path: &std::path::Path,
-    width: u32,
-    height: u32,
-    linear: &[[f32; 3]],
-    exposure: f64,
-    curve: crate::render::ToneMap,
-) -> crate::Result<()> {
-    image::save_buffer(
-        path,
-        &to_rgb8(linear, exposure, curve),
-        width,
-        height,
-        image::ExtendedColorType::Rgb8,
-    )
-    .map_err(|e| crate::Error::BadFile {
-        path: path.to_path_buf(),
-        problem: e.to_string(),
     })
 }

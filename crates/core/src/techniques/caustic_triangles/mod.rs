@@ -77,6 +77,7 @@
 //! texels, `ΔΦ / (s² A_texel)` over the texel centres it covers: the method the paper argues
 //! against (Fig. 1), for comparison.
 
+mod buffers;
 pub mod camera;
 pub mod cube;
 pub mod distance_map;
@@ -225,13 +226,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: true,
-    buffers: &[
-        "photon-hits",
-        "photon-power",
-        "vertex-irradiance",
-        "distance-layer",
-        "light-cube",
-    ],
+    buffers: buffers::BUFFERS,
+    draw_buffer: buffers::draw_buffer,
     reference: false,
     validate: |t| CausticTrianglesParams::from_table(t).map(|_| ()),
     cpu: run_cpu,

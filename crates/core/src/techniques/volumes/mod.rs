@@ -64,6 +64,7 @@
 //! [`illumination::floor_pass`], [`illumination::wall_pass`] (with walls),
 //! [`illumination::shade_pass`] (Eq. 4), and the refracted view of §3.3, [`view::view_pass`].
 
+mod buffers;
 pub mod illumination;
 pub mod reference;
 pub mod representation;
@@ -170,7 +171,8 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: false,
-    buffers: &["object"],
+    buffers: buffers::BUFFERS,
+    draw_buffer: buffers::draw_buffer,
     reference: false,
     validate: |t| VolumesParams::from_table(t).map(|_| ()),
     cpu: run_cpu,
