@@ -1,5 +1,6 @@
 //! `caustics`: render scenes, inspect scene files, list the techniques.
 
+mod bake;
 mod bench;
 mod compare;
 #[cfg(test)]
@@ -37,6 +38,9 @@ struct Cli {
 enum Command {
     /// Render a scene: the final image from its camera and/or the raw caustics map.
     Render(render::RenderArgs),
+    /// Bake a caustics texture sequence that tiles and loops, for any engine: frames, a flipbook
+    /// atlas and a looping preview (docs/bake.md).
+    Bake(bake::BakeArgs),
     /// List the caustics techniques.
     Techniques {
         /// Print only the names of the GPU techniques and variants as registered
@@ -153,6 +157,7 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Bake(args) => bake::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) => bench::run(args),
         Command::View(args) => view::run(args),

@@ -246,7 +246,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
 
     // The device, set up before the caustics so that a bad --backend fails at once and the
     // adapter is named first; the technique and the final image share it.
-    let ctx = if args.cpu { None } else { gpu_context(&args)? };
+    let ctx = if args.cpu {
+        None
+    } else {
+        gpu_context(args.backend.clone(), args.adapter.clone())?
+    };
     let mut runner = Runner::new(ctx);
     // A technique that ends in its own final image (paper 4's camera pass, paper 3's refracted
     // view) makes it where the scene is one it has it for.
@@ -505,10 +509,12 @@ fn render_frame(
 /// The GPU device, or `None` (after one line on stderr saying why) when no adapter can be had
 /// here: the technique then runs on its CPU twin and the image on the CPU. A backend name that does
 /// not exist is the user's mistake and an error, not a reason to fall back.
-fn gpu_context(args: &RenderArgs) -> Result<Option<GpuContext>> {
+/// The device for `--backend` and `--adapter`, or `None` (said on stderr) where there is no
+/// adapter: the CPU path then.
+pub fn gpu_context(backend: Option<String>, adapter: Option<String>) -> Result<Option<GpuContext>> {
     let options = GpuOptions {
-        backend: args.backend.clone(),
-        adapter_name: args.adapter.clone(),
+        backend,
+        adapter_name: adapter,
     };
     let ctx = match GpuContext::headless(&options) {
         Ok(ctx) => ctx,

@@ -42,6 +42,7 @@ fn source(kind: &str) -> WaterSource {
                 wavelength: l,
                 direction: d,
                 phase,
+                period: None,
             };
             WaterSource::Waves(vec![
                 w(0.0020, 0.25, [1.0, 0.3], 0.0),

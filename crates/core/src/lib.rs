@@ -2,6 +2,7 @@
 //! surfaces, the optics shared by all techniques, the physically based reference that judges them,
 //! the CPU twins of the GPU techniques, and a CPU renderer of the final image.
 
+pub mod bake;
 pub mod cases;
 pub mod error;
 pub mod grid;

@@ -38,6 +38,7 @@ fn ripples(size: f64) -> Waves {
         wavelength: l,
         direction: d,
         phase,
+        period: None,
     };
     Waves::new(
         &[

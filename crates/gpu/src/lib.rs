@@ -3,6 +3,7 @@
 //! Each technique lives in its own module with one WGSL file per pass; its CPU twin lives in
 //! `caustics-core`.
 
+pub mod bake;
 pub mod cascaded;
 pub mod caustic_triangles;
 pub mod context;
@@ -16,6 +17,7 @@ pub mod technique;
 pub mod timing;
 pub mod traffic;
 mod transfer;
+pub use transfer::Readback;
 pub mod validation;
 pub mod volumes;
 pub mod water;

@@ -174,3 +174,88 @@ impl GpuContext {
         );
     }
 }
+
+/// A read-back buffer made once for `layers` textures of one size and format, for a loop that
+/// reads the same textures every frame (`caustics bake`): the copies are recorded into the frame's
+/// own encoder and each frame costs one map, nothing created.
+pub struct Readback {
+    staging: wgpu::Buffer,
+    width: u32,
+    height: u32,
+    padded: u32,
+    layers: u32,
+    format: wgpu::TextureFormat,
+}
+
+impl Readback {
+    /// For `layers` textures like `texture`, a technique's floor map (`Rgba32Float`, or
+    /// `Rgba16Float`, [`crate::technique::Output`]).
+    pub fn new(ctx: &GpuContext, texture: &wgpu::Texture, layers: u32) -> Self {
+        let (width, height, format) = (texture.width(), texture.height(), texture.format());
+        let texel = format.block_copy_size(None).unwrap_or(16);
+        let padded = (width * texel).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let staging = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame readback"),
+            size: padded as u64 * height as u64 * layers as u64,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Readback {
+            staging,
+            width,
+            height,
+            padded,
+            layers,
+            format,
+        }
+    }
+
+    /// The textures' size, texels.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width as usize, self.height as usize)
+    }
+
+    /// Record the copy of `texture` (of the size and format this was made for) into `encoder`, as
+    /// layer `layer` of the next read.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, texture: &wgpu::Texture, layer: u32) {
+        debug_assert!(layer < self.layers);
+        encoder.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.staging,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: self.padded as u64 * self.height as u64 * layer as u64,
+                    bytes_per_row: Some(self.padded),
+                    rows_per_image: Some(self.height),
+                },
+            },
+            texture.size(),
+        );
+    }
+
+    /// After the submission holding [`record`](Self::record)'s copies: the texels, row 0 first,
+    /// layer after layer.
+    pub fn read_rgba_f32(&self, ctx: &GpuContext) -> Result<Vec<[f32; 4]>, GpuError> {
+        let (w, padded) = (self.width as usize, self.padded as usize);
+        let h = self.height as usize * self.layers as usize;
+        let half = self.format == wgpu::TextureFormat::Rgba16Float;
+        ctx.map_and_copy(&self.staging, |bytes| {
+            let mut out = Vec::with_capacity(w * h);
+            for r in 0..h {
+                let row = &bytes[r * padded..];
+                if half {
+                    let texels: &[[u16; 4]] = bytemuck::cast_slice(&row[..w * 8]);
+                    out.extend(
+                        texels
+                            .iter()
+                            .map(|t| t.map(crate::caustic_triangles::f16_to_f32)),
+                    );
+                } else {
+                    out.extend_from_slice(bytemuck::cast_slice(&row[..w * 16]));
+                }
+            }
+            out
+        })
+    }
+}

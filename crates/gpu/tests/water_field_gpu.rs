@@ -40,6 +40,7 @@ fn waves_water() -> Water {
         wavelength,
         direction,
         phase,
+        period: None,
     };
     water(
         WaterSource::Waves(vec![

@@ -1,6 +1,7 @@
 //! A sum of directional sine waves, `h(p) = Σ a_k sin(k_k · p − ω_k t + φ_k)`, with deep-water
-//! dispersion `ω = sqrt(g |k|)`. The wave vectors are snapped to the lattice `2π n / size` so that the
-//! sum tiles the scene square exactly.
+//! dispersion `ω = sqrt(g |k|)` unless a wave states its period. The wave vectors are snapped to the
+//! lattice `2π n / size` so that the sum tiles the scene square exactly; periods that divide a
+//! loop's length make the sum loop in time (`caustics bake`, [`Wave::looping`]).
 
 use std::f64::consts::TAU;
 
@@ -23,6 +24,38 @@ pub struct Wave {
     /// Phase offset, radians.
     #[serde(default)]
     pub phase: f64,
+    /// Seconds per cycle; absent, deep-water dispersion's `2π / sqrt(g |k|)` for the snapped wave
+    /// vector (set to make the sum loop: [`Wave::looping`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub period: Option<f64>,
+}
+
+impl Wave {
+    /// The wave vector on a square of side `size`: along `direction`, snapped to the lattice
+    /// `2π n / size` (at least one cycle per tile).
+    pub fn snapped_k(&self, size: f64) -> DVec2 {
+        let dir = DVec2::from(self.direction).normalize_or(DVec2::X);
+        let k = dir * TAU / self.wavelength;
+        let n = (k * size / TAU).round();
+        let n = if n == DVec2::ZERO { dir.signum() } else { n };
+        n * TAU / size
+    }
+
+    /// Seconds per cycle on a square of side `size`: its own, else deep-water dispersion's.
+    pub fn period_on(&self, size: f64) -> f64 {
+        self.period
+            .unwrap_or_else(|| TAU / (GRAVITY * self.snapped_k(size).length()).sqrt())
+    }
+
+    /// This wave with its period rounded to the nearest `loop_period / n` (n ≥ 1 whole cycles per
+    /// loop), so that a sum of such waves returns to itself after `loop_period` seconds.
+    pub fn looping(&self, size: f64, loop_period: f64) -> Wave {
+        let cycles = (loop_period / self.period_on(size)).round().max(1.0);
+        Wave {
+            period: Some(loop_period / cycles),
+            ..self.clone()
+        }
+    }
 }
 
 pub struct Waves {
@@ -48,13 +81,8 @@ impl Waves {
         let components = waves
             .iter()
             .map(|w| {
-                let dir = DVec2::from(w.direction).normalize_or(DVec2::X);
-                let k = dir * TAU / w.wavelength;
-                // Snap to the periodic lattice; keep at least one cycle per tile.
-                let n = (k * size / TAU).round();
-                let n = if n == DVec2::ZERO { dir.signum() } else { n };
-                let k = n * TAU / size;
-                let omega = (GRAVITY * k.length()).sqrt();
+                let k = w.snapped_k(size);
+                let omega = TAU / w.period_on(size);
                 WaveTerm {
                     amplitude: w.amplitude,
                     k,
@@ -96,6 +124,7 @@ mod tests {
             wavelength: l,
             direction: d,
             phase: 0.3,
+            period: None,
         };
         Waves::new(
             &[w(0.01, 0.25, [1.0, 0.2]), w(0.005, 0.1, [-0.3, 1.0])],
@@ -112,6 +141,39 @@ mod tests {
             DVec2::new(0.5, 0.99),
         ];
         assert_gradient_matches_finite_differences(&sample(), &pts, 1e-6);
+    }
+
+    /// A period rounded to divide the loop: the waves at `t + T` are the waves at `t`.
+    #[test]
+    fn looping_waves_return_after_the_loop() {
+        let waves = [
+            Wave {
+                amplitude: 0.01,
+                wavelength: 0.25,
+                direction: [1.0, 0.2],
+                phase: 0.3,
+                period: None,
+            },
+            Wave {
+                amplitude: 0.005,
+                wavelength: 0.7,
+                direction: [-0.3, 1.0],
+                phase: 1.0,
+                period: None,
+            },
+        ];
+        let looped: Vec<Wave> = waves.iter().map(|w| w.looping(1.0, 3.0)).collect();
+        for (w, l) in waves.iter().zip(&looped) {
+            let cycles = 3.0 / l.period.unwrap();
+            assert!((cycles - cycles.round()).abs() < 1e-12 && cycles >= 1.0);
+            // Rounded by less than half a cycle per loop.
+            assert!((3.0 / w.period_on(1.0) - cycles).abs() <= 0.5);
+        }
+        let (a, b) = (Waves::new(&looped, 1.0, 0.4), Waves::new(&looped, 1.0, 3.4));
+        let unlooped = Waves::new(&waves, 1.0, 3.4);
+        let p = DVec2::new(0.31, 0.62);
+        assert!((a.height(p) - b.height(p)).abs() < 1e-12);
+        assert!((a.height(p) - unlooped.height(p)).abs() > 1e-4);
     }
 
     #[test]

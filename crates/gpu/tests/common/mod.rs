@@ -107,6 +107,7 @@ pub fn with_gentle_ripples(name: &str) -> caustics_core::scene::Scene {
         wavelength,
         direction,
         phase,
+        period: None,
     };
     let waves = match name {
         "pool" => vec![

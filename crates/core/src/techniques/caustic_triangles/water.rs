@@ -619,6 +619,7 @@ mod tests {
                         wavelength,
                         direction,
                         phase,
+                        period: None,
                     },
                 )
                 .collect(),
