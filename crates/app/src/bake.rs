@@ -28,11 +28,6 @@ use crate::progress;
 /// and `--raw` outputs keep every value).
 pub const FLAT_LEVEL: f64 = 0.25;
 
-/// The technique by default: the most accurate of those that map the floor from the water at a
-/// bake's cost (docs/results.md: `yuksel` 0.2-0.4 % from the reference, `caustic-triangles`
-/// 4-8 %), and fast enough: a 512² frame in under a second even on a software adapter.
-const DEFAULT_TECHNIQUE: &str = "yuksel";
-
 #[derive(Args)]
 pub struct BakeArgs {
     /// The folder to write into (made if missing).
@@ -45,7 +40,7 @@ pub struct BakeArgs {
     /// The technique (see `caustics techniques`). Default `yuksel`: the most accurate technique
     /// that maps the floor from the water at a bake's cost (0.2-0.4 % from the reference in
     /// docs/results.md; a 512² frame in under a second even on a software adapter).
-    #[arg(long, default_value = DEFAULT_TECHNIQUE)]
+    #[arg(long, default_value = caustics_core::bake::DEFAULT_TECHNIQUE)]
     technique: String,
     /// Frames in one loop.
     #[arg(long, default_value_t = 64)]

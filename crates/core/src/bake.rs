@@ -17,6 +17,11 @@ use crate::techniques::{Job, SceneCaustics, Spec};
 use crate::water::ocean::Ocean;
 use crate::{Error, Result};
 
+/// The technique a bake uses by default: the most accurate of those that map the floor from the
+/// water at a bake's cost (docs/results.md: `yuksel` 0.2-0.4 % relative L1 from the reference,
+/// `caustic-triangles` 4-8 %), and fast enough (docs/benchmarks.md, "Baking").
+pub const DEFAULT_TECHNIQUE: &str = "yuksel";
+
 /// The water made to tile and loop with period `period` seconds, and what was changed to make it
 /// (one line each, for the user).
 pub fn looping_water(water: &Water, period: f64) -> Result<(Water, Vec<String>)> {
@@ -169,6 +174,27 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// How well the frame tiles: the mean jump between its first and last column and row (what a
+    /// seam would show), and the mean step between neighbours inside; of its middle colour.
+    pub fn edge_and_inside(&self) -> (f32, f32) {
+        let g = &self.channels[self.channels.len() / 2];
+        let (w, h) = (self.width, self.height);
+        let at = |i: usize, j: usize| g[i * w + j];
+        let (mut edge, mut inside) = (0.0f32, 0.0f32);
+        for i in 0..h {
+            edge += (at(i, 0) - at(i, w - 1)).abs();
+            inside += (1..w).map(|j| (at(i, j) - at(i, j - 1)).abs()).sum::<f32>();
+        }
+        for j in 0..w {
+            edge += (at(0, j) - at(h - 1, j)).abs();
+            inside += (1..h).map(|i| (at(i, j) - at(i - 1, j)).abs()).sum::<f32>();
+        }
+        (
+            edge / (w + h) as f32,
+            inside / (h * (w - 1) + w * (h - 1)) as f32,
+        )
+    }
+
     /// From one map a colour, each map's mean of red, green and blue (the light of its index).
     pub fn from_maps(width: usize, height: usize, maps: &[Vec<[f32; 3]>]) -> Frame {
         Frame {
@@ -264,7 +290,7 @@ mod tests {
         eprintln!("frame N against frame 0: {worst:.2e}");
         // measured 0 (the waves' phases differ by whole cycles): float precision
         assert!(worst < 1e-6, "frame N differs from frame 0 by {worst}");
-        let (edge, inside) = edge_and_inside(&first);
+        let (edge, inside) = first.edge_and_inside();
         eprintln!("edge jump {edge:.4}, inside step {inside:.4}");
         // measured 0.468 across the edges against 0.478 inside
         assert!(edge < 1.5 * inside, "a seam: {edge} against {inside}");
@@ -297,29 +323,10 @@ mod tests {
         assert!(most < 1e-6, "flat water is not 1 in every colour: {most}");
     }
 
-    /// The mean jump between the first and last column and row of `f` (its green), and the mean
-    /// step between neighbours inside.
-    pub(crate) fn edge_and_inside(f: &Frame) -> (f32, f32) {
-        let g = &f.channels[f.channels.len() / 2];
-        let (w, h) = (f.width, f.height);
-        let at = |i: usize, j: usize| g[i * w + j];
-        let (mut edge, mut inside) = (0.0f32, 0.0f32);
-        for i in 0..h {
-            edge += (at(i, 0) - at(i, w - 1)).abs();
-            for j in 1..w {
-                inside += (at(i, j) - at(i, j - 1)).abs();
-            }
-        }
-        for j in 0..w {
-            edge += (at(0, j) - at(h - 1, j)).abs();
-            for i in 1..h {
-                inside += (at(i, j) - at(i - 1, j)).abs();
-            }
-        }
-        (
-            edge / (w + h) as f32,
-            inside / (h * (w - 1) + w * (h - 1)) as f32,
-        )
+    #[test]
+    fn the_default_technique_is_registered_and_maps_the_floor() {
+        let d = crate::techniques::find(DEFAULT_TECHNIQUE).expect("registered");
+        assert!(!d.eye_space() && !d.reference, "{}", d.name);
     }
 
     #[test]
