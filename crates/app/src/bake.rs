@@ -37,9 +37,9 @@ pub struct BakeArgs {
     /// (pool, shore, objects, underwater). Ripples and paper 2's wave cannot loop and are refused.
     #[arg(long, default_value = "pool")]
     scene: String,
-    /// The technique (see `caustics techniques`). Default `yuksel`: the most accurate technique
-    /// that maps the floor from the water at a bake's cost (0.2-0.4 % from the reference in
-    /// docs/results.md; a 512² frame in under a second even on a software adapter).
+    /// The technique (see `caustics techniques`). Default `reference`: the most accurate, and fast
+    /// enough for a bake (a 512² frame in about 0.5 s on two CPU cores, within 0.1 % of its
+    /// converged map). On a real GPU `yuksel` is the fast choice (0.2-0.4 % from the reference).
     #[arg(long, default_value = caustics_core::bake::DEFAULT_TECHNIQUE)]
     technique: String,
     /// Frames in one loop.
@@ -219,9 +219,10 @@ pub fn run(args: BakeArgs) -> Result<()> {
         crate::render::gpu_context(args.backend.clone(), args.adapter.clone())?
     };
     let scenes = colour_scenes(&scene, args.dispersion);
-    let mut gpu = match &ctx {
-        Some(ctx) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),
-        None => None,
+    // A technique without a GPU implementation (the reference) bakes through its CPU twin.
+    let mut gpu = match (&ctx, caustics_gpu::technique::find(spec.name())) {
+        (Some(ctx), Some(_)) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),
+        _ => None,
     };
     let bar = progress::bar("baking");
     bar.set_length((range.1 - range.0) as u64);
@@ -249,7 +250,7 @@ pub fn run(args: BakeArgs) -> Result<()> {
         spec.label,
         if gpu.is_some() { "GPU" } else { "CPU" }
     );
-    if let (Some(ctx), Some(start)) = (&ctx, steady) {
+    if let (Some(ctx), Some(start), Some(_)) = (&ctx, steady, &gpu) {
         let d = ctx.traffic().since(&start);
         let per = |v: u64| v as f64 / (n - 1) as f64;
         line += &format!(
