@@ -20,6 +20,7 @@ use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
 
 use crate::progress;
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
+use crate::view::ImageOn;
 
 #[derive(Args)]
 pub struct RenderArgs {
@@ -68,6 +69,12 @@ pub struct RenderArgs {
     /// Render the final image on the CPU even when a GPU is present.
     #[arg(long, conflicts_with_all = ["backend", "adapter"])]
     cpu: bool,
+    /// Where the final image is traced: `gpu`, `cpu`, or `auto`: on the GPU, except on a software
+    /// adapter (lavapipe, WARP), which runs the pass on the CPU's cores more slowly than the CPU
+    /// renderer does and spends tens of seconds compiling it on a fresh machine. The technique
+    /// runs on the GPU either way.
+    #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
+    final_image: ImageOn,
     /// GPU backend for the final image: vulkan, metal, dx12 or gl (comma-separated list allowed;
     /// default: WGPU_BACKEND, else any).
     #[arg(long)]
@@ -365,9 +372,21 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(out) = &out {
         let started = Instant::now();
         let options = RenderOptions::for_scene(&scene, args.supersampling.max(1));
-        let final_image = runner
-            .gpu
-            .as_ref()
+        let image_gpu = runner.gpu.as_ref().filter(|ctx| match args.final_image {
+            ImageOn::Gpu => true,
+            ImageOn::Cpu => false,
+            ImageOn::Auto => {
+                let software = FinalImage::software_adapter(ctx);
+                if software {
+                    eprintln!(
+                        "final image on the CPU: faster there than on a software adapter \
+                         (--final-image gpu to trace it on the GPU)"
+                    );
+                }
+                !software
+            }
+        });
+        let final_image = image_gpu
             .map(|ctx| match FinalImage::new(ctx) {
                 Ok(f) => Ok(Some((ctx, f))),
                 Err(e @ GpuError::DeviceLost(_)) => Err(e),
@@ -533,10 +552,9 @@ pub fn gpu_context(backend: Option<String>, adapter: Option<String>) -> Result<O
             return Ok(None);
         }
     };
-    // A software adapter (lavapipe, WARP) runs the passes on the CPU's cores, more slowly than the
-    // CPU renderer does; say so rather than choose for the user.
+    // A software adapter (lavapipe, WARP) runs the passes on the CPU's cores: say so.
     let hint = if FinalImage::software_adapter(&ctx) {
-        " (a software adapter: --cpu may be faster)"
+        " (a software adapter)"
     } else {
         ""
     };

@@ -58,6 +58,8 @@ fn render(scene: &str, out: &Path, extra: &[&str]) -> (image::RgbImage, bool) {
             "2",
             "--supersampling",
             "1",
+            "--final-image",
+            "gpu",
             "--out",
         ])
         .arg(out)
