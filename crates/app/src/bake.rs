@@ -81,15 +81,8 @@ pub struct BakeArgs {
     /// Replace the files of an earlier bake in the folder.
     #[arg(long)]
     force: bool,
-    /// Bake on the CPU even when a GPU is present.
-    #[arg(long, conflicts_with_all = ["backend", "adapter"])]
-    cpu: bool,
-    /// GPU backend: vulkan, metal, dx12 or gl (default: WGPU_BACKEND, else any).
-    #[arg(long)]
-    backend: Option<String>,
-    /// Bake on the GPU adapter whose name contains this (default: WGPU_ADAPTER_NAME).
-    #[arg(long)]
-    adapter: Option<String>,
+    #[command(flatten)]
+    gpu: crate::GpuArgs,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum, serde::Serialize, serde::Deserialize)]
@@ -213,11 +206,7 @@ pub fn run(args: BakeArgs) -> Result<()> {
     let range = args.range.unwrap_or((0, args.frames));
     prepare_folder(&args.out, &record, range, args.raw, args.force)?;
 
-    let ctx = if args.cpu {
-        None
-    } else {
-        crate::render::gpu_context(args.backend.clone(), args.adapter.clone())?
-    };
+    let ctx = args.gpu.context();
     let scenes = colour_scenes(&scene, args.dispersion);
     // A technique without a GPU implementation (the reference) bakes through its CPU twin.
     let mut gpu = match (&ctx, caustics_gpu::technique::find(spec.name())) {

@@ -530,7 +530,7 @@ fn render_frame(
 /// not exist is the user's mistake and an error, not a reason to fall back.
 /// The device for `--backend` and `--adapter`, or `None` (said on stderr) where there is no
 /// adapter: the CPU path then.
-pub fn gpu_context(backend: Option<String>, adapter: Option<String>) -> Result<Option<GpuContext>> {
+fn gpu_context(backend: Option<String>, adapter: Option<String>) -> Result<Option<GpuContext>> {
     let options = GpuOptions {
         backend,
         adapter_name: adapter,
