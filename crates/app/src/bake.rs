@@ -206,12 +206,13 @@ pub fn run(args: BakeArgs) -> Result<()> {
     let range = args.range.unwrap_or((0, args.frames));
     prepare_folder(&args.out, &record, range, args.raw, args.force)?;
 
-    let ctx = args.gpu.context();
+    // A technique without a GPU implementation (the reference) bakes through its CPU twin: no
+    // device then.
+    let ctx = caustics_gpu::technique::find(spec.name()).and_then(|_| args.gpu.context());
     let scenes = colour_scenes(&scene, args.dispersion);
-    // A technique without a GPU implementation (the reference) bakes through its CPU twin.
-    let mut gpu = match (&ctx, caustics_gpu::technique::find(spec.name())) {
-        (Some(ctx), Some(_)) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),
-        _ => None,
+    let mut gpu = match &ctx {
+        Some(ctx) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),
+        None => None,
     };
     let bar = progress::bar("baking");
     bar.set_length((range.1 - range.0) as u64);
