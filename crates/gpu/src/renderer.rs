@@ -223,6 +223,18 @@ impl Renderer {
             if self.sides.get(k).is_some_and(|s| s.spec == spec) {
                 continue;
             }
+            // The same technique with other parameters: taken in place where it can, so that
+            // its pipelines stay (configured again at the next frame).
+            if let Some(side) = self.sides.get_mut(k)
+                && side.spec.name == spec.name
+                && let Ok(t) = &mut side.technique
+                && let Ok(true) = t.set_params(&spec.params)
+            {
+                side.spec = spec;
+                side.configured = None;
+                side.failed = None;
+                continue;
+            }
             let side = match self.parked.iter().position(|s| s.spec == spec) {
                 Some(p) => self.parked.remove(p),
                 None => Side {

@@ -176,6 +176,15 @@ pub trait Technique {
 
     /// GPU memory of the configured frame, bytes.
     fn bytes(&self) -> u64;
+
+    /// Take new parameter tables in place, keeping the pipelines: `Ok(true)` when taken (the
+    /// caller configures again before the next frame), `Ok(false)` when the technique must be
+    /// created anew (its pipelines depend on them). A slider in a panel then costs a configure,
+    /// not a shader compile (seconds on a software adapter).
+    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
+        let _ = params;
+        Ok(false)
+    }
 }
 
 /// How a registered technique is made: its pipelines for the device, its parameters from the

@@ -211,7 +211,91 @@ fn yuksel_follows_steeper_water_without_new_resources() {
     }
 }
 
+/// New parameters for the technique a side already runs are taken in place: no pipeline is
+/// built again (a panel's slider costs a configure, not a shader compile), and the map is the one
+/// a technique created with those parameters makes. For each technique that takes them (yuksel,
+/// caustic-triangles, volumes, cascaded), a uniform knob and a size changed together.
+fn new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map() {
+    use caustics_core::render::RenderOptions;
+    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    let ctx = test_gpu();
+    let cases = [
+        (
+            "yuksel",
+            "yuksel = { subsamples = 2 }",
+            "yuksel = { fresnel = false, subsamples = 1 }",
+            "pool",
+        ),
+        (
+            "caustic-triangles",
+            "caustic-triangles = { photon_image = 32 }",
+            "caustic-triangles = { photon_image = 48, fresnel = false }",
+            "pool",
+        ),
+        (
+            "volumes",
+            "volumes = { planes = 3, texture = 32, shadow = 0 }",
+            "volumes = { planes = 3, texture = 48, shadow = 0, fresnel = false }",
+            "objects",
+        ),
+        (
+            "cascaded",
+            "cascaded = { resolution = 64 }",
+            "cascaded = { resolution = 128 }",
+            "pool",
+        ),
+    ];
+    for (name, before, after, scene_name) in cases {
+        let mut scene = Scene::builtin(scene_name).unwrap();
+        scene.caustics.width = 64;
+        scene.caustics.height = 64;
+        scene.camera.width = 64;
+        scene.camera.height = 36;
+        let spec = |params: &str| {
+            Some(TechniqueSpec {
+                name: name.into(),
+                params: params.parse().unwrap(),
+            })
+        };
+        let frame = |renderer: &mut Renderer| {
+            let clock = WaterClock {
+                time: 0.0,
+                amplitude: 1.0,
+                steps: 0,
+            };
+            renderer
+                .render(&ctx, &scene, clock, &RenderOptions::default())
+                .unwrap();
+            assert_eq!(renderer.error(0), None, "{name}");
+            let texture = renderer.caustics(0).expect("a map").texture().clone();
+            ctx.read_rgba_f32(&texture).unwrap()
+        };
+        let renderer = || {
+            let mut r = Renderer::new(&ctx).unwrap();
+            r.set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
+                .unwrap();
+            r
+        };
+        let mut changed = renderer();
+        changed.set_techniques(&ctx, &[spec(before)]);
+        let first = frame(&mut changed);
+        let start = ctx.traffic();
+        changed.set_techniques(&ctx, &[spec(after)]);
+        let map = frame(&mut changed);
+        let d = ctx.traffic().since(&start);
+        assert_eq!(d.pipelines, 0, "{name}: pipelines built again");
+        assert!(first != map, "{name}: the new parameters changed nothing");
+        let mut fresh = renderer();
+        fresh.set_techniques(&ctx, &[spec(after)]);
+        assert!(
+            map == frame(&mut fresh),
+            "{name}: not a fresh technique's map"
+        );
+    }
+}
+
 test_main! {
+    gpu new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map,
     gpu the_registry_names_are_unique_and_unknown_names_are_refused,
     gpu yuksel_through_the_interface_matches_its_cpu_twin,
     gpu yuksel_steady_frames_create_nothing_and_read_nothing_back,

@@ -113,6 +113,11 @@ impl Technique for CascadedTechnique {
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
     }
+
+    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
+        self.params = CascadedParams::from_table(params)?;
+        Ok(true)
+    }
 }
 
 /// Paper 5 in the registry.

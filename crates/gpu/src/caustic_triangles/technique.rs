@@ -349,6 +349,11 @@ impl Technique for CausticTrianglesTechnique {
             }
         }
     }
+
+    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
+        self.params = CausticTrianglesParams::from_table(params)?;
+        Ok(true)
+    }
 }
 
 /// Paper 4 in the registry.

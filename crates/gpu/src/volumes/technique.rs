@@ -173,6 +173,11 @@ impl Technique for VolumesTechnique {
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |c| c.frame.bytes())
     }
+
+    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
+        self.params = VolumesParams::from_table(params)?;
+        Ok(true)
+    }
 }
 
 /// Paper 3 in the registry.

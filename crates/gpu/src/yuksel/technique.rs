@@ -140,6 +140,11 @@ impl Technique for YukselTechnique {
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
     }
+
+    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
+        self.params = YukselParams::from_table(params)?;
+        Ok(true)
+    }
 }
 
 /// Paper 1's render-target passes in the registry.
