@@ -213,8 +213,8 @@ fn yuksel_follows_steeper_water_without_new_resources() {
 
 /// New parameters for the technique a side already runs are taken in place: no pipeline is
 /// built again (a panel's slider costs a configure, not a shader compile), and the map is the one
-/// a technique created with those parameters makes. For each technique that takes them (yuksel,
-/// caustic-triangles, volumes, cascaded), a uniform knob and a size changed together.
+/// a technique created with those parameters makes. For every technique (procedural through its
+/// texture variant), a uniform knob and a size changed together.
 fn new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map() {
     use caustics_core::render::RenderOptions;
     use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};

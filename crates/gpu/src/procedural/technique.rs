@@ -22,6 +22,8 @@ pub struct ProceduralTechnique {
     /// derives a new sun's setup from, keeping the frame's own light map (which no sun changes)
     /// instead of generating or loading it again.
     sun_params: ProceduralCausticsParams,
+    /// The variant the registered name forces, if any.
+    fixed: Option<Variant>,
     frame: Option<(Frame, WaterTextures, SceneKey)>,
 }
 
@@ -71,9 +73,25 @@ impl ProceduralTechnique {
         params: &toml::Table,
         variant: Option<Variant>,
     ) -> Result<Self, GpuError> {
-        let table = params;
+        let (params, sun_params) = Self::read(params, variant)?;
+        Ok(ProceduralTechnique {
+            name: format!("procedural-{}", params.variant.name()),
+            pipelines: ProceduralCaustics::new(ctx)?,
+            params,
+            sun_params,
+            fixed: variant,
+            frame: None,
+        })
+    }
+
+    /// The parameters from the tables, and the sun's (no light map), with the variant `fixed`
+    /// forces.
+    fn read(
+        table: &toml::Table,
+        fixed: Option<Variant>,
+    ) -> Result<(ProceduralCausticsParams, ProceduralCausticsParams), GpuError> {
         let mut params = ProceduralCausticsParams::from_table(table)?;
-        if let Some(v) = variant {
+        if let Some(v) = fixed {
             if let Some(given) = table
                 .get("procedural")
                 .and_then(|t| t.get("variant"))
@@ -92,13 +110,7 @@ impl ProceduralTechnique {
             light_map_resolution: 2,
             ..params.clone()
         };
-        Ok(ProceduralTechnique {
-            name: format!("procedural-{}", params.variant.name()),
-            pipelines: ProceduralCaustics::new(ctx)?,
-            params,
-            sun_params,
-            frame: None,
-        })
+        Ok((params, sun_params))
     }
 
     fn key(scene: &Scene) -> Result<SceneKey, GpuError> {
@@ -210,6 +222,16 @@ impl Technique for ProceduralTechnique {
 
     fn bytes(&self) -> u64 {
         self.frame.as_ref().map_or(0, |(f, _, _)| f.bytes())
+    }
+
+    /// In place unless the variant changes (it names the technique).
+    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
+        let (params, sun_params) = Self::read(params, self.fixed)?;
+        if params.variant != self.params.variant {
+            return Ok(false);
+        }
+        (self.params, self.sun_params) = (params, sun_params);
+        Ok(true)
     }
 }
 
