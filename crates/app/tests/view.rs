@@ -55,41 +55,41 @@ fn display() -> Display {
         on_path("Xvfb"),
         "no DISPLAY and no Xvfb on PATH (apt-get install xvfb)"
     );
-    // A display number nobody holds: no lock file, no socket.
-    let n = (0..200)
-        .map(|k| 90 + (std::process::id() as usize + k) % 400)
-        .find(|n| {
-            !Path::new(&format!("/tmp/.X{n}-lock")).exists()
-                && !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
-        })
-        .expect("a free X display number");
-    let child = Command::new("Xvfb")
+    // `-displayfd 1`: Xvfb picks a free display number and writes it to its stdout once it accepts
+    // connections (a socket file alone appears before the server is ready: a window made then can
+    // fail inside the driver).
+    let mut child = Command::new("Xvfb")
         .args([
-            &format!(":{n}"),
+            "-displayfd",
+            "1",
             "-screen",
             "0",
             "1024x768x24",
             "-nolisten",
             "tcp",
         ])
-        .stdout(Stdio::null())
+        .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
         .expect("Xvfb starts");
-    let display = Display {
+    let stdout = child.stdout.take().expect("piped");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = std::io::BufRead::read_line(&mut std::io::BufReader::new(stdout), &mut line);
+        let _ = tx.send(line);
+    });
+    let line = rx
+        .recv_timeout(Duration::from_secs(10))
+        .expect("Xvfb did not come up within 10 s");
+    let n: u32 = line
+        .trim()
+        .parse()
+        .unwrap_or_else(|_| panic!("Xvfb wrote `{line}` for its display number"));
+    Display {
         name: format!(":{n}"),
         xvfb: Some(child),
-    };
-    let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-    let started = Instant::now();
-    while !socket.exists() {
-        assert!(
-            started.elapsed() < Duration::from_secs(10),
-            "Xvfb :{n} did not come up"
-        );
-        std::thread::sleep(Duration::from_millis(50));
     }
-    display
 }
 
 fn tmpdir(name: &str) -> PathBuf {
