@@ -282,6 +282,29 @@ fn rgba_of(image: &Image) -> Vec<u8> {
         .collect()
 }
 
+/// The window's surface. wgpu-hal 30 panics where the driver fails to make one (seen once under a
+/// just-started Xvfb: `create_xlib_surface() failed: ERROR_OUT_OF_HOST_MEMORY`): that becomes an
+/// error naming the driver's words, not a panic and its backtrace.
+fn create_surface(
+    instance: &wgpu::Instance,
+    window: Arc<Window>,
+) -> Result<Result<wgpu::Surface<'static>, wgpu::CreateSurfaceError>> {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let made = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        instance.create_surface(window)
+    }));
+    std::panic::set_hook(hook);
+    made.map_err(|payload| {
+        let words = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        anyhow::anyhow!("the GPU driver failed to make the window's surface: {words}")
+    })
+}
+
 /// egui-wgpu 0.37's own traffic, counted into the context's app figures as its `update_texture`
 /// and `update_buffers` make it (it creates through the device, out of our sight): a full
 /// texture delta is a new texture and bind group, a partial one an upload; the vertex and index
@@ -430,7 +453,7 @@ impl Viewer {
             adapter_name: args.adapter.clone(),
         };
         let instance = GpuContext::instance(&options)?;
-        let surface = match instance.create_surface(window.clone()) {
+        let surface = match create_surface(&instance, window.clone())? {
             Ok(s) => s,
             // Without a driver no backend makes a surface, and wgpu's words for it name no
             // cause: say that there is no adapter where that is why.
