@@ -1,5 +1,9 @@
 //! Sizes beyond what the program or the device allows, asked for on the command line: one clear
 //! error and a non-zero exit from `caustics render`, never a panic.
+//!
+//! Run by libtest-mimic (`harness = false`): the device test is reported as ignored, with the
+//! reason, where it cannot run (no `CAUSTICS_REQUIRE_GPU=1`: a 16384² map on the CPU path takes too
+//! long; a device whose limit the command line cannot reach), never as passed unrun.
 
 use std::process::{Command, Output};
 
@@ -24,7 +28,6 @@ fn assert_refused(out: &Output, names: &[&str]) {
     }
 }
 
-#[test]
 fn sizes_beyond_the_program_limit_are_refused_at_the_flag() {
     let out = render(&["--resolution", "100000x100000", "--out", "x.png"]);
     assert_refused(&out, &["--resolution 100000x100000", "between 1 and 16384"]);
@@ -36,20 +39,7 @@ fn sizes_beyond_the_program_limit_are_refused_at_the_flag() {
 /// a margin on each side, so a map as wide as the device's largest texture is beyond it. Needs a
 /// device whose limit the command line can reach (lavapipe's 16384: about 10 s there,
 /// most of it sampling the water at the map's size before the technique is built).
-#[test]
-fn a_map_beyond_the_device_gives_one_error_naming_it() {
-    let required = std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1");
-    if !required {
-        eprintln!("skipping: a 16384² map on the CPU takes too long; set CAUSTICS_REQUIRE_GPU=1");
-        return;
-    }
-    let ctx = caustics_gpu::GpuContext::headless(&Default::default()).expect("a GPU");
-    let max = ctx.limits().max_texture_dimension_2d;
-    drop(ctx);
-    if max > caustics_core::scene::MAX_RESOLUTION {
-        eprintln!("skipping: this device's {max} texels per side are beyond what the CLI asks for");
-        return;
-    }
+fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
     let size = format!("{max}x{max}");
     let out = render(&[
         "--technique",
@@ -69,4 +59,53 @@ fn a_map_beyond_the_device_gives_one_error_naming_it() {
             &format!("1 .. {max} per side"),
         ],
     );
+}
+
+/// The device's largest texture side, or why the device test cannot run here.
+fn device_limit() -> Result<u32, String> {
+    let required = std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1");
+    if !required {
+        return Err("a 16384² map on the CPU takes too long; set CAUSTICS_REQUIRE_GPU=1".into());
+    }
+    let ctx = caustics_gpu::GpuContext::headless(&Default::default())
+        .map_err(|e| format!("CAUSTICS_REQUIRE_GPU=1 but no GPU device: {e}"))?;
+    let max = ctx.limits().max_texture_dimension_2d;
+    if max > caustics_core::scene::MAX_RESOLUTION {
+        return Err(format!(
+            "this device's {max} texels per side are beyond what the CLI asks for"
+        ));
+    }
+    Ok(max)
+}
+
+fn main() -> std::process::ExitCode {
+    use libtest_mimic::{Arguments, Trial};
+    let args = Arguments::from_args();
+    let limit = device_limit();
+    // Required without a device: the test runs, and fails naming why; otherwise it is ignored.
+    let missing = limit
+        .as_ref()
+        .is_err_and(|why| why.starts_with("CAUSTICS_REQUIRE_GPU=1 but"));
+    if let (Err(why), false) = (&limit, missing) {
+        eprintln!("the device test is ignored: {why}");
+    }
+    let trials = vec![
+        Trial::test(
+            "sizes_beyond_the_program_limit_are_refused_at_the_flag",
+            || {
+                sizes_beyond_the_program_limit_are_refused_at_the_flag();
+                Ok(())
+            },
+        ),
+        Trial::test("a_map_beyond_the_device_gives_one_error_naming_it", {
+            let limit = limit.clone();
+            move || {
+                let max = limit.clone()?;
+                a_map_beyond_the_device_gives_one_error_naming_it(max);
+                Ok(())
+            }
+        })
+        .with_ignored_flag(limit.is_err() && !missing),
+    ];
+    libtest_mimic::run(&args, trials).exit_code()
 }
