@@ -8,6 +8,8 @@
 
 pub const OPTICS: &str = include_str!("shaders/optics.wgsl");
 pub const WATER: &str = include_str!("shaders/water.wgsl");
+/// Min and max across workgroups through order-preserving u32 atomics.
+pub const REDUCE: &str = include_str!("shaders/reduce.wgsl");
 
 /// Shared files followed by a pass's own source.
 pub fn compose(shared: &[&str], pass: &str) -> String {
@@ -83,6 +85,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::yuksel::PASS2,
     &crate::yuksel::GATHER,
     &crate::yuksel::REGION,
+    &crate::yuksel::REGION_BOUND,
     &crate::cascaded::EYE,
     &crate::cascaded::WATER_GBUFFER,
     &crate::cascaded::TERRAIN_GBUFFER,
@@ -108,6 +111,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::caustic_triangles::PHOTON,
     &crate::caustic_triangles::IRRADIANCE,
     &crate::caustic_triangles::TRIANGLES,
+    &crate::caustic_triangles::BAND_BOUND,
     &crate::caustic_triangles::SPLAT,
     &crate::caustic_triangles::PYRAMID,
     &crate::caustic_triangles::CUBE,

@@ -14,7 +14,7 @@
 //! | light cube shadow distances (compute, §4.3) | `shaders/caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
 //! | camera pass (compute, §4.3), [`camera`] | `shaders/caustic_triangles/camera.wgsl` | `camera::camera_pass` |
 //! | water photon pass (compute, the water surface as the generator) | `shaders/caustic_triangles/water_photon.wgsl` | `water::photon_pass` |
-//! | copy band (compute, one workgroup, tiling water) | `shaders/caustic_triangles/band.wgsl` | `water::copy_band` |
+//! | copy band (compute, tiling water: a bound over every texel, then one thread) | `shaders/caustic_triangles/band_bound.wgsl`, `band.wgsl` | `water::copy_band` |
 //!
 //! With the water surface as the generator ([`WaterFrame`], `caustics_core::techniques::
 //! caustic_triangles::water`) the water photon pass replaces the photon tracing pass and also
@@ -48,7 +48,7 @@ use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, Distan
 use caustics_core::walls::{Wall, WallMaps};
 
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::shaders::{OPTICS, PassSource, REDUCE, WATER};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 const COMMON: &str = include_str!("../shaders/caustic_triangles/common.wgsl");
@@ -93,8 +93,13 @@ pub const WATER_PHOTON: PassSource = PassSource {
 };
 pub const COPY_BAND: PassSource = PassSource {
     name: "caustic-triangles copy band",
-    shared: &[COMMON, WATER_SETUP],
+    shared: &[COMMON, WATER_SETUP, REDUCE],
     source: include_str!("../shaders/caustic_triangles/band.wgsl"),
+};
+pub const BAND_BOUND: PassSource = PassSource {
+    name: "caustic-triangles band bound",
+    shared: &[COMMON, WATER_SETUP, REDUCE],
+    source: include_str!("../shaders/caustic_triangles/band_bound.wgsl"),
 };
 pub const SPLAT: PassSource = PassSource {
     name: "caustic-triangles splats",
@@ -231,6 +236,15 @@ impl WaterPhotonUniform {
     }
 }
 
+/// Tiling water's copy band on the GPU: the bound pass's buffer and bind group, the band pass's, and
+/// the height grid the bound pass covers.
+struct BandPasses {
+    bound: wgpu::Buffer,
+    bound_bind: wgpu::BindGroup,
+    band: wgpu::BindGroup,
+    grid: (u32, u32),
+}
+
 /// Mirrors `CopyBand` in `shaders/caustic_triangles/common.wgsl`: the band of quads the shifted
 /// copies of tiling water are drawn for as the copy band pass fits it, and their indirect draw.
 #[repr(C)]
@@ -272,6 +286,7 @@ pub struct CausticTriangles {
     shadow: wgpu::ComputePipeline,
     water_photon: wgpu::ComputePipeline,
     copy_band: wgpu::ComputePipeline,
+    band_bound: wgpu::ComputePipeline,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float` (floor and light cube maps).
     pub map_format: wgpu::TextureFormat,
 }
@@ -348,6 +363,7 @@ impl CausticTriangles {
             shadow: compute_pipeline(ctx, &SHADOW),
             water_photon: compute_pipeline(ctx, &WATER_PHOTON),
             copy_band: compute_pipeline(ctx, &COPY_BAND),
+            band_bound: compute_pipeline(ctx, &BAND_BOUND),
             map_format,
         };
         ctx.check()?;
@@ -793,7 +809,7 @@ pub struct WaterFrame {
     pub water_uniform: wgpu::Buffer,
     water_bind: wgpu::BindGroup,
     /// The copy band pass's bind group (tiling water only).
-    band_bind: Option<wgpu::BindGroup>,
+    band_bind: Option<BandPasses>,
     /// The walls' receivers when the setup has walls ([`WaterSetup::with_walls`]).
     pub walls: Option<WallFrames>,
 }
@@ -970,17 +986,39 @@ impl CausticTriangles {
             ],
         );
         let band_bind = ws.wrap().then(|| {
-            bind_group(
+            let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(BAND_BOUND.name),
+                size: 16,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let bound_bind = bind_group(
+                ctx,
+                BAND_BOUND.name,
+                &self.band_bound.get_bind_group_layout(0),
+                &[
+                    water_uniform.as_entire_binding(),
+                    view.clone(),
+                    bound.as_entire_binding(),
+                ],
+            );
+            let band = bind_group(
                 ctx,
                 COPY_BAND.name,
                 &self.copy_band.get_bind_group_layout(0),
                 &[
                     water_uniform.as_entire_binding(),
                     frame.uniform.as_entire_binding(),
-                    view.clone(),
+                    bound.as_entire_binding(),
                     frame.copy_band.as_entire_binding(),
                 ],
-            )
+            );
+            BandPasses {
+                bound,
+                bound_bind,
+                band,
+                grid: (water.cols, water.rows),
+            }
         });
         frame.gpu_band = band_bind.is_some();
         let walls = if ws.walls {
@@ -1088,10 +1126,17 @@ impl CausticTriangles {
             pass.set_bind_group(0, &wf.water_bind, &[]);
             pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
         }
-        if let Some(bind) = &wf.band_bind {
+        if let Some(b) = &wf.band_bind {
+            encoder.clear_buffer(&b.bound, 0, None);
+            {
+                let mut pass = begin_compute(encoder, &mut timer, BAND_BOUND.name);
+                pass.set_pipeline(&self.band_bound);
+                pass.set_bind_group(0, &b.bound_bind, &[]);
+                pass.dispatch_workgroups(b.grid.0.div_ceil(16), b.grid.1.div_ceil(16), 1);
+            }
             let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles copy band");
             pass.set_pipeline(&self.copy_band);
-            pass.set_bind_group(0, bind, &[]);
+            pass.set_bind_group(0, &b.band, &[]);
             pass.dispatch_workgroups(1, 1, 1);
         }
         self.encode_reconstruction(&wf.frame, encoder, timer.as_deref_mut(), reconstruction);

@@ -4,7 +4,7 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
-//! | region (compute, one workgroup) | `shaders/yuksel/region.wgsl` | `YukselSetup::region_for` |
+//! | region bound (compute, one texel an invocation) and region (one thread) | `shaders/yuksel/region_bound.wgsl`, `region.wgsl` | `YukselSetup::region_for` |
 //! | pre-pass (compute) | `shaders/yuksel/prepass.wgsl` + `sample.wgsl` | `prepass` |
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
@@ -28,7 +28,7 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{self, OPTICS, PassSource, WATER};
+use crate::shaders::{self, OPTICS, PassSource, REDUCE, WATER};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 pub mod technique;
@@ -46,9 +46,14 @@ pub const PASS2: PassSource = PassSource {
     shared: &[COMMON],
     source: include_str!("../shaders/yuksel/pass2.wgsl"),
 };
+pub const REGION_BOUND: PassSource = PassSource {
+    name: "yuksel region bound",
+    shared: &[OPTICS, COMMON, REDUCE],
+    source: include_str!("../shaders/yuksel/region_bound.wgsl"),
+};
 pub const REGION: PassSource = PassSource {
     name: "yuksel region",
-    shared: &[OPTICS, COMMON],
+    shared: &[OPTICS, COMMON, REDUCE],
     source: include_str!("../shaders/yuksel/region.wgsl"),
 };
 pub const GATHER: PassSource = PassSource {
@@ -181,6 +186,7 @@ impl YukselUniform {
 /// The technique's pipelines, built once per device.
 pub struct Yuksel {
     region: wgpu::ComputePipeline,
+    region_bound: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
     /// `None` where the device's workgroup memory cannot hold the gather's tile
@@ -242,6 +248,11 @@ pub struct Frame {
     /// This frame's gather region ([`YukselRegion`]), written by the region pass.
     pub region: wgpu::Buffer,
     region_bind: wgpu::BindGroup,
+    /// The floor hits' offset range over the heights (`region_bound.wgsl`), and the heights' size
+    /// its dispatch covers.
+    bound: wgpu::Buffer,
+    bound_bind: wgpu::BindGroup,
+    heights_size: wgpu::Extent3d,
     pub map: wgpu::Texture,
     setup: YukselSetup,
     pub variant: Variant,
@@ -327,6 +338,7 @@ impl Yuksel {
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
             region: compute_pipeline(ctx, &REGION),
+            region_bound: compute_pipeline(ctx, &REGION_BOUND),
             prepass: compute_pipeline(ctx, &PREPASS),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
             gather: (limits.max_compute_workgroup_storage_size >= GATHER_WORKGROUP_BYTES)
@@ -418,16 +430,33 @@ impl Yuksel {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("yuksel region bound"),
+            size: 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bound_bind = bind_group(
+            ctx,
+            "yuksel region bound",
+            &self.region_bound.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                View(heights_view),
+                bound.as_entire_binding(),
+            ],
+        );
         let region_bind = bind_group(
             ctx,
             "yuksel region",
             &self.region.get_bind_group_layout(0),
             &[
                 uniform.as_entire_binding(),
-                View(heights_view),
+                bound.as_entire_binding(),
                 region.as_entire_binding(),
             ],
         );
+        let heights_size = heights_view.texture().size();
         let map = ctx.texture_2d(
             "yuksel map",
             (w, h, 1),
@@ -542,6 +571,9 @@ impl Yuksel {
             uniforms,
             region,
             region_bind,
+            bound,
+            bound_bind,
+            heights_size,
             map,
             setup: setup.clone(),
             variant,
@@ -558,6 +590,14 @@ impl Yuksel {
         mut timer: Option<&mut GpuTimer>,
     ) -> &'f wgpu::Texture {
         let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
+        encoder.clear_buffer(&frame.bound, 0, None);
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "yuksel region bound");
+            pass.set_pipeline(&self.region_bound);
+            pass.set_bind_group(0, &frame.bound_bind, &[]);
+            let size = frame.heights_size;
+            pass.dispatch_workgroups(size.width.div_ceil(16), size.height.div_ceil(16), 1);
+        }
         {
             let mut pass = begin_compute(encoder, &mut timer, "yuksel region");
             pass.set_pipeline(&self.region);

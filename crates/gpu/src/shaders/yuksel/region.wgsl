@@ -1,24 +1,20 @@
 // Technique `yuksel`, the region pass (ours, before the pre-pass): the gather region for this
-// frame's water, so that no frame reads heights on the CPU. One workgroup refracts the sun through
-// every height texel's normal (central differences) and reduces the range of the floor hits'
-// sideways offsets, as caustic-triangles' copy band reduces its slope; thread 0 widens it by an
-// eighth of the span each way and takes, at the finest level that holds it, the smallest odd run
-// of offsets along each axis not fixed by the uniform. CPU twin: `region_bound` and
-// `YukselSetup::region_from_bound` in caustics-core's yuksel.rs, step for step.
+// frame's water, so that no frame reads heights on the CPU. The bound pass (region_bound.wgsl) has
+// reduced the range of the floor hits' sideways offsets over every height texel; one thread adds
+// flat water's, widens it by an eighth of the span each way and takes, at the finest level that
+// holds it, the smallest odd run of offsets along each axis not fixed by the uniform. CPU twin:
+// `region_bound` and `YukselSetup::region_from_bound` in caustics-core's yuksel.rs, step for step.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
-@group(0) @binding(1) var heights: texture_2d<f32>;
+// ordered(-lo.x), ordered(-lo.y), ordered(hi.x), ordered(hi.y), or 0 where no texel refracted.
+@group(0) @binding(1) var<storage, read> bound: array<u32, 4>;
 @group(0) @binding(2) var<storage, read_write> out: YukselRegion;
 
-const THREADS: u32 = 256u;
 const BIG: f32 = 3.0e38;
 // `MAX_N`, `MAX_M` and `MAX_LEVEL` in yuksel.rs.
 const MAX_N: u32 = 31u;
 const MAX_M: u32 = 30u;
 const MAX_LEVEL: u32 = 3u;
-
-var<workgroup> lows: array<vec2<f32>, 256>;
-var<workgroup> highs: array<vec2<f32>, 256>;
 
 // Along one axis: the offsets [-ceil(hi), -floor(lo)] (pixels), padded to an odd length, at most
 // `limit` long. x: the length, y: the centre offset, z: 1 where clamped.
@@ -39,50 +35,21 @@ fn axis_region(lo: f32, hi: f32, limit: u32) -> vec3<i32> {
     return vec3<i32>(len, centre, 0);
 }
 
-@compute @workgroup_size(256)
-fn main(@builtin(local_invocation_index) t: u32) {
-    let dims = textureDimensions(heights);
-    let cols = max(dims.x, 1u);
-    let rows = max(dims.y, 1u);
-    let dx = u.size / f32(cols);
-    let dy = u.size / f32(rows);
+@compute @workgroup_size(1)
+fn main() {
     let l = u.light.xyz;
     let t0 = refract_dir(l, vec3<f32>(0.0, 0.0, 1.0), u.light.w);
     let flat = t0.xy / -t0.z * u.depth;
     var lo = flat;
     var hi = flat;
-    for (var k = t; k < dims.x * dims.y; k += THREADS) {
-        let i = k / dims.x;
-        let j = k % dims.x;
-        let h = textureLoad(heights, vec2<u32>(j, i), 0).x;
-        let e = textureLoad(heights, vec2<u32>((j + 1u) % cols, i), 0).x;
-        let w = textureLoad(heights, vec2<u32>((j + cols - 1u) % cols, i), 0).x;
-        let n = textureLoad(heights, vec2<u32>(j, (i + 1u) % rows), 0).x;
-        let s = textureLoad(heights, vec2<u32>(j, (i + rows - 1u) % rows), 0).x;
-        let normal = height_field_normal(vec2<f32>((e - w) / (2.0 * dx), (n - s) / (2.0 * dy)));
-        let tr = refract_dir(l, normal, u.light.w);
-        if -dot(l, normal) > 0.0 && tr.w != 0.0 && tr.z < 0.0 {
-            let d = tr.xy / -tr.z * max(u.depth + h, 0.0);
-            lo = min(lo, d);
-            hi = max(hi, d);
-        }
+    // A value is 0 only where no texel gave one (the four are set together).
+    if bound[2] != 0u {
+        lo = min(lo, -vec2<f32>(unordered(bound[0]), unordered(bound[1])));
+        hi = max(hi, vec2<f32>(unordered(bound[2]), unordered(bound[3])));
     }
-    lows[t] = lo;
-    highs[t] = hi;
-    workgroupBarrier();
-    for (var s = THREADS / 2u; s > 0u; s /= 2u) {
-        if t < s {
-            lows[t] = min(lows[t], lows[t + s]);
-            highs[t] = max(highs[t], highs[t + s]);
-        }
-        workgroupBarrier();
-    }
-    if t != 0u {
-        return;
-    }
-    let margin = (highs[0] - lows[0]) * 0.125;
-    let w_lo = lows[0] - margin - flat;
-    let w_hi = highs[0] + margin - flat;
+    let margin = (hi - lo) * 0.125;
+    let w_lo = lo - margin - flat;
+    let w_hi = hi + margin - flat;
     // The finest level whose region holds the bound (both axes from the water only), while the
     // level divides the map's size.
     let from_water = u.n == 0u && u.m == 0xffffffffu;
