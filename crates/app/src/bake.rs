@@ -102,17 +102,7 @@ impl Format {
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
-    let parts: Vec<&str> = s.split(['x', 'X']).collect();
-    let [w, h] = parts[..] else {
-        return Err(format!("expected WIDTHxHEIGHT, got `{s}`"));
-    };
-    let side = |v: &str| match v.trim().parse::<u32>() {
-        Ok(n) if (8..=8192).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "`{s}`: each side must be a whole number from 8 to 8192"
-        )),
-    };
-    Ok([side(w)?, side(h)?])
+    crate::parse_size_within(s, 8..=8192)
 }
 
 fn parse_range(s: &str) -> Result<(u32, u32), String> {

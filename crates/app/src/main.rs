@@ -289,6 +289,31 @@ fn summary(scene: &Scene) -> String {
     s
 }
 
+/// `WIDTHxHEIGHT`, exactly two whole numbers, each within `sides`: the one spelling of a size on
+/// the command line (render's, the viewer's window, bake's frames).
+pub(crate) fn parse_size_within(
+    s: &str,
+    sides: std::ops::RangeInclusive<u32>,
+) -> Result<[u32; 2], String> {
+    let parts: Vec<&str> = s.split(['x', 'X']).collect();
+    let [w, h] = parts[..] else {
+        return Err(format!(
+            "expected WIDTHxHEIGHT (two numbers), got `{s}` ({} entries)",
+            parts.len()
+        ));
+    };
+    let side = |what: &str, v: &str| match v.trim().parse::<u32>() {
+        Ok(n) if sides.contains(&n) => Ok(n),
+        Ok(_) => Err(format!(
+            "`{s}`: each side must be a whole number from {} to {}",
+            sides.start(),
+            sides.end()
+        )),
+        Err(_) => Err(format!("bad {what} in `{s}`")),
+    };
+    Ok([side("width", w)?, side("height", h)?])
+}
+
 /// How to choose the GPU, shared by the commands that use one.
 #[derive(Args, Clone, Debug)]
 pub(crate) struct GpuArgs {

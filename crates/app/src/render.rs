@@ -86,22 +86,8 @@ pub struct RenderArgs {
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
-    let parts: Vec<&str> = s.split(['x', 'X']).collect();
-    let [w, h] = parts[..] else {
-        return Err(format!(
-            "expected WIDTHxHEIGHT (two numbers), got `{s}` ({} entries)",
-            parts.len()
-        ));
-    };
-    let w: u32 = w
-        .trim()
-        .parse()
-        .map_err(|_| format!("bad width in `{s}`"))?;
-    let h: u32 = h
-        .trim()
-        .parse()
-        .map_err(|_| format!("bad height in `{s}`"))?;
-    Ok([w, h])
+    // Any size here: the ranges are checked with the scene's, naming the flag and the limit.
+    crate::parse_size_within(s, 0..=u32::MAX)
 }
 
 /// Refuse an output that cannot be written, before the work rather than after it, without

@@ -168,6 +168,8 @@ fn dispersion_bakes_colour_frames() {
         .chunks(3)
         .map(|c| (c[0] - c[2]).abs())
         .fold(0.0f32, f32::max);
+    eprintln!("largest red-blue split: {split:.4}");
+    // measured 0.0536 (the reference, 32², frame 0)
     assert!(split > 0.01, "red and blue alike: {split}");
     assert!(dir.join("frame-0000.exr").exists());
     let atlas = image::open(dir.join("atlas.png")).unwrap();

@@ -109,17 +109,17 @@ fn configure_side(
         return;
     };
     let map = (scene.caustics.width, scene.caustics.height);
+    let grid = technique.water_resolution(scene);
     let water = match water {
         Some((w, _)) => {
-            let (cols, rows) = technique.water_resolution(scene);
-            grids.push((cols, rows));
-            w.output(ctx, cols, rows)
+            grids.push(grid);
+            w.output(ctx, grid.0, grid.1)
         }
         None => Ok(no_water.clone()),
     };
     let key = |water: Option<&WaterTextures>| FailKey {
         water: water.map(|w| w.heights.clone()),
-        grid: technique.water_resolution(scene),
+        grid,
         map,
         view: (scene.camera.width, scene.camera.height),
         sun: scene.light.direction.to_array().map(f64::to_bits),

@@ -180,7 +180,7 @@ pub trait Technique {
     /// Take new parameter tables in place, keeping the pipelines: `Ok(true)` when taken (the
     /// caller configures again before the next frame), `Ok(false)` when the technique must be
     /// created anew (its pipelines depend on them). A slider in a panel then costs a configure,
-    /// not a shader compile (seconds on a software adapter).
+    /// no pipeline built.
     fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
         let _ = params;
         Ok(false)

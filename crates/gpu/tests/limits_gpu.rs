@@ -193,24 +193,33 @@ fn cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused() {
     }
 }
 
+/// The GPU frame on `ctx` with `scene`'s water.
+fn renderer_with_water(ctx: &GpuContext, scene: &Scene) -> caustics_gpu::renderer::Renderer {
+    use caustics_gpu::renderer::{Renderer, WaterSpec};
+    let mut renderer = Renderer::new(ctx).expect("renderer");
+    renderer
+        .set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)
+        .expect("water");
+    renderer
+}
+
+/// A side running technique `name` with the parameter tables `params` (TOML).
+fn spec(name: &str, params: &str) -> Option<caustics_gpu::renderer::TechniqueSpec> {
+    Some(caustics_gpu::renderer::TechniqueSpec {
+        name: name.into(),
+        params: params.parse().unwrap(),
+    })
+}
+
 /// One side of the split frame asks for a water grid beyond the device (`procedural-texture`
 /// reads the water at its 2048² target): that side fails with the size named, the other renders
 /// on, and the frame goes on being drawn: a size error is the side's, never the viewer's end.
 fn a_side_beyond_the_device_fails_alone() {
     use caustics_core::render::RenderOptions;
-    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    use caustics_gpu::renderer::WaterClock;
     let ctx = small_device();
     let scene = scene("pool", 64);
-    let mut renderer = Renderer::new(&ctx).expect("renderer");
-    renderer
-        .set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
-        .expect("water");
-    let spec = |name: &str, params: &str| {
-        Some(TechniqueSpec {
-            name: name.into(),
-            params: params.parse().unwrap(),
-        })
-    };
+    let mut renderer = renderer_with_water(&ctx, &scene);
     renderer.set_techniques(
         &ctx,
         &[
@@ -248,19 +257,11 @@ fn a_side_beyond_the_device_fails_alone() {
 /// error about the resources the lost device no longer holds.
 fn a_lost_device_gives_device_lost_errors() {
     use caustics_core::render::RenderOptions;
-    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    use caustics_gpu::renderer::WaterClock;
     let ctx = small_device();
     let scene = scene("pool", 64);
-    let mut renderer = Renderer::new(&ctx).expect("renderer");
-    renderer
-        .set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
-        .expect("water");
-    let spec = |name: &str| {
-        Some(TechniqueSpec {
-            name: name.into(),
-            params: SMALL.parse().unwrap(),
-        })
-    };
+    let mut renderer = renderer_with_water(&ctx, &scene);
+    let spec = |name: &str| spec(name, SMALL);
     renderer.set_techniques(&ctx, &[spec("yuksel"), spec("procedural")]);
     let clock = |time| WaterClock {
         time,

@@ -315,8 +315,7 @@ struct EguiTraffic {
     vertex_capacity: u64,
     index_capacity: u64,
     screen: Option<([u32; 2], u32)>,
-    /// egui's own share of the app figures so far: resources created, bytes uploaded.
-    created: u64,
+    /// egui's own share of the app's uploaded bytes so far.
     uploaded: u64,
 }
 
@@ -326,7 +325,6 @@ impl Default for EguiTraffic {
             vertex_capacity: VERTEX_BYTES * 1024,
             index_capacity: 4 * 1024 * 3,
             screen: None,
-            created: 0,
             uploaded: 0,
         }
     }
@@ -337,7 +335,6 @@ const VERTEX_BYTES: u64 = 20;
 
 impl EguiTraffic {
     fn count(&mut self, ctx: &GpuContext, created: u64, uploaded: u64) {
-        self.created += created;
         self.uploaded += uploaded;
         ctx.count_app(created, uploaded);
     }

@@ -168,16 +168,7 @@ pub fn run(args: ViewArgs) -> Result<()> {
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT, got `{s}`"))?;
-    let side = |v: &str| match v.trim().parse::<u32>() {
-        Ok(n) if (64..=8192).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "`{s}`: each side must be a whole number from 64 to 8192"
-        )),
-    };
-    Ok([side(w)?, side(h)?])
+    crate::parse_size_within(s, 64..=8192)
 }
 
 /// winit panics or fails obscurely without a display server: say what is missing first.

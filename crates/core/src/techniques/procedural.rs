@@ -104,6 +104,26 @@ pub const MAX_ANISOTROPY: u32 = 16;
 use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
 use super::{Input, Job, Made};
 
+/// A variant's parameter list: its own sampling parameters, then those every variant reads (the
+/// lists differ only in the first).
+macro_rules! with_shared_params {
+    ($($own:expr),* $(,)?) => {
+        &[
+            $($own,)*
+            IOR,
+            FOLLOW_SUN,
+            ABSORPTION,
+            SUN_DIAMETER,
+            HALO_AREA_PARAM,
+            HALO_LEVEL,
+            LIGHT_MAP_RESOLUTION,
+            LIGHT_MAP,
+            LIGHT_MAP_EXTENT,
+            GROUND,
+        ]
+    };
+}
+
 /// Paper 2 as registered: its variant from the table (the screen variant by default).
 pub const DESCRIPTOR: Descriptor = Descriptor {
     name: "procedural",
@@ -113,22 +133,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     docs: "docs/procedural.md",
     input: Input::Water,
     receivers: &[Receiver::Floor],
-    params: &[
-        VARIANT,
-        MESH_RESOLUTION,
-        TARGET_RESOLUTION,
-        ANISOTROPY,
-        IOR,
-        FOLLOW_SUN,
-        ABSORPTION,
-        SUN_DIAMETER,
-        HALO_AREA_PARAM,
-        HALO_LEVEL,
-        LIGHT_MAP_RESOLUTION,
-        LIGHT_MAP,
-        LIGHT_MAP_EXTENT,
-        GROUND,
-    ],
+    params: with_shared_params![VARIANT, MESH_RESOLUTION, TARGET_RESOLUTION, ANISOTROPY,],
     fixed: &[],
     point_light: false,
     buffers: &[],
@@ -142,22 +147,10 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
 pub const VERTEX: Descriptor = Descriptor {
     name: "procedural-vertex",
     summary: "paper 2 per vertex of a fine ground mesh, interpolated over its triangles",
-    params: &[
-        Param {
-            sweep: &["32", "64", "128", "256"],
-            ..MESH_RESOLUTION
-        },
-        IOR,
-        FOLLOW_SUN,
-        ABSORPTION,
-        SUN_DIAMETER,
-        HALO_AREA_PARAM,
-        HALO_LEVEL,
-        LIGHT_MAP_RESOLUTION,
-        LIGHT_MAP,
-        LIGHT_MAP_EXTENT,
-        GROUND,
-    ],
+    params: with_shared_params![Param {
+        sweep: &["32", "64", "128", "256"],
+        ..MESH_RESOLUTION
+    },],
     fixed: &[("variant", "vertex")],
     ..DESCRIPTOR
 };
@@ -166,18 +159,7 @@ pub const VERTEX: Descriptor = Descriptor {
 pub const SCREEN: Descriptor = Descriptor {
     name: "procedural-screen",
     summary: "paper 2 per pixel at the map's resolution, no filtering",
-    params: &[
-        IOR,
-        FOLLOW_SUN,
-        ABSORPTION,
-        SUN_DIAMETER,
-        HALO_AREA_PARAM,
-        HALO_LEVEL,
-        LIGHT_MAP_RESOLUTION,
-        LIGHT_MAP,
-        LIGHT_MAP_EXTENT,
-        GROUND,
-    ],
+    params: with_shared_params![],
     fixed: &[("variant", "screen")],
     ..DESCRIPTOR
 };
@@ -186,22 +168,12 @@ pub const SCREEN: Descriptor = Descriptor {
 pub const TEXTURE: Descriptor = Descriptor {
     name: "procedural-texture",
     summary: "paper 2 per pixel into a fixed texture-space target, mipmapped, resampled into the map",
-    params: &[
+    params: with_shared_params![
         Param {
             sweep: &["64", "128", "256", "512"],
             ..TARGET_RESOLUTION
         },
         ANISOTROPY,
-        IOR,
-        FOLLOW_SUN,
-        ABSORPTION,
-        SUN_DIAMETER,
-        HALO_AREA_PARAM,
-        HALO_LEVEL,
-        LIGHT_MAP_RESOLUTION,
-        LIGHT_MAP,
-        LIGHT_MAP_EXTENT,
-        GROUND,
     ],
     fixed: &[("variant", "texture")],
     ..DESCRIPTOR
