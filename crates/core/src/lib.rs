@@ -10,6 +10,7 @@ pub mod map;
 pub mod mesh;
 pub mod metrics;
 pub mod optics;
+pub mod orbit;
 pub mod plot;
 pub mod reference;
 pub mod render;

@@ -29,6 +29,7 @@ pub struct GpuContext {
     pub(crate) traffic: Arc<crate::traffic::Traffic>,
     /// The validation layer's messages, where the instance is `validation::instance`'s. Last, so
     /// that it is dropped after the device and the instance (see `validation::Guard`'s `Drop`).
+    #[cfg(not(target_arch = "wasm32"))]
     validation: Option<crate::validation::Guard>,
 }
 
@@ -52,7 +53,9 @@ fn parse_backends(s: &str) -> Result<wgpu::Backends, GpuError> {
 }
 
 impl GpuContext {
-    /// A device without a window, for rendering to textures, compute and tests.
+    /// A device without a window, for rendering to textures, compute and tests. Native only: a
+    /// page cannot block, so there [`create`](Self::create) is awaited.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn headless(options: &GpuOptions) -> Result<Self, GpuError> {
         pollster::block_on(Self::create(options, None))
     }
@@ -60,6 +63,7 @@ impl GpuContext {
     /// Create the instance alone (the viewer needs it to make a window surface first). With
     /// `CAUSTICS_VALIDATION=1`, under the Vulkan validation layer (see [`crate::validation`]).
     pub fn instance(options: &GpuOptions) -> Result<wgpu::Instance, GpuError> {
+        #[cfg(not(target_arch = "wasm32"))]
         if crate::validation::requested() {
             let backends = match &options.backend {
                 Some(b) => parse_backends(b)?,
@@ -133,14 +137,15 @@ impl GpuContext {
             required_limits: adapter.limits(),
             ..Default::default()
         };
-        let (device, queue) = if crate::validation::owns(&instance) {
-            crate::validation::request_device(&adapter, &desc)?
-        } else {
-            adapter
-                .request_device(&desc)
-                .await
-                .map_err(|e| GpuError::RequestDevice(e.to_string()))?
-        };
+        #[cfg(not(target_arch = "wasm32"))]
+        if crate::validation::owns(&instance) {
+            let (device, queue) = crate::validation::request_device(&adapter, &desc)?;
+            return Ok(Self::from_parts(instance, adapter, device, queue));
+        }
+        let (device, queue) = adapter
+            .request_device(&desc)
+            .await
+            .map_err(|e| GpuError::RequestDevice(e.to_string()))?;
 
         Ok(Self::from_parts(instance, adapter, device, queue))
     }
@@ -176,6 +181,7 @@ impl GpuContext {
             info.device_type
         );
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        #[cfg(not(target_arch = "wasm32"))]
         let validation = crate::validation::Guard::of(&instance);
         GpuContext {
             instance,
@@ -187,6 +193,7 @@ impl GpuContext {
             errors,
             lost,
             traffic: Default::default(),
+            #[cfg(not(target_arch = "wasm32"))]
             validation,
         }
     }
@@ -248,10 +255,11 @@ impl GpuContext {
             return Err(GpuError::Validation(all));
         }
         drop(errors);
-        match &self.validation {
-            Some(v) => v.check(),
-            None => Ok(()),
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(v) = &self.validation {
+            return v.check();
         }
+        Ok(())
     }
 
     /// wgpu runs the device-lost callback only while it maintains the device (a poll): after a
@@ -292,10 +300,12 @@ fn lost_reason(reason: wgpu::DeviceLostReason, message: &str) -> String {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn gpu_required() -> bool {
     std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1")
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// The device for GPU tests. Without an adapter the test is skipped with a message, unless
 /// `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), in which case it fails: CI must not pass by skipping.
 /// Tests whose harness marks them ignored without an adapter use [`gpu_test_skip`] and
@@ -314,6 +324,7 @@ pub fn test_context() -> Option<GpuContext> {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// Why the GPU tests cannot run here, for a test harness to report them as ignored; `None` when a
 /// device can be created, and always `None` with `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), so
 /// that there the tests run and fail in [`test_gpu`]: CI must not pass by skipping.
@@ -327,6 +338,7 @@ pub fn gpu_test_skip() -> Option<String> {
         .map(|e| format!("no GPU device: {e}"))
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// The device for a GPU test that its harness let run (see [`gpu_test_skip`]). Without one the
 /// test fails rather than passing unrun: that happens with `CAUSTICS_REQUIRE_GPU=1` or when an
 /// ignored GPU test is asked for with `--ignored` / `--include-ignored`.

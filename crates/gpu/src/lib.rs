@@ -18,6 +18,8 @@ pub mod timing;
 pub mod traffic;
 mod transfer;
 pub use transfer::Readback;
+/// The Vulkan validation layer: native only (a browser's WebGPU validates on its own).
+#[cfg(not(target_arch = "wasm32"))]
 pub mod validation;
 pub mod volumes;
 pub mod water;

@@ -24,13 +24,13 @@ use caustics_core::scene::Scene;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
 
-use super::camera::{OrbitCamera, Sun};
-use super::frame::{Quality, Rendered, SceneRenderer, Slot, TechniqueChoice, technique_names};
+use super::frame::{Quality, Rendered, SceneRenderer, Slot, TechniqueChoice};
 use super::pictures;
 use super::ui::{self, Model, Shown, Stats, TextureIds};
 use super::water::{SurfaceKey, WaterState};
 use super::{ImageOn, ViewArgs};
 use crate::techniques::Runner;
+use caustics_core::orbit::{OrbitCamera, Sun};
 use caustics_core::techniques::buffers::{self, Buffer, BufferInput, SceneHas};
 
 pub fn run(args: ViewArgs) -> Result<()> {
@@ -1261,7 +1261,7 @@ fn initial_model(
     };
     Ok(Model {
         scene_name: scene.name.clone(),
-        technique_names: technique_names(scene),
+        technique_names: caustics_core::techniques::for_scene(scene),
         has: SceneHas::of(scene),
         adapter,
         home: camera.clone(),

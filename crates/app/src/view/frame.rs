@@ -18,16 +18,16 @@ use glam::DVec3;
 
 use caustics_core::map::CausticsMap;
 use caustics_core::render::{Caustics, Image, RenderOptions, render_with_walls};
-use caustics_core::scene::{Material, Scene};
-use caustics_core::techniques::{self, Descriptor, Input};
+use caustics_core::scene::Scene;
+use caustics_core::techniques::{self, Descriptor};
 use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
-use super::camera::OrbitCamera;
 use super::water::{SurfaceKey, WaterState};
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
+use caustics_core::orbit::OrbitCamera;
 
 /// A snapshot of the frame's traffic ([`SceneRenderer::traffic`]).
 pub struct Traffic {
@@ -95,32 +95,6 @@ impl TechniqueChoice {
     pub fn spec(&self) -> Result<Spec> {
         Ok(self.label().parse()?)
     }
-}
-
-/// The technique names the panel offers for `scene`: every registered technique that computes
-/// caustics from what the scene has (its water: floor maps, a technique whose generator may be
-/// the water surface, and eye-space images; else its glass objects), the reference always (for
-/// glass, paper 4's photon tracer), after the others.
-pub fn technique_names(scene: &Scene) -> Vec<String> {
-    let inputs: &[Input] = if scene.water.is_some() {
-        &[Input::Water, Input::GlassOrWater, Input::EyeSpace]
-    } else if scene
-        .objects
-        .iter()
-        .any(|o| matches!(o.material, Material::Glass { .. }))
-    {
-        &[Input::GlassOrWater]
-    } else {
-        return Vec::new();
-    };
-    let mut entries: Vec<&Descriptor> = techniques::REGISTRY
-        .iter()
-        .copied()
-        .filter(|d| inputs.contains(&d.input) || d.reference)
-        .collect();
-    // The techniques first, the reference they are judged against after.
-    entries.sort_by_key(|d| d.reference);
-    entries.iter().map(|d| d.name.to_string()).collect()
 }
 
 /// Whether technique `name` computes its caustics in the eye camera's screen space: its image
@@ -821,24 +795,7 @@ mod tests {
     }
 
     #[test]
-    fn the_picker_lists_the_runnable_techniques() {
-        let names = technique_names(&Scene::builtin("pool").unwrap());
-        for n in [
-            "reference",
-            "yuksel",
-            "yuksel-gather",
-            "procedural",
-            "volumes",
-            "cascaded",
-        ] {
-            assert!(names.iter().any(|x| x == n), "{n} missing from {names:?}");
-        }
-        assert!(!names.iter().any(|x| x == "reference-gather"));
-        // The water surface is a caustic generator of paper 4 too.
-        assert!(names.iter().any(|x| x == "caustic-triangles"));
-        // A scene of glass objects offers the techniques whose generators they are.
-        let glass = technique_names(&Scene::builtin("glass").unwrap());
-        assert_eq!(glass, ["caustic-triangles", "reference"]);
+    fn eye_space_techniques_are_told_apart() {
         assert!(eye_space("cascaded") && !eye_space("yuksel") && !eye_space("no-such"));
     }
 

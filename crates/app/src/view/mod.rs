@@ -22,7 +22,6 @@
 //! pictures (the techniques draw their intermediate buffers: `caustics_core::techniques::buffers`).
 
 mod app;
-mod camera;
 mod frame;
 mod pictures;
 mod ui;

@@ -10,9 +10,9 @@ use glam::DVec2;
 
 use caustics_gpu::PassTime;
 
-use super::camera::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
 use super::frame::{Quality, Slot, TechniqueChoice};
 use super::water::{Mode, WaterState};
+use caustics_core::orbit::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
 use caustics_core::techniques::buffers::{Buffer, SceneHas};
 use caustics_core::techniques::describe::{Default, Kind, Param};
 

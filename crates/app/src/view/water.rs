@@ -107,10 +107,11 @@ impl WaterState {
     /// The scene's water at `time`; a scene whose source is a ripple simulation starts in
     /// [`Mode::Ripple`] with that simulation's parameters (its file source *is* the simulation).
     pub fn new(water: &Water, time: f64, ripple: bool) -> Self {
-        let params = ripple_params(water);
+        let params = RippleParams::for_water(water);
         let is_ripple = matches!(water.source, WaterSource::Ripple(_));
         let mut sampled = water.clone();
         sampled.source = WaterSource::Flat;
+        let click = Drop::click(water, [0.0, 0.0]);
         WaterState {
             mode: if ripple || is_ripple {
                 Mode::Ripple
@@ -121,10 +122,8 @@ impl WaterState {
             time_scale: 1.0,
             paused: false,
             time,
-            // A dent a sixteenth of the square across and curved enough to focus the light
-            // within a pool's depth, so a click shows bright rings at once.
-            drop_radius: water.size / 16.0,
-            drop_strength: -water.size / 60.0,
+            drop_radius: click.radius,
+            drop_strength: click.strength,
             water: water.clone(),
             sampled,
             params,
@@ -392,28 +391,6 @@ impl WaterState {
         }
         Ok(())
     }
-}
-
-/// The simulation for a scene: its own parameters if its water is a ripple simulation, else the
-/// defaults (made for a unit square) with the initial drops stretched to the scene's square. The
-/// wave speed stays the default's half a unit per second (real ripples of a few centimetres run at
-/// a few decimetres per second) so that a click's rings stay in view for seconds on a pool; it
-/// shrinks only on squares smaller than one unit, where the Courant condition needs it.
-fn ripple_params(water: &Water) -> RippleParams {
-    if let WaterSource::Ripple(p) = &water.source {
-        return p.clone();
-    }
-    let s = water.size;
-    let mut p = RippleParams {
-        wave_speed: RippleParams::default().wave_speed * s.min(1.0),
-        ..RippleParams::default()
-    };
-    for d in &mut p.drops {
-        d.position = [d.position[0] * s, d.position[1] * s];
-        d.radius *= s;
-        d.strength *= s;
-    }
-    p
 }
 
 #[cfg(test)]

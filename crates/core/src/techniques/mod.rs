@@ -29,6 +29,33 @@ pub const REGISTRY: &[&Descriptor] = &[
     &cascaded::DESCRIPTOR,
 ];
 
+/// The techniques a front end offers for `scene`: every registered technique that computes
+/// caustics from what the scene has (its water: floor maps, a technique whose generator may be
+/// the water surface, and eye-space images; else its glass objects), the reference always (for
+/// glass, paper 4's photon tracer), after the others.
+pub fn for_scene(scene: &crate::scene::Scene) -> Vec<String> {
+    use crate::scene::Material;
+    let inputs: &[Input] = if scene.water.is_some() {
+        &[Input::Water, Input::GlassOrWater, Input::EyeSpace]
+    } else if scene
+        .objects
+        .iter()
+        .any(|o| matches!(o.material, Material::Glass { .. }))
+    {
+        &[Input::GlassOrWater]
+    } else {
+        return Vec::new();
+    };
+    let mut entries: Vec<&Descriptor> = REGISTRY
+        .iter()
+        .copied()
+        .filter(|d| inputs.contains(&d.input) || d.reference)
+        .collect();
+    // The techniques first, the reference they are judged against after.
+    entries.sort_by_key(|d| d.reference);
+    entries.iter().map(|d| d.name.to_string()).collect()
+}
+
 /// What a technique reads and what it makes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Input {
@@ -65,4 +92,31 @@ pub fn check_inputs(width: usize, height: usize, light: glam::DVec3) -> crate::R
         )));
     }
     Ok(light.normalize())
+}
+
+#[cfg(test)]
+mod for_scene_tests {
+    use super::for_scene;
+    use crate::scene::Scene;
+
+    #[test]
+    fn a_scene_offers_the_techniques_that_run_on_it() {
+        let names = for_scene(&Scene::builtin("pool").unwrap());
+        for n in [
+            "reference",
+            "yuksel",
+            "yuksel-gather",
+            "procedural",
+            "volumes",
+            "cascaded",
+        ] {
+            assert!(names.iter().any(|x| x == n), "{n} missing from {names:?}");
+        }
+        assert_eq!(names.last().map(String::as_str), Some("reference"));
+        // The water surface is a caustic generator of paper 4 too.
+        assert!(names.iter().any(|x| x == "caustic-triangles"));
+        // A scene of glass objects offers the techniques whose generators they are.
+        let glass = for_scene(&Scene::builtin("glass").unwrap());
+        assert_eq!(glass, ["caustic-triangles", "reference"]);
+    }
 }

@@ -1,5 +1,6 @@
-//! The viewer's camera and sun: an orbit camera around a target point (with pan, zoom and WASD
-//! flight), the sun as azimuth and elevation, and the pick of a water point under the pointer.
+//! The interactive view's camera and sun, shared by every front end (the viewer, the browser page):
+//! an orbit camera around a target point (with pan, zoom and WASD flight), the sun as azimuth and
+//! elevation, and the pick of a water point under the pointer.
 //!
 //! The world is z-up, as in the scene files; the camera is turned into a
 //! [`caustics_core::scene::Camera`] each frame so that the final image is traced exactly as
@@ -7,7 +8,7 @@
 
 use glam::{DVec2, DVec3};
 
-use caustics_core::scene::Camera;
+use crate::scene::Camera;
 
 /// The steepest the camera looks up or down: just short of the pole, where yaw has no meaning.
 const MAX_PITCH: f64 = 1.55;
@@ -212,8 +213,8 @@ mod tests {
 
     #[test]
     fn flying_down_dives_under_the_water() {
-        use caustics_core::render::camera_under_water;
-        use caustics_core::scene::Scene;
+        use crate::render::camera_under_water;
+        use crate::scene::Scene;
         let mut scene = Scene::builtin("pool").unwrap();
         let level = scene.water.as_ref().unwrap().depth;
         let mut o = OrbitCamera::from_scene(&scene.camera, scene.size);
