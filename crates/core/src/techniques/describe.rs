@@ -181,6 +181,9 @@ pub struct Descriptor {
     /// Whether a point or spot light is rendered (paper 4's light cube map); the others need the
     /// directional sun.
     pub point_light: bool,
+    /// Why it draws on the plane z = 0 only (it then refuses a scene with a terrain, and the
+    /// front ends do not offer it there); `None` where it follows a terrain.
+    pub flat_floor: Option<&'static str>,
     /// The intermediate buffers a view can show, beyond the water's heights.
     pub buffers: &'static [super::buffers::BufferDesc],
     /// Draws them, with the CPU twin's passes.
@@ -233,6 +236,18 @@ impl Descriptor {
     /// walls.
     pub fn floor_only_note(&self) -> String {
         floor_only_note(self.name)
+    }
+
+    /// Refuses a scene with a terrain where the technique draws on the plane z = 0
+    /// ([`flat_floor`](Self::flat_floor)): one wording for both twins.
+    pub fn check_floor(&self, scene: &crate::scene::Scene) -> Result<()> {
+        if let (Some(why), Some(_)) = (self.flat_floor, &scene.floor.terrain) {
+            return Err(Error::InvalidParameter(format!(
+                "technique `{}` {why}; scene `{}` has a terrain",
+                self.name, scene.name
+            )));
+        }
+        Ok(())
     }
 
     /// Refuses a point or spot light where the technique needs the sun.

@@ -77,14 +77,10 @@ impl<'a> Job<'a> {
         }
     }
 
-    /// Refuses a floor with a terrain for a technique that draws on the plane z = 0.
-    pub fn flat_floor(&self, technique: &str, why: &str) -> Result<()> {
-        if self.scene.floor.terrain.is_some() {
-            return Err(Error::InvalidParameter(format!(
-                "technique `{technique}` {why}; this scene has a terrain"
-            )));
-        }
-        Ok(())
+    /// Refuses a floor with a terrain for a technique that draws on the plane z = 0
+    /// ([`Descriptor::flat_floor`](super::Descriptor::flat_floor)).
+    pub fn flat_floor(&self, technique: &super::Descriptor) -> Result<()> {
+        technique.check_floor(self.scene)
     }
 
     /// Says once in the log that a floor technique leaves the scene's walls unlit.

@@ -31,8 +31,9 @@ pub const REGISTRY: &[&Descriptor] = &[
 
 /// The techniques a front end offers for `scene`: every registered technique that computes
 /// caustics from what the scene has (its water: floor maps, a technique whose generator may be
-/// the water surface, and eye-space images; else its glass objects), the reference always (for
-/// glass, paper 4's photon tracer), after the others.
+/// the water surface, and eye-space images; else its glass objects) and its floor (a terrain
+/// rules out those drawn on a flat floor), the reference always (for glass, paper 4's photon
+/// tracer), after the others.
 pub fn for_scene(scene: &crate::scene::Scene) -> Vec<String> {
     use crate::scene::Material;
     let inputs: &[Input] = if scene.water.is_some() {
@@ -50,6 +51,7 @@ pub fn for_scene(scene: &crate::scene::Scene) -> Vec<String> {
         .iter()
         .copied()
         .filter(|d| inputs.contains(&d.input) || d.reference)
+        .filter(|d| d.flat_floor.is_none() || scene.floor.terrain.is_none())
         .collect();
     // The techniques first, the reference they are judged against after.
     entries.sort_by_key(|d| d.reference);
@@ -118,5 +120,8 @@ mod for_scene_tests {
         // A scene of glass objects offers the techniques whose generators they are.
         let glass = for_scene(&Scene::builtin("glass").unwrap());
         assert_eq!(glass, ["caustic-triangles", "reference"]);
+        // Over a terrain, the techniques that follow it.
+        let shore = for_scene(&Scene::builtin("shore").unwrap());
+        assert_eq!(shore, ["cascaded", "reference"]);
     }
 }

@@ -136,6 +136,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: with_shared_params![VARIANT, MESH_RESOLUTION, TARGET_RESOLUTION, ANISOTROPY,],
     fixed: &[],
     point_light: false,
+    flat_floor: Some("lights a flat floor at a constant depth (paper 2, \"Our Approach\")"),
     buffers: &[],
     draw_buffer: crate::techniques::buffers::no_buffers,
     reference: false,
@@ -313,10 +314,7 @@ const GROUND: Param = Param::new(
 
 /// The setup and heights a job gives paper 2 (both twins).
 pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(ProceduralSetup, Grid)> {
-    job.flat_floor(
-        DESCRIPTOR.name,
-        "lights a flat floor at a constant depth (paper 2, \"Our Approach\")",
-    )?;
+    job.flat_floor(&DESCRIPTOR)?;
     job.note_floor_only(&DESCRIPTOR);
     let params = ProceduralCausticsParams::from_table(table)?;
     let (width, height) = job.size();

@@ -114,11 +114,7 @@ impl ProceduralTechnique {
     }
 
     fn key(scene: &Scene) -> Result<SceneKey, GpuError> {
-        if scene.floor.terrain.is_some() {
-            return Err(GpuError::BadOption(
-                "technique `procedural` lights a flat floor at a constant depth (paper 2, \"Our Approach\"); this scene has a terrain".into(),
-            ));
-        }
+        caustics_core::techniques::procedural::DESCRIPTOR.check_floor(scene)?;
         caustics_core::techniques::procedural::DESCRIPTOR.check_light(&scene.light)?;
         let w = water(scene, "procedural")?;
         Ok(SceneKey {

@@ -46,12 +46,7 @@ struct SceneKey {
 
 impl SceneKey {
     fn of(scene: &Scene) -> Result<SceneKey, GpuError> {
-        if scene.floor.terrain.is_some() {
-            return Err(GpuError::BadOption(
-                "technique `volumes` draws its floor map on the plane z = 0; this scene has a terrain"
-                    .into(),
-            ));
-        }
+        caustics_core::techniques::volumes::DESCRIPTOR.check_floor(scene)?;
         caustics_core::techniques::volumes::DESCRIPTOR.check_light(&scene.light)?;
         let w = crate::yuksel::technique::water(scene, "volumes")?;
         Ok(SceneKey {

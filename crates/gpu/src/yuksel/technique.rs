@@ -46,11 +46,7 @@ impl YukselTechnique {
     }
 
     fn setup(&self, scene: &Scene) -> Result<YukselSetup, GpuError> {
-        if scene.floor.terrain.is_some() {
-            return Err(GpuError::BadOption(
-                "technique `yuksel` computes caustics on a flat floor (paper 1, §3); this scene has a terrain".into(),
-            ));
-        }
+        caustics_core::techniques::yuksel::DESCRIPTOR.check_floor(scene)?;
         let w = water(scene, "yuksel")?;
         Ok(YukselSetup::new(
             &self.params,

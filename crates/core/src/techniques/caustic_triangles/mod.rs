@@ -226,6 +226,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: true,
+    flat_floor: Some("draws the water's caustic triangles on the floor plane z = 0"),
     buffers: buffers::BUFFERS,
     draw_buffer: buffers::draw_buffer,
     reference: false,
@@ -262,10 +263,7 @@ pub fn water_job_setup(
             job.scene.name
         )));
     }
-    job.flat_floor(
-        DESCRIPTOR.name,
-        "draws the water's caustic triangles on the floor plane z = 0",
-    )?;
+    job.flat_floor(&DESCRIPTOR)?;
     let params = CausticTrianglesParams::from_table(table)?;
     let (width, height) = job.size();
     job.with_surface(DESCRIPTOR.name, |w, surface| {

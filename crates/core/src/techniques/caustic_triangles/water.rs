@@ -492,13 +492,7 @@ pub fn render_with_walls(
 
 /// The water generator's caustic triangles lie on the plane `z = 0`.
 pub fn check_flat_floor(scene: &Scene) -> Result<()> {
-    if scene.floor.terrain.is_some() {
-        return Err(Error::InvalidParameter(format!(
-            "technique `caustic-triangles` draws the water's caustics on the floor plane z = 0; scene `{}` has a terrain",
-            scene.name
-        )));
-    }
-    Ok(())
+    super::DESCRIPTOR.check_floor(scene)
 }
 
 #[cfg(test)]

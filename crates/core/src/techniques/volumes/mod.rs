@@ -171,6 +171,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: false,
+    flat_floor: Some("draws its floor map on the plane z = 0"),
     buffers: buffers::BUFFERS,
     draw_buffer: buffers::draw_buffer,
     reference: false,
@@ -317,12 +318,7 @@ impl VolumesInput {
                 scene.name
             ))
         })?;
-        if scene.floor.terrain.is_some() {
-            return Err(Error::InvalidParameter(format!(
-                "scene `{}` has a terrain floor: technique volumes draws its floor map on the plane z = 0",
-                scene.name
-            )));
-        }
+        DESCRIPTOR.check_floor(scene)?;
         let mut objects = Vec::new();
         for (k, o) in scene.objects.iter().enumerate() {
             match &o.material {
