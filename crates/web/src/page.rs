@@ -144,7 +144,7 @@ fn param_js(p: &describe::Param) -> Option<ParamJs> {
 #[wasm_bindgen]
 impl Page {
     /// The built-in scene `scene` (pool, shore, underwater) on `canvas`, with technique `technique`
-    /// (`name` or `name:key=value,...`) alone. Fails, naming why, where WebGPU or an adapter is
+    /// (`name` or `name:key=value,...`; empty: the first the page offers) alone. Fails, naming why, where WebGPU or an adapter is
     /// missing or the scene has no water.
     pub async fn start(
         canvas: web_sys::HtmlCanvasElement,
@@ -168,7 +168,13 @@ impl Page {
             .map_err(|e| js(format!("the canvas cannot show WebGPU: {e}")))?;
         let ctx = GpuContext::create(&options, Some((&instance, &surface)))
             .await
-            .map_err(js)?;
+            .map_err(|e| match e {
+                caustics_gpu::GpuError::NoAdapter { .. } => js(
+                    "this browser has WebGPU but gave the page no GPU adapter (a blocklisted or \
+                     disabled GPU: chrome://gpu or about:support says why)",
+                ),
+                e => js(e),
+            })?;
         let caps = surface.get_capabilities(&ctx.adapter);
         // The final image holds sRGB-encoded values: a format that does not encode them again.
         let format = caps
@@ -233,6 +239,16 @@ impl Page {
             frame_ms: 0.0,
             frames: 0,
         };
+        // By default the first technique the page offers on the scene (the scenes name the CPU
+        // reference as theirs).
+        let technique = match technique.is_empty() {
+            true => page
+                .offered()
+                .first()
+                .map(|r| r.describe.name.to_string())
+                .ok_or_else(|| js("no GPU technique runs on this scene"))?,
+            false => technique,
+        };
         page.set_sides(&technique, None)?;
         Ok(page)
     }
@@ -240,9 +256,9 @@ impl Page {
     /// The techniques the page offers (those with a GPU implementation that run on this scene),
     /// with their parameters, as JSON for the menu.
     pub fn techniques(&self) -> String {
-        let list: Vec<TechniqueJs> = techniques::for_scene(&self.scene)
-            .iter()
-            .filter_map(|n| caustics_gpu::technique::find(n))
+        let list: Vec<TechniqueJs> = self
+            .offered()
+            .into_iter()
             .map(|r| TechniqueJs {
                 name: r.describe.name,
                 paper: r.describe.paper,
@@ -527,6 +543,14 @@ impl Page {
 }
 
 impl Page {
+    /// The registered GPU techniques that run on the scene.
+    fn offered(&self) -> Vec<&'static caustics_gpu::technique::Registered> {
+        techniques::for_scene(&self.scene)
+            .iter()
+            .filter_map(|n| caustics_gpu::technique::find(n))
+            .collect()
+    }
+
     /// Each side's image size: its share of the canvas at the quality's scale.
     fn image_size(&self) -> (u32, u32) {
         let n = self.sides.len().max(1) as u32;

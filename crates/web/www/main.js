@@ -131,14 +131,16 @@ async function main() {
   if (!SCENES.includes(scene)) throw new Error(`unknown scene \`${scene}\`: the page shows ${SCENES.join(", ")}`);
   await init();
   [canvas.width, canvas.height] = canvasSize();
-  const technique = query.get("technique") || "yuksel";
-  page = await Page.start(canvas, scene, technique);
+  page = await Page.start(canvas, scene, query.get("technique") || "");
+  const technique = JSON.parse(page.status()).sides[0].technique;
   const amplitude = query.get("amplitude");
   if (amplitude !== null) page.set_amplitude(parseFloat(amplitude));
   page.set_quality(parseFloat(query.get("scale") || "0"), parseInt(query.get("map") || "0", 10), 0);
   if (query.has("step")) page.set_fixed_step(parseFloat(query.get("step")));
 
   // The menus.
+  // For the console and the tests: `caustics.status()`, `caustics.set_sides(...)`.
+  window.caustics = page;
   const techniques = JSON.parse(page.techniques());
   window.techniqueNames = JSON.stringify(techniques.map((t) => t.name));
   if (query.get("panel") === "0") document.getElementById("panel").hidden = true;
@@ -195,9 +197,12 @@ async function main() {
   // The frames.
   let count = 0;
   let previous = null;
+  // For the tests: stop after the frame in flight (a still page for a screenshot).
+  let stopped = false;
+  window.stopFrames = () => { stopped = true; };
   const intervals = [];
   const tick = (now) => {
-    if (failed) return;
+    if (failed || stopped) return;
     try {
       page.frame(now);
     } catch (e) {
