@@ -108,6 +108,12 @@ function parseSpec(s) {
   return [name.trim(), values];
 }
 
+function escape(text) {
+  const div = document.createElement("div");
+  div.textContent = text;
+  return div.innerHTML;
+}
+
 function hud(status) {
   const rows = status.passes
     .slice()
@@ -116,7 +122,11 @@ function hud(status) {
     .map(([label, ms]) => `<tr><td>${label}</td><td>${ms.toFixed(2)} ms</td></tr>`)
     .join("");
   const fps = status.frame_ms > 0 ? (1000 / status.frame_ms).toFixed(1) : "-";
-  document.getElementById("hud").innerHTML =
+  const side = ["left", "right"];
+  const failures = status.sides
+    .map((s, k) => (s.error ? `<div class="error">${status.sides.length > 1 ? side[k] + " " : ""}${escape(s.technique)}: ${escape(s.error)}</div>` : ""))
+    .join("");
+  document.getElementById("hud").innerHTML = failures +
     `<div>${status.frame_ms.toFixed(1)} ms a frame (${fps} fps)</div>` +
     `<div class="hint">${status.adapter || "WebGPU adapter"}${status.software ? " (software)" : ""}; ` +
     `image ${status.image[0]} x ${status.image[1]}, map ${status.quality.map}²; water: ${status.water}; ` +
@@ -174,6 +184,18 @@ async function main() {
   document.getElementById("amplitude").oninput = (e) => page.set_amplitude(parseFloat(e.target.value));
   if (amplitude !== null) document.getElementById("amplitude").value = amplitude;
   document.getElementById("calm").onclick = () => page.calm();
+  // The sizes, starting at what the page chose for the adapter.
+  const quality = JSON.parse(page.status()).quality;
+  const mapSelect = document.getElementById("map");
+  const scaleSelect = document.getElementById("scale");
+  for (const m of [64, 128, 256, 512, 1024, 2048]) mapSelect.add(new Option(`${m}²`, m));
+  for (const f of [0.25, 0.5, 0.75, 1]) scaleSelect.add(new Option(String(f), f));
+  if (![...mapSelect.options].some((o) => Number(o.value) === quality.map)) mapSelect.add(new Option(`${quality.map}²`, quality.map));
+  if (![...scaleSelect.options].some((o) => Number(o.value) === quality.scale)) scaleSelect.add(new Option(String(quality.scale), quality.scale));
+  mapSelect.value = String(quality.map);
+  scaleSelect.value = String(quality.scale);
+  mapSelect.onchange = () => page.set_quality(0, parseInt(mapSelect.value, 10), 0);
+  scaleSelect.onchange = () => page.set_quality(parseFloat(scaleSelect.value), 0, 0);
 
   // The pointer, in canvas pixels.
   const at = (e) => {
