@@ -15,6 +15,7 @@ pub mod plot;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod sky;
 pub mod techniques;
 pub mod walls;
 pub mod water;

@@ -5,11 +5,13 @@
 //! Light transport (radiometric, linear RGB, before tone mapping):
 //! - The sun gives the horizontal irradiance `E_h = I |L_z|` above the water.
 //! - Under water, the floor receives `E_h T(θ₀) M(x, y)`, where `M` is the caustics map (relative
-//!   irradiance: Fresnel, focusing, absorption and terrain slope are already in it), plus a small
-//!   ambient term for the skylight scattered in the water. A Lambertian floor reflects `ρ / π` of it.
+//!   irradiance: Fresnel, focusing, absorption and terrain slope are already in it), plus an
+//!   ambient term, the daylight sky's irradiance on a horizontal surface ([`sky_ambient`]), absorbed
+//!   over the water's depth. A Lambertian floor reflects `ρ / π` of it.
 //! - On the way back to the eye, the view ray is attenuated by `exp(−K d)` in the water and
 //!   transmitted with `1 − R`, where `R` is the Fresnel reflectance of the surface for the view ray;
-//!   `R` weights the reflected sky.
+//!   `R` weights the reflected sky: Preetham's daylight model for this sun with the sun's disk at
+//!   its true size ([`crate::sky`]).
 //! - The caustics come from a map of the floor square ([`Caustics::Floor`]), or, for a technique
 //!   that computes them in the eye camera's screen space (`cascaded`, paper 5), from an image made
 //!   for this camera ([`Caustics::EyeSpace`]): a floor point `F` reached by a view ray (refracted at
@@ -35,6 +37,7 @@ use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, reflect, refract};
 use crate::scene::{Camera, Material, Scene};
+use crate::sky::{Sky, TURBIDITY};
 use crate::techniques::cascaded::EyeCamera;
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
@@ -199,7 +202,12 @@ pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
     m * 1.5 + 1e-6
 }
 
-pub const AMBIENT: f64 = 0.12;
+/// The ambient light of the final image for sunlight travelling along `sun`: the daylight sky's
+/// irradiance on a horizontal surface, per unit of the sun's ([`Sky::horizontal_irradiance`]).
+/// Both twins take it from here (the GPU's as a uniform).
+pub fn sky_ambient(sun: DVec3) -> DVec3 {
+    Sky::new(sun, TURBIDITY).horizontal_irradiance()
+}
 
 struct Tracer<'a> {
     scene: &'a Scene,
@@ -216,6 +224,10 @@ struct Tracer<'a> {
     sun_water: DVec3,
     t_flat: f64,
     pool: bool,
+    /// The daylight sky for this sun ([`crate::sky`]) and the irradiance it gives a horizontal
+    /// surface: the ambient light of everything the sun does not reach directly.
+    sky: Sky,
+    ambient: DVec3,
 }
 
 /// Render the scene from its camera. `caustics` is the map of the floor (none: the floor is lit as if
@@ -283,6 +295,8 @@ pub fn render_with_walls(
         sun_water: refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun),
         t_flat: fresnel_transmittance(-sun.z, 1.0, ior),
         pool: scene.floor.terrain.is_none(),
+        sky: Sky::new(sun, TURBIDITY),
+        ambient: sky_ambient(sun),
     };
     let under = camera_under_water(scene, surface);
     let n = options.supersampling.max(1) as usize;
@@ -494,14 +508,12 @@ impl Tracer<'_> {
         self.scene.light.color * self.scene.light.intensity
     }
 
+    /// The sky's radiance along `d` with the sun's disk, in the image's unit: a surface of albedo
+    /// `ρ` under irradiance `E` shows `ρ E` (the `1 / π` of a Lambertian reflector is left to the
+    /// exposure), so a radiance `L` shows as `π L`.
     fn sky(&self, d: DVec3) -> DVec3 {
-        let up = d.z.max(0.0);
-        let horizon = DVec3::new(0.75, 0.85, 0.95);
-        let zenith = DVec3::new(0.22, 0.42, 0.78);
-        let base = horizon.lerp(zenith, up.powf(0.6));
-        let c = d.dot(-self.sun).max(0.0);
-        let glow = c.powf(400.0) * 40.0 + c.powf(12.0) * 0.4;
-        (base * 0.8 + DVec3::splat(glow)) * self.sun_radiance()
+        (self.sky.radiance(d) + DVec3::splat(self.sky.sun_disk(d)))
+            * (std::f64::consts::PI * self.sun_radiance())
     }
 
     fn nearest_object(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<(f64, DVec3, usize)> {
@@ -592,7 +604,7 @@ impl Tracer<'_> {
             let a = scene.floor.albedo.at(DVec2::new(p.x + p.y, p.z), size);
             (
                 t,
-                a * (AMBIENT * self.sun_radiance() + self.wall_light(p, size)),
+                a * (self.ambient * self.sun_radiance() + self.wall_light(p, size)),
             )
         } else if ceiling.is_some() {
             (t_floor, self.leave_water(floor_p, d, depth))
@@ -623,7 +635,7 @@ impl Tracer<'_> {
             1.0
         };
         let direct = relative * (e_h * self.t_flat * shadow);
-        let ambient = AMBIENT * (-water.absorption * water.depth).exp();
+        let ambient = self.ambient * (-water.absorption * water.depth).exp();
         albedo * (direct + ambient) * scene.light.color
     }
 
@@ -683,8 +695,7 @@ impl Tracer<'_> {
                     _ => DVec3::ONE,
                 };
                 *color
-                    * (water_path * (self.scene.light.intensity * lambert * lit * t)
-                        + DVec3::splat(AMBIENT))
+                    * (water_path * (self.scene.light.intensity * lambert * lit * t) + self.ambient)
                     * self.scene.light.color
             }
             Material::Glass { ior, tint } => {
@@ -746,7 +757,7 @@ impl Tracer<'_> {
                 }
             };
             let e = (DVec3::splat(lit) + caustic) * (self.scene.light.intensity * -self.sun.z)
-                + DVec3::splat(AMBIENT);
+                + self.ambient;
             return albedo * e * self.scene.light.color;
         }
         self.sky(d)
@@ -763,7 +774,7 @@ impl Tracer<'_> {
                 let v = ((p.x * 3.0).floor() + (p.y * 3.0).floor()).rem_euclid(2.0);
                 let albedo = DVec3::splat(0.32 + 0.04 * v);
                 return albedo
-                    * (self.scene.light.intensity * -self.sun.z + AMBIENT)
+                    * (DVec3::splat(self.scene.light.intensity * -self.sun.z) + self.ambient)
                     * self.scene.light.color;
             }
         }

@@ -9,8 +9,9 @@
 //! there each frame ([`slab_half_height`] is its CPU twin).
 
 use caustics_core::optics::{fresnel_transmittance, refract};
-use caustics_core::render::{AMBIENT, RenderOptions};
+use caustics_core::render::{RenderOptions, sky_ambient};
 use caustics_core::scene::{Albedo, FloorPattern, Material, Scene};
+use caustics_core::sky::{SUN_RADIUS, Sky, TURBIDITY};
 use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::DVec3;
 
@@ -22,7 +23,8 @@ pub struct FinalImageUniform {
     pub camera_position: [f32; 3],
     pub exposure: f32,
     pub camera_forward: [f32; 3],
-    pub ambient: f32,
+    /// The sun's disk's radiance per unit of its irradiance (`Sky::sun_disk`).
+    pub sun_disk: f32,
     /// The camera's right vector times `tan(fov_y / 2)` times the aspect ratio.
     pub camera_right: [f32; 3],
     pub water_size: f32,
@@ -46,6 +48,12 @@ pub struct FinalImageUniform {
     pub albedo: u32,
     /// `ToneMap::code` of the options' tone curve.
     pub tone_map: u32,
+    /// The sky's irradiance on a horizontal surface (`render::sky_ambient`).
+    pub ambient: [f32; 3],
+    /// The cosine of the sun's angular radius.
+    pub sun_cos_radius: f32,
+    /// The sky's Perez coefficients `A..E` and scale (`Sky::coefficients`), each over `Y, x, y`.
+    pub sky: [[f32; 4]; 6],
 }
 
 /// Mirrors `Slab` in `shaders/final_image_slab.wgsl`.
@@ -190,6 +198,7 @@ pub(super) fn uniform(
     let sun = scene.light.direction;
     let sun_water = refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun);
     let t_flat = fresnel_transmittance(-sun.z, 1.0, ior);
+    let sky = Sky::new(sun, TURBIDITY);
 
     let mut f = 0;
     if let Some(w) = water {
@@ -219,7 +228,7 @@ pub(super) fn uniform(
         camera_position: f3(cam.position),
         exposure: options.exposure as f32,
         camera_forward: f3(forward),
-        ambient: AMBIENT as f32,
+        sun_disk: sky.sun_disk(-sun) as f32,
         camera_right: f3(right * (half * aspect)),
         water_size: water.map_or(scene.size, |w| w.size) as f32,
         camera_up: f3(up * half),
@@ -248,6 +257,12 @@ pub(super) fn uniform(
             Albedo::Image { .. } => albedo::IMAGE,
         },
         tone_map: options.tone_map.code(),
+        ambient: f3(sky_ambient(sun)),
+        sun_cos_radius: SUN_RADIUS.cos() as f32,
+        sky: std::array::from_fn(|i| {
+            let c = sky.coefficients();
+            [c[0][i] as f32, c[1][i] as f32, c[2][i] as f32, 0.0]
+        }),
     }
 }
 

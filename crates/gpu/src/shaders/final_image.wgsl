@@ -17,8 +17,8 @@ struct FinalImage {
     camera_position: vec3<f32>,
     exposure: f32,
     camera_forward: vec3<f32>,
-    // render.rs `AMBIENT`.
-    ambient: f32,
+    // The sun's disk's radiance per unit of its irradiance (sky.rs `Sky::sun_disk`).
+    sun_disk: f32,
     // The camera's right vector times tan(fov_y / 2) times the aspect ratio.
     camera_right: vec3<f32>,
     // The water's square (the scene's without water).
@@ -50,6 +50,11 @@ struct FinalImage {
     albedo: u32,
     // TONE_* of shading.wgsl (`ToneMap::code`).
     tone_map: u32,
+    // render.rs `sky_ambient`: the sky's irradiance on a horizontal surface.
+    ambient: vec3<f32>,
+    sun_cos_radius: f32,
+    // sky.rs `Sky::coefficients`: the Perez A, B, C, D, E and scale, each over (Y, x, y).
+    sky: array<vec4<f32>, 6>,
 }
 
 // `FinalImageUniform::flags`.
@@ -149,7 +154,14 @@ fn sun_radiance() -> vec3<f32> {
 }
 
 fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
-    return sky(d, params.sun, sun_radiance());
+    let s = params.sky;
+    let yxy = perez_sky(d, -params.sun, s[0].xyz, s[1].xyz, s[2].xyz, s[3].xyz, s[4].xyz, s[5].xyz);
+    var disk = 0.0;
+    if dot(d, -params.sun) >= params.sun_cos_radius {
+        disk = params.sun_disk;
+    }
+    // render.rs `Tracer::sky`: a radiance shows as π times itself in the image's unit.
+    return (xyy_to_rgb(yxy) + vec3<f32>(disk)) * (3.14159265 * sun_radiance());
 }
 
 fn albedo_at(p: vec2<f32>, size: f32) -> vec3<f32> {
@@ -566,7 +578,7 @@ fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32
         if has(FLAG_WATER) && under {
             water_path = absorbed(max(params.water_level - p.z, 0.0) / -sun_dir.z);
         }
-        emit(w, obj.color * (water_path * (params.sun_intensity * lambert * lit * t) + vec3<f32>(params.ambient)) * params.light_color);
+        emit(w, obj.color * (water_path * (params.sun_intensity * lambert * lit * t) + params.ambient) * params.light_color);
         return;
     }
     var outside_ior = 1.0;
@@ -598,7 +610,7 @@ fn shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
             let s = floor(p.x * 3.0) + floor(p.y * 3.0);
             let v = s - 2.0 * floor(s / 2.0);
             let albedo = vec3<f32>(0.32 + 0.04 * v);
-            return albedo * (params.sun_intensity * -params.sun.z + params.ambient) * params.light_color;
+            return albedo * (vec3<f32>(params.sun_intensity * -params.sun.z) + params.ambient) * params.light_color;
         }
     }
     if !is_pool() && d.z < 0.0 {

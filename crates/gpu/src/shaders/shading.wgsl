@@ -1,10 +1,7 @@
-// How the scene looks, shared by every pass that shows it: the analytic sky, the floor's albedo
-// patterns and the tone curve. CPU twins: `Tracer::sky` and `tone_map` in
-// caustics-core/src/render.rs and `Albedo::at` in caustics-core/src/scene/mod.rs. The constants
+// How the scene looks, shared by every pass that shows it: the daylight sky, the floor's albedo
+// patterns and the tone curve. CPU twins: `Sky::radiance` in caustics-core/src/sky.rs, `tone_map`
+// in caustics-core/src/render.rs and `Albedo::at` in caustics-core/src/scene/mod.rs. The constants
 // below are theirs, in one place on this side; the GPU-vs-CPU image test holds the two together.
-
-const SKY_HORIZON: vec3<f32> = vec3<f32>(0.75, 0.85, 0.95);
-const SKY_ZENITH: vec3<f32> = vec3<f32>(0.22, 0.42, 0.78);
 
 const ALBEDO_TILES: u32 = 0u;
 const ALBEDO_SAND: u32 = 1u;
@@ -21,14 +18,40 @@ fn pow0(x: f32, y: f32) -> f32 {
     return pow(x, y);
 }
 
-// Radiance of the sky along unit `d`: a horizon-to-zenith gradient and the sun's glow, scaled by the
-// sun's radiance. `sun` is the direction the sunlight travels.
-fn sky(d: vec3<f32>, sun: vec3<f32>, sun_radiance: vec3<f32>) -> vec3<f32> {
-    let up = max(d.z, 0.0);
-    let base = mix(SKY_HORIZON, SKY_ZENITH, pow0(up, 0.6));
-    let c = max(dot(d, -sun), 0.0);
-    let glow = pow0(c, 400.0) * 40.0 + pow0(c, 12.0) * 0.4;
-    return (base * 0.8 + vec3<f32>(glow)) * sun_radiance;
+// Preetham et al. 1999's daylight along unit `d` (sky.rs `Sky::radiance`): the Perez function
+// `scale (1 + A e^(B / cos θ)) (1 + C e^(D γ) + E cos² γ)` of the view's zenith angle θ and its
+// angle γ to the sun (`to_sun`), for the luminance and both chromaticities at once, each
+// coefficient a vec3 over (Y, x, y).
+fn perez_sky(
+    d: vec3<f32>,
+    to_sun: vec3<f32>,
+    a: vec3<f32>,
+    b: vec3<f32>,
+    c: vec3<f32>,
+    dd: vec3<f32>,
+    e: vec3<f32>,
+    scale: vec3<f32>,
+) -> vec3<f32> {
+    let cos_theta = max(d.z, 1e-3);
+    let gamma = acos(clamp(dot(d, to_sun), -1.0, 1.0));
+    let cos_gamma = cos(gamma);
+    return scale * (1.0 + a * exp(b / cos_theta)) * (1.0 + c * exp(dd * gamma) + e * cos_gamma * cos_gamma);
+}
+
+// Luminance and chromaticity to linear sRGB (sky.rs `xyy_to_rgb`), negative components clipped.
+fn xyy_to_rgb(v: vec3<f32>) -> vec3<f32> {
+    let lum = v.x;
+    let x = v.y;
+    let y = v.z;
+    if y <= 0.0 || lum <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let xyz = vec3<f32>(x / y * lum, lum, (1.0 - x - y) / y * lum);
+    return max(vec3<f32>(
+        dot(vec3<f32>(3.2406, -1.5372, -0.4986), xyz),
+        dot(vec3<f32>(-0.9689, 1.8758, 0.0415), xyz),
+        dot(vec3<f32>(0.0557, -0.2040, 1.0570), xyz),
+    ), vec3<f32>(0.0));
 }
 
 // Linear-RGB albedo of the floor at `p` on a square of side `size`; `image` is read only for
