@@ -65,6 +65,10 @@ pub struct Page {
     fixed_step: Option<f64>,
     /// Smoothed time between frames, milliseconds.
     frame_ms: f64,
+    /// Frames in a row the canvas gave no texture for (its surface lost or outdated).
+    lost: u32,
+    /// Set by the queue once the work submitted before [`Page::settle`] is done.
+    settled: std::sync::Arc<std::sync::atomic::AtomicBool>,
     frames: u64,
     /// What the page renders (water source, techniques, sizes), and the frame it last changed.
     rendering: (String, u64),
@@ -236,6 +240,8 @@ impl Page {
             drag: None,
             last_ms: None,
             fixed_step: None,
+            lost: 0,
+            settled: Default::default(),
             frame_ms: 0.0,
             frames: 0,
         };
@@ -299,9 +305,10 @@ impl Page {
         Ok(())
     }
 
-    /// The canvas's new size in pixels.
+    /// The canvas's new size in pixels (at most the adapter's largest texture a side).
     pub fn resize(&mut self, width: u32, height: u32) {
-        let (width, height) = (width.max(1), height.max(1));
+        let max = self.ctx.limits().max_texture_dimension_2d;
+        let (width, height) = (width.clamp(1, max), height.clamp(1, max));
         if (self.config.width, self.config.height) != (width, height) {
             self.config.width = width;
             self.config.height = height;
@@ -340,7 +347,9 @@ impl Page {
     }
 
     /// Render one frame at page time `now_ms` (`requestAnimationFrame`'s clock) and show it.
-    pub fn frame(&mut self, now_ms: f64) -> Result<(), JsError> {
+    /// Returns whether the canvas showed it (it skips a frame whose surface was outdated; a
+    /// surface lost three frames in a row is an error).
+    pub fn frame(&mut self, now_ms: f64) -> Result<bool, JsError> {
         let dt = match (self.fixed_step, self.last_ms) {
             (Some(step), _) => step,
             (None, Some(t)) => ((now_ms - t) / 1000.0).clamp(0.0, 0.1),
@@ -384,11 +393,19 @@ impl Page {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
+                self.lost += 1;
+                if self.lost >= 3 {
+                    ctx.check().map_err(js)?;
+                    return Err(js(
+                        "the canvas lost its WebGPU surface three frames in a row (its format or \
+                         size refused)",
+                    ));
+                }
                 self.surface.configure(&ctx.device, &self.config);
-                return Ok(());
+                return Ok(false);
             }
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
-                return Ok(());
+                return Ok(false);
             }
             wgpu::CurrentSurfaceTexture::Validation => {
                 ctx.check().map_err(js)?;
@@ -407,15 +424,31 @@ impl Page {
             GAP,
         );
         ctx.queue.present(frame);
+        self.lost = 0;
         self.frames += 1;
         self.note_steady();
-        self.ctx.check().map_err(js)
+        self.ctx.check().map_err(js)?;
+        Ok(true)
     }
 
     /// Any error the browser reported since the last frame (WebGPU reports them asynchronously,
-    /// so the page asks once more after its last frame).
+    /// so the page asks again once the last frame's work is done: [`settle`](Self::settle)).
     pub fn check(&self) -> Result<(), JsError> {
         self.ctx.check().map_err(js)
+    }
+
+    /// Ask the queue to say when the work submitted so far is done ([`settled`](Self::settled)).
+    pub fn settle(&self) {
+        let done = self.settled.clone();
+        done.store(false, std::sync::atomic::Ordering::Release);
+        self.ctx.queue.on_submitted_work_done(move || {
+            done.store(true, std::sync::atomic::Ordering::Release);
+        });
+    }
+
+    /// Whether the work submitted before the last [`settle`](Self::settle) is done.
+    pub fn settled(&self) -> bool {
+        self.settled.load(std::sync::atomic::Ordering::Acquire)
     }
 
     /// A pointer pressed at canvas pixel `(x, y)`: on the water it drops a ripple (and a drag
@@ -491,6 +524,8 @@ impl Page {
             timestamps: bool,
             quality: Quality,
             image: (u32, u32),
+            /// The orbit camera: yaw and pitch (radians), distance.
+            camera: (f64, f64, f64),
             frames: u64,
             frame_ms: f64,
             passes: Vec<(String, f64)>,
@@ -518,6 +553,7 @@ impl Page {
             timestamps: self.ctx.timestamps,
             quality: self.quality,
             image: self.image_size(),
+            camera: (self.orbit.yaw, self.orbit.pitch, self.orbit.distance),
             frames: self.frames,
             frame_ms: self.frame_ms,
             passes,

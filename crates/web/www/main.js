@@ -10,7 +10,7 @@ import init, { Page } from "./caustics_web.js";
 const query = new URLSearchParams(location.search);
 const SCENES = ["pool", "shore", "underwater"];
 const scene = query.get("scene") || "pool";
-const frames = query.has("frames") ? parseInt(query.get("frames"), 10) : null;
+const frames = query.has("frames") ? Number(query.get("frames")) : null;
 const canvas = document.getElementById("view");
 let page = null;
 let failed = false;
@@ -45,15 +45,18 @@ function sideMenu(root, title, techniques, initial, onChange) {
   root.append(head, summary, params, error);
 
   const [name0, given] = parseSpec(initial);
-  select.value = techniques.some((t) => t.name === name0) ? name0 : techniques[0].name;
+  // A name the page does not list (`none`, a misspelling) stays what was asked for, so that the
+  // page says why it refuses it rather than showing another technique.
+  if (!techniques.some((t) => t.name === name0)) select.add(new Option(name0, name0));
+  select.value = name0;
   let values = {};
 
   function build(preset) {
     const t = techniques.find((x) => x.name === select.value);
-    summary.textContent = `${t.paper}: ${t.summary}`;
+    summary.textContent = t ? `${t.paper}: ${t.summary}` : "";
     params.replaceChildren();
     values = { ...preset };
-    for (const p of t.params) {
+    for (const p of t ? t.params : []) {
       const row = document.createElement("label");
       row.title = p.doc + (p.auto ? ` Default: auto (${p.auto}).` : "");
       row.innerHTML = `<span>${p.label}${p.unit ? ` (${p.unit})` : ""}</span>`;
@@ -119,7 +122,7 @@ function hud(status) {
     .slice()
     .sort((a, b) => b[1] - a[1])
     .slice(0, 12)
-    .map(([label, ms]) => `<tr><td>${label}</td><td>${ms.toFixed(2)} ms</td></tr>`)
+    .map(([label, ms]) => `<tr><td>${escape(label)}</td><td>${ms.toFixed(2)} ms</td></tr>`)
     .join("");
   const fps = status.frame_ms > 0 ? (1000 / status.frame_ms).toFixed(1) : "-";
   const side = ["left", "right"];
@@ -128,7 +131,7 @@ function hud(status) {
     .join("");
   document.getElementById("hud").innerHTML = failures +
     `<div>${status.frame_ms.toFixed(1)} ms a frame (${fps} fps)</div>` +
-    `<div class="hint">${status.adapter || "WebGPU adapter"}${status.software ? " (software)" : ""}; ` +
+    `<div class="hint">${escape(status.adapter || "WebGPU adapter")}${status.software ? " (software)" : ""}; ` +
     `image ${status.image[0]} x ${status.image[1]}, map ${status.quality.map}²; water: ${status.water}; ` +
     `steady frames: ${status.steady[1]} created, ${status.steady[2]} bytes uploaded</div>` +
     (status.timestamps ? `<table>${rows}</table>` : `<div class="hint">no GPU timestamps in this browser</div>`);
@@ -139,6 +142,9 @@ async function main() {
     throw new Error("This browser has no WebGPU (navigator.gpu is missing): use a recent Chrome, Edge or Firefox, or Safari 26, with WebGPU enabled.");
   }
   if (!SCENES.includes(scene)) throw new Error(`unknown scene \`${scene}\`: the page shows ${SCENES.join(", ")}`);
+  if (frames !== null && !(Number.isInteger(frames) && frames > 0)) {
+    throw new Error(`frames must be a whole number above 0, got \`${query.get("frames")}\``);
+  }
   await init();
   [canvas.width, canvas.height] = canvasSize();
   page = await Page.start(canvas, scene, query.get("technique") || "");
@@ -158,8 +164,10 @@ async function main() {
   for (const s of SCENES) sceneSelect.add(new Option(s, s));
   sceneSelect.value = scene;
   sceneSelect.onchange = () => {
+    // Another scene starts with the techniques it offers (a flat-floor one is not offered on
+    // the shore).
     query.set("scene", sceneSelect.value);
-    query.delete("frames");
+    for (const key of ["frames", "technique", "compare"]) query.delete(key);
     location.search = query.toString();
   };
   const split = document.getElementById("split");
@@ -171,16 +179,31 @@ async function main() {
     const right = split.checked ? sides[1].spec() : undefined;
     try {
       page.set_sides(left, right);
+      lastGood = [left, right];
       sides.forEach((s) => s.showError(""));
+      return true;
     } catch (e) {
-      sides[0].showError(String(e.message || e));
+      // The side whose spelling was refused says why.
+      let k = 0;
+      try {
+        page.set_sides(left, undefined);
+        k = 1;
+      } catch (_) {
+        k = 0;
+      }
+      page.set_sides(...lastGood);
+      sides[k].showError(String(e.message || e));
+      return false;
     }
   };
+  let lastGood = [JSON.parse(page.status()).sides[0].technique, undefined];
   sides.push(sideMenu(document.getElementById("side0"), "Technique", techniques, technique, apply));
   sides.push(sideMenu(document.getElementById("side1"), "Right", techniques, compare || "caustic-triangles", apply));
   document.getElementById("side1").hidden = !split.checked;
   split.onchange = () => { document.getElementById("side1").hidden = !split.checked; apply(); };
-  if (compare !== null) apply();
+  if (compare !== null && !apply() && frames !== null) {
+    throw new Error(document.querySelector("#side1 .error").textContent || document.querySelector("#side0 .error").textContent);
+  }
   document.getElementById("amplitude").oninput = (e) => page.set_amplitude(parseFloat(e.target.value));
   if (amplitude !== null) document.getElementById("amplitude").value = amplitude;
   document.getElementById("calm").onclick = () => page.calm();
@@ -205,15 +228,18 @@ async function main() {
   };
   canvas.addEventListener("contextmenu", (e) => e.preventDefault());
   canvas.addEventListener("pointerdown", (e) => {
+    if (!e.isPrimary) return;
     canvas.setPointerCapture(e.pointerId);
     const what = page.pointer_down(...at(e), e.button === 2 || e.shiftKey);
     canvas.style.cursor = what === "orbit" ? "grabbing" : "crosshair";
   });
-  canvas.addEventListener("pointermove", (e) => page.pointer_move(...at(e)));
+  canvas.addEventListener("pointermove", (e) => { if (e.isPrimary) page.pointer_move(...at(e)); });
   const up = () => { page.pointer_up(); canvas.style.cursor = ""; };
   canvas.addEventListener("pointerup", up);
   canvas.addEventListener("pointercancel", up);
-  canvas.addEventListener("wheel", (e) => { e.preventDefault(); page.zoom(-e.deltaY / 100); }, { passive: false });
+  // A notch is 100 pixels, or 3 lines (Firefox), or a page.
+  const notch = (e) => e.deltaY / [100, 3, 1][e.deltaMode];
+  canvas.addEventListener("wheel", (e) => { e.preventDefault(); page.zoom(-notch(e)); }, { passive: false });
   new ResizeObserver(() => page.resize(...canvasSize())).observe(canvas);
 
   // The frames.
@@ -225,15 +251,18 @@ async function main() {
   const intervals = [];
   const tick = (now) => {
     if (failed || stopped) return;
+    let shown;
     try {
-      page.frame(now);
+      shown = page.frame(now);
     } catch (e) {
       fail(e);
       return;
     }
-    count += 1;
-    if (previous !== null) intervals.push(now - previous);
-    previous = now;
+    if (shown) {
+      count += 1;
+      if (previous !== null) intervals.push(now - previous);
+      previous = now;
+    }
     if (count % 10 === 1) hud(JSON.parse(page.status()));
     if (frames !== null && count >= frames) {
       finish();
@@ -241,13 +270,16 @@ async function main() {
     }
     requestAnimationFrame(tick);
   };
-  // After the last frame: two more animation frames for the browser's asynchronous WebGPU errors
-  // to arrive, then the verdict from the page's own state.
+  // After the last frame: wait until the queue has done the frames' work, then one more animation
+  // frame for the browser's asynchronous WebGPU errors to arrive, then the verdict from the
+  // page's own state.
   const finish = () => {
     // The median frame after the first three (which build the pipelines and textures).
-    const steady = intervals.slice(3).sort((a, b) => a - b);
-    const msPerFrame = steady.length ? steady[Math.floor(steady.length / 2)] : NaN;
+    const all = intervals.length > 3 ? intervals.slice(3) : intervals;
+    const steady = all.slice().sort((a, b) => a - b);
+    const msPerFrame = steady.length ? steady[Math.floor(steady.length / 2)] : 0;
     let waits = 0;
+    page.settle();
     const settle = () => {
       try {
         page.check();
@@ -255,7 +287,7 @@ async function main() {
         fail(e);
         return;
       }
-      if (waits++ < 2) {
+      if (!page.settled() || waits++ < 1) {
         requestAnimationFrame(settle);
         return;
       }
