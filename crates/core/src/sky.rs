@@ -1,8 +1,9 @@
 //! The daylight sky of the final image: Preetham, Shirley and Smits 1999, "A Practical Analytic
 //! Model for Daylight" (SIGGRAPH 99), the clear sky's luminance and chromaticity from the sun's
-//! height and the air's turbidity, with the sun's disk at its true size. Its GPU twin is `sky` in
-//! caustics-gpu's `shaders/shading.wgsl`, which evaluates the same Perez functions from the
-//! coefficients [`Sky::coefficients`] hands it.
+//! height and the air's turbidity, with the sun's disk at its true size. Its GPU twin is `perez_sky`
+//! and `xyy_to_rgb` in caustics-gpu's `shaders/shading.wgsl`, called by `sky_radiance` in
+//! `shaders/final_image.wgsl`, which evaluate the same Perez functions from the coefficients
+//! [`Sky::coefficients`] hands them.
 //!
 //! The model (§ 3 and appendix A.2 of the paper): each of the luminance `Y` and the chromaticities
 //! `x`, `y` follows Perez et al.'s all-weather function of the view's zenith angle `θ` and its angle
@@ -63,8 +64,8 @@ fn perez(c: &[f64; 5], cos_theta: f64, gamma: f64) -> f64 {
 }
 
 /// The view's zenith cosine the Perez function is evaluated at: the horizon's for directions below
-/// it (the sky seen in a reflection from below the horizon's line is the horizon's), and never 0,
-/// where `e^(B / cos θ)` is undefined.
+/// it (their gradation term is the horizon's; the angle to the sun stays the direction's own), and
+/// never 0, where `e^(B / cos θ)` is undefined.
 fn zenith_cos(d: DVec3) -> f64 {
     d.z.max(1e-3)
 }

@@ -48,7 +48,8 @@ pub struct FinalImageUniform {
     pub albedo: u32,
     /// `ToneMap::code` of the options' tone curve.
     pub tone_map: u32,
-    /// The sky's irradiance on a horizontal surface (`render::sky_ambient`).
+    /// The sky's irradiance on a horizontal surface (`render::sky_ambient`) times the sun's
+    /// intensity, before the light's colour.
     pub ambient: [f32; 3],
     /// The cosine of the sun's angular radius.
     pub sun_cos_radius: f32,
@@ -257,12 +258,12 @@ pub(super) fn uniform(
             Albedo::Image { .. } => albedo::IMAGE,
         },
         tone_map: options.tone_map.code(),
-        ambient: f3(sky_ambient(sun)),
+        ambient: f3(sky_ambient(sun) * scene.light.intensity),
         sun_cos_radius: SUN_RADIUS.cos() as f32,
-        sky: std::array::from_fn(|i| {
+        sky: {
             let c = sky.coefficients();
-            [c[0][i] as f32, c[1][i] as f32, c[2][i] as f32, 0.0]
-        }),
+            std::array::from_fn(|i| [c[0][i] as f32, c[1][i] as f32, c[2][i] as f32, 0.0])
+        },
     }
 }
 

@@ -50,7 +50,8 @@ struct FinalImage {
     albedo: u32,
     // TONE_* of shading.wgsl (`ToneMap::code`).
     tone_map: u32,
-    // render.rs `sky_ambient`: the sky's irradiance on a horizontal surface.
+    // render.rs `sky_ambient` times the sun's intensity: the sky's irradiance on a horizontal
+    // surface, before the light's colour.
     ambient: vec3<f32>,
     sun_cos_radius: f32,
     // sky.rs `Sky::coefficients`: the Perez A, B, C, D, E and scale, each over (Y, x, y).
@@ -711,7 +712,7 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         let t = wall_distance(o, d, size);
         let p = o + d * t;
         let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size);
-        emit(w * absorbed(t), a * (params.ambient * sun_radiance() + wall_light(p, size)));
+        emit(w * absorbed(t), a * (params.ambient * params.light_color + wall_light(p, size)));
     } else if ceiling.w >= 0.0 {
         leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor));
     } else {
