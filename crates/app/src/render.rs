@@ -58,6 +58,11 @@ pub struct RenderArgs {
     /// Samples per pixel along each axis of the final image.
     #[arg(long, default_value_t = 2)]
     supersampling: u32,
+    /// Experimental, the CPU's final image only: shade the water with normals filtered by each
+    /// sample's footprint (the waves' slope moments, LEAN mapping) instead of the exact normal
+    /// where each sample meets it. docs/look.md has what it measures against many samples.
+    #[arg(long)]
+    filter_water: bool,
     /// Exposure of the final image: radiance is multiplied by it before the tone curve (the
     /// scene's `[camera] exposure` by default).
     #[arg(long)]
@@ -161,6 +166,12 @@ fn same_file(a: &Path, b: &Path) -> bool {
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
+    if args.filter_water && matches!(args.final_image, ImageOn::Gpu) {
+        anyhow::bail!(
+            "--filter-water filters the CPU's final image only: drop --final-image gpu, or \
+             --filter-water"
+        );
+    }
     let mut scene = Scene::load_or_builtin(&args.scene)?;
     let spec = match &args.technique {
         Some(t) => t.parse::<Spec>()?.over(&scene.caustics.params),
@@ -279,6 +290,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(ctx) = runner.gpu.as_ref()
         && scene.water.is_some()
         && args.raw_walls.is_none()
+        && !args.filter_water
         && caustics_gpu::technique::find(spec.name()).is_some()
     {
         return render_frame(ctx, &scene, &spec, &args, out.as_deref());
@@ -357,10 +369,14 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let caustics = caustics.as_ref().map(SceneCaustics::caustics);
     if let Some(out) = &out {
         let started = Instant::now();
-        let options = RenderOptions::for_scene(&scene, args.supersampling.max(1));
+        let options = RenderOptions {
+            filter_water: args.filter_water,
+            ..RenderOptions::for_scene(&scene, args.supersampling.max(1))
+        };
         let image_gpu = runner.gpu.as_ref().filter(|ctx| match args.final_image {
             ImageOn::Gpu => true,
             ImageOn::Cpu => false,
+            ImageOn::Auto if args.filter_water => false,
             ImageOn::Auto => {
                 let software = FinalImage::software_adapter(ctx);
                 if software {

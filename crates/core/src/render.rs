@@ -37,10 +37,13 @@ use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, reflect, refract};
 use crate::scene::{Camera, Material, Scene};
-use crate::sky::{Sky, TURBIDITY};
+use crate::sky::{SUN_RADIUS, Sky, TURBIDITY};
 use crate::techniques::cascaded::EyeCamera;
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
+use crate::water::slopes::{
+    Footprint, SlopeMoments, SlopePyramid, glint, sample_spread, sun_slope_variance, visible_facets,
+};
 
 /// Caustics computed in the eye camera's screen space (technique `cascaded`): per pixel of an image
 /// made for the scene's camera, `[r, g, b, flag]` of relative irradiance (as a caustics map's texels)
@@ -154,6 +157,11 @@ pub struct RenderOptions {
     /// Radiance is multiplied by this before the tone curve.
     pub exposure: f64,
     pub tone_map: ToneMap,
+    /// Filter the water's normals by each sample's footprint ([`crate::water::slopes`]): far
+    /// water shades with the mean slope and the roughness of the waves it cannot resolve. Off
+    /// (the default), every sample shades with the exact normal where it meets the surface.
+    /// CPU only and not yet a gain: docs/look.md has the measurements.
+    pub filter_water: bool,
 }
 
 impl Default for RenderOptions {
@@ -162,6 +170,7 @@ impl Default for RenderOptions {
             supersampling: 2,
             exposure: 1.0,
             tone_map: ToneMap::default(),
+            filter_water: false,
         }
     }
 }
@@ -173,6 +182,7 @@ impl RenderOptions {
             supersampling,
             exposure: scene.look.exposure,
             tone_map: scene.look.tone_map,
+            ..Default::default()
         }
     }
 }
@@ -202,6 +212,19 @@ pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
     m * 1.5 + 1e-6
 }
 
+/// Side of the square grid a GPU front end samples an analytic surface on for the final image
+/// (`FinalImage::render_with` in caustics-gpu), and the lattice the CPU's filtered water normals
+/// start from for a surface that is not a grid: the caustics map's resolution (the detail the
+/// scene asks the caustics to resolve), at least 256 so that small maps still give the view rays a
+/// smooth surface, and at most 4096 (a 64 MiB texture, within every adapter's limits).
+pub fn water_grid_resolution(scene: &Scene) -> usize {
+    scene
+        .caustics
+        .width
+        .max(scene.caustics.height)
+        .clamp(256, 4096) as usize
+}
+
 /// The ambient light of the final image for sunlight travelling along `sun`: the daylight sky's
 /// irradiance on a horizontal surface, per unit of the sun's ([`Sky::horizontal_irradiance`]).
 /// Both twins take it from here (the GPU's as a uniform).
@@ -229,6 +252,12 @@ struct Tracer<'a> {
     /// colour: the ambient light of everything the sun does not reach directly.
     sky: Sky,
     ambient: DVec3,
+    /// The water's slope moments for footprint-filtered normals ([`crate::water::slopes`]).
+    slopes: Option<SlopePyramid>,
+    /// The angle one sample of a pixel covers, for the footprint of a ray on the water.
+    spread: f64,
+    /// The slope variance the sun's disk adds to the glint.
+    sun_variance: f64,
 }
 
 /// Render the scene from its camera. `caustics` is the map of the floor (none: the floor is lit as if
@@ -298,6 +327,18 @@ pub fn render_with_walls(
         pool: scene.floor.terrain.is_none(),
         sky: Sky::new(sun, TURBIDITY),
         ambient: sky_ambient(sun) * scene.light.intensity,
+        slopes: match (surface, &scene.water) {
+            (Some(s), Some(w)) if options.filter_water => {
+                let (cols, rows) = s.lattice().unwrap_or_else(|| {
+                    let n = water_grid_resolution(scene);
+                    (n, n)
+                });
+                Some(SlopePyramid::new(s, cols, rows, w.size, w.edge()))
+            }
+            _ => None,
+        },
+        spread: sample_spread(cam.fov_y, cam.height, options.supersampling),
+        sun_variance: sun_slope_variance(SUN_RADIUS),
     };
     let under = camera_under_water(scene, surface);
     let n = options.supersampling.max(1) as usize;
@@ -517,6 +558,65 @@ impl Tracer<'_> {
             * (std::f64::consts::PI * self.sun_radiance())
     }
 
+    /// The sky alone, without the sun's disk: what rough water reflects besides the sun's glint.
+    fn sky_without_sun(&self, d: DVec3) -> DVec3 {
+        self.sky.radiance(d) * (std::f64::consts::PI * self.sun_radiance())
+    }
+
+    /// The water's slope moments over the footprint of the ray along `d` meeting it at `p`: the
+    /// cone of one sample from the eye, as wide as the distance from the camera (a bent path's
+    /// own length would be a little longer) times the sample's angle.
+    fn water_slopes(
+        &self,
+        pyramid: &SlopePyramid,
+        s: &dyn Surface,
+        p: DVec3,
+        d: DVec3,
+    ) -> SlopeMoments {
+        let distance = (p - self.scene.camera.position).length();
+        let footprint = Footprint::of_ray(d, distance, self.spread);
+        pyramid.filtered(s, p.truncate(), &footprint)
+    }
+
+    /// Water met at `p` along `d` shaded with the normals filtered by the sample's footprint
+    /// ([`crate::water::slopes`]): the facets of the footprint the eye sees each reflect the sky
+    /// by their Fresnel reflectance, the sun's reflection is the glint lobe of their roughness,
+    /// and the rest of the light refracts along their mean normal by their mean transmittance
+    /// ([`visible_facets`]). Returns the reflected light, the transmittance and the normal to
+    /// refract at.
+    fn rough_water(
+        &self,
+        pyramid: &SlopePyramid,
+        s: &dyn Surface,
+        p: DVec3,
+        d: DVec3,
+        ior: f64,
+    ) -> (DVec3, f64, DVec3) {
+        let m = self.water_slopes(pyramid, s, p, d);
+        let (facets, count) = visible_facets(d, &m);
+        let mut reflected = self.glint(d, &m, ior);
+        let (mut t_view, mut n) = (0.0, DVec3::ZERO);
+        for &(facet, w) in &facets[..count] {
+            let t = fresnel_transmittance(-d.dot(facet), 1.0, ior);
+            reflected += self.sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w);
+            t_view += t * w;
+            n += facet * w;
+        }
+        (reflected, t_view, n.normalize())
+    }
+
+    /// The sun's reflection off water of slope moments `m` toward the eye looking along `d`: the
+    /// glint lobe of [`glint`] with the Fresnel reflectance of its mirroring facet, in the image's
+    /// unit (`π L`, as [`sky`](Self::sky)).
+    fn glint(&self, d: DVec3, m: &SlopeMoments, ior: f64) -> DVec3 {
+        let (g, h) = glint(-d, -self.sun, m, self.sun_variance);
+        if g <= 0.0 {
+            return DVec3::ZERO;
+        }
+        let f = 1.0 - fresnel_transmittance(-d.dot(h), 1.0, ior);
+        self.sun_radiance() * (std::f64::consts::PI * f * g)
+    }
+
     fn nearest_object(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<(f64, DVec3, usize)> {
         let mut best: Option<(f64, DVec3, usize)> = None;
         for (k, (obj, bvh)) in self.scene.objects.iter().zip(&self.bvhs).enumerate() {
@@ -568,10 +668,14 @@ impl Tracer<'_> {
             return self.shade_above(o, d);
         }
         let s = self.surface.expect("a water hit implies a surface");
-        let n = height_field_normal(s.gradient(p.truncate()));
-        let cos_v = -d.dot(n);
-        let t_view = fresnel_transmittance(cos_v, 1.0, water.ior);
-        let reflected = self.sky(reflect(d, n)) * (1.0 - t_view);
+        let (reflected, t_view, n) = match &self.slopes {
+            Some(pyramid) => self.rough_water(pyramid, s, p, d, water.ior),
+            None => {
+                let n = height_field_normal(s.gradient(p.truncate()));
+                let t_view = fresnel_transmittance(-d.dot(n), 1.0, water.ior);
+                (self.sky(reflect(d, n)) * (1.0 - t_view), t_view, n)
+            }
+        };
         let Some(r) = refract(d, n, 1.0 / water.ior) else {
             return reflected;
         };
@@ -622,9 +726,14 @@ impl Tracer<'_> {
         let albedo = scene.floor.albedo.at(p.truncate(), size);
         let e_h = scene.light.intensity * -self.sun.z;
         let flat = || (-water.absorption * ((water.depth - p.z) / -self.sun_water.z)).exp();
+        let wrap = water.wrap && scene.floor.terrain.is_none();
         let relative = match (self.caustics, &self.eye_space) {
+            // Beyond a map that does not tile (a terrain's, clamped at its edges) nothing says
+            // where the light focuses: the floor there gets the flat water's light, the mean of
+            // any pattern (stretching the map's edge texels to the horizon drew streaks).
+            (Some(m), _) if !wrap && !inside(p.truncate(), m.size) => flat(),
             (Some(m), _) => {
-                let c = m.sample(p.x, p.y, water.wrap && scene.floor.terrain.is_none());
+                let c = m.sample(p.x, p.y, wrap);
                 DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)
             }
             (None, Some((image, eye))) => image.sample(eye, p).unwrap_or_else(flat),
@@ -836,7 +945,10 @@ impl Tracer<'_> {
     fn leave_water(&self, p: DVec3, d: DVec3, depth: u32) -> DVec3 {
         let water = self.scene.water.as_ref().expect("under water");
         let n = match self.surface {
-            Some(s) => height_field_normal(s.gradient(p.truncate())),
+            Some(s) => match &self.slopes {
+                Some(pyramid) => height_field_normal(self.water_slopes(pyramid, s, p, d).mean),
+                None => height_field_normal(s.gradient(p.truncate())),
+            },
             None => DVec3::Z,
         };
         let split = from_below(d, n, water.ior);

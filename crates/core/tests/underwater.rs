@@ -117,6 +117,7 @@ fn draw(scene: &Scene, surface: Option<&dyn Surface>, exposure: f64) -> Image {
         supersampling: 1,
         exposure,
         tone_map: Default::default(),
+        ..Default::default()
     };
     render_with(scene, surface, None, &options, &|_, _| {})
 }

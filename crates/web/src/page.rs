@@ -375,6 +375,7 @@ impl Page {
             supersampling: self.quality.supersampling,
             exposure: self.scene.look.exposure,
             tone_map: self.scene.look.tone_map,
+            ..Default::default()
         };
         let ctx = &self.ctx;
         self.renderer

@@ -386,6 +386,7 @@ impl SceneRenderer {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
             tone_map: self.scene.look.tone_map,
+            ..Default::default()
         };
         let mut images = Vec::with_capacity(slots.len());
         for slot in slots.iter() {
@@ -437,6 +438,7 @@ impl SceneRenderer {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
             tone_map: self.scene.look.tone_map,
+            ..Default::default()
         };
         let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
         let frame = self.gpu_frame.as_mut().expect("checked by render");

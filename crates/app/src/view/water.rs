@@ -51,6 +51,9 @@ impl Surface for Scaled {
         let (h, g) = self.inner.height_gradient(p);
         (self.k * h, self.k * g)
     }
+    fn lattice(&self) -> Option<(usize, usize)> {
+        self.inner.lattice()
+    }
 }
 
 pub struct WaterState {

@@ -11,6 +11,7 @@
 pub mod ocean;
 pub mod procedural;
 pub mod ripple;
+pub mod slopes;
 pub mod waves;
 
 use glam::DVec2;
@@ -25,6 +26,11 @@ pub trait Surface: Send + Sync {
     /// Both at once; override where they share work.
     fn height_gradient(&self, p: DVec2) -> (f64, DVec2) {
         (self.height(p), self.gradient(p))
+    }
+    /// The `(cols, rows)` of the sampled grid behind the surface, if it is one: the finest detail
+    /// it holds, which the final image's filtered normals start from ([`slopes::SlopePyramid`]).
+    fn lattice(&self) -> Option<(usize, usize)> {
+        None
     }
 }
 
@@ -56,6 +62,9 @@ impl Surface for GridSurface {
     }
     fn height_gradient(&self, p: DVec2) -> (f64, DVec2) {
         self.grid.sample(p, self.size, self.edge)
+    }
+    fn lattice(&self) -> Option<(usize, usize)> {
+        Some((self.grid.cols, self.grid.rows))
     }
 }
 

@@ -134,17 +134,7 @@ fn f4(v: DVec3) -> [f32; 4] {
     v.as_vec3().extend(0.0).to_array()
 }
 
-/// Side of the square grid [`FinalImage::render_with`](super::FinalImage::render_with) samples a
-/// CPU surface on: the caustics map's resolution (the detail the scene asks the caustics to
-/// resolve), at least 256 so that small maps still give the view rays a smooth surface, and at
-/// most 4096 (a 64 MiB texture, within every adapter's limits).
-pub fn water_grid_resolution(scene: &Scene) -> usize {
-    scene
-        .caustics
-        .width
-        .max(scene.caustics.height)
-        .clamp(256, 4096) as usize
-}
+pub use caustics_core::render::water_grid_resolution;
 
 /// The frozen water surface as [`FinalImage::render_with`](super::FinalImage::render_with) hands it
 /// to the GPU: `surface` sampled on the lattice of [`water_grid_resolution`] over the water's

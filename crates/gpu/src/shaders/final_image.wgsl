@@ -541,7 +541,9 @@ fn shade_floor(p: vec3<f32>) -> vec3<f32> {
     let albedo = albedo_at(p.xy, size);
     let e_h = params.sun_intensity * -params.sun.z;
     var relative = absorbed((params.water_level - p.z) / -params.sun_water.z);
-    if has(FLAG_CAUSTICS) {
+    // Beyond a map that does not tile, the flat water's light (render.rs `shade_floor`).
+    let in_map = has(FLAG_WRAP_CAUSTICS) || inside(p.xy, params.map_size);
+    if has(FLAG_CAUSTICS) && in_map {
         relative = sample_caustics(p.x, p.y, has(FLAG_WRAP_CAUSTICS));
     } else if has(FLAG_EYE_CAUSTICS) {
         let e = sample_eye_space(p);
