@@ -115,6 +115,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
                         terrain: None,
                         albedo: Albedo::Pattern(FloorPattern::Plain),
                         walls: false,
+                        deck: Default::default(),
                     },
                     light,
                     time: 0.0,

@@ -881,8 +881,7 @@ impl Tracer<'_> {
             let t = (deck - o.z) / d.z;
             if t > 0.0 {
                 let p = o + d * t;
-                let v = ((p.x * 3.0).floor() + (p.y * 3.0).floor()).rem_euclid(2.0);
-                let albedo = DVec3::splat(0.32 + 0.04 * v);
+                let albedo = self.scene.floor.deck.albedo(p.truncate(), water.size);
                 return albedo
                     * (DVec3::splat(self.scene.light.intensity * -self.sun.z) + self.ambient)
                     * self.scene.light.color;

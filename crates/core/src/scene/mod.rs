@@ -131,6 +131,80 @@ pub struct FloorSpec {
     /// map keeps holding all the light.
     #[serde(default)]
     pub walls: bool,
+    /// What the deck around a pool is paved with (a pool only: a terrain is open water).
+    #[serde(default)]
+    pub deck: Deck,
+}
+
+/// The deck a pool is sunk into, seen around it and through Snell's window from below; a pale
+/// coping stone edges the water on either.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Deck {
+    /// Sandstone pavers, 60 cm square in a running bond, each its own shade, with grout joints.
+    #[default]
+    Stone,
+    /// Poured concrete: one pale grey.
+    Concrete,
+}
+
+/// Sides of the deck's pavers, world units.
+pub const PAVER: f64 = 0.6;
+/// Width of the grout joint between pavers and of the coping's joint at the water, world units.
+pub const JOINT: f64 = 0.01;
+/// Width of the coping stone around the water, world units (at most a tenth of the pool's side).
+pub const COPING: f64 = 0.3;
+
+/// An integer hash to [0, 1) (the "lowbias32" mix of C. Wellons' hash prospector); the GPU twin is
+/// `hash01` in shading.wgsl, on the same u32 arithmetic.
+pub fn hash01(x: i32, y: i32) -> f64 {
+    let mut h = (x as u32).wrapping_mul(0x8da6_b343) ^ (y as u32).wrapping_mul(0xd816_3841);
+    h ^= h >> 16;
+    h = h.wrapping_mul(0x7feb_352d);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x846c_a68b);
+    h ^= h >> 16;
+    h as f64 / 4_294_967_296.0
+}
+
+impl Deck {
+    /// Linear-RGB albedo of the deck at `p` around a pool of side `size` (the water's square
+    /// `[0, size]²`): the coping within [`COPING`] of the water (a tenth of the pool's side at
+    /// most), the paving beyond. GPU twin: `deck_albedo` in shading.wgsl.
+    pub fn albedo(self, p: DVec2, size: f64) -> DVec3 {
+        let out = (-p.x).max(p.x - size).max(-p.y).max(p.y - size);
+        let coping = COPING.min(0.1 * size);
+        if out <= coping {
+            return if out < JOINT.min(0.1 * coping) {
+                DVec3::new(0.30, 0.29, 0.27)
+            } else {
+                DVec3::new(0.78, 0.76, 0.71)
+            };
+        }
+        match self {
+            Deck::Concrete => DVec3::new(0.55, 0.55, 0.53),
+            Deck::Stone => {
+                let row = (p.y / PAVER).floor();
+                let x = p.x / PAVER + 0.5 * row.rem_euclid(2.0);
+                let col = x.floor();
+                let (fx, fy) = (x - col, p.y / PAVER - row);
+                let joint = JOINT / PAVER;
+                if fx < joint || fy < joint {
+                    return DVec3::new(0.32, 0.31, 0.29);
+                }
+                let shade = 0.85 + 0.3 * hash01(col as i32, row as i32);
+                DVec3::new(0.60, 0.53, 0.43) * shade
+            }
+        }
+    }
+
+    /// The code the GPU's final image reads (`DECK_*` in shading.wgsl).
+    pub fn code(self) -> u32 {
+        match self {
+            Deck::Stone => 0,
+            Deck::Concrete => 1,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -389,6 +463,7 @@ pub struct Floor {
     pub albedo: Albedo,
     /// The pool's walls are receivers ([`FloorSpec::walls`]); see [`crate::walls`].
     pub walls: bool,
+    pub deck: Deck,
 }
 
 impl Floor {

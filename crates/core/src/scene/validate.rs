@@ -432,6 +432,7 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
         terrain,
         albedo,
         walls: f.walls,
+        deck: f.deck,
     })
 }
 

@@ -81,6 +81,8 @@ pub mod flags {
     pub const AIR_CAUSTICS: u32 = 64;
     /// The caustics are an eye-space image of this camera (`cascaded`), bound where the map is.
     pub const EYE_CAUSTICS: u32 = 128;
+    /// `Deck::code` of the pool's deck, in the bits from this one up (`deck_kind`).
+    pub const DECK_SHIFT: u32 = 8;
 }
 
 /// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
@@ -208,6 +210,7 @@ pub(super) fn uniform(
         if w.wrap && scene.floor.terrain.is_none() {
             f |= flags::WRAP_CAUSTICS;
         }
+        f |= scene.floor.deck.code() << flags::DECK_SHIFT;
     }
     if water.is_none() && matches!(lighting, Lighting::Floor { .. }) {
         f |= flags::AIR_CAUSTICS;

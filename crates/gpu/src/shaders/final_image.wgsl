@@ -69,6 +69,12 @@ const FLAG_WRAP_CAUSTICS: u32 = 32u;
 const FLAG_AIR_CAUSTICS: u32 = 64u;
 // The caustics are an eye-space image of this camera (cascaded), bound as caustics_map.
 const FLAG_EYE_CAUSTICS: u32 = 128u;
+// The deck's `Deck::code` sits in these bits of the flags (`flags::DECK_SHIFT`).
+const DECK_SHIFT: u32 = 8u;
+
+fn deck_kind() -> u32 {
+    return (params.flags >> DECK_SHIFT) & 255u;
+}
 
 // One object: its material and the root of its tree in bvh_nodes. Mirrors `GpuObject`.
 struct Object {
@@ -610,9 +616,7 @@ fn shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
         let t = (deck - o.z) / d.z;
         if t > 0.0 {
             let p = o + d * t;
-            let s = floor(p.x * 3.0) + floor(p.y * 3.0);
-            let v = s - 2.0 * floor(s / 2.0);
-            let albedo = vec3<f32>(0.32 + 0.04 * v);
+            let albedo = deck_albedo(deck_kind(), p.xy, params.water_size);
             return albedo * (vec3<f32>(params.sun_intensity * -params.sun.z) + params.ambient) * params.light_color;
         }
     }

@@ -83,6 +83,50 @@ fn floor_albedo(kind: u32, image: texture_2d<f32>, p: vec2<f32>, size: f32) -> v
     }
 }
 
+// scene/mod.rs `hash01`: an integer hash to [0, 1) on the same u32 arithmetic.
+fn hash01(x: i32, y: i32) -> f32 {
+    var h = (bitcast<u32>(x) * 0x8da6b343u) ^ (bitcast<u32>(y) * 0xd8163841u);
+    h ^= h >> 16u;
+    h *= 0x7feb352du;
+    h ^= h >> 15u;
+    h *= 0x846ca68bu;
+    h ^= h >> 16u;
+    return f32(h) / 4294967296.0;
+}
+
+// `Deck::code` and the deck's sizes (scene/mod.rs `PAVER`, `JOINT`, `COPING`).
+const DECK_STONE: u32 = 0u;
+const DECK_CONCRETE: u32 = 1u;
+const PAVER: f32 = 0.6;
+const JOINT: f32 = 0.01;
+const COPING: f32 = 0.3;
+
+// scene/mod.rs `Deck::albedo`: the coping along the water, the paving beyond.
+fn deck_albedo(kind: u32, p: vec2<f32>, size: f32) -> vec3<f32> {
+    let out = max(max(-p.x, p.x - size), max(-p.y, p.y - size));
+    let coping = min(COPING, 0.1 * size);
+    if out <= coping {
+        if out < min(JOINT, 0.1 * coping) {
+            return vec3<f32>(0.30, 0.29, 0.27);
+        }
+        return vec3<f32>(0.78, 0.76, 0.71);
+    }
+    if kind == DECK_CONCRETE {
+        return vec3<f32>(0.55, 0.55, 0.53);
+    }
+    let row = floor(p.y / PAVER);
+    let x = p.x / PAVER + 0.5 * (row - 2.0 * floor(row / 2.0));
+    let col = floor(x);
+    let fx = x - col;
+    let fy = p.y / PAVER - row;
+    let joint = JOINT / PAVER;
+    if fx < joint || fy < joint {
+        return vec3<f32>(0.32, 0.31, 0.29);
+    }
+    let shade = 0.85 + 0.3 * hash01(i32(col), i32(row));
+    return vec3<f32>(0.60, 0.53, 0.43) * shade;
+}
+
 // `ToneMap::code` (render.rs): which tone curve `tone_map` applies.
 const TONE_ACES: u32 = 0u;
 const TONE_AGX: u32 = 1u;
