@@ -26,6 +26,7 @@ fn plane() -> Floor {
         terrain: None,
         albedo: Albedo::Pattern(FloorPattern::Plain),
         walls: false,
+        deck: Default::default(),
     }
 }
 
@@ -339,6 +340,7 @@ fn terrain_receives_the_cosine_of_its_slope() {
         terrain: Some(terrain),
         albedo: Albedo::Pattern(FloorPattern::Sand),
         walls: false,
+        deck: Default::default(),
     };
     let w = water(size, 0.6, true);
     let light = DVec3::new(0.25, 0.1, -1.0).normalize();

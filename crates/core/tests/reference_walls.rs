@@ -29,6 +29,7 @@ fn pool() -> Floor {
         terrain: None,
         albedo: Albedo::Pattern(FloorPattern::Plain),
         walls: true,
+        deck: Default::default(),
     }
 }
 

@@ -455,6 +455,7 @@ fn reference_agrees_with_the_floor_reference() {
         terrain: None,
         albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
         walls: false,
+        deck: Default::default(),
     };
     let exact = crate::reference::reference(
         &crate::reference::ReferenceInput {
@@ -522,6 +523,7 @@ fn the_floor_map_under_waves_agrees_with_the_reference() {
                 terrain: None,
                 albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
                 walls: false,
+                deck: Default::default(),
             },
             light: inp.light,
             width: res,
