@@ -22,6 +22,9 @@ use glam::{DVec2, DVec3};
 use super::Surface;
 use crate::grid::Edge;
 
+/// Gradient samples along each side of a level-0 texel whose moments it holds.
+const SUB: usize = 4;
+
 /// Most taps along a stretched footprint's long axis; beyond it the taps read a coarser level.
 pub const MAX_TAPS: usize = 4;
 
@@ -113,8 +116,9 @@ struct Level {
     texels: Vec<[f64; 5]>,
 }
 
-/// Box averages of the slope moments over the water's square: level 0 holds the surface's exact
-/// slope at the centres of a `cols x rows` lattice (the water grid's samples), each level above
+/// Box averages of the slope moments over the water's square: level 0 holds the moments of the
+/// surface's exact slope over each texel of a `cols x rows` lattice (the water grid's), each level
+/// above
 /// averages 2 x 2 texels of the one below (fewer at an odd edge), up to one texel for the whole
 /// square.
 pub struct SlopePyramid {
@@ -126,14 +130,30 @@ pub struct SlopePyramid {
 impl SlopePyramid {
     pub fn new(surface: &dyn Surface, cols: usize, rows: usize, size: f64, edge: Edge) -> Self {
         let (cols, rows) = (cols.max(1), rows.max(1));
+        let (dx, dy) = (size / cols as f64, size / rows as f64);
         let mut texels = Vec::with_capacity(cols * rows);
         for i in 0..rows {
             for j in 0..cols {
-                let p = DVec2::new(
-                    (j as f64 + 0.5) * size / cols as f64,
-                    (i as f64 + 0.5) * size / rows as f64,
-                );
-                texels.push(SlopeMoments::exact(surface.gradient(p)).to_array());
+                // The texel's own slopes: the moments of the interpolant's gradient averaged over
+                // a 4 x 4 lattice inside it. The gradient at the texel's centre alone is the
+                // central difference, which misses the slope of the shortest waves (none at all
+                // at the grid's Nyquist wavelength) and so the roughness they make.
+                let mut sum = [0.0; 5];
+                for a in 0..SUB {
+                    for b in 0..SUB {
+                        let p = DVec2::new(
+                            (j as f64 + (b as f64 + 0.5) / SUB as f64) * dx,
+                            (i as f64 + (a as f64 + 0.5) / SUB as f64) * dy,
+                        );
+                        for (s, t) in sum
+                            .iter_mut()
+                            .zip(SlopeMoments::exact(surface.gradient(p)).to_array())
+                        {
+                            *s += t / (SUB * SUB) as f64;
+                        }
+                    }
+                }
+                texels.push(sum);
             }
         }
         let mut levels = vec![Level { cols, rows, texels }];
