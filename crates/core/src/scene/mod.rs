@@ -623,3 +623,45 @@ impl Scene {
         self.floor.height_gradient(p, self.size).0
     }
 }
+
+#[cfg(test)]
+mod deck_tests {
+    use super::*;
+
+    /// The coping runs all round the water with its dark joint at the edge; beyond it the pavers
+    /// are a stone's albedo, each its own shade (the hash spreads them over ±15 %, not all alike),
+    /// with darker joints between them.
+    #[test]
+    fn the_deck_is_coping_then_pavers() {
+        let size = 4.0;
+        for p in [[-0.1, 2.0], [4.15, 1.0], [2.0, -0.2], [3.0, 4.29]] {
+            let a = Deck::Stone.albedo(DVec2::from(p), size);
+            assert_eq!(a, DVec3::new(0.78, 0.76, 0.71), "{p:?}");
+            assert_eq!(Deck::Concrete.albedo(DVec2::from(p), size), a);
+        }
+        assert_eq!(
+            Deck::Stone.albedo(DVec2::new(-0.005, 2.0), size),
+            DVec3::new(0.30, 0.29, 0.27)
+        );
+        let mut shades = Vec::new();
+        for row in 0..20 {
+            for col in 0..20 {
+                // The middle of paver (col, row) of the running bond, away from the pool.
+                let y = (10.0 + row as f64 + 0.5) * PAVER;
+                let x = (10.0 + col as f64 + 0.5 - 0.5 * (row % 2) as f64) * PAVER;
+                let a = Deck::Stone.albedo(DVec2::new(x, y), size);
+                shades.push(a.x / 0.60);
+            }
+        }
+        let (lo, hi) = shades
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), &s| (l.min(s), h.max(s)));
+        let mean = shades.iter().sum::<f64>() / shades.len() as f64;
+        assert!(lo >= 0.85 && hi < 1.15 && hi - lo > 0.25, "{lo} {hi}");
+        // A uniform hash: the mean shade of 400 pavers within 0.03 of the middle, 1.0.
+        eprintln!("MEASURE {mean} {lo} {hi}");
+        assert!((mean - 1.0).abs() < 0.03, "{mean}");
+        let joint = Deck::Stone.albedo(DVec2::new(12.0 * PAVER + 0.003, 12.3 * PAVER), size);
+        assert_eq!(joint, DVec3::new(0.32, 0.31, 0.29));
+    }
+}
