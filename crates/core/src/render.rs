@@ -881,7 +881,13 @@ impl Tracer<'_> {
             let t = (deck - o.z) / d.z;
             if t > 0.0 {
                 let p = o + d * t;
-                let albedo = self.scene.floor.deck.albedo(p.truncate(), water.size);
+                // A sample's footprint on the deck, stretched by the grazing angle.
+                let footprint = (p - o).length() * self.spread / d.z.abs().max(0.05);
+                let albedo = self
+                    .scene
+                    .floor
+                    .deck
+                    .albedo(p.truncate(), water.size, footprint);
                 return albedo
                     * (DVec3::splat(self.scene.light.intensity * -self.sun.z) + self.ambient)
                     * self.scene.light.color;

@@ -281,10 +281,19 @@ const EXACT: Bounds = Bounds {
     drift: 10.0 * CHANNEL,
 };
 
+/// Where the pool's stone deck is in view: its joints box-filtered over a sample's footprint
+/// (`Deck::albedo`) leave one far pixel 6 or 7 steps off in f32 (the filter's integral differenced
+/// over a footprint of millimetres), 10 times the pool's measured mean 0.00044.
+const DECK: Bounds = Bounds {
+    mean: 0.0044,
+    ..EXACT
+};
+
 fn pool_matches_the_cpu() {
     let ctx = test_gpu();
-    // Measured (outliers aside, as every mean here): mean 0.000023, one outlier (a far joint of the deck, whose sample took the other side of it), one channel drifting.
-    check(&ctx, "pool", &small("pool"), true, EXACT);
+    // Measured (outliers aside, as every mean here): mean 0.000440 (one pixel of the far deck 6
+    // steps off), no outlier, one channel drifting.
+    check(&ctx, "pool", &small("pool"), true, DECK);
 }
 
 /// The pool's walls lit through the reference's walls' maps (issue 18) under a low sun that lights
@@ -337,9 +346,9 @@ fn pool_walls_match_the_cpu() {
             None,
         )
         .expect("GPU render");
-    // Measured: mean 0.000069, one outlier (a deck joint), one channel drifting; the walls' light
-    // itself moves the image by 1.90 steps on average.
-    hold("pool walls", &cpu, &gpu, EXACT, "");
+    // Measured: mean 0.000532 (one pixel of the far deck 7 steps off), no outlier, one channel
+    // drifting; the walls' light itself moves the image by 1.69 steps on average.
+    hold("pool walls", &cpu, &gpu, DECK, "");
 }
 
 /// The renderer's side for a CPU technique (the reference): its walls' maps, uploaded once with
@@ -500,7 +509,7 @@ fn pool_with_cascaded_lights_the_walls_as_the_cpu() {
         &scene,
         surface,
         Some(Caustics::EyeSpace(&eye)),
-        // Measured: mean 0.000046, one outlier (a deck joint); the walls' share of cascaded's
+        // Measured: mean 0.000509 (a far deck pixel 7 steps off), no outlier; the walls' share of cascaded's
         // light moves the image by 1.89 steps.
         Bounds {
             mean: 0.0007,
@@ -591,8 +600,9 @@ fn albedo_image_without_a_map_matches_the_cpu() {
             })
             .collect(),
     };
-    // Measured: mean 0.000023, one outlier (a deck joint), one channel drifting.
-    check(&ctx, "albedo-image", &scene, false, EXACT);
+    // Measured: mean 0.000440 (one pixel of the far deck 6 steps off), no outlier, one channel
+    // drifting.
+    check(&ctx, "albedo-image", &scene, false, DECK);
 }
 
 /// No water, a map of the light through the glass (as caustic-triangles makes it): every object
@@ -868,8 +878,9 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
         "technique-texture",
         &cpu,
         &from_texture,
-        // Measured: mean 0.000046 (2 channels one step), no outliers, no drift.
-        EXACT,
+        // Measured: mean 0.000486 (one pixel of the far deck 6 steps off), no outlier, one
+        // channel drifting.
+        DECK,
         "yuksel's map",
     );
 }

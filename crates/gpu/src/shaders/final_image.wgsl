@@ -616,7 +616,12 @@ fn shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
         let t = (deck - o.z) / d.z;
         if t > 0.0 {
             let p = o + d * t;
-            let albedo = deck_albedo(deck_kind(), p.xy, params.water_size);
+            // render.rs `shade_above`: a sample's footprint on the deck, stretched by the
+            // grazing angle; the sample's angle is a pixel's over the samples per side
+            // (`sample_spread`), |camera_up| being tan(fov_y / 2).
+            let spread = 2.0 * length(params.camera_up) / f32(params.height) / f32(max(params.supersampling, 1u));
+            let footprint = length(p - o) * spread / max(abs(d.z), 0.05);
+            let albedo = deck_albedo(deck_kind(), p.xy, params.water_size, footprint);
             return albedo * (vec3<f32>(params.sun_intensity * -params.sun.z) + params.ambient) * params.light_color;
         }
     }

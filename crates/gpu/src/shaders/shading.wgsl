@@ -101,8 +101,23 @@ const PAVER: f32 = 0.6;
 const JOINT: f32 = 0.01;
 const COPING: f32 = 0.3;
 
-// scene/mod.rs `Deck::albedo`: the coping along the water, the paving beyond.
-fn deck_albedo(kind: u32, p: vec2<f32>, size: f32) -> vec3<f32> {
+// scene/mod.rs `joint_cover`: the share of [x - w/2, x + w/2] (in periods) the joints of width
+// `joint` at each period's start cover; the point test for w = 0.
+fn joint_integral(x: f32, joint: f32) -> f32 {
+    let n = floor(x);
+    return n * joint + min(x - n, joint);
+}
+
+fn joint_cover(x: f32, w: f32, joint: f32) -> f32 {
+    if w <= 1e-4 {
+        return select(0.0, 1.0, x - floor(x) < joint);
+    }
+    return clamp((joint_integral(x + 0.5 * w, joint) - joint_integral(x - 0.5 * w, joint)) / w, 0.0, 1.0);
+}
+
+// scene/mod.rs `Deck::albedo`: the coping along the water, the paving beyond, its joints
+// box-filtered over a sample's footprint (world units).
+fn deck_albedo(kind: u32, p: vec2<f32>, size: f32, footprint: f32) -> vec3<f32> {
     let out = max(max(-p.x, p.x - size), max(-p.y, p.y - size));
     let coping = min(COPING, 0.1 * size);
     if out <= coping {
@@ -117,14 +132,11 @@ fn deck_albedo(kind: u32, p: vec2<f32>, size: f32) -> vec3<f32> {
     let row = floor(p.y / PAVER);
     let x = p.x / PAVER + 0.5 * (row - 2.0 * floor(row / 2.0));
     let col = floor(x);
-    let fx = x - col;
-    let fy = p.y / PAVER - row;
+    let w = footprint / PAVER;
     let joint = JOINT / PAVER;
-    if fx < joint || fy < joint {
-        return vec3<f32>(0.32, 0.31, 0.29);
-    }
+    let grout = 1.0 - (1.0 - joint_cover(x, w, joint)) * (1.0 - joint_cover(p.y / PAVER, w, joint));
     let shade = 0.85 + 0.3 * hash01(i32(col), i32(row));
-    return vec3<f32>(0.60, 0.53, 0.43) * shade;
+    return vec3<f32>(0.60, 0.53, 0.43) * (shade * (1.0 - grout)) + vec3<f32>(0.32, 0.31, 0.29) * grout;
 }
 
 // `ToneMap::code` (render.rs): which tone curve `tone_map` applies.
