@@ -1096,6 +1096,42 @@ mod tests {
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
     use crate::techniques::cascaded::{CascadedParams, CascadedSetup, eye_pass};
 
+    /// Beyond a terrain's caustics map (which does not tile) the floor gets the flat water's
+    /// light, not the map's edge stretched to the horizon: with a map that is dark everywhere,
+    /// the shore's far rows (whose floor lies beyond the 32 m square) render as without a map,
+    /// while the near rows, inside the map, are darker.
+    #[test]
+    fn beyond_a_terrain_map_the_floor_is_lit_as_under_flat_water() {
+        let mut scene = Scene::builtin("shore").unwrap();
+        scene.camera.width = 160;
+        scene.camera.height = 90;
+        let water = scene.water.as_ref().unwrap();
+        let surface = water.surface_at(scene.time).unwrap();
+        let dark = CausticsMap::new(32, 32, water.size);
+        let options = RenderOptions {
+            supersampling: 1,
+            ..Default::default()
+        };
+        let s = Some(surface.as_ref());
+        let none = |_: usize, _: usize| {};
+        let flat = render(&scene, s, None, &options, &none);
+        let mapped = render(&scene, s, Some(&dark), &options, &none);
+        fn row(img: &Image, y: usize) -> &[u8] {
+            &img.rgb[y * 160 * 3..(y + 1) * 160 * 3]
+        }
+        // Rows 26-28: the water just below the horizon (row 25 at 90 rows), far enough that every
+        // refracted view ray there meets the floor beyond the map (row 29 already has a few
+        // inside it).
+        for y in 26..29 {
+            assert_eq!(row(&flat, y), row(&mapped, y), "row {y}");
+        }
+        let near = |img: &Image| row(img, 80).iter().map(|&v| v as u64).sum::<u64>();
+        assert!(
+            near(&mapped) < near(&flat),
+            "the dark map darkens the near floor"
+        );
+    }
+
     /// The reference's walls' maps light the pool's walls the camera sees under a low sun, and
     /// only where the scene's walls are on.
     #[test]

@@ -14,8 +14,8 @@
 //! Surfaces", EGSR 2007, eq. 27). The sun's own disk widens the distribution, so a perfectly flat
 //! mirror still shows the sun as a small spot of the sun's whole reflected power.
 //!
-//! GPU twin: `final_image_slopes.wgsl` builds the pyramid, `slope_moments` and `filtered_slopes`
-//! in `final_image.wgsl` read it, `glint` in `shading.wgsl` shades it.
+//! CPU only for now (`caustics render --filter-water`, off by default): it is not yet a gain
+//! against many samples (docs/look.md), so it has no GPU twin yet.
 
 use glam::{DVec2, DVec3};
 
