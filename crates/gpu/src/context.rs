@@ -162,18 +162,34 @@ impl GpuContext {
         device: wgpu::Device,
         queue: wgpu::Queue,
     ) -> Self {
+        let ctx = Self::shared(instance, adapter, device, queue);
+        let sink = ctx.errors.clone();
+        ctx.device
+            .on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+                tracing::error!("GPU error: {e}");
+                sink.lock().expect("error sink").push(e.to_string());
+            }));
+        let lost_sink = ctx.lost.clone();
+        ctx.device
+            .set_device_lost_callback(move |reason, message| {
+                *lost_sink.lock().expect("lost flag") = Some(lost_reason(reason, &message));
+            });
+        ctx
+    }
+
+    /// Wrap an engine's device as [`from_parts`](Self::from_parts) does, leaving its
+    /// uncaptured-error and device-lost handlers in place: the engine reports wgpu's failures
+    /// (Bevy's `bevy_caustics` records into Bevy's device), and [`check`](Self::check) sees only
+    /// a loss it polls for and the validation layer's messages.
+    pub fn shared(
+        instance: wgpu::Instance,
+        adapter: wgpu::Adapter,
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+    ) -> Self {
         let info = adapter.get_info();
         let errors = Arc::new(Mutex::new(Vec::new()));
-        let sink = errors.clone();
-        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
-            tracing::error!("GPU error: {e}");
-            sink.lock().expect("error sink").push(e.to_string());
-        }));
         let lost = Arc::new(Mutex::new(None));
-        let lost_sink = lost.clone();
-        device.set_device_lost_callback(move |reason, message| {
-            *lost_sink.lock().expect("lost flag") = Some(lost_reason(reason, &message));
-        });
         tracing::info!(
             "GPU adapter: {} ({:?}, {:?})",
             info.name,

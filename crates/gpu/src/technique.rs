@@ -127,7 +127,10 @@ pub enum Fit {
 /// index, absorption, wrap; its `source` is ignored, the heights come from [`WaterTextures`]), the
 /// floor, the sun (`light`), the map size (`caustics.width`, `caustics.height`), the camera (for
 /// eye-space techniques) and the objects.
-pub trait Technique {
+///
+/// Send and Sync on native targets, so that an engine can keep one in its render world (Bevy's
+/// resources are both), as wgpu's own objects are there.
+pub trait Technique: wgpu::WasmNotSendSync {
     /// The name it is registered under, with its variant (`yuksel-gather`, `procedural-texture`).
     fn name(&self) -> &str;
 

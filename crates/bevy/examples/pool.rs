@@ -1,0 +1,546 @@
+//! A pool in Bevy with caustics on its floor and walls from moving water: the ripple simulation on
+//! the GPU, a drop every so often, and one wherever you click. Right-drag orbits, the wheel zooms,
+//! T switches between the registered techniques.
+//!
+//! `cargo run --example pool -- [--technique NAME] [--flat] [--frames N --screenshot PATH]`:
+//! `--frames N` renders N frames and exits, saving the last to `--screenshot`'s PNG; `--flat`
+//! keeps the water still (no drops), the picture caustics are measured against.
+
+use std::path::PathBuf;
+
+use bevy::asset::RenderAssetUsages;
+use bevy::camera::Exposure;
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
+use bevy::light::NotShadowCaster;
+use bevy::light::light_consts::lux;
+use bevy::math::Affine2;
+use bevy::prelude::*;
+use bevy::render::RenderPlugin;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
+use bevy::window::{PrimaryWindow, WindowResolution};
+use bevy_caustics::{
+    CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, CausticsStats,
+    DropRipple, Receiver,
+};
+use caustics_core::scene::{Scene, WaterSource};
+use caustics_core::water::ripple::{Drop, RippleParams};
+
+struct Args {
+    technique: String,
+    flat: bool,
+    frames: Option<u32>,
+    screenshot: Option<PathBuf>,
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut args = Args {
+        technique: "caustic-triangles".into(),
+        flat: false,
+        frames: None,
+        screenshot: None,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
+        match a.as_str() {
+            "--technique" => args.technique = value("--technique")?,
+            "--flat" => args.flat = true,
+            "--frames" => {
+                let v = value("--frames")?;
+                let n = v
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|n| *n > 0)
+                    .ok_or(format!("--frames takes a positive count, not `{v}`"))?;
+                args.frames = Some(n);
+            }
+            "--screenshot" => args.screenshot = Some(PathBuf::from(value("--screenshot")?)),
+            other => return Err(format!("unknown argument `{other}`")),
+        }
+    }
+    if args.screenshot.is_some() && args.frames.is_none() {
+        return Err("--screenshot needs --frames N (the frame to save)".into());
+    }
+    if let Some(p) = &args.screenshot
+        && p.extension().is_none_or(|e| !e.eq_ignore_ascii_case("png"))
+    {
+        return Err(format!("--screenshot writes a PNG: `{}`", p.display()));
+    }
+    Ok(args)
+}
+
+fn main() -> AppExit {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("pool: {e}");
+            return AppExit::from_code(2);
+        }
+    };
+    let scene = match pool_scene(args.flat) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("pool: {e}");
+            return AppExit::from_code(1);
+        }
+    };
+    let water = match CausticWater::new(scene, &args.technique) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("pool: {e}");
+            return AppExit::from_code(2);
+        }
+    };
+    App::new()
+        .add_plugins(
+            DefaultPlugins
+                .set(WindowPlugin {
+                    primary_window: Some(Window {
+                        title: "bevy_caustics: pool".into(),
+                        resolution: WindowResolution::new(960, 540),
+                        ..default()
+                    }),
+                    ..default()
+                })
+                // A counted run waits for every pipeline, so that its frames show the scene.
+                .set(RenderPlugin {
+                    synchronous_pipeline_compilation: args.frames.is_some(),
+                    ..default()
+                }),
+        )
+        .add_plugins(CausticsPlugin)
+        .insert_resource(Setup(Some(water)))
+        .insert_resource(Run {
+            frames: args.frames,
+            screenshot: args.screenshot,
+            rain: !args.flat,
+            frame: 0,
+            next_drop: 0.0,
+        })
+        // The sky's light, about a quarter of the sun's on a horizontal surface (the pool's sun at
+        // 72° elevation and Preetham's clear sky give 0.26): E = π L.
+        .insert_resource(GlobalAmbientLight {
+            color: Color::srgb(0.80, 0.88, 1.0),
+            brightness: 0.22 * lux::DIRECT_SUNLIGHT / std::f32::consts::PI,
+            ..default()
+        })
+        .add_systems(Startup, setup)
+        .add_systems(Update, (orbit, click_drops, rain, switch_technique, frames))
+        .run()
+}
+
+/// The built-in pool (4 m square, 1 m deep, walls lit) with the ripple simulation as its water:
+/// walls that reflect (no wrap), a few drops at the start unless `flat`.
+fn pool_scene(flat: bool) -> Result<Scene, String> {
+    let mut scene = Scene::builtin("pool").map_err(|e| e.to_string())?;
+    let water = scene.water.as_mut().ok_or("the pool has no water")?;
+    water.wrap = false;
+    let drop = |x, y| Drop {
+        position: [x, y],
+        radius: 0.08,
+        strength: 0.015,
+    };
+    water.source = WaterSource::Ripple(RippleParams {
+        resolution: 256,
+        wave_speed: 0.7,
+        damping: 0.25,
+        time_step: 1.0 / 240.0,
+        drops: if flat {
+            Vec::new()
+        } else {
+            vec![
+                drop(1.2, 2.6),
+                drop(2.8, 1.4),
+                drop(2.3, 3.1),
+                drop(0.9, 1.0),
+                drop(3.3, 3.0),
+            ]
+        },
+        steps: 60,
+    });
+    scene.caustics.width = 384;
+    scene.caustics.height = 384;
+    Ok(scene)
+}
+
+#[derive(Resource)]
+struct Setup(Option<CausticWater>);
+
+#[derive(Resource)]
+struct Run {
+    frames: Option<u32>,
+    screenshot: Option<PathBuf>,
+    rain: bool,
+    frame: u32,
+    next_drop: f32,
+}
+
+#[derive(Component)]
+struct Water;
+
+#[derive(Component)]
+struct Orbit {
+    yaw: f32,
+    pitch: f32,
+    distance: f32,
+}
+
+fn setup(
+    mut commands: Commands,
+    mut setup: ResMut<Setup>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut images: ResMut<Assets<Image>>,
+    mut standard: ResMut<Assets<StandardMaterial>>,
+    mut caustic: ResMut<Assets<CausticsMaterial>>,
+) {
+    let water = setup.0.take().expect("set up once");
+    let size = water.size();
+    let depth = water.depth();
+    let rim = depth + 0.15;
+    // The scene's square from the water entity's origin along +x and −z: centred on the world's.
+    let at = Transform::from_xyz(-size / 2.0, 0.0, size / 2.0);
+    let maps = CausticMaps::new(&water, &mut images);
+    let tile_image = images.add(tile_texture());
+    // 25 cm tiles, eight to the texture's side.
+    let tiles = |uv_scale: Vec2| StandardMaterial {
+        base_color_texture: Some(tile_image.clone()),
+        uv_transform: Affine2::from_scale(uv_scale),
+        perceptual_roughness: 0.8,
+        ..default()
+    };
+    let here = GlobalTransform::from(at);
+    let under = |base, caustic: &mut Assets<CausticsMaterial>| {
+        caustic.add(CausticsExtension::material(
+            base,
+            &water,
+            &maps,
+            &here,
+            Receiver::Pool,
+        ))
+    };
+    let floor = under(tiles(Vec2::splat(size / 2.0)), &mut caustic);
+    let local = |x: f32, y: f32, z: f32| at.transform_point(Vec3::new(x, z, -y));
+    let c = size / 2.0;
+    // The floor, and the walls as thin slabs whose inner faces stand on the square's sides.
+    commands.spawn((
+        Mesh3d(meshes.add(Plane3d::new(Vec3::Y, Vec2::splat(c)))),
+        MeshMaterial3d(floor),
+        Transform::from_translation(local(c, c, 0.0)),
+    ));
+    let t = 0.04;
+    let wall = under(tiles(Vec2::new(size / 2.0, rim / 2.0)), &mut caustic);
+    for (x, y, sx, sz) in [
+        (-t / 2.0, c, t, size + 2.0 * t),
+        (size + t / 2.0, c, t, size + 2.0 * t),
+        (c, -t / 2.0, size, t),
+        (c, size + t / 2.0, size, t),
+    ] {
+        commands.spawn((
+            Mesh3d(meshes.add(Cuboid::new(sx, rim, sz))),
+            MeshMaterial3d(wall.clone()),
+            Transform::from_translation(local(x, y, rim / 2.0)),
+        ));
+    }
+    // The deck: four slabs around the pool at the rim's height.
+    let stone = standard.add(StandardMaterial {
+        base_color: Color::srgb(0.80, 0.74, 0.64),
+        perceptual_roughness: 0.9,
+        ..default()
+    });
+    let (w, e) = (3.0, c + t + 1.5);
+    for (x, z, sx, sz) in [
+        (-e, 0.0, w, size + 2.0 * (t + w)),
+        (e, 0.0, w, size + 2.0 * (t + w)),
+        (0.0, -e, size + 2.0 * t, w),
+        (0.0, e, size + 2.0 * t, w),
+    ] {
+        commands.spawn((
+            Mesh3d(meshes.add(Cuboid::new(sx, 0.3, sz))),
+            MeshMaterial3d(stone.clone()),
+            Transform::from_xyz(x, rim - 0.15, z),
+        ));
+    }
+    // A ball half under the water, lit as under flat water below the surface.
+    commands.spawn((
+        Mesh3d(meshes.add(Sphere::new(0.3).mesh().uv(48, 24))),
+        MeshMaterial3d(caustic.add(CausticsExtension::material(
+            StandardMaterial {
+                base_color: Color::srgb(0.9, 0.35, 0.2),
+                perceptual_roughness: 0.5,
+                ..default()
+            },
+            &water,
+            &maps,
+            &here,
+            Receiver::Object,
+        ))),
+        Transform::from_translation(local(2.9, 1.1, depth)),
+    ));
+    // The water's surface: glassy, mostly see-through; the sun's light through it is the
+    // technique's, so it casts no shadow map.
+    commands.spawn((
+        NotShadowCaster,
+        Mesh3d(meshes.add(Plane3d::new(Vec3::Y, Vec2::splat(c)))),
+        MeshMaterial3d(standard.add(StandardMaterial {
+            base_color: Color::srgba(0.25, 0.55, 0.65, 0.18),
+            alpha_mode: AlphaMode::Blend,
+            perceptual_roughness: 0.05,
+            reflectance: 0.3,
+            ..default()
+        })),
+        Transform::from_translation(local(c, c, depth)),
+    ));
+    commands.spawn((water, maps, at, Water));
+    // The pool scene's sun, (0.3, 0.1, −1) in its z-up frame.
+    let sun = Vec3::new(0.3, -1.0, -0.1).normalize();
+    commands.spawn((
+        DirectionalLight {
+            illuminance: lux::DIRECT_SUNLIGHT,
+            shadow_maps_enabled: true,
+            color: Color::srgb(1.0, 0.97, 0.92),
+            ..default()
+        },
+        Transform::default().looking_to(sun, Vec3::Z),
+    ));
+    let orbit = Orbit {
+        yaw: -0.5,
+        pitch: 0.75,
+        distance: 6.5,
+    };
+    commands.spawn((
+        Camera3d::default(),
+        Tonemapping::AcesFitted,
+        Exposure::SUNLIGHT,
+        orbit_transform(&orbit),
+        orbit,
+    ));
+}
+
+/// Pale blue pool tiles with grout, eight to a side, with their mip chain (box-filtered) so the far
+/// floor does not shimmer.
+fn tile_texture() -> Image {
+    const N: usize = 256;
+    let texel = |x: usize, y: usize| -> [f32; 3] {
+        let (i, j) = (x % 32, y % 32);
+        if i < 2 || j < 2 {
+            return [0.62, 0.66, 0.66];
+        }
+        // Each tile its own shade, within ±4 %.
+        let h = ((x / 32) * 7 + (y / 32) * 13) % 9;
+        let s = 0.96 + 0.01 * h as f32;
+        [0.62 * s, 0.80 * s, 0.88 * s]
+    };
+    let mut level: Vec<[f32; 3]> = (0..N * N).map(|k| texel(k % N, k / N)).collect();
+    let mut data = Vec::new();
+    let mut n = N;
+    let mut levels = 0;
+    loop {
+        levels += 1;
+        for c in &level {
+            let srgb = Color::linear_rgb(c[0], c[1], c[2]).to_srgba().to_u8_array();
+            data.extend_from_slice(&srgb);
+        }
+        if n == 1 {
+            break;
+        }
+        let m = n / 2;
+        level = (0..m * m)
+            .map(|k| {
+                let (x, y) = (2 * (k % m), 2 * (k / m));
+                let mut sum = [0.0; 3];
+                for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    let c = level[(y + dy) * n + x + dx];
+                    for ch in 0..3 {
+                        sum[ch] += c[ch] / 4.0;
+                    }
+                }
+                sum
+            })
+            .collect();
+        n = m;
+    }
+    let mut image = Image::new(
+        Extent3d {
+            width: N as u32,
+            height: N as u32,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data[..N * N * 4].to_vec(),
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    // The whole chain, level after level (`Image::new` checks the first level's size only).
+    image.data = Some(data);
+    image.texture_descriptor.mip_level_count = levels;
+    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
+        address_mode_u: ImageAddressMode::Repeat,
+        address_mode_v: ImageAddressMode::Repeat,
+        mipmap_filter: ImageFilterMode::Linear,
+        anisotropy_clamp: 8,
+        ..ImageSamplerDescriptor::linear()
+    });
+    image
+}
+
+fn orbit_transform(o: &Orbit) -> Transform {
+    let eye = Vec3::new(
+        o.distance * o.pitch.cos() * o.yaw.sin(),
+        o.distance * o.pitch.sin(),
+        o.distance * o.pitch.cos() * o.yaw.cos(),
+    );
+    Transform::from_translation(eye).looking_at(Vec3::new(0.0, 0.3, 0.0), Vec3::Y)
+}
+
+fn orbit(
+    buttons: Res<ButtonInput<MouseButton>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    mut camera: Query<(&mut Orbit, &mut Transform)>,
+) {
+    let Ok((mut o, mut t)) = camera.single_mut() else {
+        return;
+    };
+    if buttons.pressed(MouseButton::Right) {
+        o.yaw -= motion.delta.x * 0.005;
+        o.pitch = (o.pitch + motion.delta.y * 0.005).clamp(0.1, 1.5);
+    }
+    o.distance = (o.distance * (1.0 - scroll.delta.y * 0.1)).clamp(2.0, 20.0);
+    *t = orbit_transform(&o);
+}
+
+/// A left click drops a ripple where the cursor's ray meets the water's surface.
+fn click_drops(
+    buttons: Res<ButtonInput<MouseButton>>,
+    window: Query<&Window, With<PrimaryWindow>>,
+    camera: Query<(&Camera, &GlobalTransform)>,
+    water: Query<(Entity, &CausticWater)>,
+    mut drops: MessageWriter<DropRipple>,
+) {
+    if !buttons.just_pressed(MouseButton::Left) {
+        return;
+    }
+    let (Ok(window), Ok((camera, at)), Ok((entity, w))) =
+        (window.single(), camera.single(), water.single())
+    else {
+        return;
+    };
+    let Some(ray) = window
+        .cursor_position()
+        .and_then(|c| camera.viewport_to_world(at, c).ok())
+    else {
+        return;
+    };
+    let level = w.depth();
+    if let Some(d) = ray.intersect_plane(Vec3::Y * level, InfinitePlane3d::new(Vec3::Y)) {
+        drops.write(DropRipple {
+            water: entity,
+            at: ray.get_point(d),
+            radius: 0.08,
+            strength: 0.02,
+        });
+    }
+}
+
+/// A drop every 0.3 s somewhere on the water, from a fixed sequence.
+fn rain(
+    time: Res<Time>,
+    mut run: ResMut<Run>,
+    water: Query<(Entity, &CausticWater, &GlobalTransform)>,
+    mut drops: MessageWriter<DropRipple>,
+) {
+    if !run.rain || time.elapsed_secs() < run.next_drop {
+        return;
+    }
+    run.next_drop = time.elapsed_secs() + 0.3;
+    let Ok((entity, w, at)) = water.single() else {
+        return;
+    };
+    let k = (time.elapsed_secs() * 7.31).fract();
+    let l = (time.elapsed_secs() * 3.17 + 0.4).fract();
+    let (x, y) = (w.size() * (0.15 + 0.7 * k), w.size() * (0.15 + 0.7 * l));
+    drops.write(DropRipple {
+        water: entity,
+        at: at.transform_point(Vec3::new(x, w.depth(), -y)),
+        radius: 0.08,
+        strength: 0.015,
+    });
+}
+
+fn switch_technique(keys: Res<ButtonInput<KeyCode>>, mut water: Query<&mut CausticWater>) {
+    if !keys.just_pressed(KeyCode::KeyT) {
+        return;
+    }
+    let names = CausticWater::techniques();
+    for mut w in &mut water {
+        let next = names
+            .iter()
+            .position(|n| *n == w.technique)
+            .map_or(0, |i| (i + 1) % names.len());
+        w.technique = names[next].to_string();
+        info!("technique: {}", w.technique);
+    }
+}
+
+/// `--frames N`: the last frame saved to `--screenshot`, then exit with the plugin's counts.
+fn frames(
+    mut commands: Commands,
+    mut run: ResMut<Run>,
+    stats: Res<CausticsStats>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    let Some(n) = run.frames else {
+        return;
+    };
+    run.frame += 1;
+    if run.frame == n {
+        match run.screenshot.clone() {
+            Some(path) => {
+                commands.spawn(Screenshot::primary_window()).observe(
+                    move |shot: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+                        let code = match shot.image.clone().try_into_dynamic() {
+                            Ok(img) => match img.to_rgb8().save(&path) {
+                                Ok(()) => 0,
+                                Err(e) => {
+                                    eprintln!("pool: cannot write {}: {e}", path.display());
+                                    1
+                                }
+                            },
+                            Err(e) => {
+                                eprintln!("pool: the screenshot cannot be converted: {e}");
+                                1
+                            }
+                        };
+                        exit.write(AppExit::from_code(code));
+                    },
+                );
+            }
+            None => {
+                exit.write(AppExit::Success);
+            }
+        }
+    }
+    if run.frame >= n {
+        let s = stats.get();
+        if run.frame == n {
+            println!(
+                "bevy_caustics: {} frames, {} steady: created {}, readbacks {}, uploaded {} bytes; techniques {:?}{}",
+                s.frames,
+                s.steady_frames,
+                s.steady.created(),
+                s.steady.readbacks,
+                s.steady.uploaded_bytes,
+                s.techniques,
+                s.error.map(|e| format!("; error: {e}")).unwrap_or_default()
+            );
+        }
+        // A screenshot that never arrives must not hang a test.
+        if run.frame > n + 120 {
+            eprintln!("pool: the screenshot did not arrive within 120 frames");
+            exit.write(AppExit::from_code(1));
+        }
+    }
+}

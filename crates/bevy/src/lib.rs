@@ -1,0 +1,277 @@
+//! `bevy_caustics`: water caustics in a Bevy game, computed every frame from the actual water by
+//! one of the caustics techniques (the five papers' and ours), on Bevy's own device, queue and
+//! command encoder.
+//!
+//! A user spawns a water entity with a [`CausticWater`] (the scene's optics, the technique, where
+//! the heights come from) and the [`CausticMaps`] it renders into, and gives what lies under the
+//! water a [`CausticsMaterial`]: Bevy's `StandardMaterial` whose sun light there is replaced by
+//! the light the technique says arrives through the waves, with the water's absorption and Bevy's
+//! shadows. `docs/bevy.md` tells where the work sits in Bevy's frame and what it costs.
+//!
+//! The scene's coordinates are z-up, the water square `[0, size]²` with the floor at z = 0; Bevy
+//! is y-up. The water entity's transform places the scene: scene `(x, y, z)` is the entity's
+//! local `(x, z, −y)`, so the square runs along +x and −z from the entity's origin, the floor at
+//! its height and the rest water level `depth` above it.
+
+mod material;
+mod render;
+
+use bevy::asset::{RenderAssetUsages, embedded_asset};
+use bevy::prelude::*;
+use bevy::render::render_resource::{
+    Extent3d, TextureDimension, TextureFormat, TextureUsages, TextureViewDescriptor,
+    TextureViewDimension,
+};
+use bevy::render::{ExtractSchedule, RenderApp};
+
+use caustics_core::scene::Scene;
+use caustics_core::techniques::describe::Receiver as Receives;
+use caustics_core::walls::WallMaps;
+use caustics_core::water::ripple::Drop;
+
+pub use material::{CausticsExtension, CausticsMaterial, CausticsUniform, Receiver};
+pub use render::CausticsStats;
+
+/// The plugin: the technique of every [`CausticWater`] recorded into Bevy's render world each
+/// frame, before the cameras draw, and the material that shows its light.
+pub struct CausticsPlugin;
+
+impl Plugin for CausticsPlugin {
+    fn build(&self, app: &mut App) {
+        embedded_asset!(app, "caustics.wesl");
+        let stats = CausticsStats::default();
+        app.add_plugins(MaterialPlugin::<CausticsMaterial>::default())
+            .add_message::<DropRipple>()
+            .init_resource::<PendingDrops>()
+            .insert_resource(stats.clone())
+            .add_systems(First, clear_drops)
+            .add_systems(PostUpdate, queue_drops);
+        let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
+            warn!("bevy_caustics: no render app (headless without rendering): no caustics");
+            return;
+        };
+        render_app
+            .insert_resource(stats)
+            .add_systems(ExtractSchedule, render::extract);
+        render::build(render_app);
+    }
+}
+
+/// Where a [`CausticWater`]'s heights come from.
+#[derive(Clone, Debug, Default)]
+pub enum Heights {
+    /// The scene's own source (`scene.water.source`: sine waves, paper 2's waves, the FFT ocean,
+    /// the ripple simulation, a height field file), evaluated on the GPU every frame at Bevy's
+    /// `Time` by `caustics_gpu::water::field::GpuWater`.
+    #[default]
+    Scene,
+    /// The application's own heights: an `R32Float` image (usage `TEXTURE_BINDING`) of the
+    /// displacement above the rest level over the water square, texel `(j, i)` at `((j + ½) size /
+    /// width, (i + ½) size / height)` in scene coordinates (row `i` along the scene's y, that is
+    /// along Bevy's −z from the entity). The application may rewrite it every frame.
+    Image(Handle<Image>),
+}
+
+/// A body of water whose caustics are computed: put it on an entity with a [`Transform`] (which
+/// places the scene, see the crate's docs) and the [`CausticMaps`] made for it.
+#[derive(Component, Clone, Debug)]
+#[require(Transform)]
+pub struct CausticWater {
+    /// The optics and sizes: `water` (size, depth, index, absorption, wrap, source), `floor.walls`
+    /// (whether the pool's walls get maps), `caustics.width` x `caustics.height` (the floor map).
+    /// The sun is taken from the world's first `DirectionalLight` every frame, the time from
+    /// Bevy's `Time`.
+    pub scene: Scene,
+    /// A registered technique that makes a floor map (`caustics techniques` lists them;
+    /// [`CausticWater::techniques`] here).
+    pub technique: String,
+    /// Parameter tables keyed by technique, as in a scene file's `[caustics]`
+    /// (`{ yuksel = { n = 15 } }`); empty means every technique's defaults.
+    pub params: toml::Table,
+    pub heights: Heights,
+}
+
+/// What [`CausticWater::new`] refuses.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CausticsError(pub String);
+
+impl std::fmt::Display for CausticsError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for CausticsError {}
+
+impl CausticWater {
+    /// The scene's water with `technique`; an error naming the problem when the scene has no
+    /// water or the technique is not one that makes a floor map.
+    pub fn new(scene: Scene, technique: &str) -> Result<Self, CausticsError> {
+        if scene.water.is_none() {
+            return Err(CausticsError(format!(
+                "scene `{}` has no [water]: there is nothing to make caustics from",
+                scene.name
+            )));
+        }
+        check_technique(technique)?;
+        Ok(CausticWater {
+            scene,
+            technique: technique.to_string(),
+            params: toml::Table::new(),
+            heights: Heights::Scene,
+        })
+    }
+
+    /// The registered techniques a [`CausticWater`] can use, in the registry's order: those that
+    /// make a floor map (paper 5's eye-space image needs the scene's camera, which is Bevy's here).
+    pub fn techniques() -> Vec<&'static str> {
+        caustics_gpu::technique::REGISTRY
+            .iter()
+            .filter(|r| r.describe.receivers.contains(&Receives::Floor))
+            .map(|r| r.name())
+            .collect()
+    }
+
+    /// The rest water level above the floor.
+    pub fn depth(&self) -> f32 {
+        self.scene.water.as_ref().map_or(0.0, |w| w.depth as f32)
+    }
+
+    /// The side of the water square.
+    pub fn size(&self) -> f32 {
+        self.scene.size as f32
+    }
+}
+
+fn check_technique(name: &str) -> Result<(), CausticsError> {
+    let usable = CausticWater::techniques();
+    if usable.contains(&name) {
+        return Ok(());
+    }
+    Err(CausticsError(format!(
+        "technique `{name}` cannot light a Bevy scene (usable: {})",
+        usable.join(", ")
+    )))
+}
+
+/// The images a [`CausticWater`]'s technique renders into each frame, on the GPU (copies of its
+/// output, never read back), for [`CausticsExtension`] and anything else that samples them:
+/// `Rgba32Float`, not filterable (read with `textureLoad`), relative irradiance per channel (1 =
+/// what the sun gives through flat, clear water; the water's absorption included).
+#[derive(Component, Clone, Debug)]
+pub struct CausticMaps {
+    /// The floor map: `caustics.width` x `caustics.height` texels over the water square, row 0
+    /// at scene y = 0.
+    pub floor: Handle<Image>,
+    /// The walls' maps: four layers (x = 0, x = size, y = 0, y = size), each wall's map in its
+    /// first `wall_cols[k]` columns, row 0 at the floor; a 1 x 1 x 4 image without walls.
+    pub walls: Handle<Image>,
+    pub wall_cols: [u32; 4],
+}
+
+impl CausticMaps {
+    /// The images for `water`, added to `images`.
+    pub fn new(water: &CausticWater, images: &mut Assets<Image>) -> Self {
+        let scene = &water.scene;
+        let (width, height) = (scene.caustics.width.max(1), scene.caustics.height.max(1));
+        let floor = images.add(map_image(width, height, 1));
+        let (cols, rows, wall_cols) = if scene.floor.walls {
+            let layout = WallMaps::for_floor_map(
+                width as usize,
+                height as usize,
+                scene.size,
+                water.depth() as f64,
+            );
+            let cols = layout.maps.each_ref().map(|m| m.cols as u32);
+            (
+                cols.iter().copied().max().unwrap_or(1),
+                layout.maps[0].rows as u32,
+                cols,
+            )
+        } else {
+            (1, 1, [0; 4])
+        };
+        let mut walls = map_image(cols, rows, 4);
+        walls.texture_view_descriptor = Some(TextureViewDescriptor {
+            dimension: Some(TextureViewDimension::D2Array),
+            ..default()
+        });
+        CausticMaps {
+            floor,
+            walls: images.add(walls),
+            wall_cols,
+        }
+    }
+}
+
+fn map_image(width: u32, height: u32, layers: u32) -> Image {
+    let mut image = Image::new_uninit(
+        Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba32Float,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
+    image
+}
+
+/// A drop into a [`CausticWater`] whose heights are the scene's ripple simulation (ignored by
+/// other sources): a cosine bump at a world point over the water.
+#[derive(Message, Clone, Debug)]
+pub struct DropRipple {
+    pub water: Entity,
+    /// Where it falls, in world coordinates (only its position over the square counts).
+    pub at: Vec3,
+    /// The bump's radius, world units.
+    pub radius: f32,
+    /// Height added at its centre; negative for a dent.
+    pub strength: f32,
+}
+
+/// The drops of this frame, in scene coordinates, waiting for the render world to take them.
+#[derive(Resource, Default, Clone)]
+pub(crate) struct PendingDrops(pub Vec<(Entity, Drop)>);
+
+fn clear_drops(mut pending: ResMut<PendingDrops>) {
+    pending.0.clear();
+}
+
+fn queue_drops(
+    mut messages: MessageReader<DropRipple>,
+    waters: Query<&GlobalTransform, With<CausticWater>>,
+    mut pending: ResMut<PendingDrops>,
+) {
+    for m in messages.read() {
+        let Ok(at) = waters.get(m.water) else {
+            warn!(
+                "a ripple dropped into {:?}, which is no CausticWater",
+                m.water
+            );
+            continue;
+        };
+        let p = scene_from_world(at).transform_point3(m.at);
+        pending.0.push((
+            m.water,
+            Drop {
+                position: [p.x as f64, p.y as f64],
+                radius: m.radius as f64,
+                strength: m.strength as f64,
+            },
+        ));
+    }
+}
+
+/// Scene coordinates (z up, the square from the origin) from world coordinates, for a water
+/// entity at `at`.
+pub fn scene_from_world(at: &GlobalTransform) -> Mat4 {
+    scene_from_local() * Mat4::from(at.affine()).inverse()
+}
+
+/// The entity's local y-up frame to the scene's z-up one: scene `(x, y, z)` = local `(x, −z, y)`.
+fn scene_from_local() -> Mat4 {
+    Mat4::from_cols(Vec4::X, Vec4::Z, -Vec4::Y, Vec4::W)
+}

@@ -1,0 +1,105 @@
+//! The material for what lies under the water: Bevy's `StandardMaterial` extended so that, under
+//! the water square, the sun's direct light is the light the technique's maps say arrives there
+//! (`caustics.wesl`).
+
+use bevy::pbr::{ExtendedMaterial, MaterialExtension};
+use bevy::prelude::*;
+use bevy::render::render_resource::{AsBindGroup, ShaderType};
+use bevy::shader::ShaderRef;
+
+use crate::{CausticMaps, CausticWater, scene_from_world};
+
+/// `StandardMaterial` with the caustic light under the water.
+pub type CausticsMaterial = ExtendedMaterial<StandardMaterial, CausticsExtension>;
+
+/// What `caustics.wesl` needs to find a fragment in the maps.
+#[derive(Clone, Copy, Debug, Default, ShaderType, Reflect)]
+pub struct CausticsUniform {
+    /// World to scene coordinates (z up, the water square `[0, size]²` from the origin).
+    pub scene_from_world: Mat4,
+    /// `x` the square's side, `y` the rest water level above the floor, `z` the water's index of
+    /// refraction.
+    pub water: Vec4,
+    /// The water's absorption per unit of path, per channel (for surfaces that are neither the
+    /// floor nor a wall: lit as under flat water).
+    pub absorption: Vec4,
+    /// The columns of each wall's map in the walls image; 0 where the walls have none.
+    pub wall_cols: UVec4,
+    /// `x` 1 where the floor map tiles (open water over a flat floor, as the final image's
+    /// `WRAP_CAUSTICS`), `y` the [`Receiver`].
+    pub flags: UVec4,
+}
+
+/// Which map lights a surface under the water.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
+pub enum Receiver {
+    /// A pool: the floor map on the floor (z = 0), the walls' maps on the square's sides, the
+    /// flat water's light on anything else.
+    #[default]
+    Pool,
+    /// A sea bed or a beach: the floor map on every upward-facing surface (the map was made on
+    /// the scene's terrain, which the surface should follow).
+    Floor,
+    /// An object: lit as under flat water (its absorbed, refracted sun), no caustics.
+    Object,
+}
+
+/// The extension: the maps of one [`CausticWater`] and where the water is.
+#[derive(Asset, AsBindGroup, Reflect, Debug, Clone)]
+pub struct CausticsExtension {
+    #[uniform(100)]
+    pub uniform: CausticsUniform,
+    #[texture(101, sample_type = "float", filterable = false)]
+    pub floor: Handle<Image>,
+    #[texture(102, dimension = "2d_array", sample_type = "float", filterable = false)]
+    pub walls: Handle<Image>,
+}
+
+impl CausticsExtension {
+    /// For surfaces under `water`, whose entity is at `at` (its `GlobalTransform`; a `Transform`
+    /// without a parent converts with `GlobalTransform::from`), lit as `receiver`.
+    pub fn new(
+        water: &CausticWater,
+        maps: &CausticMaps,
+        at: &GlobalTransform,
+        receiver: Receiver,
+    ) -> Self {
+        let w = water.scene.water.as_ref();
+        let ior = w.map_or(1.333, |w| w.ior as f32);
+        let absorption = w.map_or(Vec3::ZERO, |w| {
+            Vec3::from_array(w.absorption.as_vec3().to_array())
+        });
+        let wrap = w.is_some_and(|w| w.wrap) && water.scene.floor.terrain.is_none();
+        CausticsExtension {
+            uniform: CausticsUniform {
+                scene_from_world: scene_from_world(at),
+                water: Vec4::new(water.size(), water.depth(), ior, 0.0),
+                absorption: absorption.extend(0.0),
+                wall_cols: UVec4::from_array(maps.wall_cols),
+                flags: UVec4::new(u32::from(wrap), receiver as u32, 0, 0),
+            },
+            floor: maps.floor.clone(),
+            walls: maps.walls.clone(),
+        }
+    }
+
+    /// `base` under `water`: what an application puts on its pool floor, walls, rocks.
+    pub fn material(
+        base: StandardMaterial,
+        water: &CausticWater,
+        maps: &CausticMaps,
+        at: &GlobalTransform,
+        receiver: Receiver,
+    ) -> CausticsMaterial {
+        ExtendedMaterial {
+            base,
+            extension: Self::new(water, maps, at, receiver),
+        }
+    }
+}
+
+impl MaterialExtension for CausticsExtension {
+    fn fragment_shader() -> ShaderRef {
+        "embedded://bevy_caustics/caustics.wesl".into()
+    }
+}

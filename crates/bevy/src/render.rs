@@ -1,0 +1,380 @@
+//! The render world's side: one `caustics_gpu` context wrapping Bevy's device and queue, and per
+//! water its source (`GpuWater`) and technique. Extracted from the main world each frame
+//! ([`extract`]), brought up to date in `Render`'s `Prepare` set (uniform writes; a build only when
+//! the technique or the water changed), and recorded into Bevy's command encoder in the
+//! `RenderGraph` schedule before `camera_driver` draws the cameras ([`record`]), ending in GPU
+//! copies into the [`CausticMaps`](crate::CausticMaps)' images.
+
+use std::sync::{Arc, Mutex};
+
+use bevy::core_pipeline::schedule::camera_driver;
+use bevy::platform::collections::HashMap;
+use bevy::prelude::*;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::renderer::{
+    RenderAdapter, RenderContext, RenderDevice, RenderGraph, RenderInstance, RenderQueue,
+};
+use bevy::render::texture::GpuImage;
+use bevy::render::{Extract, Render, RenderSystems};
+
+use caustics_core::scene::{Scene, WaterSource};
+use caustics_core::water::ripple::Drop;
+use caustics_gpu::water::field::GpuWater;
+use caustics_gpu::{GpuContext, Output, Technique, TrafficCounts, WaterTextures};
+
+use crate::{CausticMaps, CausticWater, Heights, PendingDrops, scene_from_world};
+
+/// What the plugin did, shared by the main and the render world: frames recorded, and what the
+/// techniques and water sources created, uploaded and read back in steady frames (those that
+/// built nothing). A real-time frame creates nothing and reads nothing back.
+#[derive(Resource, Clone, Default)]
+pub struct CausticsStats(Arc<Mutex<Stats>>);
+
+/// A snapshot of [`CausticsStats`].
+#[derive(Clone, Debug, Default)]
+pub struct Stats {
+    /// Frames whose caustics were recorded.
+    pub frames: u64,
+    /// Of those, frames that built nothing (no technique or water created or configured).
+    pub steady_frames: u64,
+    /// The traffic of the steady frames, summed.
+    pub steady: TrafficCounts,
+    /// The technique recorded last, per water (by name).
+    pub techniques: Vec<String>,
+    /// The last error, for the application to show.
+    pub error: Option<String>,
+}
+
+impl CausticsStats {
+    pub fn get(&self) -> Stats {
+        self.0.lock().map(|s| s.clone()).unwrap_or_default()
+    }
+
+    fn update(&self, f: impl FnOnce(&mut Stats)) {
+        if let Ok(mut s) = self.0.lock() {
+            f(&mut s);
+        }
+    }
+}
+
+/// One water as the main world left it this frame.
+struct Extracted {
+    entity: Entity,
+    water: CausticWater,
+    maps: CausticMaps,
+    scene_from_world: Mat4,
+    drops: Vec<Drop>,
+}
+
+#[derive(Resource, Default)]
+pub(crate) struct ExtractedWaters {
+    waters: Vec<Extracted>,
+    /// Direction of travel of the sun's light, scene coordinates (per water: each its own frame).
+    sun: Option<Vec3>,
+    time: f64,
+}
+
+pub(crate) fn extract(
+    mut commands: Commands,
+    waters: Extract<Query<(Entity, &CausticWater, &CausticMaps, &GlobalTransform)>>,
+    lights: Extract<Query<&GlobalTransform, With<DirectionalLight>>>,
+    drops: Extract<Res<PendingDrops>>,
+    time: Extract<Res<Time>>,
+) {
+    let sun = lights.iter().next().map(|t| t.forward().as_vec3());
+    let waters = waters
+        .iter()
+        .map(|(entity, water, maps, at)| {
+            let m = scene_from_world(at);
+            Extracted {
+                entity,
+                water: water.clone(),
+                maps: maps.clone(),
+                scene_from_world: m,
+                drops: drops
+                    .0
+                    .iter()
+                    .filter(|(e, _)| *e == entity)
+                    .map(|(_, d)| d.clone())
+                    .collect(),
+            }
+        })
+        .collect();
+    commands.insert_resource(ExtractedWaters {
+        waters,
+        sun,
+        time: time.elapsed_secs_f64(),
+    });
+}
+
+pub(crate) fn build(render_app: &mut SubApp) {
+    render_app
+        .init_resource::<ExtractedWaters>()
+        .init_resource::<Waters>()
+        .add_systems(Render, prepare.in_set(RenderSystems::Prepare))
+        .add_systems(RenderGraph, record.before(camera_driver));
+}
+
+/// A water's GPU state.
+struct WaterState {
+    technique_name: String,
+    params: toml::Table,
+    heights: HeightsKey,
+    source: Option<GpuWater>,
+    technique: Box<dyn Technique>,
+    scene: Scene,
+    maps: CausticMaps,
+}
+
+/// What the state was built from, to know when to build it again.
+#[derive(Clone, PartialEq, Debug)]
+enum HeightsKey {
+    Scene,
+    Image(AssetId<Image>, u32, u32),
+}
+
+#[derive(Resource, Default)]
+pub(crate) struct Waters {
+    ctx: Option<GpuContext>,
+    states: HashMap<Entity, WaterState>,
+    /// Waters whose build failed, with the key it failed for: not tried again until it changes.
+    failed: HashMap<Entity, (String, toml::Table, HeightsKey)>,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn prepare(
+    mut waters: ResMut<Waters>,
+    extracted: Res<ExtractedWaters>,
+    device: Res<RenderDevice>,
+    queue: Res<RenderQueue>,
+    adapter: Res<RenderAdapter>,
+    instance: Res<RenderInstance>,
+    images: Res<RenderAssets<GpuImage>>,
+    stats: Res<CausticsStats>,
+) {
+    let waters = &mut *waters;
+    let ctx = waters.ctx.get_or_insert_with(|| {
+        GpuContext::shared(
+            (**instance).clone(),
+            (**adapter).clone(),
+            device.wgpu_device().clone(),
+            (**queue).clone(),
+        )
+    });
+    let before = ctx.traffic();
+    let mut built = false;
+    waters
+        .states
+        .retain(|e, _| extracted.waters.iter().any(|w| w.entity == *e));
+    for w in &extracted.waters {
+        let heights = match &w.water.heights {
+            Heights::Scene => HeightsKey::Scene,
+            Heights::Image(h) => match images.get(h) {
+                Some(g) => HeightsKey::Image(h.id(), g.texture.width(), g.texture.height()),
+                None => continue,
+            },
+        };
+        let key = (
+            w.water.technique.clone(),
+            w.water.params.clone(),
+            heights.clone(),
+        );
+        let stale = waters
+            .states
+            .get(&w.entity)
+            .is_none_or(|s| s.technique_name != key.0 || s.params != key.1 || s.heights != key.2);
+        if stale {
+            if waters.failed.get(&w.entity) == Some(&key) {
+                continue;
+            }
+            built = true;
+            match build_state(ctx, w, heights, &images) {
+                Ok(state) => {
+                    info!(
+                        "bevy_caustics: {} on {:?} ({:.1} MiB on the GPU)",
+                        state.technique_name,
+                        w.entity,
+                        state.technique.bytes() as f64 / (1024.0 * 1024.0)
+                    );
+                    waters.failed.remove(&w.entity);
+                    waters.states.insert(w.entity, state);
+                }
+                Err(e) => {
+                    let e = format!(
+                        "bevy_caustics: {} on {:?}: {e}",
+                        w.water.technique, w.entity
+                    );
+                    error!("{e}");
+                    stats.update(|s| s.error = Some(e));
+                    waters.states.remove(&w.entity);
+                    waters.failed.insert(w.entity, key);
+                    continue;
+                }
+            }
+        }
+        let state = waters.states.get_mut(&w.entity).expect("built above");
+        state.maps = w.maps.clone();
+        if let Some(sun) = extracted.sun {
+            let d = w
+                .scene_from_world
+                .transform_vector3(sun)
+                .normalize_or_zero();
+            if d.z < -1e-3 {
+                state.scene.light.direction = d.as_dvec3().to_array().into();
+            }
+        }
+        state.scene.time = extracted.time;
+        if let Some(source) = &mut state.source {
+            for d in &w.drops {
+                source.drop_ripple(ctx, d);
+            }
+            source.update(ctx, extracted.time, 1.0);
+        }
+        let had = ctx.traffic().created();
+        if let Err(e) = state.technique.update(ctx, &state.scene) {
+            error!("bevy_caustics: {}: {e}", state.technique_name);
+        }
+        built |= ctx.traffic().created() != had;
+    }
+    let spent = ctx.traffic().since(&before);
+    let names = waters
+        .states
+        .values()
+        .map(|s| s.technique_name.clone())
+        .collect();
+    stats.update(|s| {
+        s.frames += 1;
+        s.techniques = names;
+        if !built {
+            s.steady_frames += 1;
+            s.steady = add(&s.steady, &spent);
+        }
+    });
+}
+
+fn add(a: &TrafficCounts, b: &TrafficCounts) -> TrafficCounts {
+    TrafficCounts {
+        textures: a.textures + b.textures,
+        buffers: a.buffers + b.buffers,
+        bind_groups: a.bind_groups + b.bind_groups,
+        pipelines: a.pipelines + b.pipelines,
+        samplers: a.samplers + b.samplers,
+        query_sets: a.query_sets + b.query_sets,
+        uploaded_bytes: a.uploaded_bytes + b.uploaded_bytes,
+        readbacks: a.readbacks + b.readbacks,
+        timestamp_reads: a.timestamp_reads + b.timestamp_reads,
+        app_created: a.app_created + b.app_created,
+        app_uploaded_bytes: a.app_uploaded_bytes + b.app_uploaded_bytes,
+    }
+}
+
+fn build_state(
+    ctx: &GpuContext,
+    w: &Extracted,
+    heights: HeightsKey,
+    images: &RenderAssets<GpuImage>,
+) -> Result<WaterState, String> {
+    let water = &w.water;
+    let mut scene = water.scene.clone();
+    scene.caustics.technique = water.technique.clone();
+    let technique = caustics_gpu::technique::create(ctx, &water.technique, &water.params)
+        .map_err(|e| e.to_string())?;
+    let mut technique = technique;
+    let (source, textures) = match &water.heights {
+        Heights::Scene => {
+            let spec = scene.water.as_ref().ok_or("the scene has no water")?;
+            let mut source = GpuWater::new(ctx, spec).map_err(|e| e.to_string())?;
+            let (cols, rows) = technique.water_resolution(&scene);
+            let textures = source.output(ctx, cols, rows).map_err(|e| e.to_string())?;
+            (Some(source), textures)
+        }
+        Heights::Image(h) => {
+            let g = images
+                .get(h)
+                .ok_or("the heights image is not on the GPU yet")?;
+            if g.texture.format() != bevy::render::render_resource::TextureFormat::R32Float {
+                return Err(format!(
+                    "the heights image is {:?}; it must be R32Float",
+                    g.texture.format()
+                ));
+            }
+            (None, WaterTextures::of(&g.texture))
+        }
+    };
+    if matches!(
+        scene.water.as_ref().map(|w| &w.source),
+        Some(WaterSource::Ocean(_))
+    ) && matches!(heights, HeightsKey::Image(..))
+    {
+        debug!("an application's heights over an ocean scene: the scene's ocean is not run");
+    }
+    technique
+        .configure(ctx, &scene, &textures)
+        .map_err(|e| e.to_string())?;
+    ctx.check().map_err(|e| e.to_string())?;
+    Ok(WaterState {
+        technique_name: water.technique.clone(),
+        params: water.params.clone(),
+        heights,
+        source,
+        technique,
+        scene,
+        maps: w.maps.clone(),
+    })
+}
+
+/// Records each water's passes into Bevy's encoder, then copies the maps into the images the
+/// materials sample: GPU to GPU, nothing read back.
+fn record(
+    mut render_context: RenderContext,
+    mut waters: ResMut<Waters>,
+    images: Res<RenderAssets<GpuImage>>,
+    stats: Res<CausticsStats>,
+) {
+    if waters.states.is_empty() {
+        return;
+    }
+    let encoder = render_context.command_encoder();
+    for state in waters.states.values_mut() {
+        if let Some(source) = &mut state.source {
+            source.encode(encoder, None);
+        }
+        state.technique.encode(encoder, None);
+        let Some(Output::Floor(map)) = state.technique.output() else {
+            continue;
+        };
+        if let Some(image) = images.get(&state.maps.floor)
+            && let Err(e) = copy(encoder, map, &image.texture)
+        {
+            stats.update(|s| s.error = Some(format!("floor map: {e}")));
+        }
+        if let (Some(walls), Some(image)) = (state.technique.walls(), images.get(&state.maps.walls))
+            && let Err(e) = copy(encoder, walls.texture, &image.texture)
+        {
+            stats.update(|s| s.error = Some(format!("wall maps: {e}")));
+        }
+    }
+}
+
+/// `from`'s texels into `to`, over the extent both have; an error (and no copy) where their
+/// formats differ.
+fn copy(
+    encoder: &mut wgpu::CommandEncoder,
+    from: &wgpu::Texture,
+    to: &wgpu::Texture,
+) -> Result<(), String> {
+    if from.format() != to.format() {
+        return Err(format!(
+            "the technique writes {:?}, the image is {:?}",
+            from.format(),
+            to.format()
+        ));
+    }
+    let extent = wgpu::Extent3d {
+        width: from.width().min(to.width()),
+        height: from.height().min(to.height()),
+        depth_or_array_layers: from.depth_or_array_layers().min(to.depth_or_array_layers()),
+    };
+    encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), extent);
+    Ok(())
+}
