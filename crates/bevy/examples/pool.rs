@@ -6,74 +6,25 @@
 //! `--frames N` renders N frames and exits, saving the last to `--screenshot`'s PNG; `--flat`
 //! keeps the water still (no drops), the picture caustics are measured against.
 
-use std::path::PathBuf;
+mod common;
 
 use bevy::asset::RenderAssetUsages;
-use bevy::camera::Exposure;
-use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::light::NotShadowCaster;
-use bevy::light::light_consts::lux;
 use bevy::math::Affine2;
 use bevy::prelude::*;
-use bevy::render::RenderPlugin;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy::window::{PrimaryWindow, WindowResolution};
+use bevy::window::PrimaryWindow;
 use bevy_caustics::{
-    CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, CausticsStats,
-    DropRipple, Receiver,
+    CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, DropRipple,
+    Receiver,
 };
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::water::ripple::{Drop, RippleParams};
 
-struct Args {
-    technique: String,
-    flat: bool,
-    frames: Option<u32>,
-    screenshot: Option<PathBuf>,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let mut args = Args {
-        technique: "caustic-triangles".into(),
-        flat: false,
-        frames: None,
-        screenshot: None,
-    };
-    let mut it = std::env::args().skip(1);
-    while let Some(a) = it.next() {
-        let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
-        match a.as_str() {
-            "--technique" => args.technique = value("--technique")?,
-            "--flat" => args.flat = true,
-            "--frames" => {
-                let v = value("--frames")?;
-                let n = v
-                    .parse::<u32>()
-                    .ok()
-                    .filter(|n| *n > 0)
-                    .ok_or(format!("--frames takes a positive count, not `{v}`"))?;
-                args.frames = Some(n);
-            }
-            "--screenshot" => args.screenshot = Some(PathBuf::from(value("--screenshot")?)),
-            other => return Err(format!("unknown argument `{other}`")),
-        }
-    }
-    if args.screenshot.is_some() && args.frames.is_none() {
-        return Err("--screenshot needs --frames N (the frame to save)".into());
-    }
-    if let Some(p) = &args.screenshot
-        && p.extension().is_none_or(|e| !e.eq_ignore_ascii_case("png"))
-    {
-        return Err(format!("--screenshot writes a PNG: `{}`", p.display()));
-    }
-    Ok(args)
-}
-
 fn main() -> AppExit {
-    let args = match parse_args() {
+    let args = match common::parse_args("caustic-triangles") {
         Ok(a) => a,
         Err(e) => {
             eprintln!("pool: {e}");
@@ -95,40 +46,21 @@ fn main() -> AppExit {
         }
     };
     App::new()
-        .add_plugins(
-            DefaultPlugins
-                .set(WindowPlugin {
-                    primary_window: Some(Window {
-                        title: "bevy_caustics: pool".into(),
-                        resolution: WindowResolution::new(960, 540),
-                        ..default()
-                    }),
-                    ..default()
-                })
-                // A counted run waits for every pipeline, so that its frames show the scene.
-                .set(RenderPlugin {
-                    synchronous_pipeline_compilation: args.frames.is_some(),
-                    ..default()
-                }),
-        )
+        .add_plugins(common::plugins("bevy_caustics: pool", &args))
         .add_plugins(CausticsPlugin)
-        .insert_resource(Setup(Some(water)))
-        .insert_resource(Run {
-            frames: args.frames,
-            screenshot: args.screenshot,
-            rain: !args.flat,
-            frame: 0,
-            next_drop: 0.0,
+        .insert_resource(common::Setup(Some(water)))
+        .insert_resource(common::Run::new(&args))
+        .insert_resource(common::clock(&args))
+        .insert_resource(Rain {
+            on: !args.flat,
+            next: 0.0,
         })
-        // The sky's light, about a quarter of the sun's on a horizontal surface (the pool's sun at
-        // 72° elevation and Preetham's clear sky give 0.26): E = π L.
-        .insert_resource(GlobalAmbientLight {
-            color: Color::srgb(0.80, 0.88, 1.0),
-            brightness: 0.22 * lux::DIRECT_SUNLIGHT / std::f32::consts::PI,
-            ..default()
-        })
+        .insert_resource(common::sky_light())
         .add_systems(Startup, setup)
-        .add_systems(Update, (orbit, click_drops, rain, switch_technique, frames))
+        .add_systems(
+            Update,
+            (orbit, click_drops, rain, switch_technique, common::frames),
+        )
         .run()
 }
 
@@ -167,15 +99,9 @@ fn pool_scene(flat: bool) -> Result<Scene, String> {
 }
 
 #[derive(Resource)]
-struct Setup(Option<CausticWater>);
-
-#[derive(Resource)]
-struct Run {
-    frames: Option<u32>,
-    screenshot: Option<PathBuf>,
-    rain: bool,
-    frame: u32,
-    next_drop: f32,
+struct Rain {
+    on: bool,
+    next: f32,
 }
 
 #[derive(Component)]
@@ -190,7 +116,7 @@ struct Orbit {
 
 fn setup(
     mut commands: Commands,
-    mut setup: ResMut<Setup>,
+    mut setup: ResMut<common::Setup>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut images: ResMut<Assets<Image>>,
     mut standard: ResMut<Assets<StandardMaterial>>,
@@ -295,28 +221,13 @@ fn setup(
     ));
     commands.spawn((water, maps, at, Water));
     // The pool scene's sun, (0.3, 0.1, −1) in its z-up frame.
-    let sun = Vec3::new(0.3, -1.0, -0.1).normalize();
-    commands.spawn((
-        DirectionalLight {
-            illuminance: lux::DIRECT_SUNLIGHT,
-            shadow_maps_enabled: true,
-            color: Color::srgb(1.0, 0.97, 0.92),
-            ..default()
-        },
-        Transform::default().looking_to(sun, Vec3::Z),
-    ));
+    commands.spawn(common::sun(Vec3::new(0.3, 0.1, -1.0), true));
     let orbit = Orbit {
         yaw: -0.5,
         pitch: 0.75,
         distance: 6.5,
     };
-    commands.spawn((
-        Camera3d::default(),
-        Tonemapping::AcesFitted,
-        Exposure::SUNLIGHT,
-        orbit_transform(&orbit),
-        orbit,
-    ));
+    commands.spawn((common::camera(orbit_transform(&orbit)), orbit));
 }
 
 /// Pale blue pool tiles with grout, eight to a side, with their mip chain (box-filtered) so the far
@@ -448,14 +359,14 @@ fn click_drops(
 /// A drop every 0.3 s somewhere on the water, from a fixed sequence.
 fn rain(
     time: Res<Time>,
-    mut run: ResMut<Run>,
+    mut rain: ResMut<Rain>,
     water: Query<(Entity, &CausticWater, &GlobalTransform)>,
     mut drops: MessageWriter<DropRipple>,
 ) {
-    if !run.rain || time.elapsed_secs() < run.next_drop {
+    if !rain.on || time.elapsed_secs() < rain.next {
         return;
     }
-    run.next_drop = time.elapsed_secs() + 0.3;
+    rain.next = time.elapsed_secs() + 0.3;
     let Ok((entity, w, at)) = water.single() else {
         return;
     };
@@ -482,65 +393,5 @@ fn switch_technique(keys: Res<ButtonInput<KeyCode>>, mut water: Query<&mut Caust
             .map_or(0, |i| (i + 1) % names.len());
         w.technique = names[next].to_string();
         info!("technique: {}", w.technique);
-    }
-}
-
-/// `--frames N`: the last frame saved to `--screenshot`, then exit with the plugin's counts.
-fn frames(
-    mut commands: Commands,
-    mut run: ResMut<Run>,
-    stats: Res<CausticsStats>,
-    mut exit: MessageWriter<AppExit>,
-) {
-    let Some(n) = run.frames else {
-        return;
-    };
-    run.frame += 1;
-    if run.frame == n {
-        match run.screenshot.clone() {
-            Some(path) => {
-                commands.spawn(Screenshot::primary_window()).observe(
-                    move |shot: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
-                        let code = match shot.image.clone().try_into_dynamic() {
-                            Ok(img) => match img.to_rgb8().save(&path) {
-                                Ok(()) => 0,
-                                Err(e) => {
-                                    eprintln!("pool: cannot write {}: {e}", path.display());
-                                    1
-                                }
-                            },
-                            Err(e) => {
-                                eprintln!("pool: the screenshot cannot be converted: {e}");
-                                1
-                            }
-                        };
-                        exit.write(AppExit::from_code(code));
-                    },
-                );
-            }
-            None => {
-                exit.write(AppExit::Success);
-            }
-        }
-    }
-    if run.frame >= n {
-        let s = stats.get();
-        if run.frame == n {
-            println!(
-                "bevy_caustics: {} frames, {} steady: created {}, readbacks {}, uploaded {} bytes; techniques {:?}{}",
-                s.frames,
-                s.steady_frames,
-                s.steady.created(),
-                s.steady.readbacks,
-                s.steady.uploaded_bytes,
-                s.techniques,
-                s.error.map(|e| format!("; error: {e}")).unwrap_or_default()
-            );
-        }
-        // A screenshot that never arrives must not hang a test.
-        if run.frame > n + 120 {
-            eprintln!("pool: the screenshot did not arrive within 120 frames");
-            exit.write(AppExit::from_code(1));
-        }
     }
 }

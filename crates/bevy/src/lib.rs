@@ -45,7 +45,7 @@ impl Plugin for CausticsPlugin {
             .init_resource::<PendingDrops>()
             .insert_resource(stats.clone())
             .add_systems(First, clear_drops)
-            .add_systems(PostUpdate, queue_drops);
+            .add_systems(PostUpdate, (queue_drops, material::follow_technique));
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             warn!("bevy_caustics: no render app (headless without rendering): no caustics");
             return;
@@ -123,13 +123,23 @@ impl CausticWater {
     }
 
     /// The registered techniques a [`CausticWater`] can use, in the registry's order: those that
-    /// make a floor map (paper 5's eye-space image needs the scene's camera, which is Bevy's here).
+    /// make a floor map, and paper 5's eye-space image (made from Bevy's first 3D camera).
     pub fn techniques() -> Vec<&'static str> {
         caustics_gpu::technique::REGISTRY
             .iter()
-            .filter(|r| r.describe.receivers.contains(&Receives::Floor))
+            .filter(|r| {
+                let receives = r.describe.receivers;
+                receives.contains(&Receives::Floor) || receives.contains(&Receives::EyeSpace)
+            })
             .map(|r| r.name())
             .collect()
+    }
+
+    /// Whether the technique makes an image in the camera's screen space (paper 5) rather than a
+    /// map of the floor.
+    pub fn eye_space(&self) -> bool {
+        caustics_gpu::technique::find(&self.technique)
+            .is_some_and(|r| r.describe.receivers.contains(&Receives::EyeSpace))
     }
 
     /// The rest water level above the floor.
@@ -167,6 +177,10 @@ pub struct CausticMaps {
     /// first `wall_cols[k]` columns, row 0 at the floor; a 1 x 1 x 4 image without walls.
     pub walls: Handle<Image>,
     pub wall_cols: [u32; 4],
+    /// An eye-space technique's image (`cascaded`): `scene.camera.width` x `height` texels over
+    /// Bevy's first 3D camera's view (its pose and vertical field of view, this image's aspect),
+    /// row 0 at the top; `w` is −1 where a pixel has no value.
+    pub eye: Handle<Image>,
 }
 
 impl CausticMaps {
@@ -196,10 +210,12 @@ impl CausticMaps {
             dimension: Some(TextureViewDimension::D2Array),
             ..default()
         });
+        let eye = map_image(scene.camera.width.max(1), scene.camera.height.max(1), 1);
         CausticMaps {
             floor,
             walls: images.add(walls),
             wall_cols,
+            eye: images.add(eye),
         }
     }
 }

@@ -26,7 +26,9 @@ pub struct CausticsUniform {
     /// The columns of each wall's map in the walls image; 0 where the walls have none.
     pub wall_cols: UVec4,
     /// `x` 1 where the floor map tiles (open water over a flat floor, as the final image's
-    /// `WRAP_CAUSTICS`), `y` the [`Receiver`].
+    /// `WRAP_CAUSTICS`), `y` the [`Receiver`], `z` 1 where the technique is an eye-space one (the
+    /// light comes from [`CausticMaps::eye`]), `w` 1 where the water tiles (an ocean: beyond the
+    /// square is more of it).
     pub flags: UVec4,
 }
 
@@ -53,6 +55,8 @@ pub struct CausticsExtension {
     pub floor: Handle<Image>,
     #[texture(102, dimension = "2d_array", sample_type = "float", filterable = false)]
     pub walls: Handle<Image>,
+    #[texture(103, sample_type = "float", filterable = false)]
+    pub eye: Handle<Image>,
 }
 
 impl CausticsExtension {
@@ -76,10 +80,16 @@ impl CausticsExtension {
                 water: Vec4::new(water.size(), water.depth(), ior, 0.0),
                 absorption: absorption.extend(0.0),
                 wall_cols: UVec4::from_array(maps.wall_cols),
-                flags: UVec4::new(u32::from(wrap), receiver as u32, 0, 0),
+                flags: UVec4::new(
+                    u32::from(wrap),
+                    receiver as u32,
+                    u32::from(water.eye_space()),
+                    u32::from(w.is_some_and(|w| w.wrap)),
+                ),
             },
             floor: maps.floor.clone(),
             walls: maps.walls.clone(),
+            eye: maps.eye.clone(),
         }
     }
 
@@ -101,5 +111,27 @@ impl CausticsExtension {
 impl MaterialExtension for CausticsExtension {
     fn fragment_shader() -> ShaderRef {
         "embedded://bevy_caustics/caustics.wesl".into()
+    }
+}
+
+/// A water whose technique changed between a map of the floor and an eye-space image: its
+/// materials read the other one from the next frame on (a rare change; the bind group is made
+/// again then).
+pub(crate) fn follow_technique(
+    waters: Query<(&CausticWater, &CausticMaps), Changed<CausticWater>>,
+    mut materials: ResMut<Assets<CausticsMaterial>>,
+) {
+    for (water, maps) in &waters {
+        let eye = u32::from(water.eye_space());
+        let ids: Vec<_> = materials
+            .iter()
+            .filter(|(_, m)| m.extension.floor == maps.floor && m.extension.uniform.flags.z != eye)
+            .map(|(id, _)| id)
+            .collect();
+        for id in ids {
+            if let Some(mut m) = materials.get_mut(id) {
+                m.extension.uniform.flags.z = eye;
+            }
+        }
     }
 }

@@ -69,19 +69,37 @@ struct Extracted {
 #[derive(Resource, Default)]
 pub(crate) struct ExtractedWaters {
     waters: Vec<Extracted>,
-    /// Direction of travel of the sun's light, scene coordinates (per water: each its own frame).
+    /// Direction of travel of the sun's light, world coordinates.
     sun: Option<Vec3>,
+    /// The first active 3D camera: its transform and vertical field of view (radians), for
+    /// eye-space techniques.
+    camera: Option<(GlobalTransform, f32)>,
     time: f64,
 }
+
+/// What an eye-space technique takes from Bevy's 3D cameras.
+type Cameras = (
+    &'static Camera,
+    &'static GlobalTransform,
+    &'static Projection,
+);
 
 pub(crate) fn extract(
     mut commands: Commands,
     waters: Extract<Query<(Entity, &CausticWater, &CausticMaps, &GlobalTransform)>>,
     lights: Extract<Query<&GlobalTransform, With<DirectionalLight>>>,
+    cameras: Extract<Query<Cameras, With<Camera3d>>>,
     drops: Extract<Res<PendingDrops>>,
     time: Extract<Res<Time>>,
 ) {
     let sun = lights.iter().next().map(|t| t.forward().as_vec3());
+    let camera = cameras
+        .iter()
+        .filter(|(c, _, _)| c.is_active)
+        .find_map(|(_, at, projection)| match projection {
+            Projection::Perspective(p) => Some((*at, p.fov)),
+            _ => None,
+        });
     let waters = waters
         .iter()
         .map(|(entity, water, maps, at)| {
@@ -103,6 +121,7 @@ pub(crate) fn extract(
     commands.insert_resource(ExtractedWaters {
         waters,
         sun,
+        camera,
         time: time.elapsed_secs_f64(),
     });
 }
@@ -223,6 +242,17 @@ fn prepare(
                 state.scene.light.direction = d.as_dvec3().to_array().into();
             }
         }
+        if let Some((at, fov)) = extracted.camera {
+            // The eye-space image's camera: Bevy's pose and vertical field of view, the size of
+            // the image it is copied into (`CausticMaps::eye`).
+            let m = w.scene_from_world;
+            let position = m.transform_point3(at.translation());
+            let forward = m.transform_vector3(at.forward().as_vec3());
+            let camera = &mut state.scene.camera;
+            camera.position = position.as_dvec3().to_array().into();
+            camera.target = (position + forward).as_dvec3().to_array().into();
+            camera.fov_y = fov.to_degrees() as f64;
+        }
         state.scene.time = extracted.time;
         if let Some(source) = &mut state.source {
             for d in &w.drops {
@@ -340,13 +370,15 @@ fn record(
             source.encode(encoder, None);
         }
         state.technique.encode(encoder, None);
-        let Some(Output::Floor(map)) = state.technique.output() else {
-            continue;
+        let (map, image) = match state.technique.output() {
+            Some(Output::Floor(map)) => (map, &state.maps.floor),
+            Some(Output::EyeSpace(map)) => (map, &state.maps.eye),
+            None => continue,
         };
-        if let Some(image) = images.get(&state.maps.floor)
+        if let Some(image) = images.get(image)
             && let Err(e) = copy(encoder, map, &image.texture)
         {
-            stats.update(|s| s.error = Some(format!("floor map: {e}")));
+            stats.update(|s| s.error = Some(format!("caustics map: {e}")));
         }
         if let (Some(walls), Some(image)) = (state.technique.walls(), images.get(&state.maps.walls))
             && let Err(e) = copy(encoder, walls.texture, &image.texture)

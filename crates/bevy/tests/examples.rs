@@ -121,6 +121,9 @@ fn shot(name: &str, frames: u32, extra: &[&str]) -> Result<(image::RgbImage, Str
     let img = image::open(&path)
         .map_err(|e| format!("{}: {e}", path.display()))?
         .to_rgb8();
+    if img.pixels().all(|p| p.0 == [0, 0, 0]) {
+        return Err(format!("{name} {args:?}: the screenshot is black").into());
+    }
     Ok((img, stdout))
 }
 
@@ -149,34 +152,57 @@ fn contrast(v: &[f64]) -> f64 {
 /// The window of the pool example's picture that shows only the pool's floor.
 const FLOOR: ((f32, f32), (f32, f32)) = ((0.40, 0.62), (0.55, 0.75));
 
-/// The caustics' contrast: the floor's luminance divided, pixel by pixel, by the same pool's with
-/// still water (which takes the tiles' own pattern out), as standard deviation over mean.
-fn pool_contrast_and_motion() -> Result<(), Failed> {
-    let (flat, _) = shot("pool", 10, &["--flat"])?;
-    let (a, out) = shot("pool", 10, &[])?;
-    let (b, _) = shot("pool", 25, &[])?;
-    let still = luminance(&flat, FLOOR.0, FLOOR.1);
-    let la = luminance(&a, FLOOR.0, FLOOR.1);
-    let lb = luminance(&b, FLOOR.0, FLOOR.1);
+/// The window of the ocean example's picture that shows only the sandy bed in front of the camera.
+const SAND: ((f32, f32), (f32, f32)) = ((0.20, 0.80), (0.62, 0.95));
+
+/// An example's caustics in `window`: its luminance divided, pixel by pixel, by the same scene's
+/// with still water (which takes the surfaces' own pattern out), as standard deviation over mean,
+/// at least `min_contrast`; frames `at.0` and `at.1` differing by at least 1 of 255 on average; and
+/// steady frames that create and read back nothing.
+fn contrast_and_motion(
+    name: &str,
+    window: ((f32, f32), (f32, f32)),
+    at: (u32, u32),
+    min_contrast: f64,
+) -> Result<(), Failed> {
+    let (flat, _) = shot(name, at.0, &["--flat"])?;
+    let (a, out) = shot(name, at.0, &[])?;
+    let (b, _) = shot(name, at.1, &[])?;
+    let still = luminance(&flat, window.0, window.1);
+    let la = luminance(&a, window.0, window.1);
+    let lb = luminance(&b, window.0, window.1);
     let ratio: Vec<f64> = la.iter().zip(&still).map(|(x, s)| x / s.max(1.0)).collect();
     let c = contrast(&ratio);
     println!(
-        "pool floor: caustic contrast {c:.4} (the tiles alone: {:.4})",
+        "{name}: caustic contrast {c:.4} (the surfaces alone: {:.4})",
         contrast(&still)
     );
-    // Measured on lavapipe: 0.050 at frame 10 (0.049 at frame 25); still water gives 0 here.
-    if c < 0.02 {
-        return Err(
-            format!("no caustics on the floor: contrast {c:.4} against still water").into(),
-        );
+    if c < min_contrast {
+        return Err(format!("{name}: no caustics: contrast {c:.4} against still water").into());
     }
     let moved = la.iter().zip(&lb).map(|(x, y)| (x - y).abs()).sum::<f64>() / la.len() as f64;
-    println!("pool floor: mean change between frames 10 and 25: {moved:.2} of 255");
-    // Measured: 7.3 of 255.
+    println!(
+        "{name}: mean change between frames {} and {}: {moved:.2} of 255",
+        at.0, at.1
+    );
     if moved < 1.0 {
-        return Err(format!("the caustics did not move: mean change {moved:.3} of 255").into());
+        return Err(
+            format!("{name}: the caustics did not move: mean change {moved:.3} of 255").into(),
+        );
     }
     steady_traffic(&out)
+}
+
+/// Measured on lavapipe (the clock stepped 1/15 s a frame): contrast 0.038 at frame 15 (still
+/// water gives 0 here); frames 15 and 25 differ by 5.3 of 255.
+fn pool_contrast_and_motion() -> Result<(), Failed> {
+    contrast_and_motion("pool", FLOOR, (15, 25), 0.02)
+}
+
+/// Paper 5's cascaded image from Bevy's camera on the FFT ocean's beach. Measured on lavapipe:
+/// contrast 0.156 at frame 5; frames 5 and 8 differ by 25.1 of 255.
+fn ocean_contrast_and_motion() -> Result<(), Failed> {
+    contrast_and_motion("ocean", SAND, (5, 8), 0.05)
 }
 
 /// The example's count line: steady frames must have happened, and created and read back nothing.
@@ -194,7 +220,7 @@ fn steady_traffic(out: &str) -> Result<(), Failed> {
             .ok_or_else(|| format!("no `{after}` count in `{line}`").into())
     };
     let steady = number("frames, ")?;
-    if steady < 5 {
+    if steady < 1 {
         return Err(format!("only {steady} steady frames: `{line}`").into());
     }
     let (created, readbacks) = (number("created ")?, number("readbacks ")?);
@@ -240,6 +266,7 @@ fn main() {
     };
     let trials = vec![
         window("pool_contrast_and_motion", pool_contrast_and_motion),
+        window("ocean_contrast_and_motion", ocean_contrast_and_motion),
         Trial::test("pool_refuses_bad_input", pool_refuses_bad_input),
     ];
     libtest_mimic::run(&args, trials).exit();

@@ -170,10 +170,9 @@ impl GpuContext {
                 sink.lock().expect("error sink").push(e.to_string());
             }));
         let lost_sink = ctx.lost.clone();
-        ctx.device
-            .set_device_lost_callback(move |reason, message| {
-                *lost_sink.lock().expect("lost flag") = Some(lost_reason(reason, &message));
-            });
+        ctx.device.set_device_lost_callback(move |reason, message| {
+            *lost_sink.lock().expect("lost flag") = Some(lost_reason(reason, &message));
+        });
         ctx
     }
 
