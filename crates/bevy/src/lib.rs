@@ -231,7 +231,9 @@ fn map_image(width: u32, height: u32, layers: u32) -> Image {
         TextureFormat::Rgba32Float,
         RenderAssetUsages::RENDER_WORLD,
     );
-    image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
+    // COPY_SRC: an application (or a test) may read a map back, e.g. to bake it.
+    image.texture_descriptor.usage =
+        TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST | TextureUsages::COPY_SRC;
     image
 }
 

@@ -1,0 +1,231 @@
+//! The application's own heights (`Heights::Image`) in a Bevy app without a window: an `R32Float`
+//! image the app fills, the technique reading it on Bevy's device, and the floor map read back
+//! (a test's readback, through Bevy's `Readback`) against the physics: still water gives the flat
+//! water's light everywhere, the absorbed sun `exp(−K d / cos θ_t)` per channel; a periodic wave
+//! focuses it into caustics but keeps its mean (the light crossing a tiling square is conserved).
+//!
+//! Without a GPU adapter the tests are reported as ignored (the reason printed), unless
+//! `CAUSTICS_REQUIRE_GPU=1`, when they fail (libtest-mimic, as `tests/examples.rs`).
+
+use std::sync::{Arc, Mutex};
+
+use bevy::app::PluginsState;
+use bevy::asset::RenderAssetUsages;
+use bevy::log::LogPlugin;
+use bevy::prelude::*;
+use bevy::render::RenderPlugin;
+use bevy::render::gpu_readback::{ReadbackComplete, ReadbackOnce};
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
+use bevy::window::ExitCondition;
+use bevy::winit::WinitPlugin;
+use bevy_caustics::{CausticMaps, CausticWater, CausticsPlugin, CausticsStats, Heights};
+use caustics_core::scene::Scene;
+use libtest_mimic::{Arguments, Failed, Trial};
+
+const GRID: u32 = 128;
+const MAP: u32 = 128;
+
+/// The pool (4 m, 1 m deep, tiling) without walls, its map `MAP`², with `heights` as its water.
+fn water(images: &mut Assets<Image>, heights: impl Fn(f32, f32) -> f32) -> CausticWater {
+    let mut scene = Scene::builtin("pool").expect("the built-in pool");
+    scene.floor.walls = false;
+    scene.caustics.width = MAP;
+    scene.caustics.height = MAP;
+    let size = scene.size as f32;
+    let data: Vec<u8> = (0..GRID * GRID)
+        .flat_map(|k| {
+            let (j, i) = (k % GRID, k / GRID);
+            let (x, y) = (
+                (j as f32 + 0.5) * size / GRID as f32,
+                (i as f32 + 0.5) * size / GRID as f32,
+            );
+            heights(x, y).to_le_bytes()
+        })
+        .collect();
+    let mut image = Image::new(
+        Extent3d {
+            width: GRID,
+            height: GRID,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data,
+        TextureFormat::R32Float,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
+    let mut w = CausticWater::new(scene, "caustic-triangles").expect("a usable technique");
+    w.heights = Heights::Image(images.add(image));
+    w
+}
+
+/// Runs a windowless app for a few frames with `heights` and reads the floor map back: its texels
+/// (RGB) and the plugin's counts.
+fn floor_map(heights: fn(f32, f32) -> f32) -> Result<(Vec<[f32; 3]>, CausticsStats), Failed> {
+    let got: Arc<Mutex<Option<Vec<u8>>>> = Arc::default();
+    let mut app = App::new();
+    app.add_plugins(
+        DefaultPlugins
+            .build()
+            .disable::<WinitPlugin>()
+            // Each test's app in its own thread: one global logger is all there can be.
+            .disable::<LogPlugin>()
+            .set(WindowPlugin {
+                primary_window: None,
+                exit_condition: ExitCondition::DontExit,
+                ..default()
+            })
+            .set(RenderPlugin {
+                synchronous_pipeline_compilation: true,
+                ..default()
+            }),
+    )
+    .add_plugins(CausticsPlugin);
+    let sink = got.clone();
+    app.add_systems(
+        Startup,
+        move |mut commands: Commands, mut images: ResMut<Assets<Image>>| {
+            let w = water(&mut images, heights);
+            let maps = CausticMaps::new(&w, &mut images);
+            let floor = maps.floor.clone();
+            commands.spawn((w, maps));
+            // The pool scene's sun, (0.3, 0.1, −1) in its z-up frame.
+            commands.spawn((
+                DirectionalLight::default(),
+                Transform::default().looking_to(Vec3::new(0.3, -1.0, -0.1), Vec3::Z),
+            ));
+            commands.insert_resource(Floor(floor));
+        },
+    );
+    app.add_systems(
+        Update,
+        move |mut commands: Commands, floor: Res<Floor>, mut frame: Local<u32>| {
+            *frame += 1;
+            if *frame == 4 {
+                let sink = sink.clone();
+                commands
+                    .spawn(ReadbackOnce::texture(floor.0.clone()))
+                    .observe(move |done: On<ReadbackComplete>| {
+                        *sink.lock().unwrap() = Some(done.data.clone());
+                    });
+            }
+        },
+    );
+    while app.plugins_state() == PluginsState::Adding {
+        bevy::tasks::tick_global_task_pools_on_main_thread();
+    }
+    app.finish();
+    app.cleanup();
+    for _ in 0..60 {
+        app.update();
+        if got.lock().unwrap().is_some() {
+            break;
+        }
+    }
+    let stats = app.world().resource::<CausticsStats>().clone();
+    let bytes = got
+        .lock()
+        .unwrap()
+        .take()
+        .ok_or("the floor map never came back")?;
+    let texels: Vec<[f32; 3]> = bytes
+        .chunks_exact(16)
+        .map(|t| {
+            let f = |k: usize| f32::from_le_bytes(t[4 * k..4 * k + 4].try_into().unwrap());
+            [f(0), f(1), f(2)]
+        })
+        .collect();
+    if texels.len() != (MAP * MAP) as usize {
+        return Err(format!("{} texels came back, {} expected", texels.len(), MAP * MAP).into());
+    }
+    Ok((texels, stats))
+}
+
+#[derive(Resource)]
+struct Floor(Handle<Image>);
+
+/// The flat water's light on the pool's floor, per channel: the sun refracted into the water and
+/// absorbed along its path, `exp(−K d / cos θ_t)` (the map's unit).
+fn flat_light() -> [f64; 3] {
+    let scene = Scene::builtin("pool").unwrap();
+    let w = scene.water.as_ref().unwrap();
+    let d = scene.light.direction.normalize();
+    let cos_i = -d.z;
+    let cos_t = (1.0 - (1.0 - cos_i * cos_i) / (w.ior * w.ior)).sqrt();
+    let k = w.absorption.to_array();
+    k.map(|k| (-k * w.depth / cos_t).exp())
+}
+
+fn mean(texels: &[[f32; 3]], c: usize) -> f64 {
+    texels.iter().map(|t| t[c] as f64).sum::<f64>() / texels.len() as f64
+}
+
+fn still_water() -> Result<(), Failed> {
+    let (texels, stats) = floor_map(|_, _| 0.0)?;
+    if let Some(e) = stats.get().error {
+        return Err(e.into());
+    }
+    let flat = flat_light();
+    let mut worst = 0.0f64;
+    for t in &texels {
+        for c in 0..3 {
+            worst = worst.max((t[c] as f64 / flat[c] - 1.0).abs());
+        }
+    }
+    println!("still water: largest texel off the flat water's light: {worst:.2e}");
+    // Measured on lavapipe: 2.15e-6 (f32 rounding).
+    if worst > 2e-5 {
+        return Err(format!("still water: a texel is {worst:.3} off exp(-K d / cos θ_t)").into());
+    }
+    Ok(())
+}
+
+/// Waves of 0.5 m along x and 0.4 m along y (whole periods over the 4 m square), 5 and 4 mm high:
+/// curvatures A k² of 0.79 and 0.99 /m, focusing the sun a few metres down.
+fn wave(x: f32, y: f32) -> f32 {
+    let tau = std::f32::consts::TAU;
+    0.005 * (tau * x / 0.5).sin() + 0.004 * (tau * y / 0.4 + 1.0).sin()
+}
+
+fn wave_keeps_the_light() -> Result<(), Failed> {
+    let (texels, stats) = floor_map(wave)?;
+    let s = stats.get();
+    if let Some(e) = s.error {
+        return Err(e.into());
+    }
+    let flat = flat_light();
+    let g = mean(&texels, 1);
+    let var = texels
+        .iter()
+        .map(|t| (t[1] as f64 - g).powi(2))
+        .sum::<f64>()
+        / texels.len() as f64;
+    let contrast = var.sqrt() / g;
+    let off = (0..3)
+        .map(|c| (mean(&texels, c) / flat[c] - 1.0).abs())
+        .fold(0.0, f64::max);
+    println!("wave: mean off the flat light by {off:.2e}, contrast {contrast:.3}");
+    // Measured on lavapipe: 5.3e-4; contrast 0.241.
+    if off > 5e-3 {
+        return Err(
+            format!("wave: the floor's mean light is {off:.3} off the flat water's").into(),
+        );
+    }
+    if contrast < 0.1 {
+        return Err(format!("wave: no caustics (contrast {contrast:.3})").into());
+    }
+    Ok(())
+}
+
+fn main() {
+    let args = Arguments::from_args();
+    let skip = caustics_gpu::context::gpu_test_skip();
+    if let Some(why) = &skip {
+        eprintln!("{why}: the Bevy tests are ignored");
+    }
+    let trials = vec![
+        Trial::test("still_water", still_water).with_ignored_flag(skip.is_some()),
+        Trial::test("wave_keeps_the_light", wave_keeps_the_light).with_ignored_flag(skip.is_some()),
+    ];
+    libtest_mimic::run(&args, trials).exit();
+}
