@@ -65,7 +65,8 @@ pub enum Heights {
     /// `Time` by `caustics_gpu::water::field::GpuWater`.
     #[default]
     Scene,
-    /// The application's own heights: an `R32Float` image (usage `TEXTURE_BINDING`) of the
+    /// The application's own heights: an `R32Float` image (usage `TEXTURE_BINDING | COPY_DST`, so
+    /// that Bevy rewrites the same texture when the application changes it) of the
     /// displacement above the rest level over the water square, texel `(j, i)` at `((j + ½) size /
     /// width, (i + ½) size / height)` in scene coordinates (row `i` along the scene's y, that is
     /// along Bevy's −z from the entity). The application may rewrite it every frame.
@@ -188,7 +189,9 @@ impl CausticMaps {
     pub fn new(water: &CausticWater, images: &mut Assets<Image>) -> Self {
         let scene = &water.scene;
         let (width, height) = (scene.caustics.width.max(1), scene.caustics.height.max(1));
-        let floor = images.add(map_image(width, height, 1));
+        // Until the technique's first frame: the floor as under flat, clear water (1), and no
+        // eye-space value (w = -1), which the material lights as under flat water.
+        let floor = images.add(map_image(width, height, 1, 1.0));
         let (cols, rows, wall_cols) = if scene.floor.walls {
             let layout = WallMaps::for_floor_map(
                 width as usize,
@@ -205,12 +208,17 @@ impl CausticMaps {
         } else {
             (1, 1, [0; 4])
         };
-        let mut walls = map_image(cols, rows, 4);
+        let mut walls = map_image(cols, rows, 4, 1.0);
         walls.texture_view_descriptor = Some(TextureViewDescriptor {
             dimension: Some(TextureViewDimension::D2Array),
             ..default()
         });
-        let eye = map_image(scene.camera.width.max(1), scene.camera.height.max(1), 1);
+        let eye = map_image(
+            scene.camera.width.max(1),
+            scene.camera.height.max(1),
+            1,
+            -1.0,
+        );
         CausticMaps {
             floor,
             walls: images.add(walls),
@@ -220,14 +228,20 @@ impl CausticMaps {
     }
 }
 
-fn map_image(width: u32, height: u32, layers: u32) -> Image {
-    let mut image = Image::new_uninit(
+/// A map image filled with `(1, 1, 1, w)`.
+fn map_image(width: u32, height: u32, layers: u32, w: f32) -> Image {
+    let texel: Vec<u8> = [1.0f32, 1.0, 1.0, w]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let mut image = Image::new_fill(
         Extent3d {
             width,
             height,
             depth_or_array_layers: layers,
         },
         TextureDimension::D2,
+        &texel,
         TextureFormat::Rgba32Float,
         RenderAssetUsages::RENDER_WORLD,
     );

@@ -3,7 +3,9 @@
 //! ([`extract`]), brought up to date in `Render`'s `Prepare` set (uniform writes; a build only when
 //! the technique or the water changed), and recorded into Bevy's command encoder in the
 //! `RenderGraph` schedule before `camera_driver` draws the cameras ([`record`]), ending in GPU
-//! copies into the [`CausticMaps`](crate::CausticMaps)' images.
+//! copies into the [`CausticMaps`](crate::CausticMaps)' images. A new technique, new parameters
+//! or a new heights texture rebuild the water's state; a change to its scene does not (spawn a new
+//! water, with new maps, for that).
 
 use std::sync::{Arc, Mutex};
 
@@ -149,7 +151,8 @@ struct WaterState {
 #[derive(Clone, PartialEq, Debug)]
 enum HeightsKey {
     Scene,
-    Image(AssetId<Image>, u32, u32),
+    /// The image, and the texture Bevy holds for it now (a new one when the image was remade).
+    Image(AssetId<Image>, bevy::render::render_resource::TextureId),
 }
 
 #[derive(Resource, Default)]
@@ -158,6 +161,9 @@ pub(crate) struct Waters {
     states: HashMap<Entity, WaterState>,
     /// Waters whose build failed, with the key it failed for: not tried again until it changes.
     failed: HashMap<Entity, (String, toml::Table, HeightsKey)>,
+    /// The traffic counts when the last frame's `prepare` began, and whether that frame built
+    /// anything: a frame is counted from one `prepare` to the next, its `record` included.
+    last: Option<(TrafficCounts, bool)>,
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -181,15 +187,25 @@ fn prepare(
         )
     });
     let before = ctx.traffic();
+    if let Some((start, built)) = waters.last.take() {
+        let spent = before.since(&start);
+        stats.update(|s| {
+            s.frames += 1;
+            if !built {
+                s.steady_frames += 1;
+                s.steady = add(&s.steady, &spent);
+            }
+        });
+    }
     let mut built = false;
-    waters
-        .states
-        .retain(|e, _| extracted.waters.iter().any(|w| w.entity == *e));
+    let alive = |e: &Entity| extracted.waters.iter().any(|w| w.entity == *e);
+    waters.states.retain(|e, _| alive(e));
+    waters.failed.retain(|e, _| alive(e));
     for w in &extracted.waters {
         let heights = match &w.water.heights {
             Heights::Scene => HeightsKey::Scene,
             Heights::Image(h) => match images.get(h) {
-                Some(g) => HeightsKey::Image(h.id(), g.texture.width(), g.texture.height()),
+                Some(g) => HeightsKey::Image(h.id(), g.texture.id()),
                 None => continue,
             },
         };
@@ -262,24 +278,19 @@ fn prepare(
         }
         let had = ctx.traffic().created();
         if let Err(e) = state.technique.update(ctx, &state.scene) {
-            error!("bevy_caustics: {}: {e}", state.technique_name);
+            let e = format!("bevy_caustics: {}: {e}", state.technique_name);
+            error!("{e}");
+            stats.update(|s| s.error = Some(e));
         }
         built |= ctx.traffic().created() != had;
     }
-    let spent = ctx.traffic().since(&before);
+    waters.last = Some((before, built));
     let names = waters
         .states
         .values()
         .map(|s| s.technique_name.clone())
         .collect();
-    stats.update(|s| {
-        s.frames += 1;
-        s.techniques = names;
-        if !built {
-            s.steady_frames += 1;
-            s.steady = add(&s.steady, &spent);
-        }
-    });
+    stats.update(|s| s.techniques = names);
 }
 
 fn add(a: &TrafficCounts, b: &TrafficCounts) -> TrafficCounts {
