@@ -143,6 +143,13 @@ impl CausticWater {
             .is_some_and(|r| r.describe.receivers.contains(&Receives::EyeSpace))
     }
 
+    /// Whether the technique makes maps of the pool's walls and the scene has walls.
+    pub fn lights_walls(&self) -> bool {
+        self.scene.floor.walls
+            && caustics_gpu::technique::find(&self.technique)
+                .is_some_and(|r| r.describe.receivers.contains(&Receives::Walls))
+    }
+
     /// The rest water level above the floor.
     pub fn depth(&self) -> f32 {
         self.scene.water.as_ref().map_or(0.0, |w| w.depth as f32)

@@ -26,9 +26,9 @@ pub struct CausticsUniform {
     /// The columns of each wall's map in the walls image; 0 where the walls have none.
     pub wall_cols: UVec4,
     /// `x` 1 where the floor map tiles (open water over a flat floor, as the final image's
-    /// `WRAP_CAUSTICS`), `y` the [`Receiver`], `z` 1 where the technique is an eye-space one (the
-    /// light comes from [`CausticMaps::eye`]), `w` 1 where the water tiles (an ocean: beyond the
-    /// square is more of it).
+    /// `WRAP_CAUSTICS`), `y` the [`Receiver`], `z` the technique's kind ([`technique_flags`]: 1 an
+    /// eye-space image in [`CausticMaps::eye`], 2 maps of the walls), `w` 1 where the water tiles
+    /// (an ocean: beyond the square is more of it).
     pub flags: UVec4,
 }
 
@@ -83,7 +83,7 @@ impl CausticsExtension {
                 flags: UVec4::new(
                     u32::from(wrap),
                     receiver as u32,
-                    u32::from(water.eye_space()),
+                    technique_flags(water),
                     u32::from(w.is_some_and(|w| w.wrap)),
                 ),
             },
@@ -114,15 +114,22 @@ impl MaterialExtension for CausticsExtension {
     }
 }
 
-/// A water whose technique changed between a map of the floor and an eye-space image: its
-/// materials read the other one from the next frame on (a rare change; the bind group is made
-/// again then).
+/// What the material must know of the technique: 1 when it makes an eye-space image, 2 when it
+/// makes maps of the pool's walls (and the scene has walls). A technique without either leaves
+/// the walls lit as under flat water.
+pub fn technique_flags(water: &CausticWater) -> u32 {
+    u32::from(water.eye_space()) | (u32::from(water.lights_walls()) << 1)
+}
+
+/// A water whose technique changed kind (floor map, eye-space image, wall maps or not): its
+/// materials read accordingly from the next frame on (a rare change; the bind group is made again
+/// then).
 pub(crate) fn follow_technique(
     waters: Query<(&CausticWater, &CausticMaps), Changed<CausticWater>>,
     mut materials: ResMut<Assets<CausticsMaterial>>,
 ) {
     for (water, maps) in &waters {
-        let eye = u32::from(water.eye_space());
+        let eye = technique_flags(water);
         let ids: Vec<_> = materials
             .iter()
             .filter(|(_, m)| m.extension.floor == maps.floor && m.extension.uniform.flags.z != eye)
