@@ -83,8 +83,8 @@ pub struct CausticWater {
     /// The sun is taken from the world's first `DirectionalLight` every frame, the time from
     /// Bevy's `Time`.
     pub scene: Scene,
-    /// A registered technique that makes a floor map (`caustics techniques` lists them;
-    /// [`CausticWater::techniques`] here).
+    /// A registered technique that makes a floor map or an eye-space image
+    /// ([`CausticWater::techniques`]).
     pub technique: String,
     /// Parameter tables keyed by technique, as in a scene file's `[caustics]`
     /// (`{ yuksel = { n = 15 } }`); empty means every technique's defaults.
@@ -106,7 +106,7 @@ impl std::error::Error for CausticsError {}
 
 impl CausticWater {
     /// The scene's water with `technique`; an error naming the problem when the scene has no
-    /// water or the technique is not one that makes a floor map.
+    /// water or the technique is not one of [`CausticWater::techniques`].
     pub fn new(scene: Scene, technique: &str) -> Result<Self, CausticsError> {
         if scene.water.is_none() {
             return Err(CausticsError(format!(
@@ -310,7 +310,7 @@ pub fn scene_from_world(at: &GlobalTransform) -> Mat4 {
     scene_from_local() * Mat4::from(at.affine()).inverse()
 }
 
-/// The entity's local y-up frame to the scene's z-up one: scene `(x, y, z)` = local `(x, −z, y)`.
+/// The entity's local y-up frame to the scene's z-up one: local `(x, y, z)` is scene `(x, −z, y)`.
 fn scene_from_local() -> Mat4 {
     Mat4::from_cols(Vec4::X, Vec4::Z, -Vec4::Y, Vec4::W)
 }

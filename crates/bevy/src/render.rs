@@ -19,7 +19,7 @@ use bevy::render::renderer::{
 use bevy::render::texture::GpuImage;
 use bevy::render::{Extract, Render, RenderSystems};
 
-use caustics_core::scene::{Scene, WaterSource};
+use caustics_core::scene::Scene;
 use caustics_core::water::ripple::Drop;
 use caustics_gpu::water::field::GpuWater;
 use caustics_gpu::{GpuContext, Output, Technique, TrafficCounts, WaterTextures};
@@ -136,18 +136,24 @@ pub(crate) fn build(render_app: &mut SubApp) {
         .add_systems(RenderGraph, record.before(camera_driver));
 }
 
-/// A water's GPU state.
-struct WaterState {
-    technique_name: String,
+/// What a water's state was built from: a new one of any part builds it again.
+#[derive(Clone, PartialEq, Debug)]
+struct Key {
+    technique: String,
     params: toml::Table,
     heights: HeightsKey,
+}
+
+/// A water's GPU state.
+struct WaterState {
+    key: Key,
     source: Option<GpuWater>,
     technique: Box<dyn Technique>,
     scene: Scene,
     maps: CausticMaps,
 }
 
-/// What the state was built from, to know when to build it again.
+/// Where the heights of a built state come from.
 #[derive(Clone, PartialEq, Debug)]
 enum HeightsKey {
     Scene,
@@ -160,7 +166,7 @@ pub(crate) struct Waters {
     ctx: Option<GpuContext>,
     states: HashMap<Entity, WaterState>,
     /// Waters whose build failed, with the key it failed for: not tried again until it changes.
-    failed: HashMap<Entity, (String, toml::Table, HeightsKey)>,
+    failed: HashMap<Entity, Key>,
     /// The traffic counts when the last frame's `prepare` began, and whether that frame built
     /// anything: a frame is counted from one `prepare` to the next, its `record` included.
     last: Option<(TrafficCounts, bool)>,
@@ -193,7 +199,7 @@ fn prepare(
             s.frames += 1;
             if !built {
                 s.steady_frames += 1;
-                s.steady = add(&s.steady, &spent);
+                s.steady += spent;
             }
         });
     }
@@ -209,25 +215,22 @@ fn prepare(
                 None => continue,
             },
         };
-        let key = (
-            w.water.technique.clone(),
-            w.water.params.clone(),
-            heights.clone(),
-        );
-        let stale = waters
-            .states
-            .get(&w.entity)
-            .is_none_or(|s| s.technique_name != key.0 || s.params != key.1 || s.heights != key.2);
+        let key = Key {
+            technique: w.water.technique.clone(),
+            params: w.water.params.clone(),
+            heights,
+        };
+        let stale = waters.states.get(&w.entity).is_none_or(|s| s.key != key);
         if stale {
             if waters.failed.get(&w.entity) == Some(&key) {
                 continue;
             }
             built = true;
-            match build_state(ctx, w, heights, &images) {
+            match build_state(ctx, w, key.clone(), &images) {
                 Ok(state) => {
                     info!(
                         "bevy_caustics: {} on {:?} ({:.1} MiB on the GPU)",
-                        state.technique_name,
+                        state.key.technique,
                         w.entity,
                         state.technique.bytes() as f64 / (1024.0 * 1024.0)
                     );
@@ -278,7 +281,7 @@ fn prepare(
         }
         let had = ctx.traffic().created();
         if let Err(e) = state.technique.update(ctx, &state.scene) {
-            let e = format!("bevy_caustics: {}: {e}", state.technique_name);
+            let e = format!("bevy_caustics: {}: {e}", state.key.technique);
             error!("{e}");
             stats.update(|s| s.error = Some(e));
         }
@@ -288,39 +291,22 @@ fn prepare(
     let names = waters
         .states
         .values()
-        .map(|s| s.technique_name.clone())
+        .map(|s| s.key.technique.clone())
         .collect();
     stats.update(|s| s.techniques = names);
-}
-
-fn add(a: &TrafficCounts, b: &TrafficCounts) -> TrafficCounts {
-    TrafficCounts {
-        textures: a.textures + b.textures,
-        buffers: a.buffers + b.buffers,
-        bind_groups: a.bind_groups + b.bind_groups,
-        pipelines: a.pipelines + b.pipelines,
-        samplers: a.samplers + b.samplers,
-        query_sets: a.query_sets + b.query_sets,
-        uploaded_bytes: a.uploaded_bytes + b.uploaded_bytes,
-        readbacks: a.readbacks + b.readbacks,
-        timestamp_reads: a.timestamp_reads + b.timestamp_reads,
-        app_created: a.app_created + b.app_created,
-        app_uploaded_bytes: a.app_uploaded_bytes + b.app_uploaded_bytes,
-    }
 }
 
 fn build_state(
     ctx: &GpuContext,
     w: &Extracted,
-    heights: HeightsKey,
+    key: Key,
     images: &RenderAssets<GpuImage>,
 ) -> Result<WaterState, String> {
     let water = &w.water;
     let mut scene = water.scene.clone();
     scene.caustics.technique = water.technique.clone();
-    let technique = caustics_gpu::technique::create(ctx, &water.technique, &water.params)
+    let mut technique = caustics_gpu::technique::create(ctx, &water.technique, &water.params)
         .map_err(|e| e.to_string())?;
-    let mut technique = technique;
     let (source, textures) = match &water.heights {
         Heights::Scene => {
             let spec = scene.water.as_ref().ok_or("the scene has no water")?;
@@ -342,21 +328,12 @@ fn build_state(
             (None, WaterTextures::of(&g.texture))
         }
     };
-    if matches!(
-        scene.water.as_ref().map(|w| &w.source),
-        Some(WaterSource::Ocean(_))
-    ) && matches!(heights, HeightsKey::Image(..))
-    {
-        debug!("an application's heights over an ocean scene: the scene's ocean is not run");
-    }
     technique
         .configure(ctx, &scene, &textures)
         .map_err(|e| e.to_string())?;
     ctx.check().map_err(|e| e.to_string())?;
     Ok(WaterState {
-        technique_name: water.technique.clone(),
-        params: water.params.clone(),
-        heights,
+        key,
         source,
         technique,
         scene,
