@@ -240,7 +240,8 @@ fn flat_pool() -> Scene {
 fn yuksel_buffers_under_flat_water_show_its_uniform_light() {
     let scene = flat_pool();
     let surface = scene.water.as_ref().unwrap().surface_at(0.0).unwrap();
-    let s = spec("yuksel:n=5,m=4");
+    // Every pixel's k × k samples (adaptive footprints would take one for flat water).
+    let s = spec("yuksel:n=5,m=4,split=0");
     let input = input_for(&s, &scene, Some(surface.as_ref()));
     let flux = draw(&s, &input, "yuksel-flux").unwrap();
     let expect = heat(1.0 / 1.5);
@@ -267,6 +268,22 @@ fn yuksel_buffers_under_flat_water_show_its_uniform_light() {
         texel(0, 0),
         texel(0, 1),
         "the samples of a pixel at one place"
+    );
+    // By default flat water lands whole: one record a pixel, repeated over its block.
+    let whole = spec("yuksel:n=5,m=4");
+    let input = input_for(&whole, &scene, Some(surface.as_ref()));
+    let offset = draw(&whole, &input, "yuksel-offset").unwrap();
+    let texel = |y: usize, x: usize| &offset.rgba[(y * w + x) * 4..(y * w + x) * 4 + 4];
+    assert_eq!(
+        texel(0, 0),
+        texel(k - 1, k - 1),
+        "flat water's pixel lands whole"
+    );
+    let flux = draw(&whole, &input, "yuksel-flux").unwrap();
+    assert_eq!(
+        &flux.rgba[..3],
+        &expect[..],
+        "its record carries the whole pixel's flux"
     );
     // One sample a pixel: it lands whole in the one or two channels its offset straddles.
     let one = spec("yuksel:n=5,m=4,subsamples=1");

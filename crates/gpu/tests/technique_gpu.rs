@@ -99,9 +99,10 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
             .zip(&cpu.texels)
             .flat_map(|(g, c)| (0..3).map(move |k| (g[k] - c[k]).abs()))
             .fold(0.0f32, f32::max);
-        // measured 4.80e-5 at the pool's sun, 7.68e-5 at 80 degrees on lavapipe 25.0.7 (Mesa),
-        // both variants (f32 against f64, texels near 1, 4 x 4 footprints per pixel)
-        let bound = if sun.is_some() { 2.6e-4 } else { 9.4e-5 };
+        // measured 1.12e-4 at the pool's sun, 1.11e-4 at 80 degrees on lavapipe 25.0.7 (Mesa),
+        // both variants (f32 against f64, texels near 1, adaptive footprints centred on their
+        // light's centroid)
+        let bound = 1.1e-3;
         eprintln!("{name} {sun:?}: worst texel difference {worst:.2e}");
         assert!(
             worst < bound,

@@ -32,6 +32,25 @@ fn lopsided(n: usize) -> Grid {
     })
 }
 
+/// Mean difference relative to the map's mean, and the share of texels more than 10⁻³ of it off:
+/// with adaptive footprints a pixel whose misfit lies within f32's rounding of `split` may take
+/// another tier on the GPU than in the CPU twin's f64, and its few texels differ by up to the
+/// misfit's share of their light.
+fn spread(a: &CausticsMap, b: &CausticsMap) -> (f32, f32) {
+    let mean = a.texels.iter().map(|t| t[0]).sum::<f32>() / a.texels.len() as f32;
+    let d: Vec<f32> = a
+        .texels
+        .iter()
+        .zip(&b.texels)
+        .map(|(x, y)| (x[0] - y[0]).abs() / mean)
+        .collect();
+    let n = d.len() as f32;
+    (
+        d.iter().sum::<f32>() / n,
+        d.iter().filter(|&&v| v > 1e-3).count() as f32 / n,
+    )
+}
+
 /// Largest difference relative to the map's mean (f32 sums in different orders).
 fn worst(a: &CausticsMap, b: &CausticsMap) -> f32 {
     let mean = a.texels.iter().map(|t| t[0]).sum::<f32>() / a.texels.len() as f32;
@@ -50,6 +69,16 @@ fn gpu_variants_match_the_cpu_twin() {
     for (params, wrap, light, (w, h)) in [
         (
             YukselParams::default(),
+            true,
+            DVec3::new(0.3, 0.1, -1.0),
+            (64, 40),
+        ),
+        // Every pixel's 4 x 4 footprints.
+        (
+            YukselParams {
+                split: 0.0,
+                ..Default::default()
+            },
             true,
             DVec3::new(0.3, 0.1, -1.0),
             (64, 40),
@@ -118,14 +147,24 @@ fn gpu_variants_match_the_cpu_twin() {
             worst(&cpu, &mrt),
             worst(&mrt, &gather)
         );
-        // f32 on both sides; the GPU's bicubic and refraction round differently from the CPU's f64.
-        // measured at most 5.29e-5 (CPU vs render targets), 6.96e-7 (render targets vs gather) on
-        // lavapipe 25.0.7 (Mesa), 4 x 4 footprints; the paper's preset 6.68e-6 and 2.76e-7
-        assert!(
-            worst(&cpu, &mrt) < 9.6e-5,
-            "{params:?}: CPU vs render targets {}",
-            worst(&cpu, &mrt)
-        );
+        let (mean, share) = spread(&cpu, &mrt);
+        eprintln!("  CPU vs render targets: mean {mean:.2e}, texels off {share:.2e}");
+        if setup.split.is_some() && setup.subsamples > 1 {
+            // Adaptive footprints: measured at most 4.26e-4 of the mean in a texel, 2.39e-6 on
+            // average, no texel 10⁻³ off (no pixel took another tier here) on lavapipe 25.0.7.
+            let d = worst(&cpu, &mrt);
+            assert!(d < 4.3e-3, "{params:?}: CPU vs render targets {d}");
+            assert!(mean < 2.4e-5, "{params:?}: mean {mean}");
+        } else {
+            // f32 on both sides; the GPU's bicubic and refraction round differently from the CPU's f64.
+            // measured at most 5.29e-5 (CPU vs render targets), 6.96e-7 (render targets vs gather) on
+            // lavapipe 25.0.7 (Mesa), 4 x 4 footprints; the paper's preset 6.68e-6 and 2.76e-7
+            assert!(
+                worst(&cpu, &mrt) < 9.6e-5,
+                "{params:?}: CPU vs render targets {}",
+                worst(&cpu, &mrt)
+            );
+        }
         assert!(
             worst(&mrt, &gather) < 2.8e-6,
             "{params:?}: render targets vs gather {}",
@@ -247,12 +286,20 @@ fn the_gpu_chooses_the_cpus_region() {
                 size: 1.0,
                 texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
             };
-            // measured at most 6.34e-4 of the mean on lavapipe 25.0.7 (Mesa) (f32 against f64,
-            // the footprints' half-widths as f16; the largest at sun 80, depth 0.8; 6.22e-4 at
-            // level 3, sun 80, depth 4, where a level pixel's 8 x 8 samples share 8 x 8 pixels).
             let d = worst(&cpu, &gpu);
-            eprintln!("sun {zenith}, {variant:?}: {d:.2e}");
-            assert!(d < 2.2e-3, "sun {zenith}, {variant:?}: {d}");
+            let (mean, share) = spread(&cpu, &gpu);
+            eprintln!("sun {zenith}, {variant:?}: {d:.2e} mean {mean:.2e} texels off {share:.2e}");
+            // Adaptive footprints (the default): a pixel whose misfit lies within rounding of
+            // `split` may take another tier than the CPU's. Measured on lavapipe 25.0.7 (Mesa): on
+            // average at most 4.23e-5 of the mean (sun 80, depth 4, level 3), at most 6.51e-4 of
+            // the texels over 10⁻³ off, the largest 8.70e-2 (sun 80, depth 0.4: one such pixel);
+            // without one, 1.07e-3.
+            assert!(mean < 4.2e-4, "sun {zenith}, {variant:?}: mean {mean}");
+            assert!(
+                share < 6.5e-3,
+                "sun {zenith}, {variant:?}: {share} of the texels off"
+            );
+            assert!(d < 0.2, "sun {zenith}, {variant:?}: {d}");
         }
         eprintln!("sun {zenith}, depth {depth}: {cpu_region:?}");
     }

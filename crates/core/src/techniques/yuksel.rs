@@ -55,7 +55,13 @@
 //!   light lands on its *footprint*, the box its patch of water maps to on the floor (between
 //!   the hits of the patch's edge midpoints, `footprint`), shared among the pixels it overlaps
 //!   in proportion ([`box_share`]): flux is conserved exactly, and light focused narrower than a
-//!   pixel stays in one pixel instead of being spread over two as a pixel box spreads it.
+//!   pixel stays in one pixel instead of being spread over two as a pixel box spreads it. The box
+//!   sits on the light's centroid (for a map that bends quadratically over the patch).
+//! - **Adaptive footprints** (default, [`YukselParams::split`]): a pixel takes only as many
+//!   footprints as its water needs, 1, 2 × 2, 4 × 4 … up to `k × k`: the first whose footprints
+//!   all [`misfit`] (misplace their light, as a share of their width) by no more than `split`.
+//!   Flat or gently curved water takes one, a caustic's fold the finest; the pre-pass refracts
+//!   and pass 1 gathers that many.
 //!
 //! # Where it departs from the reference
 //! Light deflected further than the region `R` (`N/2` pixels along x, `M/2` along y) is lost
@@ -161,6 +167,16 @@ const PARAMS: &[Param] = &[
         sweep: &["1", "2", "4"],
     },
     Param {
+        key: "split",
+        label: "split above",
+        kind: Kind::float(0.0, 1.0),
+        default: D::Float(DEFAULT_SPLIT),
+        unit: "",
+        doc: "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
+        change: Change::Uniform,
+        sweep: &["0", "0.02", "0.05", "0.1"],
+    },
+    Param {
         key: "footprint",
         label: "footprints",
         kind: Kind::Bool,
@@ -239,6 +255,11 @@ pub const MAX_SUBSAMPLES: u32 = 4;
 /// `caustics compare` case within 5 % of the reference where 2 × 2 leaves the FFT ocean at 80°
 /// over 8 % (docs/yuksel.md).
 pub const DEFAULT_SUBSAMPLES: u32 = 4;
+/// The default [`YukselParams::split`]: the largest misfit of a pixel's footprints before it is
+/// sampled twice as finely along each axis. Measured over `caustics compare`'s 32 cases at 128²
+/// and 256² (docs/yuksel.md, "Adaptive footprints"): the worst case 3.6 % and 2.6 % rel. L1 where
+/// 0.2 reaches 4.7 % and 0 (every pixel 4 × 4) 3.2 %.
+pub const DEFAULT_SPLIT: f64 = 0.15;
 /// The most samples per level pixel along each axis at a coarser level: there `k` grows with the
 /// level (`k · 2^level`, up to this) so that the map's pixels keep `(8 / 2^level)²` samples at
 /// least where a region forces a coarser level; GPU time grows with its square.
@@ -284,6 +305,10 @@ pub struct YukselParams {
     /// from the water, false with `preset = "paper"`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub footprint: Option<bool>,
+    /// With footprints, each pixel lands as 1, 2 × 2, 4 × 4 … up to `k × k` footprints: the
+    /// first whose footprints all misplace no more than this share of their width (or of a map
+    /// pixel where narrower; [`prepass`]). 0: every pixel's `k × k`. Default [`DEFAULT_SPLIT`].
+    pub split: f64,
     pub fresnel: bool,
     pub absorption: bool,
 }
@@ -311,6 +336,7 @@ impl YukselParams {
             m: None,
             subsamples: None,
             footprint: None,
+            split: DEFAULT_SPLIT,
             fresnel: true,
             absorption: true,
         }
@@ -346,6 +372,15 @@ impl YukselParams {
                 "caustics.yuksel.m",
                 format!(
                     "must be even and at most {MAX_M} (M + 1 channels, at most {MAX_CHANNELS}), got {m}"
+                ),
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.split) {
+            return Err(Error::field(
+                "caustics.yuksel.split",
+                format!(
+                    "must be between 0 and 1 (a share of a footprint's width; 0 splits every pixel), got {}",
+                    self.split
                 ),
             ));
         }
@@ -475,6 +510,9 @@ pub struct YukselSetup {
     pub subsamples: usize,
     /// Each sample's light on its footprint (true) or on a box of the sample's size (the paper).
     pub footprint: bool,
+    /// The misfit above which a pixel is sampled more finely ([`YukselParams::split`]); `None`
+    /// where every pixel takes its `k × k` (no footprints, or `split = 0`).
+    pub split: Option<f64>,
     /// Map pixel size, world units.
     pub pixel: DVec2,
     /// `h L'` in world units: from a floor point to its illumination centre on the rest surface.
@@ -515,6 +553,7 @@ impl YukselSetup {
         Ok(YukselSetup {
             subsamples: subsamples as usize,
             footprint,
+            split: (footprint && params.split > 0.0).then_some(params.split),
             width,
             height,
             region: Region {
@@ -697,16 +736,46 @@ fn f16_value(h: u32) -> f32 {
     f32::from_bits(((((h >> 10) & 0x1f) + 127 - 15) << 23) | ((h & 0x3ff) << 13))
 }
 
-/// Two half-widths in one channel, as `bitcast<f32>(pack2x16float(half))` on the GPU.
-pub fn pack_half_widths(half: [f32; 2]) -> f32 {
+/// How many records a side a pixel's light takes in the pre-pass ([`prepass`]): `k`, the
+/// default, or fewer where the pixel allows (with [`YukselSetup::split`]). Carried in the sign
+/// bits of the packed half-widths, which are positive: none for `k`, x for 1, y for 2, both for 4
+/// (below `k`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tier(u32);
+
+impl Tier {
+    /// The tier of `t` records a side out of `k`.
+    pub fn of(t: usize, k: usize) -> Tier {
+        Tier(match t {
+            _ if t >= k => 0,
+            1 => 0x8000,
+            2 => 0x8000_0000,
+            _ => 0x8000_8000,
+        })
+    }
+
+    /// Records a side, out of `k`.
+    pub fn side(packed: f32, k: usize) -> usize {
+        match packed.to_bits() & 0x8000_8000 {
+            0 => k,
+            0x8000 => 1,
+            0x8000_0000 => 2,
+            _ => 4,
+        }
+    }
+}
+
+/// Two half-widths in one channel, as `bitcast<f32>(pack2x16float(half))` on the GPU, with the
+/// record's [`Tier`] in their sign bits.
+pub fn pack_half_widths(half: [f32; 2], tier: Tier) -> f32 {
     let [x, y] = half.map(|v| f16_bits(v.clamp(MIN_HALF_WIDTH, 6.0e4)));
-    f32::from_bits(x | (y << 16))
+    f32::from_bits(x | (y << 16) | tier.0)
 }
 
 /// The half-widths [`pack_half_widths`] packed.
 pub fn unpack_half_widths(packed: f32) -> [f32; 2] {
     let b = packed.to_bits();
-    [f16_value(b & 0xffff), f16_value(b >> 16)]
+    [f16_value(b & 0x7fff), f16_value((b >> 16) & 0x7fff)]
 }
 
 /// The share of a box of centre `c` and half-width `h` (pixels) that lies in the pixel
@@ -716,43 +785,105 @@ pub fn box_share(c: f32, h: f32) -> f32 {
     ((c + h).min(0.5) - (c - h).max(-0.5)).max(0.0) / (2.0 * h)
 }
 
-/// One sample's record: where its light lands, relative to its pixel's centre, in pixels.
-/// `centre`: the box's centre; `half`: its half-widths; `flux`: relative to a flat-water pixel.
-/// The box is the sample's *footprint* (ours, beyond the paper): its patch of water
-/// (`1/k` of a pixel each way around it) maps to the floor between the hits of the patch's edge
-/// midpoints, taken along x for the width and along y for the height, min/max so that a folded
-/// patch (rays crossing) stays positive. Without the footprint (the paper, §3), a box the
-/// patch's own size around the sample's hit.
-fn footprint(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, [f32; 2], f64)> {
-    let (centre_hit, flux) = hit(setup, heights, s)?;
-    let k = setup.subsamples as f64;
-    let patch = setup.pixel / k;
-    if !setup.footprint {
-        let half = (0.5 / k) as f32;
-        return Some((centre_hit, [half, half], flux));
-    }
-    // An edge the sun cannot light (or whose ray reflects) takes the sample's own hit.
-    let edge = |d: DVec2| hit(setup, heights, s + d).map_or(centre_hit, |(h, _)| h);
-    let (xm, xp) = (
-        edge(DVec2::new(-0.5 * patch.x, 0.0)),
-        edge(DVec2::new(0.5 * patch.x, 0.0)),
-    );
-    let (ym, yp) = (
-        edge(DVec2::new(0.0, -0.5 * patch.y)),
-        edge(DVec2::new(0.0, 0.5 * patch.y)),
-    );
-    let centre = DVec2::new(xm.x + xp.x, ym.y + yp.y) * 0.5;
-    let half = [
-        ((xp.x - xm.x).abs() * 0.5 / setup.pixel.x) as f32,
-        ((yp.y - ym.y).abs() * 0.5 / setup.pixel.y) as f32,
-    ];
-    Some((centre, half, flux))
+/// Where the light of a patch of water lands (ours, beyond the paper): its *footprint*, the box
+/// its patch (`area`, world units, around `s`) maps to on the floor, between the hits of the
+/// patch's edge midpoints, taken along x for the width and along y for the height, min/max so that
+/// a folded patch (rays crossing) stays positive, centred on the light's centroid; the flux its
+/// centre's. Without footprints (the paper, §3), a box of the patch's own size around
+/// its hit. `None` where the sun cannot light its centre.
+struct Footprint {
+    centre: DVec2,
+    /// Half-widths, pixels.
+    half: DVec2,
+    flux: f64,
+    /// How far the box misplaces the patch's light ([`misfit`]), as a share of its width.
+    misfit: f64,
 }
 
-/// Pre-pass: for sample `(a, b)` (of `k × k`) of the pixel of pre-pass texel `(r, c)` (texel
-/// `(r·k + b, c·k + a)`; map pixel `(r − M/2 + shift.y, c − N/2 + shift.x)`), where its light
-/// lands (`footprint`): `[centre x, centre y, half-widths packed, flux / k²]`, the centre
-/// relative to the pixel's centre, in pixels.
+fn footprint(setup: &YukselSetup, heights: &Grid, s: DVec2, area: DVec2) -> Option<Footprint> {
+    let (own, flux) = hit(setup, heights, s)?;
+    if !setup.footprint {
+        return Some(Footprint {
+            centre: own,
+            half: 0.5 * area / setup.pixel,
+            flux,
+            misfit: 0.0,
+        });
+    }
+    // An edge the sun cannot light (or whose ray reflects) takes the patch's own hit.
+    let edge = |d: DVec2| hit(setup, heights, s + d).map_or(own, |(h, _)| h);
+    let (xm, xp) = (
+        edge(DVec2::new(-0.5 * area.x, 0.0)),
+        edge(DVec2::new(0.5 * area.x, 0.0)),
+    );
+    let (ym, yp) = (
+        edge(DVec2::new(0.0, -0.5 * area.y)),
+        edge(DVec2::new(0.0, 0.5 * area.y)),
+    );
+    let (mid_x, mid_y) = ((xm + xp) * 0.5, (ym + yp) * 0.5);
+    let half = DVec2::new((xp.x - xm.x).abs(), (yp.y - ym.y).abs()) * 0.5 / setup.pixel;
+    let box_centre = DVec2::new(mid_x.x, mid_y.y);
+    Some(Footprint {
+        // Where the map bends, the light's centroid is off the box's centre: for a map quadratic
+        // over the patch, the hit plus a third of each axis's edge midpoints' mean off it (the
+        // mean of u² over [−1/2, 1/2] is a third of its value at the ends). Placing the box
+        // there keeps the light's first moment, so a coarser footprint suffices
+        // (docs/yuksel.md, "Adaptive footprints").
+        centre: own + ((mid_x - own) + (mid_y - own)) / 3.0,
+        half,
+        flux,
+        misfit: misfit(setup, own, box_centre, half, [xm, xp, ym, yp]),
+    })
+}
+
+/// How far one box misplaces a patch's light, as a share of the box's width along each axis (or
+/// of a map pixel where the box is narrower), the larger of the two: the patch's own hit off the
+/// box's centre (the map bends within the patch: its light is denser on one side) plus half the
+/// shear the box ignores (the x edges' hits apart along y, the y edges' along x: the true
+/// footprint is a parallelogram). An affine map without shear misplaces nothing. In pixels of the
+/// setup (a level's), where a map pixel is `2^−level` of one. Mirrors `yuksel_footprint` in
+/// `shaders/yuksel/sample.wgsl`.
+fn misfit(
+    setup: &YukselSetup,
+    hit: DVec2,
+    centre: DVec2,
+    half: DVec2,
+    [xm, xp, ym, yp]: [DVec2; 4],
+) -> f64 {
+    let off = DVec2::new(
+        (hit.x - centre.x).abs() + 0.5 * (yp.x - ym.x).abs(),
+        (hit.y - centre.y).abs() + 0.5 * (xp.y - xm.y).abs(),
+    ) / setup.pixel;
+    let map_pixel = 1.0 / (1u32 << setup.region.level) as f64;
+    (off.x / (2.0 * half.x).max(map_pixel)).max(off.y / (2.0 * half.y).max(map_pixel))
+}
+
+/// The `t × t` footprints of the pixel centred at `pixel_centre` (world units, before the
+/// illumination centre's offset), row by row.
+fn footprints(
+    setup: &YukselSetup,
+    heights: &Grid,
+    pixel_centre: DVec2,
+    t: usize,
+) -> Vec<Option<Footprint>> {
+    (0..t * t)
+        .map(|q| {
+            let within = (DVec2::new((q % t) as f64, (q / t) as f64) + 0.5) / t as f64 - 0.5;
+            let s = pixel_centre + within * setup.pixel + setup.centre_offset;
+            footprint(setup, heights, s, setup.pixel / t as f64)
+        })
+        .collect()
+}
+
+/// Pre-pass: where the light of each of a pixel's samples lands, relative to the pixel's centre:
+/// `[centre x, centre y, half-widths packed, flux × its share]`. Pre-pass texels `(r·k + b,
+/// c·k + a)`, `a, b < k`, belong to map pixel `(r − M/2 + shift.y, c − N/2 + shift.x)`.
+/// Without [`YukselSetup::split`], they are its `k × k` samples, each 1/k of the pixel each way
+/// carrying 1/k² of its flux. With it (ours), a pixel is sampled as coarsely as it allows: it lands
+/// whole on one footprint, or as 2 × 2, 4 × 4 … up to `k × k`, the first whose footprints all
+/// misfit by no more than `split` (flat water: one). Its `t × t` records fill texels `a, b < t`,
+/// each carrying `1/t²`, tagged with `t` ([`pack_half_widths`]); the other texels of its block
+/// are not read (the GPU leaves them as they were; here they repeat the first).
 pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
     let (pw, ph) = setup.prepass_size();
     let k = setup.subsamples;
@@ -761,25 +892,35 @@ pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
         r0.shift[0] as f64 - (r0.n / 2) as f64,
         r0.shift[1] as f64 - (r0.m / 2) as f64,
     );
-    let mut out = Vec::with_capacity(pw * ph);
-    for r in 0..ph {
-        for c in 0..pw {
-            let (pc, pr) = ((c / k) as f64, (r / k) as f64);
-            let pixel_centre = (DVec2::new(pc, pr) + first + 0.5) * setup.pixel;
-            let within = (DVec2::new((c % k) as f64, (r % k) as f64) + 0.5) / k as f64 - 0.5;
-            let s = pixel_centre + within * setup.pixel + setup.centre_offset;
-            out.push(match footprint(setup, heights, s) {
-                Some((centre, half, flux)) => {
-                    let d = (centre - pixel_centre) / setup.pixel;
-                    [
-                        d.x as f32,
-                        d.y as f32,
-                        pack_half_widths(half),
-                        (flux / (k * k) as f64) as f32,
-                    ]
+    let mut out = vec![[0.0f32; 4]; pw * ph];
+    for pr in 0..ph / k {
+        for pc in 0..pw / k {
+            let pixel_centre = (DVec2::new(pc as f64, pr as f64) + first + 0.5) * setup.pixel;
+            let mut t = if setup.split.is_some() { 1 } else { k };
+            let mut fs = footprints(setup, heights, pixel_centre, t);
+            while let Some(limit) = setup.split
+                && t < k
+                && fs.iter().flatten().any(|f| f.misfit > limit)
+            {
+                t = (2 * t).min(k);
+                fs = footprints(setup, heights, pixel_centre, t);
+            }
+            let tier = Tier::of(t, k);
+            let share = 1.0 / (t * t) as f64;
+            for b in 0..k {
+                for a in 0..k {
+                    let f = &fs[(b % t) * t + a % t];
+                    out[(pr * k + b) * pw + pc * k + a] = match f {
+                        Some(f) => {
+                            let d = (f.centre - pixel_centre) / setup.pixel;
+                            let half = [f.half.x as f32, f.half.y as f32];
+                            let packed = pack_half_widths(half, tier);
+                            [d.x as f32, d.y as f32, packed, (f.flux * share) as f32]
+                        }
+                        None => [0.0, 0.0, pack_half_widths([0.5, 0.5], tier), 0.0],
+                    };
                 }
-                None => [0.0, 0.0, pack_half_widths([0.5, 0.5]), 0.0],
-            });
+            }
         }
     }
     out
@@ -814,20 +955,26 @@ pub fn pass1(setup: &YukselSetup, pre: &[[f32; 4]], phase: usize) -> Vec<f32> {
         for j in 0..w {
             let (jc, qx) = (j / f, (j % f) as f32);
             let texel = &mut out[(r * w + j) * ch..(r * w + j + 1) * ch];
-            for b in 0..sub {
-                for s in 0..n * sub {
-                    let p = pre[(r * sub + b) * pw + jc * sub + s];
-                    let [hx, hy] = unpack_half_widths(p[2]);
-                    // In map pixels from the map pixel's centre.
-                    let x = ((s / sub) as f32 + col0 + p[0]) * scale + centre - qx;
-                    let ax = box_share(x, hx * scale);
-                    if ax == 0.0 {
-                        continue;
-                    }
-                    for (k, t) in texel.iter_mut().enumerate() {
-                        let y = (p[1] - (k as f32 + row0)) * scale + centre - phase as f32;
-                        let ay = box_share(y, hy * scale);
-                        *t += ax * ay * p[3] * area;
+            let mut add = |p: [f32; 4], col: usize| {
+                let [hx, hy] = unpack_half_widths(p[2]);
+                // In map pixels from the map pixel's centre.
+                let x = (col as f32 + col0 + p[0]) * scale + centre - qx;
+                let ax = box_share(x, hx * scale);
+                if ax == 0.0 {
+                    return;
+                }
+                for (k, t) in texel.iter_mut().enumerate() {
+                    let y = (p[1] - (k as f32 + row0)) * scale + centre - phase as f32;
+                    let ay = box_share(y, hy * scale);
+                    *t += ax * ay * p[3] * area;
+                }
+            };
+            for col in 0..n {
+                let first = (r * sub) * pw + (jc + col) * sub;
+                let t = Tier::side(pre[first][2], sub);
+                for b in 0..t {
+                    for a in 0..t {
+                        add(pre[first + b * pw + a], col);
                     }
                 }
             }
@@ -951,17 +1098,23 @@ fn draw_buffer(input: &BufferInput, buffer: Buffer) -> Result<Picture> {
         "yuksel-flux" => {
             // Each of a pixel's k × k samples carries 1 / k² of its light: times k², 1 is what
             // flat water gives a whole pixel, whatever k.
-            let k2 = (coarse.subsamples * coarse.subsamples) as f32;
             let g = Grid {
                 cols: pw,
                 rows: ph,
-                data: pre.iter().map(|p| p[3] * k2).collect(),
+                // A pixel of `t × t` records: each carries 1/t² of its light.
+                data: pre
+                    .iter()
+                    .map(|p| {
+                        let t = Tier::side(p[2], coarse.subsamples) as f32;
+                        p[3] * t * t
+                    })
+                    .collect(),
             };
             let (_, max) = g.min_max();
             let top = max.max(1.5);
             Ok(Picture {
                 legend: format!(
-                    "sample flux x {k2} (its k x k share of a pixel; 1: flat water): black 0, white {top:.2}"
+                    "sample flux x t² (its t x t share of a pixel; 1: flat water): black 0, white {top:.2}"
                 ),
                 ..scalar_picture(&g, |v| heat(v / top))
             })
@@ -1012,6 +1165,100 @@ mod tests {
         for t in &m.texels {
             assert!((t[0] - 1.0).abs() < 1e-5, "{}", t[0]);
         }
+    }
+
+    /// Records a side of each pixel in `pre`, from its first record's tier.
+    fn sides(s: &YukselSetup, pre: &[[f32; 4]]) -> Vec<usize> {
+        let (pw, ph) = s.prepass_size();
+        let k = s.subsamples;
+        (0..ph / k)
+            .flat_map(|r| (0..pw / k).map(move |c| (r, c)))
+            .map(|(r, c)| Tier::side(pre[r * k * pw + c * k][2], k))
+            .collect()
+    }
+
+    #[test]
+    fn an_affine_map_misfits_nothing_and_a_bent_or_sheared_one_does() {
+        let s = setup(&YukselParams::default(), 32, DVec3::NEG_Z);
+        let p = s.pixel;
+        let edges = |c: DVec2, dx: DVec2, dy: DVec2| [c - dx, c + dx, c - dy, c + dy];
+        let c = DVec2::new(0.3, 0.2);
+        let (dx, dy) = (DVec2::new(0.7 * p.x, 0.0), DVec2::new(0.0, 1.3 * p.y));
+        let half = DVec2::new(0.7, 1.3);
+        assert_eq!(misfit(&s, c, c, half, edges(c, dx, dy)), 0.0);
+        // The hit a tenth of the box's width off its centre along x.
+        let bent = c + DVec2::new(0.14 * p.x, 0.0);
+        assert!((misfit(&s, bent, c, half, edges(c, dx, dy)) - 0.1).abs() < 1e-12);
+        // The x edges' hits apart along y by a fifth of the box's height: half of it misplaced.
+        let sheared = [
+            c - dx - DVec2::new(0.0, 0.26 * p.y),
+            c + dx + DVec2::new(0.0, 0.26 * p.y),
+            c - dy,
+            c + dy,
+        ];
+        assert!((misfit(&s, c, c, half, sheared) - 0.1).abs() < 1e-12);
+    }
+
+    #[test]
+    fn each_pixel_takes_the_footprints_its_water_needs() {
+        let light = DVec3::new(0.3, 0.1, -1.0).normalize();
+        let s = setup(&YukselParams::default(), 48, light);
+        // Flat water: one footprint a pixel, and the map still flat water's.
+        let flat = Grid::new(16, 16);
+        assert!(sides(&s, &prepass(&s, &flat)).iter().all(|&t| t == 1));
+        // Waves that focus the light: the pixels at their folds take 4 x 4, the rest fewer.
+        let n = 48;
+        let waves = Grid::from_fn(n, n, |i, j| {
+            let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / n as f64);
+            let tau = std::f64::consts::TAU;
+            (0.02 * (tau * (3.0 * x + y)).sin() + 0.01 * (tau * (-2.0 * x + 5.0 * y)).sin()) as f32
+        });
+        let mut fitted = s.clone();
+        fitted.fit_region(&waves);
+        let tiers = sides(&fitted, &prepass(&fitted, &waves));
+        let share =
+            |t: usize| tiers.iter().filter(|&&v| v == t).count() as f64 / tiers.len() as f64;
+        eprintln!(
+            "pixels at 1, 2 x 2, 4 x 4: {:.3} {:.3} {:.3}",
+            share(1),
+            share(2),
+            share(4)
+        );
+        assert!(share(1) > 0.1 && share(2) > 0.1 && share(4) > 0.1);
+        let adaptive = caustics(&s, &waves);
+        let every = caustics(
+            &setup(
+                &YukselParams {
+                    split: 0.0,
+                    ..Default::default()
+                },
+                48,
+                light,
+            ),
+            &waves,
+        );
+        let mean = |m: &CausticsMap| {
+            m.texels.iter().map(|t| t[0] as f64).sum::<f64>() / m.texels.len() as f64
+        };
+        let l1 = adaptive
+            .texels
+            .iter()
+            .zip(&every.texels)
+            .map(|(a, b)| (a[0] - b[0]).abs() as f64)
+            .sum::<f64>()
+            / every.texels.iter().map(|t| t[0] as f64).sum::<f64>();
+        let max = every.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+        eprintln!(
+            "adaptive vs every pixel 4 x 4: L1 {l1:.4}, means {} {}, max {max}",
+            mean(&adaptive),
+            mean(&every)
+        );
+        // The same light in all (periodic waves, a region that holds it; the mean is Fresnel's
+        // below flat water's): measured means 0.998950 and 0.998963, L1 between the maps 0.0217
+        // (pixels at 1, 2 x 2, 4 x 4: 0.220, 0.451, 0.329; max 21.3).
+        assert!(max > 5.0, "the waves focus: {max}");
+        assert!((mean(&adaptive) - mean(&every)).abs() < 1.3e-4);
+        assert!(l1 < 0.05, "{l1}");
     }
 
     #[test]

@@ -120,7 +120,9 @@ pub struct YukselUniform {
     pub subsamples: u32,
     pub footprint: u32,
     pub phase: u32,
-    pub _pad: [u32; 3],
+    /// [`YukselSetup::split`], or −1 where every pixel takes its `k × k` samples.
+    pub split: f32,
+    pub _pad: [u32; 2],
 }
 
 /// Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`: what the region pass writes.
@@ -178,7 +180,8 @@ impl YukselUniform {
             subsamples: s.subsamples as u32,
             footprint: s.footprint as u32,
             phase,
-            _pad: [0; 3],
+            split: s.split.map_or(-1.0, |v| v as f32),
+            _pad: [0; 2],
         }
     }
 }
@@ -323,9 +326,10 @@ impl Frame {
 }
 
 /// Workgroup memory of the gather variant's tile (`gather.wgsl`: four arrays of (14 + 30)² words,
-/// the tile and its widest apron): within the 32 KiB of Metal on Apple GPUs and of lavapipe, above
-/// WebGPU's default 16 KiB.
-pub const GATHER_WORKGROUP_BYTES: u32 = 4 * 44 * 44 * 4;
+/// the tile and its widest apron, two bits per pixel of them for its records a side, 121 words,
+/// and two counters): within the 32 KiB of Metal on Apple GPUs and of lavapipe, above WebGPU's
+/// default 16 KiB.
+pub const GATHER_WORKGROUP_BYTES: u32 = 4 * 44 * 44 * 4 + 121 * 4 + 2 * 4;
 
 /// The gather variant's tile side (`gather.wgsl`'s `TILE` and workgroup size).
 const GATHER_TILE: u32 = 14;
@@ -406,7 +410,7 @@ impl Yuksel {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         // Sized for the largest region the region pass may choose.
-        let (_, cap_m) = setup.capacity();
+        let (cap_n, cap_m) = setup.capacity();
         let (pw, ph) = prepass_capacity(setup);
         let (p1w, p1h) = (setup.width, setup.height + cap_m);
         ctx.check_texture_size("yuksel caustics map", w, h)?;
@@ -493,7 +497,22 @@ impl Yuksel {
                     MAP_FORMAT,
                     U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
                 );
-                bytes += (pw * ph) as u64 * 16 + (p1w * p1h) as u64 * layers as u64 * 16;
+                // One texel per pixel of the pre-pass area at level 0, the largest.
+                let (ew, eh) = (w + cap_n as u32 - 1, h + cap_m as u32);
+                let extents = ctx.texture_2d(
+                    "yuksel pre-pass extents",
+                    (ew, eh, 1),
+                    wgpu::TextureFormat::Rg32Float,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                );
+                let extents_view = extents.create_view(&Default::default());
+                bytes += (pw * ph) as u64 * 16
+                    + (p1w * p1h) as u64 * layers as u64 * 16
+                    + (ew * eh) as u64 * 8;
+                tracing::debug!(
+                    "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
+                    bytes as f64 / (1u64 << 20) as f64
+                );
                 let pre_view = pre.create_view(&Default::default());
                 let prepass = bind_group(
                     ctx,
@@ -504,6 +523,7 @@ impl Yuksel {
                         View(heights_view),
                         View(&pre_view),
                         region.as_entire_binding(),
+                        View(&extents_view),
                     ],
                 );
                 let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
@@ -530,6 +550,7 @@ impl Yuksel {
                                 draw_uniform.as_entire_binding(),
                                 View(&pre_view),
                                 region.as_entire_binding(),
+                                View(&extents_view),
                             ],
                         );
                         let views = (first..first + count)
@@ -624,8 +645,14 @@ impl Yuksel {
                     let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
                     pass.set_pipeline(&self.prepass);
                     pass.set_bind_group(0, prepass, &[]);
-                    let (pw, ph) = prepass_capacity(&frame.setup);
-                    pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
+                    // One invocation per pixel of the level's map and apron: level 0 has the most.
+                    let (cap_n, cap_m) = frame.setup.capacity();
+                    let (cols, rows) = (w as usize + cap_n - 1, h as usize + cap_m);
+                    pass.dispatch_workgroups(
+                        (cols as u32).div_ceil(8),
+                        (rows as u32).div_ceil(8),
+                        1,
+                    );
                 }
                 for phase in phases {
                     for (pipeline, bind, views) in &phase.draws {

@@ -18,7 +18,7 @@ struct Yuksel {
     subsamples: u32,          // k: samples per pixel along each axis
     footprint: u32,           // 1: each sample's light on its footprint; 0: a box of its size
     phase: u32,               // pass 1 and 2: the map's rows this draw serves, modulo 2^level
-    _pad0: u32,
+    split: f32,               // misfit above which a pixel takes its k x k samples; < 0: always
     _pad1: u32,
     _pad2: u32,
 }
@@ -55,7 +55,36 @@ fn box_share(c: f32, h: f32) -> f32 {
     return max(min(c + h, 0.5) - max(c - h, -0.5), 0.0) / (2.0 * h);
 }
 
-// A sample's two half-widths, packed by `yuksel_sample` into one channel.
+// A sample's two half-widths, packed by `yuksel_footprint` into one channel.
 fn half_widths(packed: f32) -> vec2<f32> {
-    return unpack2x16float(bitcast<u32>(packed));
+    return abs(unpack2x16float(bitcast<u32>(packed)));
+}
+
+// How many records a side a pixel has in the pre-pass (t of k), in its records' sign bits: none
+// for k, x for 1, y for 2, both for 4. CPU twin: `Tier` in yuksel.rs.
+fn tier_bits(t: u32, k: u32) -> u32 {
+    if t >= k {
+        return 0u;
+    }
+    if t == 1u {
+        return 0x8000u;
+    }
+    if t == 2u {
+        return 0x80000000u;
+    }
+    return 0x80008000u;
+}
+
+fn tier_side(packed: f32, k: u32) -> u32 {
+    let bits = bitcast<u32>(packed) & 0x80008000u;
+    if bits == 0u {
+        return k;
+    }
+    if bits == 0x8000u {
+        return 1u;
+    }
+    if bits == 0x80000000u {
+        return 2u;
+    }
+    return 4u;
 }

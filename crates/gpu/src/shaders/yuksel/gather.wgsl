@@ -20,6 +20,11 @@ var<workgroup> tile_dx: array<f32, 1936>;
 var<workgroup> tile_dy: array<f32, 1936>;
 var<workgroup> tile_half: array<u32, 1936>;
 var<workgroup> tile_w: array<f32, 1936>;
+// How many records a side each pixel of the tile and apron takes (`yuksel_tier`: 1, 2, 4 or 8,
+// as its log2 in two bits), and the most of any (its square is the rounds the tile needs).
+var<workgroup> tiers: array<atomic<u32>, 121>;
+var<workgroup> most: atomic<u32>;
+var<workgroup> rounds: u32;
 
 @compute @workgroup_size(14, 14)
 fn main(
@@ -47,16 +52,47 @@ fn main(
     let scale = f32(f);
     let centre = (scale - 1.0) * 0.5;
     var e: array<f32, 64>;
-    // One of the k x k samples of every pixel at a time, so that workgroup memory holds one
-    // sample per pixel of the tile and apron whatever k.
     let sub = level_subsamples(region.level);
-    for (var phase = 0u; phase < sub * sub; phase++) {
-        let a = phase % sub;
-        let b = phase / sub;
+    // Round 0 finds each pixel's records a side t (`yuksel_tier`) and takes its first record;
+    // round q its record q (of t x t, where q < t²), so that workgroup memory holds one record per
+    // pixel of the tile and apron whatever t.
+    for (var t = local; t < 121u; t += TILE * TILE) {
+        atomicStore(&tiers[t], 0u);
+    }
+    if local == 0u {
+        atomicStore(&most, 1u);
+    }
+    workgroupBarrier();
+    for (var round = 0u; round < 64u; round++) {
+        if round == 1u {
+            if local == 0u {
+                let side = atomicLoad(&most);
+                rounds = side * side;
+            }
+            if round >= workgroupUniformLoad(&rounds) {
+                break;
+            }
+        } else if round > 1u && round >= workgroupUniformLoad(&rounds) {
+            break;
+        }
         for (var t = local; t < cols * rows; t += TILE * TILE) {
             let c = t % cols;
             let r = t / cols;
-            let s = yuksel_sample(origin.x + i32(c), origin.y + i32(r), a, b, sub, level_pixel);
+            let pc = origin.x + i32(c);
+            let pr = origin.y + i32(r);
+            var s = vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5))), 0.0);
+            if round == 0u {
+                let side = yuksel_tier(pc, pr, sub, level_pixel, false);
+                atomicOr(&tiers[t / 16u], (countTrailingZeros(side) & 3u) << (2u * (t % 16u)));
+                atomicMax(&most, side);
+                s = tier_records[0];
+            } else {
+                let side = 1u << ((atomicLoad(&tiers[t / 16u]) >> (2u * (t % 16u))) & 3u);
+                if round < side * side {
+                    let part = yuksel_part(pc, pr, round % side, round / side, side, level_pixel);
+                    s = yuksel_record(part, pc, pr, side, sub, level_pixel);
+                }
+            }
             tile_dx[r * SPAN + c] = s.x;
             tile_dy[r * SPAN + c] = s.y;
             tile_half[r * SPAN + c] = bitcast<u32>(s.z);
@@ -68,7 +104,10 @@ fn main(
                 let row = u32(i32(lid.y) + mh + dr) * SPAN;
                 for (var dc = -nh; dc <= nh; dc++) {
                     let k = row + u32(i32(lid.x) + nh + dc);
-                    let half = unpack2x16float(tile_half[k]) * scale;
+                    if tile_w[k] == 0.0 {
+                        continue;
+                    }
+                    let half = abs(unpack2x16float(tile_half[k])) * scale;
                     // In map pixels from the centre of the level's pixel's first map pixel.
                     let x = (f32(dc + sx) + tile_dx[k]) * scale + centre;
                     let y = (f32(dr + sy) + tile_dy[k]) * scale + centre;

@@ -8,6 +8,8 @@
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var pre: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
+// Per pixel of the pre-pass, the span along x its records' boxes cover (`prepass.wgsl`).
+@group(0) @binding(3) var extents: texture_2d<f32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
@@ -36,17 +38,30 @@ fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
     let base = i32(u.channel_base);
     let last = min(base + count, i32(region.m) + 1);
     let sub = i32(level_subsamples(region.level));
-    for (var b = 0; b < sub; b++) {
-        for (var s = 0; s < i32(region.n) * sub; s++) {
-            let p = textureLoad(pre, vec2<i32>(jc * sub + s, r * sub + b), 0);
-            let half = half_widths(p.z) * scale;
-            let ax = box_share((f32(s / sub + col0) + p.x) * scale + centre - qx, half.x);
-            if ax == 0.0 {
-                continue;
-            }
-            for (var k = base; k < last; k++) {
-                let ay = box_share((p.y - f32(k + row0)) * scale + centre - f32(u.phase), half.y);
-                intensity[k - base] += ax * ay * p.w * area;
+    for (var col = 0; col < i32(region.n); col++) {
+        // A pixel none of whose boxes reaches this map pixel gives it nothing: its records are
+        // not read (the margin keeps a box whose share only rounding would zero).
+        let span = textureLoad(extents, vec2<i32>(jc + col, r), 0).xy;
+        if (f32(col + col0) + span.y) * scale + centre - qx <= -0.5001 || (f32(col + col0) + span.x) * scale + centre - qx >= 0.5001 {
+            continue;
+        }
+        let first = vec2<i32>((jc + col) * sub, r * sub);
+        let p0 = textureLoad(pre, first, 0);
+        // A pixel's t x t records (`yuksel_tier`), t in its first's sign bits.
+        let count = i32(tier_side(p0.z, u32(sub)));
+        for (var b = 0; b < count; b++) {
+            for (var a = 0; a < count; a++) {
+                let p = textureLoad(pre, first + vec2<i32>(a, b), 0);
+                let half = half_widths(p.z) * scale;
+                // In map pixels from the map pixel's centre.
+                let ax = box_share((f32(col + col0) + p.x) * scale + centre - qx, half.x);
+                if ax == 0.0 {
+                    continue;
+                }
+                for (var k = base; k < last; k++) {
+                    let ay = box_share((p.y - f32(k + row0)) * scale + centre - f32(u.phase), half.y);
+                    intensity[k - base] += ax * ay * p.w * area;
+                }
             }
         }
     }

@@ -1,21 +1,38 @@
-// Technique `yuksel`, pre-pass (paper §5): every sample's floor hit, computed once. Pre-pass texel
-// (c, r) is sample (c % k, r % k) of map pixel (c / k - N/2 + shift.x, r / k - M/2 + shift.y).
-// The texture is sized for the largest region; texels beyond this frame's are left alone.
+// Technique `yuksel`, pre-pass (paper §5): every sample's floor hit, computed once, one invocation
+// per pixel of the level's map and its region's apron. Pre-pass texels (c, r) with c / k, r / k the
+// same hold the records of map pixel (c / k - N/2 + shift.x, r / k - M/2 + shift.y): its k x k
+// samples, or with `u.split` its first t x t (`yuksel_tier`: as few as its footprints allow), the
+// others left as they were (pass 1 reads t from the first and no more). The texture is sized for
+// the largest region; texels beyond this frame's are left alone.
 
 @group(0) @binding(2) var pre_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
+// Per pixel, the span along x its lit records' boxes cover (pixels from its centre; empty where
+// none is lit): pass 1 skips a pixel whose span misses its map pixel without reading its records.
+@group(0) @binding(4) var extents_out: texture_storage_2d<rg32float, write>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let dims = textureDimensions(pre_out);
     let size = level_size(u.width, u.height, region.level);
     let k = level_subsamples(region.level);
-    let used = vec2<u32>(size.x + region.n - 1u, size.y + region.m) * k;
-    if id.x >= min(dims.x, used.x) || id.y >= min(dims.y, used.y) {
+    let held = textureDimensions(pre_out) / k;
+    let used = vec2<u32>(size.x + region.n - 1u, size.y + region.m);
+    if id.x >= min(held.x, used.x) || id.y >= min(held.y, used.y) {
         return;
     }
-    let c = i32(id.x / k) - i32(region.n / 2u) + region.shift.x;
-    let r = i32(id.y / k) - i32(region.m / 2u) + region.shift.y;
+    let c = i32(id.x) - i32(region.n / 2u) + region.shift.x;
+    let r = i32(id.y) - i32(region.m / 2u) + region.shift.y;
     let pixel = u.pixel * f32(1u << region.level);
-    textureStore(pre_out, vec2<i32>(id.xy), yuksel_sample(c, r, id.x % k, id.y % k, k, pixel));
+    let first = vec2<i32>(id.xy * k);
+    let t = yuksel_tier(c, r, k, pixel, true);
+    var span = vec2<f32>(3.0e38, -3.0e38);
+    for (var q = 0u; q < t * t; q++) {
+        let rec = tier_records[q];
+        textureStore(pre_out, first + vec2<i32>(i32(q % t), i32(q / t)), rec);
+        if rec.w != 0.0 {
+            let half = half_widths(rec.z).x;
+            span = vec2<f32>(min(span.x, rec.x - half), max(span.y, rec.x + half));
+        }
+    }
+    textureStore(extents_out, vec2<i32>(id.xy), vec4<f32>(span, 0.0, 0.0));
 }

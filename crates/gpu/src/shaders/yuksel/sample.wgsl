@@ -29,38 +29,100 @@ fn yuksel_hit(s: vec2<f32>) -> vec4<f32> {
     return vec4<f32>(s + t.xy * (z / -t.z), seen * fresnel, 1.0);
 }
 
-// Sample (a, b) of the k x k (k = `sub`) of map pixel (column c, row r), which may lie outside the map: where
-// its light lands, x y the box's centre relative to the pixel's centre (pixels), z its two
-// half-widths packed, w the flux it carries relative to a flat-water pixel. The box is the
-// sample's footprint (its patch of water, 1/k of a pixel each way, maps to the floor between the
-// hits of the patch's edge midpoints) or, without `footprint`, a box of the patch's size around
-// its hit (the paper). `pixel`: the map pixel at the region's level.
-fn yuksel_sample(c: i32, r: i32, a: u32, b: u32, sub: u32, pixel: vec2<f32>) -> vec4<f32> {
-    let k = f32(sub);
-    let pixel_centre = (vec2<f32>(f32(c), f32(r)) + 0.5) * pixel;
-    let within = (vec2<f32>(f32(a), f32(b)) + 0.5) / k - 0.5;
-    let s = pixel_centre + within * pixel + u.centre_offset;
-    let h = yuksel_hit(s);
-    if h.w == 0.0 {
-        return vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5))), 0.0);
-    }
-    var centre = h.xy;
-    var half = vec2<f32>(0.5 / k);
-    if u.footprint != 0u {
-        let side = pixel / k;
-        let xm = yuksel_edge(s - vec2<f32>(0.5 * side.x, 0.0), h.xy);
-        let xp = yuksel_edge(s + vec2<f32>(0.5 * side.x, 0.0), h.xy);
-        let ym = yuksel_edge(s - vec2<f32>(0.0, 0.5 * side.y), h.xy);
-        let yp = yuksel_edge(s + vec2<f32>(0.0, 0.5 * side.y), h.xy);
-        centre = vec2<f32>(xm.x + xp.x, ym.y + yp.y) * 0.5;
-        half = vec2<f32>(abs(xp.x - xm.x), abs(yp.y - ym.y)) * 0.5 / pixel;
-    }
-    let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
-    let d = (centre - pixel_centre) / pixel;
-    return vec4<f32>(d, bitcast<f32>(packed), h.z / (k * k));
+// Where the light of the patch of water `area` (world units) around `s` lands, in `rec`: the
+// footprint's centre (world units) in xy, its two half-widths packed in z (in pixels of `pixel`,
+// the level's), the flux it carries relative to a flat-water patch in w; and the box's misfit. The
+// box is the footprint (the patch's edge midpoints' hits along x and along y, on the light's
+// centroid) or, without
+// `footprint`, a box of the patch's size around its hit (the paper). Where the sun cannot light the
+// patch, no flux. CPU twin: `footprint` and `misfit` in yuksel.rs.
+struct YukselFootprint {
+    rec: vec4<f32>,
+    misfit: f32,
 }
 
-// A patch edge's floor hit, or the sample's own where the sun cannot light the edge.
+fn yuksel_footprint(s: vec2<f32>, area: vec2<f32>, pixel: vec2<f32>) -> YukselFootprint {
+    let h = yuksel_hit(s);
+    if h.w == 0.0 {
+        return YukselFootprint(vec4<f32>(0.0), 0.0);
+    }
+    if u.footprint == 0u {
+        let half = 0.5 * area / pixel;
+        let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
+        return YukselFootprint(vec4<f32>(h.xy, bitcast<f32>(packed), h.z), 0.0);
+    }
+    let xm = yuksel_edge(s - vec2<f32>(0.5 * area.x, 0.0), h.xy);
+    let xp = yuksel_edge(s + vec2<f32>(0.5 * area.x, 0.0), h.xy);
+    let ym = yuksel_edge(s - vec2<f32>(0.0, 0.5 * area.y), h.xy);
+    let yp = yuksel_edge(s + vec2<f32>(0.0, 0.5 * area.y), h.xy);
+    let centre = vec2<f32>(xm.x + xp.x, ym.y + yp.y) * 0.5;
+    let half = abs(vec2<f32>(xp.x - xm.x, yp.y - ym.y)) * 0.5 / pixel;
+    // The hit off the box's centre plus half the shear the box ignores, over the box's width (at
+    // least a map pixel: `u.pixel / pixel` of the level's).
+    let off = vec2<f32>(
+        abs(h.x - centre.x) + 0.5 * abs(yp.x - ym.x),
+        abs(h.y - centre.y) + 0.5 * abs(xp.y - xm.y),
+    ) / pixel;
+    let width = max(2.0 * half, vec2<f32>(u.pixel.x / pixel.x));
+    let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
+    // The box on the light's centroid, for a map quadratic over the patch.
+    let centroid = h.xy + ((xm + xp) * 0.5 - h.xy + (ym + yp) * 0.5 - h.xy) / 3.0;
+    return YukselFootprint(vec4<f32>(centroid, bitcast<f32>(packed), h.z), max(off.x / width.x, off.y / width.y));
+}
+
+// The centre of pixel (column c, row r) of the level's map (pixel `pixel`), which may lie outside
+// the map.
+fn yuksel_pixel_centre(c: i32, r: i32, pixel: vec2<f32>) -> vec2<f32> {
+    return (vec2<f32>(f32(c), f32(r)) + 0.5) * pixel;
+}
+
+// Footprint (a, b) of the t x t of pixel (c, r): its patch 1/t of the pixel each way.
+fn yuksel_part(c: i32, r: i32, a: u32, b: u32, t: u32, pixel: vec2<f32>) -> YukselFootprint {
+    let within = (vec2<f32>(f32(a), f32(b)) + 0.5) / f32(t) - 0.5;
+    let s = yuksel_pixel_centre(c, r, pixel) + within * pixel + u.centre_offset;
+    return yuksel_footprint(s, pixel / f32(t), pixel);
+}
+
+// A footprint of pixel (c, r) as the pre-pass stores it, one of its t x t (of k x k at most): its
+// centre relative to the pixel's centre (pixels), its packed half-widths with the pixel's tier in
+// their sign bits (`tier_bits`), its flux times its share 1/t².
+fn yuksel_record(f: YukselFootprint, c: i32, r: i32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
+    let bits = tier_bits(t, k);
+    if f.rec.w == 0.0 {
+        return vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5)) | bits), 0.0);
+    }
+    let d = (f.rec.xy - yuksel_pixel_centre(c, r, pixel)) / pixel;
+    return vec4<f32>(d, bitcast<f32>(bitcast<u32>(f.rec.z) | bits), f.rec.w / f32(t * t));
+}
+
+// The records `yuksel_tier` made, in the order of their t x t (up to 8 x 8).
+var<private> tier_records: array<vec4<f32>, 64>;
+
+// How many footprints a side pixel (c, r) takes (of k at most), its records in `tier_records`:
+// with `u.split` >= 0, the first of 1, 2, 4 ... k whose footprints all misfit by no more than
+// `u.split` (a tier stops at its first footprint that misfits); otherwise k. At k only the first
+// record is made unless `all`. CPU twin: `prepass` in yuksel.rs.
+fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, all: bool) -> u32 {
+    var t = select(k, 1u, u.split >= 0.0 && k > 1u);
+    loop {
+        var misfits = false;
+        for (var q = 0u; q < select(t * t, 1u, t >= k && !all); q++) {
+            let f = yuksel_part(c, r, q % t, q / t, t, pixel);
+            tier_records[q] = yuksel_record(f, c, r, t, k, pixel);
+            if t < k && f.rec.w != 0.0 && f.misfit > u.split {
+                misfits = true;
+                break;
+            }
+        }
+        if !misfits {
+            return t;
+        }
+        t = min(2u * t, k);
+    }
+    return t;
+}
+
+// A patch edge's floor hit, or the patch's own where the sun cannot light the edge.
 fn yuksel_edge(s: vec2<f32>, own: vec2<f32>) -> vec2<f32> {
     let h = yuksel_hit(s);
     if h.w == 0.0 {
