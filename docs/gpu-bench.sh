@@ -34,6 +34,13 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
 start=$(date +%s)
 "$bin" bench "${small[@]}" --out "$out" | tee "$out/bench.log"
 "$bin" bench --tradeoff "${small[@]}" --out "$out" | tee "$out/tradeoff.log"
+# yuksel's settings against the paper's at three map sizes (issue 28's table): time and memory.
+if [ ${#small[@]} -eq 0 ]; then
+  "$bin" bench --technique yuksel --technique yuksel:subsamples=1 --technique yuksel:subsamples=2 \
+    --technique yuksel:split=0 --technique yuksel:preset=paper --technique yuksel-gather \
+    --resolution 640x360,1280x720,1920x1080 --frames 10 --warmup 2 --no-frame --out "$out/yuksel" \
+    | tee "$out/yuksel.log"
+fi
 end=$(date +%s)
 {
   echo "# caustics gpu-bench"
@@ -49,5 +56,11 @@ end=$(date +%s)
   cat "$out/tradeoff.md"
   echo
   echo "![error against cost](tradeoff.svg)"
+  if [ -f "$out/yuksel/bench.md" ]; then
+    echo
+    echo "## yuksel's settings"
+    echo
+    sed '1,2d' "$out/yuksel/bench.md" | sed 's/(bench.svg)/(yuksel\/bench.svg)/'
+  fi
 } > "$out/summary.md"
 echo "wrote $out/summary.md ($((end - start)) s)"
