@@ -48,8 +48,9 @@ pub struct Point {
 }
 
 /// The sweep: every registered GPU technique but the reference, each over the settings of the
-/// parameter its descriptor flags for sweeping (its `sweep` values; the first two for the small
-/// run), or once at its defaults where none is flagged. An entry whose variants are entries of
+/// parameters its descriptor flags for sweeping (each one's `sweep` values in turn, the others at
+/// their defaults; the first two of each for the small run), or once at its defaults where none
+/// is flagged. An entry whose variants are entries of
 /// their own (`procedural`) is swept through them.
 fn sweep(small: bool) -> Vec<(&'static str, Vec<String>)> {
     use caustics_core::techniques::REGISTRY as DESCRIBED;
@@ -64,17 +65,17 @@ fn sweep(small: bool) -> Vec<(&'static str, Vec<String>)> {
                     .any(|o| o.table == d.table && !o.fixed.is_empty()))
         })
         .map(|d| {
-            let settings = match d.params.iter().find(|p| !p.sweep.is_empty()) {
-                Some(p) => {
+            let mut settings: Vec<String> = d
+                .params
+                .iter()
+                .flat_map(|p| {
                     let n = if small { 2 } else { p.sweep.len() };
-                    p.sweep
-                        .iter()
-                        .take(n)
-                        .map(|v| format!("{}={v}", p.key))
-                        .collect()
-                }
-                None => vec![String::new()],
-            };
+                    p.sweep.iter().take(n).map(|v| format!("{}={v}", p.key))
+                })
+                .collect();
+            if settings.is_empty() {
+                settings.push(String::new());
+            }
             (d.name, settings)
         })
         .collect()

@@ -124,7 +124,7 @@ const PARAMS: &[Param] = &[
         unit: "",
         doc: "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
         change: Change::Reconfigure,
-        sweep: &[],
+        sweep: &["paper"],
     },
     Param {
         key: "n",
@@ -174,7 +174,7 @@ const PARAMS: &[Param] = &[
         unit: "",
         doc: "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
         change: Change::Uniform,
-        sweep: &["0", "0.02", "0.05", "0.1"],
+        sweep: &["0", "0.3"],
     },
     Param {
         key: "footprint",
