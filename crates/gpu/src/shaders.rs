@@ -82,6 +82,8 @@ pub const RIPPLE_DROP: PassSource = PassSource {
 pub const ALL_PASSES: &[&PassSource] = &[
     &PROBE,
     &crate::yuksel::PREPASS,
+    &crate::yuksel::PREPASS_FILL,
+    &crate::yuksel::PREPASS_SPAN,
     &crate::yuksel::PASS2,
     &crate::yuksel::GATHER,
     &crate::yuksel::REGION,

@@ -5,7 +5,7 @@
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
 //! | region bound (compute, one texel an invocation) and region (one thread) | `shaders/yuksel/region_bound.wgsl`, `region.wgsl` | `YukselSetup::region_for` |
-//! | pre-pass (compute) | `shaders/yuksel/prepass.wgsl` + `sample.wgsl` | `prepass` |
+//! | pre-pass (compute: each pixel's tier, then the records of the pixels at k, then their spans) | `shaders/yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl` | `prepass` |
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
 //! | fused variant (compute, workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
@@ -40,6 +40,16 @@ pub const PREPASS: PassSource = PassSource {
     name: "yuksel pre-pass",
     shared: &[OPTICS, WATER, COMMON, SAMPLE],
     source: include_str!("../shaders/yuksel/prepass.wgsl"),
+};
+pub const PREPASS_FILL: PassSource = PassSource {
+    name: "yuksel pre-pass fill",
+    shared: &[OPTICS, WATER, COMMON, SAMPLE],
+    source: include_str!("../shaders/yuksel/prepass_fill.wgsl"),
+};
+pub const PREPASS_SPAN: PassSource = PassSource {
+    name: "yuksel pre-pass span",
+    shared: &[COMMON],
+    source: include_str!("../shaders/yuksel/prepass_span.wgsl"),
 };
 pub const PASS2: PassSource = PassSource {
     name: "yuksel pass 2",
@@ -191,6 +201,8 @@ pub struct Yuksel {
     region: wgpu::ComputePipeline,
     region_bound: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
+    prepass_fill: wgpu::ComputePipeline,
+    prepass_span: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
     /// `None` where the device's workgroup memory cannot hold the gather's tile
     /// ([`GATHER_WORKGROUP_BYTES`]): the render-target variant still runs there.
@@ -268,7 +280,8 @@ enum FramePasses {
         bind: wgpu::BindGroup,
     },
     RenderTargets {
-        prepass: wgpu::BindGroup,
+        /// The pre-pass's three passes: tiers, fill, span.
+        prepass: [wgpu::BindGroup; 3],
         phases: Vec<Phase>,
         /// The map.
         target: wgpu::TextureView,
@@ -344,6 +357,8 @@ impl Yuksel {
             region: compute_pipeline(ctx, &REGION),
             region_bound: compute_pipeline(ctx, &REGION_BOUND),
             prepass: compute_pipeline(ctx, &PREPASS),
+            prepass_fill: compute_pipeline(ctx, &PREPASS_FILL),
+            prepass_span: compute_pipeline(ctx, &PREPASS_SPAN),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
             gather: (limits.max_compute_workgroup_storage_size >= GATHER_WORKGROUP_BYTES)
                 .then(|| compute_pipeline(ctx, &GATHER)),
@@ -506,26 +521,60 @@ impl Yuksel {
                     U::STORAGE_BINDING | U::TEXTURE_BINDING,
                 );
                 let extents_view = extents.create_view(&Default::default());
+                let tiers = ctx.texture_2d(
+                    "yuksel pre-pass tiers",
+                    (ew, eh, 1),
+                    wgpu::TextureFormat::R32Uint,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                );
+                let tiers_view = tiers.create_view(&Default::default());
                 bytes += (pw * ph) as u64 * 16
                     + (p1w * p1h) as u64 * layers as u64 * 16
-                    + (ew * eh) as u64 * 8;
+                    + (ew * eh) as u64 * (8 + 4);
                 tracing::debug!(
                     "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
                     bytes as f64 / (1u64 << 20) as f64
                 );
                 let pre_view = pre.create_view(&Default::default());
-                let prepass = bind_group(
-                    ctx,
-                    "yuksel pre-pass",
-                    &self.prepass.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        View(heights_view),
-                        View(&pre_view),
-                        region.as_entire_binding(),
-                        View(&extents_view),
-                    ],
-                );
+                let prepass = [
+                    bind_group(
+                        ctx,
+                        "yuksel pre-pass",
+                        &self.prepass.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(heights_view),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                            View(&extents_view),
+                            View(&tiers_view),
+                        ],
+                    ),
+                    bind_group(
+                        ctx,
+                        "yuksel pre-pass fill",
+                        &self.prepass_fill.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(heights_view),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                            View(&tiers_view),
+                        ],
+                    ),
+                    bind_group(
+                        ctx,
+                        "yuksel pre-pass span",
+                        &self.prepass_span.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                            View(&tiers_view),
+                            View(&extents_view),
+                        ],
+                    ),
+                ];
                 let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
                     dimension: Some(wgpu::TextureViewDimension::D2Array),
                     ..Default::default()
@@ -644,10 +693,22 @@ impl Yuksel {
                 {
                     let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
                     pass.set_pipeline(&self.prepass);
-                    pass.set_bind_group(0, prepass, &[]);
+                    pass.set_bind_group(0, &prepass[0], &[]);
                     // One invocation per pixel of the level's map and apron: level 0 has the most.
                     let (cap_n, cap_m) = frame.setup.capacity();
                     let (cols, rows) = (w as usize + cap_n - 1, h as usize + cap_m);
+                    pass.dispatch_workgroups(
+                        (cols as u32).div_ceil(8),
+                        (rows as u32).div_ceil(8),
+                        1,
+                    );
+                    // The records of the pixels at k, one invocation per record (a texel).
+                    let (pw, ph) = prepass_capacity(&frame.setup);
+                    pass.set_pipeline(&self.prepass_fill);
+                    pass.set_bind_group(0, &prepass[1], &[]);
+                    pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
+                    pass.set_pipeline(&self.prepass_span);
+                    pass.set_bind_group(0, &prepass[2], &[]);
                     pass.dispatch_workgroups(
                         (cols as u32).div_ceil(8),
                         (rows as u32).div_ceil(8),

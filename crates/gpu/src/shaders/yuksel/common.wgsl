@@ -48,6 +48,11 @@ fn level_size(width: u32, height: u32, level: u32) -> vec2<u32> {
     return vec2<u32>(width >> level, height >> level);
 }
 
+// The pre-pass's pixels for a region of N x M at `level`: the level's map and the region's apron.
+fn prepass_area(n: u32, m: u32, level: u32) -> vec2<u32> {
+    return level_size(u.width, u.height, level) + vec2<u32>(n - 1u, m);
+}
+
 // The share of a box of centre `c` and half-width `h` (pixels) in the pixel [-1/2, 1/2]: summed
 // over the pixels it covers, exactly 1. With h = 1/2 (the paper's pixel box) the overlap 1 - |c|
 // of two pixel squares. CPU twin: `box_share`.
@@ -87,4 +92,14 @@ fn tier_side(packed: f32, k: u32) -> u32 {
         return 2u;
     }
     return 4u;
+}
+
+// `span` (along x, pixels from the pixel's centre) grown to hold record `rec`'s box where it
+// carries light. An empty span is (3e38, -3e38).
+fn span_with(span: vec2<f32>, rec: vec4<f32>) -> vec2<f32> {
+    if rec.w == 0.0 {
+        return span;
+    }
+    let half = half_widths(rec.z).x;
+    return vec2<f32>(min(span.x, rec.x - half), max(span.y, rec.x + half));
 }

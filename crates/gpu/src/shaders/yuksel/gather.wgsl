@@ -82,7 +82,7 @@ fn main(
             let pr = origin.y + i32(r);
             var s = vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5))), 0.0);
             if round == 0u {
-                let side = yuksel_tier(pc, pr, sub, level_pixel, false);
+                let side = yuksel_tier(pc, pr, sub, level_pixel, 1u);
                 atomicOr(&tiers[t / 16u], (countTrailingZeros(side) & 3u) << (2u * (t % 16u)));
                 atomicMax(&most, side);
                 s = tier_records[0];

@@ -1,38 +1,42 @@
-// Technique `yuksel`, pre-pass (paper §5): every sample's floor hit, computed once, one invocation
-// per pixel of the level's map and its region's apron. Pre-pass texels (c, r) with c / k, r / k the
+// Technique `yuksel`, pre-pass (paper §5), first of three: each pixel's tier, one invocation per
+// pixel of the level's map and its region's apron. Pre-pass texels (c, r) with c / k, r / k the
 // same hold the records of map pixel (c / k - N/2 + shift.x, r / k - M/2 + shift.y): its k x k
 // samples, or with `u.split` its first t x t (`yuksel_tier`: as few as its footprints allow), the
-// others left as they were (pass 1 reads t from the first and no more). The texture is sized for
-// the largest region; texels beyond this frame's are left alone.
+// others left as they were (pass 1 reads t from the first and no more). A pixel below k writes its
+// records and its span here; a pixel at k only its tier, and `prepass_fill.wgsl` (one invocation
+// per record, so that neighbouring invocations do the same work) and `prepass_span.wgsl` do the
+// rest. The textures are sized for the largest region; texels beyond this frame's are left alone.
 
 @group(0) @binding(2) var pre_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 // Per pixel, the span along x its lit records' boxes cover (pixels from its centre; empty where
 // none is lit): pass 1 skips a pixel whose span misses its map pixel without reading its records.
 @group(0) @binding(4) var extents_out: texture_storage_2d<rg32float, write>;
+// Per pixel, its records a side t.
+@group(0) @binding(5) var tiers_out: texture_storage_2d<r32uint, write>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = level_size(u.width, u.height, region.level);
     let k = level_subsamples(region.level);
-    let held = textureDimensions(pre_out) / k;
-    let used = vec2<u32>(size.x + region.n - 1u, size.y + region.m);
+    let held = textureDimensions(tiers_out);
+    let used = prepass_area(region.n, region.m, region.level);
     if id.x >= min(held.x, used.x) || id.y >= min(held.y, used.y) {
         return;
     }
     let c = i32(id.x) - i32(region.n / 2u) + region.shift.x;
     let r = i32(id.y) - i32(region.m / 2u) + region.shift.y;
     let pixel = u.pixel * f32(1u << region.level);
+    let t = yuksel_tier(c, r, k, pixel, select(0u, 1u, k == 1u));
+    textureStore(tiers_out, vec2<i32>(id.xy), vec4<u32>(t));
+    if t == k && k > 1u {
+        return;
+    }
     let first = vec2<i32>(id.xy * k);
-    let t = yuksel_tier(c, r, k, pixel, true);
     var span = vec2<f32>(3.0e38, -3.0e38);
     for (var q = 0u; q < t * t; q++) {
         let rec = tier_records[q];
         textureStore(pre_out, first + vec2<i32>(i32(q % t), i32(q / t)), rec);
-        if rec.w != 0.0 {
-            let half = half_widths(rec.z).x;
-            span = vec2<f32>(min(span.x, rec.x - half), max(span.y, rec.x + half));
-        }
+        span = span_with(span, rec);
     }
     textureStore(extents_out, vec2<i32>(id.xy), vec4<f32>(span, 0.0, 0.0));
 }

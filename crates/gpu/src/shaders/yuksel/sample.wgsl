@@ -100,13 +100,13 @@ var<private> tier_records: array<vec4<f32>, 64>;
 
 // How many footprints a side pixel (c, r) takes (of k at most), its records in `tier_records`:
 // with `u.split` >= 0, the first of 1, 2, 4 ... k whose footprints all misfit by no more than
-// `u.split` (a tier stops at its first footprint that misfits); otherwise k. At k only the first
-// record is made unless `all`. CPU twin: `prepass` in yuksel.rs.
-fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, all: bool) -> u32 {
+// `u.split` (a tier stops at its first footprint that misfits); otherwise k. At k (weighed by
+// nothing) only the first `at_k` records are made. CPU twin: `prepass` in yuksel.rs.
+fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, at_k: u32) -> u32 {
     var t = select(k, 1u, u.split >= 0.0 && k > 1u);
     loop {
         var misfits = false;
-        for (var q = 0u; q < select(t * t, 1u, t >= k && !all); q++) {
+        for (var q = 0u; q < select(t * t, at_k, t >= k); q++) {
             let f = yuksel_part(c, r, q % t, q / t, t, pixel);
             tier_records[q] = yuksel_record(f, c, r, t, k, pixel);
             if t < k && f.rec.w != 0.0 && f.misfit > u.split {

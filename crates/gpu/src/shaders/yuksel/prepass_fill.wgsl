@@ -1,0 +1,26 @@
+// Technique `yuksel`, pre-pass, second of three: the k x k records of the pixels whose tier is k
+// (`prepass.wgsl` wrote their tier), one invocation per record (texel), the others returning at
+// once. Texel (c, r) is footprint (c % k, r % k) of its pixel.
+
+@group(0) @binding(2) var pre_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(3) var<storage, read> region: YukselRegion;
+@group(0) @binding(4) var tiers: texture_2d<u32>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let k = level_subsamples(region.level);
+    let held = textureDimensions(tiers);
+    let used = min(prepass_area(region.n, region.m, region.level), held) * k;
+    if k == 1u || id.x >= used.x || id.y >= used.y {
+        return;
+    }
+    let at = id.xy / k;
+    if textureLoad(tiers, vec2<i32>(at), 0).x != k {
+        return;
+    }
+    let c = i32(at.x) - i32(region.n / 2u) + region.shift.x;
+    let r = i32(at.y) - i32(region.m / 2u) + region.shift.y;
+    let pixel = u.pixel * f32(1u << region.level);
+    let f = yuksel_part(c, r, id.x % k, id.y % k, k, pixel);
+    textureStore(pre_out, vec2<i32>(id.xy), yuksel_record(f, c, r, k, k, pixel));
+}

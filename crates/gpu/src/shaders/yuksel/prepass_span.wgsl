@@ -1,0 +1,27 @@
+// Technique `yuksel`, pre-pass, third of three: the span along x of the pixels whose tier is k
+// (their records from `prepass_fill.wgsl`), as `prepass.wgsl` writes it for the others.
+
+@group(0) @binding(0) var<uniform> u: Yuksel;
+@group(0) @binding(1) var pre: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read> region: YukselRegion;
+@group(0) @binding(3) var tiers: texture_2d<u32>;
+@group(0) @binding(4) var extents_out: texture_storage_2d<rg32float, write>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let k = level_subsamples(region.level);
+    let held = textureDimensions(tiers);
+    let used = prepass_area(region.n, region.m, region.level);
+    if k == 1u || id.x >= min(held.x, used.x) || id.y >= min(held.y, used.y) {
+        return;
+    }
+    if textureLoad(tiers, vec2<i32>(id.xy), 0).x != k {
+        return;
+    }
+    var span = vec2<f32>(3.0e38, -3.0e38);
+    for (var q = 0u; q < k * k; q++) {
+        let rec = textureLoad(pre, vec2<i32>(id.xy * k + vec2<u32>(q % k, q / k)), 0);
+        span = span_with(span, rec);
+    }
+    textureStore(extents_out, vec2<i32>(id.xy), vec4<f32>(span, 0.0, 0.0));
+}
