@@ -58,7 +58,13 @@ fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
                 if ax == 0.0 {
                     continue;
                 }
-                for (var k = base; k < last; k++) {
+                // Only the channels whose row the box reaches (a row more each side against
+                // rounding): the others' share is 0.
+                let reach = (0.5 + half.y) / scale;
+                let mid = p.y + (centre - f32(u.phase)) / scale - f32(row0);
+                let lo = max(base, i32(floor(mid - reach)) - 1);
+                let hi = min(last, i32(ceil(mid + reach)) + 2);
+                for (var k = lo; k < hi; k++) {
                     let ay = box_share((p.y - f32(k + row0)) * scale + centre - f32(u.phase), half.y);
                     intensity[k - base] += ax * ay * p.w * area;
                 }
