@@ -69,13 +69,13 @@ fn the_region_from_the_waves_keeps_the_light_the_papers_loses() {
     // Measured (128 x 128, 4 reference cells per texel), rel. L1 / flux, defaults (adaptive
     // footprints: 1, 2 x 2 or 4 x 4 a pixel, split 0.15) vs the paper's 7 x 6 region of pixel
     // boxes:
-    //   waves-low-deep:     1.91 % / 1.5e-5    paper 25.3 % / -13.4 %   region 13 x 11
-    //   waves-grazing-deep: 2.00 % / -9.6e-5   paper 69.5 % / -61.3 %   region 23 x 17
+    //   waves-low-deep:     1.82 % / 1.9e-5    paper 25.3 % / -13.4 %   region 13 x 11
+    //   waves-grazing-deep: 1.91 % / -9.1e-5   paper 69.5 % / -61.3 %   region 23 x 17
     // (every pixel's 4 x 4 footprints: 1.24 % and 1.54 %; with pixel boxes, one sample per
     // pixel: 16.6 % and 24.9 %, the box filter's blur, docs/yuksel.md).
     for (name, l1, flux, paper_flux) in [
-        ("waves-low-deep", 0.0191, 1.5e-5, -0.134),
-        ("waves-grazing-deep", 0.0200, 9.6e-5, -0.613),
+        ("waves-low-deep", 0.0182, 1.9e-5, -0.134),
+        ("waves-grazing-deep", 0.0191, 9.1e-5, -0.613),
     ] {
         let (ours, paper, region) = measure(name);
         eprintln!("{name}: {region:?}\n  defaults {ours:?}\n  paper {paper:?}");

@@ -20,8 +20,9 @@ var<workgroup> tile_dx: array<f32, 1936>;
 var<workgroup> tile_dy: array<f32, 1936>;
 var<workgroup> tile_half: array<u32, 1936>;
 var<workgroup> tile_w: array<f32, 1936>;
-// How many records a side each pixel of the tile and apron takes (`yuksel_tier`: 1, 2, 4 or 8,
-// as its log2 in two bits), and the most of any (its square is the rounds the tile needs).
+// How many records a side each pixel of the tile and apron takes (`yuksel_tier`: 1, 2 or 4 below
+// k as their log2, or k, in two bits), and the most of any (its square is the rounds the tile
+// needs).
 var<workgroup> tiers: array<atomic<u32>, 121>;
 var<workgroup> most: atomic<u32>;
 var<workgroup> rounds: u32;
@@ -83,11 +84,14 @@ fn main(
             var s = vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5))), 0.0);
             if round == 0u {
                 let side = yuksel_tier(pc, pr, sub, level_pixel, 1u);
-                atomicOr(&tiers[t / 16u], (countTrailingZeros(side) & 3u) << (2u * (t % 16u)));
+                // t below k is 1, 2 or 4 (codes 0 to 2); k itself (3, 6 and 8 too) is code 3.
+                let code = select(countTrailingZeros(side), 3u, side == sub);
+                atomicOr(&tiers[t / 16u], code << (2u * (t % 16u)));
                 atomicMax(&most, side);
                 s = tier_records[0];
             } else {
-                let side = 1u << ((atomicLoad(&tiers[t / 16u]) >> (2u * (t % 16u))) & 3u);
+                let code = (atomicLoad(&tiers[t / 16u]) >> (2u * (t % 16u))) & 3u;
+                let side = select(1u << code, sub, code == 3u);
                 if round < side * side {
                     let part = yuksel_part(pc, pr, round % side, round / side, side, level_pixel);
                     s = yuksel_record(part, pc, pr, side, sub, level_pixel);

@@ -8,7 +8,8 @@
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var pre: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
-// Per pixel of the pre-pass, the span along x its records' boxes cover (`prepass.wgsl`).
+// Per pixel of the pre-pass, the span along x its records' boxes cover (`prepass.wgsl`,
+// `prepass_span.wgsl`).
 @group(0) @binding(3) var extents: texture_2d<f32>;
 
 @vertex
@@ -48,9 +49,9 @@ fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
         let first = vec2<i32>((jc + col) * sub, r * sub);
         let p0 = textureLoad(pre, first, 0);
         // A pixel's t x t records (`yuksel_tier`), t in its first's sign bits.
-        let count = i32(tier_side(p0.z, u32(sub)));
-        for (var b = 0; b < count; b++) {
-            for (var a = 0; a < count; a++) {
+        let side = i32(tier_side(p0.z, u32(sub)));
+        for (var b = 0; b < side; b++) {
+            for (var a = 0; a < side; a++) {
                 let p = textureLoad(pre, first + vec2<i32>(a, b), 0);
                 let half = half_widths(p.z) * scale;
                 // In map pixels from the map pixel's centre.

@@ -51,23 +51,45 @@ fn yuksel_footprint(s: vec2<f32>, area: vec2<f32>, pixel: vec2<f32>) -> YukselFo
         let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
         return YukselFootprint(vec4<f32>(h.xy, bitcast<f32>(packed), h.z), 0.0);
     }
-    let xm = yuksel_edge(s - vec2<f32>(0.5 * area.x, 0.0), h.xy);
-    let xp = yuksel_edge(s + vec2<f32>(0.5 * area.x, 0.0), h.xy);
-    let ym = yuksel_edge(s - vec2<f32>(0.0, 0.5 * area.y), h.xy);
-    let yp = yuksel_edge(s + vec2<f32>(0.0, 0.5 * area.y), h.xy);
-    let centre = vec2<f32>(xm.x + xp.x, ym.y + yp.y) * 0.5;
+    // An edge the sun cannot light takes the patch's own hit and flux, and the box cannot stand
+    // for the patch (below k, a finer tier takes it).
+    let exm = yuksel_edge(s - vec2<f32>(0.5 * area.x, 0.0), h);
+    let exp = yuksel_edge(s + vec2<f32>(0.5 * area.x, 0.0), h);
+    let eym = yuksel_edge(s - vec2<f32>(0.0, 0.5 * area.y), h);
+    let eyp = yuksel_edge(s + vec2<f32>(0.0, 0.5 * area.y), h);
+    let unlit = exm.w == 0.0 || exp.w == 0.0 || eym.w == 0.0 || eyp.w == 0.0;
+    let xm = exm.xy;
+    let xp = exp.xy;
+    let ym = eym.xy;
+    let yp = eyp.xy;
+    let mid_x = (xm + xp) * 0.5;
+    let mid_y = (ym + yp) * 0.5;
     let half = abs(vec2<f32>(xp.x - xm.x, yp.y - ym.y)) * 0.5 / pixel;
-    // The hit off the box's centre plus half the shear the box ignores, over the box's width (at
-    // least a map pixel: `u.pixel / pixel` of the level's).
-    let off = vec2<f32>(
-        abs(h.x - centre.x) + 0.5 * abs(yp.x - ym.x),
-        abs(h.y - centre.y) + 0.5 * abs(xp.y - xm.y),
-    ) / pixel;
+    // The hit off each axis's edge midpoints' mean (the map bends) plus half the shear the box
+    // ignores, over the box's width (at least a map pixel: `u.pixel / pixel` of the level's).
+    let bend = abs(h.xy - mid_x) + abs(h.xy - mid_y);
+    let shear = vec2<f32>(abs(yp.x - ym.x), abs(xp.y - xm.y)) * 0.5;
+    let off = (bend + shear) / pixel;
     let width = max(2.0 * half, vec2<f32>(u.pixel.x / pixel.x));
+    var misfit = max(off.x / width.x, off.y / width.y);
+    if unlit {
+        misfit = 3.0e38;
+    }
     let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
-    // The box on the light's centroid, for a map quadratic over the patch.
-    let centroid = h.xy + ((xm + xp) * 0.5 - h.xy + (ym + yp) * 0.5 - h.xy) / 3.0;
-    return YukselFootprint(vec4<f32>(centroid, bitcast<f32>(packed), h.z), max(off.x / width.x, off.y / width.y));
+    // The box on the light's centroid, for a map quadratic and a flux linear over the patch.
+    let centroid = h.xy + (mid_x - h.xy + mid_y - h.xy) / 3.0
+        + ((xp - xm) * (exp.z - exm.z) + (yp - ym) * (eyp.z - eym.z)) / (12.0 * h.z);
+    return YukselFootprint(vec4<f32>(centroid, bitcast<f32>(packed), h.z), misfit);
+}
+
+// A patch edge's `yuksel_hit`, or where the sun cannot light the edge the patch's own hit and
+// flux with w = 0.
+fn yuksel_edge(s: vec2<f32>, own: vec4<f32>) -> vec4<f32> {
+    let h = yuksel_hit(s);
+    if h.w == 0.0 {
+        return vec4<f32>(own.xyz, 0.0);
+    }
+    return h;
 }
 
 // The centre of pixel (column c, row r) of the level's map (pixel `pixel`), which may lie outside
@@ -95,12 +117,14 @@ fn yuksel_record(f: YukselFootprint, c: i32, r: i32, t: u32, k: u32, pixel: vec2
     return vec4<f32>(d, bitcast<f32>(bitcast<u32>(f.rec.z) | bits), f.rec.w / f32(t * t));
 }
 
-// The records `yuksel_tier` made, in the order of their t x t (up to 8 x 8).
-var<private> tier_records: array<vec4<f32>, 64>;
+// The records `yuksel_tier` made, in the order of their t x t (below k, t is at most 4; at k it
+// makes at most one).
+var<private> tier_records: array<vec4<f32>, 16>;
 
 // How many footprints a side pixel (c, r) takes (of k at most), its records in `tier_records`:
 // with `u.split` >= 0, the first of 1, 2, 4 ... k whose footprints all misfit by no more than
-// `u.split` (a tier stops at its first footprint that misfits); otherwise k. At k (weighed by
+// `u.split` (a tier stops at its first footprint that misfits or that the sun cannot light);
+// otherwise k. At k (weighed by
 // nothing) only the first `at_k` records are made. CPU twin: `prepass` in yuksel.rs.
 fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, at_k: u32) -> u32 {
     var t = select(k, 1u, u.split >= 0.0 && k > 1u);
@@ -109,7 +133,7 @@ fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, at_k: u32) -> u32 {
         for (var q = 0u; q < select(t * t, at_k, t >= k); q++) {
             let f = yuksel_part(c, r, q % t, q / t, t, pixel);
             tier_records[q] = yuksel_record(f, c, r, t, k, pixel);
-            if t < k && f.rec.w != 0.0 && f.misfit > u.split {
+            if t < k && (f.rec.w == 0.0 || f.misfit > u.split) {
                 misfits = true;
                 break;
             }
@@ -120,13 +144,4 @@ fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, at_k: u32) -> u32 {
         t = min(2u * t, k);
     }
     return t;
-}
-
-// A patch edge's floor hit, or the patch's own where the sun cannot light the edge.
-fn yuksel_edge(s: vec2<f32>, own: vec2<f32>) -> vec2<f32> {
-    let h = yuksel_hit(s);
-    if h.w == 0.0 {
-        return own;
-    }
-    return h.xy;
 }
