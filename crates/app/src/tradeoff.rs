@@ -485,6 +485,40 @@ mod tests {
         }
     }
 
+    /// Each parameter a descriptor flags is swept in turn (yuksel: its samples, its split and the
+    /// paper's preset), the small run taking the first two values of each.
+    #[test]
+    fn every_flagged_parameter_is_swept() {
+        let of = |small| {
+            sweep(small)
+                .into_iter()
+                .find(|(name, _)| *name == "yuksel")
+                .expect("yuksel is swept")
+                .1
+        };
+        let full = of(false);
+        for s in [
+            "preset=paper",
+            "subsamples=1",
+            "subsamples=4",
+            "split=0",
+            "split=0.3",
+        ] {
+            assert!(full.iter().any(|v| v == s), "{s} in {full:?}");
+        }
+        let small = of(true);
+        assert_eq!(
+            small,
+            [
+                "preset=paper",
+                "subsamples=1",
+                "subsamples=2",
+                "split=0",
+                "split=0.3"
+            ]
+        );
+    }
+
     /// A point beaten on both counts leaves the front; a tie on one count, better on the other, too.
     #[test]
     fn the_front_keeps_only_the_unbeaten() {

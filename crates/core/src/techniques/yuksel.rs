@@ -56,7 +56,8 @@
 //!   the hits of the patch's edge midpoints, `footprint`), shared among the pixels it overlaps
 //!   in proportion ([`box_share`]): flux is conserved exactly, and light focused narrower than a
 //!   pixel stays in one pixel instead of being spread over two as a pixel box spreads it. The box
-//!   sits on the light's centroid (for a map that bends quadratically over the patch).
+//!   sits on the light's centroid (for a map that bends quadratically and a flux that varies
+//!   linearly over the patch).
 //! - **Adaptive footprints** (default, [`YukselParams::split`]): a pixel takes only as many
 //!   footprints as its water needs, 1, 2 × 2, 4 × 4 … up to `k × k`: the first whose footprints
 //!   all [`misfit`] (misplace their light, as a share of their width) by no more than `split`.
@@ -256,9 +257,10 @@ pub const MAX_SUBSAMPLES: u32 = 4;
 /// over 8 % (docs/yuksel.md).
 pub const DEFAULT_SUBSAMPLES: u32 = 4;
 /// The default [`YukselParams::split`]: the largest misfit of a pixel's footprints before it is
-/// sampled twice as finely along each axis. Measured over `caustics compare`'s 32 cases at 128²
-/// and 256² (docs/yuksel.md, "Adaptive footprints"): the worst case 3.6 % and 2.6 % rel. L1 where
-/// 0.2 reaches 4.7 % and 0 (every pixel 4 × 4) 3.2 %.
+/// sampled twice as finely along each axis. Measured over `caustics compare`'s 32 cases at 128²,
+/// 256² and 512² (docs/yuksel.md, "Adaptive footprints"): the worst case 3.4, 2.4 and 3.1 % rel.
+/// L1, where 0.2 reaches 4.0 % at 512² and 0 (every pixel 4 × 4) 3.2 % at 128², at 1.5 to 2 times
+/// the cost.
 pub const DEFAULT_SPLIT: f64 = 0.15;
 /// The most samples per level pixel along each axis at a coarser level: there `k` grows with the
 /// level (`k · 2^level`, up to this) so that the map's pixels keep `(8 / 2^level)²` samples at

@@ -425,7 +425,7 @@ impl Yuksel {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         // Sized for the largest region the region pass may choose.
-        let (cap_n, cap_m) = setup.capacity();
+        let (_, cap_m) = setup.capacity();
         let (pw, ph) = prepass_capacity(setup);
         let (p1w, p1h) = (setup.width, setup.height + cap_m);
         ctx.check_texture_size("yuksel caustics map", w, h)?;
@@ -512,22 +512,20 @@ impl Yuksel {
                     MAP_FORMAT,
                     U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
                 );
-                // One texel per pixel of the pre-pass area at level 0, the largest.
-                let (ew, eh) = (w + cap_n as u32 - 1, h + cap_m as u32);
-                let extents = ctx.texture_2d(
-                    "yuksel pre-pass extents",
-                    (ew, eh, 1),
-                    wgpu::TextureFormat::Rg32Float,
-                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
-                );
-                let extents_view = extents.create_view(&Default::default());
-                let tiers = ctx.texture_2d(
-                    "yuksel pre-pass tiers",
-                    (ew, eh, 1),
-                    wgpu::TextureFormat::R32Uint,
-                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
-                );
-                let tiers_view = tiers.create_view(&Default::default());
+                // Each pixel's span along x and its tier, one texel per pixel of the pre-pass.
+                let (ew, eh) = prepass_pixels(setup);
+                let per_pixel = |label, format| {
+                    ctx.texture_2d(
+                        label,
+                        (ew, eh, 1),
+                        format,
+                        U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                    )
+                    .create_view(&Default::default())
+                };
+                let extents_view =
+                    per_pixel("yuksel pre-pass extents", wgpu::TextureFormat::Rg32Float);
+                let tiers_view = per_pixel("yuksel pre-pass tiers", wgpu::TextureFormat::R32Uint);
                 bytes += (pw * ph) as u64 * 16
                     + (p1w * p1h) as u64 * layers as u64 * 16
                     + (ew * eh) as u64 * (8 + 4);
@@ -694,14 +692,9 @@ impl Yuksel {
                     let mut pass = begin_compute(encoder, &mut timer, "yuksel pre-pass");
                     pass.set_pipeline(&self.prepass);
                     pass.set_bind_group(0, &prepass[0], &[]);
-                    // One invocation per pixel of the level's map and apron: level 0 has the most.
-                    let (cap_n, cap_m) = frame.setup.capacity();
-                    let (cols, rows) = (w as usize + cap_n - 1, h as usize + cap_m);
-                    pass.dispatch_workgroups(
-                        (cols as u32).div_ceil(8),
-                        (rows as u32).div_ceil(8),
-                        1,
-                    );
+                    // One invocation per pixel of the level's map and apron.
+                    let (cols, rows) = prepass_pixels(&frame.setup);
+                    pass.dispatch_workgroups(cols.div_ceil(8), rows.div_ceil(8), 1);
                     // The records of the pixels at k, one invocation per record (a texel).
                     let (pw, ph) = prepass_capacity(&frame.setup);
                     pass.set_pipeline(&self.prepass_fill);
@@ -709,11 +702,7 @@ impl Yuksel {
                     pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
                     pass.set_pipeline(&self.prepass_span);
                     pass.set_bind_group(0, &prepass[2], &[]);
-                    pass.dispatch_workgroups(
-                        (cols as u32).div_ceil(8),
-                        (rows as u32).div_ceil(8),
-                        1,
-                    );
+                    pass.dispatch_workgroups(cols.div_ceil(8), rows.div_ceil(8), 1);
                 }
                 for phase in phases {
                     for (pipeline, bind, views) in &phase.draws {
@@ -798,6 +787,16 @@ impl Yuksel {
             texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
         })
     }
+}
+
+/// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has
+/// the most): the map and the region's apron.
+fn prepass_pixels(setup: &YukselSetup) -> (u32, u32) {
+    let (cap_n, cap_m) = setup.capacity();
+    (
+        (setup.width + cap_n - 1) as u32,
+        (setup.height + cap_m) as u32,
+    )
 }
 
 /// The pre-pass texture's size for the largest region at any level the setup may choose: the
