@@ -128,3 +128,167 @@ impl CausticsMap {
         }
     }
 }
+
+/// Most taps a footprint-filtered lookup takes along its footprint's long axis (as a GPU's
+/// anisotropic filtering does); longer footprints take coarser levels. `MAX_TAPS` in
+/// final_image.wgsl.
+pub const MAX_TAPS: usize = 4;
+
+/// A caustics map and its box-filtered halvings: level `L` has `max(1, width >> L)` x
+/// `max(1, height >> L)` texels over the same square, each the mean of the 2 x 2 texels of level
+/// `L - 1` under it (an odd last row or column is dropped), down to one texel along the longer
+/// side. The final image reads it over each sample's footprint on the floor, so that caustics
+/// seen far away or through waves blend as the many rays of a pixel would instead of aliasing.
+/// GPU twin: `caustics_mips.wgsl` builds the same levels, `sample_caustics_filtered` in
+/// final_image.wgsl reads them.
+#[derive(Clone, Debug)]
+pub struct MapPyramid {
+    pub levels: Vec<CausticsMap>,
+}
+
+/// Levels of the pyramid of a `width` x `height` map, level 0 included.
+pub fn pyramid_levels(width: usize, height: usize) -> usize {
+    width.max(height).max(1).ilog2() as usize + 1
+}
+
+impl CausticsMap {
+    /// This map's [`MapPyramid`].
+    pub fn pyramid(&self) -> MapPyramid {
+        let mut levels = vec![self.clone()];
+        for _ in 1..pyramid_levels(self.width, self.height) {
+            let fine = levels.last().expect("level 0");
+            let (w, h) = ((fine.width / 2).max(1), (fine.height / 2).max(1));
+            let at = |i: usize, j: usize| {
+                fine.texels[i.min(fine.height - 1) * fine.width + j.min(fine.width - 1)]
+            };
+            let mut coarse = CausticsMap::new(w, h, self.size);
+            for i in 0..h {
+                for j in 0..w {
+                    let (a, b) = (at(2 * i, 2 * j), at(2 * i, 2 * j + 1));
+                    let (c, d) = (at(2 * i + 1, 2 * j), at(2 * i + 1, 2 * j + 1));
+                    coarse.texels[i * w + j] =
+                        std::array::from_fn(|k| (a[k] + b[k] + c[k] + d[k]) * 0.25);
+                }
+            }
+            levels.push(coarse);
+        }
+        MapPyramid { levels }
+    }
+}
+
+impl MapPyramid {
+    /// The map's mean over the footprint centred on floor point `p` and spanned by `axes` (world
+    /// units: the parallelogram one sample covers on the floor), clamped or wrapped at the edges.
+    ///
+    /// As a GPU's anisotropic filtering: up to [`MAX_TAPS`] taps spread along the footprint's long
+    /// axis, each trilinear at the level whose filter has the variance of a box as wide as the
+    /// part of the footprint it stands for (a box of width `w` has variance `w²/12`; bilinear at
+    /// level `L` of box-filtered texels `4^L/4`, so `2^L = w/√3`). A footprint within a texel reads
+    /// level 0 bilinearly, as [`CausticsMap::sample`] does.
+    pub fn filtered(&self, p: glam::DVec2, axes: [glam::DVec2; 2], wrap: bool) -> [f32; 3] {
+        let base = &self.levels[0];
+        let texels = glam::DVec2::new(base.width as f64, base.height as f64) / base.size;
+        let (a, b) = (axes[0] * texels, axes[1] * texels);
+        let (long, la) = if a.length() >= b.length() {
+            (a, a.length())
+        } else {
+            (b, b.length())
+        };
+        // The parallelogram's width across its long side.
+        let across = if la > 0.0 { a.perp_dot(b).abs() / la } else { 0.0 };
+        let (la, across) = (la.max(1.0), across.max(1.0));
+        let taps = ((la / across).ceil() as usize).clamp(1, MAX_TAPS);
+        let width = (la / taps as f64).max(across);
+        let level = (width / 3f64.sqrt()).log2().max(0.0);
+        let step = long / texels;
+        let mut sum = [0.0f32; 3];
+        for t in 0..taps {
+            let q = p + step * ((t as f64 + 0.5) / taps as f64 - 0.5);
+            let c = self.trilinear(q, level, wrap);
+            for k in 0..3 {
+                sum[k] += c[k];
+            }
+        }
+        sum.map(|s| s / taps as f32)
+    }
+
+    /// Bilinear at levels `floor(level)` and the next, blended by the fraction.
+    fn trilinear(&self, p: glam::DVec2, level: f64, wrap: bool) -> [f32; 3] {
+        let last = self.levels.len() - 1;
+        let l0 = (level.floor() as usize).min(last);
+        let f = if l0 == last { 0.0 } else { (level - l0 as f64) as f32 };
+        let a = self.levels[l0].sample(p.x, p.y, wrap);
+        if f == 0.0 {
+            return a;
+        }
+        let b = self.levels[l0 + 1].sample(p.x, p.y, wrap);
+        std::array::from_fn(|k| a[k] * (1.0 - f) + b[k] * f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec2;
+
+    fn checker(n: usize) -> CausticsMap {
+        let mut m = CausticsMap::new(n, n, 2.0);
+        for i in 0..n {
+            for j in 0..n {
+                let v = if (i + j) % 2 == 0 { 2.0 } else { 0.0 };
+                m.texels[i * n + j] = [v, v * 0.5, 1.0];
+            }
+        }
+        m
+    }
+
+    #[test]
+    fn levels_halve_to_one_texel_and_keep_the_mean() {
+        let mut m = CausticsMap::new(12, 5, 1.0);
+        for (k, t) in m.texels.iter_mut().enumerate() {
+            *t = [(k % 7) as f32, 1.0, (k % 3) as f32];
+        }
+        let p = m.pyramid();
+        let dims: Vec<_> = p.levels.iter().map(|l| (l.width, l.height)).collect();
+        assert_eq!(dims, [(12, 5), (6, 2), (3, 1), (1, 1)]);
+        // A constant channel stays constant at every level.
+        assert!(p.levels.iter().all(|l| l.texels.iter().all(|t| t[1] == 1.0)));
+        // Even sizes: every level's flux is the map's.
+        let even = checker(16).pyramid();
+        for l in &even.levels {
+            assert!((l.flux() - even.levels[0].flux()).abs() < 1e-9, "{}", l.flux());
+        }
+    }
+
+    #[test]
+    fn a_point_footprint_reads_level_zero_and_a_wide_one_the_mean() {
+        let m = checker(64);
+        let p = m.pyramid();
+        let q = DVec2::new(0.37, 1.21);
+        let point = p.filtered(q, [DVec2::ZERO; 2], false);
+        assert_eq!(point, m.sample(q.x, q.y, false));
+        // A footprint of many texels each way averages the checker to its mean, 1.
+        let wide = p.filtered(q, [DVec2::new(0.4, 0.0), DVec2::new(0.0, 0.4)], false);
+        assert!((wide[0] - 1.0).abs() < 1e-6 && (wide[1] - 0.5).abs() < 1e-6, "{wide:?}");
+        // So does a long, thin one: its taps along the long axis at a level as fine as its width.
+        let thin = p.filtered(q, [DVec2::new(0.5, 0.5), DVec2::new(-0.05, 0.05)], true);
+        assert!((thin[0] - 1.0).abs() < 1e-6, "{thin:?}");
+    }
+
+    #[test]
+    fn the_filter_is_symmetric_in_its_axes_and_their_signs() {
+        let mut m = CausticsMap::new(32, 32, 1.0);
+        for (k, t) in m.texels.iter_mut().enumerate() {
+            let v = ((k * 2_654_435_761) % 1000) as f32 / 1000.0;
+            *t = [v, v, v];
+        }
+        let p = m.pyramid();
+        let q = DVec2::new(0.41, 0.63);
+        let (a, b) = (DVec2::new(0.11, 0.02), DVec2::new(-0.01, 0.04));
+        let r = p.filtered(q, [a, b], false);
+        for axes in [[b, a], [-a, b], [a, -b], [-b, -a]] {
+            let s = p.filtered(q, axes, false);
+            assert!((s[0] - r[0]).abs() < 1e-6, "{s:?} {r:?}");
+        }
+    }
+}

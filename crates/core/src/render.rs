@@ -33,7 +33,7 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use crate::map::CausticsMap;
+use crate::map::{CausticsMap, MapPyramid};
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, reflect, refract};
 use crate::scene::{Camera, Material, Scene};
@@ -232,10 +232,77 @@ pub fn sky_ambient(sun: DVec3) -> DVec3 {
     Sky::new(sun, TURBIDITY).horizontal_irradiance()
 }
 
+/// How the rays of a sample's neighbours, one sample spacing away along each image axis, differ
+/// from its own: in origin and in direction (ray differentials, H. Igehy, "Tracing Ray
+/// Differentials", SIGGRAPH 99), taken as secants across the sample rather than derivatives, so
+/// that at the water they see how much the waves turn the refracted rays over the sample's
+/// footprint, however curved the surface is within it. Carried along a sample's first path (its
+/// primary ray and that ray's refraction; every other ray has none), they give the footprint on
+/// the floor that the floor's caustics and albedo are filtered over: the spread of floor points
+/// that many rays of the sample would reach.
+#[derive(Clone, Copy, Debug, Default)]
+struct Spread {
+    o: [DVec3; 2],
+    d: [DVec3; 2],
+}
+
+impl Spread {
+    /// The camera's: rays through image points half a sample spacing `h` (pixels) either side of
+    /// `(x, y)` along each axis. GPU twin: `camera_spread` in final_image.wgsl.
+    fn of_camera(cam: &Camera, x: f64, y: f64, h: f64) -> Spread {
+        let dir = |dx: f64, dy: f64| cam.ray(x + dx, y + dy).1;
+        Spread {
+            o: [DVec3::ZERO; 2],
+            d: [
+                dir(0.5 * h, 0.0) - dir(-0.5 * h, 0.0),
+                dir(0.0, 0.5 * h) - dir(0.0, -0.5 * h),
+            ],
+        }
+    }
+
+    /// The footprint's axes where the ray `o + t d` meets the plane through its end with normal
+    /// `m` (Igehy's transfer: the neighbours' points on that plane, less the ray's own).
+    fn on_plane(&self, d: DVec3, t: f64, m: DVec3) -> [DVec2; 2] {
+        let cos = m.dot(d);
+        std::array::from_fn(|k| {
+            let v = self.o[k] + self.d[k] * t;
+            let v = if cos.abs() > 1e-9 {
+                v - d * (m.dot(v) / cos)
+            } else {
+                v
+            };
+            v.truncate()
+        })
+    }
+
+    /// Through the water surface met at `p` along `d` after `t`, its normal there `n`: each axis's
+    /// neighbours meet the surface half a footprint either side of `p`, where the surface's own
+    /// normals refract them (the secant of the refracted direction across the footprint).
+    /// GPU twin: `refracted_spread` in final_image.wgsl.
+    fn refracted(&self, s: &dyn Surface, p: DVec3, d: DVec3, t: f64, n: DVec3, ior: f64) -> Spread {
+        let mut out = Spread::default();
+        for k in 0..2 {
+            let v = self.o[k] + self.d[k] * t;
+            let dp = v - d * (n.dot(v) / n.dot(d));
+            let side = |sign: f64| {
+                let q = p + dp * (0.5 * sign);
+                let m = height_field_normal(s.gradient(q.truncate()));
+                refract((d + self.d[k] * (0.5 * sign)).normalize(), m, 1.0 / ior)
+            };
+            out.o[k] = dp;
+            if let (Some(a), Some(b)) = (side(-1.0), side(1.0)) {
+                out.d[k] = b - a;
+            }
+        }
+        out
+    }
+}
+
 struct Tracer<'a> {
     scene: &'a Scene,
     surface: Option<&'a dyn Surface>,
-    caustics: Option<&'a CausticsMap>,
+    /// The floor's map and its pyramid, read over each sample's footprint on the floor.
+    caustics: Option<(&'a CausticsMap, MapPyramid)>,
     eye_space: Option<(&'a EyeSpaceCaustics, EyeCamera)>,
     /// The walls' maps, when the technique lit the pool's walls.
     walls: Option<&'a WallMaps>,
@@ -311,7 +378,7 @@ pub fn render_with_walls(
         scene,
         surface,
         caustics: match caustics {
-            Some(Caustics::Floor(m)) => Some(m),
+            Some(Caustics::Floor(m)) => Some((m, m.pyramid())),
             _ => None,
         },
         eye_space: match caustics {
@@ -352,11 +419,13 @@ pub fn render_with_walls(
                 let mut c = DVec3::ZERO;
                 for sy in 0..n {
                     for sx in 0..n {
-                        let (o, d) = cam.ray(
+                        let (sx, sy) = (
                             x as f64 + (sx as f64 + 0.5) / n as f64 - 0.5,
                             y as f64 + (sy as f64 + 0.5) / n as f64 - 0.5,
                         );
-                        c += tracer.trace_from(o, d, 0, under);
+                        let (o, d) = cam.ray(sx, sy);
+                        let spread = Spread::of_camera(cam, sx, sy, 1.0 / n as f64);
+                        c += tracer.trace_from(o, d, 0, under, spread);
                     }
                 }
                 let c = c / (n * n) as f64 * options.exposure;
@@ -644,13 +713,13 @@ impl Tracer<'_> {
             .any(|(obj, bvh)| bvh.intersect(&obj.mesh, o, d, t_max).is_some())
     }
 
-    fn trace(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+    fn trace(&self, o: DVec3, d: DVec3, depth: u32, spread: Spread) -> DVec3 {
         if depth > 6 {
             return DVec3::ZERO;
         }
         let scene = self.scene;
         let Some(water) = &scene.water else {
-            return self.trace_air(o, d, depth);
+            return self.trace_air(o, d, depth, spread);
         };
         let size = water.size;
         let level = water.depth;
@@ -680,11 +749,12 @@ impl Tracer<'_> {
             return reflected;
         };
         debug_assert!(t >= 0.0);
-        reflected + self.trace_under(p, r, depth) * t_view
+        let spread = spread.refracted(s, p, d, t, n, water.ior);
+        reflected + self.trace_under(p, r, depth, spread) * t_view
     }
 
     /// Radiance arriving along `d` at point `o` under the water.
-    fn trace_under(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+    fn trace_under(&self, o: DVec3, d: DVec3, depth: u32, spread: Spread) -> DVec3 {
         // The same bound as `trace`: a ray reflected inside a glass object under water would
         // otherwise recurse until the stack overflows.
         if depth > 6 {
@@ -714,12 +784,15 @@ impl Tracer<'_> {
         } else if ceiling.is_some() {
             (t_floor, self.leave_water(floor_p, d, depth))
         } else {
-            (t_floor, self.shade_floor(floor_p))
+            let (_, g) = scene.floor.height_gradient(floor_p.truncate(), scene.size);
+            let footprint = spread.on_plane(d, t_floor, height_field_normal(g));
+            (t_floor, self.shade_floor(floor_p, footprint))
         };
         colour * (-water.absorption * dist).exp()
     }
 
-    fn shade_floor(&self, p: DVec3) -> DVec3 {
+    /// The floor at `p`, its caustics and albedo filtered over the sample's `footprint` there.
+    fn shade_floor(&self, p: DVec3, footprint: [DVec2; 2]) -> DVec3 {
         let scene = self.scene;
         let water = scene.water.as_ref().expect("under water");
         let size = water.size;
@@ -727,13 +800,13 @@ impl Tracer<'_> {
         let e_h = scene.light.intensity * -self.sun.z;
         let flat = || (-water.absorption * ((water.depth - p.z) / -self.sun_water.z)).exp();
         let wrap = water.wrap && scene.floor.terrain.is_none();
-        let relative = match (self.caustics, &self.eye_space) {
+        let relative = match (&self.caustics, &self.eye_space) {
             // Beyond a map that does not tile (a terrain's, clamped at its edges) nothing says
             // where the light focuses: the floor there gets the flat water's light, the mean of
             // any pattern (stretching the map's edge texels to the horizon drew streaks).
-            (Some(m), _) if !wrap && !inside(p.truncate(), m.size) => flat(),
-            (Some(m), _) => {
-                let c = m.sample(p.x, p.y, wrap);
+            (Some((m, _)), _) if !wrap && !inside(p.truncate(), m.size) => flat(),
+            (Some((_, pyramid)), _) => {
+                let c = pyramid.filtered(p.truncate(), footprint, wrap);
                 DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)
             }
             (None, Some((image, eye))) => image.sample(eye, p).unwrap_or_else(flat),
@@ -821,9 +894,10 @@ impl Tracer<'_> {
                 };
                 let cos_i = -d.dot(n);
                 let t = fresnel_transmittance(cos_i, n1, n2);
-                let refl = self.trace_from(p + n * 1e-5, reflect(d, n), depth + 1, under);
+                let none = Spread::default();
+                let refl = self.trace_from(p + n * 1e-5, reflect(d, n), depth + 1, under, none);
                 let refr = match refract(d, n, n1 / n2) {
-                    Some(r) => self.trace_from(p - n * 1e-5, r, depth + 1, under) * *tint,
+                    Some(r) => self.trace_from(p - n * 1e-5, r, depth + 1, under, none) * *tint,
                     None => DVec3::ZERO,
                 };
                 refl * (1.0 - t) + refr * t
@@ -831,16 +905,16 @@ impl Tracer<'_> {
         }
     }
 
-    fn trace_from(&self, o: DVec3, d: DVec3, depth: u32, under: bool) -> DVec3 {
+    fn trace_from(&self, o: DVec3, d: DVec3, depth: u32, under: bool, spread: Spread) -> DVec3 {
         if under {
-            self.trace_under(o, d, depth)
+            self.trace_under(o, d, depth, spread)
         } else {
-            self.trace(o, d, depth)
+            self.trace(o, d, depth, spread)
         }
     }
 
     /// No water in the scene: objects over the floor plane in open air.
-    fn trace_air(&self, o: DVec3, d: DVec3, depth: u32) -> DVec3 {
+    fn trace_air(&self, o: DVec3, d: DVec3, depth: u32, spread: Spread) -> DVec3 {
         let t_floor = if d.z < 0.0 { -o.z / d.z } else { f64::INFINITY };
         if let Some((t, n, k)) = self.nearest_object(o, d, t_floor) {
             return self.shade_object(o + d * t, n, d, k, depth, false);
@@ -852,9 +926,10 @@ impl Tracer<'_> {
             // With a caustics map of the light through the glass (relative to the unobstructed
             // sun), every object shadows the direct sun and the map brings back what the glass
             // transmitted; without one, glass lets the sun through unchanged.
-            let (lit, caustic) = match self.caustics {
-                Some(m) => {
-                    let c = m.sample(p.x, p.y, false);
+            let (lit, caustic) = match &self.caustics {
+                Some((_, pyramid)) => {
+                    let footprint = spread.on_plane(d, t_floor, DVec3::Z);
+                    let c = pyramid.filtered(p.truncate(), footprint, false);
                     let blocked = self.occluded_by_any(from, -self.sun, f64::INFINITY);
                     (
                         if blocked { 0.0 } else { 1.0 },
@@ -957,10 +1032,11 @@ impl Tracer<'_> {
             None => DVec3::Z,
         };
         let split = from_below(d, n, water.ior);
-        let mut c = self.trace_under(p - n * 1e-5, split.reflected, depth + 1)
+        let none = Spread::default();
+        let mut c = self.trace_under(p - n * 1e-5, split.reflected, depth + 1, none)
             * (1.0 - split.transmittance);
         if let Some(r) = split.refracted {
-            c += self.trace(p + n * 1e-5, r, depth + 1) * split.transmittance;
+            c += self.trace(p + n * 1e-5, r, depth + 1, none) * split.transmittance;
         }
         c
     }
