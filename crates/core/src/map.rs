@@ -195,7 +195,11 @@ impl MapPyramid {
             (b, b.length())
         };
         // The parallelogram's width across its long side.
-        let across = if la > 0.0 { a.perp_dot(b).abs() / la } else { 0.0 };
+        let across = if la > 0.0 {
+            a.perp_dot(b).abs() / la
+        } else {
+            0.0
+        };
         let (la, across) = (la.max(1.0), across.max(1.0));
         let taps = ((la / across).ceil() as usize).clamp(1, MAX_TAPS);
         let width = (la / taps as f64).max(across);
@@ -216,7 +220,11 @@ impl MapPyramid {
     fn trilinear(&self, p: glam::DVec2, level: f64, wrap: bool) -> [f32; 3] {
         let last = self.levels.len() - 1;
         let l0 = (level.floor() as usize).min(last);
-        let f = if l0 == last { 0.0 } else { (level - l0 as f64) as f32 };
+        let f = if l0 == last {
+            0.0
+        } else {
+            (level - l0 as f64) as f32
+        };
         let a = self.levels[l0].sample(p.x, p.y, wrap);
         if f == 0.0 {
             return a;
@@ -252,11 +260,19 @@ mod tests {
         let dims: Vec<_> = p.levels.iter().map(|l| (l.width, l.height)).collect();
         assert_eq!(dims, [(12, 5), (6, 2), (3, 1), (1, 1)]);
         // A constant channel stays constant at every level.
-        assert!(p.levels.iter().all(|l| l.texels.iter().all(|t| t[1] == 1.0)));
+        assert!(
+            p.levels
+                .iter()
+                .all(|l| l.texels.iter().all(|t| t[1] == 1.0))
+        );
         // Even sizes: every level's flux is the map's.
         let even = checker(16).pyramid();
         for l in &even.levels {
-            assert!((l.flux() - even.levels[0].flux()).abs() < 1e-9, "{}", l.flux());
+            assert!(
+                (l.flux() - even.levels[0].flux()).abs() < 1e-9,
+                "{}",
+                l.flux()
+            );
         }
     }
 
@@ -269,7 +285,10 @@ mod tests {
         assert_eq!(point, m.sample(q.x, q.y, false));
         // A footprint of many texels each way averages the checker to its mean, 1.
         let wide = p.filtered(q, [DVec2::new(0.4, 0.0), DVec2::new(0.0, 0.4)], false);
-        assert!((wide[0] - 1.0).abs() < 1e-6 && (wide[1] - 0.5).abs() < 1e-6, "{wide:?}");
+        assert!(
+            (wide[0] - 1.0).abs() < 1e-6 && (wide[1] - 0.5).abs() < 1e-6,
+            "{wide:?}"
+        );
         // So does a long, thin one: its taps along the long axis at a level as fine as its width.
         let thin = p.filtered(q, [DVec2::new(0.5, 0.5), DVec2::new(-0.05, 0.05)], true);
         assert!((thin[0] - 1.0).abs() < 1e-6, "{thin:?}");

@@ -276,9 +276,9 @@ impl Spread {
     }
 
     /// Through the water surface met at `p` along `d` after `t`, its normal there `n`: each axis's
-    /// neighbours meet the surface half a footprint either side of `p`, where the surface's own
-    /// normals refract them (the secant of the refracted direction across the footprint).
-    /// GPU twin: `refracted_spread` in final_image.wgsl.
+    /// neighbours meet the surface half a footprint either side of `p` (on the facet's plane, as
+    /// Igehy's transfer has it), where the surface's own normals refract them (the secant of the
+    /// refracted direction across the footprint). GPU twin: `refracted_axis` in final_image.wgsl.
     fn refracted(&self, s: &dyn Surface, p: DVec3, d: DVec3, t: f64, n: DVec3, ior: f64) -> Spread {
         let mut out = Spread::default();
         for k in 0..2 {

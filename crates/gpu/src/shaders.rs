@@ -110,6 +110,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::water::field::RIPPLE_CLEAR,
     &crate::final_image::FINAL_IMAGE,
     &crate::final_image::FINAL_IMAGE_SLAB,
+    &crate::final_image::CAUSTICS_MIPS,
     &crate::caustic_triangles::PHOTON,
     &crate::caustic_triangles::IRRADIANCE,
     &crate::caustic_triangles::TRIANGLES,

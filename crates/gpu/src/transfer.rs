@@ -38,7 +38,18 @@ impl GpuContext {
         texture: &wgpu::Texture,
         layer: u32,
     ) -> Result<Vec<T>, GpuError> {
-        let (w, h) = (texture.width(), texture.height());
+        self.read_texture_mip(texture, layer, 0)
+    }
+
+    /// [`read_texture_layer`](Self::read_texture_layer) of mip level `mip`.
+    pub fn read_texture_mip<T: bytemuck::Pod>(
+        &self,
+        texture: &wgpu::Texture,
+        layer: u32,
+        mip: u32,
+    ) -> Result<Vec<T>, GpuError> {
+        let size = texture.size().mip_level_size(mip, texture.dimension());
+        let (w, h) = (size.width, size.height);
         let texel = std::mem::size_of::<T>() as u32;
         let row = w * texel;
         let padded =
@@ -56,6 +67,7 @@ impl GpuContext {
             });
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
+                mip_level: mip,
                 origin: wgpu::Origin3d {
                     x: 0,
                     y: 0,

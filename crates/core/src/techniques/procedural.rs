@@ -924,27 +924,13 @@ pub fn rasterise(setup: &ProceduralSetup, values: &[[f32; 3]]) -> CausticsMap {
 /// Texture variant, the mip passes: level `k + 1` is the 2 x 2 box average of level `k`
 /// (`(a + b + c + d) · ¼` in f32, in the order `downsample.wgsl` sums). Level 0 is `target²`.
 pub fn mip_chain(level0: Vec<[f32; 3]>, target: usize) -> Vec<Vec<[f32; 3]>> {
-    let mut levels = vec![level0];
-    let mut n = target;
-    while n > 1 {
-        let prev = levels.last().expect("level 0");
-        let m = n / 2;
-        let next = (0..m * m)
-            .map(|k| {
-                let (i, j) = (2 * (k / m), 2 * (k % m));
-                let (a, b, c, d) = (
-                    prev[i * n + j],
-                    prev[i * n + j + 1],
-                    prev[(i + 1) * n + j],
-                    prev[(i + 1) * n + j + 1],
-                );
-                std::array::from_fn(|q| (a[q] + b[q] + c[q] + d[q]) * 0.25)
-            })
-            .collect();
-        levels.push(next);
-        n = m;
-    }
-    levels
+    let map = crate::map::CausticsMap {
+        width: target,
+        height: target,
+        size: 1.0,
+        texels: level0,
+    };
+    map.pyramid().levels.into_iter().map(|l| l.texels).collect()
 }
 
 /// The sampler's level of detail and anisotropic taps for reading a `target²` texture into a

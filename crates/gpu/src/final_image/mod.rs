@@ -51,7 +51,7 @@ pub use upload::{
     albedo, flags, meshes, slab_half_height, water_grid, water_grid_resolution,
 };
 
-use caustics_core::map::CausticsMap;
+use caustics_core::map::{CausticsMap, pyramid_levels};
 use caustics_core::render::{Caustics, Image, RenderOptions};
 use caustics_core::scene::{Albedo, Scene};
 use caustics_core::walls::WallMaps;
@@ -74,6 +74,14 @@ pub const FINAL_IMAGE: PassSource = PassSource {
     source: include_str!("../shaders/final_image.wgsl"),
 };
 
+/// One level of the caustics map's pyramid (caustics-core's `CausticsMap::pyramid`), which the
+/// final image reads over each sample's footprint on the floor.
+pub const CAUSTICS_MIPS: PassSource = PassSource {
+    name: "caustics mips",
+    shared: &[],
+    source: include_str!("../shaders/caustics_mips.wgsl"),
+};
+
 pub const FINAL_IMAGE_SLAB: PassSource = PassSource {
     name: "final image slab",
     shared: &[WATER],
@@ -87,6 +95,7 @@ const TILE: u32 = 8;
 pub struct FinalImage {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
+    mips_pipeline: wgpu::ComputePipeline,
     scene_layout: wgpu::BindGroupLayout,
     mesh_layout: wgpu::BindGroupLayout,
     /// Bound in place of a height field, terrain, caustics map or albedo image the scene lacks.
@@ -96,12 +105,24 @@ pub struct FinalImage {
     empty_walls: wgpu::Texture,
 }
 
+/// A bind group of `caustics_mips.wgsl` and the size of the level it writes.
+type MipsGroup = (wgpu::BindGroup, (u32, u32));
+
+/// A level of the floor map's pyramid read back: its width and its texels, row by row.
+pub type PyramidLevel = (u32, Vec<[f32; 4]>);
+
 /// The final image of one scene at one image size, everything it reads and writes living across
 /// frames: built by [`FinalImage::frame`], updated per frame by one uniform write when the camera,
 /// sun or options moved.
 pub struct FinalImageFrame {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
+    mips_pipeline: wgpu::ComputePipeline,
+    /// One bind group per level of the floor map's pyramid below level 0, with that level's size;
+    /// empty for other lighting.
+    mips_groups: Vec<MipsGroup>,
+    /// The levels `mips_groups` write, below level 0.
+    pyramid: Option<wgpu::Texture>,
     scene_group: wgpu::BindGroup,
     mesh_group: wgpu::BindGroup,
     /// The slab pass's bind group, with a heights texture bound (none: no surface, `h_max` = 0).
@@ -304,6 +325,7 @@ impl FinalImage {
                     count: None,
                 },
                 storage_entry(9),
+                texture_entry(10),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -324,6 +346,7 @@ impl FinalImage {
             cache: None,
         });
         let slab_pipeline = compute_pipeline(ctx, &FINAL_IMAGE_SLAB);
+        let mips_pipeline = compute_pipeline(ctx, &CAUSTICS_MIPS);
         let empty_r32 = float_texture(
             ctx,
             "no height field",
@@ -352,6 +375,7 @@ impl FinalImage {
         Ok(FinalImage {
             pipeline,
             slab_pipeline,
+            mips_pipeline,
             scene_layout,
             mesh_layout,
             empty_r32,
@@ -476,6 +500,10 @@ impl FinalImage {
                 | wgpu::TextureUsages::TEXTURE_BINDING,
         );
 
+        let (mips, mips_groups) = match caustics {
+            Some(Output::Floor(map)) => self.pyramid(ctx, map),
+            _ => (None, Vec::new()),
+        };
         let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
             t.unwrap_or(empty).create_view(&Default::default())
         };
@@ -489,6 +517,7 @@ impl FinalImage {
             view(albedo_image.as_ref(), &self.empty_rgba32),
             output.create_view(&Default::default()),
             walls_view(walls.map_or(&self.empty_walls, |w| w.texture)),
+            view(mips.as_ref(), &self.empty_rgba32),
         ];
         let scene_group = bind_group(
             ctx,
@@ -505,6 +534,7 @@ impl FinalImage {
                 slab_max.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[4]),
                 wall_cols.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[5]),
             ],
         );
         let mesh_group = bind_group(
@@ -547,6 +577,8 @@ impl FinalImage {
         let mut frame = FinalImageFrame {
             pipeline: self.pipeline.clone(),
             slab_pipeline: self.slab_pipeline.clone(),
+            mips_pipeline: self.mips_pipeline.clone(),
+            mips_groups,
             scene_group,
             mesh_group,
             slab_group,
@@ -559,11 +591,71 @@ impl FinalImage {
             size: (width, height),
             written: None,
             _resources: resources,
+            pyramid: mips,
             _textures: terrain.into_iter().chain(albedo_image).collect(),
         };
         frame.update(ctx, scene, options);
         ctx.check()?;
         Ok(frame)
+    }
+
+    /// The levels of `map`'s pyramid below level 0 (`CausticsMap::pyramid`: level `L` is
+    /// `max(1, size >> L)`), as the mips of one `Rgba32Float` texture whose level `L - 1` is the
+    /// pyramid's level `L`, and a bind group per level for `caustics_mips.wgsl`; none for a map of
+    /// one texel.
+    fn pyramid(
+        &self,
+        ctx: &GpuContext,
+        map: &wgpu::Texture,
+    ) -> (Option<wgpu::Texture>, Vec<MipsGroup>) {
+        let levels = pyramid_levels(map.width() as usize, map.height() as usize) as u32 - 1;
+        if levels == 0 {
+            return (None, Vec::new());
+        }
+        let mips = ctx.create_texture(&wgpu::TextureDescriptor {
+            label: Some("caustics map pyramid"),
+            size: wgpu::Extent3d {
+                width: (map.width() / 2).max(1),
+                height: (map.height() / 2).max(1),
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: levels,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let level = |t: &wgpu::Texture, k: u32| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                base_mip_level: k,
+                mip_level_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let groups = (0..levels)
+            .map(|k| {
+                let fine = if k == 0 {
+                    level(map, 0)
+                } else {
+                    level(&mips, k - 1)
+                };
+                let group = bind_group(
+                    ctx,
+                    CAUSTICS_MIPS.name,
+                    &self.mips_pipeline.get_bind_group_layout(0),
+                    &[
+                        wgpu::BindingResource::TextureView(&fine),
+                        wgpu::BindingResource::TextureView(&level(&mips, k)),
+                    ],
+                );
+                let size = mips.size().mip_level_size(k, wgpu::TextureDimension::D2);
+                (group, (size.width, size.height))
+            })
+            .collect();
+        (Some(mips), groups)
     }
 
     /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with
@@ -734,6 +826,13 @@ impl FinalImageFrame {
             pass.dispatch_workgroups(groups, groups, 1);
         }
         let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE.name);
+        // The floor map's pyramid, finest level first: each dispatch reads the level the one
+        // before it wrote; the image's dispatch reads them all.
+        pass.set_pipeline(&self.mips_pipeline);
+        for (group, (w, h)) in &self.mips_groups {
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(w.div_ceil(TILE), h.div_ceil(TILE), 1);
+        }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.scene_group, &[]);
         pass.set_bind_group(1, &self.mesh_group, &[]);
@@ -745,6 +844,24 @@ impl FinalImageFrame {
     /// `caustics_core::render`'s image), usable as a storage, sampled or copied texture.
     pub fn output(&self) -> &wgpu::Texture {
         &self.output
+    }
+
+    /// The levels below level 0 of the floor map's pyramid the last submitted frame built (none
+    /// without a floor map), finest first, each with its width: for tests against
+    /// `CausticsMap::pyramid`. Readbacks; not for the frame.
+    pub fn read_pyramid(&self, ctx: &GpuContext) -> Result<Vec<PyramidLevel>, GpuError> {
+        let Some(mips) = &self.pyramid else {
+            return Ok(Vec::new());
+        };
+        (0..mips.mip_level_count())
+            .map(|k| {
+                let w = mips
+                    .size()
+                    .mip_level_size(k, wgpu::TextureDimension::D2)
+                    .width;
+                Ok((w, ctx.read_texture_mip(mips, 0, k)?))
+            })
+            .collect()
     }
 
     /// The slab half-height `h_max` the last submitted frame searched for the water surface in (0

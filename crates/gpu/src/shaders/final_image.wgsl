@@ -107,6 +107,9 @@ struct Object {
 // wall_cols is 0 where the technique lit no walls.
 @group(0) @binding(8) var wall_maps: texture_2d_array<f32>;
 @group(0) @binding(9) var<storage, read> wall_cols: array<u32>;
+// The floor map's pyramid below level 0 (caustics_mips.wgsl): its mip k is the pyramid's level
+// k + 1 (`CausticsMap::pyramid`).
+@group(0) @binding(10) var caustics_mips: texture_2d<f32>;
 
 // Stands for the CPU's f64::INFINITY as a ray's range.
 const FAR: f32 = 3.0e38;
@@ -198,21 +201,31 @@ fn floor_height(p: vec2<f32>) -> f32 {
     return grid_sample(terrain_height, p, params.scene_size, false).x;
 }
 
-// `CausticsMap::sample`: bilinear between texel centres, clamped or wrapped at the edges, by hand
-// with textureLoad (an Rgba32Float texture need not be filterable).
-fn caustics_texel(i: i32, j: i32, wrap: bool) -> vec3<f32> {
-    let dims = vec2<i32>(textureDimensions(caustics_map));
+// Texels of level `level` of the floor map's pyramid (`max(1, size >> level)`, as the mips of
+// caustics_mips are sized). Derived, not queried: lavapipe answered textureDimensions at a level
+// that varies per invocation with another level's size (measured: wrong texels near the edges).
+fn caustics_dims(level: u32) -> vec2<i32> {
+    return vec2<i32>(max(textureDimensions(caustics_map) >> vec2<u32>(level), vec2<u32>(1u)));
+}
+
+// `CausticsMap::sample` at one level of the pyramid: bilinear between texel centres, clamped or
+// wrapped at the edges, by hand with textureLoad (an Rgba32Float texture need not be filterable).
+fn caustics_texel(level: u32, i: i32, j: i32, wrap: bool) -> vec3<f32> {
+    let dims = caustics_dims(level);
     var c = vec2<i32>(j, i);
     if wrap {
         c = ((c % dims) + dims) % dims;
     } else {
         c = clamp(c, vec2<i32>(0), dims - 1);
     }
-    return textureLoad(caustics_map, c, 0).rgb;
+    if level == 0u {
+        return textureLoad(caustics_map, c, 0).rgb;
+    }
+    return textureLoad(caustics_mips, c, level - 1u).rgb;
 }
 
-fn sample_caustics(x: f32, y: f32, wrap: bool) -> vec3<f32> {
-    let dims = vec2<f32>(textureDimensions(caustics_map));
+fn sample_caustics_level(level: u32, x: f32, y: f32, wrap: bool) -> vec3<f32> {
+    let dims = vec2<f32>(caustics_dims(level));
     let u = x / params.map_size * dims.x - 0.5;
     let v = y / params.map_size * dims.y - 0.5;
     let j0 = floor(u);
@@ -221,11 +234,121 @@ fn sample_caustics(x: f32, y: f32, wrap: bool) -> vec3<f32> {
     let fv = v - i0;
     let i = i32(i0);
     let j = i32(j0);
-    let a = caustics_texel(i, j, wrap);
-    let b = caustics_texel(i, j + 1, wrap);
-    let c = caustics_texel(i + 1, j, wrap);
-    let d = caustics_texel(i + 1, j + 1, wrap);
+    let a = caustics_texel(level, i, j, wrap);
+    let b = caustics_texel(level, i, j + 1, wrap);
+    let c = caustics_texel(level, i + 1, j, wrap);
+    let d = caustics_texel(level, i + 1, j + 1, wrap);
     return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
+}
+
+// map.rs `MapPyramid::trilinear`.
+fn caustics_trilinear(p: vec2<f32>, level: f32, wrap: bool) -> vec3<f32> {
+    let dims = textureDimensions(caustics_map);
+    let last = firstLeadingBit(max(max(dims.x, dims.y), 1u));
+    let l0 = min(u32(floor(level)), last);
+    var f = level - f32(l0);
+    if l0 == last {
+        f = 0.0;
+    }
+    let a = sample_caustics_level(l0, p.x, p.y, wrap);
+    if f == 0.0 {
+        return a;
+    }
+    let b = sample_caustics_level(l0 + 1u, p.x, p.y, wrap);
+    return a * (1.0 - f) + b * f;
+}
+
+// map.rs `MAX_TAPS`.
+const MAX_TAPS: f32 = 4.0;
+
+// map.rs `MapPyramid::filtered`: the map's mean over the footprint centred on floor point `p`
+// and spanned by `fa`, `fb` (world units), up to MAX_TAPS trilinear taps along its long axis.
+fn sample_caustics_filtered(p: vec2<f32>, fa: vec2<f32>, fb: vec2<f32>, wrap: bool) -> vec3<f32> {
+    let texels = vec2<f32>(textureDimensions(caustics_map)) / params.map_size;
+    let a = fa * texels;
+    let b = fb * texels;
+    var long = a;
+    var la = length(a);
+    if length(b) > la {
+        long = b;
+        la = length(b);
+    }
+    var across = 0.0;
+    if la > 0.0 {
+        across = abs(a.x * b.y - a.y * b.x) / la;
+    }
+    la = max(la, 1.0);
+    across = max(across, 1.0);
+    let taps = clamp(ceil(la / across), 1.0, MAX_TAPS);
+    let width = max(la / taps, across);
+    let level = max(log2(width / sqrt(3.0)), 0.0);
+    let step = long / texels;
+    var sum = vec3<f32>(0.0);
+    for (var t = 0.0; t < taps; t += 1.0) {
+        sum += caustics_trilinear(p + step * ((t + 0.5) / taps - 0.5), level, wrap);
+    }
+    return sum / taps;
+}
+
+// One image axis of render.rs `Spread`: how the rays half a sample spacing either side of a
+// sample's ray differ from each other, in origin and in direction.
+struct Axis {
+    o: vec3<f32>,
+    d: vec3<f32>,
+}
+
+// render.rs `Spread` (secant ray differentials), carried along a sample's first path only: its
+// primary ray and that ray's refraction, both at depth 0.
+struct Spread {
+    a: Axis,
+    b: Axis,
+}
+
+// The spread of the ray at depth 0 the stack holds or is tracing: the camera's, then its
+// refraction's once `trace` has met the water.
+var<private> primary_spread: Spread;
+
+// `Spread::of_camera`.
+fn camera_spread(x: f32, y: f32, h: f32) -> Spread {
+    let zero = vec3<f32>(0.0);
+    return Spread(
+        Axis(zero, camera_ray(x + 0.5 * h, y) - camera_ray(x - 0.5 * h, y)),
+        Axis(zero, camera_ray(x, y + 0.5 * h) - camera_ray(x, y - 0.5 * h)),
+    );
+}
+
+// `Spread::on_plane`, one axis.
+fn on_plane(x: Axis, d: vec3<f32>, t: f32, m: vec3<f32>) -> vec2<f32> {
+    let cos_m = dot(m, d);
+    var v = x.o + x.d * t;
+    if abs(cos_m) > 1e-9 {
+        v = v - d * (dot(m, v) / cos_m);
+    }
+    return v.xy;
+}
+
+// `Spread::refracted`, one axis.
+fn refracted_axis(x: Axis, p: vec3<f32>, d: vec3<f32>, t: f32, n: vec3<f32>) -> Axis {
+    let v = x.o + x.d * t;
+    let dp = v - d * (dot(n, v) / dot(n, d));
+    let na = height_field_normal(water_height_gradient((p - dp * 0.5).xy).yz);
+    let nb = height_field_normal(water_height_gradient((p + dp * 0.5).xy).yz);
+    let ra = refract_dir(normalize(d - x.d * 0.5), na, 1.0 / params.ior);
+    let rb = refract_dir(normalize(d + x.d * 0.5), nb, 1.0 / params.ior);
+    var out = Axis(dp, vec3<f32>(0.0));
+    if ra.w != 0.0 && rb.w != 0.0 {
+        out.d = rb.xyz - ra.xyz;
+    }
+    return out;
+}
+
+// The spread a ray at `depth` carries: the primary path's, none for any other.
+fn spread_at(depth: u32) -> Spread {
+    if depth == 0u {
+        return primary_spread;
+    }
+    let zero = Axis(vec3<f32>(0.0), vec3<f32>(0.0));
+    return Spread(zero, zero);
 }
 
 // `EyeSpaceCaustics::sample`: the floor point projected through the camera onto the eye-space
@@ -542,7 +665,8 @@ fn hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(o + d * t_end, t_end);
 }
 
-fn shade_floor(p: vec3<f32>) -> vec3<f32> {
+// The floor at `p`, its caustics and albedo filtered over the sample's footprint `fa`, `fb`.
+fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
     let size = params.water_size;
     let albedo = albedo_at(p.xy, size);
     let e_h = params.sun_intensity * -params.sun.z;
@@ -550,7 +674,7 @@ fn shade_floor(p: vec3<f32>) -> vec3<f32> {
     // Beyond a map that does not tile, the flat water's light (render.rs `shade_floor`).
     let in_map = has(FLAG_WRAP_CAUSTICS) || inside(p.xy, params.map_size);
     if has(FLAG_CAUSTICS) && in_map {
-        relative = sample_caustics(p.x, p.y, has(FLAG_WRAP_CAUSTICS));
+        relative = sample_caustics_filtered(p.xy, fa, fb, has(FLAG_WRAP_CAUSTICS));
     } else if has(FLAG_EYE_CAUSTICS) {
         let e = sample_eye_space(p);
         if e.w != 0.0 {
@@ -651,7 +775,10 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         var lit = 1.0;
         var caustic = vec3<f32>(0.0);
         if has(FLAG_AIR_CAUSTICS) {
-            caustic = sample_caustics(p.x, p.y, false);
+            let s = spread_at(depth);
+            let fa = on_plane(s.a, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+            let fb = on_plane(s.b, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+            caustic = sample_caustics_filtered(p.xy, fa, fb, false);
             if occluded_by_any(start, -params.sun, FAR) {
                 lit = 0.0;
             }
@@ -700,6 +827,13 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if r.w == 0.0 {
         return;
     }
+    if depth == 0u {
+        let s = primary_spread;
+        primary_spread = Spread(
+            refracted_axis(s.a, p, d, water.w, n),
+            refracted_axis(s.b, p, d, water.w, n),
+        );
+    }
     push_ray(p, r.xyz, w * t_view, depth, true);
 }
 
@@ -727,7 +861,14 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     } else if ceiling.w >= 0.0 {
         leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor));
     } else {
-        emit(w * absorbed(t_floor), shade_floor(floor_hit.xyz));
+        var m = vec3<f32>(0.0, 0.0, 1.0);
+        if has(FLAG_TERRAIN) {
+            m = height_field_normal(grid_sample(terrain_height, floor_hit.xy, params.scene_size, false).yz);
+        }
+        let s = spread_at(depth);
+        let fa = on_plane(s.a, d, t_floor, m);
+        let fb = on_plane(s.b, d, t_floor, m);
+        emit(w * absorbed(t_floor), shade_floor(floor_hit.xyz, fa, fb));
     }
 }
 
@@ -771,6 +912,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var sx = 0u; sx < n; sx++) {
             let x = f32(id.x) + (f32(sx) + 0.5) / f32(n) - 0.5;
             let y = f32(id.y) + (f32(sy) + 0.5) / f32(n) - 0.5;
+            primary_spread = camera_spread(x, y, 1.0 / f32(n));
             c += radiance(params.camera_position, camera_ray(x, y), under);
         }
     }
