@@ -796,7 +796,10 @@ impl Tracer<'_> {
         let scene = self.scene;
         let water = scene.water.as_ref().expect("under water");
         let size = water.size;
-        let albedo = scene.floor.albedo.at(p.truncate(), size);
+        let albedo = scene
+            .floor
+            .albedo
+            .filtered(p.truncate(), size, extent(footprint));
         let e_h = scene.light.intensity * -self.sun.z;
         let flat = || (-water.absorption * ((water.depth - p.z) / -self.sun_water.z)).exp();
         let wrap = water.wrap && scene.floor.terrain.is_none();
@@ -921,14 +924,18 @@ impl Tracer<'_> {
         }
         if t_floor.is_finite() {
             let p = o + d * t_floor;
-            let albedo = self.scene.floor.albedo.at(p.truncate(), self.scene.size);
+            let footprint = spread.on_plane(d, t_floor, DVec3::Z);
+            let albedo =
+                self.scene
+                    .floor
+                    .albedo
+                    .filtered(p.truncate(), self.scene.size, extent(footprint));
             let from = p + DVec3::Z * 1e-5;
             // With a caustics map of the light through the glass (relative to the unobstructed
             // sun), every object shadows the direct sun and the map brings back what the glass
             // transmitted; without one, glass lets the sun through unchanged.
             let (lit, caustic) = match &self.caustics {
                 Some((_, pyramid)) => {
-                    let footprint = spread.on_plane(d, t_floor, DVec3::Z);
                     let c = pyramid.filtered(p.truncate(), footprint, false);
                     let blocked = self.occluded_by_any(from, -self.sun, f64::INFINITY);
                     (
@@ -1081,6 +1088,11 @@ impl Tracer<'_> {
             }
         }
     }
+}
+
+/// The widths along x and y of the box around a footprint spanned by `axes`.
+fn extent(axes: [DVec2; 2]) -> DVec2 {
+    axes[0].abs() + axes[1].abs()
 }
 
 fn inside(p: DVec2, size: f64) -> bool {

@@ -174,8 +174,9 @@ fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
     return (xyy_to_rgb(yxy) + vec3<f32>(disk)) * (3.14159265 * sun_radiance());
 }
 
-fn albedo_at(p: vec2<f32>, size: f32) -> vec3<f32> {
-    return floor_albedo(params.albedo, albedo_image, p, size);
+// `Albedo::filtered` over a footprint `extent` wide along x and y (zero: a point).
+fn albedo_at(p: vec2<f32>, size: f32, extent: vec2<f32>) -> vec3<f32> {
+    return floor_albedo(params.albedo, albedo_image, p, size, extent);
 }
 
 fn absorbed(distance: f32) -> vec3<f32> {
@@ -668,7 +669,7 @@ fn hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // The floor at `p`, its caustics and albedo filtered over the sample's footprint `fa`, `fb`.
 fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
     let size = params.water_size;
-    let albedo = albedo_at(p.xy, size);
+    let albedo = albedo_at(p.xy, size, abs(fa) + abs(fb));
     let e_h = params.sun_intensity * -params.sun.z;
     var relative = absorbed((params.water_level - p.z) / -params.sun_water.z);
     // Beyond a map that does not tile, the flat water's light (render.rs `shade_floor`).
@@ -770,14 +771,14 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     }
     if t_floor < FAR {
         let p = o + d * t_floor;
-        let albedo = albedo_at(p.xy, params.scene_size);
+        let s = spread_at(depth);
+        let fa = on_plane(s.a, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+        let fb = on_plane(s.b, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+        let albedo = albedo_at(p.xy, params.scene_size, abs(fa) + abs(fb));
         let start = p + vec3<f32>(0.0, 0.0, 1e-5);
         var lit = 1.0;
         var caustic = vec3<f32>(0.0);
         if has(FLAG_AIR_CAUSTICS) {
-            let s = spread_at(depth);
-            let fa = on_plane(s.a, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
-            let fb = on_plane(s.b, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
             caustic = sample_caustics_filtered(p.xy, fa, fb, false);
             if occluded_by_any(start, -params.sun, FAR) {
                 lit = 0.0;
@@ -856,7 +857,7 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         // the wall's map where the technique lit the walls.
         let t = wall_distance(o, d, size);
         let p = o + d * t;
-        let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size);
+        let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size, vec2<f32>(0.0));
         emit(w * absorbed(t), a * (params.ambient * params.light_color + wall_light(p, size)));
     } else if ceiling.w >= 0.0 {
         leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor));

@@ -54,22 +54,59 @@ fn xyy_to_rgb(v: vec3<f32>) -> vec3<f32> {
     ), vec3<f32>(0.0));
 }
 
-// Linear-RGB albedo of the floor at `p` on a square of side `size`; `image` is read only for
-// ALBEDO_IMAGE (linear texels, row 0 at y = 0, nearest texel).
-fn floor_albedo(kind: u32, image: texture_2d<f32>, p: vec2<f32>, size: f32) -> vec3<f32> {
+// scene/mod.rs `SAND_*`.
+const SAND_GRAIN: f32 = 0.05;
+const SAND_GRAIN_AMPLITUDE: f32 = 0.08;
+const SAND_PATCH: f32 = 0.5;
+const SAND_PATCH_AMPLITUDE: f32 = 0.06;
+
+// scene/mod.rs `sinc`.
+fn sinc(x: f32) -> f32 {
+    if abs(x) < 1e-6 {
+        return 1.0;
+    }
+    return sin(x) / x;
+}
+
+// scene/mod.rs `value_noise`: smoothstep-interpolated hash01 values on cells `cell` wide, faded
+// by the footprint's extent `w`.
+fn value_noise(p: vec2<f32>, cell: f32, seed: i32, w: vec2<f32>) -> f32 {
+    let q = p / cell;
+    let c = floor(q);
+    let f = q - c;
+    let s = f * f * (3.0 - 2.0 * f);
+    let i = i32(c.x);
+    let j = i32(c.y) + seed;
+    let v00 = 2.0 * hash01(i, j) - 1.0;
+    let v10 = 2.0 * hash01(i + 1, j) - 1.0;
+    let v01 = 2.0 * hash01(i, j + 1) - 1.0;
+    let v11 = 2.0 * hash01(i + 1, j + 1) - 1.0;
+    let n = (v00 * (1.0 - s.x) + v10 * s.x) * (1.0 - s.y) + (v01 * (1.0 - s.x) + v11 * s.x) * s.y;
+    let r = w / cell;
+    let fade = pow(1.0 + r * r, vec2<f32>(-0.25));
+    return n * fade.x * fade.y;
+}
+
+// Linear-RGB albedo of the floor at `p` on a square of side `size`, box-filtered over a
+// footprint `extent` wide along x and y (scene/mod.rs `Albedo::filtered`); `image` is read only
+// for ALBEDO_IMAGE (linear texels, row 0 at y = 0, nearest texel).
+fn floor_albedo(kind: u32, image: texture_2d<f32>, p: vec2<f32>, size: f32, extent: vec2<f32>) -> vec3<f32> {
     let u = p / size;
+    let w = extent / size;
     switch kind {
         case ALBEDO_TILES: {
             // 8 tiles across the square, 4 % grout lines.
-            let t = fract(u * 8.0);
-            if t.x < 0.04 || t.y < 0.04 {
-                return GROUT_COLOUR;
-            }
-            return TILE_COLOUR;
+            let t = u * 8.0;
+            let jx = joint_cover(t.x, w.x * 8.0, 0.04);
+            let jy = joint_cover(t.y, w.y * 8.0, 0.04);
+            let grout = 1.0 - (1.0 - jx) * (1.0 - jy);
+            return TILE_COLOUR * (1.0 - grout) + GROUT_COLOUR * grout;
         }
         case ALBEDO_SAND: {
-            let n = sin(u.x * 157.0) * sin(u.y * 113.0) * 0.03;
-            return vec3<f32>(0.76 + n, 0.68 + n, 0.5 + n);
+            let ripple = sin(u.x * 157.0) * sinc(78.5 * w.x) * sin(u.y * 113.0) * sinc(56.5 * w.y) * 0.03;
+            let grain = SAND_GRAIN_AMPLITUDE * value_noise(p, SAND_GRAIN, 0, extent)
+                + SAND_PATCH_AMPLITUDE * value_noise(p, SAND_PATCH, 7919, extent);
+            return vec3<f32>(0.76, 0.68, 0.5) * (1.0 + grain) + vec3<f32>(ripple);
         }
         case ALBEDO_PLAIN: {
             return vec3<f32>(0.7);
