@@ -419,10 +419,8 @@ pub fn render_with_walls(
                 let mut c = DVec3::ZERO;
                 for sy in 0..n {
                     for sx in 0..n {
-                        let (sx, sy) = (
-                            x as f64 + (sx as f64 + 0.5) / n as f64 - 0.5,
-                            y as f64 + (sy as f64 + 0.5) / n as f64 - 0.5,
-                        );
+                        let (ox, oy) = sample_offset(sx, sy, n);
+                        let (sx, sy) = (x as f64 + ox - 0.5, y as f64 + oy - 0.5);
                         let (o, d) = cam.ray(sx, sy);
                         let spread = Spread::of_camera(cam, sx, sy, 1.0 / n as f64);
                         c += tracer.trace_from(o, d, 0, under, spread);
@@ -441,6 +439,22 @@ pub fn render_with_walls(
         height: cam.height,
         rgb: rows.concat(),
     }
+}
+
+/// Where sample `(sx, sy)` of a pixel's `n` x `n` lies in it, from its corner (`[0, 1)²`): on a
+/// rotated grid, no two samples in one row or one column of the pixel's `n²` x `n²` sub-grid
+/// (n-rooks; for 2 x 2 the rotated-grid pattern of RGSS), so that an edge or a caustic's line
+/// near the image's axes is resolved in `n²` steps instead of `n`, for the same rays: measured on
+/// the shore at 960 x 540 against 8 x 8 samples, mean FLIP 0.0111 against 0.0125 on the square
+/// grid (docs/look.md). One sample sits at the centre. GPU twin: `sample_offset` in
+/// final_image.wgsl.
+pub fn sample_offset(sx: usize, sy: usize, n: usize) -> (f64, f64) {
+    let n = n as f64;
+    let (sx, sy) = (sx as f64, sy as f64);
+    (
+        (sx + (sy + 0.5) / n) / n,
+        (sy + (n - 1.0 - sx + 0.5) / n) / n,
+    )
 }
 
 /// Whether the scene's camera is under the water: inside the water's square and below the surface's
@@ -1188,6 +1202,32 @@ mod tests {
     /// light, not the map's edge stretched to the horizon: with a map that is dark everywhere,
     /// the shore's far rows (whose floor lies beyond the 32 m square) render as without a map,
     /// while the near rows, inside the map, are darker.
+    /// A pixel's samples are n-rooks on its n² x n² sub-grid, each at a sub-cell's centre: their
+    /// coordinates along each axis are exactly the n² sub-cells' centres, so they average to the
+    /// pixel's centre, and one sample alone sits there.
+    #[test]
+    fn samples_are_n_rooks_about_the_pixels_centre() {
+        assert_eq!(sample_offset(0, 0, 1), (0.5, 0.5));
+        for n in 2..=8 {
+            let cells = (n * n) as f64;
+            let mut xs = Vec::new();
+            let mut ys = Vec::new();
+            for sy in 0..n {
+                for sx in 0..n {
+                    let (x, y) = sample_offset(sx, sy, n);
+                    xs.push((x * cells - 0.5).round() as i64);
+                    ys.push((y * cells - 0.5).round() as i64);
+                    let k = x * cells - 0.5;
+                    assert!((k - k.round()).abs() < 1e-9, "{n}: {x}");
+                }
+            }
+            xs.sort();
+            ys.sort();
+            let all: Vec<i64> = (0..(n * n) as i64).collect();
+            assert_eq!((xs, ys), (all.clone(), all), "{n}");
+        }
+    }
+
     #[test]
     fn beyond_a_terrain_map_the_floor_is_lit_as_under_flat_water() {
         let mut scene = Scene::builtin("shore").unwrap();

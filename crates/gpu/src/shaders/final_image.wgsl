@@ -900,6 +900,15 @@ fn camera_ray(x: f32, y: f32) -> vec3<f32> {
     return normalize(params.camera_forward + params.camera_right * sx + params.camera_up * sy);
 }
 
+// render.rs `sample_offset`: sample (sx, sy) of a pixel's n x n on a rotated grid (n-rooks).
+fn sample_offset(sx: u32, sy: u32, n: u32) -> vec2<f32> {
+    let m = f32(n);
+    return vec2<f32>(
+        (f32(sx) + (f32(sy) + 0.5) / m) / m,
+        (f32(sy) + (m - 1.0 - f32(sx) + 0.5) / m) / m,
+    );
+}
+
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= params.width || id.y >= params.height {
@@ -911,8 +920,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var c = vec3<f32>(0.0);
     for (var sy = 0u; sy < n; sy++) {
         for (var sx = 0u; sx < n; sx++) {
-            let x = f32(id.x) + (f32(sx) + 0.5) / f32(n) - 0.5;
-            let y = f32(id.y) + (f32(sy) + 0.5) / f32(n) - 0.5;
+            let o = sample_offset(sx, sy, n);
+            let x = f32(id.x) + o.x - 0.5;
+            let y = f32(id.y) + o.y - 0.5;
             primary_spread = camera_spread(x, y, 1.0 / f32(n));
             c += radiance(params.camera_position, camera_ray(x, y), under);
         }
