@@ -132,7 +132,7 @@ impl CausticsMap {
 /// Most taps a footprint-filtered lookup takes along its footprint's long axis (as a GPU's
 /// anisotropic filtering does); longer footprints take coarser levels. `MAX_TAPS` in
 /// final_image.wgsl.
-pub const MAX_TAPS: usize = 4;
+pub const MAX_TAPS: usize = 8;
 
 /// A caustics map and its box-filtered halvings: level `L` has `max(1, width >> L)` x
 /// `max(1, height >> L)` texels over the same square, each the mean of the 2 x 2 texels of level

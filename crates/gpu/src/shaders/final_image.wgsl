@@ -260,7 +260,7 @@ fn caustics_trilinear(p: vec2<f32>, level: f32, wrap: bool) -> vec3<f32> {
 }
 
 // map.rs `MAX_TAPS`.
-const MAX_TAPS: f32 = 4.0;
+const MAX_TAPS: f32 = 8.0;
 
 // map.rs `MapPyramid::filtered`: the map's mean over the footprint centred on floor point `p`
 // and spanned by `fa`, `fb` (world units), up to MAX_TAPS trilinear taps along its long axis.
