@@ -290,7 +290,7 @@ mod tests {
             "{wide:?}"
         );
         // So does a long, thin one: its taps along the long axis at a level as fine as its width.
-        let thin = p.filtered(q, [DVec2::new(0.5, 0.5), DVec2::new(-0.05, 0.05)], true);
+        let thin = p.filtered(q, [DVec2::new(0.5, 0.5), DVec2::new(-0.1, 0.1)], true);
         assert!((thin[0] - 1.0).abs() < 1e-6, "{thin:?}");
     }
 
