@@ -263,15 +263,19 @@ impl Spread {
     /// The footprint's axes where the ray `o + t d` meets the plane through its end with normal
     /// `m` (Igehy's transfer: the neighbours' points on that plane, less the ray's own).
     fn on_plane(&self, d: DVec3, t: f64, m: DVec3) -> [DVec2; 2] {
+        self.on_plane3(d, t, m).map(DVec3::truncate)
+    }
+
+    /// [`on_plane`](Self::on_plane) in three dimensions (a wall's plane).
+    fn on_plane3(&self, d: DVec3, t: f64, m: DVec3) -> [DVec3; 2] {
         let cos = m.dot(d);
         std::array::from_fn(|k| {
             let v = self.o[k] + self.d[k] * t;
-            let v = if cos.abs() > 1e-9 {
+            if cos.abs() > 1e-9 {
                 v - d * (m.dot(v) / cos)
             } else {
                 v
-            };
-            v.truncate()
+            }
         })
     }
 
@@ -790,7 +794,17 @@ impl Tracer<'_> {
             // through the wall's map where the technique lit the walls.
             let t = wall_distance(o, d, size);
             let p = o + d * t;
-            let a = scene.floor.albedo.at(DVec2::new(p.x + p.y, p.z), size);
+            // The wall's tiles as the floor's, along the wall and up it, filtered over the
+            // sample's footprint on the wall's plane.
+            let [fa, fb] = spread.on_plane3(d, t, wall_at(p, size).normal());
+            let extent = DVec2::new(
+                (fa.x + fa.y).abs() + (fb.x + fb.y).abs(),
+                fa.z.abs() + fb.z.abs(),
+            );
+            let a = scene
+                .floor
+                .albedo
+                .filtered(DVec2::new(p.x + p.y, p.z), size, extent);
             (
                 t,
                 a * (self.ambient * self.scene.light.color + self.wall_light(p, size)),

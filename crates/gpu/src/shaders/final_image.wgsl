@@ -320,12 +320,17 @@ fn camera_spread(x: f32, y: f32, h: f32) -> Spread {
 
 // `Spread::on_plane`, one axis.
 fn on_plane(x: Axis, d: vec3<f32>, t: f32, m: vec3<f32>) -> vec2<f32> {
+    return on_plane3(x, d, t, m).xy;
+}
+
+// `Spread::on_plane3`, one axis.
+fn on_plane3(x: Axis, d: vec3<f32>, t: f32, m: vec3<f32>) -> vec3<f32> {
     let cos_m = dot(m, d);
     var v = x.o + x.d * t;
     if abs(cos_m) > 1e-9 {
         v = v - d * (dot(m, v) / cos_m);
     }
-    return v.xy;
+    return v;
 }
 
 // `Spread::refracted`, one axis.
@@ -857,7 +862,13 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         // the wall's map where the technique lit the walls.
         let t = wall_distance(o, d, size);
         let p = o + d * t;
-        let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size, vec2<f32>(0.0));
+        // The wall's tiles filtered over the sample's footprint on the wall's plane.
+        let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), wall_at(p, size) < 2u);
+        let s = spread_at(depth);
+        let fa = on_plane3(s.a, d, t, m);
+        let fb = on_plane3(s.b, d, t, m);
+        let extent = vec2<f32>(abs(fa.x + fa.y) + abs(fb.x + fb.y), abs(fa.z) + abs(fb.z));
+        let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size, extent);
         emit(w * absorbed(t), a * (params.ambient * params.light_color + wall_light(p, size)));
     } else if ceiling.w >= 0.0 {
         leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor));
