@@ -237,9 +237,10 @@ pub fn sky_ambient(sun: DVec3) -> DVec3 {
 /// Differentials", SIGGRAPH 99), taken as secants across the sample rather than derivatives, so
 /// that at the water they see how much the waves turn the refracted rays over the sample's
 /// footprint, however curved the surface is within it. Carried along a sample's first path (its
-/// primary ray and that ray's refraction; every other ray has none), they give the footprint on
-/// the floor that the floor's caustics and albedo are filtered over: the spread of floor points
-/// that many rays of the sample would reach.
+/// primary ray, that ray's refraction, and the surface's mirror image of either seen from below;
+/// glass, the air through Snell's window and the rays they spawn have none), they give the
+/// footprint on the floor and the walls that the caustics and albedo are filtered over: the spread
+/// of points that many rays of the sample would reach.
 #[derive(Clone, Copy, Debug, Default)]
 struct Spread {
     o: [DVec3; 2],
@@ -281,17 +282,28 @@ impl Spread {
 
     /// Through the water surface met at `p` along `d` after `t`, its normal there `n`: each axis's
     /// neighbours meet the surface half a footprint either side of `p` (on the facet's plane, as
-    /// Igehy's transfer has it), where the surface's own normals refract them (the secant of the
-    /// refracted direction across the footprint). GPU twin: `refracted_axis` in final_image.wgsl.
-    fn refracted(&self, s: &dyn Surface, p: DVec3, d: DVec3, t: f64, n: DVec3, ior: f64) -> Spread {
+    /// Igehy's transfer has it), where the surface's own normals (`normal_at`) `bend` them: refract
+    /// from above, reflect from below (the secant of the bent direction across the footprint).
+    /// GPU twin: `bent_axis` in final_image.wgsl.
+    fn bent(
+        &self,
+        normal_at: impl Fn(DVec2) -> DVec3,
+        (p, d, t, n): (DVec3, DVec3, f64, DVec3),
+        bend: impl Fn(DVec3, DVec3) -> Option<DVec3>,
+    ) -> Spread {
         let mut out = Spread::default();
+        let cos = n.dot(d);
         for k in 0..2 {
             let v = self.o[k] + self.d[k] * t;
-            let dp = v - d * (n.dot(v) / n.dot(d));
+            // A ray along the facet's plane: its neighbours' points off the ray, unprojected.
+            let dp = if cos.abs() > 1e-9 {
+                v - d * (n.dot(v) / cos)
+            } else {
+                v
+            };
             let side = |sign: f64| {
-                let q = p + dp * (0.5 * sign);
-                let m = height_field_normal(s.gradient(q.truncate()));
-                refract((d + self.d[k] * (0.5 * sign)).normalize(), m, 1.0 / ior)
+                let m = normal_at((p + dp * (0.5 * sign)).truncate());
+                bend((d + self.d[k] * (0.5 * sign)).normalize(), m)
             };
             out.o[k] = dp;
             if let (Some(a), Some(b)) = (side(-1.0), side(1.0)) {
@@ -449,9 +461,9 @@ pub fn render_with_walls(
 /// rotated grid, no two samples in one row or one column of the pixel's `n²` x `n²` sub-grid
 /// (n-rooks; for 2 x 2 the rotated-grid pattern of RGSS), so that an edge or a caustic's line
 /// near the image's axes is resolved in `n²` steps instead of `n`, for the same rays: measured on
-/// the shore at 960 x 540 against 8 x 8 samples, mean FLIP 0.0111 against 0.0125 on the square
-/// grid (docs/look.md). One sample sits at the centre. GPU twin: `sample_offset` in
-/// final_image.wgsl.
+/// the shore at 960 x 540 against 8 x 8 samples, mean FLIP 0.0108 against 0.0125 on the square
+/// grid (docs/look.md). For odd `n` one sample sits at the pixel's centre (for `n = 1` the only
+/// one, as before). GPU twin: `sample_offset` in final_image.wgsl.
 pub fn sample_offset(sx: usize, sy: usize, n: usize) -> (f64, f64) {
     let n = n as f64;
     let (sx, sy) = (sx as f64, sy as f64);
@@ -767,7 +779,11 @@ impl Tracer<'_> {
             return reflected;
         };
         debug_assert!(t >= 0.0);
-        let spread = spread.refracted(s, p, d, t, n, water.ior);
+        let spread = spread.bent(
+            |q| height_field_normal(s.gradient(q)),
+            (p, d, t, n),
+            |d, m| refract(d, m, 1.0 / water.ior),
+        );
         reflected + self.trace_under(p, r, depth, spread) * t_view
     }
 
@@ -810,7 +826,10 @@ impl Tracer<'_> {
                 a * (self.ambient * self.scene.light.color + self.wall_light(p, size)),
             )
         } else if ceiling.is_some() {
-            (t_floor, self.leave_water(floor_p, d, depth))
+            (
+                t_floor,
+                self.leave_water(floor_p, d, depth, t_floor, spread),
+            )
         } else {
             let (_, g) = scene.floor.height_gradient(floor_p.truncate(), scene.size);
             let footprint = spread.on_plane(d, t_floor, height_field_normal(g));
@@ -1057,7 +1076,9 @@ impl Tracer<'_> {
     /// Radiance arriving along `d` at point `p` of the surface, seen from below: the air's through
     /// Snell's window, weighted by the Fresnel transmittance from the dense side, plus the water's
     /// mirrored in the surface (all of it beyond the window).
-    fn leave_water(&self, p: DVec3, d: DVec3, depth: u32) -> DVec3 {
+    /// The ray met the surface at `p` after `t` along `d`; `spread` is its own, which the reflected
+    /// ray carries on (the mirror image beyond Snell's window is filtered as a direct view is).
+    fn leave_water(&self, p: DVec3, d: DVec3, depth: u32, t: f64, spread: Spread) -> DVec3 {
         let water = self.scene.water.as_ref().expect("under water");
         let n = match self.surface {
             Some(s) => match &self.slopes {
@@ -1067,10 +1088,18 @@ impl Tracer<'_> {
             None => DVec3::Z,
         };
         let split = from_below(d, n, water.ior);
-        let none = Spread::default();
-        let mut c = self.trace_under(p - n * 1e-5, split.reflected, depth + 1, none)
+        let mirrored = spread.bent(
+            |q| {
+                self.surface
+                    .map_or(DVec3::Z, |s| height_field_normal(s.gradient(q)))
+            },
+            (p, d, t, n),
+            |d, m| Some(reflect(d, m)),
+        );
+        let mut c = self.trace_under(p - n * 1e-5, split.reflected, depth + 1, mirrored)
             * (1.0 - split.transmittance);
         if let Some(r) = split.refracted {
+            let none = Spread::default();
             c += self.trace(p + n * 1e-5, r, depth + 1, none) * split.transmittance;
         }
         c
@@ -1212,13 +1241,9 @@ mod tests {
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
     use crate::techniques::cascaded::{CascadedParams, CascadedSetup, eye_pass};
 
-    /// Beyond a terrain's caustics map (which does not tile) the floor gets the flat water's
-    /// light, not the map's edge stretched to the horizon: with a map that is dark everywhere,
-    /// the shore's far rows (whose floor lies beyond the 32 m square) render as without a map,
-    /// while the near rows, inside the map, are darker.
     /// A pixel's samples are n-rooks on its n² x n² sub-grid, each at a sub-cell's centre: their
     /// coordinates along each axis are exactly the n² sub-cells' centres, so they average to the
-    /// pixel's centre, and one sample alone sits there.
+    /// pixel's centre.
     #[test]
     fn samples_are_n_rooks_about_the_pixels_centre() {
         assert_eq!(sample_offset(0, 0, 1), (0.5, 0.5));
@@ -1231,8 +1256,10 @@ mod tests {
                     let (x, y) = sample_offset(sx, sy, n);
                     xs.push((x * cells - 0.5).round() as i64);
                     ys.push((y * cells - 0.5).round() as i64);
-                    let k = x * cells - 0.5;
-                    assert!((k - k.round()).abs() < 1e-9, "{n}: {x}");
+                    for v in [x, y] {
+                        let k = v * cells - 0.5;
+                        assert!((k - k.round()).abs() < 1e-9, "{n}: {v}");
+                    }
                 }
             }
             xs.sort();
@@ -1242,6 +1269,10 @@ mod tests {
         }
     }
 
+    /// Beyond a terrain's caustics map (which does not tile) the floor gets the flat water's
+    /// light, not the map's edge stretched to the horizon: with a map that is dark everywhere,
+    /// the shore's far rows (whose floor lies beyond the 32 m square) render as without a map,
+    /// while the near rows, inside the map, are darker.
     #[test]
     fn beyond_a_terrain_map_the_floor_is_lit_as_under_flat_water() {
         let mut scene = Scene::builtin("shore").unwrap();

@@ -7,8 +7,9 @@
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
 //! | water slab bound (compute, 128² samples) | `shaders/final_image_slab.wgsl` | `h_max` of `render::render_with`, [`slab_half_height`] |
+//! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `shaders/caustics_mips.wgsl` | `CausticsMap::pyramid` |
 //! | final image (compute, one invocation per pixel) | `shaders/final_image.wgsl` | `render::render` and `Tracer` |
-//! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::at` |
+//! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::filtered` |
 //! | (shared) mesh ray queries | `shaders/bvh.wgsl` | `MeshBvh::intersect` |
 //!
 //! The image is a [`FinalImageFrame`]: built once per scene and image size (the objects' trees, the
@@ -24,8 +25,10 @@
 //!   for an exact comparison. The slab the surface lies in is found from that texture on the GPU
 //!   each frame, as the CPU finds it from its surface.
 //! - The terrain is an `R32Float` texture through the same `grid_sample`, clamped; the caustics
-//!   are the technique's output texture, bound as it is: a floor map filtered by hand like
-//!   `CausticsMap::sample`, or an eye-space image (`cascaded`) read like
+//!   are the technique's output texture, bound as it is: a floor map read by hand over each
+//!   sample's footprint through its pyramid like `MapPyramid::filtered` (the pyramid's levels below
+//!   the map in one more texture, made again each frame from the map), or an eye-space image
+//!   (`cascaded`) read like
 //!   `EyeSpaceCaustics::sample`; an albedo image an `Rgba32Float` texture read at the nearest texel
 //!   like `Albedo::at`.
 //! - The walls' maps (a technique that lights the pool's walls) are one `Rgba32Float` 2D array

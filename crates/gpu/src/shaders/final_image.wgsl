@@ -298,16 +298,35 @@ struct Axis {
     d: vec3<f32>,
 }
 
-// render.rs `Spread` (secant ray differentials), carried along a sample's first path only: its
-// primary ray and that ray's refraction, both at depth 0.
+// render.rs `Spread` (secant ray differentials), carried along a sample's first path: its
+// primary ray, that ray's refraction, and the surface's mirror image of either from below.
 struct Spread {
     a: Axis,
     b: Axis,
 }
 
-// The spread of the ray at depth 0 the stack holds or is tracing: the camera's, then its
-// refraction's once `trace` has met the water.
-var<private> primary_spread: Spread;
+// The spread of the ray `trace` or `trace_under` is tracing (none: zero), and the one waiting on
+// the stack with the ray in slot `pending_slot` (NO_SLOT: none). At most one ray on the stack has
+// one: a path that carries a spread pushes one successor with it, and it is the next popped but
+// for a ray of the air through Snell's window, which carries none.
+var<private> spread: Spread;
+var<private> pending_spread: Spread;
+var<private> pending_slot: u32;
+const NO_SLOT: u32 = 0xffffffffu;
+
+fn no_spread() -> Spread {
+    let zero = Axis(vec3<f32>(0.0), vec3<f32>(0.0));
+    return Spread(zero, zero);
+}
+
+// `push_ray` of a ray carrying spread `s`.
+fn push_ray_spread(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, under: bool, s: Spread) {
+    if ray_count < RAY_STACK {
+        pending_slot = ray_count;
+        pending_spread = s;
+    }
+    push_ray(o, d, weight, depth, under);
+}
 
 // `Spread::of_camera`.
 fn camera_spread(x: f32, y: f32, h: f32) -> Spread {
@@ -333,14 +352,33 @@ fn on_plane3(x: Axis, d: vec3<f32>, t: f32, m: vec3<f32>) -> vec3<f32> {
     return v;
 }
 
-// `Spread::refracted`, one axis.
-fn refracted_axis(x: Axis, p: vec3<f32>, d: vec3<f32>, t: f32, n: vec3<f32>) -> Axis {
+// The water's normal at `q` (up; flat without a surface).
+fn water_normal(q: vec2<f32>) -> vec3<f32> {
+    if !has(FLAG_SURFACE) {
+        return vec3<f32>(0.0, 0.0, 1.0);
+    }
+    return height_field_normal(water_height_gradient(q).yz);
+}
+
+// A neighbour's direction `d` bent at a facet of normal `m`: refracted into the water from above
+// (`reflect_it` false), or reflected back down from below; w = 0 where it does not refract.
+fn bend(d: vec3<f32>, m: vec3<f32>, reflect_it: bool) -> vec4<f32> {
+    if reflect_it {
+        return vec4<f32>(reflect(d, m), 1.0);
+    }
+    return refract_dir(d, m, 1.0 / params.ior);
+}
+
+// `Spread::bent`, one axis.
+fn bent_axis(x: Axis, p: vec3<f32>, d: vec3<f32>, t: f32, n: vec3<f32>, reflect_it: bool) -> Axis {
     let v = x.o + x.d * t;
-    let dp = v - d * (dot(n, v) / dot(n, d));
-    let na = height_field_normal(water_height_gradient((p - dp * 0.5).xy).yz);
-    let nb = height_field_normal(water_height_gradient((p + dp * 0.5).xy).yz);
-    let ra = refract_dir(normalize(d - x.d * 0.5), na, 1.0 / params.ior);
-    let rb = refract_dir(normalize(d + x.d * 0.5), nb, 1.0 / params.ior);
+    var dp = v;
+    let cos_n = dot(n, d);
+    if abs(cos_n) > 1e-9 {
+        dp = v - d * (dot(n, v) / cos_n);
+    }
+    let ra = bend(normalize(d - x.d * 0.5), water_normal((p - dp * 0.5).xy), reflect_it);
+    let rb = bend(normalize(d + x.d * 0.5), water_normal((p + dp * 0.5).xy), reflect_it);
     var out = Axis(dp, vec3<f32>(0.0));
     if ra.w != 0.0 && rb.w != 0.0 {
         out.d = rb.xyz - ra.xyz;
@@ -348,13 +386,8 @@ fn refracted_axis(x: Axis, p: vec3<f32>, d: vec3<f32>, t: f32, n: vec3<f32>) -> 
     return out;
 }
 
-// The spread a ray at `depth` carries: the primary path's, none for any other.
-fn spread_at(depth: u32) -> Spread {
-    if depth == 0u {
-        return primary_spread;
-    }
-    let zero = Axis(vec3<f32>(0.0), vec3<f32>(0.0));
-    return Spread(zero, zero);
+fn bent_spread(s: Spread, p: vec3<f32>, d: vec3<f32>, t: f32, n: vec3<f32>, reflect_it: bool) -> Spread {
+    return Spread(bent_axis(s.a, p, d, t, n, reflect_it), bent_axis(s.b, p, d, t, n, reflect_it));
 }
 
 // `EyeSpaceCaustics::sample`: the floor point projected through the camera onto the eye-space
@@ -606,18 +639,16 @@ fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // render.rs `leave_water` with `from_below`: a ray meeting the surface at `p` from below splits by
 // the Fresnel equations from the dense side: out to the air through Snell's window, the rest (all of
 // it beyond the window) mirrored back into the water.
-fn leave_water(p: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
-    var n = vec3<f32>(0.0, 0.0, 1.0);
-    if has(FLAG_SURFACE) {
-        n = height_field_normal(water_height_gradient(p.xy).yz);
-    }
+fn leave_water(p: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, t_ray: f32) {
+    let n = water_normal(p.xy);
+    let mirrored = bent_spread(spread, p, d, t_ray, n, true);
     let r = refract_dir(d, -n, params.ior);
     var t = 0.0;
     if r.w != 0.0 {
         t = fresnel_transmittance(dot(d, n), params.ior, 1.0);
         push_ray(p + n * 1e-5, r.xyz, w * t, depth + 1u, false);
     }
-    push_ray(p - n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, true);
+    push_ray_spread(p - n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, true, mirrored);
 }
 
 // render.rs `camera_under_water`: inside the water's square and below the surface there.
@@ -776,9 +807,8 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     }
     if t_floor < FAR {
         let p = o + d * t_floor;
-        let s = spread_at(depth);
-        let fa = on_plane(s.a, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
-        let fb = on_plane(s.b, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+        let fa = on_plane(spread.a, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+        let fb = on_plane(spread.b, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
         let albedo = albedo_at(p.xy, params.scene_size, abs(fa) + abs(fb));
         let start = p + vec3<f32>(0.0, 0.0, 1e-5);
         var lit = 1.0;
@@ -833,14 +863,7 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if r.w == 0.0 {
         return;
     }
-    if depth == 0u {
-        let s = primary_spread;
-        primary_spread = Spread(
-            refracted_axis(s.a, p, d, water.w, n),
-            refracted_axis(s.b, p, d, water.w, n),
-        );
-    }
-    push_ray(p, r.xyz, w * t_view, depth, true);
+    push_ray_spread(p, r.xyz, w * t_view, depth, true, bent_spread(spread, p, d, water.w, n, false));
 }
 
 // Radiance arriving along `d` at point `o` under the water.
@@ -864,34 +887,38 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         let p = o + d * t;
         // The wall's tiles filtered over the sample's footprint on the wall's plane.
         let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), wall_at(p, size) < 2u);
-        let s = spread_at(depth);
-        let fa = on_plane3(s.a, d, t, m);
-        let fb = on_plane3(s.b, d, t, m);
+        let fa = on_plane3(spread.a, d, t, m);
+        let fb = on_plane3(spread.b, d, t, m);
         let extent = vec2<f32>(abs(fa.x + fa.y) + abs(fb.x + fb.y), abs(fa.z) + abs(fb.z));
         let a = albedo_at(vec2<f32>(p.x + p.y, p.z), size, extent);
         emit(w * absorbed(t), a * (params.ambient * params.light_color + wall_light(p, size)));
     } else if ceiling.w >= 0.0 {
-        leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor));
+        leave_water(floor_hit.xyz, d, depth, w * absorbed(t_floor), t_floor);
     } else {
         var m = vec3<f32>(0.0, 0.0, 1.0);
         if has(FLAG_TERRAIN) {
             m = height_field_normal(grid_sample(terrain_height, floor_hit.xy, params.scene_size, false).yz);
         }
-        let s = spread_at(depth);
-        let fa = on_plane(s.a, d, t_floor, m);
-        let fb = on_plane(s.b, d, t_floor, m);
+        let fa = on_plane(spread.a, d, t_floor, m);
+        let fb = on_plane(spread.b, d, t_floor, m);
         emit(w * absorbed(t_floor), shade_floor(floor_hit.xyz, fa, fb));
     }
 }
 
 // Everything a primary ray brings back: `Tracer::trace_from(o, d, 0, under)` unrolled.
-fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec3<f32> {
+fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: Spread) -> vec3<f32> {
     pixel_radiance = vec3<f32>(0.0);
     ray_count = 0u;
-    push_ray(o, d, vec3<f32>(1.0), 0u, under);
+    pending_slot = NO_SLOT;
+    push_ray_spread(o, d, vec3<f32>(1.0), 0u, under, s);
     while ray_count > 0u {
         ray_count--;
         let r = rays[ray_count];
+        spread = no_spread();
+        if ray_count == pending_slot {
+            spread = pending_spread;
+            pending_slot = NO_SLOT;
+        }
         if r.depth > MAX_DEPTH {
             continue;
         }
@@ -934,8 +961,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let o = sample_offset(sx, sy, n);
             let x = f32(id.x) + o.x - 0.5;
             let y = f32(id.y) + o.y - 0.5;
-            primary_spread = camera_spread(x, y, 1.0 / f32(n));
-            c += radiance(params.camera_position, camera_ray(x, y), under);
+            let s = camera_spread(x, y, 1.0 / f32(n));
+            c += radiance(params.camera_position, camera_ray(x, y), under, s);
         }
     }
     c = c / f32(n * n) * params.exposure;

@@ -1,6 +1,6 @@
 // How the scene looks, shared by every pass that shows it: the daylight sky, the floor's albedo
 // patterns and the tone curve. CPU twins: `Sky::radiance` in caustics-core/src/sky.rs, `tone_map`
-// in caustics-core/src/render.rs and `Albedo::at` in caustics-core/src/scene/mod.rs. The constants
+// in caustics-core/src/render.rs and `Albedo::filtered` in caustics-core/src/scene/mod.rs. The constants
 // below are theirs, in one place on this side; the GPU-vs-CPU image test holds the two together.
 
 const ALBEDO_TILES: u32 = 0u;
