@@ -184,8 +184,16 @@ impl MapPyramid {
     /// axis, each trilinear at the level whose filter has the variance of a box as wide as the
     /// part of the footprint it stands for (a box of width `w` has variance `w²/12`; bilinear at
     /// level `L` of box-filtered texels `4^L/4`, so `2^L = w/√3`). A footprint within a texel reads
-    /// level 0 bilinearly, as [`CausticsMap::sample`] does.
-    pub fn filtered(&self, p: glam::DVec2, axes: [glam::DVec2; 2], wrap: bool) -> [f32; 3] {
+    /// level 0 bilinearly, as [`CausticsMap::sample`] does. A map that does not wrap reads
+    /// `beyond` for the taps off its square where one is given (the light there is known
+    /// otherwise), its clamped edges where not.
+    pub fn filtered(
+        &self,
+        p: glam::DVec2,
+        axes: [glam::DVec2; 2],
+        wrap: bool,
+        beyond: Option<[f32; 3]>,
+    ) -> [f32; 3] {
         let base = &self.levels[0];
         let texels = glam::DVec2::new(base.width as f64, base.height as f64) / base.size;
         let (a, b) = (axes[0] * texels, axes[1] * texels);
@@ -208,7 +216,13 @@ impl MapPyramid {
         let mut sum = [0.0f32; 3];
         for t in 0..taps {
             let q = p + step * ((t as f64 + 0.5) / taps as f64 - 0.5);
-            let c = self.trilinear(q, level, wrap);
+            let off = !wrap
+                && (q.cmplt(glam::DVec2::ZERO).any()
+                    || q.cmpgt(glam::DVec2::splat(base.size)).any());
+            let c = match beyond {
+                Some(v) if off => v,
+                _ => self.trilinear(q, level, wrap),
+            };
             for k in 0..3 {
                 sum[k] += c[k];
             }
@@ -281,16 +295,16 @@ mod tests {
         let m = checker(64);
         let p = m.pyramid();
         let q = DVec2::new(0.37, 1.21);
-        let point = p.filtered(q, [DVec2::ZERO; 2], false);
+        let point = p.filtered(q, [DVec2::ZERO; 2], false, None);
         assert_eq!(point, m.sample(q.x, q.y, false));
         // A footprint of many texels each way averages the checker to its mean, 1.
-        let wide = p.filtered(q, [DVec2::new(0.4, 0.0), DVec2::new(0.0, 0.4)], false);
+        let wide = p.filtered(q, [DVec2::new(0.4, 0.0), DVec2::new(0.0, 0.4)], false, None);
         assert!(
             (wide[0] - 1.0).abs() < 1e-6 && (wide[1] - 0.5).abs() < 1e-6,
             "{wide:?}"
         );
         // So does a long, thin one: its taps along the long axis at a level as fine as its width.
-        let thin = p.filtered(q, [DVec2::new(0.5, 0.5), DVec2::new(-0.1, 0.1)], true);
+        let thin = p.filtered(q, [DVec2::new(0.5, 0.5), DVec2::new(-0.1, 0.1)], true, None);
         assert!((thin[0] - 1.0).abs() < 1e-6, "{thin:?}");
     }
 
@@ -304,9 +318,9 @@ mod tests {
         let p = m.pyramid();
         let q = DVec2::new(0.41, 0.63);
         let (a, b) = (DVec2::new(0.11, 0.02), DVec2::new(-0.01, 0.04));
-        let r = p.filtered(q, [a, b], false);
+        let r = p.filtered(q, [a, b], false, None);
         for axes in [[b, a], [-a, b], [a, -b], [-b, -a]] {
-            let s = p.filtered(q, axes, false);
+            let s = p.filtered(q, axes, false, None);
             assert!((s[0] - r[0]).abs() < 1e-6, "{s:?} {r:?}");
         }
     }
@@ -341,9 +355,9 @@ mod tests {
                 let x = q.x / texel / 16.0;
                 let point = 0.5 * (2.0 * std::f64::consts::PI * x).cos();
                 let box_mean = 1.0 + gain * point;
-                let got = p.filtered(q, across, true)[0] as f64;
+                let got = p.filtered(q, across, true, None)[0] as f64;
                 worst = worst.max((got - box_mean).abs());
-                let still = p.filtered(q, along, true)[0] as f64;
+                let still = p.filtered(q, along, true, None)[0] as f64;
                 // Measured: equal (level 0, the taps along the stripes).
                 assert!(
                     (still - m.sample(q.x, q.y, true)[0] as f64).abs() < 1e-6,
@@ -366,12 +380,29 @@ mod tests {
             for a in 0..k {
                 for b in 0..k {
                     let q = DVec2::new((a as f64 + 0.5) / k as f64, (b as f64 + 0.5) / k as f64);
-                    sum += p.filtered(q * size, axes, true)[0] as f64;
+                    sum += p.filtered(q * size, axes, true, None)[0] as f64;
                 }
             }
             let mean = sum / (k * k) as f64;
             // Measured: 1.000039 and 1.000000.
             assert!((mean - 1.0).abs() < 4e-4, "{mean}");
         }
+    }
+
+    /// A footprint across the edge of a map that does not wrap reads the light given for beyond
+    /// it in its taps off the square, not the clamped edge: half off, half the way to it.
+    #[test]
+    fn taps_beyond_the_edge_read_the_light_beyond() {
+        let mut m = CausticsMap::new(64, 64, 1.0);
+        m.texels.iter_mut().for_each(|t| *t = [2.0; 3]);
+        let p = m.pyramid();
+        let axes = [DVec2::new(0.2, 0.0), DVec2::new(0.0, 0.02)];
+        let q = DVec2::new(1.0, 0.5);
+        let beyond = [0.5; 3];
+        let half = p.filtered(q, axes, false, Some(beyond))[0];
+        // 8 taps, 4 of them beyond x = 1: (4 x 2 + 4 x 0.5) / 8.
+        assert_eq!(half, 1.25);
+        assert_eq!(p.filtered(q, axes, false, None)[0], 2.0);
+        assert_eq!(p.filtered(q, axes, true, Some(beyond))[0], 2.0);
     }
 }

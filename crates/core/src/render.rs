@@ -853,10 +853,11 @@ impl Tracer<'_> {
         let relative = match (&self.caustics, &self.eye_space) {
             // Beyond a map that does not tile (a terrain's, clamped at its edges) nothing says
             // where the light focuses: the floor there gets the flat water's light, the mean of
-            // any pattern (stretching the map's edge texels to the horizon drew streaks).
-            (Some((m, _)), _) if !wrap && !inside(p.truncate(), m.size) => flat(),
+            // any pattern (stretching the map's edge texels to the horizon drew streaks); a
+            // footprint across the map's edge reads the flat light for its taps beyond it.
             (Some((_, pyramid)), _) => {
-                let c = pyramid.filtered(p.truncate(), footprint, wrap);
+                let f = flat().as_vec3().to_array();
+                let c = pyramid.filtered(p.truncate(), footprint, wrap, Some(f));
                 DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64)
             }
             (None, Some((image, eye))) => image.sample(eye, p).unwrap_or_else(flat),
@@ -983,7 +984,7 @@ impl Tracer<'_> {
             // transmitted; without one, glass lets the sun through unchanged.
             let (lit, caustic) = match &self.caustics {
                 Some((_, pyramid)) => {
-                    let c = pyramid.filtered(p.truncate(), footprint, false);
+                    let c = pyramid.filtered(p.truncate(), footprint, false, None);
                     let blocked = self.occluded_by_any(from, -self.sun, f64::INFINITY);
                     (
                         if blocked { 0.0 } else { 1.0 },

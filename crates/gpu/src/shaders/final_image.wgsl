@@ -263,8 +263,9 @@ fn caustics_trilinear(p: vec2<f32>, level: f32, wrap: bool) -> vec3<f32> {
 const MAX_TAPS: f32 = 8.0;
 
 // map.rs `MapPyramid::filtered`: the map's mean over the footprint centred on floor point `p`
-// and spanned by `fa`, `fb` (world units), up to MAX_TAPS trilinear taps along its long axis.
-fn sample_caustics_filtered(p: vec2<f32>, fa: vec2<f32>, fb: vec2<f32>, wrap: bool) -> vec3<f32> {
+// and spanned by `fa`, `fb` (world units), up to MAX_TAPS trilinear taps along its long axis; a
+// map that does not wrap reads `beyond` for the taps off its square where `has_beyond`.
+fn sample_caustics_filtered(p: vec2<f32>, fa: vec2<f32>, fb: vec2<f32>, wrap: bool, beyond: vec3<f32>, has_beyond: bool) -> vec3<f32> {
     let texels = vec2<f32>(textureDimensions(caustics_map)) / params.map_size;
     let a = fa * texels;
     let b = fb * texels;
@@ -286,7 +287,12 @@ fn sample_caustics_filtered(p: vec2<f32>, fa: vec2<f32>, fb: vec2<f32>, wrap: bo
     let step = long / texels;
     var sum = vec3<f32>(0.0);
     for (var t = 0.0; t < taps; t += 1.0) {
-        sum += caustics_trilinear(p + step * ((t + 0.5) / taps - 0.5), level, wrap);
+        let q = p + step * ((t + 0.5) / taps - 0.5);
+        if has_beyond && !wrap && !inside(q, params.map_size) {
+            sum += beyond;
+        } else {
+            sum += caustics_trilinear(q, level, wrap);
+        }
     }
     return sum / taps;
 }
@@ -707,11 +713,12 @@ fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
     let size = params.water_size;
     let albedo = albedo_at(p.xy, size, abs(fa) + abs(fb));
     let e_h = params.sun_intensity * -params.sun.z;
-    var relative = absorbed((params.water_level - p.z) / -params.sun_water.z);
-    // Beyond a map that does not tile, the flat water's light (render.rs `shade_floor`).
-    let in_map = has(FLAG_WRAP_CAUSTICS) || inside(p.xy, params.map_size);
-    if has(FLAG_CAUSTICS) && in_map {
-        relative = sample_caustics_filtered(p.xy, fa, fb, has(FLAG_WRAP_CAUSTICS));
+    let flat = absorbed((params.water_level - p.z) / -params.sun_water.z);
+    var relative = flat;
+    // Beyond a map that does not tile, the flat water's light, tap by tap (render.rs
+    // `shade_floor`).
+    if has(FLAG_CAUSTICS) {
+        relative = sample_caustics_filtered(p.xy, fa, fb, has(FLAG_WRAP_CAUSTICS), flat, true);
     } else if has(FLAG_EYE_CAUSTICS) {
         let e = sample_eye_space(p);
         if e.w != 0.0 {
@@ -814,7 +821,7 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         var lit = 1.0;
         var caustic = vec3<f32>(0.0);
         if has(FLAG_AIR_CAUSTICS) {
-            caustic = sample_caustics_filtered(p.xy, fa, fb, false);
+            caustic = sample_caustics_filtered(p.xy, fa, fb, false, vec3<f32>(0.0), false);
             if occluded_by_any(start, -params.sun, FAR) {
                 lit = 0.0;
             }
