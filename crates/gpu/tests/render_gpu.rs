@@ -490,25 +490,7 @@ fn the_frames_pyramid_is_the_cpus() {
     let grid = surface.expect("water");
     let heights = heights_texture(&ctx, &grid);
     let water = WaterTextures::of(&heights);
-    let texels: Vec<[f32; 4]> = map.texels.iter().map(|t| [t[0], t[1], t[2], 0.0]).collect();
-    let texture = ctx.create_texture_with_data(
-        &wgpu::TextureDescriptor {
-            label: Some("map"),
-            size: wgpu::Extent3d {
-                width: W as u32,
-                height: H as u32,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&texels),
-    );
+    let texture = caustics_gpu::final_image::upload_map(&ctx, &map).expect("map");
     let frame = final_image
         .frame(
             &ctx,

@@ -257,6 +257,19 @@ fn float_texture(
     ))
 }
 
+/// A CPU caustics map as the `Rgba32Float` texture a technique's floor output is
+/// ([`Output::Floor`]), for [`FinalImage::frame`] or [`FinalImage::render_with`].
+pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, GpuError> {
+    float_texture(
+        ctx,
+        "caustics map",
+        wgpu::TextureFormat::Rgba32Float,
+        map.width as u32,
+        map.height as u32,
+        bytemuck::cast_slice(&rgba32(&map.texels)),
+    )
+}
+
 /// An RGB image as `Rgba32Float` texels (alpha 1).
 fn rgba32(texels: &[[f32; 3]]) -> Vec<[f32; 4]> {
     texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect()
@@ -722,14 +735,7 @@ impl FinalImage {
         };
         let water = heights.as_ref().map(WaterTextures::of);
         let map = match caustics {
-            Some(Caustics::Floor(m)) => Some(float_texture(
-                ctx,
-                "caustics map",
-                wgpu::TextureFormat::Rgba32Float,
-                m.width as u32,
-                m.height as u32,
-                bytemuck::cast_slice(&rgba32(&m.texels)),
-            )?),
+            Some(Caustics::Floor(m)) => Some(upload_map(ctx, m)?),
             Some(Caustics::EyeSpace(e)) => Some(float_texture(
                 ctx,
                 "eye-space caustics",
