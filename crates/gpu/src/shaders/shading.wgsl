@@ -68,22 +68,60 @@ fn sinc(x: f32) -> f32 {
     return sin(x) / x;
 }
 
-// scene/mod.rs `value_noise`: smoothstep-interpolated hash01 values on cells `cell` wide, faded
-// by the footprint's extent `w`.
+// scene/mod.rs `NOISE_EXACT_BOX`, `NOISE_POINT`.
+const NOISE_EXACT_BOX: f32 = 2.0;
+const NOISE_POINT: f32 = 1e-3;
+
+// scene/mod.rs `hat_integral`: the smoothstep hat's integral from -1 to `t`.
+fn hat_integral(t: f32) -> f32 {
+    let u = min(abs(t), 1.0);
+    return 0.5 + sign(t) * (u - u * u * u + 0.5 * u * u * u * u);
+}
+
+// scene/mod.rs `hat_box_weights`: the lattice values i0 .. i0 + 4's weights in the box mean over
+// [x - a, x + a]; i0 is returned through `first`.
+fn hat_box_weights(x: f32, a: f32, first: ptr<function, i32>) -> vec4<f32> {
+    let i0 = floor(x - a);
+    *first = i32(i0);
+    let t = vec4<f32>(x - i0) - vec4<f32>(0.0, 1.0, 2.0, 3.0);
+    if a < NOISE_POINT {
+        let u = min(abs(t), vec4<f32>(1.0));
+        return 1.0 - u * u * (3.0 - 2.0 * u);
+    }
+    return vec4<f32>(
+        hat_integral(t.x + a) - hat_integral(t.x - a),
+        hat_integral(t.y + a) - hat_integral(t.y - a),
+        hat_integral(t.z + a) - hat_integral(t.z - a),
+        hat_integral(t.w + a) - hat_integral(t.w - a),
+    ) / (2.0 * a);
+}
+
+// scene/mod.rs `value_noise`: smoothstep-interpolated hash01 values on cells `cell` wide, their
+// exact mean over the footprint's extent `w` (at most NOISE_EXACT_BOX cells, a wider box's spread
+// scaled down from that).
 fn value_noise(p: vec2<f32>, cell: f32, seed: i32, w: vec2<f32>) -> f32 {
     let q = p / cell;
-    let c = floor(q);
-    let f = q - c;
-    let s = f * f * (3.0 - 2.0 * f);
-    let i = i32(c.x);
-    let j = i32(c.y) + seed;
-    let v00 = 2.0 * hash01(i, j) - 1.0;
-    let v10 = 2.0 * hash01(i + 1, j) - 1.0;
-    let v01 = 2.0 * hash01(i, j + 1) - 1.0;
-    let v11 = 2.0 * hash01(i + 1, j + 1) - 1.0;
-    let n = (v00 * (1.0 - s.x) + v10 * s.x) * (1.0 - s.y) + (v01 * (1.0 - s.x) + v11 * s.x) * s.y;
     let r = w / cell;
-    let fade = pow(1.0 + r * r, vec2<f32>(-0.25));
+    let exact = min(r, vec2<f32>(NOISE_EXACT_BOX));
+    var i0: i32;
+    var j0: i32;
+    let wx = hat_box_weights(q.x, 0.5 * exact.x, &i0);
+    let wy = hat_box_weights(q.y, 0.5 * exact.y, &j0);
+    j0 += seed;
+    var n = 0.0;
+    for (var b = 0; b < 4; b++) {
+        if wy[b] == 0.0 {
+            continue;
+        }
+        var row = 0.0;
+        for (var a = 0; a < 4; a++) {
+            if wx[a] != 0.0 {
+                row += wx[a] * (2.0 * hash01(i0 + a, j0 + b) - 1.0);
+            }
+        }
+        n += wy[b] * row;
+    }
+    let fade = pow(1.0 + r * r, vec2<f32>(-0.25)) / pow(1.0 + exact * exact, vec2<f32>(-0.25));
     return n * fade.x * fade.y;
 }
 
