@@ -8,6 +8,7 @@ pub mod cascaded;
 pub mod caustic_triangles;
 pub mod context;
 pub mod final_image;
+pub mod map_mips;
 pub mod pass;
 pub mod probe;
 pub mod procedural;

@@ -472,16 +472,10 @@ fn glass_matches_the_cpu() {
 /// (`CausticsMap::pyramid`), level for level, for a map of odd sizes (the last row and column
 /// clamped as on the CPU).
 fn the_frames_pyramid_is_the_cpus() {
-    const W: usize = 37;
-    const H: usize = 20;
     let ctx = test_gpu();
     let scene = small("pool");
     let (surface, _) = inputs(&scene);
-    let mut map = CausticsMap::new(W, H, scene.water.as_ref().expect("water").size);
-    for (k, t) in map.texels.iter_mut().enumerate() {
-        let v = ((k * 2_654_435_761) % 1000) as f32 / 250.0;
-        *t = [v, 2.0 * v, 1.0];
-    }
+    let map = odd_map(scene.water.as_ref().expect("water").size);
     let options = RenderOptions {
         supersampling: 1,
         ..Default::default()
@@ -508,6 +502,21 @@ fn the_frames_pyramid_is_the_cpus() {
     frame.encode(&mut encoder, None);
     ctx.queue.submit([encoder.finish()]);
     let gpu = frame.read_pyramid(&ctx).expect("pyramid");
+    assert_is_the_pyramid(&gpu, &map);
+}
+
+/// A 37 x 20 map (odd and even sides) of hashed values.
+fn odd_map(size: f64) -> CausticsMap {
+    let mut map = CausticsMap::new(37, 20, size);
+    for (k, t) in map.texels.iter_mut().enumerate() {
+        let v = ((k * 2_654_435_761) % 1000) as f32 / 250.0;
+        *t = [v, 2.0 * v, 1.0];
+    }
+    map
+}
+
+/// `gpu` (the levels below level 0, each with its width) equals `map`'s pyramid to the bit.
+fn assert_is_the_pyramid(gpu: &[(u32, Vec<[f32; 4]>)], map: &CausticsMap) {
     let cpu = map.pyramid();
     assert_eq!(gpu.len(), cpu.levels.len() - 1);
     for (k, ((w, g), c)) in gpu.iter().zip(&cpu.levels[1..]).enumerate() {
@@ -522,6 +531,65 @@ fn the_frames_pyramid_is_the_cpus() {
             assert_eq!([a[0], a[1], a[2]], *b, "level {}", k + 1);
         }
     }
+}
+
+/// A map texture with its own mip chain (the Bevy plugin's floor image) filled in place from its
+/// mip 0: each mip the CPU's pyramid level.
+fn a_maps_own_mips_are_its_pyramid() {
+    let ctx = test_gpu();
+    let map = odd_map(1.0);
+    let levels = caustics_core::map::pyramid_levels(map.width, map.height) as u32;
+    let texture = ctx.create_texture(&wgpu::TextureDescriptor {
+        label: Some("map with mips"),
+        size: wgpu::Extent3d {
+            width: map.width as u32,
+            height: map.height as u32,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_DST
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let texels: Vec<[f32; 4]> = map.texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
+    ctx.write_texture(
+        texture.as_image_copy(),
+        bytemuck::cast_slice(&texels),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(map.width as u32 * 16),
+            rows_per_image: None,
+        },
+        texture.size(),
+    );
+    let pipeline = caustics_gpu::map_mips::mips_pipeline(&ctx);
+    let mips = caustics_gpu::map_mips::MapMips::in_place(&ctx, &pipeline, &texture);
+    assert_eq!(mips.len() as u32, levels - 1);
+    let mut encoder = ctx
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("mips"),
+        });
+    {
+        let mut pass = encoder.begin_compute_pass(&Default::default());
+        mips.encode(&mut pass);
+    }
+    ctx.queue.submit([encoder.finish()]);
+    let gpu: Vec<(u32, Vec<[f32; 4]>)> = (1..levels)
+        .map(|k| {
+            let w = texture
+                .size()
+                .mip_level_size(k, wgpu::TextureDimension::D2)
+                .width;
+            (w, ctx.read_texture_mip(&texture, 0, k).expect("mip"))
+        })
+        .collect();
+    assert_is_the_pyramid(&gpu, &map);
 }
 
 /// Terrain (read through the clamped bicubic), sand, open sea beyond the surface's slab.
@@ -1056,5 +1124,6 @@ test_main! {
     gpu a_frame_moves_its_camera_and_sun_through_uniforms_alone,
     gpu a_frame_reads_a_techniques_texture_as_render_with_reads_its_map,
     gpu the_frames_pyramid_is_the_cpus,
+    gpu a_maps_own_mips_are_its_pyramid,
     gpu_ignored full_size_render_times,
 }

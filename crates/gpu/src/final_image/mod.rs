@@ -60,6 +60,7 @@ use caustics_core::scene::{Albedo, Scene};
 use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 
+use crate::map_mips::{MapMips, mips_pipeline};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::technique::{Output, WallsOutput, WaterTextures};
@@ -108,9 +109,6 @@ pub struct FinalImage {
     empty_walls: wgpu::Texture,
 }
 
-/// A bind group of `caustics_mips.wgsl` and the size of the level it writes.
-type MipsGroup = (wgpu::BindGroup, (u32, u32));
-
 /// A level of the floor map's pyramid read back: its width and its texels, row by row.
 pub type PyramidLevel = (u32, Vec<[f32; 4]>);
 
@@ -120,10 +118,8 @@ pub type PyramidLevel = (u32, Vec<[f32; 4]>);
 pub struct FinalImageFrame {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
-    mips_pipeline: wgpu::ComputePipeline,
-    /// One bind group per level of the floor map's pyramid below level 0, with that level's size;
-    /// empty for other lighting.
-    mips_groups: Vec<MipsGroup>,
+    /// The dispatches of the floor map's pyramid below level 0; none for other lighting.
+    mips_groups: Option<MapMips>,
     /// The levels `mips_groups` write, below level 0.
     pyramid: Option<wgpu::Texture>,
     scene_group: wgpu::BindGroup,
@@ -362,7 +358,7 @@ impl FinalImage {
             cache: None,
         });
         let slab_pipeline = compute_pipeline(ctx, &FINAL_IMAGE_SLAB);
-        let mips_pipeline = compute_pipeline(ctx, &CAUSTICS_MIPS);
+        let mips_pipeline = mips_pipeline(ctx);
         let empty_r32 = float_texture(
             ctx,
             "no height field",
@@ -517,8 +513,8 @@ impl FinalImage {
         );
 
         let (mips, mips_groups) = match caustics {
-            Some(Output::Floor(map)) => self.pyramid(ctx, map),
-            _ => (None, Vec::new()),
+            Some(Output::Floor(map)) => self.pyramid(ctx, map).unzip(),
+            _ => (None, None),
         };
         let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
             t.unwrap_or(empty).create_view(&Default::default())
@@ -593,7 +589,6 @@ impl FinalImage {
         let mut frame = FinalImageFrame {
             pipeline: self.pipeline.clone(),
             slab_pipeline: self.slab_pipeline.clone(),
-            mips_pipeline: self.mips_pipeline.clone(),
             mips_groups,
             scene_group,
             mesh_group,
@@ -617,16 +612,11 @@ impl FinalImage {
 
     /// The levels of `map`'s pyramid below level 0 (`CausticsMap::pyramid`: level `L` is
     /// `max(1, size >> L)`), as the mips of one `Rgba32Float` texture whose level `L - 1` is the
-    /// pyramid's level `L`, and a bind group per level for `caustics_mips.wgsl`; none for a map of
-    /// one texel.
-    fn pyramid(
-        &self,
-        ctx: &GpuContext,
-        map: &wgpu::Texture,
-    ) -> (Option<wgpu::Texture>, Vec<MipsGroup>) {
+    /// pyramid's level `L`, and the dispatches that fill it; none for a map of one texel.
+    fn pyramid(&self, ctx: &GpuContext, map: &wgpu::Texture) -> Option<(wgpu::Texture, MapMips)> {
         let levels = pyramid_levels(map.width() as usize, map.height() as usize) as u32 - 1;
         if levels == 0 {
-            return (None, Vec::new());
+            return None;
         }
         let mips = ctx.create_texture(&wgpu::TextureDescriptor {
             label: Some("caustics map pyramid"),
@@ -644,34 +634,8 @@ impl FinalImage {
                 | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
         });
-        let level = |t: &wgpu::Texture, k: u32| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                base_mip_level: k,
-                mip_level_count: Some(1),
-                ..Default::default()
-            })
-        };
-        let groups = (0..levels)
-            .map(|k| {
-                let fine = if k == 0 {
-                    level(map, 0)
-                } else {
-                    level(&mips, k - 1)
-                };
-                let group = bind_group(
-                    ctx,
-                    CAUSTICS_MIPS.name,
-                    &self.mips_pipeline.get_bind_group_layout(0),
-                    &[
-                        wgpu::BindingResource::TextureView(&fine),
-                        wgpu::BindingResource::TextureView(&level(&mips, k)),
-                    ],
-                );
-                let size = mips.size().mip_level_size(k, wgpu::TextureDimension::D2);
-                (group, (size.width, size.height))
-            })
-            .collect();
-        (Some(mips), groups)
+        let groups = MapMips::beside(ctx, &self.mips_pipeline, map, &mips);
+        Some((mips, groups))
     }
 
     /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with
@@ -835,12 +799,9 @@ impl FinalImageFrame {
             pass.dispatch_workgroups(groups, groups, 1);
         }
         let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE.name);
-        // The floor map's pyramid, finest level first: each dispatch reads the level the one
-        // before it wrote; the image's dispatch reads them all.
-        pass.set_pipeline(&self.mips_pipeline);
-        for (group, (w, h)) in &self.mips_groups {
-            pass.set_bind_group(0, group, &[]);
-            pass.dispatch_workgroups(w.div_ceil(TILE), h.div_ceil(TILE), 1);
+        // The floor map's pyramid, finest level first; the image's dispatch reads it all.
+        if let Some(mips) = &self.mips_groups {
+            mips.encode(&mut pass);
         }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.scene_group, &[]);

@@ -1,0 +1,126 @@
+//! A floor map's box-filter pyramid on the GPU (`shaders/caustics_mips.wgsl`, one dispatch a
+//! level), the twin of caustics-core's `CausticsMap::pyramid`: level `L` is `max(1, size >> L)`
+//! texels a side, each the mean of the 2 x 2 under it, so that a reader can take the map's mean
+//! over a footprint of any size in a few taps (`MapPyramid::filtered`). The final image builds one
+//! beside its floor map every frame; an application whose map texture has its own mip chain (the
+//! Bevy plugin's material) fills that chain in place.
+
+use caustics_core::map::pyramid_levels;
+
+use crate::GpuContext;
+use crate::final_image::CAUSTICS_MIPS;
+use crate::pass::{bind_group, compute_pipeline};
+
+/// `caustics_mips.wgsl`'s workgroup side.
+const TILE: u32 = 8;
+
+/// The bind groups that write one map's pyramid, finest level first, each with the size of the
+/// level it writes. Made once per map texture; recording them creates nothing.
+pub struct MapMips {
+    pipeline: wgpu::ComputePipeline,
+    levels: Vec<(wgpu::BindGroup, (u32, u32))>,
+}
+
+/// The compute pipeline every [`MapMips`] records: one per device is enough.
+pub fn mips_pipeline(ctx: &GpuContext) -> wgpu::ComputePipeline {
+    compute_pipeline(ctx, &CAUSTICS_MIPS)
+}
+
+fn mip_view(t: &wgpu::Texture, level: u32) -> wgpu::TextureView {
+    t.create_view(&wgpu::TextureViewDescriptor {
+        base_mip_level: level,
+        mip_level_count: Some(1),
+        ..Default::default()
+    })
+}
+
+impl MapMips {
+    /// Levels 1 and above of the pyramid of `map` (`Rgba32Float`, level 0) into `mips`, whose mip
+    /// `L − 1` is the pyramid's level `L` (`pyramid_levels(map) − 1` mips, `STORAGE_BINDING`).
+    pub fn beside(
+        ctx: &GpuContext,
+        pipeline: &wgpu::ComputePipeline,
+        map: &wgpu::Texture,
+        mips: &wgpu::Texture,
+    ) -> MapMips {
+        let levels = (0..mips.mip_level_count())
+            .map(|k| {
+                let fine = if k == 0 {
+                    mip_view(map, 0)
+                } else {
+                    mip_view(mips, k - 1)
+                };
+                (fine, mip_view(mips, k), mips, k)
+            })
+            .collect::<Vec<_>>();
+        Self::from_views(ctx, pipeline, &levels)
+    }
+
+    /// Mips 1 and above of `map` (`Rgba32Float`, `STORAGE_BINDING` and `TEXTURE_BINDING`, as
+    /// many mips as [`pyramid_levels`] or fewer) from its own mip 0: mip `L` becomes the
+    /// pyramid's level `L`. For a map an application samples with `textureLoad` at a level.
+    pub fn in_place(
+        ctx: &GpuContext,
+        pipeline: &wgpu::ComputePipeline,
+        map: &wgpu::Texture,
+    ) -> MapMips {
+        let count = map
+            .mip_level_count()
+            .min(pyramid_levels(map.width() as usize, map.height() as usize) as u32);
+        let levels = (1..count)
+            .map(|k| (mip_view(map, k - 1), mip_view(map, k), map, k))
+            .collect::<Vec<_>>();
+        Self::from_views(ctx, pipeline, &levels)
+    }
+
+    fn from_views(
+        ctx: &GpuContext,
+        pipeline: &wgpu::ComputePipeline,
+        levels: &[(wgpu::TextureView, wgpu::TextureView, &wgpu::Texture, u32)],
+    ) -> MapMips {
+        let levels = levels
+            .iter()
+            .map(|(fine, coarse, texture, k)| {
+                let group = bind_group(
+                    ctx,
+                    CAUSTICS_MIPS.name,
+                    &pipeline.get_bind_group_layout(0),
+                    &[
+                        wgpu::BindingResource::TextureView(fine),
+                        wgpu::BindingResource::TextureView(coarse),
+                    ],
+                );
+                let size = texture
+                    .size()
+                    .mip_level_size(*k, wgpu::TextureDimension::D2);
+                (group, (size.width, size.height))
+            })
+            .collect();
+        MapMips {
+            pipeline: pipeline.clone(),
+            levels,
+        }
+    }
+
+    /// Levels written: the pyramid's below level 0.
+    pub fn len(&self) -> usize {
+        self.levels.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.levels.is_empty()
+    }
+
+    /// The dispatches into `pass`, finest first: each reads the level the one before it wrote.
+    /// Leaves `pass`'s pipeline set to the mips' own.
+    pub fn encode(&self, pass: &mut wgpu::ComputePass) {
+        if self.levels.is_empty() {
+            return;
+        }
+        pass.set_pipeline(&self.pipeline);
+        for (group, (w, h)) in &self.levels {
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(w.div_ceil(TILE), h.div_ceil(TILE), 1);
+        }
+    }
+}
