@@ -24,6 +24,7 @@ use bevy::render::render_resource::{
 };
 use bevy::render::{ExtractSchedule, RenderApp};
 
+use caustics_core::map::pyramid_levels;
 use caustics_core::scene::Scene;
 use caustics_core::techniques::describe::Receiver as Receives;
 use caustics_core::walls::WallMaps;
@@ -175,7 +176,10 @@ fn check_technique(name: &str) -> Result<(), CausticsError> {
 /// The images a [`CausticWater`]'s technique renders into each frame, on the GPU (copies of its
 /// output, never read back), for [`CausticsExtension`] and anything else that samples them:
 /// `Rgba32Float`, not filterable (read with `textureLoad`), relative irradiance per channel (1 =
-/// what the sun gives through flat, clear water; the water's absorption included).
+/// what the sun gives through flat, clear water; the water's absorption included). The floor
+/// map has its whole mip chain, made on the GPU each frame: each mip the mean of the 2 x 2 texels
+/// under it (caustics-core's `CausticsMap::pyramid`), so a reader can take the map's mean over a
+/// pixel's footprint, as the material does.
 #[derive(Component, Clone, Debug)]
 pub struct CausticMaps {
     /// The floor map: `caustics.width` x `caustics.height` texels over the water square, row 0
@@ -198,7 +202,9 @@ impl CausticMaps {
         let (width, height) = (scene.caustics.width.max(1), scene.caustics.height.max(1));
         // Until the technique's first frame: the floor as under flat, clear water (1), and no
         // eye-space value (w = -1), which the material lights as under flat water.
-        let floor = images.add(map_image(width, height, 1, 1.0));
+        let mut floor = map_image(width, height, 1, 1.0);
+        with_mips(&mut floor);
+        let floor = images.add(floor);
         let (cols, rows, wall_cols) = if scene.floor.walls {
             let layout = WallMaps::for_floor_map(
                 width as usize,
@@ -256,6 +262,32 @@ fn map_image(width: u32, height: u32, layers: u32, w: f32) -> Image {
     image.texture_descriptor.usage =
         TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST | TextureUsages::COPY_SRC;
     image
+}
+
+/// `image` (one level, filled) with its whole mip chain, every level filled as its first, and
+/// writable by a compute pass (the map's pyramid, `caustics_gpu::map_mips::MapMips`).
+fn with_mips(image: &mut Image) {
+    let size = image.texture_descriptor.size;
+    let levels = pyramid_levels(size.width as usize, size.height as usize) as u32;
+    let texel = image
+        .texture_descriptor
+        .format
+        .block_copy_size(None)
+        .unwrap_or(16) as usize;
+    if let Some(data) = &mut image.data {
+        let first = data[..texel].to_vec();
+        let texels: u32 = (1..levels)
+            .map(|k| {
+                let s = size.mip_level_size(k, TextureDimension::D2);
+                s.width * s.height
+            })
+            .sum();
+        for _ in 0..texels {
+            data.extend_from_slice(&first);
+        }
+    }
+    image.texture_descriptor.mip_level_count = levels;
+    image.texture_descriptor.usage |= TextureUsages::STORAGE_BINDING;
 }
 
 /// A drop into a [`CausticWater`] whose heights are the scene's ripple simulation (ignored by

@@ -13,6 +13,7 @@ use bevy::core_pipeline::schedule::camera_driver;
 use bevy::platform::collections::HashMap;
 use bevy::prelude::*;
 use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::TextureId;
 use bevy::render::renderer::{
     RenderAdapter, RenderContext, RenderDevice, RenderGraph, RenderInstance, RenderQueue,
 };
@@ -21,6 +22,7 @@ use bevy::render::{Extract, Render, RenderSystems};
 
 use caustics_core::scene::Scene;
 use caustics_core::water::ripple::Drop;
+use caustics_gpu::map_mips::{MapMips, mips_pipeline};
 use caustics_gpu::water::field::GpuWater;
 use caustics_gpu::{GpuContext, Output, Technique, TrafficCounts, WaterTextures};
 
@@ -151,6 +153,8 @@ struct WaterState {
     technique: Box<dyn Technique>,
     scene: Scene,
     maps: CausticMaps,
+    /// The floor image's mips from its first level, for the texture Bevy holds for it now.
+    floor_mips: Option<(TextureId, MapMips)>,
 }
 
 /// Where the heights of a built state come from.
@@ -158,12 +162,14 @@ struct WaterState {
 enum HeightsKey {
     Scene,
     /// The image, and the texture Bevy holds for it now (a new one when the image was remade).
-    Image(AssetId<Image>, bevy::render::render_resource::TextureId),
+    Image(AssetId<Image>, TextureId),
 }
 
 #[derive(Resource, Default)]
 pub(crate) struct Waters {
     ctx: Option<GpuContext>,
+    /// `caustics_mips.wgsl`'s pipeline, made with the context.
+    mips: Option<wgpu::ComputePipeline>,
     states: HashMap<Entity, WaterState>,
     /// Waters whose build failed, with the key it failed for: not tried again until it changes.
     failed: HashMap<Entity, Key>,
@@ -252,6 +258,14 @@ fn prepare(
         }
         let state = waters.states.get_mut(&w.entity).expect("built above");
         state.maps = w.maps.clone();
+        if let Some(floor) = images.get(&state.maps.floor) {
+            let id = floor.texture.id();
+            if state.floor_mips.as_ref().is_none_or(|(t, _)| *t != id) {
+                let pipeline = waters.mips.get_or_insert_with(|| mips_pipeline(ctx));
+                built = true;
+                state.floor_mips = Some((id, MapMips::in_place(ctx, pipeline, &floor.texture)));
+            }
+        }
         if let Some(sun) = extracted.sun {
             let d = w
                 .scene_from_world
@@ -338,6 +352,7 @@ fn build_state(
         technique,
         scene,
         maps: w.maps.clone(),
+        floor_mips: None,
     })
 }
 
@@ -358,15 +373,22 @@ fn record(
             source.encode(encoder, None);
         }
         state.technique.encode(encoder, None);
-        let (map, image) = match state.technique.output() {
-            Some(Output::Floor(map)) => (map, &state.maps.floor),
-            Some(Output::EyeSpace(map)) => (map, &state.maps.eye),
+        let (map, image, floor) = match state.technique.output() {
+            Some(Output::Floor(map)) => (map, &state.maps.floor, true),
+            Some(Output::EyeSpace(map)) => (map, &state.maps.eye, false),
             None => continue,
         };
-        if let Some(image) = images.get(image)
-            && let Err(e) = copy(encoder, map, &image.texture)
-        {
-            stats.update(|s| s.error = Some(format!("caustics map: {e}")));
+        if let Some(image) = images.get(image) {
+            if let Err(e) = copy(encoder, map, &image.texture) {
+                stats.update(|s| s.error = Some(format!("caustics map: {e}")));
+            } else if let (true, Some((_, mips))) = (floor, &state.floor_mips) {
+                // The floor map's mips, from the level just copied.
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("bevy_caustics floor mips"),
+                    timestamp_writes: None,
+                });
+                mips.encode(&mut pass);
+            }
         }
         if let (Some(walls), Some(image)) = (state.technique.walls(), images.get(&state.maps.walls))
             && let Err(e) = copy(encoder, walls.texture, &image.texture)
