@@ -55,8 +55,8 @@ pub struct RenderArgs {
     /// Reference quality: triangulation cells per map texel along each axis.
     #[arg(long, default_value_t = 4)]
     cells_per_texel: u32,
-    /// Samples per pixel along each axis of the final image.
-    #[arg(long, default_value_t = 2)]
+    /// Samples per pixel along each axis of the final image (1 to 16).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
     supersampling: u32,
     /// Experimental, the CPU's final image only: shade the water with normals filtered by each
     /// sample's footprint (the waves' slope moments, LEAN mapping) instead of the exact normal

@@ -357,6 +357,28 @@ fn a_height_field_of_the_wrong_shape_is_refused() {
 }
 
 #[test]
+fn a_sample_count_out_of_range_is_refused() {
+    let d = tmpdir("supersampling");
+    for (args, range) in [
+        (&["render", "--supersampling", "0"][..], "1..=16"),
+        (&["render", "--supersampling", "17"][..], "1..=16"),
+        (&["view", "--supersampling", "0"][..], "1..=8"),
+    ] {
+        let o = caustics(args, &d);
+        assert!(!o.status.success(), "{args:?}");
+        let e = stderr(&o);
+        assert!(
+            e.contains("--supersampling") && e.contains(range),
+            "{args:?}: {e}"
+        );
+    }
+    assert!(
+        std::fs::read_dir(&d).unwrap().next().is_none(),
+        "nothing written"
+    );
+}
+
+#[test]
 fn inputs_are_never_overwritten() {
     let g = Grid::from_fn(8, 8, |i, j| 0.001 * (i + j) as f32);
     let d = contract_dir("overwrite", &g, CONTRACT);

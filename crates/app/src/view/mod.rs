@@ -56,9 +56,9 @@ pub struct ViewArgs {
     /// adapter).
     #[arg(long)]
     pub map_size: Option<u32>,
-    /// Final-image samples per pixel along each axis (default: 2 on a hardware GPU, 1 on a
-    /// software adapter).
-    #[arg(long)]
+    /// Final-image samples per pixel along each axis, 1 to 8 (default: 2 on a hardware GPU, 1 on
+    /// a software adapter).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub supersampling: Option<u32>,
     /// Reference quality: triangulation cells per map texel along each axis.
     #[arg(long, default_value_t = 2)]
