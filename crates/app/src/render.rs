@@ -49,8 +49,8 @@ pub struct RenderArgs {
     /// Final image resolution WIDTHxHEIGHT, overriding the scene camera's.
     #[arg(long, value_parser = parse_size)]
     image_size: Option<[u32; 2]>,
-    /// Time at which the water is frozen, seconds (the scene's by default).
-    #[arg(long)]
+    /// Time at which the water is frozen, seconds (the scene's by default; any finite time).
+    #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// Reference quality: triangulation cells per map texel along each axis.
     #[arg(long, default_value_t = 4)]
@@ -65,7 +65,7 @@ pub struct RenderArgs {
     filter_water: bool,
     /// Exposure of the final image: radiance is multiplied by it before the tone curve (the
     /// scene's `[camera] exposure` by default).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     exposure: Option<f64>,
     /// Tone curve of the final image: aces, agx or none (the scene's `[camera] tone_map`, by
     /// default aces).

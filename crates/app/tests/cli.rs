@@ -357,7 +357,7 @@ fn a_height_field_of_the_wrong_shape_is_refused() {
 }
 
 #[test]
-fn a_sample_count_out_of_range_is_refused() {
+fn numbers_out_of_range_are_refused_by_name() {
     let d = tmpdir("supersampling");
     for (args, range) in [
         (&["render", "--supersampling", "0"][..], "1..=16"),
