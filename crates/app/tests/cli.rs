@@ -358,7 +358,7 @@ fn a_height_field_of_the_wrong_shape_is_refused() {
 
 #[test]
 fn numbers_out_of_range_are_refused_by_name() {
-    let d = tmpdir("supersampling");
+    let d = tmpdir("ranges");
     for (args, range) in [
         (&["render", "--supersampling", "0"][..], "1..=16"),
         (&["render", "--supersampling", "17"][..], "1..=16"),
@@ -372,6 +372,22 @@ fn numbers_out_of_range_are_refused_by_name() {
             "{args:?}: {e}"
         );
     }
+    // Negative numbers are values, not flags: a negative exposure is refused by name, and a
+    // negative time gets past the parser to the scene's checks (here: a scene that is not there).
+    let o = caustics(&["render", "--exposure", "-1"], &d);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("--exposure must be positive"),
+        "{}",
+        stderr(&o)
+    );
+    let o = caustics(&["render", "--time", "-1.5", "--scene", "absent.toml"], &d);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(
+        !e.contains("unexpected argument") && e.contains("absent.toml"),
+        "{e}"
+    );
     assert!(
         std::fs::read_dir(&d).unwrap().next().is_none(),
         "nothing written"

@@ -178,8 +178,8 @@ fn check_technique(name: &str) -> Result<(), CausticsError> {
 /// `Rgba32Float`, not filterable (read with `textureLoad`), relative irradiance per channel (1 =
 /// what the sun gives through flat, clear water; the water's absorption included). The floor
 /// map has its whole mip chain, made on the GPU each frame: each mip the mean of the 2 x 2 texels
-/// under it (caustics-core's `CausticsMap::pyramid`), so a reader can take the map's mean over a
-/// pixel's footprint, as the material does.
+/// under it (caustics-core's `CausticsMap::pyramid`; alpha 0 in the mips), so a reader can take
+/// the map's mean over a pixel's footprint, as the material does.
 #[derive(Component, Clone, Debug)]
 pub struct CausticMaps {
     /// The floor map: `caustics.width` x `caustics.height` texels over the water square, row 0

@@ -592,8 +592,8 @@ impl Albedo {
     /// [`at`](Self::at), the pattern box-filtered over a footprint `extent` wide along x and y
     /// (world units; zero for a point): the tiles' grout lines through the integral of their
     /// pulse train (as the deck's joints), the sand's ripples through the sinc of a sinusoid's
-    /// mean over the box, its grain and patches faded as their cells fall below the footprint, so
-    /// that far away each keeps its mean instead of aliasing. An image is read at its nearest
+    /// mean over the box, its grain and patches through their exact box mean ([`value_noise`]),
+    /// so that far away each keeps its mean instead of aliasing. An image is read at its nearest
     /// texel. GPU twin: `floor_albedo` in shading.wgsl.
     pub fn filtered(&self, p: DVec2, size: f64, extent: DVec2) -> DVec3 {
         let u = p / size;
@@ -802,10 +802,6 @@ mod deck_tests {
         assert_eq!(joint_cover(5.5, 0.0, joint), 0.0);
     }
 
-    /// The floor's patterns filtered over a footprint keep the mean of their points: averaged
-    /// over the square, the tiles' and the sand's albedo come out the same filtered (footprints of
-    /// 0.3 and 3 world units) as point-sampled, and a footprint far wider than the tiles' period
-    /// or the sand's cells gives each pattern's mean everywhere.
     #[test]
     fn the_noise_is_its_mean_over_the_box() {
         // Boxes up to NOISE_EXACT_BOX cells wide, straddling lattice lines, against a 200 x 200
@@ -830,16 +826,20 @@ mod deck_tests {
             worst = worst.max((value_noise(p, cell, 7, w) - rule).abs());
         }
         assert!(worst < 2e-5, "{worst}");
-        // A point reads the interpolation itself, and a box beyond the exact width keeps fading
-        // without a step at the cap.
+        // Just past NOISE_POINT the box mean is the point's value (O(a²) apart: measured
+        // 5.6e-8), and a box beyond the exact width keeps fading without a step at the cap.
         let p = DVec2::new(0.4321, 0.1234);
         let at = |w: f64| value_noise(p, cell, 0, DVec2::splat(w));
-        assert!((at(0.0) - at(1e-9)).abs() < 1e-12);
+        assert!((at(0.0) - at(2.2e-3 * cell)).abs() < 5.6e-7);
         let cap = cell * NOISE_EXACT_BOX;
         assert!((at(cap) - at(cap * (1.0 + 1e-9))).abs() < 1e-9);
         assert!(at(40.0 * cell).abs() < at(cap).abs());
     }
 
+    /// The floor's patterns filtered over a footprint keep the mean of their points: averaged
+    /// over the square, the tiles' and the sand's albedo come out the same filtered (footprints of
+    /// 0.3 and 3 world units) as point-sampled, and a footprint far wider than the tiles' period
+    /// or the sand's cells gives each pattern's mean everywhere.
     #[test]
     fn filtered_albedo_keeps_the_patterns_mean() {
         let size = 4.0;
