@@ -26,6 +26,31 @@ pub fn mips_pipeline(ctx: &GpuContext) -> wgpu::ComputePipeline {
     compute_pipeline(ctx, &CAUSTICS_MIPS)
 }
 
+/// An `Rgba32Float` texture of `levels` mips from `size`, which [`MapMips`] can write
+/// (`STORAGE_BINDING` and `TEXTURE_BINDING`, and `usage`).
+pub fn mip_chain(
+    ctx: &GpuContext,
+    label: &str,
+    (width, height): (u32, u32),
+    levels: u32,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    ctx.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | usage,
+        view_formats: &[],
+    })
+}
+
 fn mip_view(t: &wgpu::Texture, level: u32) -> wgpu::TextureView {
     t.create_view(&wgpu::TextureViewDescriptor {
         base_mip_level: level,

@@ -456,17 +456,7 @@ impl Renderer {
             ));
         }
         let texture = side.external.as_ref().expect("just made");
-        let texels: Vec<[f32; 4]> = map.texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
-        ctx.write_texture(
-            texture.as_image_copy(),
-            bytemuck::cast_slice(&texels),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(16 * w),
-                rows_per_image: Some(h),
-            },
-            texture.size(),
-        );
+        crate::final_image::write_map(ctx, texture, map);
         side.traffic += ctx.traffic().since(&before);
         Ok(())
     }

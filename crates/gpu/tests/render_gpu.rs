@@ -539,34 +539,14 @@ fn a_maps_own_mips_are_its_pyramid() {
     let ctx = test_gpu();
     let map = odd_map(1.0);
     let levels = caustics_core::map::pyramid_levels(map.width, map.height) as u32;
-    let texture = ctx.create_texture(&wgpu::TextureDescriptor {
-        label: Some("map with mips"),
-        size: wgpu::Extent3d {
-            width: map.width as u32,
-            height: map.height as u32,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: levels,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_DST
-            | wgpu::TextureUsages::COPY_SRC,
-        view_formats: &[],
-    });
-    let texels: Vec<[f32; 4]> = map.texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
-    ctx.write_texture(
-        texture.as_image_copy(),
-        bytemuck::cast_slice(&texels),
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(map.width as u32 * 16),
-            rows_per_image: None,
-        },
-        texture.size(),
+    let texture = caustics_gpu::map_mips::mip_chain(
+        &ctx,
+        "map with mips",
+        (map.width as u32, map.height as u32),
+        levels,
+        wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::COPY_SRC,
     );
+    caustics_gpu::final_image::write_map(&ctx, &texture, &map);
     let pipeline = caustics_gpu::map_mips::mips_pipeline(&ctx);
     let mips = caustics_gpu::map_mips::MapMips::in_place(&ctx, &pipeline, &texture);
     assert_eq!(mips.len() as u32, levels - 1);
@@ -862,23 +842,7 @@ fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
     let (grid, map) = (surface.expect("water"), map.expect("map"));
     let heights = heights_texture(&ctx, &grid);
     let water = WaterTextures::of(&heights);
-    let map_texture = ctx.texture_2d(
-        "caustics map",
-        (map.width as u32, map.height as u32, 1),
-        wgpu::TextureFormat::Rgba32Float,
-        wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-    );
-    let texels: Vec<[f32; 4]> = map.texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
-    ctx.write_texture(
-        map_texture.as_image_copy(),
-        bytemuck::cast_slice(&texels),
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(map.width as u32 * 16),
-            rows_per_image: Some(map.height as u32),
-        },
-        map_texture.size(),
-    );
+    let map_texture = caustics_gpu::final_image::upload_map(&ctx, &map).expect("map");
     let options = RenderOptions {
         supersampling: 1,
         ..Default::default()

@@ -60,7 +60,7 @@ use caustics_core::scene::{Albedo, Scene};
 use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 
-use crate::map_mips::{MapMips, mips_pipeline};
+use crate::map_mips::{MapMips, mip_chain, mips_pipeline};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::technique::{Output, WallsOutput, WaterTextures};
@@ -264,6 +264,25 @@ pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, 
         map.height as u32,
         bytemuck::cast_slice(&rgba32(&map.texels)),
     )
+}
+
+/// `map`'s texels into mip 0 of `texture` (`Rgba32Float`, `COPY_DST`, at least the map's size):
+/// a floor map the CPU made, for a texture that lives across frames.
+pub fn write_map(ctx: &GpuContext, texture: &wgpu::Texture, map: &CausticsMap) {
+    ctx.write_texture(
+        texture.as_image_copy(),
+        bytemuck::cast_slice(&rgba32(&map.texels)),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(16 * map.width as u32),
+            rows_per_image: Some(map.height as u32),
+        },
+        wgpu::Extent3d {
+            width: map.width as u32,
+            height: map.height as u32,
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 /// An RGB image as `Rgba32Float` texels (alpha 1).
@@ -618,22 +637,13 @@ impl FinalImage {
         if levels == 0 {
             return None;
         }
-        let mips = ctx.create_texture(&wgpu::TextureDescriptor {
-            label: Some("caustics map pyramid"),
-            size: wgpu::Extent3d {
-                width: (map.width() / 2).max(1),
-                height: (map.height() / 2).max(1),
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: levels,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        let mips = mip_chain(
+            ctx,
+            "caustics map pyramid",
+            ((map.width() / 2).max(1), (map.height() / 2).max(1)),
+            levels,
+            wgpu::TextureUsages::COPY_SRC,
+        );
         let groups = MapMips::beside(ctx, &self.mips_pipeline, map, &mips);
         Some((mips, groups))
     }
