@@ -35,8 +35,9 @@ fn sizes_beyond_the_program_limit_are_refused_at_the_flag() {
     assert_refused(&out, &["--image-size 64x100000", "between 1 and 16384"]);
 }
 
-/// A map the program takes but the device cannot hold: yuksel's pre-pass texture is the map plus
-/// a margin on each side, so a map as wide as the device's largest texture is beyond it. Needs a
+/// A map the program takes but the device cannot hold: yuksel's pass-1 targets are the map plus M
+/// rows (its pre-pass texture, larger still, is cut into layers that fit), so a map as tall as the
+/// device's largest texture is beyond it. Needs a
 /// device whose limit the command line can reach (lavapipe's 16384: about 10 s there,
 /// most of it sampling the water at the map's size before the technique is built).
 fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
@@ -54,7 +55,9 @@ fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
     assert_refused(
         &out,
         &[
-            "yuksel pre-pass texture",
+            // The pre-pass texture is cut into tiles that fit; the pass-1 targets (the map's
+            // height plus M rows) are what the map's side runs into.
+            "yuksel pass-1 targets",
             "beyond what this GPU allows",
             &format!("1 .. {max} per side"),
         ],

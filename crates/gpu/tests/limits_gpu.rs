@@ -134,6 +134,55 @@ fn yuksel_gather_needs_its_workgroup_memory() {
     ctx.check().expect("wgpu saw nothing");
 }
 
+/// A device whose textures are at most 256 a side: yuksel's pre-pass texture for a 96² map
+/// (its capacity over the levels: 624 x 624 texels) is cut into 3 x 3 layers of 208², and the
+/// map is to the bit the one a device holding it whole makes (and it is not flat water's).
+fn yuksel_tiles_a_prepass_wider_than_the_device() {
+    use caustics_core::techniques::yuksel::{YukselParams, YukselSetup};
+    use caustics_gpu::yuksel::{PrepassTiling, Variant, Yuksel};
+    let small = device_with(|adapter| wgpu::Limits {
+        max_texture_dimension_2d: 256,
+        ..adapter
+    });
+    let full = device_with(|adapter| adapter);
+    let n = 96;
+    let heights = Grid::from_fn(n, n, |i, j| {
+        let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / n as f64);
+        let tau = std::f64::consts::TAU;
+        (0.004 * (tau * (3.0 * x + y)).sin() + 0.002 * (tau * (-2.0 * x + 5.0 * y)).sin()) as f32
+    });
+    let setup = YukselSetup::new(
+        &YukselParams::default(),
+        n,
+        n,
+        1.0,
+        0.35,
+        1.333,
+        glam::DVec3::ZERO,
+        true,
+        glam::DVec3::new(0.3, 0.1, -1.0).normalize(),
+    )
+    .unwrap();
+    assert_eq!(
+        PrepassTiling::new((624, 624), 256),
+        PrepassTiling {
+            tiles: (3, 3),
+            tile: (208, 208)
+        }
+    );
+    let map = |ctx: &GpuContext| {
+        Yuksel::new(ctx)
+            .unwrap()
+            .caustics(ctx, &setup, &heights, Variant::RenderTargets)
+            .unwrap()
+    };
+    let (tiled, whole) = (map(&small), map(&full));
+    assert_eq!(tiled.texels, whole.texels);
+    let max = whole.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+    assert!(max > 1.1, "the waves focus: {max}");
+    small.check().expect("wgpu saw nothing");
+}
+
 fn every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit() {
     let ctx = small_device();
     assert_eq!(ctx.limits().max_texture_dimension_2d, MAX_2D);
@@ -313,6 +362,7 @@ fn a_lost_device_gives_device_lost_errors() {
 
 test_main! {
     gpu yuksel_gather_needs_its_workgroup_memory,
+    gpu yuksel_tiles_a_prepass_wider_than_the_device,
     gpu every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit,
     gpu cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused,
     gpu a_side_beyond_the_device_fails_alone,

@@ -132,7 +132,9 @@ pub struct YukselUniform {
     pub phase: u32,
     /// [`YukselSetup::split`], or −1 where every pixel takes its `k × k` samples.
     pub split: f32,
-    pub _pad: [u32; 2],
+    /// Tiles along x of the pre-pass texture's array ([`PrepassTiling`]); 0 where it is one.
+    pub pre_tiles: u32,
+    pub _pad: u32,
 }
 
 /// Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`: what the region pass writes.
@@ -191,8 +193,50 @@ impl YukselUniform {
             footprint: s.footprint as u32,
             phase,
             split: s.split.map_or(-1.0, |v| v as f32),
-            _pad: [0; 2],
+            pre_tiles: 0,
+            _pad: 0,
         }
+    }
+
+    /// The uniform of a frame whose pre-pass texture is tiled as `tiling` says.
+    fn tiled(s: &YukselSetup, channel_base: u32, phase: u32, tiling: &PrepassTiling) -> Self {
+        YukselUniform {
+            pre_tiles: if tiling.layers() == 1 {
+                0
+            } else {
+                tiling.tiles.0
+            },
+            ..Self::new(s, channel_base, phase)
+        }
+    }
+}
+
+/// How the pre-pass texture, `k × k` texels per pixel of the map and its region's apron (8,432 a
+/// side for a 2048² map at the default `k` = 4), is cut into the layers of an array where it is
+/// wider or taller than the device allows (WebGPU's default and many browsers: 8,192): the fewest
+/// equal tiles along each axis that fit, tile `(i, j)` in layer `j · tiles.x + i` (ours; one
+/// layer where the texture fits). The shaders find a texel with `pre_texel` (common.wgsl).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PrepassTiling {
+    /// Tiles along x and y.
+    pub tiles: (u32, u32),
+    /// One tile's (layer's) size.
+    pub tile: (u32, u32),
+}
+
+impl PrepassTiling {
+    /// The tiling of a `width` x `height` pre-pass texture on a device whose textures are at most
+    /// `max` a side.
+    pub fn new((width, height): (u32, u32), max: u32) -> Self {
+        let tiles = (width.div_ceil(max.max(1)), height.div_ceil(max.max(1)));
+        PrepassTiling {
+            tiles,
+            tile: (width.div_ceil(tiles.0), height.div_ceil(tiles.1)),
+        }
+    }
+
+    pub fn layers(&self) -> u32 {
+        self.tiles.0 * self.tiles.1
     }
 }
 
@@ -273,6 +317,8 @@ pub struct Frame {
     pub variant: Variant,
     passes: FramePasses,
     bytes: u64,
+    /// The pre-pass texture's tiling (one tile for the gather, which has none).
+    tiling: PrepassTiling,
 }
 
 enum FramePasses {
@@ -331,7 +377,7 @@ impl Frame {
             ctx.write_buffer(
                 buffer,
                 0,
-                bytemuck::bytes_of(&YukselUniform::new(setup, *base, *phase)),
+                bytemuck::bytes_of(&YukselUniform::tiled(setup, *base, *phase, &self.tiling)),
             );
         }
         self.setup = setup.clone();
@@ -429,13 +475,34 @@ impl Yuksel {
         let (pw, ph) = prepass_capacity(setup);
         let (p1w, p1h) = (setup.width, setup.height + cap_m);
         ctx.check_texture_size("yuksel caustics map", w, h)?;
-        ctx.check_texture_size("yuksel pre-pass texture", pw as u32, ph as u32)?;
+        let limits = ctx.limits();
+        let tiling = match variant {
+            Variant::RenderTargets => {
+                PrepassTiling::new((pw as u32, ph as u32), limits.max_texture_dimension_2d)
+            }
+            Variant::Gather => PrepassTiling::new((1, 1), 1),
+        };
+        if tiling.layers() > limits.max_texture_array_layers {
+            return Err(GpuError::TooLarge {
+                what: "yuksel pre-pass texture".into(),
+                size: format!("{pw} x {ph} ({} layers of tiles)", tiling.layers()),
+                limit: format!(
+                    "{} layers of 1 .. {} per side",
+                    limits.max_texture_array_layers, limits.max_texture_dimension_2d
+                ),
+            });
+        }
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
             let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("yuksel uniform"),
-                contents: bytemuck::bytes_of(&YukselUniform::new(setup, channel_base, phase)),
+                contents: bytemuck::bytes_of(&YukselUniform::tiled(
+                    setup,
+                    channel_base,
+                    phase,
+                    &tiling,
+                )),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
             uniforms.push((buffer.clone(), channel_base, phase));
@@ -502,7 +569,7 @@ impl Yuksel {
                 let layers = (cap_m as u32 + 1).div_ceil(4);
                 let pre = ctx.texture_2d(
                     "yuksel pre-pass",
-                    (pw as u32, ph as u32, 1),
+                    (tiling.tile.0, tiling.tile.1, tiling.layers()),
                     MAP_FORMAT,
                     U::STORAGE_BINDING | U::TEXTURE_BINDING,
                 );
@@ -526,14 +593,17 @@ impl Yuksel {
                 let extents_view =
                     per_pixel("yuksel pre-pass extents", wgpu::TextureFormat::Rg32Float);
                 let tiers_view = per_pixel("yuksel pre-pass tiers", wgpu::TextureFormat::R32Uint);
-                bytes += (pw * ph) as u64 * 16
+                bytes += (tiling.tile.0 * tiling.tile.1 * tiling.layers()) as u64 * 16
                     + (p1w * p1h) as u64 * layers as u64 * 16
                     + (ew * eh) as u64 * (8 + 4);
                 tracing::debug!(
                     "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
                     bytes as f64 / (1u64 << 20) as f64
                 );
-                let pre_view = pre.create_view(&Default::default());
+                let pre_view = pre.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                });
                 let prepass = [
                     bind_group(
                         ctx,
@@ -647,6 +717,7 @@ impl Yuksel {
             variant,
             passes,
             bytes,
+            tiling,
         })
     }
 

@@ -19,8 +19,21 @@ struct Yuksel {
     footprint: u32,           // 1: each sample's light on its footprint; 0: a box of its size
     phase: u32,               // pass 1 and 2: the map's rows this draw serves, modulo 2^level
     split: f32,               // misfit above which a pixel takes its k x k samples; < 0: always
-    _pad1: u32,
-    _pad2: u32,
+    pre_tiles: u32,           // tiles along x of the pre-pass texture's array; 0: one layer
+    _pad: u32,
+}
+
+// Where texel `xy` of the pre-pass texture (k x k texels per pixel of the level's map and apron)
+// lies in its array of tiles `tile` texels each (`PrepassTiling` in yuksel/mod.rs): texel
+// `xy % tile` of layer `(y / tile.y) u.pre_tiles + x / tile.x`, so that a map whose pre-pass is
+// wider than the device allows (a 2048² map's 8,432 texels against 8,192) still runs. One layer
+// (`u.pre_tiles` 0) skips the integer divisions, which cost lavapipe a quarter of the pre-pass.
+fn pre_texel(xy: vec2<i32>, tile: vec2<u32>) -> vec3<i32> {
+    if u.pre_tiles == 0u {
+        return vec3<i32>(xy, 0);
+    }
+    let t = vec2<i32>(tile);
+    return vec3<i32>(xy % t, (xy.y / t.y) * i32(u.pre_tiles) + xy.x / t.x);
 }
 
 // The gather region, written by the region pass (`region.wgsl`) and read by every other pass.

@@ -6,7 +6,7 @@
 // target) and `fs_main` that fills it are generated for the number of targets one draw writes.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
-@group(0) @binding(1) var pre: texture_2d<f32>;
+@group(0) @binding(1) var pre: texture_2d_array<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
 // Per pixel of the pre-pass, the span along x its records' boxes cover (`prepass.wgsl`,
 // `prepass_span.wgsl`).
@@ -39,6 +39,7 @@ fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
     let base = i32(u.channel_base);
     let last = min(base + count, i32(region.m) + 1);
     let sub = i32(level_subsamples(region.level));
+    let tile = textureDimensions(pre);
     for (var col = 0; col < i32(region.n); col++) {
         // A pixel none of whose boxes reaches this map pixel gives it nothing: its records are
         // not read (the margin keeps a box whose share only rounding would zero).
@@ -47,12 +48,14 @@ fn pass1_channels(j: i32, r: i32, count: i32) -> array<f32, 32> {
             continue;
         }
         let first = vec2<i32>((jc + col) * sub, r * sub);
-        let p0 = textureLoad(pre, first, 0);
+        let at0 = pre_texel(first, tile);
+        let p0 = textureLoad(pre, at0.xy, at0.z, 0);
         // A pixel's t x t records (`yuksel_tier`), t in its first's sign bits.
         let side = i32(tier_side(p0.z, u32(sub)));
         for (var b = 0; b < side; b++) {
             for (var a = 0; a < side; a++) {
-                let p = textureLoad(pre, first + vec2<i32>(a, b), 0);
+                let at = pre_texel(first + vec2<i32>(a, b), tile);
+                let p = textureLoad(pre, at.xy, at.z, 0);
                 let half = half_widths(p.z) * scale;
                 // In map pixels from the map pixel's centre.
                 let ax = box_share((f32(col + col0) + p.x) * scale + centre - qx, half.x);

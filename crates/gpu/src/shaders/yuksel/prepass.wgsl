@@ -7,7 +7,7 @@
 // per record, so that neighbouring invocations do the same work) and `prepass_span.wgsl` do the
 // rest. The textures are sized for the largest region; texels beyond this frame's are left alone.
 
-@group(0) @binding(2) var pre_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(2) var pre_out: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 // Per pixel, the span along x its lit records' boxes cover (pixels from its centre; empty where
 // none is lit): pass 1 skips a pixel whose span misses its map pixel without reading its records.
@@ -33,9 +33,11 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let first = vec2<i32>(id.xy * k);
     var span = vec2<f32>(3.0e38, -3.0e38);
+    let tile = textureDimensions(pre_out);
     for (var q = 0u; q < t * t; q++) {
         let rec = tier_records[q];
-        textureStore(pre_out, first + vec2<i32>(i32(q % t), i32(q / t)), rec);
+        let at = pre_texel(first + vec2<i32>(i32(q % t), i32(q / t)), tile);
+        textureStore(pre_out, at.xy, at.z, rec);
         span = span_with(span, rec);
     }
     textureStore(extents_out, vec2<i32>(id.xy), vec4<f32>(span, 0.0, 0.0));

@@ -2,7 +2,7 @@
 // (`prepass.wgsl` wrote their tier), one invocation per record (texel), the others returning at
 // once. Texel (c, r) is footprint (c % k, r % k) of its pixel.
 
-@group(0) @binding(2) var pre_out: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(2) var pre_out: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 @group(0) @binding(4) var tiers: texture_2d<u32>;
 
@@ -22,5 +22,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = i32(at.y) - i32(region.m / 2u) + region.shift.y;
     let pixel = u.pixel * f32(1u << region.level);
     let f = yuksel_part(c, r, id.x % k, id.y % k, k, pixel);
-    textureStore(pre_out, vec2<i32>(id.xy), yuksel_record(f, c, r, k, k, pixel));
+    let texel = pre_texel(vec2<i32>(id.xy), textureDimensions(pre_out));
+    textureStore(pre_out, texel.xy, texel.z, yuksel_record(f, c, r, k, k, pixel));
 }

@@ -2,7 +2,7 @@
 // (their records from `prepass_fill.wgsl`), as `prepass.wgsl` writes it for the others.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
-@group(0) @binding(1) var pre: texture_2d<f32>;
+@group(0) @binding(1) var pre: texture_2d_array<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
 @group(0) @binding(3) var tiers: texture_2d<u32>;
 @group(0) @binding(4) var extents_out: texture_storage_2d<rg32float, write>;
@@ -19,8 +19,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     var span = vec2<f32>(3.0e38, -3.0e38);
+    let tile = textureDimensions(pre);
     for (var q = 0u; q < k * k; q++) {
-        let rec = textureLoad(pre, vec2<i32>(id.xy * k + vec2<u32>(q % k, q / k)), 0);
+        let at = pre_texel(vec2<i32>(id.xy * k + vec2<u32>(q % k, q / k)), tile);
+        let rec = textureLoad(pre, at.xy, at.z, 0);
         span = span_with(span, rec);
     }
     textureStore(extents_out, vec2<i32>(id.xy), vec4<f32>(span, 0.0, 0.0));
