@@ -37,7 +37,8 @@ FI="render_gpu caustic_triangles_gpu"
 # name @@ file @@ exact text @@ replacement (every occurrence) @@ test files
 MUTATIONS=$(cat <<EOF
 probe x1.01 @@ $S/probe.wgsl @@ outputs[k] = o; @@ o.refracted *= 1.01; o.fresnel_sine_procedural *= 1.01; o.procedural *= 1.01; o.grid *= 1.01; outputs[k] = o; @@ shared_math
-yuksel prepass x1.01 @@ $S/yuksel/prepass.wgsl @@ yuksel_sample(c, r, id.x % k, id.y % k, k, pixel)); @@ yuksel_sample(c, r, id.x % k, id.y % k, k, pixel) * 1.01); @@ $YU
+yuksel prepass record flux x1.01 @@ $S/yuksel/sample.wgsl @@ f.rec.w / f32(t * t)); @@ f.rec.w * 1.01 / f32(t * t)); @@ $YU
+yuksel prepass tiles overlap @@ $S/yuksel/common.wgsl @@ (xy.y / t.y) * i32(u.pre_tiles) + xy.x / t.x @@ xy.x / t.x @@ limits_gpu
 yuksel pass1 x1.01 @@ $S/yuksel/pass1.wgsl @@ += ax * ay * p.w * area; @@ += ax * ay * p.w * area * 1.01; @@ $YU
 yuksel pass1 last channel lost @@ $S/yuksel/pass1.wgsl @@ i32(region.m) + 1); @@ i32(region.m)); @@ $YU
 yuksel pass2 x1.01 @@ $S/yuksel/pass2.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
@@ -46,7 +47,7 @@ yuksel gather x1.01 @@ $S/yuksel/gather.wgsl @@ vec4<f32>(e[q] * u.attenuation.r
 yuksel gather last row lost @@ $S/yuksel/gather.wgsl @@ dr <= mh; @@ dr < mh; @@ $YU
 yuksel region one row fewer @@ $S/yuksel/region.wgsl @@ out.m = u32(y.x - 1); @@ out.m = u32(y.x - 2); @@ $YU
 yuksel region 1 % narrower bound @@ $S/yuksel/region.wgsl @@ let margin = (highs[0] - lows[0]) * 0.125; @@ let margin = (highs[0] - lows[0]) * 0.12; @@ $YU
-yuksel footprint 1 % wider @@ $S/yuksel/sample.wgsl @@ abs(yp.y - ym.y)) * 0.5 / pixel; @@ abs(yp.y - ym.y)) * 0.505 / pixel; @@ $YU
+yuksel footprint 1 % wider @@ $S/yuksel/sample.wgsl @@ yp.y - ym.y)) * 0.5 / pixel; @@ yp.y - ym.y)) * 0.505 / pixel; @@ $YU
 cascaded eye x1.01 @@ $S/cascaded/eye.wgsl @@ textureStore(eye_out, vec2<i32>(id.xy), out); @@ textureStore(eye_out, vec2<i32>(id.xy), out * 1.01); @@ $CA
 cascaded water x1.01 @@ $S/cascaded/water.wgsl @@ vec4<f32>(s, height_field_normal(grad)) @@ vec4<f32>(s, height_field_normal(grad)) * 1.01 @@ $CA
 cascaded terrain x1.01 @@ $S/cascaded/terrain.wgsl @@ vec4<f32>(s, 0.0, 0.0, 0.0) @@ vec4<f32>(s * 1.01, 0.0, 0.0, 0.0) @@ $CA
