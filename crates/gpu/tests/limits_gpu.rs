@@ -134,9 +134,9 @@ fn yuksel_gather_needs_its_workgroup_memory() {
     ctx.check().expect("wgpu saw nothing");
 }
 
-/// A device whose textures are at most 256 a side: yuksel's pre-pass texture for a 96² map
-/// (its capacity over the levels: 624 x 624 texels) is cut into 3 x 3 layers of 208², and the
-/// map is to the bit the one a device holding it whole makes (and it is not flat water's).
+/// A device whose textures are at most 256 a side: yuksel's pre-pass texture for a 96 x 48 map
+/// (its capacity over the levels: 624 x 432 texels) is cut into 3 x 2 layers of 208 x 216, and
+/// the map is to the bit the one a device holding it whole makes (and it is not flat water's).
 fn yuksel_tiles_a_prepass_wider_than_the_device() {
     use caustics_core::techniques::yuksel::{YukselParams, YukselSetup};
     use caustics_gpu::yuksel::{PrepassTiling, Variant, Yuksel};
@@ -145,16 +145,16 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
         ..adapter
     });
     let full = device_with(|adapter| adapter);
-    let n = 96;
-    let heights = Grid::from_fn(n, n, |i, j| {
-        let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / n as f64);
+    let (n, rows) = (96, 48);
+    let heights = Grid::from_fn(n, rows, |i, j| {
+        let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / rows as f64);
         let tau = std::f64::consts::TAU;
         (0.004 * (tau * (3.0 * x + y)).sin() + 0.002 * (tau * (-2.0 * x + 5.0 * y)).sin()) as f32
     });
     let setup = YukselSetup::new(
         &YukselParams::default(),
         n,
-        n,
+        rows,
         1.0,
         0.35,
         1.333,
@@ -164,10 +164,10 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     )
     .unwrap();
     assert_eq!(
-        PrepassTiling::new((624, 624), 256),
+        PrepassTiling::new((624, 432), 256),
         PrepassTiling {
-            tiles: (3, 3),
-            tile: (208, 208)
+            tiles: (3, 2),
+            tile: (208, 216)
         }
     );
     let map = |ctx: &GpuContext| {
@@ -180,6 +180,25 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     assert_eq!(tiled.texels, whole.texels);
     let max = whole.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
     assert!(max > 1.1, "the waves focus: {max}");
+    // The pixels' spans are not tiled: a map within the device whose width plus the region's
+    // N − 1 columns is beyond it is refused by name, before wgpu sees it.
+    let wide = YukselSetup::new(
+        &YukselParams::default(),
+        240,
+        64,
+        1.0,
+        0.35,
+        1.333,
+        glam::DVec3::ZERO,
+        true,
+        glam::DVec3::new(0.3, 0.1, -1.0).normalize(),
+    )
+    .unwrap();
+    let refused = Yuksel::new(&small)
+        .unwrap()
+        .caustics(&small, &wide, &heights, Variant::RenderTargets)
+        .map(|_| ());
+    assert_too_large(refused, "240 x 64 map", "pre-pass spans");
     small.check().expect("wgpu saw nothing");
 }
 

@@ -493,6 +493,11 @@ impl Yuksel {
             });
         }
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
+        if variant == Variant::RenderTargets {
+            // The pixels' spans and tiers: one texel per pixel of the map and its apron.
+            let (ew, eh) = prepass_pixels(setup);
+            ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
+        }
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
             let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -593,7 +598,7 @@ impl Yuksel {
                 let extents_view =
                     per_pixel("yuksel pre-pass extents", wgpu::TextureFormat::Rg32Float);
                 let tiers_view = per_pixel("yuksel pre-pass tiers", wgpu::TextureFormat::R32Uint);
-                bytes += (tiling.tile.0 * tiling.tile.1 * tiling.layers()) as u64 * 16
+                bytes += tiling.tile.0 as u64 * tiling.tile.1 as u64 * tiling.layers() as u64 * 16
                     + (p1w * p1h) as u64 * layers as u64 * 16
                     + (ew * eh) as u64 * (8 + 4);
                 tracing::debug!(
