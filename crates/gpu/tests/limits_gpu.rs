@@ -151,18 +151,22 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
         let tau = std::f64::consts::TAU;
         (0.004 * (tau * (3.0 * x + y)).sin() + 0.002 * (tau * (-2.0 * x + 5.0 * y)).sin()) as f32
     });
-    let setup = YukselSetup::new(
-        &YukselParams::default(),
-        n,
-        rows,
-        1.0,
-        0.35,
-        1.333,
-        glam::DVec3::ZERO,
-        true,
-        glam::DVec3::new(0.3, 0.1, -1.0).normalize(),
-    )
-    .unwrap();
+    // The pool's depth and sun on the unit square, a map of `w` x `h`.
+    let setup_of = |w: usize, h: usize| {
+        YukselSetup::new(
+            &YukselParams::default(),
+            w,
+            h,
+            1.0,
+            0.35,
+            1.333,
+            glam::DVec3::ZERO,
+            true,
+            glam::DVec3::new(0.3, 0.1, -1.0).normalize(),
+        )
+        .unwrap()
+    };
+    let setup = setup_of(n, rows);
     assert_eq!(
         PrepassTiling::new((624, 432), 256),
         PrepassTiling {
@@ -182,18 +186,7 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     assert!(max > 1.1, "the waves focus: {max}");
     // The pixels' spans are not tiled: a map within the device whose width plus the region's
     // N − 1 columns is beyond it is refused by name, before wgpu sees it.
-    let wide = YukselSetup::new(
-        &YukselParams::default(),
-        240,
-        64,
-        1.0,
-        0.35,
-        1.333,
-        glam::DVec3::ZERO,
-        true,
-        glam::DVec3::new(0.3, 0.1, -1.0).normalize(),
-    )
-    .unwrap();
+    let wide = setup_of(240, 64);
     let refused = Yuksel::new(&small)
         .unwrap()
         .caustics(&small, &wide, &heights, Variant::RenderTargets)
