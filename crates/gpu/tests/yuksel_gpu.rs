@@ -167,16 +167,18 @@ fn gpu_variants_match_the_cpu_twin() {
             assert!(mean < 2.6e-5, "{params:?}: mean {mean}");
         } else {
             // f32 on both sides; the GPU's bicubic and refraction round differently from the CPU's f64.
-            // measured at most 5.29e-5 (CPU vs render targets), 6.96e-7 (render targets vs gather) on
-            // lavapipe 25.0.7 (Mesa), 4 x 4 footprints; the paper's preset 6.68e-6 and 2.76e-7
+            // measured at most 5.29e-5 (CPU vs render targets) on lavapipe 25.0.7 (Mesa), 4 x 4
+            // footprints; the paper's preset 6.68e-6
             assert!(
                 worst(&cpu, &mrt) < 9.6e-5,
                 "{params:?}: CPU vs render targets {}",
                 worst(&cpu, &mrt)
             );
         }
+        // The gather sums in 20-bit fixed point (each share rounded by up to 5e-7): measured
+        // 3.57e-6 to 8.21e-6 over these seven setups on lavapipe 25.0.7.
         assert!(
-            worst(&mrt, &gather) < 2.8e-6,
+            worst(&mrt, &gather) < 5e-5,
             "{params:?}: render targets vs gather {}",
             worst(&mrt, &gather)
         );

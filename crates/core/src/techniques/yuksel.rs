@@ -110,7 +110,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
 /// Paper 1's gather as one compute pass per tile (ours; the same maps).
 pub const GATHER: Descriptor = Descriptor {
     name: "yuksel-gather",
-    summary: "paper 1's gather as one compute pass: each workgroup loads its tile's pre-pass apron into workgroup memory (ours; the same maps)",
+    summary: "paper 1's three passes as one compute pass: each workgroup adds the records that reach its tile into its pixels in workgroup memory (ours; the same maps)",
     buffers: &[],
     draw_buffer: super::buffers::no_buffers,
     ..DESCRIPTOR

@@ -8,7 +8,7 @@
 //! | pre-pass (compute: each pixel's tier, then the records of the pixels at k, then their spans) | `shaders/yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl` | `prepass` |
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
-//! | fused variant (compute, workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
+//! | fused variant (compute: each tile's records added into its pixels in workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
@@ -105,7 +105,7 @@ pub fn pass1_source(targets: u32) -> String {
 pub enum Variant {
     /// The paper's: pre-pass, pass 1 into multiple render targets, pass 2.
     RenderTargets,
-    /// Ours: one compute pass with workgroup memory.
+    /// Ours: one compute pass, each tile's records added into its pixels in workgroup memory.
     Gather,
 }
 
@@ -384,14 +384,12 @@ impl Frame {
     }
 }
 
-/// Workgroup memory of the gather variant's tile (`gather.wgsl`: four arrays of (14 + 30)² words,
-/// the tile and its widest apron, two bits per pixel of them for its records a side, 121 words,
-/// and two counters): within the 32 KiB of Metal on Apple GPUs and of lavapipe, above WebGPU's
-/// default 16 KiB.
-pub const GATHER_WORKGROUP_BYTES: u32 = 4 * 44 * 44 * 4 + 121 * 4 + 2 * 4;
+/// Workgroup memory of the gather variant's tile (`gather.wgsl`: one fixed-point sum per map pixel
+/// of its 56 x 56 tile): within WebGPU's default 16 KiB, so the variant runs in browsers too.
+pub const GATHER_WORKGROUP_BYTES: u32 = GATHER_TILE * GATHER_TILE * 4;
 
-/// The gather variant's tile side (`gather.wgsl`'s `TILE` and workgroup size).
-const GATHER_TILE: u32 = 14;
+/// The gather variant's tile side in map pixels (`gather.wgsl`'s `TILE`).
+const GATHER_TILE: u32 = 56;
 
 impl Yuksel {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
