@@ -116,29 +116,16 @@ fn assert_too_large(result: Result<(), GpuError>, case: &str, names: &str) {
     }
 }
 
-/// WebGPU's default 16 KiB of workgroup memory holds the gather variant's tile, so `yuksel-gather`
-/// runs in a browser's default limits; a device with less (asked for here: no WebGPU device has
-/// less) refuses it by name while `yuksel` (render targets) runs there.
-fn yuksel_gather_needs_its_workgroup_memory() {
-    let bytes = caustics_gpu::yuksel::GATHER_WORKGROUP_BYTES;
-    assert!(bytes <= 16 << 10, "{bytes} bytes");
-    let webgpu = device_with(|adapter| wgpu::Limits {
-        max_compute_workgroup_storage_size: 16 << 10,
-        ..adapter
-    });
-    configure(&webgpu, "yuksel-gather", &scene("pool", 64), "").expect("yuksel-gather runs");
-    webgpu.check().expect("wgpu saw nothing");
-    let less = device_with(|adapter| wgpu::Limits {
-        max_compute_workgroup_storage_size: bytes - 4,
-        ..adapter
-    });
-    configure(&less, "yuksel", &scene("pool", 64), "").expect("yuksel runs");
-    assert_too_large(
-        configure(&less, "yuksel-gather", &scene("pool", 64), ""),
-        "yuksel-gather",
-        "workgroup tile",
-    );
-    less.check().expect("wgpu saw nothing");
+/// WebGPU's default limits (a browser's, unless a page asks for more): both yuksel variants run.
+/// The scatter variant needs no workgroup memory; the gather it replaced needed 31,468 bytes, over
+/// these limits' 16 KiB, and was refused here.
+fn yuksel_runs_within_webgpus_default_limits() {
+    let ctx = device_with(|_| wgpu::Limits::default());
+    for technique in ["yuksel", "yuksel-gather"] {
+        configure(&ctx, technique, &scene("pool", 64), "")
+            .unwrap_or_else(|e| panic!("{technique}: {e}"));
+    }
+    ctx.check().expect("wgpu saw nothing");
 }
 
 /// A device whose textures are at most 256 a side: yuksel's pre-pass texture for a 96 x 48 map
@@ -380,7 +367,7 @@ fn a_lost_device_gives_device_lost_errors() {
 }
 
 test_main! {
-    gpu yuksel_gather_needs_its_workgroup_memory,
+    gpu yuksel_runs_within_webgpus_default_limits,
     gpu yuksel_tiles_a_prepass_wider_than_the_device,
     gpu every_technique_fits_a_small_map_and_refuses_one_beyond_the_limit,
     gpu cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused,

@@ -150,7 +150,7 @@ fn gpu_variants_match_the_cpu_twin() {
             .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
             .expect("render targets");
         let gather = yuksel
-            .caustics(&ctx, &setup, &heights, Variant::Gather)
+            .caustics(&ctx, &setup, &heights, Variant::Scatter)
             .expect("gather");
         eprintln!(
             "{params:?}: CPU vs render targets {:.2e}, render targets vs gather {:.2e}",
@@ -237,7 +237,7 @@ fn a_map_beyond_the_device_limit_is_refused() {
     )
     .unwrap();
     let err = yuksel
-        .frame(&ctx, &setup, &surface(8), Variant::Gather)
+        .frame(&ctx, &setup, &surface(8), Variant::Scatter)
         .err()
         .expect("refused")
         .to_string();
@@ -284,7 +284,7 @@ fn the_gpu_chooses_the_cpus_region() {
         let cpu_region = setup.region_for(heights);
         shifted |= cpu_region.shift != [0, 0];
         let cpu = yuksel::caustics(&setup, heights);
-        for variant in [Variant::RenderTargets, Variant::Gather] {
+        for variant in [Variant::RenderTargets, Variant::Scatter] {
             let frame = yuksel.frame(&ctx, &setup, heights, variant).unwrap();
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             let texture = yuksel.encode(&frame, &mut encoder, None);
@@ -345,7 +345,7 @@ fn the_region_steps_at_the_cpus_depths() {
         .unwrap();
         let cpu = setup.region_for(&heights);
         let frame = yuksel
-            .frame(&ctx, &setup, &heights, Variant::Gather)
+            .frame(&ctx, &setup, &heights, Variant::Scatter)
             .unwrap();
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         yuksel.encode(&frame, &mut encoder, None);
@@ -408,7 +408,7 @@ fn light_at_the_regions_edge_counts_in_every_channel() {
         );
     }
     let cpu = yuksel::caustics(&setup, &heights);
-    for variant in [Variant::RenderTargets, Variant::Gather] {
+    for variant in [Variant::RenderTargets, Variant::Scatter] {
         let gpu = yuksel.caustics(&ctx, &setup, &heights, variant).unwrap();
         // measured 1.98e-4 for both on lavapipe 25.0.7 (Mesa)
         let d = worst(&cpu, &gpu);

@@ -8,7 +8,7 @@
 //! | pre-pass (compute: each pixel's tier, then the records of the pixels at k, then their spans) | `shaders/yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl` | `prepass` |
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
-//! | fused variant (compute: each tile's records added into its pixels in workgroup memory) | `shaders/yuksel/gather.wgsl` + `sample.wgsl` | `caustics` |
+//! | scatter variant (compute: each pixel's tier and records, the records of the pixels at k, the sums into the map) | `shaders/yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `scatter.wgsl` | `caustics` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
@@ -66,10 +66,21 @@ pub const REGION: PassSource = PassSource {
     shared: &[OPTICS, COMMON, REDUCE],
     source: include_str!("../shaders/yuksel/region.wgsl"),
 };
-pub const GATHER: PassSource = PassSource {
-    name: "yuksel gather",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE],
-    source: include_str!("../shaders/yuksel/gather.wgsl"),
+const SCATTER: &str = include_str!("../shaders/yuksel/scatter.wgsl");
+pub const SCATTER_TIER: PassSource = PassSource {
+    name: "yuksel scatter tiers",
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
+    source: include_str!("../shaders/yuksel/scatter_tier.wgsl"),
+};
+pub const SCATTER_FILL: PassSource = PassSource {
+    name: "yuksel scatter fill",
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
+    source: include_str!("../shaders/yuksel/scatter_fill.wgsl"),
+};
+pub const SCATTER_RESOLVE: PassSource = PassSource {
+    name: "yuksel scatter resolve",
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
+    source: include_str!("../shaders/yuksel/scatter_resolve.wgsl"),
 };
 const PASS1_BODY: &str = include_str!("../shaders/yuksel/pass1.wgsl");
 
@@ -105,8 +116,10 @@ pub fn pass1_source(targets: u32) -> String {
 pub enum Variant {
     /// The paper's: pre-pass, pass 1 into multiple render targets, pass 2.
     RenderTargets,
-    /// Ours: one compute pass, each tile's records added into its pixels in workgroup memory.
-    Gather,
+    /// Ours (`yuksel-gather`, the name its scenes spell): each record added into the map's pixels
+    /// its box covers where it is made, with integer atomics: no pre-pass texture, no render
+    /// targets.
+    Scatter,
 }
 
 /// Mirrors `Yuksel` in `shaders/yuksel/common.wgsl`.
@@ -248,9 +261,8 @@ pub struct Yuksel {
     prepass_fill: wgpu::ComputePipeline,
     prepass_span: wgpu::ComputePipeline,
     pass2: wgpu::RenderPipeline,
-    /// `None` where the device's workgroup memory cannot hold the gather's tile
-    /// ([`GATHER_WORKGROUP_BYTES`]): the render-target variant still runs there.
-    gather: Option<wgpu::ComputePipeline>,
+    /// The scatter variant's tiers, fill and resolve.
+    scatter: [wgpu::ComputePipeline; 3],
     /// Pass 1 per number of targets per draw.
     pass1: Mutex<HashMap<u32, wgpu::RenderPipeline>>,
     /// Render targets one pass-1 draw may write on this device.
@@ -322,8 +334,11 @@ pub struct Frame {
 }
 
 enum FramePasses {
-    Gather {
-        bind: wgpu::BindGroup,
+    Scatter {
+        /// One fixed-point sum per map pixel, cleared every frame.
+        sums: wgpu::Buffer,
+        /// Tiers, fill, resolve.
+        binds: [wgpu::BindGroup; 3],
     },
     RenderTargets {
         /// The pre-pass's three passes: tiers, fill, span.
@@ -384,13 +399,6 @@ impl Frame {
     }
 }
 
-/// Workgroup memory of the gather variant's tile (`gather.wgsl`: one fixed-point sum per map pixel
-/// of its 56 x 56 tile): within WebGPU's default 16 KiB, so the variant runs in browsers too.
-pub const GATHER_WORKGROUP_BYTES: u32 = GATHER_TILE * GATHER_TILE * 4;
-
-/// The gather variant's tile side in map pixels (`gather.wgsl`'s `TILE`).
-const GATHER_TILE: u32 = 56;
-
 impl Yuksel {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let limits = ctx.limits();
@@ -404,25 +412,13 @@ impl Yuksel {
             prepass_fill: compute_pipeline(ctx, &PREPASS_FILL),
             prepass_span: compute_pipeline(ctx, &PREPASS_SPAN),
             pass2: render_pipeline(ctx, "yuksel pass 2", &pass2_module, 1),
-            gather: (limits.max_compute_workgroup_storage_size >= GATHER_WORKGROUP_BYTES)
-                .then(|| compute_pipeline(ctx, &GATHER)),
+            scatter: [&SCATTER_TIER, &SCATTER_FILL, &SCATTER_RESOLVE]
+                .map(|source| compute_pipeline(ctx, source)),
             pass1: Mutex::new(HashMap::new()),
             targets_per_draw,
         };
         ctx.check()?;
         Ok(y)
-    }
-
-    /// The gather variant's pipeline, or why this device cannot run it.
-    fn gather_pipeline(&self, ctx: &GpuContext) -> Result<&wgpu::ComputePipeline, GpuError> {
-        self.gather.as_ref().ok_or_else(|| GpuError::TooLarge {
-            what: "yuksel-gather's workgroup tile".into(),
-            size: format!("{GATHER_WORKGROUP_BYTES} bytes"),
-            limit: format!(
-                "{} bytes of workgroup memory; technique `yuksel` (render targets) runs here",
-                ctx.limits().max_compute_workgroup_storage_size
-            ),
-        })
     }
 
     fn pass1_pipeline(&self, ctx: &GpuContext, targets: u32) -> wgpu::RenderPipeline {
@@ -478,7 +474,7 @@ impl Yuksel {
             Variant::RenderTargets => {
                 PrepassTiling::new((pw as u32, ph as u32), limits.max_texture_dimension_2d)
             }
-            Variant::Gather => PrepassTiling::new((1, 1), 1),
+            Variant::Scatter => PrepassTiling::new((1, 1), 1),
         };
         if tiling.layers() > limits.max_texture_array_layers {
             return Err(GpuError::TooLarge {
@@ -491,11 +487,9 @@ impl Yuksel {
             });
         }
         ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
-        if variant == Variant::RenderTargets {
-            // The pixels' spans and tiers: one texel per pixel of the map and its apron.
-            let (ew, eh) = prepass_pixels(setup);
-            ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
-        }
+        // The pixels' spans and tiers: one texel per pixel of the map and its apron.
+        let (ew, eh) = prepass_pixels(setup);
+        ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
             let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -555,19 +549,54 @@ impl Yuksel {
         let map_view = map.create_view(&Default::default());
         let mut bytes = (w * h) as u64 * 16 + uniform.size() + region.size();
         let passes = match variant {
-            Variant::Gather => FramePasses::Gather {
-                bind: bind_group(
-                    ctx,
-                    "yuksel gather",
-                    &self.gather_pipeline(ctx)?.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        View(heights_view),
-                        View(&map_view),
-                        region.as_entire_binding(),
-                    ],
-                ),
-            },
+            Variant::Scatter => {
+                let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("yuksel scatter sums"),
+                    size: (w * h) as u64 * 4,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                let tiers = ctx
+                    .texture_2d(
+                        "yuksel scatter tiers",
+                        (ew, eh, 1),
+                        wgpu::TextureFormat::R32Uint,
+                        U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                    )
+                    .create_view(&Default::default());
+                bytes += sums.size() + (ew * eh) as u64 * 4;
+                let [tier, fill, resolve] = &self.scatter;
+                let with = |label, pipeline: &wgpu::ComputePipeline, own| {
+                    bind_group(
+                        ctx,
+                        label,
+                        &pipeline.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(heights_view),
+                            sums.as_entire_binding(),
+                            region.as_entire_binding(),
+                            View(own),
+                        ],
+                    )
+                };
+                let binds = [
+                    with("yuksel scatter tiers", tier, &tiers),
+                    with("yuksel scatter fill", fill, &tiers),
+                    // The resolve reads neither the heights (1) nor the region (3).
+                    ctx.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("yuksel scatter resolve"),
+                        layout: &resolve.get_bind_group_layout(0),
+                        entries: &[
+                            (0, uniform.as_entire_binding()),
+                            (2, sums.as_entire_binding()),
+                            (4, View(&map_view)),
+                        ]
+                        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
+                    }),
+                ];
+                FramePasses::Scatter { sums, binds }
+            }
             Variant::RenderTargets => {
                 let layers = (cap_m as u32 + 1).div_ceil(4);
                 let pre = ctx.texture_2d(
@@ -747,15 +776,19 @@ impl Yuksel {
             pass.dispatch_workgroups(1, 1, 1);
         }
         match &frame.passes {
-            FramePasses::Gather { bind } => {
-                let mut pass = begin_compute(encoder, &mut timer, "yuksel gather");
-                pass.set_pipeline(
-                    self.gather
-                        .as_ref()
-                        .expect("a gather frame has its pipeline"),
-                );
-                pass.set_bind_group(0, bind, &[]);
-                pass.dispatch_workgroups(w.div_ceil(GATHER_TILE), h.div_ceil(GATHER_TILE), 1);
+            FramePasses::Scatter { sums, binds } => {
+                encoder.clear_buffer(sums, 0, None);
+                let mut pass = begin_compute(encoder, &mut timer, "yuksel scatter");
+                let (cols, rows) = prepass_pixels(&frame.setup);
+                let (pw, ph) = prepass_capacity(&frame.setup);
+                // One invocation per pixel of the level's map and apron; per record of the
+                // pixels at k; per map pixel.
+                let sizes = [(cols, rows), (pw as u32, ph as u32), (w, h)];
+                for ((pipeline, bind), (x, y)) in self.scatter.iter().zip(binds).zip(sizes) {
+                    pass.set_pipeline(pipeline);
+                    pass.set_bind_group(0, bind, &[]);
+                    pass.dispatch_workgroups(x.div_ceil(8), y.div_ceil(8), 1);
+                }
             }
             FramePasses::RenderTargets {
                 prepass,

@@ -28,7 +28,7 @@ pub fn create_gather(
     ctx: &GpuContext,
     params: &toml::Table,
 ) -> Result<Box<dyn Technique>, GpuError> {
-    YukselTechnique::new(ctx, params, Variant::Gather).map(|t| Box::new(t) as _)
+    YukselTechnique::new(ctx, params, Variant::Scatter).map(|t| Box::new(t) as _)
 }
 
 impl YukselTechnique {
@@ -36,7 +36,7 @@ impl YukselTechnique {
         Ok(YukselTechnique {
             name: match variant {
                 Variant::RenderTargets => "yuksel",
-                Variant::Gather => "yuksel-gather",
+                Variant::Scatter => "yuksel-gather",
             },
             pipelines: Yuksel::new(ctx)?,
             params: YukselParams::from_table(params)?,
@@ -155,7 +155,7 @@ pub const REGISTERED: Registered = Registered {
 pub const GATHER: Registered = Registered {
     describe: &yuksel::GATHER,
     create: create_gather,
-    once: |ctx| Ok(Box::new(Once::new(ctx, Variant::Gather)?)),
+    once: |ctx| Ok(Box::new(Once::new(ctx, Variant::Scatter)?)),
     image: None,
 };
 

@@ -1,0 +1,53 @@
+// Technique `yuksel`, the scatter variant's shared part (`scatter_tier.wgsl`, `scatter_fill.wgsl`):
+// a record's light added into the map's pixels its box covers, in fixed point with integer
+// atomics, so that the sum does not depend on the order in which the invocations add. The same
+// shares as pass 1 + pass 2 (CPU twin: `pass1` and `pass2` in yuksel.rs), clipped to the same
+// region.
+
+// One fixed-point sum per map pixel, row by row; cleared before the frame's first scatter pass.
+@group(0) @binding(2) var<storage, read_write> sums: array<atomic<u32>>;
+@group(0) @binding(3) var<storage, read> region: YukselRegion;
+
+// The fixed point of the sums: 2^20 units to flat water's irradiance, so a texel holds up to 4,096
+// times it and each share is rounded by at most 5e-7 of it.
+const FIXED: f32 = 1048576.0;
+
+// The level's pixel of pre-pass pixel `id` (the level's map and the region's apron, as the
+// render-target variant's `prepass.wgsl` counts them), or none past this frame's area.
+fn scatter_pixel(id: vec2<u32>) -> vec2<i32> {
+    return vec2<i32>(id) - vec2<i32>(i32(region.n / 2u), i32(region.m / 2u)) + region.shift;
+}
+
+// Add record `rec` (`yuksel_record`: its box's centre from its pixel's centre, in the level's
+// pixels, its packed half-widths, its flux) of the level's pixel `q` into the map pixels its box
+// covers that lie in the map and in the region of `q`'s light (the level pixels
+// `q - shift + [-N/2, N/2] x [-M/2, M/2]`, as pass 1 gathers them).
+fn add_record(rec: vec4<f32>, q: vec2<i32>) {
+    if rec.w == 0.0 {
+        return;
+    }
+    let f = i32(1u << region.level);
+    let scale = f32(f);
+    // The box in map pixels (from map pixel 0's centre); a level's pixel holds the light of
+    // 4^level map pixels.
+    let c = (vec2<f32>(q) + rec.xy) * scale + (scale - 1.0) * 0.5;
+    let half = half_widths(rec.z) * scale;
+    let w = rec.w * scale * scale;
+    let reach = vec2<i32>(i32(region.n / 2u), i32(region.m / 2u));
+    let own = q - region.shift;
+    let size = vec2<i32>(i32(u.width), i32(u.height));
+    let lo = max(vec2<i32>(floor(c - half + 0.5)), max((own - reach) * f, vec2<i32>(0)));
+    let hi = min(vec2<i32>(ceil(c + half - 0.5)), min((own + reach) * f + f - 1, size - 1));
+    for (var y = lo.y; y <= hi.y; y++) {
+        let ay = box_share(c.y - f32(y), half.y) * w;
+        if ay == 0.0 {
+            continue;
+        }
+        for (var x = lo.x; x <= hi.x; x++) {
+            let a = box_share(c.x - f32(x), half.x) * ay;
+            if a > 0.0 {
+                atomicAdd(&sums[u32(y) * u.width + u32(x)], u32(a * FIXED + 0.5));
+            }
+        }
+    }
+}
