@@ -107,10 +107,10 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     cpu: run_cpu,
 };
 
-/// Paper 1's gather as one compute pass per tile (ours; the same maps).
+/// Paper 1's samples scattered into the map by compute passes (ours; the same maps).
 pub const GATHER: Descriptor = Descriptor {
     name: "yuksel-gather",
-    summary: "paper 1's three passes as one compute pass: each workgroup adds the records that reach its tile into its pixels in workgroup memory (ours; the same maps)",
+    summary: "paper 1's samples added into the map where they are made, with integer atomics: no pre-pass texture, no render targets (ours; the same maps)",
     buffers: &[],
     draw_buffer: super::buffers::no_buffers,
     ..DESCRIPTOR

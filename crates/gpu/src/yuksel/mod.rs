@@ -486,10 +486,15 @@ impl Yuksel {
                 ),
             });
         }
-        ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
         // The pixels' spans and tiers: one texel per pixel of the map and its apron.
         let (ew, eh) = prepass_pixels(setup);
-        ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
+        match variant {
+            Variant::RenderTargets => {
+                ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
+                ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
+            }
+            Variant::Scatter => ctx.check_texture_size("yuksel scatter tiers", ew, eh)?,
+        }
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
             let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {

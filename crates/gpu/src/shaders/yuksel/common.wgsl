@@ -66,6 +66,18 @@ fn prepass_area(n: u32, m: u32, level: u32) -> vec2<u32> {
     return level_size(u.width, u.height, level) + vec2<u32>(n - 1u, m);
 }
 
+// Whether pixel `p` of the pre-pass's pixels (counted as `prepass_area`) is one of this frame's
+// region `r` and one of the `held` that textures sized for the largest region hold.
+fn in_prepass_area(p: vec2<u32>, held: vec2<u32>, r: YukselRegion) -> bool {
+    let used = min(prepass_area(r.n, r.m, r.level), held);
+    return p.x < used.x && p.y < used.y;
+}
+
+// The level's pixel (column, row) of pixel `p` of the pre-pass's pixels.
+fn prepass_level_pixel(p: vec2<u32>, r: YukselRegion) -> vec2<i32> {
+    return vec2<i32>(p) - vec2<i32>(i32(r.n / 2u), i32(r.m / 2u)) + r.shift;
+}
+
 // The share of a box of centre `c` and half-width `h` (pixels) in the pixel [-1/2, 1/2]: summed
 // over the pixels it covers, exactly 1. With h = 1/2 (the paper's pixel box) the overlap 1 - |c|
 // of two pixel squares. CPU twin: `box_share`.

@@ -9,19 +9,16 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let k = level_subsamples(region.level);
-    let held = textureDimensions(tiers);
-    let used = min(prepass_area(region.n, region.m, region.level), held) * k;
-    if k == 1u || id.x >= used.x || id.y >= used.y {
+    let at = id.xy / k;
+    if k == 1u || !in_prepass_area(at, textureDimensions(tiers), region) {
         return;
     }
-    let at = id.xy / k;
     if textureLoad(tiers, vec2<i32>(at), 0).x != k {
         return;
     }
-    let c = i32(at.x) - i32(region.n / 2u) + region.shift.x;
-    let r = i32(at.y) - i32(region.m / 2u) + region.shift.y;
+    let q = prepass_level_pixel(at, region);
     let pixel = u.pixel * f32(1u << region.level);
-    let f = yuksel_part(c, r, id.x % k, id.y % k, k, pixel);
+    let f = yuksel_part(q.x, q.y, id.x % k, id.y % k, k, pixel);
     let texel = pre_texel(vec2<i32>(id.xy), textureDimensions(pre_out));
-    textureStore(pre_out, texel.xy, texel.z, yuksel_record(f, c, r, k, k, pixel));
+    textureStore(pre_out, texel.xy, texel.z, yuksel_record(f, q.x, q.y, k, k, pixel));
 }

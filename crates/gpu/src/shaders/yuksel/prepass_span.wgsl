@@ -10,9 +10,7 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let k = level_subsamples(region.level);
-    let held = textureDimensions(tiers);
-    let used = prepass_area(region.n, region.m, region.level);
-    if k == 1u || id.x >= min(held.x, used.x) || id.y >= min(held.y, used.y) {
+    if k == 1u || !in_prepass_area(id.xy, textureDimensions(tiers), region) {
         return;
     }
     if textureLoad(tiers, vec2<i32>(id.xy), 0).x != k {

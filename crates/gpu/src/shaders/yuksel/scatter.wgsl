@@ -12,12 +12,6 @@
 // times it and each share is rounded by at most 5e-7 of it.
 const FIXED: f32 = 1048576.0;
 
-// The level's pixel of pre-pass pixel `id` (the level's map and the region's apron, as the
-// render-target variant's `prepass.wgsl` counts them), or none past this frame's area.
-fn scatter_pixel(id: vec2<u32>) -> vec2<i32> {
-    return vec2<i32>(id) - vec2<i32>(i32(region.n / 2u), i32(region.m / 2u)) + region.shift;
-}
-
 // Add record `rec` (`yuksel_record`: its box's centre from its pixel's centre, in the level's
 // pixels, its packed half-widths, its flux) of the level's pixel `q` into the map pixels its box
 // covers that lie in the map and in the region of `q`'s light (the level pixels

@@ -7,16 +7,14 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let k = level_subsamples(region.level);
-    let held = textureDimensions(tiers);
-    let used = min(prepass_area(region.n, region.m, region.level), held) * k;
-    if k == 1u || id.x >= used.x || id.y >= used.y || (id.x % k == 0u && id.y % k == 0u) {
+    let at = id.xy / k;
+    if k == 1u || (id.x % k == 0u && id.y % k == 0u) || !in_prepass_area(at, textureDimensions(tiers), region) {
         return;
     }
-    let at = id.xy / k;
     if textureLoad(tiers, vec2<i32>(at), 0).x != k {
         return;
     }
-    let q = scatter_pixel(at);
+    let q = prepass_level_pixel(at, region);
     let pixel = u.pixel * f32(1u << region.level);
     let f = yuksel_part(q.x, q.y, id.x % k, id.y % k, k, pixel);
     add_record(yuksel_record(f, q.x, q.y, k, k, pixel), q);

@@ -10,12 +10,10 @@
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let k = level_subsamples(region.level);
-    let held = textureDimensions(tiers_out);
-    let used = prepass_area(region.n, region.m, region.level);
-    if id.x >= min(held.x, used.x) || id.y >= min(held.y, used.y) {
+    if !in_prepass_area(id.xy, textureDimensions(tiers_out), region) {
         return;
     }
-    let q = scatter_pixel(id.xy);
+    let q = prepass_level_pixel(id.xy, region);
     let pixel = u.pixel * f32(1u << region.level);
     let t = yuksel_tier(q.x, q.y, k, pixel, 1u);
     textureStore(tiers_out, vec2<i32>(id.xy), vec4<u32>(t));
