@@ -243,8 +243,8 @@ fn run_cpu(
 
 /// The largest channel count: 8 render targets of 4 channels.
 pub const MAX_CHANNELS: u32 = 32;
-/// The widest region a pixel gathers along x: the fused variant's workgroup apron holds
-/// `16 + N − 1` columns, and GPU time grows with `N × (M + 1)`.
+/// The widest region a pixel gathers along x: pass 1's time grows with `N × (M + 1)`, and the
+/// coarser levels take over where a region would be wider.
 pub const MAX_N: u32 = 31;
 /// The tallest region: `M + 1 ≤` [`MAX_CHANNELS`] channels in pass 1's render targets.
 pub const MAX_M: u32 = MAX_CHANNELS - 2;

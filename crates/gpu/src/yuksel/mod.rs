@@ -555,6 +555,7 @@ impl Yuksel {
         let mut bytes = (w * h) as u64 * 16 + uniform.size() + region.size();
         let passes = match variant {
             Variant::Scatter => {
+                ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
                 let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("yuksel scatter sums"),
                     size: (w * h) as u64 * 4,

@@ -151,7 +151,7 @@ pub const REGISTERED: Registered = Registered {
     image: None,
 };
 
-/// The gather variant in the registry.
+/// The scatter variant in the registry (`yuksel-gather`, the name its scenes spell).
 pub const GATHER: Registered = Registered {
     describe: &yuksel::GATHER,
     create: create_gather,

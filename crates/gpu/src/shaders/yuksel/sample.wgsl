@@ -1,5 +1,5 @@
 // Technique `yuksel`: one water sample refracted to the floor (the pre-pass's work, shared with the
-// fused compute variant). CPU twin: `hit`, `footprint` and `prepass` in
+// scatter variant). CPU twin: `hit`, `footprint` and `prepass` in
 // caustics-core/src/techniques/yuksel.rs.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;

@@ -9,7 +9,7 @@
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 
 // The fixed point of the sums: 2^20 units to flat water's irradiance, so a texel holds up to 4,096
-// times it and each share is rounded by at most 5e-7 of it.
+// times it (beyond, the sum wraps, unchecked) and each share is rounded by at most 5e-7 of it.
 const FIXED: f32 = 1048576.0;
 
 // Add record `rec` (`yuksel_record`: its box's centre from its pixel's centre, in the level's
@@ -22,23 +22,25 @@ fn add_record(rec: vec4<f32>, q: vec2<i32>) {
     }
     let f = i32(1u << region.level);
     let scale = f32(f);
-    // The box in map pixels (from map pixel 0's centre); a level's pixel holds the light of
-    // 4^level map pixels.
-    let c = (vec2<f32>(q) + rec.xy) * scale + (scale - 1.0) * 0.5;
+    // The box in map pixels from the centre of map pixel `base`, the first of `q`'s level pixel:
+    // offsets a few pixels wide, kept to f32's precision there whatever the map's size (as pass 1
+    // counts them); a level's pixel holds the light of 4^level map pixels.
+    let base = q * f;
+    let c = rec.xy * scale + (scale - 1.0) * 0.5;
     let half = half_widths(rec.z) * scale;
     let w = rec.w * scale * scale;
     let reach = vec2<i32>(i32(region.n / 2u), i32(region.m / 2u));
     let own = q - region.shift;
     let size = vec2<i32>(i32(u.width), i32(u.height));
-    let lo = max(vec2<i32>(floor(c - half + 0.5)), max((own - reach) * f, vec2<i32>(0)));
-    let hi = min(vec2<i32>(ceil(c + half - 0.5)), min((own + reach) * f + f - 1, size - 1));
+    let lo = max(base + vec2<i32>(floor(c - half + 0.5)), max((own - reach) * f, vec2<i32>(0)));
+    let hi = min(base + vec2<i32>(ceil(c + half - 0.5)), min((own + reach) * f + f - 1, size - 1));
     for (var y = lo.y; y <= hi.y; y++) {
-        let ay = box_share(c.y - f32(y), half.y) * w;
+        let ay = box_share(c.y - f32(y - base.y), half.y) * w;
         if ay == 0.0 {
             continue;
         }
         for (var x = lo.x; x <= hi.x; x++) {
-            let a = box_share(c.x - f32(x), half.x) * ay;
+            let a = box_share(c.x - f32(x - base.x), half.x) * ay;
             if a > 0.0 {
                 atomicAdd(&sums[u32(y) * u.width + u32(x)], u32(a * FIXED + 0.5));
             }
