@@ -329,7 +329,7 @@ pub struct Frame {
     pub variant: Variant,
     passes: FramePasses,
     bytes: u64,
-    /// The pre-pass texture's tiling (one tile for the gather, which has none).
+    /// The pre-pass texture's tiling (one tile for the scatter variant, which has no pre-pass texture).
     tiling: PrepassTiling,
 }
 

@@ -24,7 +24,7 @@ pub fn create_render_targets(
     YukselTechnique::new(ctx, params, Variant::RenderTargets).map(|t| Box::new(t) as _)
 }
 
-pub fn create_gather(
+pub fn create_scatter(
     ctx: &GpuContext,
     params: &toml::Table,
 ) -> Result<Box<dyn Technique>, GpuError> {
@@ -154,7 +154,7 @@ pub const REGISTERED: Registered = Registered {
 /// The scatter variant in the registry (`yuksel-gather`, the name its scenes spell).
 pub const GATHER: Registered = Registered {
     describe: &yuksel::GATHER,
-    create: create_gather,
+    create: create_scatter,
     once: |ctx| Ok(Box::new(Once::new(ctx, Variant::Scatter)?)),
     image: None,
 };
