@@ -37,7 +37,7 @@ start=$(date +%s)
 # yuksel's settings against the paper's at three map sizes (issue 28's table): time and memory.
 if [ ${#small[@]} -eq 0 ]; then
   "$bin" bench --technique yuksel --technique yuksel:subsamples=1 --technique yuksel:subsamples=2 \
-    --technique yuksel:split=0 --technique yuksel:preset=paper --technique yuksel-gather \
+    --technique yuksel:split=0 --technique yuksel:preset=paper --technique yuksel-targets \
     --resolution 640x360,1280x720,1920x1080 --frames 10 --warmup 2 --no-frame --out "$out/yuksel" \
     | tee "$out/yuksel.log"
 fi

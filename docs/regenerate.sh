@@ -10,7 +10,7 @@ if [ "${1:-}" != "--assemble-only" ]; then
 rm -rf docs/compare docs/bench
 $bin compare \
   --technique yuksel:n=3,m=2 --technique yuksel --technique yuksel:n=15,m=14 --technique yuksel:n=31,m=30 \
-  --technique yuksel-gather \
+  --technique yuksel-targets \
   --technique procedural --technique procedural-vertex --technique procedural-texture \
   --technique volumes --technique volumes:planes=50 \
   --technique caustic-triangles --technique caustic-triangles:photon_image=256 \

@@ -21,7 +21,7 @@ use crate::techniques::{Job, Runner, Spec};
 #[derive(Args)]
 pub struct CompareArgs {
     /// Techniques to measure, `name` or `name:key=value,...` (e.g. `yuksel:n=15,m=14`,
-    /// `yuksel-gather`); repeat the flag. Default: every registered technique that makes a floor
+    /// `yuksel-targets`); repeat the flag. Default: every registered technique that makes a floor
     /// map (`caustics bench --tradeoff` scores the eye-space `cascaded`).
     #[arg(long = "technique")]
     techniques: Vec<Spec>,

@@ -44,7 +44,7 @@ enum Command {
     /// List the caustics techniques.
     Techniques {
         /// Print only the names of the GPU techniques and variants as registered
-        /// (`yuksel-gather`, `procedural-vertex`, ...), one a line, for scripts.
+        /// (`yuksel-targets`, `procedural-vertex`, ...), one a line, for scripts.
         #[arg(long)]
         gpu_names: bool,
         /// Print the README's table of techniques (Markdown), made from the registry.

@@ -457,7 +457,7 @@ fn scene_check_and_techniques() {
         .map(|r| r.name())
         .collect();
     assert_eq!(names, registry);
-    assert!(names.contains(&"yuksel-gather".to_string()), "{names:?}");
+    assert!(names.contains(&"yuksel-targets".to_string()), "{names:?}");
 }
 
 /// A small `caustics compare`: the files appear, the reference against itself scores exactly zero
@@ -597,7 +597,7 @@ fn a_small_bench_writes_its_outputs() {
     for t in [
         "| yuksel | 40 x 30 |",
         "| yuksel | 80 x 60 |",
-        "| yuksel-gather | 80 x 60 |",
+        "| yuksel-targets | 80 x 60 |",
     ] {
         assert!(md.contains(t), "{t} missing from:\n{md}");
     }

@@ -131,7 +131,7 @@ pub enum Fit {
 /// Send and Sync on native targets, so that an engine can keep one in its render world (Bevy's
 /// resources are both), as wgpu's own objects are there.
 pub trait Technique: wgpu::WasmNotSendSync {
-    /// The name it is registered under, with its variant (`yuksel-gather`, `procedural-texture`).
+    /// The name it is registered under, with its variant (`yuksel-targets`, `procedural-texture`).
     fn name(&self) -> &str;
 
     /// The height grid (cols, rows) this technique reads the water through for `scene`: the grid
@@ -252,7 +252,7 @@ impl Registered {
 /// Every GPU technique, in one place: one line each.
 pub const REGISTRY: &[Registered] = &[
     crate::yuksel::technique::REGISTERED,
-    crate::yuksel::technique::GATHER,
+    crate::yuksel::technique::TARGETS,
     crate::procedural::technique::REGISTERED,
     crate::procedural::technique::VERTEX,
     crate::procedural::technique::SCREEN,
@@ -264,6 +264,7 @@ pub const REGISTRY: &[Registered] = &[
 
 /// The registry entry of `name`, if it has a GPU implementation.
 pub fn find(name: &str) -> Option<&'static Registered> {
+    let name = caustics_core::techniques::canonical(name);
     REGISTRY.iter().find(|r| r.name() == name)
 }
 

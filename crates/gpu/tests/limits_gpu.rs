@@ -121,7 +121,7 @@ fn assert_too_large(result: Result<(), GpuError>, case: &str, names: &str) {
 /// these limits' 16 KiB, and was refused here.
 fn yuksel_runs_within_webgpus_default_limits() {
     let ctx = device_with(|_| wgpu::Limits::default());
-    for technique in ["yuksel", "yuksel-gather"] {
+    for technique in ["yuksel", "yuksel-targets"] {
         configure(&ctx, technique, &scene("pool", 64), "")
             .unwrap_or_else(|e| panic!("{technique}: {e}"));
     }

@@ -62,9 +62,9 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
     );
     for (name, sun) in [
         ("yuksel", None),
-        ("yuksel-gather", None),
+        ("yuksel-targets", None),
         ("yuksel", Some(grazing)),
-        ("yuksel-gather", Some(grazing)),
+        ("yuksel-targets", Some(grazing)),
     ] {
         let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
@@ -113,7 +113,7 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
 
 fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
     let ctx = test_gpu();
-    for name in ["yuksel", "yuksel-gather"] {
+    for name in ["yuksel", "yuksel-targets"] {
         let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
         let texture = ctx.upload_grid("heights", &grid).unwrap();
@@ -137,7 +137,7 @@ fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
         let d = ctx.traffic().since(&before);
         assert_eq!(d.created(), 0, "{name}: {d:?}");
         assert_eq!(d.readbacks, 0, "{name}: {d:?}");
-        // One 96-byte uniform per pass-1 draw and pass 2's: 96 (gather) or 192 bytes a frame.
+        // One 96-byte uniform per pass-1 draw and pass 2's: 96 (scatter) or 192 bytes a frame.
         assert!(
             d.uploaded_bytes <= 4096 * frames,
             "{name}: {} bytes in {frames} frames",
@@ -160,7 +160,7 @@ fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
 /// heights.
 fn yuksel_follows_steeper_water_without_new_resources() {
     let ctx = test_gpu();
-    for name in ["yuksel", "yuksel-gather"] {
+    for name in ["yuksel", "yuksel-targets"] {
         let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
         scene.light.direction = DVec3::new(0.6, 0.45, -0.66).normalize();
@@ -295,7 +295,48 @@ fn new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map() {
     }
 }
 
+/// `yuksel` runs the scatter by default (no pre-pass texture, no render targets) and the paper's
+/// passes for the paper's preset; `yuksel-targets` runs the render targets whatever the preset and
+/// refuses a table that asks it to scatter; `yuksel-gather`, the scatter's former name, is
+/// `yuksel`. Told apart by the memory each frame allocates (the pool, a 64² map).
+fn yuksel_chooses_its_passes_from_the_preset() {
+    let ctx = test_gpu();
+    let (scene, grid) = pool((64, 64));
+    let texture = ctx.upload_grid("heights", &grid).unwrap();
+    let bytes = |name: &str, table: &str| {
+        let params: toml::Table = table.parse().unwrap();
+        let mut t = technique::create(&ctx, name, &params).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&texture))
+            .unwrap();
+        (t.name().to_string(), t.bytes())
+    };
+    let scatter = bytes("yuksel", "");
+    let targets = bytes("yuksel-targets", "");
+    let paper = bytes("yuksel", "yuksel = { preset = \"paper\" }");
+    let paper_scatter = bytes(
+        "yuksel",
+        "yuksel = { preset = \"paper\", passes = \"scatter\" }",
+    );
+    eprintln!("{scatter:?} {targets:?} {paper:?} {paper_scatter:?}");
+    assert_eq!(scatter.0, "yuksel");
+    assert_eq!(targets.0, "yuksel-targets");
+    // The scatter's frame: the map, one sum per map pixel and one tier per pixel of the map and
+    // its apron; the render targets' adds the pre-pass texture and pass 1's channels. Measured:
+    // 117,408 against 4,878,016 bytes at the defaults, 101,664 against 346,240 at the paper's
+    // preset.
+    assert!(scatter.1 * 10 < targets.1, "{scatter:?} {targets:?}");
+    assert!(paper_scatter.1 * 3 < paper.1, "{paper_scatter:?} {paper:?}");
+    assert_eq!(bytes("yuksel-gather", ""), scatter);
+    let asks_scatter: toml::Table = "yuksel = { passes = \"scatter\" }".parse().unwrap();
+    let err = technique::create(&ctx, "yuksel-targets", &asks_scatter)
+        .err()
+        .expect("refused");
+    assert!(err.to_string().contains("passes"), "{err}");
+    ctx.check().expect("wgpu saw nothing");
+}
+
 test_main! {
+    gpu yuksel_chooses_its_passes_from_the_preset,
     gpu new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map,
     gpu the_registry_names_are_unique_and_unknown_names_are_refused,
     gpu yuksel_through_the_interface_matches_its_cpu_twin,

@@ -69,7 +69,7 @@ impl TechniqueChoice {
         })
     }
 
-    /// As registered (`yuksel-gather`).
+    /// As registered (`yuksel-targets`).
     pub fn name(&self) -> &'static str {
         self.entry.name
     }
@@ -760,9 +760,9 @@ mod tests {
         );
         let spec = c.spec().unwrap();
         assert_eq!(spec.name(), "yuksel");
-        let g = TechniqueChoice::parse("yuksel-gather", 2).unwrap();
+        let g = TechniqueChoice::parse("yuksel-targets", 2).unwrap();
         assert_eq!(g.base(), "yuksel");
-        assert_eq!(g.spec().unwrap().name(), "yuksel-gather");
+        assert_eq!(g.spec().unwrap().name(), "yuksel-targets");
         assert_eq!(
             TechniqueChoice::parse("reference", 2).unwrap().label(),
             "reference"

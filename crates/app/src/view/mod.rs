@@ -38,7 +38,7 @@ pub struct ViewArgs {
     #[arg(long, default_value = "pool")]
     pub scene: String,
     /// The technique shown, with parameters as `caustics compare` spells them
-    /// (`yuksel:n=15,m=14`, `yuksel-gather`); the scene's own by default.
+    /// (`yuksel:n=15,m=14`, `yuksel-targets`); the scene's own by default.
     #[arg(long)]
     pub technique: Option<String>,
     /// Split the view: this technique beside the first (`reference` if the panel turns the split

@@ -220,7 +220,8 @@ fn controls(ui: &mut egui::Ui, m: &mut Model) {
 }
 
 /// A technique menu and its parameters, every widget made from the technique's descriptors.
-/// Switching keeps the parameters the two entries share (`yuksel` to `yuksel-gather`).
+/// Switching keeps the parameters the two entries share (`yuksel` to `yuksel-targets`), but not
+/// what either name pins (from `yuksel-targets` back to `yuksel`, the passes are `yuksel`'s own).
 fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Slot) {
     let mut name = slot.choice.name().to_string();
     egui::ComboBox::from_id_salt(id)
@@ -234,7 +235,10 @@ fn technique_picker(ui: &mut egui::Ui, id: &str, names: &[String], slot: &mut Sl
         && let Ok(mut next) = TechniqueChoice::parse(&name, slot.choice.cells_per_texel)
     {
         if next.base() == slot.choice.base() {
-            let pinned: Vec<&str> = next.entry.fixed.iter().map(|(k, _)| *k).collect();
+            let pinned: Vec<&str> = (next.entry.fixed.iter())
+                .chain(slot.choice.entry.fixed)
+                .map(|(k, _)| *k)
+                .collect();
             for (k, v) in &slot.choice.params {
                 if next.entry.params.iter().any(|p| p.key == k) && !pinned.contains(&k.as_str()) {
                     next.params.insert(k.clone(), v.clone());

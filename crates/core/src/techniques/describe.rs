@@ -159,12 +159,12 @@ impl Receiver {
 /// `[caustics]`), progress `(done, total)`.
 pub type CpuRun = fn(&Job, &toml::Table, &(dyn Fn(usize, usize) + Sync)) -> Result<Made>;
 
-/// One registered technique, as the command line spells it: a variant (`yuksel-gather`,
+/// One registered technique, as the command line spells it: a variant (`yuksel-targets`,
 /// `procedural-texture`) is an entry of its own sharing its technique's parameter table.
 #[derive(Clone, Copy, Debug)]
 pub struct Descriptor {
     pub name: &'static str,
-    /// The key of its parameter table (`yuksel` for `yuksel-gather`).
+    /// The key of its parameter table (`yuksel` for `yuksel-targets`).
     pub table: &'static str,
     /// The paper in `shared/papers` (1 to 5), `-` for ours.
     pub paper: &'static str,
@@ -299,7 +299,17 @@ pub fn table_params(table: &str) -> impl Iterator<Item = &'static Param> + '_ {
 
 /// The registered entry `name`.
 pub fn find(name: &str) -> Option<&'static Descriptor> {
+    let name = canonical(name);
     super::REGISTRY.iter().copied().find(|d| d.name == name)
+}
+
+/// The registered name `name` stands for: itself, or the entry a former name
+/// ([`ALIASES`](super::ALIASES)) now names.
+pub fn canonical(name: &str) -> &str {
+    super::ALIASES
+        .iter()
+        .find(|(old, _)| *old == name)
+        .map_or(name, |(_, new)| new)
 }
 
 /// The names of every entry, for error messages.
@@ -445,7 +455,7 @@ fn tables_known() -> Vec<&'static str> {
 }
 
 /// A technique and its parameters, written `name` or `name:key=value,key=value` (e.g.
-/// `yuksel:n=15,m=14`, `yuksel-gather`, `procedural-texture:target_resolution=512`): the one
+/// `yuksel:n=15,m=14`, `yuksel-targets`, `procedural-texture:target_resolution=512`): the one
 /// spelling of the command line, a scene's `technique`, and the viewer's panel.
 #[derive(Clone, Debug)]
 pub struct Spec {
@@ -457,7 +467,7 @@ pub struct Spec {
 }
 
 impl Spec {
-    /// The registered name (`yuksel-gather`).
+    /// The registered name (`yuksel-targets`).
     pub fn name(&self) -> &'static str {
         self.entry.name
     }
@@ -512,6 +522,12 @@ impl std::str::FromStr for Spec {
                 names().join(", ")
             ))
         })?;
+        if entry.name != name {
+            tracing::warn!(
+                "technique `{name}` is now called `{}`: read as that",
+                entry.name
+            );
+        }
         let mut table = toml::Table::new();
         for kv in rest.split(',').filter(|p| !p.trim().is_empty()) {
             let (k, v) = kv.split_once('=').ok_or_else(|| {

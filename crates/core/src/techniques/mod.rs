@@ -11,15 +11,19 @@ pub mod procedural;
 pub mod volumes;
 pub mod yuksel;
 
-pub use describe::{Descriptor, Spec, find, floor_only_note, names, reference};
+pub use describe::{Descriptor, Spec, canonical, find, floor_only_note, names, reference};
 pub use job::{Job, Made, SceneCaustics, heights_for, lattice_heights, water_scene};
+
+/// Names an entry went by before, and the entry each now names: `yuksel-gather` was the scatter,
+/// `yuksel`'s default passes since 2026-12-03 (issue 28).
+pub const ALIASES: &[(&str, &str)] = &[("yuksel-gather", "yuksel")];
 
 /// Every technique, in one place: the ground truth first, then the papers in order. A new
 /// technique adds its entry here (and its GPU implementation one line in `caustics_gpu`'s).
 pub const REGISTRY: &[&Descriptor] = &[
     &crate::reference::DESCRIPTOR,
     &yuksel::DESCRIPTOR,
-    &yuksel::GATHER,
+    &yuksel::TARGETS,
     &procedural::DESCRIPTOR,
     &procedural::VERTEX,
     &procedural::SCREEN,
@@ -107,7 +111,7 @@ mod for_scene_tests {
         for n in [
             "reference",
             "yuksel",
-            "yuksel-gather",
+            "yuksel-targets",
             "procedural",
             "volumes",
             "cascaded",

@@ -92,7 +92,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     name: "yuksel",
     table: "yuksel",
     paper: "1",
-    summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser)",
+    summary: "fast backward caustics from height fields: pre-pass, N samples along x into M+1 channels, sum along y (Yuksel & Keyser); by default its samples added into the map where they are made",
     docs: "docs/yuksel.md",
     input: Input::Water,
     receivers: &[Receiver::Floor],
@@ -107,107 +107,124 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     cpu: run_cpu,
 };
 
-/// Paper 1's samples scattered into the map by compute passes (ours; the same maps).
-pub const GATHER: Descriptor = Descriptor {
-    name: "yuksel-gather",
-    summary: "paper 1's samples added into the map where they are made, with integer atomics: no pre-pass texture, no render targets (ours; the same maps)",
-    buffers: &[],
-    draw_buffer: super::buffers::no_buffers,
+/// Paper 1's own passes (§4-5) whatever the preset: the pre-pass texture, pass 1 into multiple
+/// render targets, pass 2; the same maps as [`DESCRIPTOR`]'s scatter, side by side with it.
+pub const TARGETS: Descriptor = Descriptor {
+    name: "yuksel-targets",
+    summary: "paper 1's render-target passes (pre-pass texture, pass 1 into M+1 channels, pass 2) whatever the preset: the same maps as `yuksel`'s scatter",
+    params: TARGET_PARAMS,
+    fixed: &[("passes", "targets")],
     ..DESCRIPTOR
 };
 
 const PARAMS: &[Param] = &[
-    Param {
-        key: "preset",
-        label: "region",
-        kind: Kind::Choice(&["water", "paper"]),
-        default: D::Text("water"),
-        unit: "",
-        doc: "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
-        change: Change::Reconfigure,
-        sweep: &["paper"],
-    },
-    Param {
-        key: "n",
-        label: "N",
-        kind: Kind::Int {
-            min: 1,
-            max: MAX_N as i64,
-            parity: Some(1),
-            power_of_two: false,
-        },
-        default: D::Auto("from the preset"),
-        unit: "pixels",
-        doc: "samples along x per pixel (odd): region R is N pixels wide (§4)",
-        change: Change::Reconfigure,
-        sweep: &[],
-    },
-    Param {
-        key: "m",
-        label: "M",
-        kind: Kind::Int {
-            min: 0,
-            max: MAX_M as i64,
-            parity: Some(0),
-            power_of_two: false,
-        },
-        default: D::Auto("from the preset"),
-        unit: "pixels",
-        doc: "neighbouring rows (even): M + 1 channels in pass 1 (§4)",
-        change: Change::Reconfigure,
-        sweep: &[],
-    },
-    Param {
-        key: "subsamples",
-        label: "samples per side",
-        kind: Kind::int(1, MAX_SUBSAMPLES as i64),
-        default: D::Auto("4, the paper's preset 1"),
-        unit: "",
-        doc: "samples per map pixel along each axis, each carrying 1/k² of its light (ours)",
-        change: Change::Reconfigure,
-        sweep: &["1", "2", "4"],
-    },
-    Param {
-        key: "split",
-        label: "split above",
-        kind: Kind::float(0.0, 1.0),
-        default: D::Float(DEFAULT_SPLIT),
-        unit: "",
-        doc: "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
-        change: Change::Uniform,
-        sweep: &["0", "0.3"],
-    },
-    Param {
-        key: "footprint",
-        label: "footprints",
-        kind: Kind::Bool,
-        default: D::Auto("on, the paper's preset off"),
-        unit: "",
-        doc: "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
-        change: Change::Uniform,
-        sweep: &[],
-    },
-    Param {
-        key: "fresnel",
-        label: "Fresnel",
-        kind: Kind::Bool,
-        default: D::Bool(true),
-        unit: "",
-        doc: "each sample carries its Fresnel transmittance",
-        change: Change::Uniform,
-        sweep: &[],
-    },
-    Param {
-        key: "absorption",
-        label: "absorption",
-        kind: Kind::Bool,
-        default: D::Bool(true),
-        unit: "",
-        doc: "exp(-K d) along the flat-water path",
-        change: Change::Uniform,
-        sweep: &[],
-    },
+    PRESET, PASSES, N, M, SUBSAMPLES, SPLIT, FOOTPRINT, FRESNEL, ABSORPTION,
 ];
+/// `yuksel-targets`'s: its name pins `passes`.
+const TARGET_PARAMS: &[Param] = &[
+    PRESET, N, M, SUBSAMPLES, SPLIT, FOOTPRINT, FRESNEL, ABSORPTION,
+];
+
+const PRESET: Param = Param {
+    key: "preset",
+    label: "region",
+    kind: Kind::Choice(&["water", "paper"]),
+    default: D::Text("water"),
+    unit: "",
+    doc: "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
+    change: Change::Reconfigure,
+    sweep: &["paper"],
+};
+const PASSES: Param = Param {
+    key: "passes",
+    label: "passes",
+    kind: Kind::Choice(&["targets", "scatter"]),
+    default: D::Auto("scatter, the paper's preset targets"),
+    unit: "",
+    doc: "targets: the paper's pre-pass texture, pass 1 into M+1 render-target channels and pass 2 (§4-5); scatter: each sample's light added into the map pixels its box covers, with integer atomics (ours: the same map, less time and memory)",
+    change: Change::Reconfigure,
+    sweep: &[],
+};
+const N: Param = Param {
+    key: "n",
+    label: "N",
+    kind: Kind::Int {
+        min: 1,
+        max: MAX_N as i64,
+        parity: Some(1),
+        power_of_two: false,
+    },
+    default: D::Auto("from the preset"),
+    unit: "pixels",
+    doc: "samples along x per pixel (odd): region R is N pixels wide (§4)",
+    change: Change::Reconfigure,
+    sweep: &[],
+};
+const M: Param = Param {
+    key: "m",
+    label: "M",
+    kind: Kind::Int {
+        min: 0,
+        max: MAX_M as i64,
+        parity: Some(0),
+        power_of_two: false,
+    },
+    default: D::Auto("from the preset"),
+    unit: "pixels",
+    doc: "neighbouring rows (even): M + 1 channels in pass 1 (§4)",
+    change: Change::Reconfigure,
+    sweep: &[],
+};
+const SUBSAMPLES: Param = Param {
+    key: "subsamples",
+    label: "samples per side",
+    kind: Kind::int(1, MAX_SUBSAMPLES as i64),
+    default: D::Auto("4, the paper's preset 1"),
+    unit: "",
+    doc: "samples per map pixel along each axis, each carrying 1/k² of its light (ours)",
+    change: Change::Reconfigure,
+    sweep: &["1", "2", "4"],
+};
+const SPLIT: Param = Param {
+    key: "split",
+    label: "split above",
+    kind: Kind::float(0.0, 1.0),
+    default: D::Float(DEFAULT_SPLIT),
+    unit: "",
+    doc: "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
+    change: Change::Uniform,
+    sweep: &["0", "0.3"],
+};
+const FOOTPRINT: Param = Param {
+    key: "footprint",
+    label: "footprints",
+    kind: Kind::Bool,
+    default: D::Auto("on, the paper's preset off"),
+    unit: "",
+    doc: "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
+    change: Change::Uniform,
+    sweep: &[],
+};
+const FRESNEL: Param = Param {
+    key: "fresnel",
+    label: "Fresnel",
+    kind: Kind::Bool,
+    default: D::Bool(true),
+    unit: "",
+    doc: "each sample carries its Fresnel transmittance",
+    change: Change::Uniform,
+    sweep: &[],
+};
+const ABSORPTION: Param = Param {
+    key: "absorption",
+    label: "absorption",
+    kind: Kind::Bool,
+    default: D::Bool(true),
+    unit: "",
+    doc: "exp(-K d) along the flat-water path",
+    change: Change::Uniform,
+    sweep: &[],
+};
 
 /// The setup and the heights a job gives paper 1 (both twins): the flat floor it maps, the water's
 /// own lattice where the water is a grid ([`super::lattice_heights`]).
@@ -283,6 +300,19 @@ pub enum Preset {
     Paper,
 }
 
+/// How the GPU turns the samples into the map (the CPU twin computes the same shares either way).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Passes {
+    /// The paper's (§4-5): the pre-pass texture, pass 1 gathering `N × (M + 1)` samples into
+    /// render-target channels, pass 2 summing them.
+    Targets,
+    /// Ours: each sample's light added into the map's pixels its box covers where it is made, in
+    /// fixed point with integer atomics: no pre-pass texture or render targets, so a fraction of
+    /// the memory, and no gather over the region, so less time (docs/yuksel.md).
+    Scatter,
+}
+
 /// The technique's parameters, `[caustics.yuksel]` in a scene file.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -313,6 +343,10 @@ pub struct YukselParams {
     pub split: f64,
     pub fresnel: bool,
     pub absorption: bool,
+    /// How the GPU makes the map. Default: the scatter with the region from the water, the
+    /// paper's render targets with `preset = "paper"` ([`passes`](Self::passes)).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub passes: Option<Passes>,
 }
 
 impl Default for YukselParams {
@@ -341,6 +375,7 @@ impl YukselParams {
             split: DEFAULT_SPLIT,
             fresnel: true,
             absorption: true,
+            passes: None,
         }
     }
 
@@ -410,6 +445,16 @@ impl YukselParams {
             self.subsamples.unwrap_or(k),
             self.footprint.unwrap_or(footprint),
         )
+    }
+
+    /// The GPU's passes: given, or the preset's. The default is the cheaper of the two that
+    /// make the same map, the scatter (issue 28: 0.15 times the paper's memory, 0.6 to 0.9 times
+    /// the render targets' time on lavapipe); the paper's preset keeps the paper's passes.
+    pub fn passes(&self) -> Passes {
+        self.passes.unwrap_or(match self.preset {
+            Preset::Water => Passes::Scatter,
+            Preset::Paper => Passes::Targets,
+        })
     }
 
     /// The fixed N and M: given, or the paper's; `None` where the water chooses.
@@ -1175,6 +1220,36 @@ mod tests {
         for t in &m.texels {
             assert!((t[0] - 1.0).abs() < 1e-5, "{}", t[0]);
         }
+    }
+
+    /// The scatter by default, the paper's passes for its preset, either when named; the
+    /// render-target entry pins them and refuses a scatter; the scatter's former name is `yuksel`.
+    #[test]
+    fn the_passes_follow_the_preset_unless_named() {
+        use crate::techniques::Spec;
+        let passes = |s: &str| {
+            let spec: Spec = s.parse().unwrap();
+            (
+                spec.name(),
+                YukselParams::from_table(&spec.params).unwrap().passes(),
+            )
+        };
+        assert_eq!(passes("yuksel"), ("yuksel", Passes::Scatter));
+        assert_eq!(passes("yuksel:preset=paper"), ("yuksel", Passes::Targets));
+        assert_eq!(
+            passes("yuksel:preset=paper,passes=scatter"),
+            ("yuksel", Passes::Scatter)
+        );
+        assert_eq!(passes("yuksel:passes=targets"), ("yuksel", Passes::Targets));
+        assert_eq!(
+            passes("yuksel-targets"),
+            ("yuksel-targets", Passes::Targets)
+        );
+        assert_eq!(passes("yuksel-gather"), ("yuksel", Passes::Scatter));
+        let err = "yuksel-targets:passes=scatter".parse::<Spec>().unwrap_err();
+        assert!(err.to_string().contains("passes"), "{err}");
+        let err = "yuksel:passes=gather".parse::<Spec>().unwrap_err();
+        assert!(err.to_string().contains("passes"), "{err}");
     }
 
     /// Records a side of each pixel in `pre`, from its first record's tier.

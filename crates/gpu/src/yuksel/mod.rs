@@ -116,9 +116,8 @@ pub fn pass1_source(targets: u32) -> String {
 pub enum Variant {
     /// The paper's: pre-pass, pass 1 into multiple render targets, pass 2.
     RenderTargets,
-    /// Ours (`yuksel-gather`, the name its scenes spell): each record added into the map's pixels
-    /// its box covers where it is made, with integer atomics: no pre-pass texture, no render
-    /// targets.
+    /// Ours (`yuksel`'s default passes): each record added into the map's pixels its box covers
+    /// where it is made, with integer atomics: no pre-pass texture, no render targets.
     Scatter,
 }
 

@@ -2,7 +2,7 @@
 //! writes.
 
 use caustics_core::scene::Scene;
-use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
+use caustics_core::techniques::yuksel::{self, Passes, YukselParams, YukselSetup};
 use caustics_core::techniques::{Job, Made};
 
 use super::{Frame, Variant, Yuksel};
@@ -13,36 +13,65 @@ pub struct YukselTechnique {
     name: &'static str,
     pipelines: Yuksel,
     params: YukselParams,
-    variant: Variant,
+    /// The passes the registered name forces (`yuksel-targets`), if any.
+    fixed: Option<Variant>,
     frame: Option<(Frame, WaterTextures)>,
 }
 
+/// `yuksel`: the passes its parameters name (`passes`; the scatter by default, the paper's preset
+/// its render targets).
+pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
+    YukselTechnique::new(ctx, params, None).map(|t| Box::new(t) as _)
+}
+
+/// `yuksel-targets`: the paper's render-target passes whatever the preset.
 pub fn create_render_targets(
     ctx: &GpuContext,
     params: &toml::Table,
 ) -> Result<Box<dyn Technique>, GpuError> {
-    YukselTechnique::new(ctx, params, Variant::RenderTargets).map(|t| Box::new(t) as _)
+    YukselTechnique::new(ctx, params, Some(Variant::RenderTargets)).map(|t| Box::new(t) as _)
 }
 
-pub fn create_scatter(
-    ctx: &GpuContext,
-    params: &toml::Table,
-) -> Result<Box<dyn Technique>, GpuError> {
-    YukselTechnique::new(ctx, params, Variant::Scatter).map(|t| Box::new(t) as _)
+impl Variant {
+    /// The passes `params` name, or the ones a registered name forces (a table naming others is
+    /// refused, naming the field).
+    pub fn of(params: &YukselParams, fixed: Option<Variant>) -> Result<Variant, GpuError> {
+        let named = match params.passes() {
+            Passes::Targets => Variant::RenderTargets,
+            Passes::Scatter => Variant::Scatter,
+        };
+        match fixed {
+            Some(v) if params.passes.is_some() && v != named => Err(GpuError::BadOption(
+                "technique `yuksel-targets` runs the render-target passes; `caustics.yuksel.passes` says `scatter`".into(),
+            )),
+            Some(v) => Ok(v),
+            None => Ok(named),
+        }
+    }
 }
 
 impl YukselTechnique {
-    pub fn new(ctx: &GpuContext, params: &toml::Table, variant: Variant) -> Result<Self, GpuError> {
+    pub fn new(
+        ctx: &GpuContext,
+        params: &toml::Table,
+        fixed: Option<Variant>,
+    ) -> Result<Self, GpuError> {
+        let params = YukselParams::from_table(params)?;
+        Variant::of(&params, fixed)?;
         Ok(YukselTechnique {
-            name: match variant {
-                Variant::RenderTargets => "yuksel",
-                Variant::Scatter => "yuksel-gather",
+            name: match fixed {
+                Some(_) => yuksel::TARGETS.name,
+                None => yuksel::DESCRIPTOR.name,
             },
             pipelines: Yuksel::new(ctx)?,
-            params: YukselParams::from_table(params)?,
-            variant,
+            params,
+            fixed,
             frame: None,
         })
+    }
+
+    fn variant(&self) -> Variant {
+        Variant::of(&self.params, self.fixed).expect("checked when the parameters were taken")
     }
 
     fn setup(&self, scene: &Scene) -> Result<YukselSetup, GpuError> {
@@ -101,7 +130,7 @@ impl Technique for YukselTechnique {
         }
         let frame = self
             .pipelines
-            .frame_with_water(ctx, &setup, water, self.variant)?;
+            .frame_with_water(ctx, &setup, water, self.variant())?;
         self.frame = Some((frame, water.clone()));
         Ok(())
     }
@@ -138,38 +167,40 @@ impl Technique for YukselTechnique {
     }
 
     fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
-        self.params = YukselParams::from_table(params)?;
+        let params = YukselParams::from_table(params)?;
+        Variant::of(&params, self.fixed)?;
+        self.params = params;
         Ok(true)
     }
 }
 
-/// Paper 1's render-target passes in the registry.
+/// Paper 1 in the registry: the passes its parameters name.
 pub const REGISTERED: Registered = Registered {
     describe: &yuksel::DESCRIPTOR,
-    create: create_render_targets,
-    once: |ctx| Ok(Box::new(Once::new(ctx, Variant::RenderTargets)?)),
+    create,
+    once: |ctx| Ok(Box::new(Once::new(ctx, None)?)),
     image: None,
 };
 
-/// The scatter variant in the registry (`yuksel-gather`, the name its scenes spell).
-pub const GATHER: Registered = Registered {
-    describe: &yuksel::GATHER,
-    create: create_scatter,
-    once: |ctx| Ok(Box::new(Once::new(ctx, Variant::Scatter)?)),
+/// Paper 1's render-target passes in the registry (`yuksel-targets`), whatever the preset.
+pub const TARGETS: Registered = Registered {
+    describe: &yuksel::TARGETS,
+    create: create_render_targets,
+    once: |ctx| Ok(Box::new(Once::new(ctx, Some(Variant::RenderTargets))?)),
     image: None,
 };
 
 /// Paper 1 run once on a job.
 struct Once {
     pipelines: Yuksel,
-    variant: Variant,
+    fixed: Option<Variant>,
 }
 
 impl Once {
-    fn new(ctx: &GpuContext, variant: Variant) -> Result<Self, GpuError> {
+    fn new(ctx: &GpuContext, fixed: Option<Variant>) -> Result<Self, GpuError> {
         Ok(Once {
             pipelines: Yuksel::new(ctx)?,
-            variant,
+            fixed,
         })
     }
 }
@@ -184,9 +215,10 @@ impl RunOnce for Once {
         _progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Made, GpuError> {
         let (setup, heights) = yuksel::job_setup(job, params)?;
+        let variant = Variant::of(&YukselParams::from_table(params)?, self.fixed)?;
         let map = self
             .pipelines
-            .caustics_timed(ctx, &setup, &heights, self.variant, timer)?;
+            .caustics_timed(ctx, &setup, &heights, variant, timer)?;
         Ok(Made::floor(map, None))
     }
 }
