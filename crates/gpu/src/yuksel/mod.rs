@@ -336,6 +336,8 @@ enum FramePasses {
     Scatter {
         /// One fixed-point sum per map pixel, cleared every frame.
         sums: wgpu::Buffer,
+        /// The fill's indirect dispatch and the count of the pixels it lists.
+        fill_args: wgpu::Buffer,
         /// Tiers, fill, resolve.
         binds: [wgpu::BindGroup; 3],
     },
@@ -492,7 +494,8 @@ impl Yuksel {
                 ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
                 ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
             }
-            Variant::Scatter => ctx.check_texture_size("yuksel scatter tiers", ew, eh)?,
+            // Its list of the pixels at k is checked with its sums, below.
+            Variant::Scatter => {}
         }
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
@@ -561,17 +564,26 @@ impl Yuksel {
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 });
-                let tiers = ctx
-                    .texture_2d(
-                        "yuksel scatter tiers",
-                        (ew, eh, 1),
-                        wgpu::TextureFormat::R32Uint,
-                        U::STORAGE_BINDING | U::TEXTURE_BINDING,
-                    )
-                    .create_view(&Default::default());
-                bytes += sums.size() + (ew * eh) as u64 * 4;
+                // The pixels at k, at most every pixel of the largest region's area, and the
+                // fill's indirect dispatch: x and the count cleared every frame, y and z 1.
+                let list_bytes = (ew * eh) as u64 * 4;
+                ctx.check_buffer_size("yuksel scatter fill list", list_bytes)?;
+                let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("yuksel scatter fill list"),
+                    size: list_bytes,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                });
+                let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("yuksel scatter fill dispatch"),
+                    contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
+                    usage: wgpu::BufferUsages::STORAGE
+                        | wgpu::BufferUsages::INDIRECT
+                        | wgpu::BufferUsages::COPY_DST,
+                });
+                bytes += sums.size() + list_bytes + fill_args.size();
                 let [tier, fill, resolve] = &self.scatter;
-                let with = |label, pipeline: &wgpu::ComputePipeline, own| {
+                let with = |label, pipeline: &wgpu::ComputePipeline| {
                     bind_group(
                         ctx,
                         label,
@@ -581,13 +593,14 @@ impl Yuksel {
                             View(heights_view),
                             sums.as_entire_binding(),
                             region.as_entire_binding(),
-                            View(own),
+                            fill_args.as_entire_binding(),
+                            fill_list.as_entire_binding(),
                         ],
                     )
                 };
                 let binds = [
-                    with("yuksel scatter tiers", tier, &tiers),
-                    with("yuksel scatter fill", fill, &tiers),
+                    with("yuksel scatter tiers", tier),
+                    with("yuksel scatter fill", fill),
                     // The resolve reads neither the heights (1) nor the region (3).
                     ctx.create_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("yuksel scatter resolve"),
@@ -600,7 +613,11 @@ impl Yuksel {
                         .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
                     }),
                 ];
-                FramePasses::Scatter { sums, binds }
+                FramePasses::Scatter {
+                    sums,
+                    fill_args,
+                    binds,
+                }
             }
             Variant::RenderTargets => {
                 let layers = (cap_m as u32 + 1).div_ceil(4);
@@ -781,19 +798,29 @@ impl Yuksel {
             pass.dispatch_workgroups(1, 1, 1);
         }
         match &frame.passes {
-            FramePasses::Scatter { sums, binds } => {
+            FramePasses::Scatter {
+                sums,
+                fill_args,
+                binds,
+            } => {
                 encoder.clear_buffer(sums, 0, None);
+                // The dispatch's x and the count; y and z stay 1.
+                encoder.clear_buffer(fill_args, 0, Some(4));
+                encoder.clear_buffer(fill_args, 12, Some(4));
                 let mut pass = begin_compute(encoder, &mut timer, "yuksel scatter");
+                let [tier, fill, resolve] = &self.scatter;
+                // One invocation per pixel of the level's map and apron; per listed pixel at k;
+                // per map pixel.
                 let (cols, rows) = prepass_pixels(&frame.setup);
-                let (pw, ph) = prepass_capacity(&frame.setup);
-                // One invocation per pixel of the level's map and apron; per record of the
-                // pixels at k; per map pixel.
-                let sizes = [(cols, rows), (pw as u32, ph as u32), (w, h)];
-                for ((pipeline, bind), (x, y)) in self.scatter.iter().zip(binds).zip(sizes) {
-                    pass.set_pipeline(pipeline);
-                    pass.set_bind_group(0, bind, &[]);
-                    pass.dispatch_workgroups(x.div_ceil(8), y.div_ceil(8), 1);
-                }
+                pass.set_pipeline(tier);
+                pass.set_bind_group(0, &binds[0], &[]);
+                pass.dispatch_workgroups(cols.div_ceil(8), rows.div_ceil(8), 1);
+                pass.set_pipeline(fill);
+                pass.set_bind_group(0, &binds[1], &[]);
+                pass.dispatch_workgroups_indirect(fill_args, 0);
+                pass.set_pipeline(resolve);
+                pass.set_bind_group(0, &binds[2], &[]);
+                pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
             }
             FramePasses::RenderTargets {
                 prepass,

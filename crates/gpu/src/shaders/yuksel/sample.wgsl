@@ -29,34 +29,26 @@ fn yuksel_hit(s: vec2<f32>) -> vec4<f32> {
     return vec4<f32>(s + t.xy * (z / -t.z), seen * fresnel, 1.0);
 }
 
-// Where the light of the patch of water `area` (world units) around `s` lands, in `rec`: the
-// footprint's centre (world units) in xy, its two half-widths packed in z (in pixels of `pixel`,
-// the level's), the flux it carries relative to a flat-water patch in w; and the box's misfit. The
-// box is the footprint (the patch's edge midpoints' hits along x and along y, on the light's
-// centroid) or, without
-// `footprint`, a box of the patch's size around its hit (the paper). Where the sun cannot light the
-// patch, no flux. CPU twin: `footprint` and `misfit` in yuksel.rs.
+// Where the light of a patch of water lands, in `rec`: the footprint's centre (world units) in xy,
+// its two half-widths packed in z (in pixels of `pixel`, the level's), the flux it carries
+// relative to a flat-water patch in w; and the box's misfit. The box is the footprint (the
+// patch's edge midpoints' hits along x and along y, on the light's centroid) or, without
+// `footprint`, a box of the patch's size around its hit (the paper). Where the sun cannot light
+// the patch, no flux. CPU twin: `footprint` and `misfit` in yuksel.rs.
 struct YukselFootprint {
     rec: vec4<f32>,
     misfit: f32,
 }
 
-fn yuksel_footprint(s: vec2<f32>, area: vec2<f32>, pixel: vec2<f32>) -> YukselFootprint {
-    let h = yuksel_hit(s);
-    if h.w == 0.0 {
-        return YukselFootprint(vec4<f32>(0.0), 0.0);
-    }
-    if u.footprint == 0u {
-        let half = 0.5 * area / pixel;
-        let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
-        return YukselFootprint(vec4<f32>(h.xy, bitcast<f32>(packed), h.z), 0.0);
-    }
+// The footprint of a lit patch (`h`, its hit) from its edge midpoints' hits as `yuksel_hit` gives
+// them (along x then along y, minus side first), which neighbouring patches share.
+fn yuksel_footprint(h: vec4<f32>, raw_xm: vec4<f32>, raw_xp: vec4<f32>, raw_ym: vec4<f32>, raw_yp: vec4<f32>, pixel: vec2<f32>) -> YukselFootprint {
     // An edge the sun cannot light takes the patch's own hit and flux, and the box cannot stand
     // for the patch (below k, a finer tier takes it).
-    let exm = yuksel_edge(s - vec2<f32>(0.5 * area.x, 0.0), h);
-    let exp = yuksel_edge(s + vec2<f32>(0.5 * area.x, 0.0), h);
-    let eym = yuksel_edge(s - vec2<f32>(0.0, 0.5 * area.y), h);
-    let eyp = yuksel_edge(s + vec2<f32>(0.0, 0.5 * area.y), h);
+    let exm = yuksel_edge(raw_xm, h);
+    let exp = yuksel_edge(raw_xp, h);
+    let eym = yuksel_edge(raw_ym, h);
+    let eyp = yuksel_edge(raw_yp, h);
     let unlit = exm.w == 0.0 || exp.w == 0.0 || eym.w == 0.0 || eyp.w == 0.0;
     let xm = exm.xy;
     let xp = exp.xy;
@@ -82,10 +74,9 @@ fn yuksel_footprint(s: vec2<f32>, area: vec2<f32>, pixel: vec2<f32>) -> YukselFo
     return YukselFootprint(vec4<f32>(centroid, bitcast<f32>(packed), h.z), misfit);
 }
 
-// A patch edge's `yuksel_hit`, or where the sun cannot light the edge the patch's own hit and
+// A patch edge's `yuksel_hit` `h`, or where the sun cannot light the edge the patch's own hit and
 // flux with w = 0.
-fn yuksel_edge(s: vec2<f32>, own: vec4<f32>) -> vec4<f32> {
-    let h = yuksel_hit(s);
+fn yuksel_edge(h: vec4<f32>, own: vec4<f32>) -> vec4<f32> {
     if h.w == 0.0 {
         return vec4<f32>(own.xyz, 0.0);
     }
@@ -98,11 +89,40 @@ fn yuksel_pixel_centre(c: i32, r: i32, pixel: vec2<f32>) -> vec2<f32> {
     return (vec2<f32>(f32(c), f32(r)) + 0.5) * pixel;
 }
 
+// The water at (i, j) halves of a 1/t patch from pixel (c, r)'s corner: (2a + 1, 2b + 1) is
+// footprint (a, b)'s centre, (2a, 2b + 1) its edge midpoint on the minus side along x. Every pass
+// that refracts a point places it this way, so a point two patches share is one ray, to the bit.
+fn yuksel_lattice(c: i32, r: i32, i: u32, j: u32, t: u32, pixel: vec2<f32>) -> vec2<f32> {
+    let within = vec2<f32>(f32(i), f32(j)) / f32(2u * t) - 0.5;
+    return yuksel_pixel_centre(c, r, pixel) + within * pixel + u.centre_offset;
+}
+
 // Footprint (a, b) of the t x t of pixel (c, r): its patch 1/t of the pixel each way.
 fn yuksel_part(c: i32, r: i32, a: u32, b: u32, t: u32, pixel: vec2<f32>) -> YukselFootprint {
-    let within = (vec2<f32>(f32(a), f32(b)) + 0.5) / f32(t) - 0.5;
-    let s = yuksel_pixel_centre(c, r, pixel) + within * pixel + u.centre_offset;
-    return yuksel_footprint(s, pixel / f32(t), pixel);
+    let i = 2u * a + 1u;
+    let j = 2u * b + 1u;
+    let h = yuksel_hit(yuksel_lattice(c, r, i, j, t, pixel));
+    if h.w == 0.0 {
+        return YukselFootprint(vec4<f32>(0.0), 0.0);
+    }
+    if u.footprint == 0u {
+        return yuksel_pixel_box(h, pixel / f32(t), pixel);
+    }
+    return yuksel_footprint(
+        h,
+        yuksel_hit(yuksel_lattice(c, r, i - 1u, j, t, pixel)),
+        yuksel_hit(yuksel_lattice(c, r, i + 1u, j, t, pixel)),
+        yuksel_hit(yuksel_lattice(c, r, i, j - 1u, t, pixel)),
+        yuksel_hit(yuksel_lattice(c, r, i, j + 1u, t, pixel)),
+        pixel,
+    );
+}
+
+// Without `footprint`, the paper's box: the patch's size (`area`) around its hit `h`.
+fn yuksel_pixel_box(h: vec4<f32>, area: vec2<f32>, pixel: vec2<f32>) -> YukselFootprint {
+    let half = 0.5 * area / pixel;
+    let packed = pack2x16float(clamp(half, vec2<f32>(MIN_HALF_WIDTH), vec2<f32>(6.0e4)));
+    return YukselFootprint(vec4<f32>(h.xy, bitcast<f32>(packed), h.z), 0.0);
 }
 
 // A footprint of pixel (c, r) as the pre-pass stores it, one of its t x t (of k x k at most): its
