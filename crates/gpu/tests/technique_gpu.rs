@@ -321,11 +321,11 @@ fn yuksel_chooses_its_passes_from_the_preset() {
     assert_eq!(scatter.0, "yuksel");
     assert_eq!(targets.0, "yuksel-targets");
     // The scatter's frame: the map, one sum per map pixel and one tier per pixel of the map and
-    // its apron; the render targets' adds the pre-pass texture and pass 1's channels. Measured:
-    // 117,408 against 4,878,016 bytes at the defaults, 101,664 against 346,240 at the paper's
-    // preset.
+    // its apron; the render targets' adds the pre-pass texture and pass 1's channels (both hold
+    // the heights in Hermite form, 64 KiB here). Measured: 182,960 against 4,943,552 bytes at the
+    // defaults, 167,216 against 411,776 at the paper's preset.
     assert!(scatter.1 * 10 < targets.1, "{scatter:?} {targets:?}");
-    assert!(paper_scatter.1 * 3 < paper.1, "{paper_scatter:?} {paper:?}");
+    assert!(paper_scatter.1 * 2 < paper.1, "{paper_scatter:?} {paper:?}");
     assert_eq!(bytes("yuksel-gather", ""), scatter);
     let asks_scatter: toml::Table = "yuksel = { passes = \"scatter\" }".parse().unwrap();
     let err = technique::create(&ctx, "yuksel-targets", &asks_scatter)

@@ -67,6 +67,89 @@ fn grid_index(first: i32, k: i32, n: i32, wrap: bool) -> i32 {
     return clamp(c, 0, n - 1);
 }
 
+// Texel `c` of a height texture in Hermite form: its height and, in texel units, its central
+// differences along u, along v and across, from the taps `grid_sample` reads around it (periodic
+// or clamped). Written once per frame, they let `grid_sample_hermite` read the 4 texels around a
+// point instead of 16: the same surface, since Catmull-Rom is the cubic Hermite spline on
+// central differences, and a tensor product of two is the bicubic Hermite patch on these.
+fn grid_hermite_texel(tex: texture_2d<f32>, c: vec2<i32>, wrap: bool) -> vec4<f32> {
+    let n = vec2<i32>(textureDimensions(tex));
+    var first = c - 1;
+    if wrap {
+        first = ((first % n) + n) % n;
+    }
+    let x = vec3<i32>(grid_index(first.x, 0, n.x, wrap), grid_index(first.x, 1, n.x, wrap), grid_index(first.x, 2, n.x, wrap));
+    let y = vec3<i32>(grid_index(first.y, 0, n.y, wrap), grid_index(first.y, 1, n.y, wrap), grid_index(first.y, 2, n.y, wrap));
+    let h = textureLoad(tex, vec2<i32>(x.y, y.y), 0).r;
+    let hu = 0.5 * (textureLoad(tex, vec2<i32>(x.z, y.y), 0).r - textureLoad(tex, vec2<i32>(x.x, y.y), 0).r);
+    let hv = 0.5 * (textureLoad(tex, vec2<i32>(x.y, y.z), 0).r - textureLoad(tex, vec2<i32>(x.y, y.x), 0).r);
+    let huv = 0.25 * (textureLoad(tex, vec2<i32>(x.z, y.z), 0).r - textureLoad(tex, vec2<i32>(x.x, y.z), 0).r
+        - textureLoad(tex, vec2<i32>(x.z, y.x), 0).r + textureLoad(tex, vec2<i32>(x.x, y.x), 0).r);
+    return vec4<f32>(h, hu, hv, huv);
+}
+
+// Cubic Hermite basis at t: the weights of the two ends' values (x, y) and slopes (z, w), and
+// their derivatives.
+fn hermite(t: f32) -> array<vec4<f32>, 2> {
+    let t2 = t * t;
+    let t3 = t2 * t;
+    let w = vec4<f32>(2.0 * t3 - 3.0 * t2 + 1.0, -2.0 * t3 + 3.0 * t2, t3 - 2.0 * t2 + t, t3 - t2);
+    let dw = vec4<f32>(6.0 * t2 - 6.0 * t, -6.0 * t2 + 6.0 * t, 3.0 * t2 - 4.0 * t + 1.0, 3.0 * t2 - 2.0 * t);
+    return array<vec4<f32>, 2>(w, dw);
+}
+
+// `grid_sample` from a texture of `grid_hermite_texel`s: height and gradient of the same bicubic
+// interpolant at `p`, reading the four texels around it. Clamped, a corner beyond the grid has no
+// slope across the edge (its taps are all the edge's texel).
+fn grid_sample_hermite(patches: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {
+    let dims = vec2<f32>(textureDimensions(patches));
+    let texel = size / dims;
+    let uv = p / texel - 0.5;
+    let base = floor(uv);
+    let f = uv - base;
+    let n = vec2<i32>(dims);
+    var c0 = vec2<i32>(base);
+    var c1 = c0 + 1;
+    // Which of the corners' slopes along u (x, z) and v (y, w) are kept.
+    var keep = vec4<f32>(1.0);
+    if wrap {
+        c0 = ((c0 % n) + n) % n;
+        c1 = select(c0 + 1, c0 + 1 - n, c0 + 1 >= n);
+    } else {
+        keep = vec4<f32>(
+            select(0.0, 1.0, c0.x >= 0 && c0.x < n.x),
+            select(0.0, 1.0, c0.y >= 0 && c0.y < n.y),
+            select(0.0, 1.0, c1.x >= 0 && c1.x < n.x),
+            select(0.0, 1.0, c1.y >= 0 && c1.y < n.y),
+        );
+        c0 = clamp(c0, vec2<i32>(0), n - 1);
+        c1 = clamp(c1, vec2<i32>(0), n - 1);
+    }
+    let k00 = vec4<f32>(1.0, keep.x, keep.y, keep.x * keep.y);
+    let k10 = vec4<f32>(1.0, keep.z, keep.y, keep.z * keep.y);
+    let k01 = vec4<f32>(1.0, keep.x, keep.w, keep.x * keep.w);
+    let k11 = vec4<f32>(1.0, keep.z, keep.w, keep.z * keep.w);
+    let p00 = textureLoad(patches, c0, 0) * k00;
+    let p10 = textureLoad(patches, vec2<i32>(c1.x, c0.y), 0) * k10;
+    let p01 = textureLoad(patches, vec2<i32>(c0.x, c1.y), 0) * k01;
+    let p11 = textureLoad(patches, c1, 0) * k11;
+    let bu = hermite(f.x);
+    let bv = hermite(f.y);
+    // Along u first, for each corner row: the value and the v-slope, and their u-derivatives.
+    let row0 = bu[0].x * vec2<f32>(p00.x, p00.z) + bu[0].y * vec2<f32>(p10.x, p10.z)
+        + bu[0].z * vec2<f32>(p00.y, p00.w) + bu[0].w * vec2<f32>(p10.y, p10.w);
+    let row1 = bu[0].x * vec2<f32>(p01.x, p01.z) + bu[0].y * vec2<f32>(p11.x, p11.z)
+        + bu[0].z * vec2<f32>(p01.y, p01.w) + bu[0].w * vec2<f32>(p11.y, p11.w);
+    let drow0 = bu[1].x * vec2<f32>(p00.x, p00.z) + bu[1].y * vec2<f32>(p10.x, p10.z)
+        + bu[1].z * vec2<f32>(p00.y, p00.w) + bu[1].w * vec2<f32>(p10.y, p10.w);
+    let drow1 = bu[1].x * vec2<f32>(p01.x, p01.z) + bu[1].y * vec2<f32>(p11.x, p11.z)
+        + bu[1].z * vec2<f32>(p01.y, p01.w) + bu[1].w * vec2<f32>(p11.y, p11.w);
+    let h = bv[0].x * row0.x + bv[0].y * row1.x + bv[0].z * row0.y + bv[0].w * row1.y;
+    let hu = bv[0].x * drow0.x + bv[0].y * drow1.x + bv[0].z * drow0.y + bv[0].w * drow1.y;
+    let hv = bv[1].x * row0.x + bv[1].y * row1.x + bv[1].z * row0.y + bv[1].w * row1.y;
+    return vec3<f32>(h, hu / texel.x, hv / texel.y);
+}
+
 // Height and gradient of the bicubic interpolant of a height texture covering [0, size]^2, samples
 // at texel centres (the scene's convention).
 fn grid_sample(tex: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {

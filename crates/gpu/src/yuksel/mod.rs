@@ -66,6 +66,11 @@ pub const REGION: PassSource = PassSource {
     shared: &[OPTICS, COMMON, REDUCE],
     source: include_str!("../shaders/yuksel/region.wgsl"),
 };
+pub const PATCHES: PassSource = PassSource {
+    name: "yuksel patches",
+    shared: &[OPTICS, WATER, COMMON],
+    source: include_str!("../shaders/yuksel/patches.wgsl"),
+};
 const SCATTER: &str = include_str!("../shaders/yuksel/scatter.wgsl");
 pub const SCATTER_TIER: PassSource = PassSource {
     name: "yuksel scatter tiers",
@@ -254,6 +259,8 @@ impl PrepassTiling {
 
 /// The technique's pipelines, built once per device.
 pub struct Yuksel {
+    /// The heights in Hermite form, which every ray reads.
+    patches: wgpu::ComputePipeline,
     region: wgpu::ComputePipeline,
     region_bound: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
@@ -322,6 +329,8 @@ pub struct Frame {
     /// its dispatch covers.
     bound: wgpu::Buffer,
     bound_bind: wgpu::BindGroup,
+    /// The heights in Hermite form (`patches.wgsl`), one texel per height texel.
+    patches_bind: wgpu::BindGroup,
     heights_size: wgpu::Extent3d,
     pub map: wgpu::Texture,
     setup: YukselSetup,
@@ -407,6 +416,7 @@ impl Yuksel {
         let targets_per_draw = limits.max_color_attachments.min(by_bytes).clamp(1, 8);
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
+            patches: compute_pipeline(ctx, &PATCHES),
             region: compute_pipeline(ctx, &REGION),
             region_bound: compute_pipeline(ctx, &REGION_BOUND),
             prepass: compute_pipeline(ctx, &PREPASS),
@@ -547,6 +557,24 @@ impl Yuksel {
             ],
         );
         let heights_size = heights_view.texture().size();
+        let patches = ctx
+            .texture_2d(
+                "yuksel patches",
+                (heights_size.width, heights_size.height, 1),
+                MAP_FORMAT,
+                U::STORAGE_BINDING | U::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default());
+        let patches_bind = bind_group(
+            ctx,
+            "yuksel patches",
+            &self.patches.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                View(heights_view),
+                View(&patches),
+            ],
+        );
         let map = ctx.texture_2d(
             "yuksel map",
             (w, h, 1),
@@ -554,7 +582,10 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        let mut bytes = (w * h) as u64 * 16 + uniform.size() + region.size();
+        let mut bytes = (w * h) as u64 * 16
+            + uniform.size()
+            + region.size()
+            + (heights_size.width * heights_size.height) as u64 * 16;
         let passes = match variant {
             Variant::Scatter => {
                 ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
@@ -590,7 +621,7 @@ impl Yuksel {
                         &pipeline.get_bind_group_layout(0),
                         &[
                             uniform.as_entire_binding(),
-                            View(heights_view),
+                            View(&patches),
                             sums.as_entire_binding(),
                             region.as_entire_binding(),
                             fill_args.as_entire_binding(),
@@ -665,7 +696,7 @@ impl Yuksel {
                         &self.prepass.get_bind_group_layout(0),
                         &[
                             uniform.as_entire_binding(),
-                            View(heights_view),
+                            View(&patches),
                             View(&pre_view),
                             region.as_entire_binding(),
                             View(&extents_view),
@@ -678,7 +709,7 @@ impl Yuksel {
                         &self.prepass_fill.get_bind_group_layout(0),
                         &[
                             uniform.as_entire_binding(),
-                            View(heights_view),
+                            View(&patches),
                             View(&pre_view),
                             region.as_entire_binding(),
                             View(&tiers_view),
@@ -765,6 +796,7 @@ impl Yuksel {
             region_bind,
             bound,
             bound_bind,
+            patches_bind,
             heights_size,
             map,
             setup: setup.clone(),
@@ -784,11 +816,17 @@ impl Yuksel {
     ) -> &'f wgpu::Texture {
         let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
         encoder.clear_buffer(&frame.bound, 0, None);
+        let size = frame.heights_size;
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "yuksel patches");
+            pass.set_pipeline(&self.patches);
+            pass.set_bind_group(0, &frame.patches_bind, &[]);
+            pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
+        }
         {
             let mut pass = begin_compute(encoder, &mut timer, "yuksel region bound");
             pass.set_pipeline(&self.region_bound);
             pass.set_bind_group(0, &frame.bound_bind, &[]);
-            let size = frame.heights_size;
             pass.dispatch_workgroups(size.width.div_ceil(16), size.height.div_ceil(16), 1);
         }
         {

@@ -3,7 +3,8 @@
 // caustics-core/src/techniques/yuksel.rs.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
-@group(0) @binding(1) var heights: texture_2d<f32>;
+// The heights in Hermite form (`patches.wgsl`).
+@group(0) @binding(1) var patches: texture_2d<f32>;
 
 // The narrowest footprint half-width (`MIN_HALF_WIDTH` in yuksel.rs): a fold's light keeps a box of
 // positive area, and the half-width stays a normal f16 (so the packed channel is a normal f32).
@@ -12,7 +13,7 @@ const MIN_HALF_WIDTH: f32 = 1.0e-3;
 // The water at `s` (world units): xy its floor hit, z the flux its area carries relative to flat
 // water, w 1 where the sun lights it (0: nothing reaches the floor).
 fn yuksel_hit(s: vec2<f32>) -> vec4<f32> {
-    let hg = grid_sample(heights, s, u.size, u.wrap != 0u);
+    let hg = grid_sample_hermite(patches, s, u.size, u.wrap != 0u);
     let l = u.light.xyz;
     let normal = height_field_normal(hg.yz);
     let cos_i = -dot(l, normal);
