@@ -50,20 +50,15 @@ pub struct Point {
 /// The sweep: every registered GPU technique but the reference, each over the settings of the
 /// parameters its descriptor flags for sweeping (each one's `sweep` values in turn, the others at
 /// their defaults; the first two of each for the small run), or once at its defaults where none
-/// is flagged. An entry whose variants are entries of
-/// their own (`procedural`) is swept through them.
+/// is flagged. An entry whose every variant is an entry of its own (`procedural`) is swept
+/// through them; one with a variant of its own beside them (`yuksel`'s scatter beside
+/// `yuksel-targets`) is swept too.
 fn sweep(small: bool) -> Vec<(&'static str, Vec<String>)> {
-    use caustics_core::techniques::REGISTRY as DESCRIBED;
     caustics_gpu::technique::REGISTRY
         .iter()
         .map(|r| r.describe)
         .filter(|d| !d.reference)
-        .filter(|d| {
-            !(d.fixed.is_empty()
-                && DESCRIBED
-                    .iter()
-                    .any(|o| o.table == d.table && !o.fixed.is_empty()))
-        })
+        .filter(|d| !(d.fixed.is_empty() && variants_cover(d)))
         .map(|d| {
             let mut settings: Vec<String> = d
                 .params
@@ -79,6 +74,26 @@ fn sweep(small: bool) -> Vec<(&'static str, Vec<String>)> {
             (d.name, settings)
         })
         .collect()
+}
+
+/// Whether the entries that pin a parameter of `d`'s table pin every value it may take.
+fn variants_cover(d: &caustics_core::techniques::Descriptor) -> bool {
+    use caustics_core::techniques::REGISTRY as DESCRIBED;
+    use caustics_core::techniques::describe::Kind;
+    let pins: Vec<(&str, &str)> = DESCRIBED
+        .iter()
+        .filter(|o| o.table == d.table)
+        .flat_map(|o| o.fixed.iter().copied())
+        .collect();
+    let Some((key, _)) = pins.first() else {
+        return false;
+    };
+    match d.param(key).map(|p| p.kind) {
+        Some(Kind::Choice(values)) => values
+            .iter()
+            .all(|v| pins.iter().any(|(k, pinned)| k == key && pinned == v)),
+        _ => false,
+    }
 }
 
 struct Sizes {
@@ -517,6 +532,12 @@ mod tests {
                 "split=0.3"
             ]
         );
+        // `yuksel`'s scatter and its render-target entry both; `procedural` through its variants.
+        let names: Vec<&str> = sweep(false).into_iter().map(|(n, _)| n).collect();
+        for n in ["yuksel", "yuksel-targets", "procedural-vertex", "procedural-texture"] {
+            assert!(names.contains(&n), "{n} in {names:?}");
+        }
+        assert!(!names.contains(&"procedural"), "{names:?}");
     }
 
     /// A point beaten on both counts leaves the front; a tie on one count, better on the other, too.
