@@ -46,7 +46,8 @@ yuksel pass2 last channel lost @@ $S/yuksel/pass2.wgsl @@ k <= m; @@ k < m; @@ $
 yuksel patches x1.01 @@ $S/yuksel/patches.wgsl @@ grid_hermite_texel(heights, vec2<i32>(id.xy), u.wrap != 0u) @@ grid_hermite_texel(heights, vec2<i32>(id.xy), u.wrap != 0u) * 1.01 @@ $YU
 yuksel scatter resolve x1.01 @@ $S/yuksel/scatter_resolve.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
 yuksel scatter tier flux x1.01 @@ $S/yuksel/scatter_tier.wgsl @@ add_record(tier_records[r], q); @@ add_record(tier_records[r] * vec4<f32>(1.0, 1.0, 1.0, 1.01), q); @@ $YU
-yuksel scatter fill next row's edge from this row's hit @@ $S/yuksel/scatter_fill.wgsl @@ below[a] = above; @@ below[a] = h; @@ $YU
+yuksel fill next row's edge from this row's hit @@ $S/yuksel/fill.wgsl @@ fill_below[a] = above; @@ fill_below[a] = h; @@ $YU
+yuksel prepass fill last listed pixel lost @@ $S/yuksel/prepass_fill.wgsl @@ id.x >= fill_args[3] @@ id.x + 1u >= fill_args[3] @@ $YU
 yuksel scatter fill last listed pixel lost @@ $S/yuksel/scatter_fill.wgsl @@ id.x >= fill_args[3] @@ id.x + 1u >= fill_args[3] @@ $YU
 yuksel region one row fewer @@ $S/yuksel/region.wgsl @@ out.m = u32(y.x - 1); @@ out.m = u32(y.x - 2); @@ $YU
 yuksel region 1 % narrower bound @@ $S/yuksel/region.wgsl @@ let margin = (highs[0] - lows[0]) * 0.125; @@ let margin = (highs[0] - lows[0]) * 0.12; @@ $YU

@@ -534,7 +534,12 @@ mod tests {
         );
         // `yuksel`'s scatter and its render-target entry both; `procedural` through its variants.
         let names: Vec<&str> = sweep(false).into_iter().map(|(n, _)| n).collect();
-        for n in ["yuksel", "yuksel-targets", "procedural-vertex", "procedural-texture"] {
+        for n in [
+            "yuksel",
+            "yuksel-targets",
+            "procedural-vertex",
+            "procedural-texture",
+        ] {
             assert!(names.contains(&n), "{n} in {names:?}");
         }
         assert!(!names.contains(&"procedural"), "{names:?}");

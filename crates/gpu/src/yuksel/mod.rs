@@ -35,15 +35,16 @@ pub mod technique;
 
 const COMMON: &str = include_str!("../shaders/yuksel/common.wgsl");
 const SAMPLE: &str = include_str!("../shaders/yuksel/sample.wgsl");
+const FILL: &str = include_str!("../shaders/yuksel/fill.wgsl");
 
 pub const PREPASS: PassSource = PassSource {
     name: "yuksel pre-pass",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE],
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL],
     source: include_str!("../shaders/yuksel/prepass.wgsl"),
 };
 pub const PREPASS_FILL: PassSource = PassSource {
     name: "yuksel pre-pass fill",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE],
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL],
     source: include_str!("../shaders/yuksel/prepass_fill.wgsl"),
 };
 pub const PREPASS_SPAN: PassSource = PassSource {
@@ -74,12 +75,12 @@ pub const PATCHES: PassSource = PassSource {
 const SCATTER: &str = include_str!("../shaders/yuksel/scatter.wgsl");
 pub const SCATTER_TIER: PassSource = PassSource {
     name: "yuksel scatter tiers",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER],
     source: include_str!("../shaders/yuksel/scatter_tier.wgsl"),
 };
 pub const SCATTER_FILL: PassSource = PassSource {
     name: "yuksel scatter fill",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
+    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER],
     source: include_str!("../shaders/yuksel/scatter_fill.wgsl"),
 };
 pub const SCATTER_RESOLVE: PassSource = PassSource {
@@ -331,6 +332,8 @@ pub struct Frame {
     bound_bind: wgpu::BindGroup,
     /// The heights in Hermite form (`patches.wgsl`), one texel per height texel.
     patches_bind: wgpu::BindGroup,
+    /// The fill's indirect dispatch and the count of the pixels at k its tier pass lists.
+    fill_args: wgpu::Buffer,
     heights_size: wgpu::Extent3d,
     pub map: wgpu::Texture,
     setup: YukselSetup,
@@ -345,8 +348,6 @@ enum FramePasses {
     Scatter {
         /// One fixed-point sum per map pixel, cleared every frame.
         sums: wgpu::Buffer,
-        /// The fill's indirect dispatch and the count of the pixels it lists.
-        fill_args: wgpu::Buffer,
         /// Tiers, fill, resolve.
         binds: [wgpu::BindGroup; 3],
     },
@@ -586,6 +587,24 @@ impl Yuksel {
             + uniform.size()
             + region.size()
             + (heights_size.width * heights_size.height) as u64 * 16;
+        // The pixels at k, listed for the fill (at most every pixel of the largest region's
+        // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
+        let list_bytes = (ew * eh) as u64 * 4;
+        ctx.check_buffer_size("yuksel fill list", list_bytes)?;
+        let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("yuksel fill list"),
+            size: list_bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("yuksel fill dispatch"),
+            contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::INDIRECT
+                | wgpu::BufferUsages::COPY_DST,
+        });
+        bytes += list_bytes + fill_args.size();
         let passes = match variant {
             Variant::Scatter => {
                 ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
@@ -595,24 +614,7 @@ impl Yuksel {
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 });
-                // The pixels at k, at most every pixel of the largest region's area, and the
-                // fill's indirect dispatch: x and the count cleared every frame, y and z 1.
-                let list_bytes = (ew * eh) as u64 * 4;
-                ctx.check_buffer_size("yuksel scatter fill list", list_bytes)?;
-                let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("yuksel scatter fill list"),
-                    size: list_bytes,
-                    usage: wgpu::BufferUsages::STORAGE,
-                    mapped_at_creation: false,
-                });
-                let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("yuksel scatter fill dispatch"),
-                    contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
-                    usage: wgpu::BufferUsages::STORAGE
-                        | wgpu::BufferUsages::INDIRECT
-                        | wgpu::BufferUsages::COPY_DST,
-                });
-                bytes += sums.size() + list_bytes + fill_args.size();
+                bytes += sums.size();
                 let [tier, fill, resolve] = &self.scatter;
                 let with = |label, pipeline: &wgpu::ComputePipeline| {
                     bind_group(
@@ -644,11 +646,7 @@ impl Yuksel {
                         .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
                     }),
                 ];
-                FramePasses::Scatter {
-                    sums,
-                    fill_args,
-                    binds,
-                }
+                FramePasses::Scatter { sums, binds }
             }
             Variant::RenderTargets => {
                 let layers = (cap_m as u32 + 1).div_ceil(4);
@@ -701,6 +699,8 @@ impl Yuksel {
                             region.as_entire_binding(),
                             View(&extents_view),
                             View(&tiers_view),
+                            fill_args.as_entire_binding(),
+                            fill_list.as_entire_binding(),
                         ],
                     ),
                     bind_group(
@@ -712,7 +712,8 @@ impl Yuksel {
                             View(&patches),
                             View(&pre_view),
                             region.as_entire_binding(),
-                            View(&tiers_view),
+                            fill_args.as_entire_binding(),
+                            fill_list.as_entire_binding(),
                         ],
                     ),
                     bind_group(
@@ -797,6 +798,7 @@ impl Yuksel {
             bound,
             bound_bind,
             patches_bind,
+            fill_args,
             heights_size,
             map,
             setup: setup.clone(),
@@ -816,6 +818,9 @@ impl Yuksel {
     ) -> &'f wgpu::Texture {
         let (w, h) = (frame.setup.width as u32, frame.setup.height as u32);
         encoder.clear_buffer(&frame.bound, 0, None);
+        // The fill's dispatch along x and its count; y and z stay 1.
+        encoder.clear_buffer(&frame.fill_args, 0, Some(4));
+        encoder.clear_buffer(&frame.fill_args, 12, Some(4));
         let size = frame.heights_size;
         {
             let mut pass = begin_compute(encoder, &mut timer, "yuksel patches");
@@ -836,15 +841,8 @@ impl Yuksel {
             pass.dispatch_workgroups(1, 1, 1);
         }
         match &frame.passes {
-            FramePasses::Scatter {
-                sums,
-                fill_args,
-                binds,
-            } => {
+            FramePasses::Scatter { sums, binds } => {
                 encoder.clear_buffer(sums, 0, None);
-                // The dispatch's x and the count; y and z stay 1.
-                encoder.clear_buffer(fill_args, 0, Some(4));
-                encoder.clear_buffer(fill_args, 12, Some(4));
                 let mut pass = begin_compute(encoder, &mut timer, "yuksel scatter");
                 let [tier, fill, resolve] = &self.scatter;
                 // One invocation per pixel of the level's map and apron; per listed pixel at k;
@@ -855,7 +853,7 @@ impl Yuksel {
                 pass.dispatch_workgroups(cols.div_ceil(8), rows.div_ceil(8), 1);
                 pass.set_pipeline(fill);
                 pass.set_bind_group(0, &binds[1], &[]);
-                pass.dispatch_workgroups_indirect(fill_args, 0);
+                pass.dispatch_workgroups_indirect(&frame.fill_args, 0);
                 pass.set_pipeline(resolve);
                 pass.set_bind_group(0, &binds[2], &[]);
                 pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
@@ -872,11 +870,10 @@ impl Yuksel {
                     // One invocation per pixel of the level's map and apron.
                     let (cols, rows) = prepass_pixels(&frame.setup);
                     pass.dispatch_workgroups(cols.div_ceil(8), rows.div_ceil(8), 1);
-                    // The records of the pixels at k, one invocation per record (a texel).
-                    let (pw, ph) = prepass_capacity(&frame.setup);
+                    // The records of the pixels at k, one invocation per listed pixel.
                     pass.set_pipeline(&self.prepass_fill);
                     pass.set_bind_group(0, &prepass[1], &[]);
-                    pass.dispatch_workgroups((pw as u32).div_ceil(8), (ph as u32).div_ceil(8), 1);
+                    pass.dispatch_workgroups_indirect(&frame.fill_args, 0);
                     pass.set_pipeline(&self.prepass_span);
                     pass.set_bind_group(0, &prepass[2], &[]);
                     pass.dispatch_workgroups(cols.div_ceil(8), rows.div_ceil(8), 1);

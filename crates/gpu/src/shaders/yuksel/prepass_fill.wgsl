@@ -1,24 +1,27 @@
-// Technique `yuksel`, pre-pass, second of three: the k x k records of the pixels whose tier is k
-// (`prepass.wgsl` wrote their tier), one invocation per record (texel), the others returning at
-// once. Texel (c, r) is footprint (c % k, r % k) of its pixel.
+// Technique `yuksel`, pre-pass, second of three: the k x k records of each pixel whose tier is k
+// (`prepass.wgsl` listed them), made row by row sharing their edges' rays (`yuksel_fill_row`).
+// Texel (c, r) is footprint (c % k, r % k) of its pixel.
 
 @group(0) @binding(2) var pre_out: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
-@group(0) @binding(4) var tiers: texture_2d<u32>;
+@group(0) @binding(4) var<storage, read> fill_args: array<u32, 4>;
+@group(0) @binding(5) var<storage, read> fill_list: array<u32>;
 
-@compute @workgroup_size(8, 8)
+@compute @workgroup_size(FILL_GROUP)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= fill_args[3] {
+        return;
+    }
     let k = level_subsamples(region.level);
-    let at = id.xy / k;
-    if k == 1u || !in_prepass_area(at, textureDimensions(tiers), region) {
-        return;
-    }
-    if textureLoad(tiers, vec2<i32>(at), 0).x != k {
-        return;
-    }
+    let at = fill_listed(fill_list[id.x], prepass_area(region.n, region.m, region.level));
     let q = prepass_level_pixel(at, region);
     let pixel = u.pixel * f32(1u << region.level);
-    let f = yuksel_part(q.x, q.y, id.x % k, id.y % k, k, pixel);
-    let texel = pre_texel(vec2<i32>(id.xy), textureDimensions(pre_out));
-    textureStore(pre_out, texel.xy, texel.z, yuksel_record(f, q.x, q.y, k, k, pixel));
+    let tile = textureDimensions(pre_out);
+    for (var b = 0u; b < k; b++) {
+        yuksel_fill_row(q, b, k, pixel);
+        for (var a = 0u; a < k; a++) {
+            let texel = pre_texel(vec2<i32>(at * k + vec2<u32>(a, b)), tile);
+            textureStore(pre_out, texel.xy, texel.z, fill_row[a]);
+        }
+    }
 }

@@ -8,13 +8,6 @@
 @group(0) @binding(2) var<storage, read_write> sums: array<atomic<u32>>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 
-// Listed pixels per workgroup of `scatter_fill.wgsl`.
-const FILL_GROUP: u32 = 64u;
-// Footprints a side at k, at most (`MAX_LEVEL_SUBSAMPLES` in yuksel.rs), and the edges between
-// and around them.
-const MAX_FILL: u32 = 8u;
-const MAX_FILL_EDGES: u32 = 9u;
-
 // The fixed point of the sums: 2^20 units to flat water's irradiance, so a texel holds up to 4,096
 // times it (beyond, the sum wraps, unchecked) and each share is rounded by at most 5e-7 of it.
 const FIXED: f32 = 1048576.0;

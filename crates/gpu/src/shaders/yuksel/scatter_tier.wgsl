@@ -5,14 +5,6 @@
 // that neighbouring invocations do the same work). No pre-pass texture and no render targets: the
 // records are added where they are made.
 
-// The fill's indirect dispatch (workgroups of `FILL_GROUP` along x, 1, 1) and how many pixels it
-// lists; the dispatch's x and the count are cleared every frame.
-struct FillArgs {
-    groups: atomic<u32>,
-    y: u32,
-    z: u32,
-    count: atomic<u32>,
-}
 @group(0) @binding(4) var<storage, read_write> fill_args: FillArgs;
 // The pixels at k, as indices `row * width + column` into the pre-pass area.
 @group(0) @binding(5) var<storage, read_write> fill_list: array<u32>;
