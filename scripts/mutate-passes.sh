@@ -43,7 +43,7 @@ yuksel pass1 x1.01 @@ $S/yuksel/pass1.wgsl @@ += ax * ay * p.w * area; @@ += ax 
 yuksel pass1 last channel lost @@ $S/yuksel/pass1.wgsl @@ i32(region.m) + 1); @@ i32(region.m)); @@ $YU
 yuksel pass2 x1.01 @@ $S/yuksel/pass2.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
 yuksel pass2 last channel lost @@ $S/yuksel/pass2.wgsl @@ k <= m; @@ k < m; @@ $YU
-yuksel patches x1.01 @@ $S/yuksel/patches.wgsl @@ grid_hermite_texel(heights, vec2<i32>(id.xy), u.wrap != 0u) @@ grid_hermite_texel(heights, vec2<i32>(id.xy), u.wrap != 0u) * 1.01 @@ $YU
+water patches x1.01 @@ $S/water_patches.wgsl @@ let texel = grid_hermite_texel(heights, vec2<i32>(id.xy), patches_params.wrap != 0u); @@ let texel = grid_hermite_texel(heights, vec2<i32>(id.xy), patches_params.wrap != 0u) * 1.01; @@ $YU
 yuksel scatter resolve x1.01 @@ $S/yuksel/scatter_resolve.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
 yuksel scatter tier flux x1.01 @@ $S/yuksel/scatter_tier.wgsl @@ add_record(tier_records[r], q); @@ add_record(tier_records[r] * vec4<f32>(1.0, 1.0, 1.0, 1.01), q); @@ $YU
 yuksel fill next row's edge from this row's hit @@ $S/yuksel/fill.wgsl @@ fill_below[a] = above; @@ fill_below[a] = h; @@ $YU

@@ -576,7 +576,7 @@ fn render_on_gpu(
     walls: Option<&caustics_core::walls::WallMaps>,
     options: &RenderOptions,
 ) -> Result<Option<caustics_core::render::Image>, GpuError> {
-    let mut timer = GpuTimer::new(ctx, 2);
+    let mut timer = GpuTimer::new(ctx, 3);
     let image = final_image.render_with_walls(
         ctx,
         scene,

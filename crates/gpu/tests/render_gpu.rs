@@ -200,17 +200,19 @@ fn check_caustics(
     };
     let cpu = render_with(scene, surface, caustics, &options, &|_, _| {});
     let final_image = FinalImage::new(ctx).expect("pipeline");
-    let mut timer = GpuTimer::new(ctx, 2);
+    let mut timer = GpuTimer::new(ctx, 3);
     let gpu = final_image
         .render_with(ctx, scene, surface, caustics, &options, Some(&mut timer))
         .expect("GPU render");
     let times = timer.read(ctx).expect("timestamps");
     if ctx.timestamps {
-        // Both passes are timed, as `FinalImageFrame::encode` says: the slab's where there is water.
+        // Every pass is timed, as `FinalImageFrame::encode` says: the water's patches and slab
+        // where there is water.
         let labels: Vec<&str> = times.iter().map(|t| t.label.as_str()).collect();
         let slab = caustics_gpu::final_image::FINAL_IMAGE_SLAB.name;
+        let patches = caustics_gpu::water::patches::WATER_PATCHES.name;
         let expected: &[&str] = if surface.is_some() {
-            &[slab, "final image"]
+            &[patches, slab, "final image"]
         } else {
             &["final image"]
         };

@@ -236,8 +236,9 @@ impl SceneRenderer {
             Some(Err(e)) => (None, Some(format!("final image on the CPU: {e}"))),
             None => (None, Some("final image on the CPU: no GPU".to_string())),
         };
-        // Two sides, two final-image passes each (the water's slab bound, the image).
-        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 4));
+        // Two sides, three final-image passes each (the water's patches and slab bound, the
+        // image).
+        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 6));
         let gpu_frame = match ctx.map(GpuFrame::new) {
             Some(Ok(f)) => Some(f),
             Some(Err(e)) => {

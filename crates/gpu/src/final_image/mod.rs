@@ -6,6 +6,7 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
+//! | the water's heights in Hermite form (compute, one invocation per texel) | `shaders/water_patches.wgsl` ([`crate::water::patches`]) | (the grid's bicubic sample) |
 //! | water slab bound (compute, 128² samples) | `shaders/final_image_slab.wgsl` | `h_max` of `render::render_with`, [`slab_half_height`] |
 //! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `shaders/caustics_mips.wgsl` | `CausticsMap::pyramid` |
 //! | final image (compute, one invocation per pixel) | `shaders/final_image.wgsl` | `render::render` and `Tracer` |
@@ -14,13 +15,15 @@
 //!
 //! The image is a [`FinalImageFrame`]: built once per scene and image size (the objects' trees, the
 //! terrain and albedo textures, the output texture, the bind groups), then per frame one uniform
-//! write ([`FinalImageFrame::update`]) and two passes recorded into the caller's encoder
+//! write ([`FinalImageFrame::update`]) and three passes recorded into the caller's encoder
 //! ([`FinalImageFrame::encode`]). Nothing is created or read back per frame.
 //!
 //! How the inputs reach the shader, and where they differ from what the CPU reads:
 //! - The water is the heights texture the techniques read ([`crate::WaterTextures`]), through the
-//!   shared bicubic `grid_sample` of `water.wgsl` with the water's edge rule per tap, as the CPU's
-//!   `Grid::sample`. A procedural surface is therefore the grid's interpolant here; render on the
+//!   bicubic of `water.wgsl` with the water's edge rule per tap, as the CPU's `Grid::sample`: in
+//!   Hermite form (`grid_sample_hermite`, from the texels' central differences written once a
+//!   frame), which reads 4 texels where `grid_sample` reads 16 for the same surface (the final
+//!   image's pass took 0.50 to 0.67 times its time on lavapipe, docs/benchmarks.md). A procedural surface is therefore the grid's interpolant here; render on the
 //!   CPU with the grid's surface ([`water_grid`] is the one [`FinalImage::render_with`] uploads)
 //!   for an exact comparison. The slab the surface lies in is found from that texture on the GPU
 //!   each frame, as the CPU finds it from its surface.
@@ -64,6 +67,7 @@ use crate::map_mips::{MapMips, mip_chain, mips_pipeline};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::technique::{Output, WallsOutput, WaterTextures};
+use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError, GpuTimer};
 use upload::Lighting;
 
@@ -99,6 +103,8 @@ const TILE: u32 = 8;
 pub struct FinalImage {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
+    /// The water's heights in Hermite form, which the search for the surface reads.
+    patches: WaterPatches,
     mips_pipeline: wgpu::ComputePipeline,
     scene_layout: wgpu::BindGroupLayout,
     mesh_layout: wgpu::BindGroupLayout,
@@ -118,6 +124,9 @@ pub type PyramidLevel = (u32, Vec<[f32; 4]>);
 pub struct FinalImageFrame {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
+    patches_pipeline: WaterPatches,
+    /// The water's heights in Hermite form, filled each frame (none without water).
+    patches: Option<Patches>,
     /// The dispatches of the floor map's pyramid below level 0; none for other lighting.
     mips_groups: Option<MapMips>,
     /// The levels `mips_groups` write, below level 0.
@@ -406,6 +415,7 @@ impl FinalImage {
         Ok(FinalImage {
             pipeline,
             slab_pipeline,
+            patches: WaterPatches::new(ctx),
             mips_pipeline,
             scene_layout,
             mesh_layout,
@@ -538,9 +548,13 @@ impl FinalImage {
         let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
             t.unwrap_or(empty).create_view(&Default::default())
         };
-        let water_view = match water {
-            Some(w) => w.heights.clone(),
-            None => view(None, &self.empty_r32),
+        let patches = water.map(|w| {
+            let wrap = scene.water.as_ref().is_some_and(|sw| sw.wrap);
+            self.patches.frame(ctx, &w.heights, wrap)
+        });
+        let water_view = match &patches {
+            Some(p) => p.view.clone(),
+            None => view(None, &self.empty_rgba32),
         };
         let views = [
             view(terrain.as_ref(), &self.empty_r32),
@@ -608,6 +622,8 @@ impl FinalImage {
         let mut frame = FinalImageFrame {
             pipeline: self.pipeline.clone(),
             slab_pipeline: self.slab_pipeline.clone(),
+            patches_pipeline: self.patches.clone(),
+            patches,
             mips_groups,
             scene_group,
             mesh_group,
@@ -768,6 +784,9 @@ impl FinalImageFrame {
     /// uniform write. What the frame was built with stays: the image size (the aspect ratio is the
     /// frame's), the textures, the objects; a change to those needs a new frame.
     pub fn update(&mut self, ctx: &GpuContext, scene: &Scene, options: &RenderOptions) {
+        if let Some(patches) = &mut self.patches {
+            patches.set_wrap(ctx, scene.water.as_ref().is_some_and(|w| w.wrap));
+        }
         let lighting = match self.lighting {
             // A floor map covers the water square (the scene's without water), as the techniques
             // lay their maps out, unless the caller said otherwise.
@@ -796,10 +815,14 @@ impl FinalImageFrame {
         self.written = Some(params);
     }
 
-    /// Record the slab bound of the water (when there is water) and the image into `encoder`. With
-    /// a `timer`, both passes are timed: the slab pass (128² bicubic samples) as "final image
-    /// slab", the image as "final image"; a timer needs room for two passes per image.
+    /// Record the water's patches and slab bound (when there is water) and the image into
+    /// `encoder`. With a `timer`, every pass is timed: the patches as "water patches", the slab
+    /// pass (128² bicubic samples) as "final image slab", the image as "final image"; a timer
+    /// needs room for three passes per image.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
+        if let Some(patches) = &self.patches {
+            self.patches_pipeline.encode(patches, encoder, &mut timer);
+        }
         if let Some(group) = &self.slab_group {
             encoder.clear_buffer(&self.slab_max, 0, None);
             let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE_SLAB.name);

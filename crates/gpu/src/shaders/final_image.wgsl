@@ -89,6 +89,8 @@ struct Object {
 @group(0) @binding(0) var<uniform> params: FinalImage;
 // The water's heights as the techniques read them (R32Float, any size, covering the water square),
 // read through grid_sample with the water's edge rule per tap, as the CPU's `Grid::sample`.
+// The water's heights in Hermite form (`water_patches.wgsl`): 4 texels a sample where the bicubic
+// reads 16, for the same surface.
 @group(0) @binding(1) var water_height: texture_2d<f32>;
 // The terrain's height (R32Float), clamped at its edges.
 @group(0) @binding(2) var terrain_height: texture_2d<f32>;
@@ -184,7 +186,7 @@ fn absorbed(distance: f32) -> vec3<f32> {
 }
 
 fn water_height_gradient(p: vec2<f32>) -> vec3<f32> {
-    return grid_sample(water_height, p, params.water_size, has(FLAG_WRAP_SURFACE));
+    return grid_sample_hermite(water_height, p, params.water_size, has(FLAG_WRAP_SURFACE));
 }
 
 // render.rs `render_with`: 1.5 times the largest |h| on its lattice, plus 1e-6.

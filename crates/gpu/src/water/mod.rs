@@ -2,6 +2,7 @@
 
 pub mod field;
 pub mod ocean;
+pub mod patches;
 pub mod ripple;
 
 use caustics_core::water::procedural::Procedural;

@@ -29,6 +29,7 @@ use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{self, OPTICS, PassSource, REDUCE, WATER};
+use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 pub mod technique;
@@ -66,11 +67,6 @@ pub const REGION: PassSource = PassSource {
     name: "yuksel region",
     shared: &[OPTICS, COMMON, REDUCE],
     source: include_str!("../shaders/yuksel/region.wgsl"),
-};
-pub const PATCHES: PassSource = PassSource {
-    name: "yuksel patches",
-    shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/yuksel/patches.wgsl"),
 };
 const SCATTER: &str = include_str!("../shaders/yuksel/scatter.wgsl");
 pub const SCATTER_TIER: PassSource = PassSource {
@@ -261,7 +257,7 @@ impl PrepassTiling {
 /// The technique's pipelines, built once per device.
 pub struct Yuksel {
     /// The heights in Hermite form, which every ray reads.
-    patches: wgpu::ComputePipeline,
+    patches: WaterPatches,
     region: wgpu::ComputePipeline,
     region_bound: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
@@ -330,8 +326,8 @@ pub struct Frame {
     /// its dispatch covers.
     bound: wgpu::Buffer,
     bound_bind: wgpu::BindGroup,
-    /// The heights in Hermite form (`patches.wgsl`), one texel per height texel.
-    patches_bind: wgpu::BindGroup,
+    /// The heights in Hermite form, one texel per height texel.
+    patches: Patches,
     /// The fill's indirect dispatch and the count of the pixels at k its tier pass lists.
     fill_args: wgpu::Buffer,
     heights_size: wgpu::Extent3d,
@@ -406,6 +402,7 @@ impl Frame {
                 bytemuck::bytes_of(&YukselUniform::tiled(setup, *base, *phase, &self.tiling)),
             );
         }
+        self.patches.set_wrap(ctx, setup.wrap);
         self.setup = setup.clone();
     }
 }
@@ -417,7 +414,7 @@ impl Yuksel {
         let targets_per_draw = limits.max_color_attachments.min(by_bytes).clamp(1, 8);
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
-            patches: compute_pipeline(ctx, &PATCHES),
+            patches: WaterPatches::new(ctx),
             region: compute_pipeline(ctx, &REGION),
             region_bound: compute_pipeline(ctx, &REGION_BOUND),
             prepass: compute_pipeline(ctx, &PREPASS),
@@ -558,24 +555,8 @@ impl Yuksel {
             ],
         );
         let heights_size = heights_view.texture().size();
-        let patches = ctx
-            .texture_2d(
-                "yuksel patches",
-                (heights_size.width, heights_size.height, 1),
-                MAP_FORMAT,
-                U::STORAGE_BINDING | U::TEXTURE_BINDING,
-            )
-            .create_view(&Default::default());
-        let patches_bind = bind_group(
-            ctx,
-            "yuksel patches",
-            &self.patches.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                View(heights_view),
-                View(&patches),
-            ],
-        );
+        let water_patches = self.patches.frame(ctx, heights_view, setup.wrap);
+        let patches = &water_patches.view;
         let map = ctx.texture_2d(
             "yuksel map",
             (w, h, 1),
@@ -583,10 +564,8 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
-        let mut bytes = (w * h) as u64 * 16
-            + uniform.size()
-            + region.size()
-            + (heights_size.width * heights_size.height) as u64 * 16;
+        let mut bytes =
+            (w * h) as u64 * 16 + uniform.size() + region.size() + water_patches.bytes();
         // The pixels at k, listed for the fill (at most every pixel of the largest region's
         // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
         let list_bytes = (ew * eh) as u64 * 4;
@@ -623,7 +602,7 @@ impl Yuksel {
                         &pipeline.get_bind_group_layout(0),
                         &[
                             uniform.as_entire_binding(),
-                            View(&patches),
+                            View(patches),
                             sums.as_entire_binding(),
                             region.as_entire_binding(),
                             fill_args.as_entire_binding(),
@@ -694,7 +673,7 @@ impl Yuksel {
                         &self.prepass.get_bind_group_layout(0),
                         &[
                             uniform.as_entire_binding(),
-                            View(&patches),
+                            View(patches),
                             View(&pre_view),
                             region.as_entire_binding(),
                             View(&extents_view),
@@ -709,7 +688,7 @@ impl Yuksel {
                         &self.prepass_fill.get_bind_group_layout(0),
                         &[
                             uniform.as_entire_binding(),
-                            View(&patches),
+                            View(patches),
                             View(&pre_view),
                             region.as_entire_binding(),
                             fill_args.as_entire_binding(),
@@ -797,7 +776,7 @@ impl Yuksel {
             region_bind,
             bound,
             bound_bind,
-            patches_bind,
+            patches: water_patches,
             fill_args,
             heights_size,
             map,
@@ -822,12 +801,7 @@ impl Yuksel {
         encoder.clear_buffer(&frame.fill_args, 0, Some(4));
         encoder.clear_buffer(&frame.fill_args, 12, Some(4));
         let size = frame.heights_size;
-        {
-            let mut pass = begin_compute(encoder, &mut timer, "yuksel patches");
-            pass.set_pipeline(&self.patches);
-            pass.set_bind_group(0, &frame.patches_bind, &[]);
-            pass.dispatch_workgroups(size.width.div_ceil(8), size.height.div_ceil(8), 1);
-        }
+        self.patches.encode(&frame.patches, encoder, &mut timer);
         {
             let mut pass = begin_compute(encoder, &mut timer, "yuksel region bound");
             pass.set_pipeline(&self.region_bound);

@@ -3,7 +3,7 @@
 // caustics-core/src/techniques/yuksel.rs.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
-// The heights in Hermite form (`patches.wgsl`).
+// The heights in Hermite form (`water_patches.wgsl`).
 @group(0) @binding(1) var patches: texture_2d<f32>;
 
 // The narrowest footprint half-width (`MIN_HALF_WIDTH` in yuksel.rs): a fold's light keeps a box of

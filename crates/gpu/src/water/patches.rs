@@ -1,0 +1,121 @@
+//! The water's heights in Hermite form for the passes that sample the surface many times a pixel:
+//! each texel's height and its central differences along u, v and across
+//! (`shaders/water_patches.wgsl`), written once a frame, so that `grid_sample_hermite` reads the 4
+//! texels around a point where `grid_sample`'s bicubic reads 16. Catmull-Rom is the cubic Hermite
+//! spline on central differences, so the surface is the same (the CPU twins keep sampling their
+//! grids bicubically). Measured on lavapipe: the bicubic reads were about 60 % of yuksel's frame,
+//! which this took from 432-458 ms to 170-176 ms on the pool (docs/benchmarks.md).
+
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::shaders::{PassSource, WATER};
+use crate::{GpuContext, GpuTimer};
+
+pub const WATER_PATCHES: PassSource = PassSource {
+    name: "water patches",
+    shared: &[WATER],
+    source: include_str!("../shaders/water_patches.wgsl"),
+};
+
+/// Mirrors `Patches` in `shaders/water_patches.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+struct PatchesUniform {
+    wrap: u32,
+    _pad: [u32; 3],
+}
+
+/// The pass's pipeline, built once per device.
+#[derive(Clone)]
+pub struct WaterPatches {
+    pipeline: wgpu::ComputePipeline,
+}
+
+/// One heights texture's patches: an `Rgba32Float` texture of its size and the pass that fills it.
+pub struct Patches {
+    pub view: wgpu::TextureView,
+    uniform: wgpu::Buffer,
+    wrap: bool,
+    bind: wgpu::BindGroup,
+    size: (u32, u32),
+}
+
+impl WaterPatches {
+    pub fn new(ctx: &GpuContext) -> Self {
+        WaterPatches {
+            pipeline: compute_pipeline(ctx, &WATER_PATCHES),
+        }
+    }
+
+    /// The patches of `heights` (periodic where `wrap`), filled by each [`Patches::encode`].
+    pub fn frame(&self, ctx: &GpuContext, heights: &wgpu::TextureView, wrap: bool) -> Patches {
+        let size = heights.texture().size();
+        let view = ctx
+            .texture_2d(
+                "water patches",
+                (size.width, size.height, 1),
+                wgpu::TextureFormat::Rgba32Float,
+                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default());
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("water patches"),
+            contents: bytemuck::bytes_of(&PatchesUniform {
+                wrap: wrap as u32,
+                _pad: [0; 3],
+            }),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let bind = bind_group(
+            ctx,
+            "water patches",
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                wgpu::BindingResource::TextureView(heights),
+                wgpu::BindingResource::TextureView(&view),
+            ],
+        );
+        Patches {
+            view,
+            uniform,
+            wrap,
+            bind,
+            size: (size.width, size.height),
+        }
+    }
+
+    /// Record the pass filling `patches` from its heights as they are now.
+    pub fn encode(
+        &self,
+        patches: &Patches,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: &mut Option<&mut GpuTimer>,
+    ) {
+        let mut pass = begin_compute(encoder, timer, WATER_PATCHES.name);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &patches.bind, &[]);
+        pass.dispatch_workgroups(patches.size.0.div_ceil(8), patches.size.1.div_ceil(8), 1);
+    }
+}
+
+impl Patches {
+    /// GPU memory, bytes: 16 a height texel.
+    pub fn bytes(&self) -> u64 {
+        self.size.0 as u64 * self.size.1 as u64 * 16
+    }
+
+    /// Take a new edge rule (a uniform write, only when it changes).
+    pub fn set_wrap(&mut self, ctx: &GpuContext, wrap: bool) {
+        if wrap != self.wrap {
+            ctx.write_buffer(
+                &self.uniform,
+                0,
+                bytemuck::bytes_of(&PatchesUniform {
+                    wrap: wrap as u32,
+                    _pad: [0; 3],
+                }),
+            );
+            self.wrap = wrap;
+        }
+    }
+}
