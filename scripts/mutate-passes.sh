@@ -47,8 +47,8 @@ water patches x1.01 @@ $S/water_patches.wgsl @@ let texel = grid_hermite_texel(h
 yuksel scatter resolve x1.01 @@ $S/yuksel/scatter_resolve.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
 yuksel scatter tier flux x1.01 @@ $S/yuksel/scatter_tier.wgsl @@ add_record(tier_records[r], q); @@ add_record(tier_records[r] * vec4<f32>(1.0, 1.0, 1.0, 1.01), q); @@ $YU
 yuksel fill next row's edge from this row's hit @@ $S/yuksel/fill.wgsl @@ fill_below[a] = above; @@ fill_below[a] = h; @@ $YU
-yuksel prepass fill last listed pixel lost @@ $S/yuksel/prepass_fill.wgsl @@ id.x >= fill_args[3] @@ id.x + 1u >= fill_args[3] @@ $YU
-yuksel scatter fill last listed pixel lost @@ $S/yuksel/scatter_fill.wgsl @@ id.x >= fill_args[3] @@ id.x + 1u >= fill_args[3] @@ $YU
+yuksel prepass fill last listed pixel lost @@ $S/yuksel/prepass_fill.wgsl @@ entry < fill_args[3] @@ entry + 1u < fill_args[3] @@ $YU
+yuksel scatter fill last listed pixel lost @@ $S/yuksel/scatter_fill.wgsl @@ entry < fill_args[3] @@ entry + 1u < fill_args[3] @@ $YU
 yuksel region one row fewer @@ $S/yuksel/region.wgsl @@ out.m = u32(y.x - 1); @@ out.m = u32(y.x - 2); @@ $YU
 yuksel region 1 % narrower bound @@ $S/yuksel/region.wgsl @@ let margin = (highs[0] - lows[0]) * 0.125; @@ let margin = (highs[0] - lows[0]) * 0.12; @@ $YU
 yuksel footprint 1 % wider @@ $S/yuksel/sample.wgsl @@ yp.y - ym.y)) * 0.5 / pixel; @@ yp.y - ym.y)) * 0.505 / pixel; @@ $YU

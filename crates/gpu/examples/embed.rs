@@ -6,7 +6,7 @@
 //! the last frame once, as a picture.
 //!
 //! ```sh
-//! cargo run --release -p caustics-gpu --example embed -- yuksel-gather out.png
+//! cargo run --release -p caustics-gpu --example embed -- yuksel-targets out.png
 //! cargo run --release -p caustics-gpu --example embed -- caustic-triangles:photon_image=256
 //! ```
 
@@ -276,6 +276,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// `name` or `name:key=value,...` into the registry's name and its parameter tables.
 fn parse_spec(spec: &str) -> Result<(String, toml::Table), Box<dyn std::error::Error>> {
     let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
+    let name = caustics_core::techniques::canonical(name);
     let key = REGISTRY
         .iter()
         .find(|r| r.name() == name)

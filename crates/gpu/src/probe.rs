@@ -23,6 +23,8 @@ pub struct ProbeOut {
     pub fresnel_sine: [f32; 4],
     pub procedural: [f32; 4],
     pub grid: [f32; 4],
+    /// The same surface from the heights' Hermite form ([`crate::water::patches`]).
+    pub hermite: [f32; 4],
 }
 
 /// Mirrors `ProbeParams` in `shaders/probe.wgsl` (uniform layout, padded to 16 bytes).
@@ -95,6 +97,8 @@ pub fn run(
     });
     let height = ctx.upload_grid("probe height field", setup.grid)?;
     let height_view = height.create_view(&Default::default());
+    let water_patches = crate::water::patches::WaterPatches::new(ctx);
+    let patches = water_patches.frame(ctx, &height_view, setup.wrap);
     let bind = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("probe"),
         layout: &pipeline.get_bind_group_layout(0),
@@ -119,9 +123,14 @@ pub fn run(
                 binding: 4,
                 resource: wgpu::BindingResource::TextureView(&height_view),
             },
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: wgpu::BindingResource::TextureView(&patches.view),
+            },
         ],
     });
     let mut encoder = device.create_command_encoder(&Default::default());
+    water_patches.encode(&patches, &mut encoder, &mut None);
     {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("probe"),

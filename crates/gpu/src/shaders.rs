@@ -106,6 +106,7 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &OCEAN_OUTPUT,
     &RIPPLE_STEP,
     &RIPPLE_DROP,
+    &crate::water::patches::WATER_PATCHES,
     &crate::water::field::WAVES,
     &crate::water::field::PROCEDURAL,
     &crate::water::field::GRID,

@@ -1043,7 +1043,7 @@ fn full_size_render_times() {
         // The first dispatch compiles the shader; time the second.
         for _ in 0..2 {
             let started = std::time::Instant::now();
-            let mut timer = GpuTimer::new(&ctx, 2);
+            let mut timer = GpuTimer::new(&ctx, 3);
             let gpu = final_image
                 .render(
                     &ctx,

@@ -320,8 +320,8 @@ fn yuksel_chooses_its_passes_from_the_preset() {
     eprintln!("{scatter:?} {targets:?} {paper:?} {paper_scatter:?}");
     assert_eq!(scatter.0, "yuksel");
     assert_eq!(targets.0, "yuksel-targets");
-    // The scatter's frame: the map, one sum per map pixel and one tier per pixel of the map and
-    // its apron; the render targets' adds the pre-pass texture and pass 1's channels (both hold
+    // The scatter's frame: the map, one sum per map pixel and one list entry per pixel of the map
+    // and its apron; the render targets' adds the pre-pass texture and pass 1's channels (both hold
     // the heights in Hermite form, 64 KiB here). Measured: 182,960 against 4,978,912 bytes at the
     // defaults, 167,216 against 431,392 at the paper's preset.
     assert!(scatter.1 * 10 < targets.1, "{scatter:?} {targets:?}");

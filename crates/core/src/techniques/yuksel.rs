@@ -87,7 +87,8 @@ use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
 use super::{Input, Job, Made};
 use crate::plot::{Picture, flip_rows, heat, scalar_picture};
 
-/// Paper 1 as registered: the render-target passes (§4).
+/// Paper 1 as registered: the passes its `passes` names (the scatter by default, the paper's
+/// render-target passes, §4, with its preset).
 pub const DESCRIPTOR: Descriptor = Descriptor {
     name: "yuksel",
     table: "yuksel",

@@ -87,10 +87,9 @@ struct Object {
 }
 
 @group(0) @binding(0) var<uniform> params: FinalImage;
-// The water's heights as the techniques read them (R32Float, any size, covering the water square),
-// read through grid_sample with the water's edge rule per tap, as the CPU's `Grid::sample`.
-// The water's heights in Hermite form (`water_patches.wgsl`): 4 texels a sample where the bicubic
-// reads 16, for the same surface.
+// The water's heights as the techniques read them (any size, covering the water square) in Hermite
+// form (`water_patches.wgsl`), read through grid_sample_hermite with the water's edge rule, as the
+// CPU's `Grid::sample`: 4 texels a sample where the bicubic reads 16, for the same surface.
 @group(0) @binding(1) var water_height: texture_2d<f32>;
 // The terrain's height (R32Float), clamped at its edges.
 @group(0) @binding(2) var terrain_height: texture_2d<f32>;

@@ -11,6 +11,7 @@ struct ProbeOut {
     fresnel_sine_procedural: vec4<f32>, // x: Fresnel T, yzw: sum of the sine waves (h, grad)
     procedural: vec4<f32>,              // xyz: paper 2's wave (h, grad)
     grid: vec4<f32>,                    // xyz: bicubic height texture (h, grad)
+    hermite: vec4<f32>,                 // xyz: the same from its Hermite form (water_patches.wgsl)
 }
 
 struct ProbeParams {
@@ -25,6 +26,7 @@ struct ProbeParams {
 @group(0) @binding(2) var<storage, read> waves: array<SineWave>;
 @group(0) @binding(3) var<uniform> params: ProbeParams;
 @group(0) @binding(4) var height: texture_2d<f32>;
+@group(0) @binding(5) var patches: texture_2d<f32>;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -43,5 +45,6 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     o.fresnel_sine_procedural = vec4<f32>(fresnel_transmittance(cos_i, 1.0, inp.normal.w), s);
     o.procedural = vec4<f32>(procedural_wave(params.procedural, inp.point.xy), 0.0);
     o.grid = vec4<f32>(grid_sample(height, inp.point.xy, params.size, params.wrap != 0u), 0.0);
+    o.hermite = vec4<f32>(grid_sample_hermite(patches, inp.point.xy, params.size, params.wrap != 0u), 0.0);
     outputs[k] = o;
 }

@@ -4,11 +4,12 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
+//! | the heights in Hermite form (compute, one texel an invocation; [`crate::water::patches`]), which every ray reads | `shaders/water_patches.wgsl` | (the grid's bicubic sample) |
 //! | region bound (compute, one texel an invocation) and region (one thread) | `shaders/yuksel/region_bound.wgsl`, `region.wgsl` | `YukselSetup::region_for` |
-//! | pre-pass (compute: each pixel's tier, then the records of the pixels at k, then their spans) | `shaders/yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl` | `prepass` |
+//! | pre-pass (compute: each pixel's tier, listing the pixels at k; their records, one listed pixel an invocation through an indirect dispatch; the spans) | `shaders/yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl`, `fill.wgsl` | `prepass` |
 //! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
 //! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
-//! | scatter variant (compute: each pixel's tier and records, the records of the pixels at k, the sums into the map) | `shaders/yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `scatter.wgsl` | `caustics` |
+//! | the scatter, the default `passes` (compute: each pixel's tier and records below k, listing the pixels at k; their records; the sums into the map) | `shaders/yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `fill.wgsl`, `scatter.wgsl` | `caustics` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and

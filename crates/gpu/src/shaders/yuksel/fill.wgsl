@@ -16,8 +16,12 @@ struct FillArgs {
     count: atomic<u32>,
 }
 
-// Listed pixels per workgroup of a fill pass.
+// Listed pixels per workgroup of a fill pass, and the most workgroups its dispatch counts (WebGPU's
+// and most devices' limit along one dimension): past their product (a 2048² map with every pixel
+// at k lists 4.3 million) each invocation fills every `FILL_GROUP * FILL_MAX_GROUPS`-th entry.
 const FILL_GROUP: u32 = 64u;
+const FILL_MAX_GROUPS: u32 = 65535u;
+const FILL_STRIDE: u32 = FILL_GROUP * FILL_MAX_GROUPS;
 // Footprints a side at k, at most (`MAX_LEVEL_SUBSAMPLES` in yuksel.rs), and the edges between
 // and around them.
 const MAX_FILL: u32 = 8u;

@@ -33,7 +33,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let area = prepass_area(region.n, region.m, region.level);
         let i = atomicAdd(&fill_args.count, 1u);
         fill_list[min(i, arrayLength(&fill_list) - 1u)] = id.y * area.x + id.x;
-        if i % FILL_GROUP == 0u {
+        if i % FILL_GROUP == 0u && i < FILL_STRIDE {
             atomicAdd(&fill_args.groups, 1u);
         }
         return;

@@ -9,19 +9,19 @@
 
 @compute @workgroup_size(FILL_GROUP)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= fill_args[3] {
-        return;
-    }
     let k = level_subsamples(region.level);
-    let at = fill_listed(fill_list[id.x], prepass_area(region.n, region.m, region.level));
-    let q = prepass_level_pixel(at, region);
+    let area = prepass_area(region.n, region.m, region.level);
     let pixel = u.pixel * f32(1u << region.level);
     let tile = textureDimensions(pre_out);
-    for (var b = 0u; b < k; b++) {
-        yuksel_fill_row(q, b, k, pixel);
-        for (var a = 0u; a < k; a++) {
-            let texel = pre_texel(vec2<i32>(at * k + vec2<u32>(a, b)), tile);
-            textureStore(pre_out, texel.xy, texel.z, fill_row[a]);
+    for (var entry = id.x; entry < fill_args[3]; entry += FILL_STRIDE) {
+        let at = fill_listed(fill_list[entry], area);
+        let q = prepass_level_pixel(at, region);
+        for (var b = 0u; b < k; b++) {
+            yuksel_fill_row(q, b, k, pixel);
+            for (var a = 0u; a < k; a++) {
+                let texel = pre_texel(vec2<i32>(at * k + vec2<u32>(a, b)), tile);
+                textureStore(pre_out, texel.xy, texel.z, fill_row[a]);
+            }
         }
     }
 }
