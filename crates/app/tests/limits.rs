@@ -35,16 +35,35 @@ fn sizes_beyond_the_program_limit_are_refused_at_the_flag() {
     assert_refused(&out, &["--image-size 64x100000", "between 1 and 16384"]);
 }
 
-/// A map the program takes but the device cannot hold: yuksel's pass-1 targets are the map plus M
-/// rows (its pre-pass texture, larger still, is cut into layers that fit), so a map as tall as the
-/// device's largest texture is beyond it. Needs a
+/// A map the program takes but the device cannot hold: the render targets' pass-1 targets
+/// (`yuksel-targets`) are the map plus M rows (its pre-pass texture, larger still, is cut into
+/// layers that fit), so a map as tall as the device's largest texture is beyond it; yuksel's
+/// default (the scatter) is refused too, by its sums' binding size or the device's memory. Needs a
 /// device whose limit the command line can reach (lavapipe's 16384: about 10 s there,
 /// most of it sampling the water at the map's size before the technique is built).
 fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
     let size = format!("{max}x{max}");
-    let out = render(&[
+    let scatter = render(&[
         "--technique",
         "yuksel",
+        "--resolution",
+        &size,
+        "--image-size",
+        "64x36",
+        "--out",
+        "x.png",
+    ]);
+    assert_refused(&scatter, &[]);
+    // lavapipe: "yuksel scatter sums of 1073741824 bytes is beyond what this GPU allows (134217728
+    // bytes)"; a device with a larger binding size runs out of memory instead.
+    let said = String::from_utf8_lossy(&scatter.stderr);
+    assert!(
+        said.contains("yuksel scatter sums") || said.contains("Out of Memory"),
+        "{said}"
+    );
+    let out = render(&[
+        "--technique",
+        "yuksel-targets",
         "--resolution",
         &size,
         "--image-size",

@@ -503,9 +503,11 @@ impl Yuksel {
                 ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
                 ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
             }
-            // Its list of the pixels at k is checked with its sums, below.
-            Variant::Scatter => {}
+            Variant::Scatter => {
+                ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
+            }
         }
+        ctx.check_buffer_size("yuksel fill list", (ew * eh) as u64 * 4)?;
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
             let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -570,7 +572,6 @@ impl Yuksel {
         // The pixels at k, listed for the fill (at most every pixel of the largest region's
         // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
         let list_bytes = (ew * eh) as u64 * 4;
-        ctx.check_buffer_size("yuksel fill list", list_bytes)?;
         let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("yuksel fill list"),
             size: list_bytes,
@@ -587,7 +588,6 @@ impl Yuksel {
         bytes += list_bytes + fill_args.size();
         let passes = match variant {
             Variant::Scatter => {
-                ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
                 let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("yuksel scatter sums"),
                     size: (w * h) as u64 * 4,
