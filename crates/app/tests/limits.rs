@@ -43,16 +43,19 @@ fn sizes_beyond_the_program_limit_are_refused_at_the_flag() {
 /// most of it sampling the water at the map's size before the technique is built).
 fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
     let size = format!("{max}x{max}");
-    let scatter = render(&[
-        "--technique",
-        "yuksel",
-        "--resolution",
-        &size,
-        "--image-size",
-        "64x36",
-        "--out",
-        "x.png",
-    ]);
+    let map = |technique| {
+        render(&[
+            "--technique",
+            technique,
+            "--resolution",
+            &size,
+            "--image-size",
+            "64x36",
+            "--out",
+            "x.png",
+        ])
+    };
+    let scatter = map("yuksel");
     assert_refused(&scatter, &[]);
     // lavapipe: "yuksel scatter sums of 1073741824 bytes is beyond what this GPU allows (134217728
     // bytes)"; a device with a larger binding size runs out of memory instead.
@@ -61,16 +64,7 @@ fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
         said.contains("yuksel scatter sums") || said.contains("Out of Memory"),
         "{said}"
     );
-    let out = render(&[
-        "--technique",
-        "yuksel-targets",
-        "--resolution",
-        &size,
-        "--image-size",
-        "64x36",
-        "--out",
-        "x.png",
-    ]);
+    let out = map("yuksel-targets");
     assert_refused(
         &out,
         &[

@@ -24,6 +24,15 @@ struct PatchesUniform {
     _pad: [u32; 3],
 }
 
+impl PatchesUniform {
+    fn new(wrap: bool) -> Self {
+        PatchesUniform {
+            wrap: wrap as u32,
+            _pad: [0; 3],
+        }
+    }
+}
+
 /// The pass's pipeline, built once per device.
 #[derive(Clone)]
 pub struct WaterPatches {
@@ -59,10 +68,7 @@ impl WaterPatches {
             .create_view(&Default::default());
         let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("water patches"),
-            contents: bytemuck::bytes_of(&PatchesUniform {
-                wrap: wrap as u32,
-                _pad: [0; 3],
-            }),
+            contents: bytemuck::bytes_of(&PatchesUniform::new(wrap)),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let bind = bind_group(
@@ -110,10 +116,7 @@ impl Patches {
             ctx.write_buffer(
                 &self.uniform,
                 0,
-                bytemuck::bytes_of(&PatchesUniform {
-                    wrap: wrap as u32,
-                    _pad: [0; 3],
-                }),
+                bytemuck::bytes_of(&PatchesUniform::new(wrap)),
             );
             self.wrap = wrap;
         }
