@@ -55,14 +55,20 @@ impl Grid {
         self.data[i * self.cols + j]
     }
 
+    /// The four rows (as offsets into `data`) and four columns of the bicubic taps around
+    /// `(i0, j0)`, `i0 − 1 ..= i0 + 2`, by the edge rule: 8 index wraps where 16 fetches would do
+    /// 32.
     #[inline]
-    fn fetch(&self, i: i64, j: i64, edge: Edge) -> f64 {
+    fn taps(&self, i0: i64, j0: i64, edge: Edge) -> ([usize; 4], [usize; 4]) {
         let (r, c) = (self.rows as i64, self.cols as i64);
-        let (i, j) = match edge {
-            Edge::Wrap => (i.rem_euclid(r), j.rem_euclid(c)),
-            Edge::Clamp => (i.clamp(0, r - 1), j.clamp(0, c - 1)),
-        };
-        self.data[(i * c + j) as usize] as f64
+        let wrap = |k: i64, n: i64| match edge {
+            Edge::Wrap => k.rem_euclid(n),
+            Edge::Clamp => k.clamp(0, n - 1),
+        } as usize;
+        (
+            std::array::from_fn(|a| wrap(i0 - 1 + a as i64, r) * self.cols),
+            std::array::from_fn(|b| wrap(j0 - 1 + b as i64, c)),
+        )
     }
 
     /// Value and gradient of the bicubic interpolant at `p` (world units, the grid covering
@@ -77,16 +83,36 @@ impl Grid {
         let (j0, i0) = (j0 as i64, i0 as i64);
         let (wu, dwu) = catmull_rom(fu);
         let (wv, dwv) = catmull_rom(fv);
+        let (rows, cols) = self.taps(i0, j0, edge);
         let (mut h, mut hu, mut hv) = (0.0, 0.0, 0.0);
-        for (a, (&wy, &dwy)) in wv.iter().zip(&dwv).enumerate() {
-            for (b, (&wx, &dwx)) in wu.iter().zip(&dwu).enumerate() {
-                let s = self.fetch(i0 - 1 + a as i64, j0 - 1 + b as i64, edge);
+        for (&row, (&wy, &dwy)) in rows.iter().zip(wv.iter().zip(&dwv)) {
+            for (&col, (&wx, &dwx)) in cols.iter().zip(wu.iter().zip(&dwu)) {
+                let s = self.data[row + col] as f64;
                 h += wx * wy * s;
                 hu += dwx * wy * s;
                 hv += wx * dwy * s;
             }
         }
         (h, DVec2::new(hu / dx, hv / dy))
+    }
+
+    /// The value alone of [`sample`](Self::sample), the same sum in the same order (so the same
+    /// bits), without the gradient's: the view rays' march through the water evaluates only
+    /// heights, hundreds of times for a grazing ray.
+    pub fn height(&self, p: DVec2, size: f64, edge: Edge) -> f64 {
+        let u = p.x / (size / self.cols as f64) - 0.5;
+        let v = p.y / (size / self.rows as f64) - 0.5;
+        let (j0, i0) = (u.floor(), v.floor());
+        let (wu, _) = catmull_rom(u - j0);
+        let (wv, _) = catmull_rom(v - i0);
+        let (rows, cols) = self.taps(i0 as i64, j0 as i64, edge);
+        let mut h = 0.0;
+        for (&row, &wy) in rows.iter().zip(&wv) {
+            for (&col, &wx) in cols.iter().zip(&wu) {
+                h += wx * wy * self.data[row + col] as f64;
+            }
+        }
+        h
     }
 
     pub fn min_max(&self) -> (f32, f32) {

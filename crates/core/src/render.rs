@@ -194,22 +194,38 @@ pub struct Image {
     pub rgb: Vec<u8>,
 }
 
-/// Samples per side of the lattice [`slab_half_height`] searches.
+/// Samples per side of the lattice [`slab_bounds`] searches.
 pub const SLAB_LATTICE: usize = 128;
 
-/// Half the height of the slab the water surface lies in, which the view rays search: the largest
-/// |h| on a [`SLAB_LATTICE`]² lattice of the square, times 1.5 (room for the interpolant between
-/// samples). The GPU's final image finds the same bound on the GPU (`final_image_slab.wgsl`).
-pub fn slab_half_height(surface: &dyn Surface, size: f64) -> f64 {
+/// What the view rays' search for the water surface needs to know of it ([`slab_bounds`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Slab {
+    /// Half the height of the slab the surface lies in, `|z − level| <= half_height`.
+    pub half_height: f64,
+    /// A bound on the surface's slope `|∇h|`, which limits how fast a ray's height above the
+    /// surface can change ([`first_crossing`]).
+    pub slope: f64,
+}
+
+/// The slab the water surface lies in and its steepest slope, which the view rays search: the
+/// largest |h| and |∇h| on a [`SLAB_LATTICE`]² lattice of the square, each times 1.5 (room for
+/// the interpolant between samples). The GPU's final image finds the same bounds on the GPU
+/// (`final_image_slab.wgsl`).
+pub fn slab_bounds(surface: &dyn Surface, size: f64) -> Slab {
     let n = SLAB_LATTICE;
-    let mut m: f64 = 0.0;
+    let (mut h, mut g): (f64, f64) = (0.0, 0.0);
     for i in 0..n {
         for j in 0..n {
             let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) * (size / n as f64);
-            m = m.max(surface.height(p).abs());
+            let (height, gradient) = surface.height_gradient(p);
+            h = h.max(height.abs());
+            g = g.max(gradient.length());
         }
     }
-    m * 1.5 + 1e-6
+    Slab {
+        half_height: h * 1.5 + 1e-6,
+        slope: g * 1.5 + 1e-6,
+    }
 }
 
 /// Side of the square grid a GPU front end samples an analytic surface on for the final image
@@ -325,6 +341,10 @@ struct Tracer<'a> {
     bvhs: Vec<MeshBvh>,
     /// Bound on |h| of the water, for the slab the surface lies in.
     h_max: f64,
+    /// Bound on the water's slope |∇h|, for the march through that slab ([`first_crossing`]).
+    slope_max: f64,
+    /// The shortest step of that march: a quarter of the slab lattice's spacing.
+    min_step: f64,
     sun: DVec3,
     /// Refracted sun direction under flat water and its transmittance.
     sun_water: DVec3,
@@ -384,9 +404,9 @@ pub fn render_with_walls(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Image {
     let cam = &scene.camera;
-    let h_max = match (surface, &scene.water) {
-        (Some(s), Some(w)) => slab_half_height(s, w.size),
-        _ => 0.0,
+    let slab = match (surface, &scene.water) {
+        (Some(s), Some(w)) => slab_bounds(s, w.size),
+        _ => Slab::default(),
     };
     let ior = scene.water.as_ref().map_or(1.0, |w| w.ior);
     let sun = scene.light.direction;
@@ -403,7 +423,9 @@ pub fn render_with_walls(
         },
         walls: walls.filter(|_| scene.floor.walls),
         bvhs: scene.objects.iter().map(|o| o.mesh.bvh()).collect(),
-        h_max,
+        h_max: slab.half_height,
+        slope_max: slab.slope,
+        min_step: scene.water.as_ref().map_or(0.0, |w| w.size) / (4 * SLAB_LATTICE) as f64,
         sun,
         sun_water: refract(sun, DVec3::Z, 1.0 / ior).unwrap_or(sun),
         t_flat: fresnel_transmittance(-sun.z, 1.0, ior),
@@ -1031,6 +1053,15 @@ impl Tracer<'_> {
         self.sky(d)
     }
 
+    /// How a ray along `d` marches through the water's slab ([`first_crossing`]): its height
+    /// above the surface changes by at most `|d_z| + slope · |d_xy|` per unit of distance.
+    fn march(&self, d: DVec3) -> March {
+        March {
+            rate: d.z.abs() + self.slope_max * d.truncate().length(),
+            min_step: self.min_step,
+        }
+    }
+
     /// The first crossing of the ray with `z = level + h(x, y)`.
     fn hit_water(&self, s: &dyn Surface, o: DVec3, d: DVec3, level: f64) -> Option<(f64, DVec3)> {
         let top = level + self.h_max;
@@ -1044,7 +1075,7 @@ impl Tracer<'_> {
             let p = o + d * t;
             p.z - level - s.height(p.truncate())
         };
-        let t = first_crossing(f, t0, t1)?;
+        let t = first_crossing(f, t0, t1, self.march(d))?;
         Some((t, o + d * t))
     }
 
@@ -1070,7 +1101,7 @@ impl Tracer<'_> {
             let p = o + d * t;
             level + s.height(p.truncate()) - p.z
         };
-        let t = first_crossing(f, t0, t1).unwrap_or(t1);
+        let t = first_crossing(f, t0, t1, self.march(d)).unwrap_or(t1);
         Some((t, o + d * t))
     }
 
@@ -1157,17 +1188,39 @@ fn inside(p: DVec2, size: f64) -> bool {
     p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size
 }
 
-/// The first `t` in `[t0, t1]` where `f` (a ray's signed distance to the water surface, positive
-/// on the side it starts) reaches 0: 24 march steps, then 30 bisections of the step that crossed.
-/// Both crossings, from above and from below, use it; the GPU twin is `first_crossing` in
-/// final_image.wgsl.
-fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64) -> Option<f64> {
-    let steps = 24;
-    let dt = (t1 - t0) / steps as f64;
+/// A ray's march through the water's slab ([`first_crossing`]).
+#[derive(Clone, Copy, Debug)]
+struct March {
+    /// A bound on how fast the ray's height above the surface changes per unit distance.
+    rate: f64,
+    /// The shortest step.
+    min_step: f64,
+}
+
+/// Most steps of [`first_crossing`]'s march; past that many the steps grow to reach the slab's
+/// far side.
+pub const MARCH_STEPS: usize = 512;
+
+/// The first `t` in `[t0, t1]` where `f` (a ray's height above the water surface, positive on the
+/// side it starts) reaches 0. Each step is the height over its bound rate of change,
+/// `f / march.rate`, which cannot pass a crossing (sphere tracing a height field of bounded
+/// slope): a grazing ray meets the first crest that rises into it, not one it would have passed
+/// through between evenly spaced steps (24 even steps over a far ray's slab were a metre apart on
+/// the shore, where the waves are a few decimetres long: the far water was seen through its
+/// nearer crests). Steps are at least `march.min_step`, and at least 1/[`MARCH_STEPS`] of the
+/// interval; then 30 bisections of the step that crossed. Both crossings, from above and from
+/// below, use it; the GPU twin is `first_crossing` in final_image.wgsl.
+fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> Option<f64> {
+    let shortest = march.min_step.max((t1 - t0) / MARCH_STEPS as f64);
     let mut a = t0;
-    for k in 1..=steps {
-        let b = t0 + dt * k as f64;
-        if f(b) <= 0.0 {
+    let mut gap = f(a);
+    if gap <= 0.0 {
+        return Some(t0);
+    }
+    while a < t1 {
+        let b = (a + (gap / march.rate).max(shortest)).min(t1);
+        let next = f(b);
+        if next <= 0.0 {
             let (mut lo, mut hi) = (a, b);
             for _ in 0..30 {
                 let m = 0.5 * (lo + hi);
@@ -1180,6 +1233,7 @@ fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64) -> Option<f64> {
             return Some(0.5 * (lo + hi));
         }
         a = b;
+        gap = next;
     }
     None
 }
@@ -1268,6 +1322,68 @@ mod tests {
             let all: Vec<i64> = (0..(n * n) as i64).collect();
             assert_eq!((xs, ys), (all.clone(), all), "{n}");
         }
+    }
+
+    /// A ray grazing the water (1 in 100) meets the first crest that rises into it: the march's
+    /// steps, the ray's height over the surface's bound on its rate of change, cannot pass a
+    /// crossing wider than the shortest step. The ray dips 5 mm into a 1 m sine wave's crest 5 m
+    /// along (a 10 cm chord) after clearing the crest before it by 5 mm; the crossing found is
+    /// the fine scan's first root. Evenly spaced steps over the slab, as before (24 steps 1.3 m
+    /// apart here), went through that crest and two more, to meet the water at x = 8.07 m
+    /// (measured).
+    #[test]
+    fn a_grazing_ray_meets_the_first_crest_it_dips_into() {
+        use crate::water::waves::{Wave, Waves};
+        let size = 32.0;
+        let surface = Waves::new(
+            &[Wave {
+                amplitude: 0.1,
+                wavelength: 1.0,
+                direction: [1.0, 0.0],
+                phase: 0.3,
+                period: None,
+            }],
+            size,
+            0.0,
+        );
+        let slab = slab_bounds(&surface, size);
+        // The crest nearest x = 5 and the ray that dips 5 mm under it, descending 1 in 100.
+        let crest = (0..100_000)
+            .map(|k| 4.5 + k as f64 * 1e-5)
+            .max_by(|a, b| {
+                let h = |x: f64| surface.height(DVec2::new(x, 3.0));
+                h(*a).total_cmp(&h(*b))
+            })
+            .unwrap();
+        let d = DVec3::new(1.0, 0.0, -0.01).normalize();
+        let z_crest = surface.height(DVec2::new(crest, 3.0)) - 0.005;
+        let o = DVec3::new(0.0, 3.0, z_crest + 0.01 * crest);
+        let gap = |t: f64| {
+            let p = o + d * t;
+            p.z - surface.height(p.truncate())
+        };
+        let t0 = (slab.half_height - o.z) / d.z;
+        let t1 = (-slab.half_height - o.z) / d.z;
+        let march = March {
+            rate: d.z.abs() + slab.slope * d.truncate().length(),
+            min_step: size / (4 * SLAB_LATTICE) as f64,
+        };
+        let found = first_crossing(gap, t0.max(0.0), t1, march).expect("a crossing");
+        let steps = 4_000_000;
+        let scan = (0..=steps)
+            .map(|k| t0.max(0.0) + (t1 - t0.max(0.0)) * k as f64 / steps as f64)
+            .find(|&t| gap(t) <= 0.0)
+            .expect("the scan's crossing");
+        let x = (o + d * found).x;
+        eprintln!(
+            "crossing at x = {x:.6} (crest {crest:.6}), t {found:.9} against the scan's {scan:.9}"
+        );
+        assert!(
+            (x - crest).abs() < 0.05,
+            "met at x = {x}, not the crest at {crest}"
+        );
+        // The scan's spacing is 7.6e-6 along the ray: the two agree within it.
+        assert!((found - scan).abs() < 1e-5, "{found} against {scan}");
     }
 
     /// Beyond a terrain's caustics map (which does not tile) the floor gets the flat water's

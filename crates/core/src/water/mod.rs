@@ -55,7 +55,7 @@ pub struct GridSurface {
 
 impl Surface for GridSurface {
     fn height(&self, p: DVec2) -> f64 {
-        self.grid.sample(p, self.size, self.edge).0
+        self.grid.height(p, self.size, self.edge)
     }
     fn gradient(&self, p: DVec2) -> DVec2 {
         self.grid.sample(p, self.size, self.edge).1

@@ -7,7 +7,7 @@
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
 //! | the water's heights in Hermite form (compute, one invocation per texel) | `shaders/water_patches.wgsl` ([`crate::water::patches`]) | (the grid's bicubic sample) |
-//! | water slab bound (compute, 128² samples) | `shaders/final_image_slab.wgsl` | `h_max` of `render::render_with`, [`slab_half_height`] |
+//! | water slab bounds (compute, 128² samples) | `shaders/final_image_slab.wgsl` | [`slab_bounds`]: the slab's half height and the slope bound of the march |
 //! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `shaders/caustics_mips.wgsl` | `CausticsMap::pyramid` |
 //! | final image (compute, one invocation per pixel) | `shaders/final_image.wgsl` | `render::render` and `Tracer` |
 //! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::filtered` |
@@ -53,8 +53,8 @@
 mod upload;
 
 pub use upload::{
-    FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject, Meshes, SLAB_LATTICE, SlabUniform,
-    albedo, flags, meshes, slab_half_height, water_grid, water_grid_resolution,
+    FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject, Meshes, SLAB_LATTICE, Slab,
+    SlabUniform, albedo, flags, meshes, slab_bounds, water_grid, water_grid_resolution,
 };
 
 use caustics_core::map::{CausticsMap, pyramid_levels};
@@ -525,8 +525,8 @@ impl FinalImage {
             mapped_at_creation: false,
         });
         let slab_max = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image slab bound"),
-            size: 4,
+            label: Some("final image slab bounds"),
+            size: 8,
             usage: wgpu::BufferUsages::STORAGE
                 | wgpu::BufferUsages::COPY_DST
                 | wgpu::BufferUsages::COPY_SRC,
@@ -867,13 +867,18 @@ impl FinalImageFrame {
             .collect()
     }
 
-    /// The slab half-height `h_max` the last submitted frame searched for the water surface in (0
-    /// without a surface): for tests against [`slab_half_height`]. A readback; not for the frame.
-    pub fn read_slab_half_height(&self, ctx: &GpuContext) -> Result<f32, GpuError> {
+    /// The slab the last submitted frame searched for the water surface in and the slope bound
+    /// of its march (zeros without a surface): for tests against [`slab_bounds`]. A readback;
+    /// not for the frame.
+    pub fn read_slab(&self, ctx: &GpuContext) -> Result<Slab, GpuError> {
         if self.slab_group.is_none() {
-            return Ok(0.0);
+            return Ok(Slab::default());
         }
         let bits: Vec<u32> = ctx.read_buffer(&self.slab_max)?;
-        Ok(f32::from_bits(bits[0]) * 1.5 + 1e-6)
+        let scaled = |b: u32| f32::from_bits(b) as f64 * 1.5 + 1e-6;
+        Ok(Slab {
+            half_height: scaled(bits[0]),
+            slope: scaled(bits[1]),
+        })
     }
 }

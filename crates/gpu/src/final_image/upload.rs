@@ -6,7 +6,7 @@
 //! its flat-water transmittance, the camera basis) is derived here in f64 the same way and handed
 //! to the shader rounded to f32, so the two sides start from the same numbers. The slab bound
 //! `h_max` depends on the water, which lives on the GPU: `shaders/final_image_slab.wgsl` finds it
-//! there each frame ([`slab_half_height`] is its CPU twin).
+//! there each frame ([`slab_bounds`] is its CPU twin).
 
 use caustics_core::optics::{fresnel_transmittance, refract};
 use caustics_core::render::{RenderOptions, sky_ambient};
@@ -155,7 +155,7 @@ pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
 
 /// The slab bound of the CPU renderer, which the slab pass (`shaders/final_image_slab.wgsl`) finds
 /// on the GPU: both sides search the same slab and put the deck at the same height.
-pub use caustics_core::render::slab_half_height;
+pub use caustics_core::render::{Slab, slab_bounds};
 
 /// Where the floor's light comes from, as the frame binds it.
 #[derive(Clone, Copy, Debug, PartialEq)]

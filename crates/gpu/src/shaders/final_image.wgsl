@@ -119,8 +119,11 @@ const MAX_DEPTH: u32 = 6u;
 // Pending rays: each level of glass, or of the surface met from below, leaves at most one ray
 // waiting, so 7 levels need 8 slots.
 const RAY_STACK: u32 = 16u;
-// Steps of the slab search for the water and the terrain, and bisection steps after it.
-const WATER_STEPS: u32 = 24u;
+// Most steps of the march through the water's slab (render.rs `MARCH_STEPS`) and of the terrain's
+// search, and bisection steps after either.
+const MARCH_STEPS: u32 = 512u;
+// render.rs `SLAB_LATTICE`: the march's shortest step is a quarter of its spacing.
+const SLAB_LATTICE: u32 = 128u;
 const FLOOR_STEPS: u32 = 64u;
 const BISECTIONS: u32 = 30u;
 
@@ -139,6 +142,8 @@ var<private> ray_count: u32;
 var<private> pixel_radiance: vec3<f32>;
 // Bound on |h| of the water: the slab the surface lies in (render.rs `h_max`), 0 without a surface.
 var<private> h_max: f32;
+// Bound on the water's slope |∇h| (render.rs `slope_max`), 0 without a surface.
+var<private> slope_max: f32;
 
 fn push_ray(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, under: bool) {
     if ray_count < RAY_STACK {
@@ -194,6 +199,14 @@ fn slab_half_height() -> f32 {
         return 0.0;
     }
     return bitcast<f32>(slab_max[0]) * 1.5 + 1e-6;
+}
+
+// render.rs `slab_bounds`' slope: 1.5 times the largest |∇h| on its lattice, plus 1e-6.
+fn slab_slope() -> f32 {
+    if !has(FLAG_SURFACE) {
+        return 0.0;
+    }
+    return bitcast<f32>(slab_max[1]) * 1.5 + 1e-6;
 }
 
 fn floor_height(p: vec2<f32>) -> f32 {
@@ -595,13 +608,23 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 }
 
 // render.rs `first_crossing`: the first t in [t0, t1] where the ray's signed distance to the
-// surface, `side * water_gap` (side 1: from above, -1: from below), reaches 0; -1 for none.
+// surface, `side * water_gap` (side 1: from above, -1: from below), reaches 0; -1 for none. Each
+// step is that distance over the bound on its rate of change, `|d_z| + slope_max |d_xy|` (no
+// step can pass a crossing), at least a quarter of the slab lattice's spacing and 1/MARCH_STEPS
+// of the interval; then bisections of the step that crossed.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
-    let dt = (t1 - t0) / f32(WATER_STEPS);
+    let rate = abs(d.z) + slope_max * length(d.xy);
+    let shortest = max(params.water_size / f32(4u * SLAB_LATTICE), (t1 - t0) / f32(MARCH_STEPS));
     var a = t0;
-    for (var k = 1u; k <= WATER_STEPS; k++) {
-        let b = t0 + dt * f32(k);
-        if side * water_gap(o, d, b) <= 0.0 {
+    var gap = side * water_gap(o, d, a);
+    if gap <= 0.0 {
+        return t0;
+    }
+    // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding.
+    for (var k = 0u; k < MARCH_STEPS + 2u && a < t1; k++) {
+        let b = min(a + max(gap / rate, shortest), t1);
+        let next = side * water_gap(o, d, b);
+        if next <= 0.0 {
             var lo = a;
             var hi = b;
             for (var s = 0u; s < BISECTIONS; s++) {
@@ -615,6 +638,7 @@ fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f3
             return 0.5 * (lo + hi);
         }
         a = b;
+        gap = next;
     }
     return -1.0;
 }
@@ -961,6 +985,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     h_max = slab_half_height();
+    slope_max = slab_slope();
     let under = camera_under_water();
     let n = max(params.supersampling, 1u);
     var c = vec3<f32>(0.0);
