@@ -73,8 +73,9 @@ ripple clear leaves 1e-3 @@ $S/ripple_clear.wgsl @@ vec4<f32>(0.0) @@ vec4<f32>(
 field waves x1.01 @@ $S/water_field_waves.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
 field procedural x1.01 @@ $S/water_field_procedural.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
 field grid x1.01 @@ $S/water_field_grid.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
-final image x1.01 @@ $S/final_image.wgsl @@ vec4<f32>(tone_map(c), 1.0) @@ vec4<f32>(tone_map(c) * 1.01, 1.0) @@ $FI
-final image slab bound 1 % low @@ $S/final_image_slab.wgsl @@ bitcast<u32>(abs(h)) @@ bitcast<u32>(abs(h) * 0.99) @@ $FI
+final image x1.01 @@ $S/final_image.wgsl @@ vec4<f32>(tone_map(c, params.tone_map), 1.0) @@ vec4<f32>(tone_map(c, params.tone_map) * 1.01, 1.0) @@ $FI
+final image slab bound 1 % low @@ $S/final_image_slab.wgsl @@ bitcast<u32>(abs(h.x)) @@ bitcast<u32>(abs(h.x) * 0.99) @@ $FI
+final image slab slope 1 % low @@ $S/final_image_slab.wgsl @@ bitcast<u32>(length(h.yz)) @@ bitcast<u32>(length(h.yz) * 0.99) @@ $FI
 triangles photon x1.01 @@ $S/caustic_triangles/photon.wgsl @@ = trace_photon(id.y, id.x); @@ = trace_photon(id.y, id.x) * 1.01; @@ $CT
 triangles irradiance x1.01 @@ $S/caustic_triangles/irradiance.wgsl @@ = vertex_irradiance(i32(id.y), i32(id.x)); @@ = vertex_irradiance(i32(id.y), i32(id.x)) * 1.01; @@ $CT
 triangles hat edge share 1 % more @@ $S/caustic_triangles/irradiance.wgsl @@ select(1.0, 0.5, i == 0 || i == l) @@ select(1.0, 0.505, i == 0 || i == l) @@ $CT

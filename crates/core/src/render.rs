@@ -1197,9 +1197,14 @@ struct March {
     min_step: f64,
 }
 
-/// Most steps of [`first_crossing`]'s march; past that many the steps grow to reach the slab's
-/// far side.
+/// Most steps of [`first_crossing`]'s march: no step is shorter than 1/`MARCH_STEPS` of the slab's
+/// interval.
 pub const MARCH_STEPS: usize = 512;
+
+/// No step of [`first_crossing`]'s march is longer than 1/`EVEN_STEPS` of the slab's interval, the
+/// even steps it replaced: a slope bound estimated too low (waves two lattice spacings long, seen
+/// only at their crests and troughs) cannot send it across the slab in one step.
+pub const EVEN_STEPS: usize = 24;
 
 /// The first `t` in `[t0, t1]` where `f` (a ray's height above the water surface, positive on the
 /// side it starts) reaches 0. Each step is the height over its bound rate of change,
@@ -1207,18 +1212,24 @@ pub const MARCH_STEPS: usize = 512;
 /// slope): a grazing ray meets the first crest that rises into it, not one it would have passed
 /// through between evenly spaced steps (24 even steps over a far ray's slab were a metre apart on
 /// the shore, where the waves are a few decimetres long: the far water was seen through its
-/// nearer crests). Steps are at least `march.min_step`, and at least 1/[`MARCH_STEPS`] of the
-/// interval; then 30 bisections of the step that crossed. Both crossings, from above and from
+/// nearer crests). Steps are at least `march.min_step` and 1/[`MARCH_STEPS`] of the interval, and
+/// at most 1/[`EVEN_STEPS`] of it (which wins over `min_step` in a thin interval); then 30
+/// bisections of the step that crossed. Both crossings, from above and from
 /// below, use it; the GPU twin is `first_crossing` in final_image.wgsl.
 fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> Option<f64> {
     let shortest = march.min_step.max((t1 - t0) / MARCH_STEPS as f64);
+    let longest = (t1 - t0) / EVEN_STEPS as f64;
     let mut a = t0;
     let mut gap = f(a);
     if gap <= 0.0 {
         return Some(t0);
     }
-    while a < t1 {
-        let b = (a + (gap / march.rate).max(shortest)).min(t1);
+    // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding, as the GPU's.
+    for _ in 0..MARCH_STEPS + 2 {
+        if a >= t1 {
+            break;
+        }
+        let b = (a + (gap / march.rate).max(shortest).min(longest)).min(t1);
         let next = f(b);
         if next <= 0.0 {
             let (mut lo, mut hi) = (a, b);
@@ -1326,9 +1337,10 @@ mod tests {
 
     /// A ray grazing the water (1 in 100) meets the first crest that rises into it: the march's
     /// steps, the ray's height over the surface's bound on its rate of change, cannot pass a
-    /// crossing wider than the shortest step. The ray dips 5 mm into a 1 m sine wave's crest 5 m
-    /// along (a 10 cm chord) after clearing the crest before it by 5 mm; the crossing found is
-    /// the fine scan's first root. Evenly spaced steps over the slab, as before (24 steps 1.3 m
+    /// crossing. The ray dips 5 mm into a 1 m sine wave's crest 5 m along (a 10 cm chord) after
+    /// clearing the crest before it by 5 mm; with a shortest step of 0.1 mm, only the slope
+    /// bound keeps the steps short near the crest, and the crossing found is the fine scan's
+    /// first root. Evenly spaced steps over the slab, as before (24 steps 1.3 m
     /// apart here), went through that crest and two more, to meet the water at x = 8.07 m
     /// (measured).
     #[test]
@@ -1366,7 +1378,8 @@ mod tests {
         let t1 = (-slab.half_height - o.z) / d.z;
         let march = March {
             rate: d.z.abs() + slab.slope * d.truncate().length(),
-            min_step: size / (4 * SLAB_LATTICE) as f64,
+            // Short, so that the slope bound has to keep the steps from passing the crest.
+            min_step: 1e-4,
         };
         let found = first_crossing(gap, t0.max(0.0), t1, march).expect("a crossing");
         let steps = 4_000_000;

@@ -67,13 +67,30 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
     let technique = file.caustics.technique.clone();
     // One parser for a scene's `technique` (`name` or `name:key=value,...`, as `--technique`
     // takes it) and its `[caustics.<name>]` tables: the registry's descriptors.
-    technique
+    let spec = technique
         .parse::<crate::techniques::Spec>()
         .map_err(|e| match e {
             Error::InvalidParameter(problem) => Error::field("caustics.technique", problem),
             other => other,
         })?;
     crate::techniques::describe::check_tables(&file.caustics.params)?;
+    // A name that pins a parameter (`yuksel-targets`: `passes = "targets"`) wins over the
+    // scene's table, so a table that says otherwise would be dropped without a word.
+    let table = file.caustics.params.get(spec.entry.table);
+    for (key, pinned) in spec.entry.fixed {
+        if let Some(given) = table.and_then(|t| t.get(*key))
+            && given.as_str() != Some(pinned)
+        {
+            return Err(Error::field(
+                format!("caustics.{}.{key}", spec.entry.table),
+                format!(
+                    "is {given}, but the scene's technique `{}` always runs with {key} \
+                     `{pinned}`: drop the key, or choose another technique",
+                    spec.entry.name
+                ),
+            ));
+        }
+    }
 
     let floor = validate_floor(&file.floor, base, size)?;
     if floor.walls && water.is_none() {

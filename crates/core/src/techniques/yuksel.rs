@@ -1253,6 +1253,40 @@ mod tests {
         assert!(err.to_string().contains("passes"), "{err}");
     }
 
+    /// A scene whose technique's name pins `passes` and whose table says otherwise is refused,
+    /// naming the key; the same table under the name that pins nothing, or agreeing with the
+    /// pin, is read.
+    #[test]
+    fn a_scene_table_against_its_techniques_pin_is_refused() {
+        let scene = |technique: &str, passes: &str| {
+            crate::scene::Scene::from_toml(
+                &format!(
+                    "[water]\nsize = 4.0\ndepth = 1.0\n[light]\ndirection = [0.3, 0.2, -1.0]\n[caustics]\ntechnique = \"{technique}\"\n\
+                     [caustics.yuksel]\npasses = \"{passes}\"\n"
+                ),
+                std::path::Path::new("."),
+                "pinned",
+            )
+        };
+        let Err(err) = scene("yuksel-targets", "scatter") else {
+            panic!("yuksel-targets with passes scatter was accepted");
+        };
+        let text = err.to_string();
+        assert!(
+            text.contains("caustics.yuksel.passes") && text.contains("yuksel-targets"),
+            "{text}"
+        );
+        for (technique, passes) in [
+            ("yuksel-targets", "targets"),
+            ("yuksel", "scatter"),
+            ("yuksel", "targets"),
+        ] {
+            if let Err(e) = scene(technique, passes) {
+                panic!("{technique} with passes {passes}: {e}");
+            }
+        }
+    }
+
     /// Records a side of each pixel in `pre`, from its first record's tier.
     fn sides(s: &YukselSetup, pre: &[[f32; 4]]) -> Vec<usize> {
         let (pw, ph) = s.prepass_size();

@@ -136,7 +136,7 @@ pub struct FinalImageFrame {
     /// The slab pass's bind group, with a heights texture bound (none: no surface, `h_max` = 0).
     slab_group: Option<wgpu::BindGroup>,
     uniform: wgpu::Buffer,
-    /// The bits of the largest |h| on the slab lattice (`final_image_slab.wgsl`).
+    /// The bits of the largest |h| and |∇h| on the slab lattice (`final_image_slab.wgsl`).
     slab_max: wgpu::Buffer,
     output: wgpu::Texture,
     lighting: Lighting,

@@ -4,9 +4,9 @@
 //!
 //! Everything the CPU renderer derives once per image (`render.rs`, `render`: the refracted sun and
 //! its flat-water transmittance, the camera basis) is derived here in f64 the same way and handed
-//! to the shader rounded to f32, so the two sides start from the same numbers. The slab bound
-//! `h_max` depends on the water, which lives on the GPU: `shaders/final_image_slab.wgsl` finds it
-//! there each frame ([`slab_bounds`] is its CPU twin).
+//! to the shader rounded to f32, so the two sides start from the same numbers. The slab's bounds
+//! (`h_max` and the slope bound of the march) depend on the water, which lives on the GPU:
+//! `shaders/final_image_slab.wgsl` finds them there each frame ([`slab_bounds`] is its CPU twin).
 
 use caustics_core::optics::{fresnel_transmittance, refract};
 use caustics_core::render::{RenderOptions, sky_ambient};

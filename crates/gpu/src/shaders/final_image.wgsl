@@ -101,7 +101,8 @@ struct Object {
 @group(0) @binding(4) var albedo_image: texture_2d<f32>;
 @group(0) @binding(5) var<storage, read> objects: array<Object>;
 @group(0) @binding(6) var image: texture_storage_2d<rgba8unorm, write>;
-// The bits of the largest |h| on the slab lattice, as final_image_slab.wgsl found it this frame.
+// The bits of the largest |h| and of the largest |∇h| on the slab lattice, as
+// final_image_slab.wgsl found them this frame.
 @group(0) @binding(7) var<storage, read> slab_max: array<u32>;
 // The walls' maps (issue 18): layer k is wall k of `Wall::ALL` (x = 0, x = size, y = 0, y = size)
 // in its first wall_cols[k] columns, row 0 at the floor, the rows up to the rest water level;
@@ -119,9 +120,11 @@ const MAX_DEPTH: u32 = 6u;
 // Pending rays: each level of glass, or of the surface met from below, leaves at most one ray
 // waiting, so 7 levels need 8 slots.
 const RAY_STACK: u32 = 16u;
-// Most steps of the march through the water's slab (render.rs `MARCH_STEPS`) and of the terrain's
-// search, and bisection steps after either.
+// The march through the water's slab: its most steps and the fewest steps it may take across
+// the slab (render.rs `MARCH_STEPS`, `EVEN_STEPS`). The terrain's search's steps, and bisection
+// steps after either.
 const MARCH_STEPS: u32 = 512u;
+const EVEN_STEPS: u32 = 24u;
 // render.rs `SLAB_LATTICE`: the march's shortest step is a quarter of its spacing.
 const SLAB_LATTICE: u32 = 128u;
 const FLOOR_STEPS: u32 = 64u;
@@ -193,7 +196,7 @@ fn water_height_gradient(p: vec2<f32>) -> vec3<f32> {
     return grid_sample_hermite(water_height, p, params.water_size, has(FLAG_WRAP_SURFACE));
 }
 
-// render.rs `render_with`: 1.5 times the largest |h| on its lattice, plus 1e-6.
+// render.rs `slab_bounds`: 1.5 times the largest |h| on its lattice, plus 1e-6.
 fn slab_half_height() -> f32 {
     if !has(FLAG_SURFACE) {
         return 0.0;
@@ -611,10 +614,11 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // surface, `side * water_gap` (side 1: from above, -1: from below), reaches 0; -1 for none. Each
 // step is that distance over the bound on its rate of change, `|d_z| + slope_max |d_xy|` (no
 // step can pass a crossing), at least a quarter of the slab lattice's spacing and 1/MARCH_STEPS
-// of the interval; then bisections of the step that crossed.
+// of the interval, at most 1/EVEN_STEPS of it; then bisections of the step that crossed.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
     let shortest = max(params.water_size / f32(4u * SLAB_LATTICE), (t1 - t0) / f32(MARCH_STEPS));
+    let longest = (t1 - t0) / f32(EVEN_STEPS);
     var a = t0;
     var gap = side * water_gap(o, d, a);
     if gap <= 0.0 {
@@ -622,7 +626,7 @@ fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f3
     }
     // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding.
     for (var k = 0u; k < MARCH_STEPS + 2u && a < t1; k++) {
-        let b = min(a + max(gap / rate, shortest), t1);
+        let b = min(a + min(max(gap / rate, shortest), longest), t1);
         let next = side * water_gap(o, d, b);
         if next <= 0.0 {
             var lo = a;
