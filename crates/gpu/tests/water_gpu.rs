@@ -212,7 +212,48 @@ fn an_ocean_beyond_the_device_limits_is_refused() {
     }
 }
 
+/// A live frame's patches take a new edge rule through `set_wrap` alone: after it they are the
+/// patches of a frame made with that rule, to the bit, and differ from the former rule's at the
+/// grid's edge; the rule is a 16-byte uniform write when it changes and nothing when it does not.
+fn patches_take_a_new_edge_rule() {
+    use caustics_gpu::water::patches::WaterPatches;
+    let ctx = test_gpu();
+    let grid = Grid::from_fn(12, 9, |i, j| {
+        (0.7 * i as f32 + 0.2).sin() * 0.03 + (1.1 * j as f32).cos() * 0.02
+    });
+    let heights = ctx.upload_grid("heights", &grid).expect("upload");
+    let view = heights.create_view(&Default::default());
+    let pass = WaterPatches::new(&ctx);
+    let read = |patches: &caustics_gpu::water::patches::Patches| {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: None });
+        pass.encode(patches, &mut encoder, &mut None);
+        ctx.queue.submit([encoder.finish()]);
+        ctx.read_texture::<[f32; 4]>(patches.view.texture())
+            .expect("patches")
+    };
+    let mut live = pass.frame(&ctx, &view, false);
+    let clamped = read(&live);
+    let periodic = read(&pass.frame(&ctx, &view, true));
+    let before = ctx.traffic();
+    live.set_wrap(&ctx, true);
+    assert_eq!(ctx.traffic().since(&before).uploaded_bytes, 16);
+    let before = ctx.traffic();
+    live.set_wrap(&ctx, true);
+    assert_eq!(ctx.traffic().since(&before).uploaded_bytes, 0);
+    let switched = read(&live);
+    assert!(clamped != periodic, "the edge rule changes no patch");
+    assert!(
+        switched == periodic,
+        "after set_wrap the patches are not the periodic frame's"
+    );
+    live.set_wrap(&ctx, false);
+    assert!(read(&live) == clamped, "set_wrap back to clamped");
+}
+
 test_main! {
+    gpu patches_take_a_new_edge_rule,
     gpu gpu_ocean_matches_the_cpu_fft,
     gpu ocean_passes_are_timed,
     gpu gpu_ripples_match_the_cpu_scheme,

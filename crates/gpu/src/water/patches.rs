@@ -63,7 +63,9 @@ impl WaterPatches {
                 "water patches",
                 (size.width, size.height, 1),
                 wgpu::TextureFormat::Rgba32Float,
-                wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                wgpu::TextureUsages::STORAGE_BINDING
+                    | wgpu::TextureUsages::TEXTURE_BINDING
+                    | wgpu::TextureUsages::COPY_SRC,
             )
             .create_view(&Default::default());
         let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
