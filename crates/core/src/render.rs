@@ -1201,9 +1201,10 @@ struct March {
 /// interval.
 pub const MARCH_STEPS: usize = 512;
 
-/// No step of [`first_crossing`]'s march is longer than 1/`EVEN_STEPS` of the slab's interval, the
-/// even steps it replaced: a slope bound estimated too low (waves two lattice spacings long, seen
-/// only at their crests and troughs) cannot send it across the slab in one step.
+/// No step of [`first_crossing`]'s march is longer than 1/`EVEN_STEPS` of the slab's interval (or
+/// its shortest step), the even steps it replaced: a slope bound estimated too low (waves two
+/// lattice spacings long, seen only at their crests and troughs) cannot send it across the slab in
+/// one step.
 pub const EVEN_STEPS: usize = 24;
 
 /// The first `t` in `[t0, t1]` where `f` (a ray's height above the water surface, positive on the
@@ -1213,12 +1214,13 @@ pub const EVEN_STEPS: usize = 24;
 /// through between evenly spaced steps (24 even steps over a far ray's slab were a metre apart on
 /// the shore, where the waves are a few decimetres long: the far water was seen through its
 /// nearer crests). Steps are at least `march.min_step` and 1/[`MARCH_STEPS`] of the interval, and
-/// at most 1/[`EVEN_STEPS`] of it (which wins over `min_step` in a thin interval); then 30
-/// bisections of the step that crossed. Both crossings, from above and from
+/// at most 1/[`EVEN_STEPS`] of it or `min_step`, whichever is longer (a slab thinner than a few
+/// shortest steps, as flat water's, is crossed in one: steps of 1/24 of its micrometres would not
+/// move an f32 distance of metres on the GPU); then 30 bisections of the step that crossed. Both crossings, from above and from
 /// below, use it; the GPU twin is `first_crossing` in final_image.wgsl.
 fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> Option<f64> {
     let shortest = march.min_step.max((t1 - t0) / MARCH_STEPS as f64);
-    let longest = (t1 - t0) / EVEN_STEPS as f64;
+    let longest = ((t1 - t0) / EVEN_STEPS as f64).max(march.min_step);
     let mut a = t0;
     let mut gap = f(a);
     if gap <= 0.0 {

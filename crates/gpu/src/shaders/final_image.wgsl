@@ -614,11 +614,14 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // surface, `side * water_gap` (side 1: from above, -1: from below), reaches 0; -1 for none. Each
 // step is that distance over the bound on its rate of change, `|d_z| + slope_max |d_xy|` (no
 // step can pass a crossing), at least a quarter of the slab lattice's spacing and 1/MARCH_STEPS
-// of the interval, at most 1/EVEN_STEPS of it; then bisections of the step that crossed.
+// of the interval, at most 1/EVEN_STEPS of it or the shortest step, whichever is longer (a slab
+// of micrometres, flat water's, in one step: 1/24 of it would not move an f32 distance of metres);
+// then bisections of the step that crossed.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
-    let shortest = max(params.water_size / f32(4u * SLAB_LATTICE), (t1 - t0) / f32(MARCH_STEPS));
-    let longest = (t1 - t0) / f32(EVEN_STEPS);
+    let min_step = params.water_size / f32(4u * SLAB_LATTICE);
+    let shortest = max(min_step, (t1 - t0) / f32(MARCH_STEPS));
+    let longest = max((t1 - t0) / f32(EVEN_STEPS), min_step);
     var a = t0;
     var gap = side * water_gap(o, d, a);
     if gap <= 0.0 {
