@@ -1075,7 +1075,7 @@ impl Tracer<'_> {
             let p = o + d * t;
             p.z - level - s.height(p.truncate())
         };
-        let t = first_crossing(f, t0, t1, self.march(d))?;
+        let t = first_crossing(f, t0, t1, self.march(d));
         Some((t, o + d * t))
     }
 
@@ -1101,7 +1101,7 @@ impl Tracer<'_> {
             let p = o + d * t;
             level + s.height(p.truncate()) - p.z
         };
-        let t = first_crossing(f, t0, t1, self.march(d)).unwrap_or(t1);
+        let t = first_crossing(f, t0, t1, self.march(d));
         Some((t, o + d * t))
     }
 
@@ -1216,16 +1216,21 @@ pub const EVEN_STEPS: usize = 24;
 /// nearer crests). Steps are at least `march.min_step` and 1/[`MARCH_STEPS`] of the interval, and
 /// at most 1/[`EVEN_STEPS`] of it or `min_step`, whichever is longer (a slab thinner than a few
 /// shortest steps, as flat water's, is crossed in one: steps of 1/24 of its micrometres would not
-/// move an f32 distance of metres on the GPU); then 30 bisections of the step that crossed. Both crossings, from above and from
-/// below, use it; the GPU twin is `first_crossing` in final_image.wgsl.
-fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> Option<f64> {
+/// move an f32 distance of metres on the GPU); then 30 bisections of the step that crossed, or of
+/// what is left of the interval when the march ends without a crossing (the slab's far side lies
+/// beyond the surface: only rounding, or the steps spent, leave it uncrossed). Both crossings,
+/// from above and from below, use it; the GPU twin is `first_crossing` in final_image.wgsl.
+fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> f64 {
     let shortest = march.min_step.max((t1 - t0) / MARCH_STEPS as f64);
     let longest = ((t1 - t0) / EVEN_STEPS as f64).max(march.min_step);
     let mut a = t0;
     let mut gap = f(a);
     if gap <= 0.0 {
-        return Some(t0);
+        return t0;
     }
+    // The slab's far side lies beyond the surface, so a crossing lies in [a, t1] even when the
+    // march ends without one (rounding at the far side, or the steps spent): bisect the rest.
+    let mut hi = t1;
     // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding, as the GPU's.
     for _ in 0..MARCH_STEPS + 2 {
         if a >= t1 {
@@ -1234,21 +1239,22 @@ fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> Opt
         let b = (a + (gap / march.rate).max(shortest).min(longest)).min(t1);
         let next = f(b);
         if next <= 0.0 {
-            let (mut lo, mut hi) = (a, b);
-            for _ in 0..30 {
-                let m = 0.5 * (lo + hi);
-                if f(m) > 0.0 {
-                    lo = m;
-                } else {
-                    hi = m;
-                }
-            }
-            return Some(0.5 * (lo + hi));
+            hi = b;
+            break;
         }
         a = b;
         gap = next;
     }
-    None
+    let mut lo = a;
+    for _ in 0..30 {
+        let m = 0.5 * (lo + hi);
+        if f(m) > 0.0 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// Distance along the ray to the wall of the pool square it leaves through.
@@ -1383,7 +1389,7 @@ mod tests {
             // Short, so that the slope bound has to keep the steps from passing the crest.
             min_step: 1e-4,
         };
-        let found = first_crossing(gap, t0.max(0.0), t1, march).expect("a crossing");
+        let found = first_crossing(gap, t0.max(0.0), t1, march);
         let steps = 4_000_000;
         let scan = (0..=steps)
             .map(|k| t0.max(0.0) + (t1 - t0.max(0.0)) * k as f64 / steps as f64)

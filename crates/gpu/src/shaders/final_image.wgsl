@@ -604,9 +604,6 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     let t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
     let t = first_crossing(o, d, t0, t1, 1.0);
-    if t < 0.0 {
-        return vec4<f32>(o, -1.0);
-    }
     return vec4<f32>(o + d * t, t);
 }
 
@@ -616,7 +613,9 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // step can pass a crossing), at least a quarter of the slab lattice's spacing and 1/MARCH_STEPS
 // of the interval, at most 1/EVEN_STEPS of it or the shortest step, whichever is longer (a slab
 // of micrometres, flat water's, in one step: 1/24 of it would not move an f32 distance of metres);
-// then bisections of the step that crossed.
+// then bisections of the step that crossed, or of what is left of [t0, t1] when the march ends
+// without one (the slab's far side lies beyond the surface: only rounding, or the steps spent,
+// leave it uncrossed).
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
     let min_step = params.water_size / f32(4u * SLAB_LATTICE);
@@ -627,27 +626,28 @@ fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f3
     if gap <= 0.0 {
         return t0;
     }
+    var hi = t1;
     // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding.
     for (var k = 0u; k < MARCH_STEPS + 2u && a < t1; k++) {
         let b = min(a + min(max(gap / rate, shortest), longest), t1);
         let next = side * water_gap(o, d, b);
         if next <= 0.0 {
-            var lo = a;
-            var hi = b;
-            for (var s = 0u; s < BISECTIONS; s++) {
-                let m = 0.5 * (lo + hi);
-                if side * water_gap(o, d, m) > 0.0 {
-                    lo = m;
-                } else {
-                    hi = m;
-                }
-            }
-            return 0.5 * (lo + hi);
+            hi = b;
+            break;
         }
         a = b;
         gap = next;
     }
-    return -1.0;
+    var lo = a;
+    for (var s = 0u; s < BISECTIONS; s++) {
+        let m = 0.5 * (lo + hi);
+        if side * water_gap(o, d, m) > 0.0 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    return 0.5 * (lo + hi);
 }
 
 // render.rs `hit_water_from_below`: the first crossing of a rising underwater ray with
@@ -667,10 +667,7 @@ fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     }
     let t0 = max((bottom - o.z) / d.z, 0.0);
     let t1 = (top - o.z) / d.z;
-    var t = first_crossing(o, d, t0, t1, -1.0);
-    if t < 0.0 {
-        t = t1;
-    }
+    let t = first_crossing(o, d, t0, t1, -1.0);
     return vec4<f32>(o + d * t, t);
 }
 
