@@ -1407,6 +1407,29 @@ mod tests {
         assert!((found - scan).abs() < 1e-5, "{found} against {scan}");
     }
 
+    /// The march's two ends: a slab as thin as flat water's (2 µm here, with a 4 mm shortest
+    /// step) is crossed in one step, so the whole search is the start, that step and the
+    /// bisections (32 heights; steps of 1/24 of the slab, which do not move an f32 distance of
+    /// metres on the GPU, took 44); and a march that ends without a crossing, as rounding
+    /// can leave the far side, returns that far side instead of a miss.
+    #[test]
+    fn the_march_crosses_a_thin_slab_in_one_step_and_never_misses() {
+        let march = March {
+            rate: 1.0,
+            min_step: 0.004,
+        };
+        let calls = std::cell::Cell::new(0);
+        let flat = |t: f64| {
+            calls.set(calls.get() + 1);
+            5.000_001 - t
+        };
+        let t = first_crossing(flat, 5.0, 5.000_002, march);
+        assert!((t - 5.000_001).abs() < 1e-12, "{t}");
+        assert_eq!(calls.get(), 32, "heights read crossing a thin slab");
+        let t = first_crossing(|_| 1e-9, 2.0, 3.0, march);
+        assert!((t - 3.0).abs() < 1e-8, "an uncrossed march ends at {t}");
+    }
+
     /// Beyond a terrain's caustics map (which does not tile) the floor gets the flat water's
     /// light, not the map's edge stretched to the horizon: with a map that is dark everywhere,
     /// the shore's far rows (whose floor lies beyond the 32 m square) render as without a map,
