@@ -58,9 +58,10 @@ pub struct RenderArgs {
     /// Samples per pixel along each axis of the final image (1 to 16).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
     supersampling: u32,
-    /// Experimental, the CPU's final image only: shade the water with normals filtered by each
-    /// sample's footprint (the waves' slope moments, LEAN mapping) instead of the exact normal
-    /// where each sample meets it. docs/look.md has what it measures against many samples.
+    /// Shade the water with normals filtered by each sample's footprint (the waves' slope
+    /// moments, LEAN mapping: far water reflects a blurred sky and a glint spread by the waves it
+    /// cannot resolve) instead of the exact normal where each sample meets it; both final
+    /// images. docs/look.md has what it measures against many samples.
     #[arg(long)]
     filter_water: bool,
     /// Exposure of the final image: radiance is multiplied by it before the tone curve (the
@@ -166,12 +167,6 @@ fn same_file(a: &Path, b: &Path) -> bool {
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
-    if args.filter_water && matches!(args.final_image, ImageOn::Gpu) {
-        anyhow::bail!(
-            "--filter-water filters the CPU's final image only: drop --final-image gpu, or \
-             --filter-water"
-        );
-    }
     let mut scene = Scene::load_or_builtin(&args.scene)?;
     let spec = match &args.technique {
         Some(t) => t.parse::<Spec>()?.over(&scene.caustics.params),
@@ -290,7 +285,6 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(ctx) = runner.gpu.as_ref()
         && scene.water.is_some()
         && args.raw_walls.is_none()
-        && !args.filter_water
         && caustics_gpu::technique::find(spec.name()).is_some()
     {
         return render_frame(ctx, &scene, &spec, &args, out.as_deref());
@@ -376,7 +370,6 @@ pub fn run(args: RenderArgs) -> Result<()> {
         let image_gpu = runner.gpu.as_ref().filter(|ctx| match args.final_image {
             ImageOn::Gpu => true,
             ImageOn::Cpu => false,
-            ImageOn::Auto if args.filter_water => false,
             ImageOn::Auto => {
                 let software = FinalImage::software_adapter(ctx);
                 if software {
@@ -470,7 +463,10 @@ fn render_frame(
             params: spec.params.clone(),
         })],
     );
-    let options = RenderOptions::for_scene(scene, args.supersampling.max(1));
+    let options = RenderOptions {
+        filter_water: args.filter_water,
+        ..RenderOptions::for_scene(scene, args.supersampling.max(1))
+    };
     let clock = WaterClock {
         time: scene.time,
         amplitude: 1.0,

@@ -113,6 +113,8 @@ pub const ALL_PASSES: &[&PassSource] = &[
     &crate::water::field::RIPPLE_CLEAR,
     &crate::final_image::FINAL_IMAGE,
     &crate::final_image::FINAL_IMAGE_SLAB,
+    &crate::final_image::slopes::WATER_SLOPES_BASE,
+    &crate::final_image::slopes::WATER_SLOPES_HALVE,
     &crate::final_image::CAUSTICS_MIPS,
     &crate::caustic_triangles::PHOTON,
     &crate::caustic_triangles::IRRADIANCE,

@@ -14,8 +14,9 @@
 //! Surfaces", EGSR 2007, eq. 27). The sun's own disk widens the distribution, so a perfectly flat
 //! mirror still shows the sun as a small spot of the sun's whole reflected power.
 //!
-//! CPU only for now (`caustics render --filter-water`, off by default): it is not yet a gain
-//! against many samples (docs/look.md), so it has no GPU twin yet.
+//! Off by default (`RenderOptions::filter_water`, `caustics render --filter-water`): against many
+//! samples it does not yet beat the exact normals (docs/look.md). Its GPU twin is
+//! caustics-gpu's `final_image::slopes` and `final_image.wgsl`'s `rough_water`.
 
 use glam::{DVec2, DVec3};
 
@@ -26,7 +27,7 @@ use crate::grid::Edge;
 const SUB: usize = 4;
 
 /// Most taps along a stretched footprint's long axis; beyond it the taps read a coarser level.
-pub const MAX_TAPS: usize = 4;
+pub const MAX_TAPS: usize = 16;
 
 /// The first and second moments of the water's slope `∇h` over some area.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -165,6 +166,13 @@ impl SlopePyramid {
 
     pub fn levels(&self) -> usize {
         self.levels.len()
+    }
+
+    /// Level `k`'s columns, rows and texels (row by row, `E[h_x]`, `E[h_y]`, `E[h_x²]`, `E[h_y²]`,
+    /// `E[h_x h_y]`): for tests of a GPU twin.
+    pub fn level(&self, k: usize) -> (usize, usize, &[[f64; 5]]) {
+        let l = &self.levels[k];
+        (l.cols, l.rows, &l.texels)
     }
 
     /// Level 0's texel: the larger of its two sides.

@@ -9,6 +9,7 @@
 //! | the water's heights in Hermite form (compute, one invocation per texel) | `shaders/water_patches.wgsl` ([`crate::water::patches`]) | (the grid's bicubic sample) |
 //! | water slab bounds (compute, 128² samples) | `shaders/final_image_slab.wgsl` | [`slab_bounds`]: the slab's half height and the slope bound of the march |
 //! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `shaders/caustics_mips.wgsl` | `CausticsMap::pyramid` |
+//! | the water's slope moments' pyramid (compute, one dispatch a level, in the image's pass, when the normals are filtered) | `shaders/water_slopes_base.wgsl`, `shaders/water_slopes_halve.wgsl` ([`slopes`]) | `SlopePyramid::new` |
 //! | final image (compute, one invocation per pixel) | `shaders/final_image.wgsl` | `render::render` and `Tracer` |
 //! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::filtered` |
 //! | (shared) mesh ray queries | `shaders/bvh.wgsl` | `MeshBvh::intersect` |
@@ -50,6 +51,7 @@
 //! which a desktop GPU finishes in milliseconds; a driver with a watchdog and a very large,
 //! heavily supersampled image would want it split into bands.
 
+pub mod slopes;
 mod upload;
 
 pub use upload::{
@@ -69,6 +71,7 @@ use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError, GpuTimer};
+use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
 /// The sky, the floor's albedo and the tone curve, for any pass that shows the scene.
@@ -106,6 +109,7 @@ pub struct FinalImage {
     /// The water's heights in Hermite form, which the search for the surface reads.
     patches: WaterPatches,
     mips_pipeline: wgpu::ComputePipeline,
+    slopes: SlopePipelines,
     scene_layout: wgpu::BindGroupLayout,
     mesh_layout: wgpu::BindGroupLayout,
     /// Bound in place of a height field, terrain, caustics map or albedo image the scene lacks.
@@ -131,6 +135,9 @@ pub struct FinalImageFrame {
     mips_groups: Option<MapMips>,
     /// The levels `mips_groups` write, below level 0.
     pyramid: Option<wgpu::Texture>,
+    /// The water's slope moments, built in the image's pass when the options filter the normals
+    /// (none without a surface).
+    slopes: Option<SlopePyramid>,
     scene_group: wgpu::BindGroup,
     mesh_group: wgpu::BindGroup,
     /// The slab pass's bind group, with a heights texture bound (none: no surface, `h_max` = 0).
@@ -366,6 +373,7 @@ impl FinalImage {
                 },
                 storage_entry(9),
                 texture_entry(10),
+                storage_entry(11),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -417,6 +425,7 @@ impl FinalImage {
             slab_pipeline,
             patches: WaterPatches::new(ctx),
             mips_pipeline,
+            slopes: SlopePipelines::new(ctx),
             scene_layout,
             mesh_layout,
             empty_r32,
@@ -556,6 +565,22 @@ impl FinalImage {
             Some(p) => p.view.clone(),
             None => view(None, &self.empty_rgba32),
         };
+        let slopes = match (&patches, &scene.water) {
+            (Some(p), Some(w)) => {
+                Some(
+                    self.slopes
+                        .pyramid(ctx, &p.view, p.size(), w.size, w.wrap)?,
+                )
+            }
+            _ => None,
+        };
+        let no_slopes = match &slopes {
+            Some(_) => None,
+            None => Some(storage_buffer(ctx, "no water slope moments", &[0f32; 5])?),
+        };
+        let moments = slopes
+            .as_ref()
+            .map_or_else(|| no_slopes.as_ref().expect("made above"), |s| &s.moments);
         let views = [
             view(terrain.as_ref(), &self.empty_r32),
             view(caustics.map(|c| c.texture()), &self.empty_rgba32),
@@ -580,6 +605,7 @@ impl FinalImage {
                 wgpu::BindingResource::TextureView(&views[4]),
                 wall_cols.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[5]),
+                moments.as_entire_binding(),
             ],
         );
         let mesh_group = bind_group(
@@ -589,6 +615,7 @@ impl FinalImage {
             &[nodes.as_entire_binding(), triangles.as_entire_binding()],
         );
         let mut resources = vec![objects, nodes, triangles, wall_cols];
+        resources.extend(no_slopes);
         let slab_group = match (water, &scene.water) {
             (Some(w), Some(sw)) => {
                 // The water's square and edge rule are the scene's: a new frame when they change.
@@ -638,6 +665,7 @@ impl FinalImage {
             written: None,
             _resources: resources,
             pyramid: mips,
+            slopes,
             _textures: terrain.into_iter().chain(albedo_image).collect(),
         };
         frame.update(ctx, scene, options);
@@ -784,8 +812,12 @@ impl FinalImageFrame {
     /// uniform write. What the frame was built with stays: the image size (the aspect ratio is the
     /// frame's), the textures, the objects; a change to those needs a new frame.
     pub fn update(&mut self, ctx: &GpuContext, scene: &Scene, options: &RenderOptions) {
+        let wrap = scene.water.as_ref().is_some_and(|w| w.wrap);
         if let Some(patches) = &mut self.patches {
-            patches.set_wrap(ctx, scene.water.as_ref().is_some_and(|w| w.wrap));
+            patches.set_wrap(ctx, wrap);
+        }
+        if let Some(slopes) = &mut self.slopes {
+            slopes.set_wrap(ctx, wrap);
         }
         let lighting = match self.lighting {
             // A floor map covers the water square (the scene's without water), as the techniques
@@ -800,6 +832,7 @@ impl FinalImageFrame {
         let params = upload::uniform(
             scene,
             self.slab_group.is_some(),
+            self.slopes.as_ref().map(|s| s.lattice()),
             lighting,
             options,
             self.object_count,
@@ -836,11 +869,33 @@ impl FinalImageFrame {
         if let Some(mips) = &self.mips_groups {
             mips.encode(&mut pass);
         }
+        if let Some(slopes) = self.slopes.as_ref().filter(|_| self.filters_water()) {
+            slopes.encode(&mut pass);
+        }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.scene_group, &[]);
         pass.set_bind_group(1, &self.mesh_group, &[]);
         let (width, height) = self.size;
         pass.dispatch_workgroups(width.div_ceil(TILE), height.div_ceil(TILE), 1);
+    }
+
+    /// Whether the uniform last written filters the waves' normals by the samples' footprints.
+    fn filters_water(&self) -> bool {
+        self.written
+            .is_some_and(|w| w.flags & flags::FILTER_WATER != 0)
+    }
+
+    /// The levels of the water's slope moments the last submitted frame built, finest first (none
+    /// without a surface; stale when the options do not filter the normals): for tests against
+    /// `caustics_core::water::slopes::SlopePyramid`. A readback; not for the frame.
+    pub fn read_slopes(
+        &self,
+        ctx: &GpuContext,
+    ) -> Result<Vec<Vec<[f32; slopes::MOMENTS]>>, GpuError> {
+        match &self.slopes {
+            Some(s) => s.read(ctx),
+            None => Ok(Vec::new()),
+        }
     }
 
     /// The image: `Rgba8Unorm`, tone-mapped and sRGB-encoded (the 8-bit codes of

@@ -12,6 +12,7 @@ use caustics_core::optics::{fresnel_transmittance, refract};
 use caustics_core::render::{RenderOptions, sky_ambient};
 use caustics_core::scene::{Albedo, FloorPattern, Material, Scene};
 use caustics_core::sky::{SUN_RADIUS, Sky, TURBIDITY};
+use caustics_core::water::slopes::{sample_spread, sun_slope_variance};
 use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::DVec3;
 
@@ -55,6 +56,14 @@ pub struct FinalImageUniform {
     pub sun_cos_radius: f32,
     /// The sky's Perez coefficients `A..E` and scale (`Sky::coefficients`), each over `Y, x, y`.
     pub sky: [[f32; 4]; 6],
+    /// The angle one sample covers (`slopes::sample_spread`), which sizes its footprint on the
+    /// water when the normals are filtered.
+    pub slope_spread: f32,
+    /// The slope variance the sun's disk adds to the glint (`slopes::sun_slope_variance`).
+    pub sun_variance: f32,
+    /// Level 0 of the water's slope moments' pyramid (`final_image::slopes`): the heights' lattice.
+    pub slope_cols: u32,
+    pub slope_rows: u32,
 }
 
 /// Mirrors `Slab` in `shaders/final_image_slab.wgsl`.
@@ -83,6 +92,9 @@ pub mod flags {
     pub const EYE_CAUSTICS: u32 = 128;
     /// `Deck::code` of the pool's deck, in the bits from this one up (`deck_kind`).
     pub const DECK_SHIFT: u32 = 8;
+    /// The waves' normals filtered by each sample's footprint (`RenderOptions::filter_water`),
+    /// above the deck's bits.
+    pub const FILTER_WATER: u32 = 1 << 16;
 }
 
 /// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
@@ -168,11 +180,13 @@ pub(super) enum Lighting {
     EyeSpace,
 }
 
-/// The frame's uniform: `surface` whether a heights texture is bound, `object_count` the number of
-/// objects uploaded, `(width, height)` the frame's image (the camera's when it was built).
+/// The frame's uniform: `surface` whether a heights texture is bound, `slopes` the lattice of its
+/// slope moments' pyramid, `object_count` the number of objects uploaded, `(width, height)` the
+/// frame's image (the camera's when it was built).
 pub(super) fn uniform(
     scene: &Scene,
     surface: bool,
+    slopes: Option<(u32, u32)>,
     lighting: Lighting,
     options: &RenderOptions,
     object_count: u32,
@@ -211,6 +225,9 @@ pub(super) fn uniform(
             f |= flags::WRAP_CAUSTICS;
         }
         f |= scene.floor.deck.code() << flags::DECK_SHIFT;
+        if options.filter_water && surface && slopes.is_some() {
+            f |= flags::FILTER_WATER;
+        }
     }
     if water.is_none() && matches!(lighting, Lighting::Floor { .. }) {
         f |= flags::AIR_CAUSTICS;
@@ -257,6 +274,10 @@ pub(super) fn uniform(
             let c = sky.coefficients();
             std::array::from_fn(|i| [c[0][i] as f32, c[1][i] as f32, c[2][i] as f32, 0.0])
         },
+        slope_spread: sample_spread(cam.fov_y, height, options.supersampling) as f32,
+        sun_variance: sun_slope_variance(SUN_RADIUS) as f32,
+        slope_cols: slopes.map_or(1, |s| s.0),
+        slope_rows: slopes.map_or(1, |s| s.1),
     }
 }
 

@@ -56,6 +56,13 @@ struct FinalImage {
     sun_cos_radius: f32,
     // sky.rs `Sky::coefficients`: the Perez A, B, C, D, E and scale, each over (Y, x, y).
     sky: array<vec4<f32>, 6>,
+    // slopes.rs `sample_spread`: the angle one sample covers.
+    slope_spread: f32,
+    // slopes.rs `sun_slope_variance`.
+    sun_variance: f32,
+    // Level 0 of slope_moments: the heights' lattice.
+    slope_cols: u32,
+    slope_rows: u32,
 }
 
 // `FinalImageUniform::flags`.
@@ -71,6 +78,8 @@ const FLAG_AIR_CAUSTICS: u32 = 64u;
 const FLAG_EYE_CAUSTICS: u32 = 128u;
 // The deck's `Deck::code` sits in these bits of the flags (`flags::DECK_SHIFT`).
 const DECK_SHIFT: u32 = 8u;
+// The waves' normals filtered by each sample's footprint (render.rs `rough_water`).
+const FLAG_FILTER_WATER: u32 = 65536u;
 
 fn deck_kind() -> u32 {
     return (params.flags >> DECK_SHIFT) & 255u;
@@ -112,6 +121,9 @@ struct Object {
 // The floor map's pyramid below level 0 (caustics_mips.wgsl): its mip k is the pyramid's level
 // k + 1 (`CausticsMap::pyramid`).
 @group(0) @binding(10) var caustics_mips: texture_2d<f32>;
+// The pyramid of the water's slope moments (final_image/slopes.rs), five floats a texel, level
+// after level from the heights' lattice up to one texel; read only with FLAG_FILTER_WATER.
+@group(0) @binding(11) var<storage, read> slope_moments: array<f32>;
 
 // Stands for the CPU's f64::INFINITY as a ray's range.
 const FAR: f32 = 3.0e38;
@@ -172,15 +184,21 @@ fn sun_radiance() -> vec3<f32> {
     return params.light_color * params.sun_intensity;
 }
 
-fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
+// render.rs `Tracer::sky_without_sun`: what rough water reflects besides the sun's glint. A
+// radiance shows as π times itself in the image's unit (`Tracer::sky`).
+fn sky_without_sun(d: vec3<f32>) -> vec3<f32> {
     let s = params.sky;
     let yxy = perez_sky(d, -params.sun, s[0].xyz, s[1].xyz, s[2].xyz, s[3].xyz, s[4].xyz, s[5].xyz);
+    return xyy_to_rgb(yxy) * (3.14159265 * sun_radiance());
+}
+
+// render.rs `Tracer::sky`: the sky with the sun's disk.
+fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
     var disk = 0.0;
     if dot(d, -params.sun) >= params.sun_cos_radius {
         disk = params.sun_disk;
     }
-    // render.rs `Tracer::sky`: a radiance shows as π times itself in the image's unit.
-    return (xyy_to_rgb(yxy) + vec3<f32>(disk)) * (3.14159265 * sun_radiance());
+    return sky_without_sun(d) + vec3<f32>(disk * 3.14159265) * sun_radiance();
 }
 
 // `Albedo::filtered` over a footprint `extent` wide along x and y (zero: a point).
@@ -864,6 +882,273 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     emit(w, sky_radiance(d));
 }
 
+// The waves' normals filtered by each sample's footprint (issue 30): the GPU twin of
+// caustics-core's water/slopes.rs (`SlopePyramid::filtered`, `visible_facets`, `glint`) and
+// render.rs `Tracer::rough_water`, where the filter is written down and its sources cited (LEAN
+// mapping; Heitz 2014's visible normals; Cox and Munk's glint with Smith's masking).
+
+// slopes.rs `MAX_TAPS`.
+const MAX_SLOPE_TAPS: u32 = 16u;
+
+// slopes.rs `SlopeMoments`: the mean slope and E[h_x²], E[h_y²], E[h_x h_y].
+struct Moments {
+    mean: vec2<f32>,
+    second: vec3<f32>,
+}
+
+fn exact_moments(g: vec2<f32>) -> Moments {
+    return Moments(g, vec3<f32>(g.x * g.x, g.y * g.y, g.x * g.y));
+}
+
+fn water_gradient(p: vec2<f32>) -> vec2<f32> {
+    return water_height_gradient(p).yz;
+}
+
+// Level k of slope_moments: its first texel, columns and rows.
+fn slope_level(k: u32) -> vec3<u32> {
+    var l = vec3<u32>(0u, max(params.slope_cols, 1u), max(params.slope_rows, 1u));
+    for (var i = 0u; i < k; i++) {
+        l = vec3<u32>(l.x + l.y * l.z, (l.y + 1u) / 2u, (l.z + 1u) / 2u);
+    }
+    return l;
+}
+
+fn slope_level_count() -> u32 {
+    var l = vec2<u32>(max(params.slope_cols, 1u), max(params.slope_rows, 1u));
+    var n = 1u;
+    while l.x > 1u || l.y > 1u {
+        l = (l + 1u) / 2u;
+        n++;
+    }
+    return n;
+}
+
+// `Level::fetch`, with the water's edge rule.
+fn slope_fetch(l: vec3<u32>, i: i32, j: i32) -> Moments {
+    let r = i32(l.z);
+    let c = i32(l.y);
+    var ii = clamp(i, 0, r - 1);
+    var jj = clamp(j, 0, c - 1);
+    if has(FLAG_WRAP_SURFACE) {
+        ii = ((i % r) + r) % r;
+        jj = ((j % c) + c) % c;
+    }
+    let k = (l.x + u32(ii * c + jj)) * 5u;
+    return Moments(
+        vec2<f32>(slope_moments[k], slope_moments[k + 1u]),
+        vec3<f32>(slope_moments[k + 2u], slope_moments[k + 3u], slope_moments[k + 4u]),
+    );
+}
+
+// `SlopePyramid::bilinear`.
+fn slope_bilinear(k: u32, p: vec2<f32>) -> Moments {
+    let l = slope_level(k);
+    let u = p.x / (params.water_size / f32(l.y)) - 0.5;
+    let v = p.y / (params.water_size / f32(l.z)) - 0.5;
+    let j0 = floor(u);
+    let i0 = floor(v);
+    let fu = u - j0;
+    let fv = v - i0;
+    var m = Moments(vec2<f32>(0.0), vec3<f32>(0.0));
+    for (var di = 0; di < 2; di++) {
+        let wy = select(1.0 - fv, fv, di == 1);
+        for (var dj = 0; dj < 2; dj++) {
+            let wx = select(1.0 - fu, fu, dj == 1);
+            let t = slope_fetch(l, i32(i0) + di, i32(j0) + dj);
+            m.mean += t.mean * (wx * wy);
+            m.second += t.second * (wx * wy);
+        }
+    }
+    return m;
+}
+
+fn lerp_moments(a: Moments, b: Moments, t: f32) -> Moments {
+    return Moments(a.mean + (b.mean - a.mean) * t, a.second + (b.second - a.second) * t);
+}
+
+// `SlopePyramid::at_lod`.
+fn slope_at_lod(p: vec2<f32>, lod: f32) -> Moments {
+    let top = slope_level_count() - 1u;
+    if lod >= f32(top) {
+        return slope_bilinear(top, p);
+    }
+    let k = u32(floor(lod));
+    var below: Moments;
+    if k == 0u {
+        below = exact_moments(water_gradient(p));
+    } else {
+        below = slope_bilinear(k, p);
+    }
+    return lerp_moments(below, slope_bilinear(k + 1u, p), lod - f32(k));
+}
+
+// Level 0's texel: the larger of its two sides (`SlopePyramid::texel`).
+fn slope_texel() -> f32 {
+    return params.water_size / f32(min(max(params.slope_cols, 1u), max(params.slope_rows, 1u)));
+}
+
+// `Tracer::water_slopes`: the moments over the footprint (`Footprint::of_ray`) of the sample that
+// meets the water at `p` along `d`, through `SlopePyramid::filtered`.
+fn water_slopes(p: vec3<f32>, d: vec3<f32>) -> Moments {
+    let width = length(p - params.camera_position) * params.slope_spread;
+    let len = width / max(abs(d.z), 1e-3);
+    var along = vec2<f32>(1.0, 0.0);
+    if length(d.xy) > 0.0 {
+        along = normalize(d.xy);
+    }
+    let taps = clamp(ceil(len / max(width, 1e-12)), 1.0, f32(MAX_SLOPE_TAPS));
+    let side = max(width, len / taps);
+    let lod = log2(side / slope_texel());
+    if lod <= 0.0 {
+        return exact_moments(water_gradient(p.xy));
+    }
+    var m = Moments(vec2<f32>(0.0), vec3<f32>(0.0));
+    let n = u32(taps);
+    for (var k = 0u; k < n; k++) {
+        let offset = ((f32(k) + 0.5) / taps - 0.5) * len;
+        let t = slope_at_lod(p.xy + along * offset, lod);
+        m.mean += t.mean / taps;
+        m.second += t.second / taps;
+    }
+    return m;
+}
+
+// `SlopeMoments::covariance`: (σ_xx, σ_yy, σ_xy), positive semi-definite.
+fn slope_covariance(m: Moments) -> vec3<f32> {
+    let sxx = max(m.second.x - m.mean.x * m.mean.x, 0.0);
+    let syy = max(m.second.y - m.mean.y * m.mean.y, 0.0);
+    let limit = sqrt(sxx * syy);
+    return vec3<f32>(sxx, syy, clamp(m.second.z - m.mean.x * m.mean.y, -limit, limit));
+}
+
+// slopes.rs `FACETS` and its Gauss-Legendre rule on [-1, 1].
+const FACETS: u32 = 6u;
+const LEGENDRE_X = array<f32, 6>(-0.932469514, -0.661209386, -0.238619186, 0.238619186, 0.661209386, 0.932469514);
+const LEGENDRE_W = array<f32, 6>(0.171324492, 0.360761573, 0.467913935, 0.467913935, 0.360761573, 0.171324492);
+
+// `visible_facets`: the facets a view along `d` sees of water with moments `m`, each with the share
+// of the footprint the eye sees of it (count 1: the mean facet alone).
+struct Facets {
+    normal: array<vec3<f32>, 6>,
+    weight: array<f32, 6>,
+    count: u32,
+}
+
+fn mean_facet(m: Moments) -> Facets {
+    var f: Facets;
+    f.normal[0] = height_field_normal(m.mean);
+    f.weight[0] = 1.0;
+    f.count = 1u;
+    return f;
+}
+
+fn visible_facets(d: vec3<f32>, m: Moments) -> Facets {
+    let c = slope_covariance(m);
+    let run = length(d.xy);
+    var a = vec2<f32>(1.0, 0.0);
+    if run > 0.0 {
+        a = d.xy / run;
+    }
+    let along = vec2<f32>(c.x * a.x + c.z * a.y, c.z * a.x + c.y * a.y);
+    let sigma = sqrt(max(dot(a, along), 0.0));
+    if sigma <= 0.0 {
+        return mean_facet(m);
+    }
+    var u0 = -3.0e38;
+    if run > 0.0 {
+        u0 = -(abs(d.z) + run * dot(m.mean, a)) / (run * sigma);
+    }
+    let lo = max(u0, -4.0);
+    let hi = max(lo, 0.0) + 4.0;
+    let step = along / sigma;
+    var f: Facets;
+    var total = 0.0;
+    for (var k = 0u; k < FACETS; k++) {
+        let u = lo + (hi - lo) * 0.5 * (LEGENDRE_X[k] + 1.0);
+        let seen = LEGENDRE_W[k] * max(u - u0, 0.0) * exp(-0.5 * u * u);
+        f.normal[k] = height_field_normal(m.mean + step * u);
+        f.weight[k] = seen;
+        total += seen;
+    }
+    if total <= 0.0 || total > 3.0e38 {
+        return mean_facet(m);
+    }
+    for (var k = 0u; k < FACETS; k++) {
+        f.weight[k] = f.weight[k] / total;
+    }
+    f.count = FACETS;
+    return f;
+}
+
+// slopes.rs `smith_masking`.
+fn smith_masking(cos_theta: f32, sigma2: f32) -> f32 {
+    let sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    if sin_theta <= 0.0 || sigma2 <= 0.0 {
+        return 1.0;
+    }
+    let a = cos_theta / (sin_theta * sqrt(2.0 * sigma2));
+    if a >= 1.6 {
+        return 1.0;
+    }
+    let lambda = (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
+    return 1.0 / (1.0 + lambda);
+}
+
+fn variance_along(c: vec3<f32>, d: vec3<f32>) -> f32 {
+    var a = vec2<f32>(1.0, 0.0);
+    if length(d.xy) > 0.0 {
+        a = normalize(d.xy);
+    }
+    return c.x * a.x * a.x + 2.0 * c.z * a.x * a.y + c.y * a.y * a.y;
+}
+
+// `Tracer::glint` through slopes.rs `glint`: the sun's reflection off water of moments `m` toward
+// the eye looking along `d`, with its mirroring facet's Fresnel reflectance, in the image's unit.
+fn glint(d: vec3<f32>, m: Moments) -> vec3<f32> {
+    let to_eye = -d;
+    let to_sun = -params.sun;
+    let hv = to_eye + to_sun;
+    if to_eye.z <= 0.0 || hv.z <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let h = normalize(hv);
+    var c = slope_covariance(m);
+    c = vec3<f32>(c.x + params.sun_variance, c.y + params.sun_variance, c.z);
+    let det = c.x * c.y - c.z * c.z;
+    let e = vec2<f32>(-h.x / h.z, -h.y / h.z) - m.mean;
+    let q = (c.y * e.x * e.x - 2.0 * c.z * e.x * e.y + c.x * e.y * e.y) / det;
+    let density = exp(-0.5 * q) / (2.0 * 3.14159265 * sqrt(det));
+    let masking = smith_masking(to_eye.z, variance_along(c, to_eye))
+        * smith_masking(to_sun.z, variance_along(c, to_sun));
+    let cos2 = h.z * h.z;
+    let g = density * masking / (4.0 * to_eye.z * cos2 * cos2);
+    if g <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let f = 1.0 - fresnel_transmittance(dot(to_eye, h), 1.0, params.ior);
+    return sun_radiance() * (3.14159265 * f * g);
+}
+
+// `Tracer::rough_water`: the reflected light (xyz) and the transmittance (w) of water met at `p`
+// along `d`, its normals filtered by the sample's footprint; `n` takes the normal to refract at.
+fn rough_water(p: vec3<f32>, d: vec3<f32>, n: ptr<function, vec3<f32>>) -> vec4<f32> {
+    let m = water_slopes(p, d);
+    let f = visible_facets(d, m);
+    var reflected = glint(d, m);
+    var t_view = 0.0;
+    var mean = vec3<f32>(0.0);
+    for (var k = 0u; k < f.count; k++) {
+        let facet = f.normal[k];
+        let w = f.weight[k];
+        let t = fresnel_transmittance(-dot(d, facet), 1.0, params.ior);
+        reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w);
+        t_view += t * w;
+        mean += facet * w;
+    }
+    *n = normalize(mean);
+    return vec4<f32>(reflected, t_view);
+}
+
 fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if !has(FLAG_WATER) {
         trace_air(o, d, depth, w);
@@ -891,10 +1176,16 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         emit(w, shade_above(o, d));
         return;
     }
-    let n = height_field_normal(water_height_gradient(p.xy).yz);
-    let cos_v = -dot(d, n);
-    let t_view = fresnel_transmittance(cos_v, 1.0, params.ior);
-    emit(w, sky_radiance(reflect(d, n)) * (1.0 - t_view));
+    var n = height_field_normal(water_height_gradient(p.xy).yz);
+    var t_view: f32;
+    if has(FLAG_FILTER_WATER) {
+        let rough = rough_water(p, d, &n);
+        t_view = rough.w;
+        emit(w, rough.xyz);
+    } else {
+        t_view = fresnel_transmittance(-dot(d, n), 1.0, params.ior);
+        emit(w, sky_radiance(reflect(d, n)) * (1.0 - t_view));
+    }
     let r = refract_dir(d, n, 1.0 / params.ior);
     if r.w == 0.0 {
         return;

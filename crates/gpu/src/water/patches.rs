@@ -107,6 +107,11 @@ impl WaterPatches {
 }
 
 impl Patches {
+    /// The texels along each side: the heights texture's.
+    pub fn size(&self) -> (u32, u32) {
+        self.size
+    }
+
     /// GPU memory, bytes: 16 a height texel.
     pub fn bytes(&self) -> u64 {
         self.size.0 as u64 * self.size.1 as u64 * 16
