@@ -60,6 +60,11 @@ pub struct BenchArgs {
     /// Skip the whole-frame rows (the technique rows only).
     #[arg(long)]
     no_frame: bool,
+    /// Filter the water's normals by each sample's footprint in the whole-frame rows (as
+    /// `caustics render --filter-water`): the slope moments' pyramid and the filtered shading
+    /// are timed with the final image.
+    #[arg(long)]
+    filter_water: bool,
     /// Output folder.
     #[arg(long, default_value = "bench")]
     out: PathBuf,
@@ -187,7 +192,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                     ];
                     if !args.no_frame {
                         rows.push(
-                            time_frame(ctx, &scene, &spec, &timing)
+                            time_frame(ctx, &scene, &spec, &timing, args.filter_water)
                                 .with_context(|| format!("frame of {name} at {w} x {h}"))?,
                         );
                     }
@@ -323,6 +328,7 @@ fn time_frame(
     scene: &Scene,
     spec: &Spec,
     timing: &Timing,
+    filter_water: bool,
 ) -> Result<Measurement> {
     let mut renderer = Renderer::new(ctx)?;
     renderer.set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)?;
@@ -335,6 +341,7 @@ fn time_frame(
     );
     let options = RenderOptions {
         supersampling: 1,
+        filter_water,
         ..Default::default()
     };
     let mut clock = scene.time;
@@ -369,7 +376,11 @@ fn time_frame(
     m.width = scene.camera.width;
     m.height = scene.camera.height;
     m.gpu_bytes = renderer.technique_bytes();
-    m.technique = "frame: ".into();
+    m.technique = if filter_water {
+        "frame: water filtered, ".into()
+    } else {
+        "frame: ".into()
+    };
     Ok(m)
 }
 

@@ -1274,6 +1274,7 @@ fn initial_model(
             map_size: args.map_size.unwrap_or(map_size).clamp(8, 4096),
             supersampling: args.supersampling.unwrap_or(supersampling).clamp(1, 8),
             exposure: scene.look.exposure,
+            filter_water: args.filter_water,
             cpu_image: match args.final_image {
                 ImageOn::Cpu => true,
                 ImageOn::Gpu => false,

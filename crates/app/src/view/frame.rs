@@ -191,6 +191,9 @@ pub struct Quality {
     /// software adapter the CPU renderer is measured at about 2.5 times faster (it needs no
     /// texture fetches, and no SIMD lane waits on another).
     pub cpu_image: bool,
+    /// Shade the water with normals filtered by each sample's footprint
+    /// (`RenderOptions::filter_water`).
+    pub filter_water: bool,
 }
 
 /// Where the time of a frame went.
@@ -387,7 +390,7 @@ impl SceneRenderer {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
             tone_map: self.scene.look.tone_map,
-            ..Default::default()
+            filter_water: quality.filter_water,
         };
         let mut images = Vec::with_capacity(slots.len());
         for slot in slots.iter() {
@@ -439,7 +442,7 @@ impl SceneRenderer {
             supersampling: quality.supersampling.max(1),
             exposure: quality.exposure,
             tone_map: self.scene.look.tone_map,
-            ..Default::default()
+            filter_water: quality.filter_water,
         };
         let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
         let frame = self.gpu_frame.as_mut().expect("checked by render");

@@ -92,6 +92,10 @@ pub struct ViewArgs {
     /// GPU and the CPU image on a software adapter such as lavapipe.
     #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
     pub final_image: ImageOn,
+    /// Start with the water's normals filtered by each sample's footprint (as `caustics render
+    /// --filter-water`; a checkbox in the panel).
+    #[arg(long)]
+    pub filter_water: bool,
     /// Hide the control panel (toggle with F2).
     #[arg(long)]
     pub no_panel: bool,

@@ -188,6 +188,14 @@ fn controls(ui: &mut egui::Ui, m: &mut Model) {
                 });
             ui.add(egui::Slider::new(&mut m.quality.supersampling, 1..=4).text("supersampling"));
             ui.add(egui::Slider::new(&mut m.quality.exposure, 0.2..=3.0).text("exposure"));
+            ui.checkbox(
+                &mut m.quality.filter_water,
+                "filter the far water's normals",
+            )
+            .on_hover_text(
+                "the waves' slopes over each sample's footprint become roughness: a blurred \
+                     sky and a spread glint instead of one wave's reflection (docs/look.md)",
+            );
             ui.checkbox(&mut m.quality.cpu_image, "trace the image on the CPU")
                 .on_hover_text(
                     "caustics_core::render instead of the GPU pass: faster on a software adapter",
