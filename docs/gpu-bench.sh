@@ -40,6 +40,10 @@ if [ ${#small[@]} -eq 0 ]; then
     --technique yuksel:split=0 --technique yuksel:preset=paper --technique yuksel-targets \
     --resolution 640x360,1280x720,1920x1080 --frames 10 --warmup 2 --no-frame --out "$out/yuksel" \
     | tee "$out/yuksel.log"
+  # The whole frame with the water's normals filtered by each sample's footprint (issue 30): the
+  # slope moments' pyramid and the filtered shading, against the frame rows above.
+  "$bin" bench --technique yuksel --filter-water --resolution 1280x720,1920x1080 --frames 10 \
+    --warmup 2 --out "$out/filtered" | tee "$out/filtered.log"
 fi
 end=$(date +%s)
 {
@@ -61,6 +65,12 @@ end=$(date +%s)
     echo "## yuksel's settings"
     echo
     sed '1,2d' "$out/yuksel/bench.md" | sed 's/(bench.svg)/(yuksel\/bench.svg)/'
+  fi
+  if [ -f "$out/filtered/bench.md" ]; then
+    echo
+    echo "## The frame with the water's normals filtered"
+    echo
+    sed '1,2d' "$out/filtered/bench.md" | sed 's/(bench.svg)/(filtered\/bench.svg)/'
   fi
 } > "$out/summary.md"
 echo "wrote $out/summary.md ($((end - start)) s)"
