@@ -160,7 +160,8 @@ pub struct RenderOptions {
     /// Filter the water's normals by each sample's footprint ([`crate::water::slopes`]): far
     /// water shades with the mean slope and the roughness of the waves it cannot resolve. Off
     /// (the default), every sample shades with the exact normal where it meets the surface.
-    /// CPU only and not yet a gain: docs/look.md has the measurements.
+    /// Both final images (caustics-gpu's `final_image` is its twin); not the default, since many
+    /// samples' FLIP prefers the exact normals: docs/look.md has the measurements.
     pub filter_water: bool,
 }
 

@@ -616,6 +616,80 @@ fn shore_with_filtered_water_matches_the_cpu() {
         ..EXACT
     };
     check(&ctx, "shore filtered", &small("shore"), true, bounds);
+    // The water's edge clamped rather than periodic: the pyramid's edge rule on both sides.
+    let mut clamped = small("shore");
+    clamped.water.as_mut().expect("water").wrap = false;
+    check(&ctx, "shore filtered, clamped", &clamped, true, bounds);
+    // A low sun in front: the far water's glint, the roughness's lobe, fills the band under the
+    // horizon.
+    let mut glint = small("shore");
+    glint.light.direction = glam::DVec3::new(0.85, -0.46, -0.4).normalize();
+    check(&ctx, "shore filtered, sun in front", &glint, true, bounds);
+    // From under the water: the surface met from below takes the filtered mean normal.
+    check(
+        &ctx,
+        "underwater filtered",
+        &small("underwater"),
+        true,
+        bounds,
+    );
+}
+
+/// A frame built without the filter takes it through `update` alone: the slope moments' pyramid
+/// is made then, once, and the image is the one a frame built filtered renders.
+fn a_frame_takes_the_filter_through_update() {
+    let ctx = test_gpu();
+    let scene = small("shore");
+    let (surface, map) = inputs(&scene);
+    let grid = surface.expect("water");
+    let map = map.expect("map");
+    let plain = RenderOptions {
+        supersampling: 1,
+        ..Default::default()
+    };
+    let filtered = RenderOptions {
+        filter_water: true,
+        ..plain
+    };
+    let final_image = FinalImage::new(&ctx).expect("pipeline");
+    let expected = final_image
+        .render(&ctx, &scene, Some(&grid), Some(&map), &filtered, None)
+        .expect("filtered render");
+    let heights = heights_texture(&ctx, &grid);
+    let water = WaterTextures::of(&heights);
+    let texture = caustics_gpu::final_image::upload_map(&ctx, &map).expect("map");
+    let mut frame = final_image
+        .frame(
+            &ctx,
+            &scene,
+            Some(&water),
+            Some(Output::Floor(&texture)),
+            &plain,
+        )
+        .expect("frame");
+    assert!(frame.read_slopes(&ctx).expect("slopes").is_empty());
+    let draw = |frame: &caustics_gpu::final_image::FinalImageFrame| {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
+        frame.encode(&mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+        read_image(&ctx, frame.output())
+    };
+    let unfiltered = draw(&frame);
+    let before = ctx.traffic();
+    frame.update(&ctx, &scene, &filtered);
+    let made = ctx.traffic().since(&before).created();
+    let image = draw(&frame);
+    assert!(made > 0, "the pyramid is made by the update");
+    assert!(image.rgb == expected.rgb, "the filtered frame's image");
+    assert!(unfiltered.rgb != image.rgb, "the filter changes the image");
+    let before = ctx.traffic();
+    frame.update(&ctx, &scene, &plain);
+    frame.update(&ctx, &scene, &filtered);
+    assert_eq!(ctx.traffic().since(&before).created(), 0, "made once");
 }
 
 /// The pyramid of the water's slope moments the frame builds on the GPU
@@ -654,21 +728,16 @@ fn the_frames_slope_moments_are_the_cpus() {
     let gpu = frame.read_slopes(&ctx).expect("slopes");
     let cpu = SlopePyramid::new(&grid, 45, 38, water.size, water.edge());
     assert_eq!(gpu.len(), cpu.levels());
+    // Each moment against the scale of its kind at level 0 (the largest |E[h_x]| for the slopes,
+    // the largest E[h_x²] for the second moments): coarser levels average the mean slope toward 0.
+    let (_, _, finest) = cpu.level(0);
+    let most = |m: usize| finest.iter().map(|t| t[m].abs()).fold(1e-30, f64::max);
+    let (slope, second) = (most(0).max(most(1)), most(2).max(most(3)));
+    let scale = [slope, slope, second, second, second];
     let mut worst: f64 = 0.0;
     for (k, level) in gpu.iter().enumerate() {
         let (cols, rows, texels) = cpu.level(k);
         assert_eq!(level.len(), cols * rows, "level {k}");
-        // Each moment against the scale of its kind over the level: the largest |E[h_x]| for the
-        // slopes, the largest E[h_x²] for the second moments.
-        let scale: [f64; 5] =
-            std::array::from_fn(|m| texels.iter().map(|t| t[m].abs()).fold(1e-30, f64::max));
-        let scale = [
-            scale[0].max(scale[1]),
-            scale[0].max(scale[1]),
-            scale[2].max(scale[3]),
-            scale[2].max(scale[3]),
-            scale[2].max(scale[3]),
-        ];
         for (g, c) in level.iter().zip(texels) {
             for m in 0..5 {
                 worst = worst.max((g[m] as f64 - c[m]).abs() / scale[m]);
@@ -1169,6 +1238,7 @@ test_main! {
     gpu shore_at_two_by_two_samples_matches_the_cpu,
     gpu shore_with_filtered_water_matches_the_cpu,
     gpu the_frames_slope_moments_are_the_cpus,
+    gpu a_frame_takes_the_filter_through_update,
     gpu shore_with_cascaded_eye_space_caustics_matches_the_cpu,
     gpu pool_with_cascaded_lights_the_walls_as_the_cpu,
     gpu albedo_image_without_a_map_matches_the_cpu,

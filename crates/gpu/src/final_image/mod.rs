@@ -111,6 +111,8 @@ pub struct FinalImage {
     mips_pipeline: wgpu::ComputePipeline,
     slopes: SlopePipelines,
     scene_layout: wgpu::BindGroupLayout,
+    /// Bind group 2: the water's slope moments.
+    slopes_layout: wgpu::BindGroupLayout,
     mesh_layout: wgpu::BindGroupLayout,
     /// Bound in place of a height field, terrain, caustics map or albedo image the scene lacks.
     empty_r32: wgpu::Texture,
@@ -135,9 +137,16 @@ pub struct FinalImageFrame {
     mips_groups: Option<MapMips>,
     /// The levels `mips_groups` write, below level 0.
     pyramid: Option<wgpu::Texture>,
-    /// The water's slope moments, built in the image's pass when the options filter the normals
-    /// (none without a surface).
+    /// The water's slope moments, built in the image's pass when the options filter the normals:
+    /// made with the frame when its first options filter them, else by the first
+    /// [`update`](FinalImageFrame::update) that does (none without a surface).
     slopes: Option<SlopePyramid>,
+    slope_pipelines: SlopePipelines,
+    slopes_layout: wgpu::BindGroupLayout,
+    /// Bind group 2: the pyramid's buffer, or a zero placeholder until there is one.
+    slopes_group: wgpu::BindGroup,
+    /// A pyramid the options asked for could not be made: not tried again.
+    slopes_failed: bool,
     scene_group: wgpu::BindGroup,
     mesh_group: wgpu::BindGroup,
     /// The slab pass's bind group, with a heights texture bound (none: no surface, `h_max` = 0).
@@ -373,16 +382,23 @@ impl FinalImage {
                 },
                 storage_entry(9),
                 texture_entry(10),
-                storage_entry(11),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scene meshes"),
             entries: &[storage_entry(0), storage_entry(1)],
         });
+        let slopes_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("water slope moments"),
+            entries: &[storage_entry(0)],
+        });
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("final image"),
-            bind_group_layouts: &[Some(&scene_layout), Some(&mesh_layout)],
+            bind_group_layouts: &[
+                Some(&scene_layout),
+                Some(&mesh_layout),
+                Some(&slopes_layout),
+            ],
             immediate_size: 0,
         });
         let pipeline = ctx.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -427,6 +443,7 @@ impl FinalImage {
             mips_pipeline,
             slopes: SlopePipelines::new(ctx),
             scene_layout,
+            slopes_layout,
             mesh_layout,
             empty_r32,
             empty_rgba32,
@@ -565,8 +582,9 @@ impl FinalImage {
             Some(p) => p.view.clone(),
             None => view(None, &self.empty_rgba32),
         };
+        let no_slopes = storage_buffer(ctx, "no water slope moments", &[0f32; 5])?;
         let slopes = match (&patches, &scene.water) {
-            (Some(p), Some(w)) => {
+            (Some(p), Some(w)) if options.filter_water => {
                 Some(
                     self.slopes
                         .pyramid(ctx, &p.view, p.size(), w.size, w.wrap)?,
@@ -574,13 +592,15 @@ impl FinalImage {
             }
             _ => None,
         };
-        let no_slopes = match &slopes {
-            Some(_) => None,
-            None => Some(storage_buffer(ctx, "no water slope moments", &[0f32; 5])?),
-        };
-        let moments = slopes
-            .as_ref()
-            .map_or_else(|| no_slopes.as_ref().expect("made above"), |s| &s.moments);
+        let slopes_group = bind_group(
+            ctx,
+            "water slope moments",
+            &self.slopes_layout,
+            &[slopes
+                .as_ref()
+                .map_or(&no_slopes, |s| &s.moments)
+                .as_entire_binding()],
+        );
         let views = [
             view(terrain.as_ref(), &self.empty_r32),
             view(caustics.map(|c| c.texture()), &self.empty_rgba32),
@@ -605,7 +625,6 @@ impl FinalImage {
                 wgpu::BindingResource::TextureView(&views[4]),
                 wall_cols.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&views[5]),
-                moments.as_entire_binding(),
             ],
         );
         let mesh_group = bind_group(
@@ -614,8 +633,7 @@ impl FinalImage {
             &self.mesh_layout,
             &[nodes.as_entire_binding(), triangles.as_entire_binding()],
         );
-        let mut resources = vec![objects, nodes, triangles, wall_cols];
-        resources.extend(no_slopes);
+        let mut resources = vec![objects, nodes, triangles, wall_cols, no_slopes];
         let slab_group = match (water, &scene.water) {
             (Some(w), Some(sw)) => {
                 // The water's square and edge rule are the scene's: a new frame when they change.
@@ -666,6 +684,10 @@ impl FinalImage {
             _resources: resources,
             pyramid: mips,
             slopes,
+            slope_pipelines: self.slopes.clone(),
+            slopes_layout: self.slopes_layout.clone(),
+            slopes_group,
+            slopes_failed: false,
             _textures: terrain.into_iter().chain(albedo_image).collect(),
         };
         frame.update(ctx, scene, options);
@@ -816,6 +838,9 @@ impl FinalImageFrame {
         if let Some(patches) = &mut self.patches {
             patches.set_wrap(ctx, wrap);
         }
+        if options.filter_water && self.slopes.is_none() && !self.slopes_failed {
+            self.make_slopes(ctx, scene);
+        }
         if let Some(slopes) = &mut self.slopes {
             slopes.set_wrap(ctx, wrap);
         }
@@ -875,8 +900,39 @@ impl FinalImageFrame {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.scene_group, &[]);
         pass.set_bind_group(1, &self.mesh_group, &[]);
+        pass.set_bind_group(2, &self.slopes_group, &[]);
         let (width, height) = self.size;
         pass.dispatch_workgroups(width.div_ceil(TILE), height.div_ceil(TILE), 1);
+    }
+
+    /// The slope moments' pyramid, for options that filter the water's normals in a frame built
+    /// without them: made once, on the frame's heights. Where it cannot be made (a lattice whose
+    /// pyramid exceeds the adapter's buffers), the water stays unfiltered, said in the log.
+    fn make_slopes(&mut self, ctx: &GpuContext, scene: &Scene) {
+        let (Some(patches), Some(water)) = (&self.patches, &scene.water) else {
+            return;
+        };
+        match self.slope_pipelines.pyramid(
+            ctx,
+            &patches.view,
+            patches.size(),
+            water.size,
+            water.wrap,
+        ) {
+            Ok(pyramid) => {
+                self.slopes_group = bind_group(
+                    ctx,
+                    "water slope moments",
+                    &self.slopes_layout,
+                    &[pyramid.moments.as_entire_binding()],
+                );
+                self.slopes = Some(pyramid);
+            }
+            Err(e) => {
+                tracing::warn!("the water's normals stay unfiltered: {e}");
+                self.slopes_failed = true;
+            }
+        }
     }
 
     /// Whether the uniform last written filters the waves' normals by the samples' footprints.

@@ -123,7 +123,7 @@ struct Object {
 @group(0) @binding(10) var caustics_mips: texture_2d<f32>;
 // The pyramid of the water's slope moments (final_image/slopes.rs), five floats a texel, level
 // after level from the heights' lattice up to one texel; read only with FLAG_FILTER_WATER.
-@group(0) @binding(11) var<storage, read> slope_moments: array<f32>;
+@group(2) @binding(0) var<storage, read> slope_moments: array<f32>;
 
 // Stands for the CPU's f64::INFINITY as a ray's range.
 const FAR: f32 = 3.0e38;
@@ -693,7 +693,10 @@ fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // the Fresnel equations from the dense side: out to the air through Snell's window, the rest (all of
 // it beyond the window) mirrored back into the water.
 fn leave_water(p: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, t_ray: f32) {
-    let n = water_normal(p.xy);
+    var n = water_normal(p.xy);
+    if has(FLAG_FILTER_WATER) && has(FLAG_SURFACE) {
+        n = height_field_normal(water_slopes(p, d).mean);
+    }
     let mirrored = bent_spread(spread, p, d, t_ray, n, true);
     let r = refract_dir(d, -n, params.ior);
     var t = 0.0;
@@ -1045,19 +1048,17 @@ fn mean_facet(m: Moments) -> Facets {
 fn visible_facets(d: vec3<f32>, m: Moments) -> Facets {
     let c = slope_covariance(m);
     let run = length(d.xy);
-    var a = vec2<f32>(1.0, 0.0);
-    if run > 0.0 {
-        a = d.xy / run;
+    // Straight down the CPU's weights are all infinite and it keeps the mean facet.
+    if run <= 0.0 {
+        return mean_facet(m);
     }
+    let a = d.xy / run;
     let along = vec2<f32>(c.x * a.x + c.z * a.y, c.z * a.x + c.y * a.y);
     let sigma = sqrt(max(dot(a, along), 0.0));
     if sigma <= 0.0 {
         return mean_facet(m);
     }
-    var u0 = -3.0e38;
-    if run > 0.0 {
-        u0 = -(abs(d.z) + run * dot(m.mean, a)) / (run * sigma);
-    }
+    let u0 = -(abs(d.z) + run * dot(m.mean, a)) / (run * sigma);
     let lo = max(u0, -4.0);
     let hi = max(lo, 0.0) + 4.0;
     let step = along / sigma;
@@ -1070,7 +1071,7 @@ fn visible_facets(d: vec3<f32>, m: Moments) -> Facets {
         f.weight[k] = seen;
         total += seen;
     }
-    if total <= 0.0 || total > 3.0e38 {
+    if !(total > 0.0 && total <= 3.0e38) {
         return mean_facet(m);
     }
     for (var k = 0u; k < FACETS; k++) {
