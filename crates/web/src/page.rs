@@ -42,6 +42,8 @@ struct Quality {
     scale: f64,
     map: u32,
     supersampling: u32,
+    /// The water's normals filtered by each sample's footprint (`RenderOptions::filter_water`).
+    filter_water: bool,
 }
 
 #[wasm_bindgen]
@@ -211,12 +213,14 @@ impl Page {
                 scale: 0.25,
                 map: 128,
                 supersampling: 1,
+                filter_water: false,
             }
         } else {
             Quality {
                 scale: 1.0,
                 map: scene.caustics.width.max(scene.caustics.height),
                 supersampling: 2,
+                filter_water: false,
             }
         };
         let blit = Blit::new(&ctx, format);
@@ -330,6 +334,12 @@ impl Page {
         }
     }
 
+    /// Shade the far water with its normals filtered by each sample's footprint: steadier in
+    /// motion under the horizon, off by default (docs/look.md).
+    pub fn set_filter_water(&mut self, on: bool) {
+        self.quality.filter_water = on;
+    }
+
     /// Multiply the water's heights (0: flat water, the page's control for caustics' contrast).
     pub fn set_amplitude(&mut self, amplitude: f64) {
         self.water.amplitude = amplitude.max(0.0);
@@ -375,7 +385,7 @@ impl Page {
             supersampling: self.quality.supersampling,
             exposure: self.scene.look.exposure,
             tone_map: self.scene.look.tone_map,
-            ..Default::default()
+            filter_water: self.quality.filter_water,
         };
         let ctx = &self.ctx;
         self.renderer

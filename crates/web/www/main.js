@@ -3,7 +3,8 @@
 // the pass times. The test contract: `?technique=T&frames=N` renders N frames, then sets the title
 // to `done: T, N frames, X ms a frame, ...`; any failure is shown on the page and sets the title to
 // `error: MESSAGE`. Optional: `scene`, `compare` (a second technique, split view), `amplitude`,
-// `scale` and `map` (sizes), `step` (seconds of water a frame, for repeatable water), `panel=0`.
+// `scale` and `map` (sizes), `step` (seconds of water a frame, for repeatable water), `panel=0`,
+// `filter=1` (the far water's normals filtered by each sample's footprint).
 // `technique=none` lights the floor as through flat water under the same waves.
 import init, { Page } from "./caustics_web.js";
 
@@ -219,6 +220,10 @@ async function main() {
   scaleSelect.value = String(quality.scale);
   mapSelect.onchange = () => page.set_quality(0, parseInt(mapSelect.value, 10), 0);
   scaleSelect.onchange = () => page.set_quality(parseFloat(scaleSelect.value), 0, 0);
+  const filter = document.getElementById("filter");
+  filter.checked = query.get("filter") === "1";
+  page.set_filter_water(filter.checked);
+  filter.onchange = () => page.set_filter_water(filter.checked);
 
   // The pointer, in canvas pixels.
   const at = (e) => {
