@@ -17,7 +17,8 @@
 //! The image is a [`FinalImageFrame`]: built once per scene and image size (the objects' trees, the
 //! terrain and albedo textures, the output texture, the bind groups), then per frame one uniform
 //! write ([`FinalImageFrame::update`]) and three passes recorded into the caller's encoder
-//! ([`FinalImageFrame::encode`]). Nothing is created or read back per frame.
+//! ([`FinalImageFrame::encode`]). Nothing is created or read back per frame; the one exception is
+//! the first update whose options filter the water's normals, which makes their pyramid, once.
 //!
 //! How the inputs reach the shader, and where they differ from what the CPU reads:
 //! - The water is the heights texture the techniques read ([`crate::WaterTextures`]), through the
@@ -126,7 +127,8 @@ pub type PyramidLevel = (u32, Vec<[f32; 4]>);
 
 /// The final image of one scene at one image size, everything it reads and writes living across
 /// frames: built by [`FinalImage::frame`], updated per frame by one uniform write when the camera,
-/// sun or options moved.
+/// sun or options moved (and, the first time the options filter the water, the pyramid of its
+/// slope moments made).
 pub struct FinalImageFrame {
     pipeline: wgpu::ComputePipeline,
     slab_pipeline: wgpu::ComputePipeline,
@@ -583,23 +585,13 @@ impl FinalImage {
             None => view(None, &self.empty_rgba32),
         };
         let no_slopes = storage_buffer(ctx, "no water slope moments", &[0f32; 5])?;
-        let slopes = match (&patches, &scene.water) {
-            (Some(p), Some(w)) if options.filter_water => {
-                Some(
-                    self.slopes
-                        .pyramid(ctx, &p.view, p.size(), w.size, w.wrap)?,
-                )
-            }
-            _ => None,
-        };
+        // The slope moments' pyramid is made by `update` (the first below, when the options filter
+        // the water), which leaves the water unfiltered where it cannot be made.
         let slopes_group = bind_group(
             ctx,
             "water slope moments",
             &self.slopes_layout,
-            &[slopes
-                .as_ref()
-                .map_or(&no_slopes, |s| &s.moments)
-                .as_entire_binding()],
+            &[no_slopes.as_entire_binding()],
         );
         let views = [
             view(terrain.as_ref(), &self.empty_r32),
@@ -683,7 +675,7 @@ impl FinalImage {
             written: None,
             _resources: resources,
             pyramid: mips,
-            slopes,
+            slopes: None,
             slope_pipelines: self.slopes.clone(),
             slopes_layout: self.slopes_layout.clone(),
             slopes_group,
@@ -831,7 +823,8 @@ impl FinalImage {
 
 impl FinalImageFrame {
     /// Take this frame's camera, sun, exposure and supersampling from `scene` and `options`: one
-    /// uniform write. What the frame was built with stays: the image size (the aspect ratio is the
+    /// uniform write (and the slope moments' pyramid made, the first time the options filter the
+    /// water). What the frame was built with stays: the image size (the aspect ratio is the
     /// frame's), the textures, the objects; a change to those needs a new frame.
     pub fn update(&mut self, ctx: &GpuContext, scene: &Scene, options: &RenderOptions) {
         let wrap = scene.water.as_ref().is_some_and(|w| w.wrap);
