@@ -11,15 +11,18 @@ use crate::pass::{bind_group, compute_pipeline};
 use crate::shaders::{PassSource, WATER};
 use crate::{GpuContext, GpuError};
 
+/// The level uniform both passes read.
+const WATER_SLOPES: &str = include_str!("../shaders/water_slopes.wgsl");
+
 pub const WATER_SLOPES_BASE: PassSource = PassSource {
     name: "water slopes base",
-    shared: &[WATER],
+    shared: &[WATER, WATER_SLOPES],
     source: include_str!("../shaders/water_slopes_base.wgsl"),
 };
 
 pub const WATER_SLOPES_HALVE: PassSource = PassSource {
     name: "water slopes halve",
-    shared: &[],
+    shared: &[WATER_SLOPES],
     source: include_str!("../shaders/water_slopes_halve.wgsl"),
 };
 
@@ -29,7 +32,7 @@ pub const MOMENTS: usize = 5;
 /// `@workgroup_size(8, 8)` of both passes.
 const TILE: u32 = 8;
 
-/// Mirrors `SlopeLevel` in `shaders/water_slopes_base.wgsl` and `water_slopes_halve.wgsl`.
+/// Mirrors `SlopeLevel` in `shaders/water_slopes.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 struct SlopeLevelUniform {

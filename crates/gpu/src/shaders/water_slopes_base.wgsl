@@ -3,23 +3,7 @@
 // lattice, the mean over a 4 x 4 lattice inside it of `h_x`, `h_y`, `h_x²`, `h_y²` and `h_x h_y`,
 // the interpolant's gradient read as the final image reads it (`grid_sample_hermite`). The
 // gradient at the texel's centre alone misses the slope of the shortest waves. Composed after
-// water.wgsl.
-
-// Mirrors `SlopeLevelUniform` in crates/gpu/src/final_image/slopes.rs.
-struct SlopeLevel {
-    // The water square's side.
-    size: f32,
-    // The water's edge rule (1: periodic).
-    wrap: u32,
-    // Where this level's texels start in `moments`, in texels, and its columns and rows.
-    offset: u32,
-    cols: u32,
-    rows: u32,
-    // The level below's (unused here).
-    below_offset: u32,
-    below_cols: u32,
-    below_rows: u32,
-}
+// water.wgsl and water_slopes.wgsl.
 
 @group(0) @binding(0) var<uniform> level: SlopeLevel;
 // The water's heights in Hermite form (`water_patches.wgsl`).

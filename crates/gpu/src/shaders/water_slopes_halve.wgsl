@@ -1,18 +1,7 @@
 // A level above 0 of the pyramid of the water's slope moments, the GPU twin of caustics-core's
 // `Level::halved` (water/slopes.rs): each texel the mean of the 2 x 2 texels of the level below
-// it (fewer at an odd last row or column), so that every level keeps the moments' mean.
-
-// Mirrors `SlopeLevelUniform` in crates/gpu/src/final_image/slopes.rs.
-struct SlopeLevel {
-    size: f32,
-    wrap: u32,
-    offset: u32,
-    cols: u32,
-    rows: u32,
-    below_offset: u32,
-    below_cols: u32,
-    below_rows: u32,
-}
+// it (fewer at an odd last row or column), so that every level keeps the moments' mean. Composed
+// after water_slopes.wgsl.
 
 @group(0) @binding(0) var<uniform> level: SlopeLevel;
 @group(0) @binding(1) var<storage, read_write> moments: array<f32>;
