@@ -1232,8 +1232,10 @@ fn filter_water_changes_only_the_far_water_on_both_final_images() {
             let o = caustics(&args, &d);
             let err = stderr(&o);
             assert!(o.status.success(), "{err}");
-            // Where there is an adapter, `gpu` traced the image there: no quiet fallback.
-            if on == "gpu" && err.lines().any(|l| l.starts_with("GPU: ")) {
+            // Where there is an adapter (always, with CAUSTICS_REQUIRE_GPU=1), `gpu` traced the
+            // image there: no quiet fallback to the CPU counts as the GPU's.
+            let required = std::env::var("CAUSTICS_REQUIRE_GPU").is_ok_and(|v| v == "1");
+            if on == "gpu" && (required || err.lines().any(|l| l.starts_with("GPU: "))) {
                 assert!(
                     err.lines()
                         .any(|l| l.starts_with("wrote") && l.contains("on the GPU")),

@@ -944,8 +944,7 @@ fn slope_fetch(l: vec3<u32>, i: i32, j: i32) -> Moments {
 }
 
 // `SlopePyramid::bilinear`.
-fn slope_bilinear(k: u32, p: vec2<f32>) -> Moments {
-    let l = slope_level(k);
+fn slope_bilinear(l: vec3<u32>, p: vec2<f32>) -> Moments {
     let u = p.x / (params.water_size / f32(l.y)) - 0.5;
     let v = p.y / (params.water_size / f32(l.z)) - 0.5;
     let j0 = floor(u);
@@ -969,20 +968,34 @@ fn lerp_moments(a: Moments, b: Moments, t: f32) -> Moments {
     return Moments(a.mean + (b.mean - a.mean) * t, a.second + (b.second - a.second) * t);
 }
 
-// `SlopePyramid::at_lod`.
-fn slope_at_lod(p: vec2<f32>, lod: f32) -> Moments {
+// The two levels a footprint's taps read at `lod` (`SlopePyramid::at_lod`), found once for all
+// its taps: k = floor(lod) and k + 1, or the top alone (in both) at or past it.
+struct SlopeLevels {
+    lod: f32,
+    k: u32,
+    top: bool,
+    fine: vec3<u32>,
+    coarse: vec3<u32>,
+}
+
+fn slope_levels(lod: f32) -> SlopeLevels {
     let top = slope_level_count() - 1u;
-    if lod >= f32(top) {
-        return slope_bilinear(top, p);
+    let k = min(u32(floor(lod)), top);
+    return SlopeLevels(lod, k, lod >= f32(top), slope_level(k), slope_level(min(k + 1u, top)));
+}
+
+// `SlopePyramid::at_lod`.
+fn slope_at_lod(p: vec2<f32>, l: SlopeLevels) -> Moments {
+    if l.top {
+        return slope_bilinear(l.fine, p);
     }
-    let k = u32(floor(lod));
     var below: Moments;
-    if k == 0u {
+    if l.k == 0u {
         below = exact_moments(water_gradient(p));
     } else {
-        below = slope_bilinear(k, p);
+        below = slope_bilinear(l.fine, p);
     }
-    return lerp_moments(below, slope_bilinear(k + 1u, p), lod - f32(k));
+    return lerp_moments(below, slope_bilinear(l.coarse, p), l.lod - f32(l.k));
 }
 
 // Level 0's texel: the larger of its two sides (`SlopePyramid::texel`).
@@ -1006,10 +1019,11 @@ fn water_slopes(p: vec3<f32>, d: vec3<f32>) -> Moments {
         return exact_moments(water_gradient(p.xy));
     }
     var m = Moments(vec2<f32>(0.0), vec3<f32>(0.0));
+    let levels = slope_levels(lod);
     let n = u32(taps);
     for (var k = 0u; k < n; k++) {
         let offset = ((f32(k) + 0.5) / taps - 0.5) * len;
-        let t = slope_at_lod(p.xy + along * offset, lod);
+        let t = slope_at_lod(p.xy + along * offset, levels);
         m.mean += t.mean / taps;
         m.second += t.second / taps;
     }
