@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Mutation check of the WGSL passes (issue 20: "a 1 % change to the output of any WGSL pass, or the
+# Mutation check of the WGSL passes ("a 1 % change to the output of any WGSL pass, or the
 # loss of any channel, layer or cascade, fails at least one test").
 #
 # For each mutation below: edit one pass under crates/gpu/src/shaders (most scale what the pass
@@ -25,7 +25,7 @@ mkdir -p "$XDG_RUNTIME_DIR" && chmod 700 "$XDG_RUNTIME_DIR"
 # Only the workspace crates rebuild per mutation; incremental builds keep that to the changed code.
 export CARGO_PROFILE_RELEASE_INCREMENTAL=${CARGO_PROFILE_RELEASE_INCREMENTAL:-true}
 
-S=crates/gpu/src/shaders
+S=crates/gpu/src
 YU="yuksel_gpu technique_gpu render_gpu"
 CA="cascaded_gpu render_gpu"
 PR="procedural_gpu"
@@ -43,7 +43,7 @@ yuksel pass1 x1.01 @@ $S/yuksel/pass1.wgsl @@ += ax * ay * p.w * area; @@ += ax 
 yuksel pass1 last channel lost @@ $S/yuksel/pass1.wgsl @@ i32(region.m) + 1); @@ i32(region.m)); @@ $YU
 yuksel pass2 x1.01 @@ $S/yuksel/pass2.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
 yuksel pass2 last channel lost @@ $S/yuksel/pass2.wgsl @@ k <= m; @@ k < m; @@ $YU
-water patches x1.01 @@ $S/water_patches.wgsl @@ let texel = grid_hermite_texel(heights, vec2<i32>(id.xy), patches_params.wrap != 0u); @@ let texel = grid_hermite_texel(heights, vec2<i32>(id.xy), patches_params.wrap != 0u) * 1.01; @@ $YU
+water patches x1.01 @@ $S/water/water_patches.wgsl @@ let texel = grid_hermite_texel(heights, vec2<i32>(id.xy), patches_params.wrap != 0u); @@ let texel = grid_hermite_texel(heights, vec2<i32>(id.xy), patches_params.wrap != 0u) * 1.01; @@ $YU
 yuksel scatter resolve x1.01 @@ $S/yuksel/scatter_resolve.wgsl @@ vec4<f32>(e * u.attenuation.rgb, 1.0) @@ vec4<f32>(e * 1.01 * u.attenuation.rgb, 1.0) @@ $YU
 yuksel scatter tier flux x1.01 @@ $S/yuksel/scatter_tier.wgsl @@ add_record(tier_records[r], q); @@ add_record(tier_records[r] * vec4<f32>(1.0, 1.0, 1.0, 1.01), q); @@ $YU
 yuksel fill next row's edge from this row's hit @@ $S/yuksel/fill.wgsl @@ fill_below[a] = above; @@ fill_below[a] = h; @@ $YU
@@ -64,23 +64,23 @@ procedural screen x1.01 @@ $S/procedural/screen.wgsl @@ vec4<f32>(procedural_cau
 procedural target x1.01 @@ $S/procedural/target.wgsl @@ vec4<f32>(procedural_caustic(p), 1.0) @@ vec4<f32>(procedural_caustic(p) * 1.01, 1.0) @@ $PR
 procedural downsample x1.01 @@ $S/procedural/downsample.wgsl @@ (a + b + d + e) * 0.25 @@ (a + b + d + e) * 0.2525 @@ $PR
 procedural resample x1.01 @@ $S/procedural/resample.wgsl @@ vec4<f32>(c.rgb, 1.0) @@ vec4<f32>(c.rgb * 1.01, 1.0) @@ $PR
-ocean spectrum x1.01 @@ $S/ocean_spectrum.wgsl @@ vec4<f32>(cmul(h, s), cmul(slope, s)); @@ vec4<f32>(cmul(h, s), cmul(slope, s)) * 1.01; @@ $WA
-ocean fft x1.01 @@ $S/ocean_fft.wgsl @@ = u0 @@ = 1.01 * u0 @@ $WA
-ocean output x1.01 @@ $S/ocean_output.wgsl @@ vec4<f32>(v.x, v.z, v.w, 0.0) @@ vec4<f32>(v.x, v.z, v.w, 0.0) * 1.01 @@ $WA
-ripple step x1.01 @@ $S/ripple_step.wgsl @@ vec4<f32>(next, 0.0, 0.0, 0.0) @@ vec4<f32>(next * 1.01, 0.0, 0.0, 0.0) @@ $WA
-ripple drop x1.01 @@ $S/ripple_drop.wgsl @@ vec4<f32>(bump, 0.0, 0.0, 0.0) @@ vec4<f32>(bump * 1.01, 0.0, 0.0, 0.0) @@ $WA
-ripple clear leaves 1e-3 @@ $S/ripple_clear.wgsl @@ vec4<f32>(0.0) @@ vec4<f32>(1e-3) @@ $WA
-field waves x1.01 @@ $S/water_field_waves.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
-field procedural x1.01 @@ $S/water_field_procedural.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
-field grid x1.01 @@ $S/water_field_grid.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
-final image x1.01 @@ $S/final_image.wgsl @@ vec4<f32>(tone_map(c, params.tone_map), 1.0) @@ vec4<f32>(tone_map(c, params.tone_map) * 1.01, 1.0) @@ $FI
-final image slab bound 1 % low @@ $S/final_image_slab.wgsl @@ bitcast<u32>(abs(h.x)) @@ bitcast<u32>(abs(h.x) * 0.99) @@ $FI
-final image slab slope 1 % low @@ $S/final_image_slab.wgsl @@ bitcast<u32>(length(h.yz)) @@ bitcast<u32>(length(h.yz) * 0.99) @@ $FI
-filtered water: slopes base x1.01 @@ $S/water_slopes_base.wgsl @@ first += vec4<f32>(g, g * g) * w; @@ first += vec4<f32>(g, g * g) * w * 1.01; @@ render_gpu
-filtered water: slopes halve x1.01 @@ $S/water_slopes_halve.wgsl @@ n += 1.0; @@ n += 0.99; @@ render_gpu
-filtered water: rough water sky x1.01 @@ $S/final_image.wgsl @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w); @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w * 1.01); @@ render_gpu
-filtered water: glint x1.01 @@ $S/final_image.wgsl @@ return sun_radiance() * (3.14159265 * f * g); @@ return sun_radiance() * (3.14159265 * f * g * 1.01); @@ render_gpu
-filtered water: from below, slopes x1.01 @@ $S/final_image.wgsl @@ n = height_field_normal(water_slopes(p, d).mean); @@ n = height_field_normal(water_slopes(p, d).mean * 1.01); @@ render_gpu
+ocean spectrum x1.01 @@ $S/water/ocean_spectrum.wgsl @@ vec4<f32>(cmul(h, s), cmul(slope, s)); @@ vec4<f32>(cmul(h, s), cmul(slope, s)) * 1.01; @@ $WA
+ocean fft x1.01 @@ $S/water/ocean_fft.wgsl @@ = u0 @@ = 1.01 * u0 @@ $WA
+ocean output x1.01 @@ $S/water/ocean_output.wgsl @@ vec4<f32>(v.x, v.z, v.w, 0.0) @@ vec4<f32>(v.x, v.z, v.w, 0.0) * 1.01 @@ $WA
+ripple step x1.01 @@ $S/water/ripple_step.wgsl @@ vec4<f32>(next, 0.0, 0.0, 0.0) @@ vec4<f32>(next * 1.01, 0.0, 0.0, 0.0) @@ $WA
+ripple drop x1.01 @@ $S/water/ripple_drop.wgsl @@ vec4<f32>(bump, 0.0, 0.0, 0.0) @@ vec4<f32>(bump * 1.01, 0.0, 0.0, 0.0) @@ $WA
+ripple clear leaves 1e-3 @@ $S/water/ripple_clear.wgsl @@ vec4<f32>(0.0) @@ vec4<f32>(1e-3) @@ $WA
+field waves x1.01 @@ $S/water/water_field_waves.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
+field procedural x1.01 @@ $S/water/water_field_procedural.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
+field grid x1.01 @@ $S/water/water_field_grid.wgsl @@ field.amplitude * h @@ field.amplitude * h * 1.01 @@ $WA
+final image x1.01 @@ $S/final_image/final_image.wgsl @@ vec4<f32>(tone_map(c, params.tone_map), 1.0) @@ vec4<f32>(tone_map(c, params.tone_map) * 1.01, 1.0) @@ $FI
+final image slab bound 1 % low @@ $S/final_image/final_image_slab.wgsl @@ bitcast<u32>(abs(h.x)) @@ bitcast<u32>(abs(h.x) * 0.99) @@ $FI
+final image slab slope 1 % low @@ $S/final_image/final_image_slab.wgsl @@ bitcast<u32>(length(h.yz)) @@ bitcast<u32>(length(h.yz) * 0.99) @@ $FI
+filtered water: slopes base x1.01 @@ $S/final_image/water_slopes_base.wgsl @@ first += vec4<f32>(g, g * g) * w; @@ first += vec4<f32>(g, g * g) * w * 1.01; @@ render_gpu
+filtered water: slopes halve x1.01 @@ $S/final_image/water_slopes_halve.wgsl @@ n += 1.0; @@ n += 0.99; @@ render_gpu
+filtered water: rough water sky x1.01 @@ $S/final_image/final_image.wgsl @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w); @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w * 1.01); @@ render_gpu
+filtered water: glint x1.01 @@ $S/final_image/final_image.wgsl @@ return sun_radiance() * (3.14159265 * f * g); @@ return sun_radiance() * (3.14159265 * f * g * 1.01); @@ render_gpu
+filtered water: from below, slopes x1.01 @@ $S/final_image/final_image.wgsl @@ n = height_field_normal(water_slopes(p, d).mean); @@ n = height_field_normal(water_slopes(p, d).mean * 1.01); @@ render_gpu
 triangles photon x1.01 @@ $S/caustic_triangles/photon.wgsl @@ = trace_photon(id.y, id.x); @@ = trace_photon(id.y, id.x) * 1.01; @@ $CT
 triangles irradiance x1.01 @@ $S/caustic_triangles/irradiance.wgsl @@ = vertex_irradiance(i32(id.y), i32(id.x)); @@ = vertex_irradiance(i32(id.y), i32(id.x)) * 1.01; @@ $CT
 triangles hat edge share 1 % more @@ $S/caustic_triangles/irradiance.wgsl @@ select(1.0, 0.5, i == 0 || i == l) @@ select(1.0, 0.505, i == 0 || i == l) @@ $CT

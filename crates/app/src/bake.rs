@@ -198,7 +198,7 @@ pub fn run(args: BakeArgs) -> Result<()> {
 
     // A technique without a GPU implementation (the reference) bakes through its CPU twin: no
     // device then.
-    let ctx = caustics_gpu::technique::find(spec.name()).and_then(|_| args.gpu.context());
+    let ctx = caustics_gpu::registry::find(spec.name()).and_then(|_| args.gpu.context());
     let scenes = colour_scenes(&scene, args.dispersion);
     let mut gpu = match &ctx {
         Some(ctx) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),

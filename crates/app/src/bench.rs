@@ -1,4 +1,4 @@
-//! `caustics bench`: every registered GPU technique (`caustics_gpu::technique::REGISTRY`, no name
+//! `caustics bench`: every registered GPU technique (`caustics_gpu::registry::REGISTRY`, no name
 //! matched here) on the scenes it applies to (the pool's water for all, the glass scene's objects
 //! for the techniques that take glass generators), then the whole GPU-resident frame (water,
 //! technique, final image through `caustics_gpu::renderer::Renderer`) at each resolution. Warm-up
@@ -24,8 +24,9 @@ use clap::Args;
 use caustics_core::render::RenderOptions;
 use caustics_core::scene::Scene;
 use caustics_core::techniques::Input;
+use caustics_gpu::WaterTextures;
+use caustics_gpu::registry::{self, REGISTRY};
 use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
-use caustics_gpu::technique::{self, REGISTRY, WaterTextures};
 use caustics_gpu::water::field::GpuWater;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
@@ -51,12 +52,12 @@ pub struct BenchArgs {
     /// Shrink everything for a software rasteriser (lavapipe): one 64x36 size, one warm-up and
     /// one timed frame, the error-against-cost sweep on one case at a 48² map.
     #[arg(long)]
-    small: bool,
+    pub(crate) small: bool,
     /// Measure error against cost instead: each technique's main knob swept, relative L1 against
     /// the reference (as `caustics compare`) over GPU time per frame (as the bench), with the
     /// Pareto front: writes tradeoff.csv, tradeoff.md and tradeoff.svg.
     #[arg(long)]
-    tradeoff: bool,
+    pub(crate) tradeoff: bool,
     /// Skip the whole-frame rows (the technique rows only).
     #[arg(long)]
     no_frame: bool,
@@ -67,9 +68,9 @@ pub struct BenchArgs {
     filter_water: bool,
     /// Output folder.
     #[arg(long, default_value = "bench")]
-    out: PathBuf,
+    pub(crate) out: PathBuf,
     #[command(flatten)]
-    gpu: crate::GpuArgs,
+    pub(crate) gpu: crate::GpuArgs,
 }
 
 #[derive(Clone, Debug)]
@@ -129,10 +130,9 @@ fn label(spec: &Spec, scene: &Scene) -> String {
     }
 }
 
+/// The timing table of `args`'s techniques and scenes (`--tradeoff` is [`crate::tradeoff::run`]'s,
+/// which main dispatches to).
 pub fn run(args: BenchArgs) -> Result<()> {
-    if args.tradeoff {
-        return crate::tradeoff::run(&args.gpu, args.small, &args.out);
-    }
     let specs = if args.techniques.is_empty() {
         registered()?
     } else {
@@ -281,7 +281,7 @@ pub(crate) fn time_technique(
     spec: &Spec,
     timing: &Timing,
 ) -> Result<Measurement> {
-    let mut t = technique::create(ctx, spec.name(), &spec.params)?;
+    let mut t = registry::create(ctx, spec.name(), &spec.params)?;
     let mut water = scene
         .water
         .as_ref()

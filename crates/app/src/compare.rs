@@ -145,7 +145,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
 /// image, which these floor cases cannot score: `caustics bench --tradeoff` measures it through
 /// the pool's camera.
 fn default_specs() -> Result<Vec<Spec>> {
-    caustics_gpu::technique::REGISTRY
+    caustics_gpu::registry::REGISTRY
         .iter()
         .filter(|r| !r.describe.eye_space())
         .map(|r| Ok(r.name().parse()?))

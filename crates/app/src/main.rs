@@ -159,18 +159,19 @@ fn run(cli: Cli) -> Result<()> {
         Command::Render(args) => render::run(args),
         Command::Bake(args) => bake::run(args),
         Command::Compare(args) => compare::run(args),
+        Command::Bench(args) if args.tradeoff => tradeoff::run(&args.gpu, args.small, &args.out),
         Command::Bench(args) => bench::run(args),
         Command::View(args) => view::run(args),
         Command::Techniques {
             gpu_names: true, ..
         } => {
-            for r in caustics_gpu::technique::REGISTRY {
+            for r in caustics_gpu::registry::REGISTRY {
                 println!("{}", r.name());
             }
             Ok(())
         }
         Command::Techniques { markdown: true, .. } => {
-            print!("{}", caustics_core::techniques::describe::markdown_table());
+            print!("{}", caustics_core::techniques::markdown_table());
             Ok(())
         }
         Command::Techniques { .. } => {
@@ -179,7 +180,7 @@ fn run(cli: Cli) -> Result<()> {
                 "technique", "paper", "input -> output"
             );
             for t in REGISTRY {
-                let status = match (caustics_gpu::technique::find(t.name), t.floor_only()) {
+                let status = match (caustics_gpu::registry::find(t.name), t.floor_only()) {
                     (None, _) => " [CPU only]",
                     (Some(_), true) => " [floor only: no light on a pool's walls]",
                     (Some(_), false) => "",

@@ -254,7 +254,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     // A technique that ends in its own final image (paper 4's camera pass, paper 3's refracted
     // view) makes it where the scene is one it has it for.
     if let (Some(out), None, None) = (&out, &args.raw, &args.raw_walls)
-        && let Some(make) = caustics_gpu::technique::find(spec.name()).and_then(|r| r.image)
+        && let Some(make) = caustics_gpu::registry::find(spec.name()).and_then(|r| r.image)
     {
         let started = Instant::now();
         if let Some(image) = make(runner.gpu.as_ref(), &scene, &spec.params)? {
@@ -285,7 +285,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     if let Some(ctx) = runner.gpu.as_ref()
         && scene.water.is_some()
         && args.raw_walls.is_none()
-        && caustics_gpu::technique::find(spec.name()).is_some()
+        && caustics_gpu::registry::find(spec.name()).is_some()
     {
         return render_frame(ctx, &scene, &spec, &args, out.as_deref());
     }

@@ -1,5 +1,5 @@
 //! Running any registered technique on a [`Job`]: on the GPU when there is a device and the
-//! technique has a GPU implementation (`caustics_gpu::technique::REGISTRY`), on its CPU twin
+//! technique has a GPU implementation (`caustics_gpu::registry::REGISTRY`), on its CPU twin
 //! otherwise. No technique is named here: both forms are reached from the registry's entry.
 
 use std::collections::HashMap;
@@ -103,14 +103,11 @@ impl Runner {
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Outcome> {
         spec.entry.check_light(&job.scene.light)?;
-        let (made, backend) = match (
-            self.gpu.as_ref(),
-            caustics_gpu::technique::find(spec.name()),
-        ) {
+        let (made, backend) = match (self.gpu.as_ref(), caustics_gpu::registry::find(spec.name())) {
             (Some(ctx), Some(entry)) => {
                 let once = match self.once.entry(spec.name()) {
                     std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),
-                    std::collections::hash_map::Entry::Vacant(v) => v.insert((entry.once)(ctx)?),
+                    std::collections::hash_map::Entry::Vacant(v) => v.insert(entry.once(ctx)?),
                 };
                 (
                     once.run(ctx, job, &spec.params, self.timer.as_mut(), progress)?,

@@ -54,7 +54,7 @@ pub struct Point {
 /// through them; one with a variant of its own beside them (`yuksel`'s scatter beside
 /// `yuksel-targets`) is swept too.
 fn sweep(small: bool) -> Vec<(&'static str, Vec<String>)> {
-    caustics_gpu::technique::REGISTRY
+    caustics_gpu::registry::REGISTRY
         .iter()
         .map(|r| r.describe)
         .filter(|d| !d.reference)

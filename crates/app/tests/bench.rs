@@ -9,7 +9,7 @@ mod common;
 use std::path::PathBuf;
 use std::process::Command;
 
-use caustics_gpu::technique::REGISTRY;
+use caustics_gpu::registry::REGISTRY;
 
 fn gpu_bench_small_covers_every_technique_and_the_frame() {
     // A device, or the test fails: the harness has reported it ignored where none can be made.

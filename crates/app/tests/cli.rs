@@ -443,7 +443,7 @@ fn scene_check_and_techniques() {
     let o = caustics(&["techniques", "--markdown"], &d);
     assert_eq!(
         String::from_utf8_lossy(&o.stdout),
-        caustics_core::techniques::describe::markdown_table()
+        caustics_core::techniques::markdown_table()
     );
     // The GPU registry's names, one a line, each one `render --technique` accepts (CI's
     // validation pass renders every one of them).
@@ -452,7 +452,7 @@ fn scene_check_and_techniques() {
         .lines()
         .map(str::to_string)
         .collect();
-    let registry: Vec<&str> = caustics_gpu::technique::REGISTRY
+    let registry: Vec<&str> = caustics_gpu::registry::REGISTRY
         .iter()
         .map(|r| r.name())
         .collect();
@@ -1021,7 +1021,7 @@ fn the_reference_sees_the_objects() {
     assert!(flux.abs() < 0.03, "flux {flux}");
 }
 
-/// `--raw-walls PREFIX` writes the four walls' maps of the pool (issue 18) in the floor map's unit,
+/// `--raw-walls PREFIX` writes the four walls' maps of the pool in the floor map's unit,
 /// shape (rows, cols): a sun travelling towards +x lights x = size most; and it is refused before
 /// the work where there are no walls to write or the technique maps the floor only.
 #[test]

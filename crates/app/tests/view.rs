@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 /// The viewers run one at a time: on two cores, two software-rendered windows only slow each
 /// other down. All but the 2,000-frame run, which takes one core for minutes while the others
 /// take turns on the second (it is listed first so that it starts first): run alone after them,
-/// it left a core idle for its 401 s (2026-12-03, lavapipe on the 2-core machine).
+/// it left a core idle for its 401 s (lavapipe on the 2-core machine).
 static SERIAL: Mutex<()> = Mutex::new(());
 
 fn required() -> bool {
@@ -725,7 +725,7 @@ fn wgpu_objects(stdout: &str, frame: u64) -> Vec<(String, i64)> {
         .collect()
 }
 
-/// The long run issue 19 asks for: 2,000 frames with every technique the pool offers switched in
+/// The long run: 2,000 frames with every technique the pool offers switched in
 /// each frame (split every other round), the water moving (the waves' clock, then the ripple
 /// simulation the drops start), a ripple dropped every 25 frames and the window resized every
 /// 50, all on the GPU frame. After the first 100 frames (every technique built, every window

@@ -127,7 +127,7 @@ impl CausticWater {
     /// The registered techniques a [`CausticWater`] can use, in the registry's order: those that
     /// make a floor map, and paper 5's eye-space image (made from Bevy's first 3D camera).
     pub fn techniques() -> Vec<&'static str> {
-        caustics_gpu::technique::REGISTRY
+        caustics_gpu::registry::REGISTRY
             .iter()
             .filter(|r| {
                 let receives = r.describe.receivers;
@@ -140,14 +140,14 @@ impl CausticWater {
     /// Whether the technique makes an image in the camera's screen space (paper 5) rather than a
     /// map of the floor.
     pub fn eye_space(&self) -> bool {
-        caustics_gpu::technique::find(&self.technique)
+        caustics_gpu::registry::find(&self.technique)
             .is_some_and(|r| r.describe.receivers.contains(&Receives::EyeSpace))
     }
 
     /// Whether the technique makes maps of the pool's walls and the scene has walls.
     pub fn lights_walls(&self) -> bool {
         self.scene.floor.walls
-            && caustics_gpu::technique::find(&self.technique)
+            && caustics_gpu::registry::find(&self.technique)
                 .is_some_and(|r| r.describe.receivers.contains(&Receives::Walls))
     }
 

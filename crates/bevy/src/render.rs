@@ -319,7 +319,7 @@ fn build_state(
     let water = &w.water;
     let mut scene = water.scene.clone();
     scene.caustics.technique = water.technique.clone();
-    let mut technique = caustics_gpu::technique::create(ctx, &water.technique, &water.params)
+    let mut technique = caustics_gpu::registry::create(ctx, &water.technique, &water.params)
         .map_err(|e| e.to_string())?;
     let (source, textures) = match &water.heights {
         Heights::Scene => {

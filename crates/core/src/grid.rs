@@ -14,6 +14,11 @@ use glam::DVec2;
 
 use crate::error::{Error, Result};
 
+/// The largest caustics map or image side we accept: far beyond any GPU's 2-D texture limit is a
+/// typo. It lives with the grids because a height field file is refused past it before its samples
+/// are read; the scene's checks take it from here (`crate::scene::MAX_RESOLUTION`).
+pub const MAX_RESOLUTION: u32 = 16384;
+
 /// What happens outside `[0, size]²`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Edge {
@@ -340,7 +345,7 @@ fn read_exr(path: &Path) -> Result<Grid> {
     // first, and a layer larger than the largest grid the program takes is refused.
     let meta = exr::meta::MetaData::read_from_file(path, false)
         .map_err(|e| crate::Error::bad_file(path, format!("not a readable OpenEXR image: {e}")))?;
-    let max = crate::scene::MAX_RESOLUTION as usize;
+    let max = MAX_RESOLUTION as usize;
     for header in meta.headers.iter() {
         let (w, h) = (header.layer_size.width(), header.layer_size.height());
         let channels = header.channels.list.len();

@@ -5,6 +5,7 @@
 pub mod bake;
 pub mod cases;
 pub mod error;
+pub mod eye;
 pub mod grid;
 pub mod map;
 pub mod mesh;
@@ -17,6 +18,7 @@ pub mod render;
 pub mod scene;
 pub mod sky;
 pub mod techniques;
+pub mod tone_map;
 pub mod walls;
 pub mod water;
 

@@ -73,6 +73,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     draw_buffer: crate::techniques::buffers::no_buffers,
     reference: true,
     validate: |_| Ok(()),
+    own_defaults: toml::Table::new,
     cpu: run_cpu,
 };
 

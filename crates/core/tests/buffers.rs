@@ -6,7 +6,8 @@ use glam::DVec3;
 
 use caustics_core::plot::{NO_VALUE, Picture, heat};
 use caustics_core::scene::{Scene, WaterSource};
-use caustics_core::techniques::buffers::{Buffer, BufferInput, HEIGHTS, SceneHas, picture};
+use caustics_core::techniques::buffers::{Buffer, BufferInput, HEIGHTS, SceneHas};
+use caustics_core::techniques::describe::picture;
 use caustics_core::techniques::{REGISTRY, Spec, yuksel};
 use caustics_core::water::Surface;
 

@@ -3,8 +3,8 @@
 //! own, every parameter is reachable through the one spec parser, and the README's table is the
 //! registry's.
 
-use caustics_core::techniques::describe::{Default, Kind, check_value, markdown_table};
-use caustics_core::techniques::{REGISTRY, Spec, find};
+use caustics_core::techniques::describe::{Kind, ParamDefault, check_value};
+use caustics_core::techniques::{REGISTRY, Spec, find, markdown_table};
 
 /// Every name once; every parameter key once within its entry; every entry found by name.
 #[test]
@@ -133,35 +133,13 @@ fn bad_values_and_keys_are_named() {
 /// every choice's words are what its serde enum reads.
 #[test]
 fn defaults_are_the_techniques_own() {
-    use caustics_core::techniques::{cascaded, caustic_triangles, procedural, volumes, yuksel};
-    let own: [(&str, toml::Table); 5] = [
-        (
-            "yuksel",
-            toml::Table::try_from(yuksel::YukselParams::default()).unwrap(),
-        ),
-        (
-            "procedural",
-            toml::Table::try_from(procedural::ProceduralCausticsParams::default()).unwrap(),
-        ),
-        (
-            "volumes",
-            toml::Table::try_from(volumes::VolumesParams::default()).unwrap(),
-        ),
-        (
-            "caustic-triangles",
-            toml::Table::try_from(caustic_triangles::CausticTrianglesParams::default()).unwrap(),
-        ),
-        (
-            "cascaded",
-            toml::Table::try_from(cascaded::CascadedParams::default()).unwrap(),
-        ),
-    ];
     let mut compared = 0;
     for d in REGISTRY {
-        let Some((_, table)) = own.iter().find(|(t, _)| *t == d.table) else {
+        let table = (d.own_defaults)();
+        if table.is_empty() {
             assert!(d.params.is_empty(), "{} has no serde table here", d.name);
             continue;
-        };
+        }
         for p in d.params {
             if d.fixed.iter().any(|(k, _)| *k == p.key) {
                 continue;
@@ -175,7 +153,7 @@ fn defaults_are_the_techniques_own() {
                     assert!(same, "{}.{}: descriptor {a}, technique {b}", d.name, p.key);
                     compared += 1;
                 }
-                (None, None) => assert!(matches!(p.default, Default::Auto(_))),
+                (None, None) => assert!(matches!(p.default, ParamDefault::Auto(_))),
                 (a, b) => panic!("{}.{}: descriptor {a:?}, technique {b:?}", d.name, p.key),
             }
         }

@@ -11,7 +11,7 @@
 //! ```
 
 use caustics_core::scene::Scene;
-use caustics_gpu::technique::{self, REGISTRY};
+use caustics_gpu::registry::{self, REGISTRY};
 use caustics_gpu::{GpuContext, Output, WaterTextures};
 
 /// The application's water: a few travelling sine waves, height in metres, written per texel.
@@ -149,7 +149,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let size = scene.water.as_ref().map_or(1.0, |w| w.size) as f32;
 
     // 4. The technique, by name: pipelines once, its frame configured on our water texture.
-    let mut technique = technique::create(&ctx, &name, &params)?;
+    let mut technique = registry::create(&ctx, &name, &params)?;
     technique.configure(&ctx, &scene, &WaterTextures::of(&heights))?;
     let output = technique.output().expect("configured");
     let caustics = output.texture().clone();

@@ -9,7 +9,8 @@ use caustics_core::Error::Unavailable;
 use caustics_core::bake::Frame;
 use caustics_core::scene::Scene;
 
-use crate::technique::{self, Output, Technique};
+use crate::registry;
+use crate::technique::{Output, Technique};
 use crate::water::field::GpuWater;
 use crate::{GpuContext, GpuError, Readback};
 
@@ -37,7 +38,7 @@ impl BakeFrames {
         source.update(ctx, 0.0, 1.0);
         let mut techniques = Vec::new();
         for scene in scenes {
-            let mut t = technique::create(ctx, name, params)?;
+            let mut t = registry::create(ctx, name, params)?;
             let (cols, rows) = t.water_resolution(scene);
             let heights = source.output(ctx, cols, rows)?;
             t.configure(ctx, scene, &heights)?;

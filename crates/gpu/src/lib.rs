@@ -3,7 +3,9 @@
 //! Each technique lives in its own module with one WGSL file per pass; its CPU twin lives in
 //! `caustics-core`.
 
+pub mod adapter;
 pub mod bake;
+pub mod bvh;
 pub mod cascaded;
 pub mod caustic_triangles;
 pub mod context;
@@ -12,13 +14,13 @@ pub mod map_mips;
 pub mod pass;
 pub mod probe;
 pub mod procedural;
+pub mod registry;
 pub mod renderer;
 pub mod shaders;
 pub mod technique;
 pub mod timing;
-pub mod traffic;
 mod transfer;
-pub use transfer::Readback;
+pub use transfer::{Readback, f16_to_f32};
 /// The Vulkan validation layer: native only (a browser's WebGPU validates on its own).
 #[cfg(not(target_arch = "wasm32"))]
 pub mod validation;
@@ -26,10 +28,10 @@ pub mod volumes;
 pub mod water;
 pub mod yuksel;
 
+pub use context::traffic::{self, TrafficCounts};
 pub use context::{GpuContext, GpuOptions};
 pub use technique::{Output, Technique, WallsOutput, WaterTextures};
 pub use timing::{GpuTimer, PassTime};
-pub use traffic::TrafficCounts;
 
 /// Everything that can go wrong on the GPU side, each naming the problem.
 #[derive(Debug, thiserror::Error)]

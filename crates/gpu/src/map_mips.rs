@@ -1,4 +1,4 @@
-//! A floor map's box-filter pyramid on the GPU (`shaders/caustics_mips.wgsl`, one dispatch a
+//! A floor map's box-filter pyramid on the GPU (`map_mips.wgsl`, one dispatch a
 //! level), the twin of caustics-core's `CausticsMap::pyramid`: level `L` is `max(1, size >> L)`
 //! texels a side, each the mean of the 2 x 2 under it, so that a reader can take the map's mean
 //! over a footprint of any size in a few taps (`MapPyramid::filtered`). The final image builds one
@@ -8,10 +8,21 @@
 use caustics_core::map::pyramid_levels;
 
 use crate::GpuContext;
-use crate::final_image::CAUSTICS_MIPS;
 use crate::pass::{bind_group, compute_pipeline};
+use crate::shaders::PassSource;
 
-/// `caustics_mips.wgsl`'s workgroup side.
+/// One level of the caustics map's pyramid (caustics-core's `CausticsMap::pyramid`), which the
+/// final image reads over each sample's footprint on the floor.
+pub const CAUSTICS_MIPS: PassSource = PassSource {
+    name: "caustics mips",
+    shared: &[],
+    file: "map_mips.wgsl",
+    source: include_str!("map_mips.wgsl"),
+};
+
+pub const PASSES: &[&PassSource] = &[&CAUSTICS_MIPS];
+
+/// `map_mips.wgsl`'s workgroup side.
 const TILE: u32 = 8;
 
 /// The bind groups that write one map's pyramid, finest level first, each with the size of the

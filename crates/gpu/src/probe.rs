@@ -1,10 +1,20 @@
 //! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
+use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::water::{GpuProceduralWave, GpuSineWave};
-use crate::{GpuContext, GpuError, shaders};
+use crate::{GpuContext, GpuError};
 
-/// Mirrors `ProbeIn` in `shaders/probe.wgsl`.
+pub const PROBE: PassSource = PassSource {
+    name: "probe",
+    shared: &[OPTICS, WATER],
+    file: "probe.wgsl",
+    source: include_str!("probe.wgsl"),
+};
+
+pub const PASSES: &[&PassSource] = &[&PROBE];
+
+/// Mirrors `ProbeIn` in `probe.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ProbeIn {
@@ -15,7 +25,7 @@ pub struct ProbeIn {
     pub point: [f32; 4],
 }
 
-/// Mirrors `ProbeOut` in `shaders/probe.wgsl`.
+/// Mirrors `ProbeOut` in `probe.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ProbeOut {
@@ -27,7 +37,7 @@ pub struct ProbeOut {
     pub hermite: [f32; 4],
 }
 
-/// Mirrors `ProbeParams` in `shaders/probe.wgsl` (uniform layout, padded to 16 bytes).
+/// Mirrors `ProbeParams` in `probe.wgsl` (uniform layout, padded to 16 bytes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 struct ProbeParams {
@@ -52,7 +62,7 @@ pub fn run(
     setup: &ProbeSetup,
 ) -> Result<Vec<ProbeOut>, GpuError> {
     let device = &ctx.device;
-    let module = shaders::PROBE.module(device);
+    let module = PROBE.module(device);
     let pipeline = ctx.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("probe"),
         layout: None,

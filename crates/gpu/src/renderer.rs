@@ -14,7 +14,8 @@ use caustics_core::scene::{Scene, Water};
 use caustics_core::water::ripple::{Drop, RippleParams};
 
 use crate::final_image::{FinalImage, FinalImageFrame, upload_walls, water_grid_resolution};
-use crate::technique::{self, Output, Technique, WallsOutput, WaterTextures};
+use crate::registry;
+use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
 use crate::water::field::GpuWater;
 use crate::{GpuContext, GpuError, GpuTimer, TrafficCounts};
 
@@ -241,7 +242,7 @@ impl Renderer {
                     technique: if spec.name.is_empty() {
                         Err(String::new())
                     } else {
-                        technique::create(ctx, &spec.name, &spec.params).map_err(|e| e.to_string())
+                        registry::create(ctx, &spec.name, &spec.params).map_err(|e| e.to_string())
                     },
                     spec,
                     configured: None,

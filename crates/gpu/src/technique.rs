@@ -5,14 +5,15 @@
 //! simulations' as much as an application's own), and the caustics go out as a texture the caller
 //! samples ([`Output`]). Nothing is read back on the way.
 //!
-//! Every technique registers itself once, in [`REGISTRY`], pointing at its description in
-//! `caustics_core::techniques::REGISTRY`; the application finds it there by name (`caustics
-//! techniques` lists them) and never matches names itself.
+//! A technique describes its GPU side once, as a [`Registered`] beside its code, and is listed in
+//! [`crate::registry::REGISTRY`]; the application finds it there by name and never matches names
+//! itself.
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::{Descriptor, Job, Made};
 use caustics_core::walls::{Wall, WallMaps};
 
+use crate::shaders::PassSource;
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// The water surface as the techniques read it: an `R32Float` texture of heights above the rest
@@ -64,7 +65,7 @@ impl<'a> Output<'a> {
     }
 }
 
-/// A technique's maps of the pool's walls (issue 18), for the final image to sample: an
+/// A technique's maps of the pool's walls, for the final image to sample: an
 /// `Rgba32Float` 2D array texture of four layers in `caustics_core::walls::Wall::ALL`'s order,
 /// layer `k` holding that wall's map in its first `cols[k]` columns (`WallMap`'s layout: row 0 at
 /// the floor, the rows up to the rest water level, the floor map's unit).
@@ -192,8 +193,10 @@ pub trait Technique: wgpu::WasmNotSendSync {
 
 /// How a registered technique is made: its pipelines for the device, its parameters from the
 /// technique tables of a scene file's `[caustics]` or the command line, keyed by technique
-/// (`{ yuksel = { n = 15 } }`; a missing table means the defaults).
-pub type Create = fn(&GpuContext, &toml::Table) -> Result<Box<dyn Technique>, GpuError>;
+/// (`{ yuksel = { n = 15 } }`; a missing table means the defaults), for the entry it is
+/// registered as.
+pub type Make =
+    fn(&'static Descriptor, &GpuContext, &toml::Table) -> Result<Box<dyn Technique>, GpuError>;
 
 /// A technique run once on a [`Job`] and read back (the tools' path: `caustics render --raw`,
 /// `compare`, the viewer's CPU-image mode), its pipelines kept between runs: the GPU twin of the
@@ -209,8 +212,9 @@ pub trait RunOnce {
     ) -> Result<Made, GpuError>;
 }
 
-/// Builds a technique's [`RunOnce`] (its pipelines) for the device.
-pub type CreateOnce = fn(&GpuContext) -> Result<Box<dyn RunOnce>, GpuError>;
+/// Builds a technique's [`RunOnce`] (its pipelines) for the device, for the entry it is
+/// registered as.
+pub type MakeOnce = fn(&'static Descriptor, &GpuContext) -> Result<Box<dyn RunOnce>, GpuError>;
 
 /// A technique's own final image (paper 4's camera pass, §4.3; paper 3's refracted view, §3.3),
 /// linear RGB at the scene camera's size.
@@ -231,13 +235,15 @@ pub type MakeOwnImage =
     fn(Option<&GpuContext>, &Scene, &toml::Table) -> Result<Option<OwnImage>, GpuError>;
 
 /// One entry of the registry: the technique's description (core's, the one every front end
-/// reads) and its two GPU forms.
+/// reads), its two GPU forms and its passes.
 pub struct Registered {
     pub describe: &'static Descriptor,
+    /// Every pass shader the technique builds (validated with naga by a test, without a GPU).
+    pub passes: &'static [&'static PassSource],
     /// The GPU-resident frame's form ([`Technique`]).
-    pub create: Create,
+    pub make: Make,
     /// The run-once form.
-    pub once: CreateOnce,
+    pub make_once: MakeOnce,
     /// Its own final image, where the paper ends in one.
     pub image: Option<MakeOwnImage>,
 }
@@ -247,43 +253,32 @@ impl Registered {
     pub fn name(&self) -> &'static str {
         self.describe.name
     }
+
+    /// The GPU-resident technique with the parameter tables `params`, its pipelines built for
+    /// `ctx`.
+    pub fn create(
+        &self,
+        ctx: &GpuContext,
+        params: &toml::Table,
+    ) -> Result<Box<dyn Technique>, GpuError> {
+        (self.make)(self.describe, ctx, params)
+    }
+
+    /// The run-once form, its pipelines built for `ctx`.
+    pub fn once(&self, ctx: &GpuContext) -> Result<Box<dyn RunOnce>, GpuError> {
+        (self.make_once)(self.describe, ctx)
+    }
 }
 
-/// Every GPU technique, in one place: one line each.
-pub const REGISTRY: &[Registered] = &[
-    crate::yuksel::technique::REGISTERED,
-    crate::yuksel::technique::TARGETS,
-    crate::procedural::technique::REGISTERED,
-    crate::procedural::technique::VERTEX,
-    crate::procedural::technique::SCREEN,
-    crate::procedural::technique::TEXTURE,
-    crate::volumes::technique::REGISTERED,
-    crate::caustic_triangles::technique::REGISTERED,
-    crate::cascaded::technique::REGISTERED,
-];
-
-/// The registry entry of `name`, if it has a GPU implementation.
-pub fn find(name: &str) -> Option<&'static Registered> {
-    let name = caustics_core::techniques::canonical(name);
-    REGISTRY.iter().find(|r| r.name() == name)
-}
-
-/// The registered technique `name` with the parameter tables `params` (keyed by technique, as in a
-/// scene file's `[caustics]`), its pipelines built for `ctx`.
-pub fn create(
-    ctx: &GpuContext,
-    name: &str,
-    params: &toml::Table,
-) -> Result<Box<dyn Technique>, GpuError> {
-    let Some(entry) = find(name) else {
-        return Err(GpuError::BadOption(format!(
-            "no GPU technique `{name}` (registered: {})",
-            REGISTRY
-                .iter()
-                .map(|r| r.name())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
-    };
-    (entry.create)(ctx, params)
+/// The scene's water, or an error naming the technique that needs it.
+pub fn scene_water<'s>(
+    scene: &'s Scene,
+    technique: &str,
+) -> Result<&'s caustics_core::scene::Water, GpuError> {
+    scene.water.as_ref().ok_or_else(|| {
+        GpuError::BadOption(format!(
+            "scene `{}` has no water: technique `{technique}` computes caustics from a water surface",
+            scene.name
+        ))
+    })
 }

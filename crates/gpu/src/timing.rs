@@ -23,7 +23,7 @@ pub struct GpuTimer {
     staging: Option<wgpu::Buffer>,
     staged: Staged,
     latest: Vec<PassTime>,
-    traffic: Arc<crate::traffic::Traffic>,
+    traffic: Arc<crate::context::traffic::Traffic>,
 }
 
 const MAPPING: u8 = 0;

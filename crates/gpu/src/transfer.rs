@@ -116,7 +116,7 @@ impl GpuContext {
             wgpu::TextureFormat::Rgba16Float => self
                 .read_texture_layer::<[u16; 4]>(texture, layer)?
                 .into_iter()
-                .map(|t| t.map(crate::caustic_triangles::f16_to_f32))
+                .map(|t| t.map(f16_to_f32))
                 .collect(),
             _ => self.read_texture_layer(texture, layer)?,
         })
@@ -258,11 +258,7 @@ impl Readback {
                 let row = &bytes[r * padded..];
                 if half {
                     let texels: &[[u16; 4]] = bytemuck::cast_slice(&row[..w * 8]);
-                    out.extend(
-                        texels
-                            .iter()
-                            .map(|t| t.map(crate::caustic_triangles::f16_to_f32)),
-                    );
+                    out.extend(texels.iter().map(|t| t.map(f16_to_f32)));
                 } else {
                     out.extend_from_slice(bytemuck::cast_slice(&row[..w * 16]));
                 }
@@ -270,4 +266,9 @@ impl Readback {
             out
         })
     }
+}
+
+/// IEEE half to single precision: the texels of `Rgba16Float` maps read back.
+pub fn f16_to_f32(h: u16) -> f32 {
+    half::f16::from_bits(h).to_f32()
 }

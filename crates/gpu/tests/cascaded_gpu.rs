@@ -320,7 +320,7 @@ mod through_the_trait {
     pub fn cascaded_through_the_trait_matches_the_cpu_twin() {
         let ctx = test_gpu();
         let scene = pool();
-        let mut t = caustics_gpu::technique::create(&ctx, "cascaded", &params()).unwrap();
+        let mut t = caustics_gpu::registry::create(&ctx, "cascaded", &params()).unwrap();
         assert_eq!(t.water_resolution(&scene), (256, 256));
         let h = heights(t.as_ref(), &scene);
         let tex = ctx.upload_grid("test heights", &h).unwrap();
@@ -343,7 +343,7 @@ mod through_the_trait {
                 .all(|(a, b)| (a[3] < 0.0) == (b[3] < 0.0))
         );
         assert!(valued > 0);
-        // The pool's walls are receivers (issue 18): the camera sees the walls x = 4 and y = 4,
+        // The pool's walls are receivers: the camera sees the walls x = 4 and y = 4,
         // whose pixels both twins light alike.
         let p = CascadedParams::from_table(&params()).unwrap();
         let setup = CascadedSetup::from_scene(&scene, &p).unwrap();
@@ -368,7 +368,7 @@ mod through_the_trait {
     pub fn cascaded_frames_create_and_read_nothing() {
         let ctx = test_gpu();
         let mut scene = pool();
-        let mut t = caustics_gpu::technique::create(&ctx, "cascaded", &params()).unwrap();
+        let mut t = caustics_gpu::registry::create(&ctx, "cascaded", &params()).unwrap();
         let h = heights(t.as_ref(), &scene);
         let tex = ctx.upload_grid("test heights", &h).unwrap();
         t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();

@@ -795,8 +795,9 @@ mod through_the_trait {
     use caustics_core::scene::Scene;
     use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
     use caustics_core::water::sample_grid;
+    use caustics_gpu::caustic_triangles::CopyBandBuffer;
     use caustics_gpu::caustic_triangles::technique::CausticTrianglesTechnique;
-    use caustics_gpu::caustic_triangles::{CopyBandBuffer, f16_to_f32};
+    use caustics_gpu::f16_to_f32;
     use caustics_gpu::{GpuContext, Technique, WaterTextures};
 
     const MAP: usize = 64;
@@ -893,7 +894,12 @@ mod through_the_trait {
         // 8 % in that texel, flux 2e-5; bands 12 to 48 give the CPU twin bit-identical maps, so
         // it is the rasteriser's tie and not the band. t = 1 has no such tie at this size.
         let scene = pool(1.0);
-        let mut t = CausticTrianglesTechnique::new(&ctx, &params(WATER_PARAMS)).unwrap();
+        let mut t = CausticTrianglesTechnique::new(
+            &caustics_core::techniques::caustic_triangles::DESCRIPTOR,
+            &ctx,
+            &params(WATER_PARAMS),
+        )
+        .unwrap();
         assert_eq!(t.water_resolution(&scene), (MAP as u32, MAP as u32));
         let h = heights(&t, &scene);
         let tex = ctx.upload_grid("test heights", &h).unwrap();
@@ -950,7 +956,7 @@ mod through_the_trait {
         let ctx = test_gpu();
         let mut scene = pool(0.0);
         let mut t =
-            caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
+            caustics_gpu::registry::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
                 .unwrap();
         let h = heights(t.as_ref(), &scene);
         let tex = ctx.upload_grid("test heights", &h).unwrap();
@@ -989,7 +995,7 @@ mod through_the_trait {
         );
     }
 
-    /// The pool with its walls (issue 18) through the trait: ten frames of moving water and a
+    /// The pool with its walls through the trait: ten frames of moving water and a
     /// moving sun create and read nothing; the last frame's floor map and the four wall maps of
     /// [`Technique::walls`] (layer k = `Wall::ALL[k]`) equal the CPU twin's `wall_caustics`.
     pub fn walls_through_the_trait_match_the_cpu_twin() {
@@ -1009,7 +1015,7 @@ mod through_the_trait {
         let mut scene = pool(0.0);
         scene.floor.walls = true;
         let mut t =
-            caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(text)).unwrap();
+            caustics_gpu::registry::create(&ctx, "caustic-triangles", &params(text)).unwrap();
         let h = heights(t.as_ref(), &scene);
         let tex = ctx.upload_grid("test heights", &h).unwrap();
         t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
@@ -1084,7 +1090,7 @@ mod through_the_trait {
         let ctx = test_gpu();
         let mut scene = glass();
         let table = params(GLASS_PARAMS);
-        let mut t = caustics_gpu::technique::create(&ctx, "caustic-triangles", &table).unwrap();
+        let mut t = caustics_gpu::registry::create(&ctx, "caustic-triangles", &table).unwrap();
         let (cols, rows) = t.water_resolution(&scene);
         let tex = ctx
             .upload_grid("no water", &Grid::new(cols as usize, rows as usize))
@@ -1125,7 +1131,7 @@ mod through_the_trait {
             )
         };
         let table = params(&with(2));
-        let mut t = caustics_gpu::technique::create(&ctx, "caustic-triangles", &table).unwrap();
+        let mut t = caustics_gpu::registry::create(&ctx, "caustic-triangles", &table).unwrap();
         let (cols, rows) = t.water_resolution(&scene);
         let tex = ctx
             .upload_grid("no water", &Grid::new(cols as usize, rows as usize))
@@ -1159,7 +1165,7 @@ mod through_the_trait {
         let ctx = test_gpu();
         let mut scene = glass();
         let mut t =
-            caustics_gpu::technique::create(&ctx, "caustic-triangles", &params(GLASS_PARAMS))
+            caustics_gpu::registry::create(&ctx, "caustic-triangles", &params(GLASS_PARAMS))
                 .unwrap();
         let tex = ctx.upload_grid("no water", &Grid::new(1, 1)).unwrap();
         t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();

@@ -10,7 +10,7 @@ use caustics_core::grid::Grid;
 use caustics_core::scene::Scene;
 use caustics_core::water::sample_grid;
 use caustics_gpu::context::GpuOptions;
-use caustics_gpu::technique::{self, REGISTRY};
+use caustics_gpu::registry::{self, REGISTRY};
 use caustics_gpu::{GpuContext, GpuError, WaterTextures};
 
 /// The device's largest texture side.
@@ -83,7 +83,7 @@ fn configure(ctx: &GpuContext, name: &str, scene: &Scene, params: &str) -> Resul
             }
         }
     }
-    let mut t = technique::create(ctx, name, &table)?;
+    let mut t = registry::create(ctx, name, &table)?;
     // The water as large as the technique reads it, within the device's limit: the refusals
     // tested here are the technique's own.
     let (cols, rows) = t.water_resolution(scene);

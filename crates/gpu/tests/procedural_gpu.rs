@@ -419,7 +419,8 @@ fn a_map_beyond_the_device_limit_is_refused() {
 use caustics_core::scene::Scene;
 use caustics_core::water::sample_grid;
 use caustics_gpu::GpuContext;
-use caustics_gpu::technique::{self, Technique, WaterTextures};
+use caustics_gpu::registry;
+use caustics_gpu::technique::{Technique, WaterTextures};
 
 /// Every name paper 2 is registered under, with the variant it runs.
 const REGISTERED: [(&str, Variant); 4] = [
@@ -473,7 +474,7 @@ fn configured(
     name: &str,
     scene: &Scene,
 ) -> (Box<dyn Technique>, Grid, wgpu::Texture) {
-    let mut t = technique::create(ctx, name, &trait_params()).expect("registered");
+    let mut t = registry::create(ctx, name, &trait_params()).expect("registered");
     let (cols, rows) = t.water_resolution(scene);
     let w = scene.water.as_ref().expect("water");
     let surface = w.surface_at(scene.time).expect("surface");
@@ -592,7 +593,7 @@ fn the_interface_refuses_a_terrain_and_no_water() {
         .upload_grid("test heights", &Grid::new(64, 64))
         .expect("upload");
     let water = WaterTextures::of(&heights);
-    let mut t = technique::create(&ctx, "procedural", &trait_params()).expect("registered");
+    let mut t = registry::create(&ctx, "procedural", &trait_params()).expect("registered");
     scene.floor.terrain = Some(Grid::new(8, 8));
     let err = t.configure(&ctx, &scene, &water).unwrap_err().to_string();
     assert!(err.contains("terrain"), "{err}");
@@ -603,9 +604,9 @@ fn the_interface_refuses_a_terrain_and_no_water() {
     let vertex: toml::Table = "procedural = { variant = \"vertex\" }"
         .parse()
         .expect("toml");
-    let named = technique::create(&ctx, "procedural", &vertex).expect("registered");
+    let named = registry::create(&ctx, "procedural", &vertex).expect("registered");
     assert_eq!(named.name(), "procedural-vertex");
-    let err = technique::create(&ctx, "procedural-texture", &vertex)
+    let err = registry::create(&ctx, "procedural-texture", &vertex)
         .err()
         .expect("refused")
         .to_string();

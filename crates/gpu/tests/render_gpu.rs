@@ -337,7 +337,7 @@ fn pool_with_a_concrete_deck_matches_the_cpu() {
     );
 }
 
-/// The pool's walls lit through the reference's walls' maps (issue 18) under a low sun that lights
+/// The pool's walls lit through the reference's walls' maps under a low sun that lights
 /// the far walls the camera looks at: `render_with_walls` on both sides.
 fn pool_walls_match_the_cpu() {
     use caustics_core::reference::reference_with_walls;
@@ -756,7 +756,7 @@ fn the_frames_slope_moments_are_the_cpus() {
     assert!(worst < 2.7e-5, "{worst}");
 }
 
-/// Technique `cascaded` on the pool with its walls (issue 18): no wall maps, the final image reads
+/// Technique `cascaded` on the pool with its walls: no wall maps, the final image reads
 /// the eye-space image on the walls as on the floor, on both sides; the walls the low sun lights
 /// are brighter than without caustics.
 fn pool_with_cascaded_lights_the_walls_as_the_cpu() {
@@ -1101,7 +1101,7 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
     let heights = heights_texture(&ctx, &grid);
     let water = WaterTextures::of(&heights);
     let mut technique =
-        caustics_gpu::technique::create(&ctx, "yuksel", &toml::Table::new()).expect("yuksel");
+        caustics_gpu::registry::create(&ctx, "yuksel", &toml::Table::new()).expect("yuksel");
     technique
         .configure(&ctx, &scene, &water)
         .expect("configure");

@@ -1,12 +1,17 @@
 //! Every WGSL pass, composed with the shared math it includes, parses and validates with naga. Needs
-//! no GPU, so a shader error fails CI even where no adapter exists.
+//! no GPU, so a shader error fails CI even where no adapter exists. The passes are the registry's
+//! (`caustics_gpu::registry::all_passes`), and every `.wgsl` file of the crate must be one of them
+//! or a part they share, so a pass left out of its technique's list fails here.
 
-use caustics_gpu::shaders::ALL_PASSES;
+use std::path::{Path, PathBuf};
+
+use caustics_gpu::registry::all_passes;
 
 #[test]
 fn every_pass_parses_and_validates() {
-    assert!(!ALL_PASSES.is_empty());
-    for pass in ALL_PASSES {
+    let passes = all_passes();
+    assert!(passes.len() >= 55, "{}", passes.len());
+    for pass in passes {
         let source = pass.composed();
         let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
             panic!("{}: {}", pass.name, e.emit_to_string(&source));
@@ -20,9 +25,51 @@ fn every_pass_parses_and_validates() {
     }
 }
 
+fn wgsl_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            wgsl_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "wgsl") {
+            out.push(path);
+        }
+    }
+}
+
+/// Each pass's `file` holds its `source`, and every `.wgsl` file under `src/` is a registered
+/// pass or a part one of them composes.
+#[test]
+fn every_wgsl_file_is_a_registered_pass_or_a_shared_part() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let passes = all_passes();
+    for pass in &passes {
+        let text = std::fs::read_to_string(src.join(pass.file))
+            .unwrap_or_else(|e| panic!("{}: {}: {e}", pass.name, pass.file));
+        assert_eq!(
+            text, pass.source,
+            "{}: `{}` is not its source",
+            pass.name, pass.file
+        );
+    }
+    let mut files = Vec::new();
+    wgsl_files(&src, &mut files);
+    assert!(files.len() >= 60, "{}", files.len());
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        let used = passes
+            .iter()
+            .any(|p| p.source == text || p.shared.contains(&text.as_str()));
+        assert!(
+            used,
+            "{} is in no registered pass: list it in its technique's PASSES (or the frame's)",
+            file.display()
+        );
+    }
+}
+
 #[test]
 fn uniform_structs_match_their_wgsl_size() {
-    let source = caustics_gpu::shaders::PROBE.composed();
+    let source = caustics_gpu::probe::PROBE.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
     let size_of = |name: &str| {
         let (_, ty) = module
@@ -56,9 +103,8 @@ fn wgsl_size(pass: &caustics_gpu::shaders::PassSource, name: &str) -> usize {
 
 #[test]
 fn water_uniform_structs_match_their_wgsl_size() {
-    use caustics_gpu::shaders::{OCEAN_FFT, OCEAN_SPECTRUM, RIPPLE_DROP, RIPPLE_STEP};
-    use caustics_gpu::water::ocean::{FftStage, SpectrumParams};
-    use caustics_gpu::water::ripple::{RippleDrop, RippleStep};
+    use caustics_gpu::water::ocean::{FftStage, OCEAN_FFT, OCEAN_SPECTRUM, SpectrumParams};
+    use caustics_gpu::water::ripple::{RIPPLE_DROP, RIPPLE_STEP, RippleDrop, RippleStep};
     use std::mem::size_of;
     assert_eq!(
         wgsl_size(&OCEAN_SPECTRUM, "SpectrumParams"),
@@ -103,9 +149,8 @@ fn yuksel_pass1_validates_for_every_target_count() {
 
 #[test]
 fn final_image_structs_match_their_wgsl_size() {
-    use caustics_gpu::final_image::{
-        FINAL_IMAGE, FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject,
-    };
+    use caustics_gpu::bvh::{GpuBvhNode, GpuBvhTriangle};
+    use caustics_gpu::final_image::{FINAL_IMAGE, FinalImageUniform, GpuObject};
     use std::mem::size_of;
     assert_eq!(
         wgsl_size(&FINAL_IMAGE, "FinalImage"),
@@ -130,4 +175,33 @@ fn procedural_uniform_matches_its_wgsl_size() {
             pass.name
         );
     }
+}
+
+/// `scripts/mutate-passes.sh`'s table follows the code: each mutation names a registered pass's
+/// file (or a part the passes share) and the exact text it changes is still there, so no line of
+/// the table goes stale unseen.
+#[test]
+fn the_mutation_table_names_registered_passes_and_their_text() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let script = std::fs::read_to_string(root.join("scripts/mutate-passes.sh")).unwrap();
+    let passes = all_passes();
+    let mut lines = 0;
+    for line in script.lines().filter(|l| l.contains(" @@ ")) {
+        let fields: Vec<&str> = line.split(" @@ ").collect();
+        let [name, file, old, _new, _tests] = fields[..] else {
+            panic!("a mutation line has five fields: {line}");
+        };
+        let Some(rel) = file.strip_prefix("$S/") else {
+            continue; // the format's own description
+        };
+        let text = std::fs::read_to_string(root.join("crates/gpu/src").join(rel))
+            .unwrap_or_else(|e| panic!("{name}: {rel}: {e}"));
+        assert!(text.contains(old), "{name}: `{old}` is not in {rel}");
+        let registered = passes
+            .iter()
+            .any(|p| p.file == rel || p.shared.contains(&text.as_str()));
+        assert!(registered, "{name}: {rel} is no registered pass's");
+        lines += 1;
+    }
+    assert!(lines >= 70, "{lines} mutation lines");
 }

@@ -9,7 +9,7 @@ use caustics_core::scene::Scene;
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
 use caustics_core::water::sample_grid;
 use caustics_gpu::context::test_gpu;
-use caustics_gpu::technique::{self, REGISTRY};
+use caustics_gpu::registry::{self, REGISTRY};
 use caustics_gpu::{GpuContext, Output, WaterTextures};
 use glam::DVec3;
 
@@ -45,7 +45,7 @@ fn the_registry_names_are_unique_and_unknown_names_are_refused() {
         );
     }
     let ctx = test_gpu();
-    let err = technique::create(&ctx, "no-such", &toml::Table::new())
+    let err = registry::create(&ctx, "no-such", &toml::Table::new())
         .err()
         .expect("refused");
     assert!(err.to_string().contains("no-such") && err.to_string().contains("yuksel"));
@@ -66,7 +66,7 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
         ("yuksel", Some(grazing)),
         ("yuksel-targets", Some(grazing)),
     ] {
-        let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
+        let mut t = registry::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
         if let Some(sun) = sun {
             scene.light.direction = sun;
@@ -114,7 +114,7 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
 fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
     let ctx = test_gpu();
     for name in ["yuksel", "yuksel-targets"] {
-        let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
+        let mut t = registry::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
         let texture = ctx.upload_grid("heights", &grid).unwrap();
         t.configure(&ctx, &scene, &WaterTextures::of(&texture))
@@ -161,7 +161,7 @@ fn yuksel_steady_frames_create_nothing_and_read_nothing_back() {
 fn yuksel_follows_steeper_water_without_new_resources() {
     let ctx = test_gpu();
     for name in ["yuksel", "yuksel-targets"] {
-        let mut t = technique::create(&ctx, name, &toml::Table::new()).unwrap();
+        let mut t = registry::create(&ctx, name, &toml::Table::new()).unwrap();
         let (mut scene, grid) = pool((64, 64));
         scene.light.direction = DVec3::new(0.6, 0.45, -0.66).normalize();
         let texture = ctx.upload_grid("heights", &grid).unwrap();
@@ -305,7 +305,7 @@ fn yuksel_chooses_its_passes_from_the_preset() {
     let texture = ctx.upload_grid("heights", &grid).unwrap();
     let bytes = |name: &str, table: &str| {
         let params: toml::Table = table.parse().unwrap();
-        let mut t = technique::create(&ctx, name, &params).unwrap();
+        let mut t = registry::create(&ctx, name, &params).unwrap();
         t.configure(&ctx, &scene, &WaterTextures::of(&texture))
             .unwrap();
         (t.name().to_string(), t.bytes())
@@ -328,7 +328,7 @@ fn yuksel_chooses_its_passes_from_the_preset() {
     assert!(paper_scatter.1 * 2 < paper.1, "{paper_scatter:?} {paper:?}");
     assert_eq!(bytes("yuksel-gather", ""), scatter);
     let asks_scatter: toml::Table = "yuksel = { passes = \"scatter\" }".parse().unwrap();
-    let err = technique::create(&ctx, "yuksel-targets", &asks_scatter)
+    let err = registry::create(&ctx, "yuksel-targets", &asks_scatter)
         .err()
         .expect("refused");
     assert!(err.to_string().contains("passes"), "{err}");

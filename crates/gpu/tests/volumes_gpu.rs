@@ -452,7 +452,8 @@ use caustics_core::map::CausticsMap;
 use caustics_core::scene::Scene;
 use caustics_core::water::sample_grid;
 use caustics_gpu::GpuContext;
-use caustics_gpu::technique::{self, Technique, WaterTextures};
+use caustics_gpu::registry;
+use caustics_gpu::technique::{Technique, WaterTextures};
 
 /// A built-in scene with a 64 x 64 map (the pool and objects with their gentle ripples, on which
 /// the bounds were measured).
@@ -481,7 +482,7 @@ fn cpu_floor(scene: &Scene, heights: &Grid) -> CausticsMap {
 /// `volumes` created through the registry and configured on `scene`, reading the scene's surface
 /// sampled at the technique's own `water_resolution` (returned, with the texture it lives in).
 fn configured(ctx: &GpuContext, scene: &Scene) -> (Box<dyn Technique>, Grid, wgpu::Texture) {
-    let mut t = technique::create(ctx, "volumes", &trait_params()).expect("registered");
+    let mut t = registry::create(ctx, "volumes", &trait_params()).expect("registered");
     assert_eq!(t.name(), "volumes");
     let (cols, rows) = t.water_resolution(scene);
     let w = scene.water.as_ref().expect("water");
@@ -508,7 +509,7 @@ fn read_output(ctx: &GpuContext, t: &dyn Technique) -> Vec<[f32; 3]> {
         wgpu::TextureFormat::Rgba16Float => {
             let raw: Vec<[u16; 4]> = ctx.read_texture(texture).expect("readback");
             raw.into_iter()
-                .map(|t| t.map(caustics_gpu::caustic_triangles::f16_to_f32))
+                .map(|t| t.map(caustics_gpu::f16_to_f32))
                 .collect()
         }
         _ => ctx.read_texture(texture).expect("readback"),
@@ -646,7 +647,7 @@ fn the_interface_refuses_a_terrain() {
     let heights = ctx
         .upload_grid("test heights", &Grid::new(64, 64))
         .expect("upload");
-    let mut t = technique::create(&ctx, "volumes", &trait_params()).expect("registered");
+    let mut t = registry::create(&ctx, "volumes", &trait_params()).expect("registered");
     let err = t
         .configure(&ctx, &scene, &WaterTextures::of(&heights))
         .unwrap_err()

@@ -139,7 +139,7 @@ fn param_js(p: &describe::Param) -> Option<ParamJs> {
         choices,
         default: p.default.value(),
         auto: match p.default {
-            describe::Default::Auto(how) => Some(how),
+            describe::ParamDefault::Auto(how) => Some(how),
             _ => None,
         },
         unit: p.unit,
@@ -292,7 +292,7 @@ impl Page {
                 continue;
             }
             let spec: Spec = s.parse().map_err(js)?;
-            if caustics_gpu::technique::find(spec.name()).is_none() {
+            if caustics_gpu::registry::find(spec.name()).is_none() {
                 return Err(js(format!(
                     "`{}` has no GPU implementation; the page runs the GPU techniques",
                     spec.name()
@@ -594,7 +594,7 @@ impl Page {
     fn offered(&self) -> Vec<&'static caustics_gpu::technique::Registered> {
         techniques::for_scene(&self.scene)
             .iter()
-            .filter_map(|n| caustics_gpu::technique::find(n))
+            .filter_map(|n| caustics_gpu::registry::find(n))
             .collect()
     }
 

@@ -955,7 +955,11 @@ impl Viewer {
                     light: m.sun.direction(),
                     map_size: m.quality.map_size as usize,
                 };
-                m.buffer_shown = match buffers::picture(choice.entry, m.buffer, &input) {
+                m.buffer_shown = match caustics_core::techniques::describe::picture(
+                    choice.entry,
+                    m.buffer,
+                    &input,
+                ) {
                     Ok(p) => {
                         self.buffer_image.set(
                             ctx,

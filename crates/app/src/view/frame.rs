@@ -495,7 +495,7 @@ impl SceneRenderer {
             slot.technique_ms = None;
             let spec = slot.choice.spec()?;
             let name = slot.choice.name().to_string();
-            if caustics_gpu::technique::find(&name).is_some() {
+            if caustics_gpu::registry::find(&name).is_some() {
                 specs.push(Some(caustics_gpu::renderer::TechniqueSpec {
                     name,
                     params: spec.params.clone(),

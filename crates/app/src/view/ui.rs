@@ -14,7 +14,7 @@ use super::frame::{Quality, Slot, TechniqueChoice};
 use super::water::{Mode, WaterState};
 use caustics_core::orbit::{MIN_ELEVATION, OrbitCamera, Sun, pick_water};
 use caustics_core::techniques::buffers::{Buffer, SceneHas};
-use caustics_core::techniques::describe::{Default, Kind, Param};
+use caustics_core::techniques::describe::{Kind, Param, ParamDefault};
 
 /// Texture ids of everything the UI draws, registered once and updated in place.
 #[derive(Clone, Copy, Debug)]
@@ -282,7 +282,7 @@ fn param_widget(ui: &mut egui::Ui, id: &str, param: &Param, params: &mut toml::T
     } else {
         format!("{} ({})", param.doc, param.unit)
     };
-    if let Default::Auto(how) = param.default {
+    if let ParamDefault::Auto(how) = param.default {
         let mut auto = !params.contains_key(param.key);
         let r = ui.checkbox(&mut auto, format!("{}: auto", param.label));
         r.on_hover_text(format!("{hint}; auto: {how}"));

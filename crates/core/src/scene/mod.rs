@@ -19,12 +19,19 @@ use crate::grid::{Edge, Grid};
 use crate::mesh::TriangleMesh;
 use crate::water::ocean::{Ocean, OceanParams};
 use crate::water::procedural::{Procedural, ProceduralParams};
-use crate::water::ripple::{RippleParams, Ripples};
+use crate::water::ripple::{self, RippleParams, Ripples};
 use crate::water::waves::{Wave, Waves};
 use crate::water::{Flat, GridSurface, Surface};
 
+pub use crate::grid::MAX_RESOLUTION;
 pub use builtin::BUILTIN_SCENES;
-pub use validate::MAX_RESOLUTION;
+
+/// The check of a scene file's `technique` and `[caustics.<name>]` tables, run while the file is
+/// read (after its light, water and map size, before its floor). The scene model knows no
+/// technique, so its readers (`Scene::*_with`) are given the check; the loaders every front end
+/// calls, [`Scene::load`], [`Scene::builtin`], [`Scene::load_or_builtin`] and [`Scene::from_toml`],
+/// are the registry's ([`crate::techniques::registry`]) and pass its check.
+pub type TechniqueCheck = fn(&CausticsSpec) -> Result<()>;
 
 // ---------------------------------------------------------------------------------------------
 // The file schema.
@@ -332,7 +339,7 @@ pub struct CameraSpec {
     pub exposure: f64,
     /// The final image's tone curve: "aces" (the default), "agx" or "none".
     #[serde(default)]
-    pub tone_map: crate::render::ToneMap,
+    pub tone_map: crate::tone_map::ToneMap,
 }
 
 fn one() -> f64 {
@@ -439,6 +446,47 @@ impl Water {
     /// The water's rest level above z = 0.
     pub fn level(&self) -> f64 {
         self.depth
+    }
+}
+
+// The ripple simulation of a scene's water: here, where the water is known, so that
+// `crate::water::ripple` stays below the scene model.
+
+impl ripple::Drop {
+    /// The drop a click makes on `water` at `position`: a dent a sixteenth of the square across
+    /// and curved enough to focus the light within a pool's depth, so a click shows bright rings
+    /// at once.
+    pub fn click(water: &Water, position: [f64; 2]) -> ripple::Drop {
+        ripple::Drop {
+            position,
+            radius: water.size / 16.0,
+            strength: -water.size / 60.0,
+        }
+    }
+}
+
+impl RippleParams {
+    /// The simulation an interactive view runs on a scene's water: its own parameters if its water
+    /// is a ripple simulation, else the defaults (made for a unit square) with the initial drops
+    /// stretched to the scene's square. The wave speed stays the default's half a unit per second
+    /// (real ripples of a few centimetres run at a few decimetres per second) so that a click's
+    /// rings stay in view for seconds on a pool; it shrinks only on squares smaller than one unit,
+    /// where the Courant condition needs it.
+    pub fn for_water(water: &Water) -> Self {
+        if let WaterSource::Ripple(p) = &water.source {
+            return p.clone();
+        }
+        let s = water.size;
+        let mut p = RippleParams {
+            wave_speed: RippleParams::default().wave_speed * s.min(1.0),
+            ..RippleParams::default()
+        };
+        for d in &mut p.drops {
+            d.position = [d.position[0] * s, d.position[1] * s];
+            d.radius *= s;
+            d.strength *= s;
+        }
+        p
     }
 }
 
@@ -660,14 +708,14 @@ pub struct Camera {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Look {
     pub exposure: f64,
-    pub tone_map: crate::render::ToneMap,
+    pub tone_map: crate::tone_map::ToneMap,
 }
 
 impl Default for Look {
     fn default() -> Self {
         Look {
             exposure: 1.0,
-            tone_map: crate::render::ToneMap::default(),
+            tone_map: crate::tone_map::ToneMap::default(),
         }
     }
 }
@@ -687,15 +735,16 @@ impl Camera {
 }
 
 impl Scene {
-    /// Read and check a scene file; relative paths inside it are relative to the file.
-    pub fn load(path: &Path) -> Result<Scene> {
+    /// Read and check a scene file, its technique by `check_technique`; relative paths inside it
+    /// are relative to the file. [`Scene::load`] passes the registry's check.
+    pub fn load_with(path: &Path, check_technique: TechniqueCheck) -> Result<Scene> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         let base = path.parent().unwrap_or(Path::new("."));
         let name = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "scene".into());
-        Scene::from_toml(&text, base, &name).map_err(|e| match e {
+        Scene::from_toml_with(&text, base, &name, check_technique).map_err(|e| match e {
             Error::SceneSyntax { message, .. } => Error::SceneSyntax {
                 path: path.to_path_buf(),
                 message,
@@ -704,31 +753,29 @@ impl Scene {
         })
     }
 
-    /// A built-in scene by name (`pool`, `shore`, `objects`, `glass`).
-    pub fn builtin(name: &str) -> Result<Scene> {
+    /// A built-in scene by name, its technique checked by `check_technique`.
+    /// [`Scene::builtin`] passes the registry's check.
+    pub fn builtin_with(name: &str, check_technique: TechniqueCheck) -> Result<Scene> {
         let (_, text) = BUILTIN_SCENES
             .iter()
             .find(|(n, _)| *n == name)
             .ok_or_else(|| Error::UnknownScene(name.to_string()))?;
-        Scene::from_toml(text, Path::new("."), name)
+        Scene::from_toml_with(text, Path::new("."), name, check_technique)
     }
 
-    /// A scene file path, or a built-in scene's name.
-    pub fn load_or_builtin(arg: &str) -> Result<Scene> {
-        let path = Path::new(arg);
-        if path.exists() || arg.ends_with(".toml") {
-            Scene::load(path)
-        } else {
-            Scene::builtin(arg)
-        }
-    }
-
-    pub fn from_toml(text: &str, base: &Path, name: &str) -> Result<Scene> {
+    /// A scene from a file's text, its technique checked by `check_technique`.
+    /// [`Scene::from_toml`] passes the registry's check.
+    pub fn from_toml_with(
+        text: &str,
+        base: &Path,
+        name: &str,
+        check_technique: TechniqueCheck,
+    ) -> Result<Scene> {
         let file: SceneFile = toml::from_str(text).map_err(|e| Error::SceneSyntax {
             path: PathBuf::from(format!("<{name}>")),
             message: e.to_string(),
         })?;
-        validate::validate(file, base, name)
+        validate::validate(file, base, name, check_technique)
     }
 
     /// Height of the floor under `p`, 0 for the plane.

@@ -5,10 +5,8 @@ use std::path::Path;
 use glam::{DAffine3, DVec3};
 
 use super::*;
+use crate::grid::MAX_RESOLUTION;
 use crate::mesh;
-
-/// The largest caustics map or image side we accept: far beyond any GPU's 2-D texture limit is a typo.
-pub const MAX_RESOLUTION: u32 = 16384;
 
 fn finite(field: &str, v: &[f64]) -> Result<()> {
     if v.iter().all(|x| x.is_finite()) {
@@ -54,7 +52,12 @@ fn resolve(base: &Path, p: &Path) -> PathBuf {
     }
 }
 
-pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene> {
+pub(super) fn validate(
+    file: SceneFile,
+    base: &Path,
+    name: &str,
+    check_technique: TechniqueCheck,
+) -> Result<Scene> {
     let light = validate_light(&file.light)?;
     let water = file
         .water
@@ -64,33 +67,10 @@ pub(super) fn validate(file: SceneFile, base: &Path, name: &str) -> Result<Scene
     let size = water.as_ref().map_or(1.0, |w| w.size);
 
     resolution("caustics.resolution", file.caustics.resolution)?;
+    // The technique and its tables, by the check the loader was given (the registry's: the scene
+    // model knows no technique), at this point of the file's checks.
+    check_technique(&file.caustics)?;
     let technique = file.caustics.technique.clone();
-    // One parser for a scene's `technique` (`name` or `name:key=value,...`, as `--technique`
-    // takes it) and its `[caustics.<name>]` tables: the registry's descriptors.
-    let spec = technique
-        .parse::<crate::techniques::Spec>()
-        .map_err(|e| match e {
-            Error::InvalidParameter(problem) => Error::field("caustics.technique", problem),
-            other => other,
-        })?;
-    crate::techniques::describe::check_tables(&file.caustics.params)?;
-    // A name that pins a parameter (`yuksel-targets`: `passes = "targets"`) wins over the
-    // scene's table, so a table that says otherwise would be dropped without a word.
-    let table = file.caustics.params.get(spec.entry.table);
-    for (key, pinned) in spec.entry.fixed {
-        if let Some(given) = table.and_then(|t| t.get(*key))
-            && given.as_str() != Some(pinned)
-        {
-            return Err(Error::field(
-                format!("caustics.{}.{key}", spec.entry.table),
-                format!(
-                    "is {given}, but the scene's technique `{}` always runs with {key} \
-                     `{pinned}`: drop the key, or choose another technique",
-                    spec.entry.name
-                ),
-            ));
-        }
-    }
 
     let floor = validate_floor(&file.floor, base, size)?;
     if floor.walls && water.is_none() {

@@ -1,13 +1,16 @@
 //! Intermediate buffers: the stages of a technique as pictures, so that its work can be watched as
 //! the water moves (the viewer's buffer window; any front end). Each technique lists its buffers in
-//! its [`Descriptor`] and draws them with its CPU twin's passes (the GPU passes keep their textures
-//! to themselves and match the twin to the tolerances their tests state), from the same input,
-//! only while a view asks. The water's heights are every water technique's.
+//! its [`Descriptor`](super::Descriptor) and draws them with its CPU twin's passes (the GPU passes
+//! keep their textures to themselves and match the twin to the tolerances their tests state), from
+//! the same input, only while a view asks. The water's heights are every water technique's.
+//!
+//! These are the kinds a descriptor is made of, so they know no descriptor: the buffers an entry
+//! offers ([`Buffer::available`]) and drawing one ([`super::describe::picture`]) are the
+//! descriptor's, in [`super::describe`].
 
 use glam::DVec3;
 
-use super::Descriptor;
-use crate::plot::{Picture, diverging, scalar_picture};
+use crate::plot::Picture;
 use crate::scene::{Scene, Water};
 use crate::water::Surface;
 use crate::{Error, Result};
@@ -125,26 +128,6 @@ impl Buffer {
                 ))
             })
     }
-
-    /// The buffers `entry` shows in a scene with what `has` says: the heights where there is
-    /// water, then the technique's own where the scene has what they show; none where the
-    /// technique does not run (a water technique in a scene of glass).
-    pub fn available(entry: &Descriptor, has: SceneHas) -> Vec<Buffer> {
-        if !has.water && entry.input != super::Input::GlassOrWater {
-            return Vec::new();
-        }
-        let heights = has.water.then_some(&HEIGHTS);
-        heights
-            .into_iter()
-            .chain(entry.buffers.iter().filter(|b| match b.needs {
-                Needs::Anything => true,
-                Needs::NoWater => !has.water,
-                Needs::PointLight => has.point_light,
-                Needs::Objects => has.objects > 0,
-            }))
-            .map(Buffer::new)
-            .collect()
-    }
 }
 
 /// What of a scene decides which buffers a technique has there.
@@ -206,23 +189,6 @@ pub fn no_buffers(_: &BufferInput, buffer: Buffer) -> Result<Picture> {
         "no buffer `{}` for this technique",
         buffer.key()
     )))
-}
-
-/// Compute `buffer` of `entry` for `input`; an error names what stood in the way (e.g. an invalid
-/// `N`, an object the scene does not have).
-pub fn picture(entry: &Descriptor, buffer: Buffer, input: &BufferInput) -> Result<Picture> {
-    if buffer.desc.key == HEIGHTS.key {
-        let (water, surface) = input.water()?;
-        let n = input.map_size;
-        let heights = super::heights_for(water, surface, n, n);
-        let (lo, hi) = heights.min_max();
-        let r = lo.abs().max(hi.abs()).max(1e-9);
-        return Ok(Picture {
-            legend: format!("height: blue -{r:.4}, red +{r:.4} (world units)"),
-            ..scalar_picture(&heights, |v| diverging(v / r))
-        });
-    }
-    (entry.draw_buffer)(input, buffer)
 }
 
 /// An index below `count`, or the error naming the range (`what`: "objects", "cascades").

@@ -52,6 +52,10 @@ use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::scene::{Camera, Scene, WaterSource};
 use crate::walls::Wall;
 
+// The eye camera's projection, which this technique's passes follow and the final image reads the
+// technique's image through: it lives below both, in `crate::eye`.
+pub use crate::eye::EyeCamera;
+
 /// The fixed number of cascades (§3.2.2: "a fixed number of cascades" avoids shimmering).
 pub const CASCADES: usize = 4;
 /// Fixed-point scale of the splatted photon weights.
@@ -97,7 +101,9 @@ pub enum Placement {
 }
 
 use super::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, check_index};
-use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::describe::{
+    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+};
 use super::{Input, Job, Made, SceneCaustics};
 use crate::plot::{Picture, rgb_picture};
 
@@ -256,6 +262,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     draw_buffer,
     reference: false,
     validate: |t| CascadedParams::from_table(t).map(|_| ()),
+    own_defaults: serde_defaults::<CascadedParams>,
     cpu: run_cpu,
 };
 
@@ -288,7 +295,7 @@ fn run_cpu(
     let image = caustics(&setup, &water, job.scene.floor.terrain.as_ref()).image;
     progress(1, 1);
     Ok(Made {
-        caustics: SceneCaustics::EyeSpace(crate::render::EyeSpaceCaustics {
+        caustics: SceneCaustics::EyeSpace(crate::eye::EyeSpaceCaustics {
             width: setup.eye.width,
             height: setup.eye.height,
             texels: image,
@@ -446,63 +453,6 @@ pub struct CascadeView {
     pub w0: f64,
     /// Eye view depth of the sub-frustum's far plane.
     pub far: f64,
-}
-
-/// The eye camera as a pinhole: `Camera::ray`'s basis with the field of view folded in.
-#[derive(Clone, Copy, Debug)]
-pub struct EyeCamera {
-    pub position: DVec3,
-    pub forward: DVec3,
-    pub right: DVec3,
-    pub up: DVec3,
-    /// `tan(fov_y / 2)`.
-    pub half: f64,
-    pub aspect: f64,
-    pub width: usize,
-    pub height: usize,
-}
-
-impl EyeCamera {
-    pub fn new(c: &Camera) -> Self {
-        let forward = (c.target - c.position).normalize();
-        let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
-        let up = right.cross(forward);
-        EyeCamera {
-            position: c.position,
-            forward,
-            right,
-            up,
-            half: (c.fov_y.to_radians() * 0.5).tan(),
-            aspect: c.width as f64 / c.height as f64,
-            width: c.width as usize,
-            height: c.height as usize,
-        }
-    }
-
-    /// The unnormalised ray through pixel point `(x, y)` (pixel centres at `+ ½`), forward component 1.
-    pub fn ray(&self, x: f64, y: f64) -> DVec3 {
-        let sx = (2.0 * x / self.width as f64 - 1.0) * self.half * self.aspect;
-        let sy = (1.0 - 2.0 * y / self.height as f64) * self.half;
-        self.forward + self.right * sx + self.up * sy
-    }
-
-    /// Continuous pixel coordinates and view depth of world point `p` (`None` behind the eye).
-    pub fn project(&self, p: DVec3) -> Option<(DVec2, f64)> {
-        let v = p - self.position;
-        let z = v.dot(self.forward);
-        if z <= 0.0 {
-            return None;
-        }
-        let sx = v.dot(self.right) / z / (self.half * self.aspect);
-        let sy = v.dot(self.up) / z / self.half;
-        Some((
-            DVec2::new(
-                (sx + 1.0) * 0.5 * self.width as f64,
-                (1.0 - sy) * 0.5 * self.height as f64,
-            ),
-            z,
-        ))
-    }
 }
 
 /// Everything the passes share (the GPU uploads the same numbers as its uniform block).

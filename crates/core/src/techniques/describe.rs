@@ -4,12 +4,15 @@
 //! `caustics techniques`, the viewer's panel, bench and the error-against-cost sweep, the fuzzed
 //! specs and the README's table. The CPU twin is reached from the entry ([`Descriptor::cpu`]); the
 //! GPU crate's registry points at the same entry.
+//!
+//! This is what every technique is written against, so it knows no technique: what needs the
+//! list of them (looking a name up, the spec parser, the checks of a scene's tables, naming the
+//! techniques that render a point light) is the registry's ([`super::registry`]).
 
-use std::fmt::Write as _;
-
+use super::buffers::{Buffer, BufferDesc, BufferInput, DrawBuffer, HEIGHTS, Needs, SceneHas};
+use super::job::{Job, Made, heights_for};
+use crate::plot::{Picture, diverging, scalar_picture};
 use crate::{Error, Result};
-
-use super::{Input, Job, Made};
 
 /// What a parameter holds and the values it may take.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,9 +52,9 @@ impl Kind {
     }
 }
 
-/// A parameter's value when it is not given.
+/// A parameter's value when it is not given (not `Default`: that name is the prelude's trait).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Default {
+pub enum ParamDefault {
     Int(i64),
     Float(f64),
     Bool(bool),
@@ -60,23 +63,23 @@ pub enum Default {
     Auto(&'static str),
 }
 
-impl Default {
-    /// The value as a scene file writes it; `None` for [`Default::Auto`].
+impl ParamDefault {
+    /// The value as a scene file writes it; `None` for [`ParamDefault::Auto`].
     pub fn value(self) -> Option<toml::Value> {
         Some(match self {
-            Default::Int(i) => toml::Value::Integer(i),
-            Default::Float(f) => toml::Value::Float(f),
-            Default::Bool(b) => toml::Value::Boolean(b),
-            Default::Text(t) => toml::Value::String(t.into()),
-            Default::Auto(_) => return None,
+            ParamDefault::Int(i) => toml::Value::Integer(i),
+            ParamDefault::Float(f) => toml::Value::Float(f),
+            ParamDefault::Bool(b) => toml::Value::Boolean(b),
+            ParamDefault::Text(t) => toml::Value::String(t.into()),
+            ParamDefault::Auto(_) => return None,
         })
     }
 }
 
-impl std::fmt::Display for Default {
+impl std::fmt::Display for ParamDefault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Default::Auto(how) => write!(f, "auto ({how})"),
+            ParamDefault::Auto(how) => write!(f, "auto ({how})"),
             other => write!(f, "{}", other.value().expect("not auto")),
         }
     }
@@ -99,7 +102,7 @@ pub struct Param {
     /// The panel's label (the paper's symbol where it has one).
     pub label: &'static str,
     pub kind: Kind,
-    pub default: Default,
+    pub default: ParamDefault,
     /// Unit of the value ("texels", "degrees"); empty for a count or a flag.
     pub unit: &'static str,
     /// One line on what it does (the paper's section where it has one).
@@ -116,7 +119,7 @@ impl Param {
         key: &'static str,
         label: &'static str,
         kind: Kind,
-        default: Default,
+        default: ParamDefault,
         unit: &'static str,
         doc: &'static str,
         change: Change,
@@ -155,6 +158,44 @@ impl Receiver {
     }
 }
 
+/// What a technique reads and what it makes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// A map of the floor square from the water surface (the minimum scene contract's case).
+    Water,
+    /// A map of the floor square from the scene's glass objects, or from its water surface where
+    /// it has water (caustic-triangles: paper 4's generator is any refracting surface).
+    GlassOrWater,
+    /// Caustics from the water in the eye camera's screen space, not a floor map.
+    EyeSpace,
+}
+
+impl Input {
+    pub fn describe(self) -> &'static str {
+        match self {
+            Input::Water => "water -> floor map",
+            Input::GlassOrWater => "glass or water -> floor map",
+            Input::EyeSpace => "water -> eye space",
+        }
+    }
+}
+
+/// The checks every technique makes of its inputs, with one wording: a map of at least one texel and
+/// a light that travels down. Returns the unit light direction.
+pub fn check_inputs(width: usize, height: usize, light: glam::DVec3) -> Result<glam::DVec3> {
+    if width == 0 || height == 0 {
+        return Err(Error::InvalidParameter(format!(
+            "caustics map resolution must be at least 1 x 1, got {width} x {height}"
+        )));
+    }
+    if light.z >= 0.0 || !light.is_finite() {
+        return Err(Error::InvalidParameter(format!(
+            "the light direction {light} must point down (z < 0)"
+        )));
+    }
+    Ok(light.normalize())
+}
+
 /// The CPU twin of an entry: the job, the parameter tables keyed by table (a scene file's
 /// `[caustics]`), progress `(done, total)`.
 pub type CpuRun = fn(&Job, &toml::Table, &(dyn Fn(usize, usize) + Sync)) -> Result<Made>;
@@ -185,14 +226,18 @@ pub struct Descriptor {
     /// front ends do not offer it there); `None` where it follows a terrain.
     pub flat_floor: Option<&'static str>,
     /// The intermediate buffers a view can show, beyond the water's heights.
-    pub buffers: &'static [super::buffers::BufferDesc],
+    pub buffers: &'static [BufferDesc],
     /// Draws them, with the CPU twin's passes.
-    pub draw_buffer: super::buffers::DrawBuffer,
+    pub draw_buffer: DrawBuffer,
     /// The ground truth others are measured against (not a technique to pick for speed).
     pub reference: bool,
     /// The technique's own reading of the tables (its serde struct and its checks across
     /// parameters), which the parser runs after the descriptors' checks.
     pub validate: fn(&toml::Table) -> Result<()>,
+    /// The technique's own defaults: its parameters' serde `Default`, serialized as its table
+    /// (empty for an entry without parameters), against which the descriptors' defaults are
+    /// checked.
+    pub own_defaults: fn() -> toml::Table,
     /// The CPU twin.
     pub cpu: CpuRun,
 }
@@ -212,10 +257,6 @@ impl Descriptor {
 
     pub fn eye_space(&self) -> bool {
         self.receivers.contains(&Receiver::EyeSpace)
-    }
-
-    pub fn param(&self, key: &str) -> Option<&'static Param> {
-        table_params(self.table).find(|p| p.key == key)
     }
 
     /// Its parameters with their defaults, as the panel starts them: every non-auto default, then
@@ -249,27 +290,6 @@ impl Descriptor {
         }
         Ok(())
     }
-
-    /// Refuses a point or spot light where the technique needs the sun.
-    pub fn check_light(&self, light: &crate::scene::Light) -> Result<()> {
-        if light.is_sun() || self.point_light {
-            return Ok(());
-        }
-        Err(Error::field(
-            "light.position",
-            format!(
-                "technique `{}` needs the directional sun (light.direction without light.position); \
-                 only {} render a point or spot light",
-                self.name,
-                super::REGISTRY
-                    .iter()
-                    .filter(|d| d.point_light)
-                    .map(|d| d.name)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        ))
-    }
 }
 
 /// The line `caustics techniques` and the logs give a floor-only technique on a scene with walls.
@@ -278,43 +298,6 @@ pub fn floor_only_note(name: &str) -> String {
         "technique `{name}` maps the floor only: the scene's walls stay lit by the ambient light, and \
          the light that would meet them stays on the floor map"
     )
-}
-
-/// Every parameter a table accepts: those of all the entries sharing it, each once.
-pub fn table_params(table: &str) -> impl Iterator<Item = &'static Param> + '_ {
-    let mut seen: Vec<&'static str> = Vec::new();
-    super::REGISTRY
-        .iter()
-        .filter(move |d| d.table == table)
-        .flat_map(|d| d.params.iter())
-        .filter(move |p| {
-            if seen.contains(&p.key) {
-                false
-            } else {
-                seen.push(p.key);
-                true
-            }
-        })
-}
-
-/// The registered entry `name`.
-pub fn find(name: &str) -> Option<&'static Descriptor> {
-    let name = canonical(name);
-    super::REGISTRY.iter().copied().find(|d| d.name == name)
-}
-
-/// The registered name `name` stands for: itself, or the entry a former name
-/// ([`ALIASES`](super::ALIASES)) now names.
-pub fn canonical(name: &str) -> &str {
-    super::ALIASES
-        .iter()
-        .find(|(old, _)| *old == name)
-        .map_or(name, |(_, new)| new)
-}
-
-/// The names of every entry, for error messages.
-pub fn names() -> Vec<&'static str> {
-    super::REGISTRY.iter().map(|d| d.name).collect()
 }
 
 /// `value` checked against `param`'s type and range; `at` names where it was given.
@@ -402,224 +385,64 @@ fn quoted(words: &[&str]) -> String {
         .join(", ")
 }
 
-/// Checks one technique's table (`[caustics.<table>]`): every key a parameter of it, every value
-/// of its type and in its range.
-pub fn check_table(table: &str, values: &toml::Table) -> Result<()> {
-    for (key, value) in values {
-        let Some(param) = table_params(table).find(|p| p.key == key) else {
-            let known: Vec<&str> = table_params(table).map(|p| p.key).collect();
-            return Err(Error::field(
-                format!("caustics.{table}.{key}"),
-                format!(
-                    "is not a parameter of `{table}` (its parameters: {})",
-                    if known.is_empty() {
-                        "none".to_string()
-                    } else {
-                        known.join(", ")
-                    }
-                ),
-            ));
-        };
-        check_value(param, value, &format!("caustics.{table}.{key}"))?;
-    }
-    Ok(())
+/// [`Descriptor::own_defaults`] of a technique whose parameters are the serde struct `T`.
+pub fn serde_defaults<T: Default + serde::Serialize>() -> toml::Table {
+    toml::Table::try_from(T::default()).expect("a technique's parameters serialize as a table")
 }
 
-/// Checks a scene's `[caustics]` technique tables (keyed by technique).
-pub fn check_tables(tables: &toml::Table) -> Result<()> {
-    for (key, value) in tables {
-        let toml::Value::Table(t) = value else {
-            return Err(Error::field(
-                format!("caustics.{key}"),
-                "is not a known setting: expected `resolution`, `technique`, or a table named after a technique",
-            ));
-        };
-        if !super::REGISTRY.iter().any(|d| d.table == key) {
-            return Err(Error::field(
-                format!("caustics.{key}"),
-                format!(
-                    "is not a technique's table (tables: {})",
-                    tables_known().join(", ")
-                ),
-            ));
-        }
-        check_table(key, t)?;
-    }
-    Ok(())
-}
+// What a job and a buffer know of the technique they are for: here, so that the job and the
+// buffers, which the descriptor is made of, stay below it.
 
-fn tables_known() -> Vec<&'static str> {
-    let mut v: Vec<&str> = super::REGISTRY.iter().map(|d| d.table).collect();
-    v.dedup();
-    v
-}
-
-/// A technique and its parameters, written `name` or `name:key=value,key=value` (e.g.
-/// `yuksel:n=15,m=14`, `yuksel-targets`, `procedural-texture:target_resolution=512`): the one
-/// spelling of the command line, a scene's `technique`, and the viewer's panel.
-#[derive(Clone, Debug)]
-pub struct Spec {
-    /// As given.
-    pub label: String,
-    pub entry: &'static Descriptor,
-    /// Its parameter tables keyed by table (`{ yuksel = { n = 15 } }`), as a scene's `[caustics]`.
-    pub params: toml::Table,
-}
-
-impl Spec {
-    /// The registered name (`yuksel-targets`).
-    pub fn name(&self) -> &'static str {
-        self.entry.name
+impl Job<'_> {
+    /// Refuses a floor with a terrain for a technique that draws on the plane z = 0
+    /// ([`Descriptor::flat_floor`]).
+    pub fn flat_floor(&self, technique: &Descriptor) -> Result<()> {
+        technique.check_floor(self.scene)
     }
 
-    /// Its own table (the keys given for its technique), empty when none was given.
-    pub fn own(&self) -> toml::Table {
-        match self.params.get(self.entry.table) {
-            Some(toml::Value::Table(t)) => t.clone(),
-            _ => toml::Table::new(),
+    /// Says once in the log that a floor technique leaves the scene's walls unlit.
+    pub fn note_floor_only(&self, technique: &Descriptor) {
+        if self.scene.floor.walls && technique.floor_only() {
+            tracing::warn!("{}", technique.floor_only_note());
         }
     }
+}
 
-    /// The technique a scene names, with its `[caustics.<name>]` tables under what the
-    /// `technique` string gives.
-    pub fn from_scene(caustics: &crate::scene::CausticsSettings) -> Result<Self> {
-        let spec: Spec = caustics.technique.parse()?;
-        Ok(spec.over(&caustics.params))
-    }
-
-    /// This spec's parameters laid over `base` (a scene's tables): the spec wins.
-    pub fn over(mut self, base: &toml::Table) -> Self {
-        let mut merged = base.clone();
-        for (name, table) in &self.params {
-            match (merged.get_mut(name), table) {
-                (Some(toml::Value::Table(into)), toml::Value::Table(from)) => {
-                    into.extend(from.iter().map(|(k, v)| (k.clone(), v.clone())));
-                }
-                _ => {
-                    merged.insert(name.clone(), table.clone());
-                }
-            }
+impl Buffer {
+    /// The buffers `entry` shows in a scene with what `has` says: the heights where there is
+    /// water, then the technique's own where the scene has what they show; none where the
+    /// technique does not run (a water technique in a scene of glass).
+    pub fn available(entry: &Descriptor, has: SceneHas) -> Vec<Buffer> {
+        if !has.water && entry.input != Input::GlassOrWater {
+            return Vec::new();
         }
-        self.params = merged;
-        self
-    }
-
-    /// Runs the CPU twin.
-    pub fn run_cpu(&self, job: &Job, progress: &(dyn Fn(usize, usize) + Sync)) -> Result<Made> {
-        self.entry.check_light(&job.scene.light)?;
-        (self.entry.cpu)(job, &self.params, progress)
+        let heights = has.water.then_some(&HEIGHTS);
+        heights
+            .into_iter()
+            .chain(entry.buffers.iter().filter(|b| match b.needs {
+                Needs::Anything => true,
+                Needs::NoWater => !has.water,
+                Needs::PointLight => has.point_light,
+                Needs::Objects => has.objects > 0,
+            }))
+            .map(Buffer::new)
+            .collect()
     }
 }
 
-impl std::str::FromStr for Spec {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
-        let (name, rest) = s.split_once(':').unwrap_or((s, ""));
-        let name = name.trim();
-        let entry = find(name).ok_or_else(|| {
-            Error::InvalidParameter(format!(
-                "unknown technique `{name}` (known: {})",
-                names().join(", ")
-            ))
-        })?;
-        if entry.name != name {
-            tracing::warn!(
-                "technique `{name}` is now called `{}`: read as that",
-                entry.name
-            );
-        }
-        let mut table = toml::Table::new();
-        for kv in rest.split(',').filter(|p| !p.trim().is_empty()) {
-            let (k, v) = kv.split_once('=').ok_or_else(|| {
-                Error::InvalidParameter(format!("`{kv}` in `{s}`: expected key=value"))
-            })?;
-            let k = k.trim();
-            let value: toml::Value = format!("v = {v}")
-                .parse::<toml::Table>()
-                .ok()
-                .and_then(|t| t.get("v").cloned())
-                .unwrap_or_else(|| toml::Value::String(v.trim().to_string()));
-            table.insert(k.to_string(), value);
-        }
-        for (k, pinned) in entry.fixed {
-            if let Some(given) = table.get(*k)
-                && given.as_str() != Some(pinned)
-            {
-                return Err(Error::InvalidParameter(format!(
-                    "`{s}`: the name says {k} `{pinned}`, the parameters {given}"
-                )));
-            }
-            table.insert((*k).into(), toml::Value::String((*pinned).into()));
-        }
-        check_table(entry.table, &table).map_err(|e| match e {
-            Error::InvalidField { field, problem } => Error::InvalidParameter(format!(
-                "`{s}`: `{}` {problem}",
-                field.rsplit('.').next().unwrap_or(&field)
-            )),
-            other => other,
-        })?;
-        let mut params = toml::Table::new();
-        params.insert(entry.table.to_string(), toml::Value::Table(table));
-        (entry.validate)(&params).map_err(|e| match e {
-            Error::InvalidField { field, problem } => Error::InvalidParameter(format!(
-                "`{s}`: `{}` {problem}",
-                field.rsplit('.').next().unwrap_or(&field)
-            )),
-            other => other,
-        })?;
-        Ok(Spec {
-            label: s.to_string(),
-            entry,
-            params,
-        })
+/// Compute `buffer` of `entry` for `input`; an error names what stood in the way (e.g. an invalid
+/// `N`, an object the scene does not have).
+pub fn picture(entry: &Descriptor, buffer: Buffer, input: &BufferInput) -> Result<Picture> {
+    if buffer.desc.key == HEIGHTS.key {
+        let (water, surface) = input.water()?;
+        let n = input.map_size;
+        let heights = heights_for(water, surface, n, n);
+        let (lo, hi) = heights.min_max();
+        let r = lo.abs().max(hi.abs()).max(1e-9);
+        return Ok(Picture {
+            legend: format!("height: blue -{r:.4}, red +{r:.4} (world units)"),
+            ..scalar_picture(&heights, |v| diverging(v / r))
+        });
     }
-}
-
-/// The README's table of techniques, made from the registry (`caustics techniques --markdown`; a
-/// test keeps the README's copy current).
-pub fn markdown_table() -> String {
-    let mut s = String::from(
-        "| technique | paper | reads -> makes | lights | parameters (default) | documentation |\n|---|---|---|---|---|---|\n",
-    );
-    for d in super::REGISTRY {
-        let params: Vec<String> = d
-            .params
-            .iter()
-            .map(|p| match p.default {
-                Default::Auto(_) => format!("`{}` (auto)", p.key),
-                other => format!("`{}` ({other})", p.key),
-            })
-            .collect();
-        let _ = writeln!(
-            s,
-            "| `{}` | {} | {} | {} | {} | [{}]({}) |",
-            d.name,
-            d.paper,
-            d.input.describe(),
-            d.receivers
-                .iter()
-                .map(|r| r.name())
-                .collect::<Vec<_>>()
-                .join(", "),
-            if params.is_empty() {
-                "-".to_string()
-            } else {
-                params.join(", ")
-            },
-            d.docs,
-            d.docs
-        );
-    }
-    s
-}
-
-/// The ground truth's spec, at its defaults: what `caustics compare` and the sweep measure
-/// against.
-pub fn reference() -> Spec {
-    let entry = super::REGISTRY
-        .iter()
-        .copied()
-        .find(|d| d.reference)
-        .expect("the registry has a reference");
-    entry.name.parse().expect("a bare name parses")
+    (entry.draw_buffer)(input, buffer)
 }

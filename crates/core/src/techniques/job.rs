@@ -1,13 +1,16 @@
 //! The one input every technique's run takes ([`Job`]: a scene as the technique should see it
 //! this time) and what it gives back ([`Made`]), for the CPU twins here and the GPU runs of
-//! `caustics_gpu` alike.
+//! `caustics_gpu` alike, with the view of it the final image reads ([`Caustics`]).
+//!
+//! The descriptor is written in these terms, so they know no descriptor: what a job does with
+//! one ([`Job::flat_floor`], [`Job::note_floor_only`]) is in [`super::describe`].
 
 use glam::DVec3;
 
+use crate::eye::EyeSpaceCaustics;
 use crate::grid::Grid;
 use crate::map::CausticsMap;
-use crate::render::{Caustics, EyeSpaceCaustics};
-use crate::scene::{Camera, CausticsSettings, Floor, Light, Look, Scene, Water, WaterSource};
+use crate::scene::{Floor, Scene, Water, WaterSource};
 use crate::walls::WallMaps;
 use crate::water::{Surface, sample_grid};
 use crate::{Error, Result};
@@ -76,19 +79,16 @@ impl<'a> Job<'a> {
             }
         }
     }
+}
 
-    /// Refuses a floor with a terrain for a technique that draws on the plane z = 0
-    /// ([`Descriptor::flat_floor`](super::Descriptor::flat_floor)).
-    pub fn flat_floor(&self, technique: &super::Descriptor) -> Result<()> {
-        technique.check_floor(self.scene)
-    }
-
-    /// Says once in the log that a floor technique leaves the scene's walls unlit.
-    pub fn note_floor_only(&self, technique: &super::Descriptor) {
-        if self.scene.floor.walls && technique.floor_only() {
-            tracing::warn!("{}", technique.floor_only_note());
-        }
-    }
+/// Where the final image takes the floor's caustics from ([`SceneCaustics::caustics`]; the input
+/// of `crate::render::render_with`).
+#[derive(Clone, Copy)]
+pub enum Caustics<'a> {
+    /// A map of the floor square (every technique but `cascaded`).
+    Floor(&'a CausticsMap),
+    /// An image in the camera's screen space (`cascaded`).
+    EyeSpace(&'a EyeSpaceCaustics),
 }
 
 /// What a technique made of a scene: a map of the floor square, or, for an eye-space technique
@@ -141,49 +141,6 @@ impl Made {
             caustics: SceneCaustics::Floor(map),
             walls,
         }
-    }
-}
-
-/// A scene of water alone over a floor under the sun, for the tools that measure techniques on
-/// generated cases (`caustics compare`, the error-against-cost sweep): no objects, a camera
-/// looking down at the square.
-pub fn water_scene(
-    name: &str,
-    water: &Water,
-    floor: &Floor,
-    light: DVec3,
-    (width, height): (u32, u32),
-    time: f64,
-) -> Scene {
-    let size = water.size;
-    Scene {
-        name: name.to_string(),
-        water: Some(water.clone()),
-        light: Light {
-            direction: light.normalize(),
-            color: DVec3::ONE,
-            intensity: 1.0,
-            position: None,
-            cone: None,
-        },
-        caustics: CausticsSettings {
-            width,
-            height,
-            technique: super::REGISTRY[0].name.to_string(),
-            params: toml::Table::new(),
-        },
-        floor: floor.clone(),
-        objects: Vec::new(),
-        camera: Camera {
-            position: DVec3::new(0.5 * size, -0.6 * size, water.depth + 1.2 * size),
-            target: DVec3::new(0.5 * size, 0.5 * size, 0.0),
-            fov_y: 45.0,
-            width: 640,
-            height: 360,
-        },
-        look: Look::default(),
-        time,
-        size,
     }
 }
 

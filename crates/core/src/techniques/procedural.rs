@@ -101,7 +101,9 @@ pub const MAX_TARGET_RESOLUTION: u32 = 8192;
 /// The sampler's anisotropy clamp, and the CPU twin's largest tap count.
 pub const MAX_ANISOTROPY: u32 = 16;
 
-use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::describe::{
+    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+};
 use super::{Input, Job, Made};
 
 /// A variant's parameter list: its own sampling parameters, then those every variant reads (the
@@ -141,6 +143,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     draw_buffer: crate::techniques::buffers::no_buffers,
     reference: false,
     validate: |t| ProceduralCausticsParams::from_table(t).map(|_| ()),
+    own_defaults: serde_defaults::<ProceduralCausticsParams>,
     cpu: run_cpu,
 };
 

@@ -83,7 +83,9 @@ use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 
 use super::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs};
-use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::describe::{
+    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+};
 use super::{Input, Job, Made};
 use crate::plot::{Picture, flip_rows, heat, scalar_picture};
 
@@ -105,6 +107,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     draw_buffer,
     reference: false,
     validate: |t| YukselParams::from_table(t).map(|_| ()),
+    own_defaults: serde_defaults::<YukselParams>,
     cpu: run_cpu,
 };
 
@@ -469,7 +472,7 @@ impl YukselParams {
 
 /// The gather region of every pixel: samples at column offsets `shift.x + [−N/2, N/2]` and row
 /// offsets `shift.y + [−M/2, M/2]` from the pixel's own sample (the one at its illumination
-/// centre). Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`.
+/// centre). Mirrors `YukselRegion` in `yuksel/common.wgsl`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Region {
     pub n: usize,
@@ -636,7 +639,7 @@ impl YukselSetup {
     }
 
     /// The region for `heights`: along each axis not fixed, the offsets that hold every
-    /// deflection [`region_bound`] allows (GPU twin: `shaders/yuksel/region.wgsl`).
+    /// deflection [`region_bound`] allows (GPU twin: `yuksel/region.wgsl`).
     pub fn region_for(&self, heights: &Grid) -> Region {
         let (lo, hi) = region_bound(self, heights);
         self.region_from_bound(lo, hi)
@@ -752,7 +755,7 @@ impl YukselSetup {
 
 /// The floor hit of the water at `s` (world units) and the flux its area carries relative to
 /// flat water (the area as the sun sees the tilted water, times Fresnel): `None` where the sun
-/// cannot light it. Mirrors `yuksel_hit` in `shaders/yuksel/sample.wgsl`.
+/// cannot light it. Mirrors `yuksel_hit` in `yuksel/sample.wgsl`.
 fn hit(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, f64)> {
     let edge = if setup.wrap { Edge::Wrap } else { Edge::Clamp };
     let l = setup.light;
@@ -902,7 +905,7 @@ fn footprint(setup: &YukselSetup, heights: &Grid, s: DVec2, area: DVec2) -> Opti
 /// is denser on one side or curves) plus half the shear the box ignores (the x edges' hits apart
 /// along y, the y edges' along x: the true footprint is a parallelogram). An affine map without
 /// shear misplaces nothing. In pixels of the setup (a level's), where a map pixel is `2^−level`
-/// of one. Mirrors `yuksel_footprint` in `shaders/yuksel/sample.wgsl`.
+/// of one. Mirrors `yuksel_footprint` in `yuksel/sample.wgsl`.
 fn misfit(setup: &YukselSetup, hit: DVec2, half: DVec2, [xm, xp, ym, yp]: [DVec2; 4]) -> f64 {
     let (mid_x, mid_y) = ((xm + xp) * 0.5, (ym + yp) * 0.5);
     let bend = (hit - mid_x).abs() + (hit - mid_y).abs();

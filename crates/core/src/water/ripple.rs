@@ -26,6 +26,10 @@
 //! **Precision.** The update runs in `f32` in the order a WGSL compute shader evaluates it (one
 //! invocation per cell reading the four neighbours in `current` and its own cell in `previous`), so
 //! a GPU twin matches it to rounding.
+//!
+//! **A scene's water.** The simulation a view runs on a scene's water ([`RippleParams::for_water`])
+//! and the drop a click makes on it ([`Drop::click`]) are defined in [`crate::scene`], which knows
+//! the scene's water: this module knows only its own grid.
 
 use std::f64::consts::{PI, SQRT_2};
 use std::fmt;
@@ -92,44 +96,6 @@ impl Default for RippleParams {
             ],
             steps: 120,
         }
-    }
-}
-
-impl Drop {
-    /// The drop a click makes on `water` at `position`: a dent a sixteenth of the square across
-    /// and curved enough to focus the light within a pool's depth, so a click shows bright rings
-    /// at once.
-    pub fn click(water: &crate::scene::Water, position: [f64; 2]) -> Drop {
-        Drop {
-            position,
-            radius: water.size / 16.0,
-            strength: -water.size / 60.0,
-        }
-    }
-}
-
-impl RippleParams {
-    /// The simulation an interactive view runs on a scene's water: its own parameters if its water
-    /// is a ripple simulation, else the defaults (made for a unit square) with the initial drops
-    /// stretched to the scene's square. The wave speed stays the default's half a unit per second
-    /// (real ripples of a few centimetres run at a few decimetres per second) so that a click's
-    /// rings stay in view for seconds on a pool; it shrinks only on squares smaller than one unit,
-    /// where the Courant condition needs it.
-    pub fn for_water(water: &crate::scene::Water) -> Self {
-        if let crate::scene::WaterSource::Ripple(p) = &water.source {
-            return p.clone();
-        }
-        let s = water.size;
-        let mut p = RippleParams {
-            wave_speed: RippleParams::default().wave_speed * s.min(1.0),
-            ..RippleParams::default()
-        };
-        for d in &mut p.drops {
-            d.position = [d.position[0] * s, d.position[1] * s];
-            d.radius *= s;
-            d.strength *= s;
-        }
-        p
     }
 }
 

@@ -4,12 +4,12 @@
 //!
 //! | pass | WGSL | CPU twin | runs |
 //! |---|---|---|---|
-//! | eye depth (compute) | `shaders/cascaded/eye.wgsl` | `eye_pass` | once |
-//! | water G-buffer (compute) | `shaders/cascaded/water.wgsl` | `water_gbuffer` | per cascade |
-//! | terrain G-buffer (compute) | `shaders/cascaded/terrain.wgsl` | `terrain_gbuffer` | per cascade, optional |
-//! | photons + splat (compute, atomics) | `shaders/cascaded/photons.wgsl` | `photons` | per cascade |
-//! | composition (compute) | `shaders/cascaded/compose.wgsl` | `compose` | once |
-//! | post-process dispersion (compute) | `shaders/cascaded/disperse.wgsl` | `disperse` | once, optional |
+//! | eye depth (compute) | `cascaded/eye.wgsl` | `eye_pass` | once |
+//! | water G-buffer (compute) | `cascaded/water.wgsl` | `water_gbuffer` | per cascade |
+//! | terrain G-buffer (compute) | `cascaded/terrain.wgsl` | `terrain_gbuffer` | per cascade, optional |
+//! | photons + splat (compute, atomics) | `cascaded/photons.wgsl` | `photons` | per cascade |
+//! | composition (compute) | `cascaded/compose.wgsl` | `compose` | once |
+//! | post-process dispersion (compute) | `cascaded/disperse.wgsl` | `disperse` | once, optional |
 //!
 //! **Why compute for the G-buffers.** The paper rasterises the water and terrain meshes from the
 //! sun. Our water and terrain are height fields, not meshes: one invocation per light texel
@@ -42,40 +42,56 @@ pub mod technique;
 use crate::shaders::{OPTICS, PassSource, WATER};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-const COMMON: &str = include_str!("../shaders/cascaded/common.wgsl");
+const COMMON: &str = include_str!("common.wgsl");
 
 pub const EYE: PassSource = PassSource {
     name: "cascaded eye depth",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/cascaded/eye.wgsl"),
+    file: "cascaded/eye.wgsl",
+    source: include_str!("eye.wgsl"),
 };
 pub const WATER_GBUFFER: PassSource = PassSource {
     name: "cascaded water G-buffer",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/cascaded/water.wgsl"),
+    file: "cascaded/water.wgsl",
+    source: include_str!("water.wgsl"),
 };
 pub const TERRAIN_GBUFFER: PassSource = PassSource {
     name: "cascaded terrain G-buffer",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/cascaded/terrain.wgsl"),
+    file: "cascaded/terrain.wgsl",
+    source: include_str!("terrain.wgsl"),
 };
 pub const PHOTONS: PassSource = PassSource {
     name: "cascaded photons",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/cascaded/photons.wgsl"),
+    file: "cascaded/photons.wgsl",
+    source: include_str!("photons.wgsl"),
 };
 pub const COMPOSE: PassSource = PassSource {
     name: "cascaded composition",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/cascaded/compose.wgsl"),
+    file: "cascaded/compose.wgsl",
+    source: include_str!("compose.wgsl"),
 };
 pub const DISPERSE: PassSource = PassSource {
     name: "cascaded dispersion",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/cascaded/disperse.wgsl"),
+    file: "cascaded/disperse.wgsl",
+    source: include_str!("disperse.wgsl"),
 };
 
-/// Mirrors `Cascaded` in `shaders/cascaded/common.wgsl`.
+/// Every pass of the technique, for its registry entry.
+pub const PASSES: &[&PassSource] = &[
+    &EYE,
+    &WATER_GBUFFER,
+    &TERRAIN_GBUFFER,
+    &PHOTONS,
+    &COMPOSE,
+    &DISPERSE,
+];
+
+/// Mirrors `Cascaded` in `cascaded/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CascadedUniform {

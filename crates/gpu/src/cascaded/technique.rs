@@ -1,4 +1,4 @@
-//! Paper 5 behind [`Technique`]: the caller's heights, the terrain uploaded once per configure, a
+//! Paper 5 behind the generic adapter: the caller's heights, the terrain uploaded once per configure, a
 //! moving camera or sun as uniform writes while the eye image keeps the camera's size.
 //!
 //! The output is [`Output::EyeSpace`]: the composed image (`Rgba32Float`, the camera's `width x
@@ -10,10 +10,11 @@
 
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques::cascaded::{self, CascadedParams, CascadedSetup};
-use caustics_core::techniques::{Job, Made, SceneCaustics};
+use caustics_core::techniques::{Descriptor, Job, Made, SceneCaustics};
 
 use super::{Cascaded, Frame};
-use crate::technique::{Fit, Output, Registered, RunOnce, Technique, WaterTextures};
+use crate::adapter::Pipelines;
+use crate::technique::{Output, Registered, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// Side of the height grid the technique reads a surface through when the scene gives neither an
@@ -21,39 +22,28 @@ use crate::{GpuContext, GpuError, GpuTimer};
 /// techniques, `cascaded::water_grid`'s caller).
 pub const WATER_GRID: u32 = 256;
 
-pub struct CascadedTechnique {
-    pipelines: Cascaded,
-    params: CascadedParams,
-    frame: Option<(Frame, WaterTextures)>,
-}
+/// Paper 5 in the registry.
+pub const REGISTERED: Registered =
+    Registered::of::<Cascaded>(&cascaded::DESCRIPTOR, super::PASSES, None);
 
-pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
-    CascadedTechnique::new(ctx, params).map(|t| Box::new(t) as _)
-}
+/// The `cascaded` technique resident on the GPU.
+pub type CascadedTechnique = crate::adapter::Resident<Cascaded>;
 
-impl CascadedTechnique {
-    pub fn new(ctx: &GpuContext, params: &toml::Table) -> Result<Self, GpuError> {
-        Ok(CascadedTechnique {
-            pipelines: Cascaded::new(ctx)?,
-            params: CascadedParams::from_table(params)?,
-            frame: None,
-        })
+impl Pipelines for Cascaded {
+    type Params = CascadedParams;
+    type Frame = Frame;
+
+    fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        Cascaded::new(ctx)
     }
 
-    /// The configured frame (its setup, G-buffers and screen-space maps), for tests and tools.
-    pub fn frame(&self) -> Option<&Frame> {
-        self.frame.as_ref().map(|(f, _)| f)
-    }
-}
-
-impl Technique for CascadedTechnique {
-    fn name(&self) -> &str {
-        "cascaded"
+    fn params(_: &'static Descriptor, tables: &toml::Table) -> Result<CascadedParams, GpuError> {
+        Ok(CascadedParams::from_table(tables)?)
     }
 
     /// As `caustics_core::techniques::cascaded::water_grid` reads a scene: an ocean's own grid, a
     /// height-field file's own samples, else [`WATER_GRID`]² over the square.
-    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
+    fn water_resolution(_: &CascadedParams, scene: &Scene) -> (u32, u32) {
         match scene.water.as_ref().map(|w| &w.source) {
             Some(WaterSource::Ocean(o)) => {
                 let n = o.params().resolution as u32;
@@ -66,75 +56,63 @@ impl Technique for CascadedTechnique {
 
     /// The frame for the scene's camera size and G-buffer resolution; the floor's terrain (if
     /// any) is uploaded here and only here.
-    fn configure(
-        &mut self,
+    fn frame(
+        &self,
         ctx: &GpuContext,
+        params: &CascadedParams,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<(), GpuError> {
-        let setup = CascadedSetup::from_scene(scene, &self.params)?;
-        self.frame = None;
-        let frame =
-            self.pipelines
-                .frame(ctx, &setup, &water.heights, scene.floor.terrain.as_ref())?;
-        self.frame = Some((frame, water.clone()));
-        Ok(())
+    ) -> Result<Frame, GpuError> {
+        let setup = CascadedSetup::from_scene(scene, params)?;
+        Cascaded::frame(
+            self,
+            ctx,
+            &setup,
+            &water.heights,
+            scene.floor.terrain.as_ref(),
+        )
     }
 
     /// The cascades refitted to the camera and sun: uniform writes while the camera's size, the
     /// resolution, the terrain's presence and the dispersion mode hold. A new terrain is a new
     /// configure (the caller's: the terrain is not compared here).
-    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
-        let setup = CascadedSetup::from_scene(scene, &self.params)?;
-        let Some((frame, water)) = &mut self.frame else {
-            return Err(GpuError::BadOption(
-                "cascaded: update before configure".into(),
-            ));
-        };
+    fn refit(
+        &self,
+        ctx: &GpuContext,
+        params: &CascadedParams,
+        frame: &mut Frame,
+        scene: &Scene,
+    ) -> Result<bool, GpuError> {
+        let setup = CascadedSetup::from_scene(scene, params)?;
         if frame.fits(&setup) {
             frame.set_setup(ctx, &setup);
-            return Ok(Fit::Written);
+            return Ok(true);
         }
-        Ok(Fit::Reconfigure(water.clone()))
+        Ok(false)
     }
 
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
-        if let Some((frame, _)) = &self.frame {
-            self.pipelines.encode(frame, encoder, timer);
-        }
+    fn encode(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&mut GpuTimer>,
+    ) {
+        Cascaded::encode(self, frame, encoder, timer);
     }
 
-    fn output(&self) -> Option<Output<'_>> {
-        self.frame
-            .as_ref()
-            .map(|(f, _)| Output::EyeSpace(self.pipelines.output(f)))
+    fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
+        Output::EyeSpace(Cascaded::output(self, frame))
     }
 
-    fn bytes(&self) -> u64 {
-        self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
+    fn bytes(frame: &Frame) -> u64 {
+        frame.bytes()
     }
 
-    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
-        self.params = CascadedParams::from_table(params)?;
-        Ok(true)
-    }
-}
-
-/// Paper 5 in the registry.
-pub const REGISTERED: Registered = Registered {
-    describe: &cascaded::DESCRIPTOR,
-    create,
-    once: |ctx| Ok(Box::new(Once(Cascaded::new(ctx)?))),
-    image: None,
-};
-
-/// Paper 5 run once on a job: its eye-space image for the scene's camera.
-struct Once(Cascaded);
-
-impl RunOnce for Once {
-    fn run(
+    /// Its eye-space image for the scene's camera.
+    fn run_once(
         &mut self,
         ctx: &GpuContext,
+        _: &'static Descriptor,
         job: &Job,
         params: &toml::Table,
         timer: Option<&mut GpuTimer>,
@@ -143,7 +121,6 @@ impl RunOnce for Once {
         let (setup, water) = cascaded::job_setup(job, params)?;
         let terrain = job.scene.floor.terrain.as_ref();
         let image = self
-            .0
             .caustics_timed(ctx, &setup, &water, terrain, timer)?
             .image;
         progress(1, 1);

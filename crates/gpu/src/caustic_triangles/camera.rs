@@ -1,6 +1,6 @@
 //! The camera pass of technique `caustic-triangles` on the GPU (paper 4, §4.3): the technique's own
 //! final image. CPU twin: `caustics_core::techniques::caustic_triangles::camera`, where the shading
-//! model is documented; WGSL `shaders/caustic_triangles/camera.wgsl`.
+//! model is documented; WGSL `caustic_triangles/camera.wgsl`.
 //!
 //! [`CameraRenderer::render`] runs the whole technique for a scene's generators: per generator the
 //! photon tracing pass, then (sun) its triangles added into one floor map, or (point light) its
@@ -20,10 +20,11 @@ use crate::{GpuContext, GpuError, GpuTimer};
 pub const CAMERA: PassSource = PassSource {
     name: "caustic-triangles camera pass",
     shared: &[OPTICS, super::COMMON, super::DISTANCE_MAP],
-    source: include_str!("../shaders/caustic_triangles/camera.wgsl"),
+    file: "caustic_triangles/camera.wgsl",
+    source: include_str!("camera.wgsl"),
 };
 
-/// Mirrors `CameraPass` in `shaders/caustic_triangles/camera.wgsl`.
+/// Mirrors `CameraPass` in `caustic_triangles/camera.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CameraUniform {

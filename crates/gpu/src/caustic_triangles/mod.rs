@@ -5,16 +5,16 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
-//! | photon tracing (compute, §4.1) | `shaders/caustic_triangles/photon.wgsl` + `distance_map.wgsl` | `photon_pass` |
-//! | vertex irradiance (compute, §5) | `shaders/caustic_triangles/irradiance.wgsl` | `irradiance_pass` |
-//! | caustic triangles (render, §4.2) | `shaders/caustic_triangles/triangles.wgsl` + `merge.wgsl` | `triangles_pass` |
-//! | merge pyramid (compute, §5, with `merge_levels`) | `shaders/caustic_triangles/pyramid.wgsl` | `merge::pyramid_pass` |
-//! | splatting baseline (render) | `shaders/caustic_triangles/splat.wgsl` | `splat_pass` |
-//! | caustic triangles on the light cube map faces (render, §4.2, point light) | `shaders/caustic_triangles/cube.wgsl` | `cube::cube_triangles_pass` |
-//! | light cube shadow distances (compute, §4.3) | `shaders/caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
-//! | camera pass (compute, §4.3), [`camera`] | `shaders/caustic_triangles/camera.wgsl` | `camera::camera_pass` |
-//! | water photon pass (compute, the water surface as the generator) | `shaders/caustic_triangles/water_photon.wgsl` | `water::photon_pass` |
-//! | copy band (compute, tiling water: a bound over every texel, then one thread) | `shaders/caustic_triangles/band_bound.wgsl`, `band.wgsl` | `water::copy_band` |
+//! | photon tracing (compute, §4.1) | `caustic_triangles/photon.wgsl` + `distance_map.wgsl` | `photon_pass` |
+//! | vertex irradiance (compute, §5) | `caustic_triangles/irradiance.wgsl` | `irradiance_pass` |
+//! | caustic triangles (render, §4.2) | `caustic_triangles/triangles.wgsl` + `merge.wgsl` | `triangles_pass` |
+//! | merge pyramid (compute, §5, with `merge_levels`) | `caustic_triangles/pyramid.wgsl` | `merge::pyramid_pass` |
+//! | splatting baseline (render) | `caustic_triangles/splat.wgsl` | `splat_pass` |
+//! | caustic triangles on the light cube map faces (render, §4.2, point light) | `caustic_triangles/cube.wgsl` | `cube::cube_triangles_pass` |
+//! | light cube shadow distances (compute, §4.3) | `caustic_triangles/shadow.wgsl` | `cube::shadow_pass` |
+//! | camera pass (compute, §4.3), [`camera`] | `caustic_triangles/camera.wgsl` | `camera::camera_pass` |
+//! | water photon pass (compute, the water surface as the generator) | `caustic_triangles/water_photon.wgsl` | `water::photon_pass` |
+//! | copy band (compute, tiling water: a bound over every texel, then one thread) | `caustic_triangles/band_bound.wgsl`, `band.wgsl` | `water::copy_band` |
 //!
 //! With the water surface as the generator ([`WaterFrame`], `caustics_core::techniques::
 //! caustic_triangles::water`) the water photon pass replaces the photon tracing pass and also
@@ -25,7 +25,7 @@
 //! of the shifted copies, so a frame never reads the heights on the CPU (the CPU twin fits the same
 //! bound in f64, `WaterSetup::fit_band`; any band at least the light's reach draws the same map).
 //!
-//! With the pool's walls (`WaterSetup::with_walls`, issue 18) nothing wraps; each wall is a
+//! With the pool's walls (`WaterSetup::with_walls`) nothing wraps; each wall is a
 //! receiver of its own ([`WallFrames`]): the water photon pass again with the uniform's `receiver`
 //! (the rays extended to the wall's plane, `water::receiver_photon`), vertex irradiance and
 //! triangles into its layer of a 4-layer wall-map texture (`water::wall_caustics`).
@@ -51,63 +51,88 @@ use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline
 use crate::shaders::{OPTICS, PassSource, REDUCE, WATER};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
-const COMMON: &str = include_str!("../shaders/caustic_triangles/common.wgsl");
-const DISTANCE_MAP: &str = include_str!("../shaders/caustic_triangles/distance_map.wgsl");
-const MERGE: &str = include_str!("../shaders/caustic_triangles/merge.wgsl");
-const WATER_SETUP: &str = include_str!("../shaders/caustic_triangles/water_setup.wgsl");
+const COMMON: &str = include_str!("common.wgsl");
+const DISTANCE_MAP: &str = include_str!("distance_map.wgsl");
+const MERGE: &str = include_str!("merge.wgsl");
+const WATER_SETUP: &str = include_str!("water_setup.wgsl");
 
 pub const PHOTON: PassSource = PassSource {
     name: "caustic-triangles photon tracing",
     shared: &[OPTICS, COMMON, DISTANCE_MAP],
-    source: include_str!("../shaders/caustic_triangles/photon.wgsl"),
+    file: "caustic_triangles/photon.wgsl",
+    source: include_str!("photon.wgsl"),
 };
 pub const IRRADIANCE: PassSource = PassSource {
     name: "caustic-triangles vertex irradiance",
     shared: &[COMMON],
-    source: include_str!("../shaders/caustic_triangles/irradiance.wgsl"),
+    file: "caustic_triangles/irradiance.wgsl",
+    source: include_str!("irradiance.wgsl"),
 };
 pub const TRIANGLES: PassSource = PassSource {
     name: "caustic-triangles triangles",
     shared: &[COMMON, MERGE],
-    source: include_str!("../shaders/caustic_triangles/triangles.wgsl"),
+    file: "caustic_triangles/triangles.wgsl",
+    source: include_str!("triangles.wgsl"),
 };
 pub const PYRAMID: PassSource = PassSource {
     name: "caustic-triangles merge pyramid",
     shared: &[COMMON],
-    source: include_str!("../shaders/caustic_triangles/pyramid.wgsl"),
+    file: "caustic_triangles/pyramid.wgsl",
+    source: include_str!("pyramid.wgsl"),
 };
 pub const CUBE: PassSource = PassSource {
     name: "caustic-triangles light cube map",
     shared: &[COMMON, MERGE],
-    source: include_str!("../shaders/caustic_triangles/cube.wgsl"),
+    file: "caustic_triangles/cube.wgsl",
+    source: include_str!("cube.wgsl"),
 };
 pub const SHADOW: PassSource = PassSource {
     name: "caustic-triangles light cube shadow distances",
     shared: &[COMMON, DISTANCE_MAP],
-    source: include_str!("../shaders/caustic_triangles/shadow.wgsl"),
+    file: "caustic_triangles/shadow.wgsl",
+    source: include_str!("shadow.wgsl"),
 };
 pub const WATER_PHOTON: PassSource = PassSource {
     name: "caustic-triangles water photons",
     shared: &[OPTICS, WATER, WATER_SETUP],
-    source: include_str!("../shaders/caustic_triangles/water_photon.wgsl"),
+    file: "caustic_triangles/water_photon.wgsl",
+    source: include_str!("water_photon.wgsl"),
 };
 pub const COPY_BAND: PassSource = PassSource {
     name: "caustic-triangles copy band",
     shared: &[COMMON, WATER_SETUP, REDUCE],
-    source: include_str!("../shaders/caustic_triangles/band.wgsl"),
+    file: "caustic_triangles/band.wgsl",
+    source: include_str!("band.wgsl"),
 };
 pub const BAND_BOUND: PassSource = PassSource {
     name: "caustic-triangles band bound",
     shared: &[COMMON, WATER_SETUP, REDUCE],
-    source: include_str!("../shaders/caustic_triangles/band_bound.wgsl"),
+    file: "caustic_triangles/band_bound.wgsl",
+    source: include_str!("band_bound.wgsl"),
 };
 pub const SPLAT: PassSource = PassSource {
     name: "caustic-triangles splats",
     shared: &[COMMON],
-    source: include_str!("../shaders/caustic_triangles/splat.wgsl"),
+    file: "caustic_triangles/splat.wgsl",
+    source: include_str!("splat.wgsl"),
 };
 
-/// Mirrors `CausticTriangles` in `shaders/caustic_triangles/common.wgsl`.
+/// Every pass of the technique, for its registry entry.
+pub const PASSES: &[&PassSource] = &[
+    &PHOTON,
+    &IRRADIANCE,
+    &TRIANGLES,
+    &PYRAMID,
+    &CUBE,
+    &SHADOW,
+    &WATER_PHOTON,
+    &COPY_BAND,
+    &BAND_BOUND,
+    &SPLAT,
+    &camera::CAMERA,
+];
+
+/// Mirrors `CausticTriangles` in `caustic_triangles/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CausticTrianglesUniform {
@@ -199,7 +224,7 @@ impl CausticTrianglesUniform {
     }
 }
 
-/// Mirrors `WaterPhoton` in `shaders/caustic_triangles/water_photon.wgsl` (CPU twin: [`WaterSetup`]).
+/// Mirrors `WaterPhoton` in `caustic_triangles/water_photon.wgsl` (CPU twin: [`WaterSetup`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct WaterPhotonUniform {
@@ -245,7 +270,7 @@ struct BandPasses {
     grid: (u32, u32),
 }
 
-/// Mirrors `CopyBand` in `shaders/caustic_triangles/common.wgsl`: the band of quads the shifted
+/// Mirrors `CopyBand` in `caustic_triangles/common.wgsl`: the band of quads the shifted
 /// copies of tiling water are drawn for as the copy band pass fits it, and their indirect draw.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -730,12 +755,7 @@ impl CausticTriangles {
     /// Read the floor map back (either format) as a caustics map.
     pub fn read_map(&self, ctx: &GpuContext, frame: &Frame) -> Result<CausticsMap, GpuError> {
         let f = &frame.setup.floor;
-        let texels: Vec<[f32; 4]> = if self.map_format == wgpu::TextureFormat::Rgba16Float {
-            let raw: Vec<[u16; 4]> = ctx.read_texture(&frame.map)?;
-            raw.into_iter().map(|t| t.map(f16_to_f32)).collect()
-        } else {
-            ctx.read_texture(&frame.map)?
-        };
+        let texels = ctx.read_rgba_f32(&frame.map)?;
         Ok(CausticsMap {
             width: f.width,
             height: f.height,
@@ -814,7 +834,7 @@ pub struct WaterFrame {
     pub walls: Option<WallFrames>,
 }
 
-/// The pool's walls as receivers of a water frame (issue 18, CPU twin `water::wall_caustics`):
+/// The pool's walls as receivers of a water frame (CPU twin `water::wall_caustics`):
 /// each wall has its own photon image (the rays extended to its plane), vertex irradiance and
 /// caustic triangles, a [`Frame`] drawing into its layer of one 2-D array texture
 /// ([`crate::technique::Technique::walls`]'s layout).
@@ -1363,30 +1383,12 @@ impl CausticTriangles {
         target: &LightCubeTarget,
         position: glam::DVec3,
     ) -> Result<LightCube, GpuError> {
-        let texels: Vec<[f32; 4]> = if self.map_format == wgpu::TextureFormat::Rgba16Float {
-            let raw: Vec<[u16; 4]> = ctx.read_texture(&target.texture)?;
-            raw.into_iter().map(|t| t.map(f16_to_f32)).collect()
-        } else {
-            ctx.read_texture(&target.texture)?
-        };
+        let texels = ctx.read_rgba_f32(&target.texture)?;
         Ok(LightCube {
             resolution: target.resolution as usize,
             position,
             caustic: texels.into_iter().map(|t| [t[0], t[1]]).collect(),
             shadow: ctx.read_buffer(&target.shadow)?,
         })
-    }
-}
-
-/// IEEE half to single precision.
-pub fn f16_to_f32(h: u16) -> f32 {
-    let sign = if h & 0x8000 != 0 { -1.0 } else { 1.0 };
-    let exp = ((h >> 10) & 0x1f) as i32;
-    let frac = (h & 0x3ff) as f32;
-    sign * match exp {
-        0 => frac * 2f32.powi(-24),
-        31 if frac == 0.0 => f32::INFINITY,
-        31 => f32::NAN,
-        e => (1.0 + frac / 1024.0) * 2f32.powi(e - 15),
     }
 }

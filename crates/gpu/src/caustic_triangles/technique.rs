@@ -1,4 +1,4 @@
-//! Paper 4 behind [`Technique`], one entry for both generators the scene can have:
+//! Paper 4 behind the generic adapter, one entry for both generators the scene can have:
 //!
 //! - **Water** (a scene with water): the water surface is the generator ([`WaterFrame`]) and reads
 //!   the caller's heights texture; the copy band pass fits the shifted copies of tiling water on
@@ -17,37 +17,34 @@ use caustics_core::techniques::caustic_triangles::water::{WaterSetup, check_flat
 use caustics_core::techniques::caustic_triangles::{
     CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, GlassScene, PointLight,
 };
-use caustics_core::techniques::{Job, Made};
+use caustics_core::techniques::{Descriptor, Job, Made};
 
 use super::{CausticTriangles, CausticTrianglesUniform, Frame, Reconstruction, WaterFrame};
-use crate::technique::{
-    Fit, Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
-};
+use crate::adapter::Pipelines;
+use crate::technique::{Output, OwnImage, Registered, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-pub struct CausticTrianglesTechnique {
-    pipelines: CausticTriangles,
-    params: CausticTrianglesParams,
-    state: Option<State>,
-}
+/// Paper 4 in the registry.
+pub const REGISTERED: Registered =
+    Registered::of::<CausticTriangles>(&ct::DESCRIPTOR, super::PASSES, Some(own_image));
 
-enum State {
-    Water {
-        frame: Box<WaterFrame>,
-        water: WaterTextures,
-    },
+/// The `caustic-triangles` technique resident on the GPU.
+pub type CausticTrianglesTechnique = crate::adapter::Resident<CausticTriangles>;
+
+/// A configured frame: the water surface as the generator, or the scene's glass objects.
+pub enum State {
+    Water(Box<WaterFrame>),
     Glass {
         generators: Vec<Generator>,
         /// The floor map every generator draws into.
         map: wgpu::Texture,
         /// The light and map size the generators' uniforms hold.
         light: LightKey,
-        water: WaterTextures,
     },
 }
 
 /// One glass object as a generator.
-struct Generator {
+pub struct Generator {
     /// The object, its occluders and the light, as `GlassScene::from_scene` made them at
     /// configure (the BVHs built once).
     scene: GlassScene,
@@ -59,7 +56,7 @@ struct Generator {
 
 /// What the glass generators' uniforms depend on in a scene, besides the objects.
 #[derive(Clone, Debug, PartialEq)]
-struct LightKey {
+pub struct LightKey {
     direction: glam::DVec3,
     position: Option<glam::DVec3>,
     cone: Option<f64>,
@@ -87,93 +84,76 @@ impl LightKey {
     }
 }
 
-pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
-    CausticTrianglesTechnique::new(ctx, params).map(|t| Box::new(t) as _)
-}
-
 impl CausticTrianglesTechnique {
-    pub fn new(ctx: &GpuContext, params: &toml::Table) -> Result<Self, GpuError> {
-        Ok(CausticTrianglesTechnique {
-            pipelines: CausticTriangles::new(ctx)?,
-            params: CausticTrianglesParams::from_table(params)?,
-            state: None,
-        })
-    }
-
     /// The water generator's frame (its photon image, copy band, map), for tests and tools.
     pub fn water_frame(&self) -> Option<&WaterFrame> {
-        match &self.state {
-            Some(State::Water { frame, .. }) => Some(frame),
-            _ => None,
+        match self.frame()? {
+            State::Water(frame) => Some(frame),
+            State::Glass { .. } => None,
         }
     }
+}
 
-    /// The water generator's setup for `scene` (the app's water job: the sun, the map at the
-    /// scene's caustics resolution over the water square).
-    fn water_setup(&self, scene: &Scene) -> Result<WaterSetup, GpuError> {
-        let water = scene.water.as_ref().expect("a water scene");
-        check_flat_floor(scene)?;
-        if !scene.light.is_sun() {
-            return Err(GpuError::BadOption(format!(
-                "scene `{}`: caustic-triangles lights its water surface with the directional sun only (light.position is set)",
-                scene.name
-            )));
-        }
-        Ok(WaterSetup::new(
-            &self.params,
-            water,
-            scene.light.direction,
-            scene.caustics.width as usize,
-            scene.caustics.height as usize,
-        )?
-        .with_walls(scene.floor.walls))
+/// The water generator's setup for `scene` (the app's water job: the sun, the map at the scene's
+/// caustics resolution over the water square).
+fn water_setup(params: &CausticTrianglesParams, scene: &Scene) -> Result<WaterSetup, GpuError> {
+    let water = scene.water.as_ref().expect("a water scene");
+    check_flat_floor(scene)?;
+    if !scene.light.is_sun() {
+        return Err(GpuError::BadOption(format!(
+            "scene `{}`: caustic-triangles lights its water surface with the directional sun only (light.position is set)",
+            scene.name
+        )));
     }
+    Ok(WaterSetup::new(
+        params,
+        water,
+        scene.light.direction,
+        scene.caustics.width as usize,
+        scene.caustics.height as usize,
+    )?
+    .with_walls(scene.floor.walls))
+}
 
-    fn configure_glass(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: &WaterTextures,
-    ) -> Result<State, GpuError> {
-        let count = scene
-            .objects
-            .iter()
-            .filter(|o| matches!(o.material, caustics_core::scene::Material::Glass { .. }))
-            .count();
-        if count == 0 {
-            return Err(GpuError::BadOption(format!(
-                "scene `{}` has neither water nor a glass object: caustic-triangles needs a caustic generator",
-                scene.name
-            )));
-        }
-        let mut generators: Vec<Generator> = Vec::with_capacity(count);
-        for k in 0..count {
-            let gs = GlassScene::from_scene(scene, k)?;
-            let mut dm = DistanceMap::build(
-                &gs,
-                self.params.cube_resolution as usize,
-                self.params.layers as usize,
-            );
-            let setup = CausticTrianglesSetup::new(&self.params, &gs)?;
-            let shared = generators.first().map(|g| &g.frame.map);
-            let frame = self
-                .pipelines
-                .frame_drawing_into(ctx, &setup, &dm, shared)?;
-            dm.texels = Vec::new();
-            generators.push(Generator {
-                scene: gs,
-                dm,
-                frame,
-            });
-        }
-        let map = generators[0].frame.map.clone();
-        Ok(State::Glass {
-            generators,
-            map,
-            light: LightKey::of(scene),
-            water: water.clone(),
-        })
+/// A generator per glass object, drawing into one floor map.
+fn configure_glass(
+    pipelines: &CausticTriangles,
+    ctx: &GpuContext,
+    params: &CausticTrianglesParams,
+    scene: &Scene,
+) -> Result<State, GpuError> {
+    let count = scene
+        .objects
+        .iter()
+        .filter(|o| matches!(o.material, caustics_core::scene::Material::Glass { .. }))
+        .count();
+    if count == 0 {
+        return Err(GpuError::BadOption(format!(
+            "scene `{}` has neither water nor a glass object: caustic-triangles needs a caustic generator",
+            scene.name
+        )));
     }
+    let mut generators: Vec<Generator> = Vec::with_capacity(count);
+    for k in 0..count {
+        let gs = GlassScene::from_scene(scene, k)?;
+        let mut dm =
+            DistanceMap::build(&gs, params.cube_resolution as usize, params.layers as usize);
+        let setup = CausticTrianglesSetup::new(params, &gs)?;
+        let shared = generators.first().map(|g| &g.frame.map);
+        let frame = pipelines.frame_drawing_into(ctx, &setup, &dm, shared)?;
+        dm.texels = Vec::new();
+        generators.push(Generator {
+            scene: gs,
+            dm,
+            frame,
+        });
+    }
+    let map = generators[0].frame.map.clone();
+    Ok(State::Glass {
+        generators,
+        map,
+        light: LightKey::of(scene),
+    })
 }
 
 /// `gs` under `light` (same generator, occluders and floor).
@@ -194,175 +174,6 @@ fn relit(gs: &GlassScene, light: &Light) -> Result<GlassScene, GpuError> {
         })?,
     })
 }
-
-impl Technique for CausticTrianglesTechnique {
-    fn name(&self) -> &str {
-        "caustic-triangles"
-    }
-
-    /// The water generator reads the grid the app's water job samples (`heights_for`): a
-    /// height-field file's own samples, else the map's lattice. Glass generators read no water:
-    /// a 1 x 1 texture configures them.
-    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
-        match scene.water.as_ref().map(|w| &w.source) {
-            None => (1, 1),
-            Some(WaterSource::HeightField(g)) => (g.cols as u32, g.rows as u32),
-            Some(_) => (scene.caustics.width, scene.caustics.height),
-        }
-    }
-
-    fn configure(
-        &mut self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: &WaterTextures,
-    ) -> Result<(), GpuError> {
-        self.state = None;
-        let state = if scene.water.is_some() {
-            let ws = self.water_setup(scene)?;
-            State::Water {
-                frame: Box::new(self.pipelines.water_frame_with_water(ctx, &ws, water)?),
-                water: water.clone(),
-            }
-        } else {
-            self.configure_glass(ctx, scene, water)?
-        };
-        self.state = Some(state);
-        Ok(())
-    }
-
-    /// The sun (water) or the light (glass) as uniform writes, none when they did not change; a
-    /// new map size, or water appearing or going, configures again.
-    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
-        let water_scene = scene.water.is_some();
-        let ws = if water_scene {
-            Some(self.water_setup(scene)?)
-        } else {
-            None
-        };
-        let again = match (&mut self.state, ws) {
-            (None, _) => {
-                return Err(GpuError::BadOption(
-                    "caustic-triangles: update before configure".into(),
-                ));
-            }
-            (Some(State::Water { frame, water }), Some(ws)) => {
-                if frame.fits(&ws) {
-                    frame.set_setup(ctx, &ws);
-                    return Ok(Fit::Written);
-                }
-                water.clone()
-            }
-            (
-                Some(State::Glass {
-                    generators,
-                    light,
-                    water,
-                    ..
-                }),
-                None,
-            ) => {
-                let key = LightKey::of(scene);
-                if key == *light {
-                    return Ok(Fit::Written);
-                }
-                if (key.width, key.height, key.size) == (light.width, light.height, light.size) {
-                    let mut next = Vec::with_capacity(generators.len());
-                    for g in generators.iter() {
-                        let gs = relit(&g.scene, &scene.light)?;
-                        let setup = CausticTrianglesSetup::new(&self.params, &gs)?;
-                        next.push((gs, setup));
-                    }
-                    for (g, (gs, setup)) in generators.iter_mut().zip(next) {
-                        let old = CausticTrianglesUniform::new(&g.frame.setup, &g.dm);
-                        let new = CausticTrianglesUniform::new(&setup, &g.dm);
-                        if bytemuck::bytes_of(&old) != bytemuck::bytes_of(&new) {
-                            ctx.write_buffer(&g.frame.uniform, 0, bytemuck::bytes_of(&new));
-                        }
-                        g.scene = gs;
-                        g.frame.setup = setup;
-                    }
-                    *light = key;
-                    return Ok(Fit::Written);
-                }
-                water.clone()
-            }
-            (Some(State::Water { water, .. }), None)
-            | (Some(State::Glass { water, .. }), Some(_)) => water.clone(),
-        };
-        Ok(Fit::Reconfigure(again))
-    }
-
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
-        match &self.state {
-            None => {}
-            Some(State::Water { frame, .. }) => {
-                self.pipelines
-                    .encode_water(frame, encoder, timer, Reconstruction::Triangles);
-            }
-            Some(State::Glass { generators, .. }) => {
-                for (k, g) in generators.iter().enumerate() {
-                    let f = &g.frame;
-                    self.pipelines
-                        .encode_photons(f, encoder, timer.as_deref_mut());
-                    self.pipelines
-                        .encode_irradiance(f, encoder, timer.as_deref_mut());
-                    self.pipelines.draw_floor(
-                        f,
-                        encoder,
-                        timer.as_deref_mut(),
-                        Reconstruction::Triangles,
-                        &f.map_view,
-                        k == 0,
-                    );
-                }
-            }
-        }
-    }
-
-    fn output(&self) -> Option<Output<'_>> {
-        match self.state.as_ref()? {
-            State::Water { frame, .. } => Some(Output::Floor(&frame.frame.map)),
-            State::Glass { map, .. } => Some(Output::Floor(map)),
-        }
-    }
-
-    /// The water generator's wall maps on a scene with walls (glass scenes have none), in the
-    /// floor map's format (`Rgba16Float` where the device cannot blend 32-bit floats).
-    fn walls(&self) -> Option<WallsOutput<'_>> {
-        match self.state.as_ref()? {
-            State::Water { frame, .. } => frame
-                .walls
-                .as_ref()
-                .map(|w| WallsOutput::of(&w.texture, &w.layout)),
-            State::Glass { .. } => None,
-        }
-    }
-
-    fn bytes(&self) -> u64 {
-        match &self.state {
-            None => 0,
-            Some(State::Water { frame, .. }) => frame.bytes(),
-            // The first generator's frame owns the shared map and counts it.
-            Some(State::Glass { generators, .. }) => {
-                generators.iter().map(|g| g.frame.bytes()).sum()
-            }
-        }
-    }
-
-    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
-        self.params = CausticTrianglesParams::from_table(params)?;
-        Ok(true)
-    }
-}
-
-/// Paper 4 in the registry.
-pub const REGISTERED: Registered = Registered {
-    describe: &ct::DESCRIPTOR,
-    create,
-    once: |ctx| Ok(Box::new(Once(CausticTriangles::new(ctx)?))),
-    image: Some(own_image),
-};
 
 /// Paper 4 ends in its own camera pass (§4.3) on a scene of glass objects: lit through the light
 /// cube map of a point light or the floor map of the sun. With water, the water surface is its
@@ -391,20 +202,169 @@ fn own_image(
     }))
 }
 
-/// Paper 4 run once on a job: the water surface as the generator where the scene has water,
-/// else each glass object in turn, their maps added.
-struct Once(CausticTriangles);
+impl Pipelines for CausticTriangles {
+    type Params = CausticTrianglesParams;
+    type Frame = State;
 
-impl RunOnce for Once {
-    fn run(
+    fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        CausticTriangles::new(ctx)
+    }
+
+    fn params(_: &'static Descriptor, tables: &toml::Table) -> Result<Self::Params, GpuError> {
+        Ok(CausticTrianglesParams::from_table(tables)?)
+    }
+
+    /// The water generator reads the grid the app's water job samples (`heights_for`): a
+    /// height-field file's own samples, else the map's lattice. Glass generators read no water:
+    /// a 1 x 1 texture configures them.
+    fn water_resolution(_: &Self::Params, scene: &Scene) -> (u32, u32) {
+        match scene.water.as_ref().map(|w| &w.source) {
+            None => (1, 1),
+            Some(WaterSource::HeightField(g)) => (g.cols as u32, g.rows as u32),
+            Some(_) => (scene.caustics.width, scene.caustics.height),
+        }
+    }
+
+    fn frame(
+        &self,
+        ctx: &GpuContext,
+        params: &Self::Params,
+        scene: &Scene,
+        water: &WaterTextures,
+    ) -> Result<State, GpuError> {
+        if scene.water.is_some() {
+            let ws = water_setup(params, scene)?;
+            Ok(State::Water(Box::new(
+                self.water_frame_with_water(ctx, &ws, water)?,
+            )))
+        } else {
+            configure_glass(self, ctx, params, scene)
+        }
+    }
+
+    /// The sun (water) or the light (glass) as uniform writes, none when they did not change; a
+    /// new map size, or water appearing or going, configures again.
+    fn refit(
+        &self,
+        ctx: &GpuContext,
+        params: &Self::Params,
+        state: &mut State,
+        scene: &Scene,
+    ) -> Result<bool, GpuError> {
+        let ws = match scene.water {
+            Some(_) => Some(water_setup(params, scene)?),
+            None => None,
+        };
+        match (state, ws) {
+            (State::Water(frame), Some(ws)) => {
+                if frame.fits(&ws) {
+                    frame.set_setup(ctx, &ws);
+                    return Ok(true);
+                }
+                Ok(false)
+            }
+            (
+                State::Glass {
+                    generators, light, ..
+                },
+                None,
+            ) => {
+                let key = LightKey::of(scene);
+                if key == *light {
+                    return Ok(true);
+                }
+                if (key.width, key.height, key.size) != (light.width, light.height, light.size) {
+                    return Ok(false);
+                }
+                let mut next = Vec::with_capacity(generators.len());
+                for g in generators.iter() {
+                    let gs = relit(&g.scene, &scene.light)?;
+                    let setup = CausticTrianglesSetup::new(params, &gs)?;
+                    next.push((gs, setup));
+                }
+                for (g, (gs, setup)) in generators.iter_mut().zip(next) {
+                    let old = CausticTrianglesUniform::new(&g.frame.setup, &g.dm);
+                    let new = CausticTrianglesUniform::new(&setup, &g.dm);
+                    if bytemuck::bytes_of(&old) != bytemuck::bytes_of(&new) {
+                        ctx.write_buffer(&g.frame.uniform, 0, bytemuck::bytes_of(&new));
+                    }
+                    g.scene = gs;
+                    g.frame.setup = setup;
+                }
+                *light = key;
+                Ok(true)
+            }
+            (State::Water(_), None) | (State::Glass { .. }, Some(_)) => Ok(false),
+        }
+    }
+
+    fn encode(
+        &self,
+        state: &State,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        match state {
+            State::Water(frame) => {
+                self.encode_water(frame, encoder, timer, Reconstruction::Triangles);
+            }
+            State::Glass { generators, .. } => {
+                for (k, g) in generators.iter().enumerate() {
+                    let f = &g.frame;
+                    self.encode_photons(f, encoder, timer.as_deref_mut());
+                    self.encode_irradiance(f, encoder, timer.as_deref_mut());
+                    self.draw_floor(
+                        f,
+                        encoder,
+                        timer.as_deref_mut(),
+                        Reconstruction::Triangles,
+                        &f.map_view,
+                        k == 0,
+                    );
+                }
+            }
+        }
+    }
+
+    fn output<'a>(&'a self, state: &'a State) -> Output<'a> {
+        match state {
+            State::Water(frame) => Output::Floor(&frame.frame.map),
+            State::Glass { map, .. } => Output::Floor(map),
+        }
+    }
+
+    /// The water generator's wall maps on a scene with walls (glass scenes have none), in the
+    /// floor map's format (`Rgba16Float` where the device cannot blend 32-bit floats).
+    fn walls(state: &State) -> Option<WallsOutput<'_>> {
+        match state {
+            State::Water(frame) => frame
+                .walls
+                .as_ref()
+                .map(|w| WallsOutput::of(&w.texture, &w.layout)),
+            State::Glass { .. } => None,
+        }
+    }
+
+    fn bytes(state: &State) -> u64 {
+        match state {
+            State::Water(frame) => frame.bytes(),
+            // The first generator's frame owns the shared map and counts it.
+            State::Glass { generators, .. } => generators.iter().map(|g| g.frame.bytes()).sum(),
+        }
+    }
+
+    /// The water surface as the generator where the scene has water, else each glass object in
+    /// turn, their maps added.
+    fn run_once(
         &mut self,
         ctx: &GpuContext,
+        _: &'static Descriptor,
         job: &Job,
         params: &toml::Table,
         mut timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Made, GpuError> {
-        let gpu = &self.0;
+        let gpu = &*self;
         if job.scene.water.is_some() {
             let (ws, heights) = ct::water_job_setup(job, params)?;
             let (map, walls) = gpu.water_caustics_walls(ctx, &ws, &heights, timer)?;

@@ -6,11 +6,11 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
-//! | the water's heights in Hermite form (compute, one invocation per texel) | `shaders/water_patches.wgsl` ([`crate::water::patches`]) | (the grid's bicubic sample) |
-//! | water slab bounds (compute, 128² samples) | `shaders/final_image_slab.wgsl` | [`slab_bounds`]: the slab's half height and the slope bound of the march |
-//! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `shaders/caustics_mips.wgsl` | `CausticsMap::pyramid` |
-//! | the water's slope moments' pyramid (compute, one dispatch a level, in the image's pass, when the normals are filtered) | `shaders/water_slopes_base.wgsl`, `shaders/water_slopes_halve.wgsl` ([`slopes`]) | `SlopePyramid::new` |
-//! | final image (compute, one invocation per pixel) | `shaders/final_image.wgsl` | `render::render` and `Tracer` |
+//! | the water's heights in Hermite form (compute, one invocation per texel) | `water/water_patches.wgsl` ([`crate::water::patches`]) | (the grid's bicubic sample) |
+//! | water slab bounds (compute, 128² samples) | `final_image/final_image_slab.wgsl` | [`slab_bounds`]: the slab's half height and the slope bound of the march |
+//! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `map_mips.wgsl` | `CausticsMap::pyramid` |
+//! | the water's slope moments' pyramid (compute, one dispatch a level, in the image's pass, when the normals are filtered) | `final_image/water_slopes_base.wgsl`, `final_image/water_slopes_halve.wgsl` ([`slopes`]) | `SlopePyramid::new` |
+//! | final image (compute, one invocation per pixel) | `final_image/final_image.wgsl` | `render::render` and `Tracer` |
 //! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::filtered` |
 //! | (shared) mesh ray queries | `shaders/bvh.wgsl` | `MeshBvh::intersect` |
 //!
@@ -56,8 +56,8 @@ pub mod slopes;
 mod upload;
 
 pub use upload::{
-    FinalImageUniform, GpuBvhNode, GpuBvhTriangle, GpuObject, Meshes, SLAB_LATTICE, Slab,
-    SlabUniform, albedo, flags, meshes, slab_bounds, water_grid, water_grid_resolution,
+    FinalImageUniform, GpuObject, Meshes, SLAB_LATTICE, Slab, SlabUniform, albedo, flags, meshes,
+    slab_bounds, water_grid, water_grid_resolution,
 };
 
 use caustics_core::map::{CausticsMap, pyramid_levels};
@@ -68,37 +68,34 @@ use caustics_core::water::Surface;
 
 use crate::map_mips::{MapMips, mip_chain, mips_pipeline};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::shaders::{BVH, OPTICS, PassSource, SHADING, WATER};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError, GpuTimer};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
-/// The sky, the floor's albedo and the tone curve, for any pass that shows the scene.
-pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
-/// Ray queries against the objects' trees (bind group 1).
-pub const BVH: &str = include_str!("../shaders/bvh.wgsl");
-
 pub const FINAL_IMAGE: PassSource = PassSource {
     name: "final image",
     shared: &[OPTICS, WATER, SHADING, BVH],
-    source: include_str!("../shaders/final_image.wgsl"),
-};
-
-/// One level of the caustics map's pyramid (caustics-core's `CausticsMap::pyramid`), which the
-/// final image reads over each sample's footprint on the floor.
-pub const CAUSTICS_MIPS: PassSource = PassSource {
-    name: "caustics mips",
-    shared: &[],
-    source: include_str!("../shaders/caustics_mips.wgsl"),
+    file: "final_image/final_image.wgsl",
+    source: include_str!("final_image.wgsl"),
 };
 
 pub const FINAL_IMAGE_SLAB: PassSource = PassSource {
     name: "final image slab",
     shared: &[WATER],
-    source: include_str!("../shaders/final_image_slab.wgsl"),
+    file: "final_image/final_image_slab.wgsl",
+    source: include_str!("final_image_slab.wgsl"),
 };
+
+/// The final image's passes.
+pub const PASSES: &[&PassSource] = &[
+    &FINAL_IMAGE,
+    &FINAL_IMAGE_SLAB,
+    &slopes::WATER_SLOPES_BASE,
+    &slopes::WATER_SLOPES_HALVE,
+];
 
 /// Pixels per workgroup side (`@workgroup_size(8, 8)`, both passes).
 const TILE: u32 = 8;
@@ -544,8 +541,8 @@ impl FinalImage {
         let wall_cols =
             storage_buffer(ctx, "walls' columns", &walls.map_or([0u32; 4], |w| w.cols))?;
         let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
-        let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.nodes)?;
-        let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.triangles)?;
+        let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.trees.nodes)?;
+        let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.trees.triangles)?;
         let uniform = ctx.create_buffer(&wgpu::BufferDescriptor {
             label: Some("final image uniform"),
             size: std::mem::size_of::<FinalImageUniform>() as u64,

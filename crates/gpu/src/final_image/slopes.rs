@@ -2,8 +2,8 @@
 //! filters the waves' normals by each sample's footprint (`RenderOptions::filter_water`): the twin
 //! of caustics-core's `SlopePyramid` (`water/slopes.rs`, where the filter is written down). Level 0
 //! holds, per texel of the heights' lattice, the moments of the surface's slope over the texel
-//! (`shaders/water_slopes_base.wgsl`); each level above averages 2 x 2 of the one below
-//! (`shaders/water_slopes_halve.wgsl`), up to one texel. All levels lie in one storage buffer, five
+//! (`final_image/water_slopes_base.wgsl`); each level above averages 2 x 2 of the one below
+//! (`final_image/water_slopes_halve.wgsl`), up to one texel. All levels lie in one storage buffer, five
 //! floats a texel, level after level; the final image finds a level's place from the lattice
 //! alone (`slope_level` in `final_image.wgsl`).
 
@@ -12,18 +12,20 @@ use crate::shaders::{PassSource, WATER};
 use crate::{GpuContext, GpuError};
 
 /// The level uniform both passes read.
-const WATER_SLOPES: &str = include_str!("../shaders/water_slopes.wgsl");
+const WATER_SLOPES: &str = include_str!("water_slopes.wgsl");
 
 pub const WATER_SLOPES_BASE: PassSource = PassSource {
     name: "water slopes base",
     shared: &[WATER, WATER_SLOPES],
-    source: include_str!("../shaders/water_slopes_base.wgsl"),
+    file: "final_image/water_slopes_base.wgsl",
+    source: include_str!("water_slopes_base.wgsl"),
 };
 
 pub const WATER_SLOPES_HALVE: PassSource = PassSource {
     name: "water slopes halve",
     shared: &[WATER_SLOPES],
-    source: include_str!("../shaders/water_slopes_halve.wgsl"),
+    file: "final_image/water_slopes_halve.wgsl",
+    source: include_str!("water_slopes_halve.wgsl"),
 };
 
 /// The moments a texel holds: `E[h_x]`, `E[h_y]`, `E[h_x²]`, `E[h_y²]`, `E[h_x h_y]`.
@@ -32,7 +34,7 @@ pub const MOMENTS: usize = 5;
 /// `@workgroup_size(8, 8)` of both passes.
 const TILE: u32 = 8;
 
-/// Mirrors `SlopeLevel` in `shaders/water_slopes.wgsl`.
+/// Mirrors `SlopeLevel` in `final_image/water_slopes.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 struct SlopeLevelUniform {

@@ -1,4 +1,4 @@
-//! What the final-image pass reads, laid out as the structs of `shaders/final_image.wgsl` and
+//! What the final-image pass reads, laid out as the structs of `final_image/final_image.wgsl` and
 //! `shaders/bvh.wgsl`: the frame's uniform (camera, sun, water, flags), the objects with their
 //! flattened trees, and the frozen water surface as a height grid.
 //!
@@ -6,7 +6,7 @@
 //! its flat-water transmittance, the camera basis) is derived here in f64 the same way and handed
 //! to the shader rounded to f32, so the two sides start from the same numbers. The slab's bounds
 //! (`h_max` and the slope bound of the march) depend on the water, which lives on the GPU:
-//! `shaders/final_image_slab.wgsl` finds them there each frame ([`slab_bounds`] is its CPU twin).
+//! `final_image/final_image_slab.wgsl` finds them there each frame ([`slab_bounds`] is its CPU twin).
 
 use caustics_core::optics::{fresnel_transmittance, refract};
 use caustics_core::render::{RenderOptions, sky_ambient};
@@ -16,7 +16,9 @@ use caustics_core::water::slopes::{sample_spread, sun_slope_variance};
 use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::DVec3;
 
-/// Mirrors `FinalImage` in `shaders/final_image.wgsl` (uniform layout: each `vec3` is padded by the
+use crate::bvh::FlatBvhs;
+
+/// Mirrors `FinalImage` in `final_image/final_image.wgsl` (uniform layout: each `vec3` is padded by the
 /// scalar after it).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
@@ -66,7 +68,7 @@ pub struct FinalImageUniform {
     pub slope_rows: u32,
 }
 
-/// Mirrors `Slab` in `shaders/final_image_slab.wgsl`.
+/// Mirrors `Slab` in `final_image/final_image_slab.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct SlabUniform {
@@ -105,7 +107,7 @@ pub mod albedo {
     pub const IMAGE: u32 = 3;
 }
 
-/// Mirrors `Object` in `shaders/final_image.wgsl` (storage layout).
+/// Mirrors `Object` in `final_image/final_image.wgsl` (storage layout).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuObject {
@@ -118,34 +120,8 @@ pub struct GpuObject {
     pub _pad: [u32; 2],
 }
 
-/// Mirrors `BvhNode` in `shaders/bvh.wgsl`; `start` is global (node or triangle-slot buffer).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct GpuBvhNode {
-    pub min: [f32; 3],
-    pub start: u32,
-    pub max: [f32; 3],
-    pub count: u32,
-}
-
-/// Mirrors `BvhTriangle` in `shaders/bvh.wgsl`: `p0`, the edges, the vertex normals (`w` unused).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct GpuBvhTriangle {
-    pub p0: [f32; 4],
-    pub e1: [f32; 4],
-    pub e2: [f32; 4],
-    pub n0: [f32; 4],
-    pub n1: [f32; 4],
-    pub n2: [f32; 4],
-}
-
 fn f3(v: DVec3) -> [f32; 3] {
     v.as_vec3().to_array()
-}
-
-fn f4(v: DVec3) -> [f32; 4] {
-    v.as_vec3().extend(0.0).to_array()
 }
 
 pub use caustics_core::render::water_grid_resolution;
@@ -165,7 +141,7 @@ pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
     })
 }
 
-/// The slab bound of the CPU renderer, which the slab pass (`shaders/final_image_slab.wgsl`) finds
+/// The slab bound of the CPU renderer, which the slab pass (`final_image/final_image_slab.wgsl`) finds
 /// on the GPU: both sides search the same slab and put the deck at the same height.
 pub use caustics_core::render::{Slab, slab_bounds};
 
@@ -285,41 +261,17 @@ pub(super) fn uniform(
 /// node and triangle-slot buffers with its indices made global.
 pub struct Meshes {
     pub objects: Vec<GpuObject>,
-    pub nodes: Vec<GpuBvhNode>,
-    pub triangles: Vec<GpuBvhTriangle>,
+    pub trees: FlatBvhs,
 }
 
-/// Build each object's [`caustics_core::mesh::MeshBvh`] (the same tree the CPU builds, so both
-/// sides visit the same nodes) and flatten it.
+/// Every object's tree flattened ([`FlatBvhs`]) and its entry.
 pub fn meshes(scene: &Scene) -> Meshes {
     let mut m = Meshes {
         objects: Vec::with_capacity(scene.objects.len()),
-        nodes: Vec::new(),
-        triangles: Vec::new(),
+        trees: FlatBvhs::default(),
     };
     for obj in &scene.objects {
-        let mesh = &obj.mesh;
-        let (nodes, order) = mesh.bvh().flatten();
-        let node_base = m.nodes.len() as u32;
-        let slot_base = m.triangles.len() as u32;
-        m.nodes.extend(nodes.iter().map(|n| GpuBvhNode {
-            min: f3(n.min),
-            max: f3(n.max),
-            start: n.start + if n.count > 0 { slot_base } else { node_base },
-            count: n.count,
-        }));
-        m.triangles.extend(order.iter().map(|&t| {
-            let [a, b, c] = mesh.indices[t as usize].map(|i| i as usize);
-            let p0 = mesh.positions[a];
-            GpuBvhTriangle {
-                p0: f4(p0),
-                e1: f4(mesh.positions[b] - p0),
-                e2: f4(mesh.positions[c] - p0),
-                n0: f4(mesh.normals[a]),
-                n1: f4(mesh.normals[b]),
-                n2: f4(mesh.normals[c]),
-            }
-        }));
+        let root = m.trees.push(&obj.mesh);
         let (color, ior, glass) = match &obj.material {
             Material::Diffuse { color } => (*color, 1.0, 0),
             Material::Glass { ior, tint } => (*tint, *ior, 1),
@@ -327,7 +279,7 @@ pub fn meshes(scene: &Scene) -> Meshes {
         m.objects.push(GpuObject {
             color: f3(color),
             ior: ior as f32,
-            root: node_base,
+            root,
             glass,
             _pad: [0; 2],
         });

@@ -5,7 +5,7 @@
 //!
 //! | variant | pass | WGSL | CPU twin |
 //! |---|---|---|---|
-//! | vertex | caustic per mesh vertex (vertex shader), linear over the triangles (rasteriser) | `shaders/procedural/vertex.wgsl` | `vertex_values` + `rasterise` |
+//! | vertex | caustic per mesh vertex (vertex shader), linear over the triangles (rasteriser) | `procedural/vertex.wgsl` | `vertex_values` + `rasterise` |
 //! | screen | caustic per map pixel, no filtering (fragment) | `screen.wgsl` | `per_pixel` |
 //! | texture | caustic per texel of the fixed-size target, mip level 0 (fragment) | `target.wgsl` | `per_pixel` |
 //! | texture | one 2 x 2 box downsample per mip level (fragment) | `downsample.wgsl` | `mip_chain` |
@@ -27,35 +27,43 @@ use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 pub mod technique;
 
-const COMMON: &str = include_str!("../shaders/procedural/common.wgsl");
+const COMMON: &str = include_str!("common.wgsl");
 
 pub const VERTEX: PassSource = PassSource {
     name: "procedural vertex",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/procedural/vertex.wgsl"),
+    file: "procedural/vertex.wgsl",
+    source: include_str!("vertex.wgsl"),
 };
 pub const SCREEN: PassSource = PassSource {
     name: "procedural screen",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/procedural/screen.wgsl"),
+    file: "procedural/screen.wgsl",
+    source: include_str!("screen.wgsl"),
 };
 pub const TARGET: PassSource = PassSource {
     name: "procedural target",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/procedural/target.wgsl"),
+    file: "procedural/target.wgsl",
+    source: include_str!("target.wgsl"),
 };
 pub const DOWNSAMPLE: PassSource = PassSource {
     name: "procedural downsample",
     shared: &[],
-    source: include_str!("../shaders/procedural/downsample.wgsl"),
+    file: "procedural/downsample.wgsl",
+    source: include_str!("downsample.wgsl"),
 };
 pub const RESAMPLE: PassSource = PassSource {
     name: "procedural resample",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/procedural/resample.wgsl"),
+    file: "procedural/resample.wgsl",
+    source: include_str!("resample.wgsl"),
 };
 
-/// Mirrors `Procedural` in `shaders/procedural/common.wgsl` and `ProceduralSetup` in
+/// Every pass of the technique, for its registry entry.
+pub const PASSES: &[&PassSource] = &[&VERTEX, &SCREEN, &TARGET, &DOWNSAMPLE, &RESAMPLE];
+
+/// Mirrors `Procedural` in `procedural/common.wgsl` and `ProceduralSetup` in
 /// caustics-core/src/techniques/procedural.rs.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]

@@ -1,34 +1,47 @@
-//! Paper 2 behind [`Technique`]: its three variants, the caller's heights, a new sun as one uniform
-//! write (the light map is the sky around the sun, the same whichever way the sun stands, so it is
-//! uploaded once).
+//! Paper 2 behind the generic adapter: its three variants, the caller's heights, a new sun as one
+//! uniform write (the light map is the sky around the sun, the same whichever way the sun stands,
+//! so it is uploaded once).
 
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques::procedural::{
     self, ProceduralCausticsParams, ProceduralSetup, SurfaceInput, Variant,
 };
-use caustics_core::techniques::{Job, Made};
+use caustics_core::techniques::{Descriptor, Job, Made};
 use glam::DVec3;
 
-use super::{Frame, ProceduralCaustics};
-use crate::technique::{Fit, Output, Registered, RunOnce, Technique, WaterTextures};
-use crate::yuksel::technique::water;
+use super::ProceduralCaustics;
+use crate::adapter::Pipelines;
+use crate::technique::{Output, Registered, WaterTextures, scene_water};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-pub struct ProceduralTechnique {
-    name: String,
-    pipelines: ProceduralCaustics,
+/// `procedural` in the registry: the variant its table names (screen by default).
+pub const REGISTERED: Registered =
+    Registered::of::<ProceduralCaustics>(&procedural::DESCRIPTOR, super::PASSES, None);
+pub const VERTEX: Registered =
+    Registered::of::<ProceduralCaustics>(&procedural::VERTEX, super::PASSES, None);
+pub const SCREEN: Registered =
+    Registered::of::<ProceduralCaustics>(&procedural::SCREEN, super::PASSES, None);
+pub const TEXTURE: Registered =
+    Registered::of::<ProceduralCaustics>(&procedural::TEXTURE, super::PASSES, None);
+
+/// The `procedural` techniques resident on the GPU.
+pub type ProceduralTechnique = crate::adapter::Resident<ProceduralCaustics>;
+
+/// The parameters, and the sun's: those with the smallest generated light map, what a new sun's
+/// setup is derived from, keeping the frame's own light map (which no sun changes) instead of
+/// generating or loading it again.
+pub struct Params {
     params: ProceduralCausticsParams,
-    /// The parameters with the smallest generated light map: what [`update`](Technique::update)
-    /// derives a new sun's setup from, keeping the frame's own light map (which no sun changes)
-    /// instead of generating or loading it again.
-    sun_params: ProceduralCausticsParams,
-    /// The variant the registered name forces, if any.
-    fixed: Option<Variant>,
-    frame: Option<(Frame, WaterTextures, SceneKey)>,
+    sun: ProceduralCausticsParams,
 }
 
-/// What the setup takes from the scene: when it is unchanged, [`update`](Technique::update) does
-/// nothing.
+/// A configured frame and the scene it was made for.
+pub struct Frame {
+    pub frame: super::Frame,
+    key: SceneKey,
+}
+
+/// What the setup takes from the scene: when it is unchanged, a frame's update does nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct SceneKey {
     width: u32,
@@ -40,58 +53,56 @@ struct SceneKey {
     light: DVec3,
 }
 
-/// `procedural`: the variant its parameters name (`variant`, screen by default).
-pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
-    ProceduralTechnique::new(ctx, params, None).map(|t| Box::new(t) as _)
-}
-
-pub fn create_vertex(
-    ctx: &GpuContext,
-    params: &toml::Table,
-) -> Result<Box<dyn Technique>, GpuError> {
-    ProceduralTechnique::new(ctx, params, Some(Variant::Vertex)).map(|t| Box::new(t) as _)
-}
-
-pub fn create_screen(
-    ctx: &GpuContext,
-    params: &toml::Table,
-) -> Result<Box<dyn Technique>, GpuError> {
-    ProceduralTechnique::new(ctx, params, Some(Variant::Screen)).map(|t| Box::new(t) as _)
-}
-
-pub fn create_texture(
-    ctx: &GpuContext,
-    params: &toml::Table,
-) -> Result<Box<dyn Technique>, GpuError> {
-    ProceduralTechnique::new(ctx, params, Some(Variant::Texture)).map(|t| Box::new(t) as _)
-}
-
-impl ProceduralTechnique {
-    /// `variant`: the one a registered name forces; a table naming another is refused.
-    pub fn new(
-        ctx: &GpuContext,
-        params: &toml::Table,
-        variant: Option<Variant>,
-    ) -> Result<Self, GpuError> {
-        let (params, sun_params) = Self::read(params, variant)?;
-        Ok(ProceduralTechnique {
-            name: format!("procedural-{}", params.variant.name()),
-            pipelines: ProceduralCaustics::new(ctx)?,
-            params,
-            sun_params,
-            fixed: variant,
-            frame: None,
+impl SceneKey {
+    fn of(scene: &Scene) -> Result<SceneKey, GpuError> {
+        procedural::DESCRIPTOR.check_floor(scene)?;
+        procedural::DESCRIPTOR.check_light(&scene.light)?;
+        let w = scene_water(scene, "procedural")?;
+        Ok(SceneKey {
+            width: scene.caustics.width,
+            height: scene.caustics.height,
+            size: w.size,
+            depth: w.depth,
+            absorption: w.absorption,
+            wrap: w.wrap,
+            light: scene.light.direction,
         })
     }
 
-    /// The parameters from the tables, and the sun's (no light map), with the variant `fixed`
-    /// forces.
-    fn read(
-        table: &toml::Table,
-        fixed: Option<Variant>,
-    ) -> Result<(ProceduralCausticsParams, ProceduralCausticsParams), GpuError> {
+    /// The setup for this key from `params`, as the application's Runner builds it for a water job.
+    fn setup(&self, params: &ProceduralCausticsParams) -> Result<ProceduralSetup, GpuError> {
+        Ok(ProceduralSetup::new(
+            params,
+            self.width as usize,
+            self.height as usize,
+            self.size,
+            self.depth,
+            self.absorption,
+            self.wrap,
+            self.light,
+        )?)
+    }
+}
+
+/// The variant registry entry `entry` pins, if any.
+fn fixed_by(entry: &Descriptor) -> Option<Variant> {
+    [Variant::Vertex, Variant::Screen, Variant::Texture]
+        .into_iter()
+        .find(|v| entry.name.strip_prefix("procedural-") == Some(v.name()))
+}
+
+impl Pipelines for ProceduralCaustics {
+    type Params = Params;
+    type Frame = Frame;
+
+    fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        ProceduralCaustics::new(ctx)
+    }
+
+    /// The variant a registered name pins; a table naming another is refused.
+    fn params(entry: &'static Descriptor, table: &toml::Table) -> Result<Params, GpuError> {
         let mut params = ProceduralCausticsParams::from_table(table)?;
-        if let Some(v) = fixed {
+        if let Some(v) = fixed_by(entry) {
             if let Some(given) = table
                 .get("procedural")
                 .and_then(|t| t.get("variant"))
@@ -105,60 +116,36 @@ impl ProceduralTechnique {
             }
             params.variant = v;
         }
-        let sun_params = ProceduralCausticsParams {
+        let sun = ProceduralCausticsParams {
             light_map: None,
             light_map_resolution: 2,
             ..params.clone()
         };
-        Ok((params, sun_params))
+        Ok(Params { params, sun })
     }
 
-    fn key(scene: &Scene) -> Result<SceneKey, GpuError> {
-        caustics_core::techniques::procedural::DESCRIPTOR.check_floor(scene)?;
-        caustics_core::techniques::procedural::DESCRIPTOR.check_light(&scene.light)?;
-        let w = water(scene, "procedural")?;
-        Ok(SceneKey {
-            width: scene.caustics.width,
-            height: scene.caustics.height,
-            size: w.size,
-            depth: w.depth,
-            absorption: w.absorption,
-            wrap: w.wrap,
-            light: scene.light.direction,
-        })
+    fn name(_: &'static Descriptor, params: &Params) -> &'static str {
+        match params.params.variant {
+            Variant::Vertex => procedural::VERTEX.name,
+            Variant::Screen => procedural::SCREEN.name,
+            Variant::Texture => procedural::TEXTURE.name,
+        }
     }
 
-    /// The setup for `key` from `params`, as the application's Runner builds it for a water job.
-    fn setup(
-        params: &ProceduralCausticsParams,
-        key: &SceneKey,
-    ) -> Result<ProceduralSetup, GpuError> {
-        Ok(ProceduralSetup::new(
-            params,
-            key.width as usize,
-            key.height as usize,
-            key.size,
-            key.depth,
-            key.absorption,
-            key.wrap,
-            key.light,
-        )?)
-    }
-}
-
-impl Technique for ProceduralTechnique {
-    fn name(&self) -> &str {
-        &self.name
+    /// In place unless the variant changes (it names the technique).
+    fn params_in_place(old: &Params, new: &Params) -> bool {
+        old.params.variant == new.params.variant
     }
 
     /// The grid the application samples for the CPU twin (`procedural_heights`): a height-field
     /// file's own samples, or the surface at least as finely as the lattice the variant evaluates
     /// on (the map, the mesh's vertices, or the texture-space target).
-    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
-        let n = match self.params.variant {
-            Variant::Vertex => self.params.mesh_resolution + 1,
+    fn water_resolution(params: &Params, scene: &Scene) -> (u32, u32) {
+        let p = &params.params;
+        let n = match p.variant {
+            Variant::Vertex => p.mesh_resolution + 1,
             Variant::Screen => 0,
-            Variant::Texture => self.params.target_resolution,
+            Variant::Texture => p.target_resolution,
         };
         match scene.water.as_ref().map(|w| &w.source) {
             Some(WaterSource::HeightField(g)) => (g.cols as u32, g.rows as u32),
@@ -166,122 +153,71 @@ impl Technique for ProceduralTechnique {
         }
     }
 
-    fn configure(
-        &mut self,
+    fn frame(
+        &self,
         ctx: &GpuContext,
+        params: &Params,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<(), GpuError> {
-        let key = Self::key(scene)?;
-        let setup = Self::setup(&self.params, &key)?;
-        self.frame = None;
-        if scene.floor.walls {
-            tracing::warn!(
-                "{}",
-                caustics_core::techniques::floor_only_note(self.name())
-            );
+    ) -> Result<Frame, GpuError> {
+        let key = SceneKey::of(scene)?;
+        let setup = key.setup(&params.params)?;
+        Ok(Frame {
+            frame: self.frame_with_water(ctx, &setup, water)?,
+            key,
+        })
+    }
+
+    fn refit(
+        &self,
+        ctx: &GpuContext,
+        params: &Params,
+        frame: &mut Frame,
+        scene: &Scene,
+    ) -> Result<bool, GpuError> {
+        let key = SceneKey::of(scene)?;
+        if frame.key == key {
+            return Ok(true);
         }
-        let frame = self.pipelines.frame_with_water(ctx, &setup, water)?;
-        self.frame = Some((frame, water.clone(), key));
-        Ok(())
-    }
-
-    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
-        let key = Self::key(scene)?;
-        let Some((frame, water, old)) = &mut self.frame else {
-            return Err(GpuError::BadOption(
-                "procedural: update before configure".into(),
-            ));
-        };
-        if *old == key {
-            return Ok(Fit::Written);
+        let mut setup = key.setup(&params.sun)?;
+        setup.light = frame.frame.setup().light.clone();
+        if frame.frame.fits(&setup) {
+            frame.frame.set_setup(ctx, &setup);
+            frame.key = key;
+            return Ok(true);
         }
-        let mut setup = Self::setup(&self.sun_params, &key)?;
-        setup.light = frame.setup().light.clone();
-        if frame.fits(&setup) {
-            frame.set_setup(ctx, &setup);
-            *old = key;
-            return Ok(Fit::Written);
-        }
-        Ok(Fit::Reconfigure(water.clone()))
+        Ok(false)
     }
 
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
-        if let Some((frame, _, _)) = &self.frame {
-            self.pipelines.encode(frame, encoder, timer);
-        }
+    fn encode(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&mut GpuTimer>,
+    ) {
+        ProceduralCaustics::encode(self, &frame.frame, encoder, timer);
     }
 
-    fn output(&self) -> Option<Output<'_>> {
-        self.frame.as_ref().map(|(f, _, _)| Output::Floor(&f.map))
+    fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
+        Output::Floor(&frame.frame.map)
     }
 
-    fn bytes(&self) -> u64 {
-        self.frame.as_ref().map_or(0, |(f, _, _)| f.bytes())
+    fn bytes(frame: &Frame) -> u64 {
+        frame.frame.bytes()
     }
 
-    /// In place unless the variant changes (it names the technique).
-    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
-        let (params, sun_params) = Self::read(params, self.fixed)?;
-        if params.variant != self.params.variant {
-            return Ok(false);
-        }
-        (self.params, self.sun_params) = (params, sun_params);
-        Ok(true)
-    }
-}
-
-/// `procedural` in the registry: the variant its table names.
-pub const REGISTERED: Registered = Registered {
-    describe: &procedural::DESCRIPTOR,
-    create,
-    once: Once::create,
-    image: None,
-};
-
-pub const VERTEX: Registered = Registered {
-    describe: &procedural::VERTEX,
-    create: create_vertex,
-    once: Once::create,
-    image: None,
-};
-
-pub const SCREEN: Registered = Registered {
-    describe: &procedural::SCREEN,
-    create: create_screen,
-    once: Once::create,
-    image: None,
-};
-
-pub const TEXTURE: Registered = Registered {
-    describe: &procedural::TEXTURE,
-    create: create_texture,
-    once: Once::create,
-    image: None,
-};
-
-/// Paper 2 run once on a job (the variant from the table, which a variant's name pins).
-struct Once(ProceduralCaustics);
-
-impl Once {
-    fn create(ctx: &GpuContext) -> Result<Box<dyn RunOnce>, GpuError> {
-        Ok(Box::new(Once(ProceduralCaustics::new(ctx)?)))
-    }
-}
-
-impl RunOnce for Once {
-    fn run(
+    /// The variant from the table, which a variant's name pins.
+    fn run_once(
         &mut self,
         ctx: &GpuContext,
+        _: &'static Descriptor,
         job: &Job,
-        params: &toml::Table,
+        tables: &toml::Table,
         timer: Option<&mut GpuTimer>,
         _progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Made, GpuError> {
-        let (setup, heights) = procedural::job_setup(job, params)?;
-        let map = self
-            .0
-            .caustics_timed(ctx, &setup, &SurfaceInput::Grid(&heights), timer)?;
+        let (setup, heights) = procedural::job_setup(job, tables)?;
+        let map = self.caustics_timed(ctx, &setup, &SurfaceInput::Grid(&heights), timer)?;
         Ok(Made::floor(map, None))
     }
 }

@@ -5,13 +5,13 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
-//! | depth texture / shadow map (compute, BVH rays) | `shaders/volumes/depth.wgsl` + `bvh.wgsl` | `representation::depth_pass` |
-//! | water (compute) | `shaders/volumes/water.wgsl` | `illumination::water_pass` |
-//! | illumination volumes × reference planes (raster, additive) | `shaders/volumes/slices.wgsl` | `illumination::slice_pass` |
-//! | floor map (raster, additive) | `shaders/volumes/floor.wgsl` | `illumination::floor_pass` |
-//! | walls' maps, with walls (raster, additive, one layer per wall) | `shaders/volumes/walls.wgsl` | `illumination::wall_pass` |
-//! | diffuse map and Eq. 4 (compute) | `shaders/volumes/shade.wgsl` | `diffuse_map`, `shade_pass` |
-//! | refracted view, §3.3 (compute) | `shaders/volumes/view.wgsl` | `view::view_pass` |
+//! | depth texture / shadow map (compute, BVH rays) | `volumes/depth.wgsl` + `bvh.wgsl` | `representation::depth_pass` |
+//! | water (compute) | `volumes/water.wgsl` | `illumination::water_pass` |
+//! | illumination volumes × reference planes (raster, additive) | `volumes/slices.wgsl` | `illumination::slice_pass` |
+//! | floor map (raster, additive) | `volumes/floor.wgsl` | `illumination::floor_pass` |
+//! | walls' maps, with walls (raster, additive, one layer per wall) | `volumes/walls.wgsl` | `illumination::wall_pass` |
+//! | diffuse map and Eq. 4 (compute) | `volumes/shade.wgsl` | `diffuse_map`, `shade_pass` |
+//! | refracted view, §3.3 (compute) | `volumes/view.wgsl` | `view::view_pass` |
 //!
 //! The slices are rasterised with additive blending, as the paper draws them: one triangle per
 //! (reference plane, water triangle), pulled from the water buffer by the vertex shader, the depth
@@ -23,59 +23,68 @@
 
 use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
-use caustics_core::mesh::TriangleMesh;
 use caustics_core::techniques::volumes::illumination::WaterVertex;
 use caustics_core::techniques::volumes::view::ViewCamera;
 use caustics_core::techniques::volumes::{ObjectMaps, OrthoView, VolumesInput, VolumesSetup};
 
-use crate::final_image::{BVH, GpuBvhNode, GpuBvhTriangle};
+use crate::bvh::{FlatBvhs, GpuBvhNode, GpuBvhTriangle};
 use crate::pass::{additive_pipeline, begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::shaders::{BVH, OPTICS, PassSource, WATER};
 use crate::technique::WallsOutput;
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 use caustics_core::walls::{Wall, WallMaps};
 
 pub mod technique;
 
-const COMMON: &str = include_str!("../shaders/volumes/common.wgsl");
+const COMMON: &str = include_str!("common.wgsl");
 
 pub const DEPTH: PassSource = PassSource {
     name: "volumes depth",
     shared: &[COMMON, BVH],
-    source: include_str!("../shaders/volumes/depth.wgsl"),
+    file: "volumes/depth.wgsl",
+    source: include_str!("depth.wgsl"),
 };
 pub const WATER_PASS: PassSource = PassSource {
     name: "volumes water",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/volumes/water.wgsl"),
+    file: "volumes/water.wgsl",
+    source: include_str!("water.wgsl"),
 };
 pub const SLICES: PassSource = PassSource {
     name: "volumes slices",
     shared: &[COMMON],
-    source: include_str!("../shaders/volumes/slices.wgsl"),
+    file: "volumes/slices.wgsl",
+    source: include_str!("slices.wgsl"),
 };
 pub const FLOOR: PassSource = PassSource {
     name: "volumes floor",
     shared: &[COMMON],
-    source: include_str!("../shaders/volumes/floor.wgsl"),
+    file: "volumes/floor.wgsl",
+    source: include_str!("floor.wgsl"),
 };
 pub const WALLS: PassSource = PassSource {
     name: "volumes walls",
     shared: &[COMMON],
-    source: include_str!("../shaders/volumes/walls.wgsl"),
+    file: "volumes/walls.wgsl",
+    source: include_str!("walls.wgsl"),
 };
 pub const VIEW: PassSource = PassSource {
     name: "volumes view",
     shared: &[OPTICS, WATER, COMMON],
-    source: include_str!("../shaders/volumes/view.wgsl"),
+    file: "volumes/view.wgsl",
+    source: include_str!("view.wgsl"),
 };
 pub const SHADE: PassSource = PassSource {
     name: "volumes shade",
     shared: &[COMMON],
-    source: include_str!("../shaders/volumes/shade.wgsl"),
+    file: "volumes/shade.wgsl",
+    source: include_str!("shade.wgsl"),
 };
 
-/// Mirrors `View` in `shaders/volumes/common.wgsl`.
+/// Every pass of the technique, for its registry entry.
+pub const PASSES: &[&PassSource] = &[&DEPTH, &WATER_PASS, &SLICES, &FLOOR, &WALLS, &VIEW, &SHADE];
+
+/// Mirrors `View` in `volumes/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ViewUniform {
@@ -117,7 +126,7 @@ impl ViewUniform {
     }
 }
 
-/// Mirrors `Volumes` in `shaders/volumes/common.wgsl`.
+/// Mirrors `Volumes` in `volumes/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct VolumesUniform {
@@ -177,7 +186,7 @@ impl VolumesUniform {
     }
 }
 
-/// Mirrors `Pass` in `shaders/volumes/common.wgsl`.
+/// Mirrors `Pass` in `volumes/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct PassUniform {
@@ -222,7 +231,7 @@ impl PassUniform {
     }
 }
 
-/// Mirrors `Camera` in `shaders/volumes/view.wgsl`.
+/// Mirrors `Camera` in `volumes/view.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CameraUniform {
@@ -252,39 +261,6 @@ impl CameraUniform {
             floor_albedo: f(v.floor_albedo, 1.0),
         }
     }
-}
-
-/// Every object's BVH (the very trees the CPU walks) in the shared buffers of `bvh.wgsl`, and each
-/// tree's root.
-fn flatten_meshes(meshes: &[&TriangleMesh]) -> (Vec<GpuBvhNode>, Vec<GpuBvhTriangle>, Vec<u32>) {
-    let f4 = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
-    let f3 = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32];
-    let (mut nodes, mut triangles, mut roots) = (Vec::new(), Vec::new(), Vec::new());
-    for mesh in meshes {
-        let (flat, order) = mesh.bvh().flatten();
-        let node_base = nodes.len() as u32;
-        let slot_base = triangles.len() as u32;
-        roots.push(node_base);
-        nodes.extend(flat.iter().map(|n| GpuBvhNode {
-            min: f3(n.min),
-            max: f3(n.max),
-            start: n.start + if n.count > 0 { slot_base } else { node_base },
-            count: n.count,
-        }));
-        triangles.extend(order.iter().map(|&t| {
-            let [a, b, c] = mesh.indices[t as usize].map(|i| i as usize);
-            let p0 = mesh.positions[a];
-            GpuBvhTriangle {
-                p0: f4(p0),
-                e1: f4(mesh.positions[b] - p0),
-                e2: f4(mesh.positions[c] - p0),
-                n0: f4(mesh.normals[a]),
-                n1: f4(mesh.normals[b]),
-                n2: f4(mesh.normals[c]),
-            }
-        }));
-    }
-    (nodes, triangles, roots)
 }
 
 /// The technique's pipelines, built once per device for one caustics-map format.
@@ -412,7 +388,7 @@ impl Frame {
     }
 }
 
-/// The pool's walls as receivers of a frame (issue 18, CPU twin `illumination::wall_pass`): one
+/// The pool's walls as receivers of a frame (CPU twin `illumination::wall_pass`): one
 /// layer per wall of a 2-D array texture in `Wall::ALL`'s order, as wide as the widest wall map
 /// and as tall as the maps ([`crate::technique::Technique::walls`]'s layout), made once.
 pub struct WallsFrame {
@@ -518,8 +494,11 @@ impl Volumes {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("volumes floor map", w, h)?;
-        let meshes: Vec<&TriangleMesh> = input.objects.iter().map(|o| &o.mesh).collect();
-        let (mut nodes, mut triangles, roots) = flatten_meshes(&meshes);
+        let FlatBvhs {
+            mut nodes,
+            mut triangles,
+            roots,
+        } = FlatBvhs::of(input.objects.iter().map(|o| &o.mesh));
         // Bindings may not be empty: a scene without objects binds one unused node and slot.
         if nodes.is_empty() {
             nodes.push(GpuBvhNode::default());
@@ -952,14 +931,7 @@ impl Volumes {
         ctx: &GpuContext,
         texture: &wgpu::Texture,
     ) -> Result<Vec<[f32; 3]>, GpuError> {
-        let texels: Vec<[f32; 4]> = if self.map_format == wgpu::TextureFormat::Rgba16Float {
-            let raw: Vec<[u16; 4]> = ctx.read_texture(texture)?;
-            raw.into_iter()
-                .map(|t| t.map(crate::caustic_triangles::f16_to_f32))
-                .collect()
-        } else {
-            ctx.read_texture(texture)?
-        };
+        let texels = ctx.read_rgba_f32(texture)?;
         Ok(texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect())
     }
 

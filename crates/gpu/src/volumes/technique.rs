@@ -1,27 +1,27 @@
-//! Paper 3 behind [`Technique`]: its floor map (the illumination volumes cut by the floor, the
-//! objects' shadows in it) and, on a scene with walls, the walls' maps; the objects' trees built
-//! once in configure, the caller's heights, a new sun or camera as uniform writes.
+//! Paper 3 behind the generic adapter: its floor map (the illumination volumes cut by the floor,
+//! the objects' shadows in it) and, on a scene with walls, the walls' maps; the objects' trees
+//! built once in configure, the caller's heights, a new sun or camera as uniform writes.
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::volumes::{self, VolumesInput, VolumesParams, VolumesSetup};
-use caustics_core::techniques::{Job, Made};
+use caustics_core::techniques::{Descriptor, Job, Made};
 use glam::DVec3;
 
-use super::{Frame, Volumes};
-use crate::technique::{
-    Fit, Output, OwnImage, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
-};
+use super::Volumes;
+use crate::adapter::Pipelines;
+use crate::technique::{Output, OwnImage, Registered, WallsOutput, WaterTextures, scene_water};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-pub struct VolumesTechnique {
-    pipelines: Volumes,
-    params: VolumesParams,
-    frame: Option<Configured>,
-}
+/// Paper 3 in the registry.
+pub const REGISTERED: Registered =
+    Registered::of::<Volumes>(&volumes::DESCRIPTOR, super::PASSES, Some(own_image));
 
-struct Configured {
-    frame: Frame,
-    water: WaterTextures,
+/// The `volumes` technique resident on the GPU.
+pub type VolumesTechnique = crate::adapter::Resident<Volumes>;
+
+/// A configured frame and the scene it was made for.
+pub struct Frame {
+    pub frame: super::Frame,
     /// The scene as configured, objects included: a new sun or camera goes into it and the setup
     /// is derived again, without the meshes being read from the scene again.
     input: VolumesInput,
@@ -29,7 +29,7 @@ struct Configured {
 }
 
 /// What the setup takes from the scene besides the objects: when it is unchanged,
-/// [`update`](Technique::update) does nothing.
+/// a frame's update does nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct SceneKey {
     width: u32,
@@ -46,9 +46,9 @@ struct SceneKey {
 
 impl SceneKey {
     fn of(scene: &Scene) -> Result<SceneKey, GpuError> {
-        caustics_core::techniques::volumes::DESCRIPTOR.check_floor(scene)?;
-        caustics_core::techniques::volumes::DESCRIPTOR.check_light(&scene.light)?;
-        let w = crate::yuksel::technique::water(scene, "volumes")?;
+        volumes::DESCRIPTOR.check_floor(scene)?;
+        volumes::DESCRIPTOR.check_light(&scene.light)?;
+        let w = scene_water(scene, "volumes")?;
         Ok(SceneKey {
             width: scene.caustics.width,
             height: scene.caustics.height,
@@ -77,111 +77,99 @@ impl SceneKey {
     }
 }
 
-pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
-    Ok(Box::new(VolumesTechnique {
-        pipelines: Volumes::new(ctx)?,
-        params: VolumesParams::from_table(params)?,
-        frame: None,
-    }))
-}
+impl Pipelines for Volumes {
+    type Params = VolumesParams;
+    type Frame = Frame;
 
-impl Technique for VolumesTechnique {
-    fn name(&self) -> &str {
-        "volumes"
+    fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        Volumes::new(ctx)
+    }
+
+    fn params(_: &'static Descriptor, tables: &toml::Table) -> Result<VolumesParams, GpuError> {
+        Ok(VolumesParams::from_table(tables)?)
     }
 
     /// The grid the application samples for the CPU twin: one height per lattice cell over the
     /// scene square (`water_cells`, or the map's width).
-    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
-        let n = match self.params.water_cells {
+    fn water_resolution(params: &VolumesParams, scene: &Scene) -> (u32, u32) {
+        let n = match params.water_cells {
             0 => scene.caustics.width,
             n => n,
         };
         (n, n)
     }
 
-    fn configure(
-        &mut self,
+    fn frame(
+        &self,
         ctx: &GpuContext,
+        params: &VolumesParams,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<(), GpuError> {
+    ) -> Result<Frame, GpuError> {
         let key = SceneKey::of(scene)?;
         let input = VolumesInput::from_scene(scene)?;
-        let setup = VolumesSetup::new(&self.params, &input)?;
-        self.frame = None;
-        let frame = self
-            .pipelines
-            .frame_with_water(ctx, &setup, &input, water, key.wrap, None)?;
-        self.frame = Some(Configured {
-            frame,
-            water: water.clone(),
-            input,
-            key,
-        });
-        Ok(())
+        let setup = VolumesSetup::new(params, &input)?;
+        let frame = self.frame_with_water(ctx, &setup, &input, water, key.wrap, None)?;
+        Ok(Frame { frame, input, key })
     }
 
-    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
+    fn refit(
+        &self,
+        ctx: &GpuContext,
+        params: &VolumesParams,
+        c: &mut Frame,
+        scene: &Scene,
+    ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
-        let Some(c) = &mut self.frame else {
-            return Err(GpuError::BadOption(
-                "volumes: update before configure".into(),
-            ));
-        };
         if c.key == key {
-            return Ok(Fit::Written);
+            return Ok(true);
         }
         if c.key.wrap == key.wrap {
             key.apply(&mut c.input);
-            let setup = VolumesSetup::new(&self.params, &c.input)?;
+            let setup = VolumesSetup::new(params, &c.input)?;
             if c.frame.fits(&setup) {
                 c.frame.set_setup(ctx, &setup);
                 c.key = key;
-                return Ok(Fit::Written);
+                return Ok(true);
             }
         }
-        Ok(Fit::Reconfigure(c.water.clone()))
+        Ok(false)
     }
 
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
-        if let Some(c) = &self.frame {
-            self.pipelines.encode(&c.frame, encoder, timer);
-        }
+    fn encode(&self, c: &Frame, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
+        Volumes::encode(self, &c.frame, encoder, timer);
     }
 
-    fn output(&self) -> Option<Output<'_>> {
-        self.frame.as_ref().map(|c| Output::Floor(&c.frame.floor))
+    fn output<'a>(&'a self, c: &'a Frame) -> Output<'a> {
+        Output::Floor(&c.frame.floor)
     }
 
     /// The walls' maps on a scene with walls, in the floor map's format (`Rgba16Float` where the
     /// device cannot blend 32-bit floats).
-    fn walls(&self) -> Option<WallsOutput<'_>> {
-        self.frame
-            .as_ref()?
-            .frame
-            .walls
-            .as_ref()
-            .map(|w| w.output())
+    fn walls(c: &Frame) -> Option<WallsOutput<'_>> {
+        c.frame.walls.as_ref().map(|w| w.output())
     }
 
-    fn bytes(&self) -> u64 {
-        self.frame.as_ref().map_or(0, |c| c.frame.bytes())
+    fn bytes(c: &Frame) -> u64 {
+        c.frame.bytes()
     }
 
-    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
-        self.params = VolumesParams::from_table(params)?;
-        Ok(true)
+    /// Its floor map and, with walls, the walls' maps.
+    fn run_once(
+        &mut self,
+        ctx: &GpuContext,
+        _: &'static Descriptor,
+        job: &Job,
+        params: &toml::Table,
+        _timer: Option<&mut GpuTimer>,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<Made, GpuError> {
+        let (setup, input, heights, wrap) = volumes::job_setup(job, params)?;
+        let out = self.run(ctx, &setup, &input, &heights, wrap, None)?;
+        progress(1, 1);
+        Ok(Made::floor(out.floor, out.walls))
     }
 }
-
-/// Paper 3 in the registry.
-pub const REGISTERED: Registered = Registered {
-    describe: &volumes::DESCRIPTOR,
-    create,
-    once: |ctx| Ok(Box::new(Once(Volumes::new(ctx)?))),
-    image: Some(own_image),
-};
 
 /// Paper 3 ends in its refracted view (§3.3): the objects with their caustics seen through the
 /// water where refraction puts them, the floor lit by its map. That view looks down through the
@@ -248,23 +236,4 @@ fn own_image(
         backend,
         what: "through its refracted view",
     }))
-}
-
-/// Paper 3 run once on a job: its floor map and, with walls, the walls' maps.
-struct Once(Volumes);
-
-impl RunOnce for Once {
-    fn run(
-        &mut self,
-        ctx: &GpuContext,
-        job: &Job,
-        params: &toml::Table,
-        _timer: Option<&mut GpuTimer>,
-        progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
-        let (setup, input, heights, wrap) = volumes::job_setup(job, params)?;
-        let out = self.0.run(ctx, &setup, &input, &heights, wrap, None)?;
-        progress(1, 1);
-        Ok(Made::floor(out.floor, out.walls))
-    }
 }

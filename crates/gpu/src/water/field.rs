@@ -36,33 +36,37 @@ use crate::pass::{begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{self, PassSource};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
-const FIELD: &str = include_str!("../shaders/water_field.wgsl");
+const FIELD: &str = include_str!("water_field.wgsl");
 
 pub const WAVES: PassSource = PassSource {
     name: "water_field_waves",
     shared: &[shaders::WATER, FIELD],
-    source: include_str!("../shaders/water_field_waves.wgsl"),
+    file: "water/water_field_waves.wgsl",
+    source: include_str!("water_field_waves.wgsl"),
 };
 
 pub const PROCEDURAL: PassSource = PassSource {
     name: "water_field_procedural",
     shared: &[shaders::WATER, FIELD],
-    source: include_str!("../shaders/water_field_procedural.wgsl"),
+    file: "water/water_field_procedural.wgsl",
+    source: include_str!("water_field_procedural.wgsl"),
 };
 
 pub const GRID: PassSource = PassSource {
     name: "water_field_grid",
     shared: &[shaders::WATER, FIELD],
-    source: include_str!("../shaders/water_field_grid.wgsl"),
+    file: "water/water_field_grid.wgsl",
+    source: include_str!("water_field_grid.wgsl"),
 };
 
 pub const RIPPLE_CLEAR: PassSource = PassSource {
     name: "ripple_clear",
     shared: &[],
-    source: include_str!("../shaders/ripple_clear.wgsl"),
+    file: "water/ripple_clear.wgsl",
+    source: include_str!("ripple_clear.wgsl"),
 };
 
-/// Mirrors `FieldParams` in `shaders/water_field.wgsl`.
+/// Mirrors `FieldParams` in `water/water_field.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FieldParams {

@@ -20,10 +20,32 @@
 use caustics_core::water::ocean::Ocean;
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::shaders::PassSource;
 use crate::timing::GpuTimer;
-use crate::{GpuContext, GpuError, shaders};
+use crate::{GpuContext, GpuError};
 
-/// Mirrors `SpectrumParams` in `shaders/ocean_spectrum.wgsl`.
+pub const OCEAN_SPECTRUM: PassSource = PassSource {
+    name: "ocean_spectrum",
+    shared: &[],
+    file: "water/ocean_spectrum.wgsl",
+    source: include_str!("ocean_spectrum.wgsl"),
+};
+
+pub const OCEAN_FFT: PassSource = PassSource {
+    name: "ocean_fft",
+    shared: &[],
+    file: "water/ocean_fft.wgsl",
+    source: include_str!("ocean_fft.wgsl"),
+};
+
+pub const OCEAN_OUTPUT: PassSource = PassSource {
+    name: "ocean_output",
+    shared: &[],
+    file: "water/ocean_output.wgsl",
+    source: include_str!("ocean_output.wgsl"),
+};
+
+/// Mirrors `SpectrumParams` in `water/ocean_spectrum.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct SpectrumParams {
@@ -34,7 +56,7 @@ pub struct SpectrumParams {
     pub _pad: u32,
 }
 
-/// Mirrors `FftStage` in `shaders/ocean_fft.wgsl`.
+/// Mirrors `FftStage` in `water/ocean_fft.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FftStage {
@@ -135,7 +157,7 @@ impl GpuOcean {
         });
         let spectrum = Pass::new(
             ctx,
-            &shaders::OCEAN_SPECTRUM,
+            &OCEAN_SPECTRUM,
             &[
                 params.as_entire_binding(),
                 h0.as_entire_binding(),
@@ -168,7 +190,7 @@ impl GpuOcean {
                 .copy_from_slice(bytemuck::bytes_of(stage));
         }
         let table = buffer("ocean FFT stages", &table, wgpu::BufferUsages::UNIFORM);
-        let fft_pipeline = compute_pipeline(ctx, &shaders::OCEAN_FFT);
+        let fft_pipeline = compute_pipeline(ctx, &OCEAN_FFT);
         let fft = (0..stages.len())
             .map(|s| {
                 let (src, dst) = if s % 2 == 0 {
@@ -213,7 +235,7 @@ impl GpuOcean {
         let view = texture.create_view(&Default::default());
         let output = Pass::new(
             ctx,
-            &shaders::OCEAN_OUTPUT,
+            &OCEAN_OUTPUT,
             &[
                 ping.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&view),
@@ -317,11 +339,7 @@ impl GpuOcean {
 }
 
 impl Pass {
-    fn new(
-        ctx: &GpuContext,
-        source: &shaders::PassSource,
-        entries: &[wgpu::BindingResource],
-    ) -> Self {
+    fn new(ctx: &GpuContext, source: &PassSource, entries: &[wgpu::BindingResource]) -> Self {
         let pipeline = compute_pipeline(ctx, source);
         let bind = bind_group(
             ctx,

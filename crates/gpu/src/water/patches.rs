@@ -1,6 +1,6 @@
 //! The water's heights in Hermite form for the passes that sample the surface many times a pixel:
 //! each texel's height and its central differences along u, v and across
-//! (`shaders/water_patches.wgsl`), written once a frame, so that `grid_sample_hermite` reads the 4
+//! (`water/water_patches.wgsl`), written once a frame, so that `grid_sample_hermite` reads the 4
 //! texels around a point where `grid_sample`'s bicubic reads 16. Catmull-Rom is the cubic Hermite
 //! spline on central differences, so the surface is the same (the CPU twins keep sampling their
 //! grids bicubically). Measured on lavapipe: the bicubic reads were about 60 % of yuksel's frame,
@@ -13,10 +13,11 @@ use crate::{GpuContext, GpuTimer};
 pub const WATER_PATCHES: PassSource = PassSource {
     name: "water patches",
     shared: &[WATER],
-    source: include_str!("../shaders/water_patches.wgsl"),
+    file: "water/water_patches.wgsl",
+    source: include_str!("water_patches.wgsl"),
 };
 
-/// Mirrors `Patches` in `shaders/water_patches.wgsl`.
+/// Mirrors `Patches` in `water/water_patches.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 struct PatchesUniform {

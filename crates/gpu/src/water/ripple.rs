@@ -10,14 +10,29 @@ use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::{GpuContext, GpuError, GpuTimer, shaders};
+use crate::shaders::PassSource;
+use crate::{GpuContext, GpuError, GpuTimer};
+
+pub const RIPPLE_STEP: PassSource = PassSource {
+    name: "ripple_step",
+    shared: &[],
+    file: "water/ripple_step.wgsl",
+    source: include_str!("ripple_step.wgsl"),
+};
+
+pub const RIPPLE_DROP: PassSource = PassSource {
+    name: "ripple_drop",
+    shared: &[],
+    file: "water/ripple_drop.wgsl",
+    source: include_str!("ripple_drop.wgsl"),
+};
 
 /// Most queued drops one [`GpuRipples::encode`] records: each needs its own uniform slot, because
 /// every `write_buffer` lands before the submission and a shared slot would hold only the last
 /// drop. Drops beyond these wait for the next encode.
 pub const DROPS_PER_ENCODE: usize = 16;
 
-/// Mirrors `RippleStep` in `shaders/ripple_step.wgsl`.
+/// Mirrors `RippleStep` in `water/ripple_step.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct RippleStep {
@@ -30,7 +45,7 @@ pub struct RippleStep {
     pub _pad: u32,
 }
 
-/// Mirrors `RippleDrop` in `shaders/ripple_drop.wgsl`.
+/// Mirrors `RippleDrop` in `water/ripple_drop.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct RippleDrop {
@@ -121,7 +136,7 @@ impl GpuRipples {
             contents: bytemuck::bytes_of(&step),
             usage: wgpu::BufferUsages::UNIFORM,
         });
-        let step_pipeline = compute_pipeline(ctx, &shaders::RIPPLE_STEP);
+        let step_pipeline = compute_pipeline(ctx, &RIPPLE_STEP);
         let step_group = |c: usize| {
             bind_group(
                 ctx,
@@ -142,7 +157,7 @@ impl GpuRipples {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let drop_pipeline = compute_pipeline(ctx, &shaders::RIPPLE_DROP);
+        let drop_pipeline = compute_pipeline(ctx, &RIPPLE_DROP);
         let drop_group = bind_group(
             ctx,
             "ripple drop",

@@ -4,12 +4,12 @@
 //!
 //! | pass | WGSL | CPU twin |
 //! |---|---|---|
-//! | the heights in Hermite form (compute, one texel an invocation; [`crate::water::patches`]), which every ray reads | `shaders/water_patches.wgsl` | (the grid's bicubic sample) |
-//! | region bound (compute, one texel an invocation) and region (one thread) | `shaders/yuksel/region_bound.wgsl`, `region.wgsl` | `YukselSetup::region_for` |
-//! | pre-pass (compute: each pixel's tier, listing the pixels at k; their records, one listed pixel an invocation through an indirect dispatch; the spans) | `shaders/yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl`, `fill.wgsl` | `prepass` |
-//! | pass 1 (fragment, multiple render targets) | `shaders/yuksel/pass1.wgsl` | `pass1` |
-//! | pass 2 (fragment) | `shaders/yuksel/pass2.wgsl` | `pass2` |
-//! | the scatter, the default `passes` (compute: each pixel's tier and records below k, listing the pixels at k; their records; the sums into the map) | `shaders/yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `fill.wgsl`, `scatter.wgsl` | `caustics` |
+//! | the heights in Hermite form (compute, one texel an invocation; [`crate::water::patches`]), which every ray reads | `water/water_patches.wgsl` | (the grid's bicubic sample) |
+//! | region bound (compute, one texel an invocation) and region (one thread) | `yuksel/region_bound.wgsl`, `region.wgsl` | `YukselSetup::region_for` |
+//! | pre-pass (compute: each pixel's tier, listing the pixels at k; their records, one listed pixel an invocation through an indirect dispatch; the spans) | `yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl`, `fill.wgsl` | `prepass` |
+//! | pass 1 (fragment, multiple render targets) | `yuksel/pass1.wgsl` | `pass1` |
+//! | pass 2 (fragment) | `yuksel/pass2.wgsl` | `pass2` |
+//! | the scatter, the default `passes` (compute: each pixel's tier and records below k, listing the pixels at k; their records; the sums into the map) | `yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `fill.wgsl`, `scatter.wgsl` | `caustics` |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
@@ -29,68 +29,97 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{self, OPTICS, PassSource, REDUCE, WATER};
+use crate::shaders::{OPTICS, PassSource, REDUCE, WATER};
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 pub mod technique;
 
-const COMMON: &str = include_str!("../shaders/yuksel/common.wgsl");
-const SAMPLE: &str = include_str!("../shaders/yuksel/sample.wgsl");
-const FILL: &str = include_str!("../shaders/yuksel/fill.wgsl");
+const COMMON: &str = include_str!("common.wgsl");
+const SAMPLE: &str = include_str!("sample.wgsl");
+const FILL: &str = include_str!("fill.wgsl");
 
 pub const PREPASS: PassSource = PassSource {
     name: "yuksel pre-pass",
     shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL],
-    source: include_str!("../shaders/yuksel/prepass.wgsl"),
+    file: "yuksel/prepass.wgsl",
+    source: include_str!("prepass.wgsl"),
 };
 pub const PREPASS_FILL: PassSource = PassSource {
     name: "yuksel pre-pass fill",
     shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL],
-    source: include_str!("../shaders/yuksel/prepass_fill.wgsl"),
+    file: "yuksel/prepass_fill.wgsl",
+    source: include_str!("prepass_fill.wgsl"),
 };
 pub const PREPASS_SPAN: PassSource = PassSource {
     name: "yuksel pre-pass span",
     shared: &[COMMON],
-    source: include_str!("../shaders/yuksel/prepass_span.wgsl"),
+    file: "yuksel/prepass_span.wgsl",
+    source: include_str!("prepass_span.wgsl"),
 };
 pub const PASS2: PassSource = PassSource {
     name: "yuksel pass 2",
     shared: &[COMMON],
-    source: include_str!("../shaders/yuksel/pass2.wgsl"),
+    file: "yuksel/pass2.wgsl",
+    source: include_str!("pass2.wgsl"),
 };
 pub const REGION_BOUND: PassSource = PassSource {
     name: "yuksel region bound",
     shared: &[OPTICS, COMMON, REDUCE],
-    source: include_str!("../shaders/yuksel/region_bound.wgsl"),
+    file: "yuksel/region_bound.wgsl",
+    source: include_str!("region_bound.wgsl"),
 };
 pub const REGION: PassSource = PassSource {
     name: "yuksel region",
     shared: &[OPTICS, COMMON, REDUCE],
-    source: include_str!("../shaders/yuksel/region.wgsl"),
+    file: "yuksel/region.wgsl",
+    source: include_str!("region.wgsl"),
 };
-const SCATTER: &str = include_str!("../shaders/yuksel/scatter.wgsl");
+const SCATTER: &str = include_str!("scatter.wgsl");
 pub const SCATTER_TIER: PassSource = PassSource {
     name: "yuksel scatter tiers",
     shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER],
-    source: include_str!("../shaders/yuksel/scatter_tier.wgsl"),
+    file: "yuksel/scatter_tier.wgsl",
+    source: include_str!("scatter_tier.wgsl"),
 };
 pub const SCATTER_FILL: PassSource = PassSource {
     name: "yuksel scatter fill",
     shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER],
-    source: include_str!("../shaders/yuksel/scatter_fill.wgsl"),
+    file: "yuksel/scatter_fill.wgsl",
+    source: include_str!("scatter_fill.wgsl"),
 };
 pub const SCATTER_RESOLVE: PassSource = PassSource {
     name: "yuksel scatter resolve",
     shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
-    source: include_str!("../shaders/yuksel/scatter_resolve.wgsl"),
+    file: "yuksel/scatter_resolve.wgsl",
+    source: include_str!("scatter_resolve.wgsl"),
 };
-const PASS1_BODY: &str = include_str!("../shaders/yuksel/pass1.wgsl");
+/// Pass 1's body: [`pass1_source`] adds the output struct and entry point for a draw's targets.
+pub const PASS1: PassSource = PassSource {
+    name: "yuksel pass 1",
+    shared: &[COMMON],
+    file: "yuksel/pass1.wgsl",
+    source: include_str!("pass1.wgsl"),
+};
+
+/// Every pass of the technique, for its registry entry.
+pub const PASSES: &[&PassSource] = &[
+    &PREPASS,
+    &PREPASS_FILL,
+    &PREPASS_SPAN,
+    &PASS1,
+    &PASS2,
+    &REGION_BOUND,
+    &REGION,
+    &SCATTER_TIER,
+    &SCATTER_FILL,
+    &SCATTER_RESOLVE,
+];
 
 /// Pass 1 for a draw that writes `targets` render targets: the static body plus the generated output
 /// struct and entry point.
 pub fn pass1_source(targets: u32) -> String {
-    let mut s = shaders::compose(&[COMMON], PASS1_BODY);
+    let mut s = PASS1.composed();
     s.push_str("\nstruct Pass1Out {\n");
     for t in 0..targets {
         s.push_str(&format!("    @location({t}) c{t}: vec4<f32>,\n"));
@@ -124,7 +153,7 @@ pub enum Variant {
     Scatter,
 }
 
-/// Mirrors `Yuksel` in `shaders/yuksel/common.wgsl`.
+/// Mirrors `Yuksel` in `yuksel/common.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct YukselUniform {
@@ -152,7 +181,7 @@ pub struct YukselUniform {
     pub _pad: u32,
 }
 
-/// Mirrors `YukselRegion` in `shaders/yuksel/common.wgsl`: what the region pass writes.
+/// Mirrors `YukselRegion` in `yuksel/common.wgsl`: what the region pass writes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct YukselRegion {

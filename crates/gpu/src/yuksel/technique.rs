@@ -1,36 +1,25 @@
-//! Paper 1 behind [`Technique`]: both variants, the caller's heights, sun and N changes as uniform
-//! writes.
+//! Paper 1 behind the generic adapter: both variants, the caller's heights, sun and N changes as
+//! uniform writes.
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::yuksel::{self, Passes, YukselParams, YukselSetup};
-use caustics_core::techniques::{Job, Made};
+use caustics_core::techniques::{Descriptor, Job, Made};
 
 use super::{Frame, Variant, Yuksel};
-use crate::technique::{Fit, Output, Registered, RunOnce, Technique, WaterTextures};
+use crate::adapter::Pipelines;
+use crate::technique::{Output, Registered, WaterTextures, scene_water};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-pub struct YukselTechnique {
-    name: &'static str,
-    pipelines: Yuksel,
-    params: YukselParams,
-    /// The passes the registered name forces (`yuksel-targets`), if any.
-    fixed: Option<Variant>,
-    frame: Option<(Frame, WaterTextures)>,
-}
+/// Paper 1 in the registry: the passes its parameters name (`passes`; the scatter by default,
+/// the paper's preset its render targets).
+pub const REGISTERED: Registered =
+    Registered::of::<Yuksel>(&yuksel::DESCRIPTOR, super::PASSES, None);
 
-/// `yuksel`: the passes its parameters name (`passes`; the scatter by default, the paper's preset
-/// its render targets).
-pub fn create(ctx: &GpuContext, params: &toml::Table) -> Result<Box<dyn Technique>, GpuError> {
-    YukselTechnique::new(ctx, params, None).map(|t| Box::new(t) as _)
-}
+/// Paper 1's render-target passes in the registry (`yuksel-targets`), whatever the preset.
+pub const TARGETS: Registered = Registered::of::<Yuksel>(&yuksel::TARGETS, super::PASSES, None);
 
-/// `yuksel-targets`: the paper's render-target passes whatever the preset.
-pub fn create_render_targets(
-    ctx: &GpuContext,
-    params: &toml::Table,
-) -> Result<Box<dyn Technique>, GpuError> {
-    YukselTechnique::new(ctx, params, Some(Variant::RenderTargets)).map(|t| Box::new(t) as _)
-}
+/// The `yuksel` technique resident on the GPU.
+pub type YukselTechnique = crate::adapter::Resident<Yuksel>;
 
 impl Variant {
     /// The passes `params` name, or the ones a registered name forces (a table naming others is
@@ -48,177 +37,107 @@ impl Variant {
             None => Ok(named),
         }
     }
-}
 
-impl YukselTechnique {
-    pub fn new(
-        ctx: &GpuContext,
-        params: &toml::Table,
-        fixed: Option<Variant>,
-    ) -> Result<Self, GpuError> {
-        let params = YukselParams::from_table(params)?;
-        Variant::of(&params, fixed)?;
-        Ok(YukselTechnique {
-            name: match fixed {
-                Some(_) => yuksel::TARGETS.name,
-                None => yuksel::DESCRIPTOR.name,
-            },
-            pipelines: Yuksel::new(ctx)?,
-            params,
-            fixed,
-            frame: None,
-        })
-    }
-
-    fn variant(&self) -> Variant {
-        Variant::of(&self.params, self.fixed).expect("checked when the parameters were taken")
-    }
-
-    fn setup(&self, scene: &Scene) -> Result<YukselSetup, GpuError> {
-        caustics_core::techniques::yuksel::DESCRIPTOR.check_floor(scene)?;
-        let w = water(scene, "yuksel")?;
-        Ok(YukselSetup::new(
-            &self.params,
-            scene.caustics.width as usize,
-            scene.caustics.height as usize,
-            w.size,
-            w.depth,
-            w.ior,
-            w.absorption,
-            w.wrap,
-            scene.light.direction,
-        )?)
+    /// The passes registry entry `entry` forces, if any.
+    fn fixed_by(entry: &Descriptor) -> Option<Variant> {
+        (entry.name == yuksel::TARGETS.name).then_some(Variant::RenderTargets)
     }
 }
 
-/// The scene's water, or an error naming the technique that needs it.
-pub(crate) fn water<'s>(
-    scene: &'s Scene,
-    technique: &str,
-) -> Result<&'s caustics_core::scene::Water, GpuError> {
-    scene.water.as_ref().ok_or_else(|| {
-        GpuError::BadOption(format!(
-            "scene `{}` has no water: technique `{technique}` computes caustics from a water surface",
-            scene.name
-        ))
-    })
+/// The frame's setup from the scene and the parameters.
+fn setup(params: &YukselParams, scene: &Scene) -> Result<YukselSetup, GpuError> {
+    yuksel::DESCRIPTOR.check_floor(scene)?;
+    let w = scene_water(scene, "yuksel")?;
+    Ok(YukselSetup::new(
+        params,
+        scene.caustics.width as usize,
+        scene.caustics.height as usize,
+        w.size,
+        w.depth,
+        w.ior,
+        w.absorption,
+        w.wrap,
+        scene.light.direction,
+    )?)
 }
 
-impl Technique for YukselTechnique {
-    fn name(&self) -> &str {
-        self.name
+impl Pipelines for Yuksel {
+    type Params = (YukselParams, Variant);
+    type Frame = Frame;
+
+    fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        Yuksel::new(ctx)
+    }
+
+    fn params(entry: &'static Descriptor, tables: &toml::Table) -> Result<Self::Params, GpuError> {
+        let params = YukselParams::from_table(tables)?;
+        let variant = Variant::of(&params, Variant::fixed_by(entry))?;
+        Ok((params, variant))
     }
 
     /// The map's own lattice, as the Runner samples the surface for the CPU twin.
-    fn water_resolution(&self, scene: &Scene) -> (u32, u32) {
+    fn water_resolution(_: &Self::Params, scene: &Scene) -> (u32, u32) {
         (scene.caustics.width, scene.caustics.height)
     }
 
-    fn configure(
-        &mut self,
+    fn frame(
+        &self,
         ctx: &GpuContext,
+        (params, variant): &Self::Params,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<(), GpuError> {
-        let setup = self.setup(scene)?;
-        self.frame = None;
-        if scene.floor.walls {
-            tracing::warn!(
-                "{}",
-                caustics_core::techniques::floor_only_note(self.name())
-            );
-        }
-        let frame = self
-            .pipelines
-            .frame_with_water(ctx, &setup, water, self.variant())?;
-        self.frame = Some((frame, water.clone()));
-        Ok(())
+    ) -> Result<Frame, GpuError> {
+        let setup = setup(params, scene)?;
+        self.frame_with_water(ctx, &setup, water, *variant)
     }
 
-    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError> {
-        let setup = self.setup(scene)?;
-        let Some((frame, water)) = &mut self.frame else {
-            return Err(GpuError::BadOption(
-                "yuksel: update before configure".into(),
-            ));
-        };
+    fn refit(
+        &self,
+        ctx: &GpuContext,
+        (params, _): &Self::Params,
+        frame: &mut Frame,
+        scene: &Scene,
+    ) -> Result<bool, GpuError> {
+        let setup = setup(params, scene)?;
         if *frame.setup() == setup {
-            return Ok(Fit::Written);
+            return Ok(true);
         }
         if frame.fits(&setup) {
             frame.set_setup(ctx, &setup);
-            return Ok(Fit::Written);
+            return Ok(true);
         }
-        Ok(Fit::Reconfigure(water.clone()))
+        Ok(false)
     }
 
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
-        if let Some((frame, _)) = &self.frame {
-            self.pipelines.encode(frame, encoder, timer);
-        }
+    fn encode(
+        &self,
+        frame: &Frame,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&mut GpuTimer>,
+    ) {
+        Yuksel::encode(self, frame, encoder, timer);
     }
 
-    fn output(&self) -> Option<Output<'_>> {
-        self.frame.as_ref().map(|(f, _)| Output::Floor(&f.map))
+    fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
+        Output::Floor(&frame.map)
     }
 
-    fn bytes(&self) -> u64 {
-        self.frame.as_ref().map_or(0, |(f, _)| f.bytes())
+    fn bytes(frame: &Frame) -> u64 {
+        frame.bytes()
     }
 
-    fn set_params(&mut self, params: &toml::Table) -> Result<bool, GpuError> {
-        let params = YukselParams::from_table(params)?;
-        Variant::of(&params, self.fixed)?;
-        self.params = params;
-        Ok(true)
-    }
-}
-
-/// Paper 1 in the registry: the passes its parameters name.
-pub const REGISTERED: Registered = Registered {
-    describe: &yuksel::DESCRIPTOR,
-    create,
-    once: |ctx| Ok(Box::new(Once::new(ctx, None)?)),
-    image: None,
-};
-
-/// Paper 1's render-target passes in the registry (`yuksel-targets`), whatever the preset.
-pub const TARGETS: Registered = Registered {
-    describe: &yuksel::TARGETS,
-    create: create_render_targets,
-    once: |ctx| Ok(Box::new(Once::new(ctx, Some(Variant::RenderTargets))?)),
-    image: None,
-};
-
-/// Paper 1 run once on a job.
-struct Once {
-    pipelines: Yuksel,
-    fixed: Option<Variant>,
-}
-
-impl Once {
-    fn new(ctx: &GpuContext, fixed: Option<Variant>) -> Result<Self, GpuError> {
-        Ok(Once {
-            pipelines: Yuksel::new(ctx)?,
-            fixed,
-        })
-    }
-}
-
-impl RunOnce for Once {
-    fn run(
+    fn run_once(
         &mut self,
         ctx: &GpuContext,
+        entry: &'static Descriptor,
         job: &Job,
-        params: &toml::Table,
+        tables: &toml::Table,
         timer: Option<&mut GpuTimer>,
         _progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Made, GpuError> {
-        let (setup, heights) = yuksel::job_setup(job, params)?;
-        let variant = Variant::of(&YukselParams::from_table(params)?, self.fixed)?;
-        let map = self
-            .pipelines
-            .caustics_timed(ctx, &setup, &heights, variant, timer)?;
+        let (setup, heights) = yuksel::job_setup(job, tables)?;
+        let (_, variant) = Self::params(entry, tables)?;
+        let map = self.caustics_timed(ctx, &setup, &heights, variant, timer)?;
         Ok(Made::floor(map, None))
     }
 }

@@ -95,7 +95,7 @@ macro_rules! test_main {
 }
 
 /// The built-in scene `name` with the gentle ripples the `pool` and `objects` scenes had before
-/// their waves were made to focus near the floor (issue 18): the GPU-vs-CPU precision bounds of
+/// their waves were made to focus near the floor: the GPU-vs-CPU precision bounds of
 /// the tests that use it were measured on these, and sharper foci (thin triangles, near-zero areas)
 /// would measure f32 rounding at caustic cusps instead of the twins' agreement.
 pub fn with_gentle_ripples(name: &str) -> caustics_core::scene::Scene {

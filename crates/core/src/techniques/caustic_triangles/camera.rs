@@ -1,5 +1,5 @@
 //! The camera pass (paper 4, §4.3), CPU twin of `caustics-gpu`'s
-//! `caustic_triangles::camera` (`shaders/caustic_triangles/camera.wgsl`): the technique's own final
+//! `caustic_triangles::camera` (`caustic_triangles/camera.wgsl`): the technique's own final
 //! image.
 //!
 //! Per pixel of the scene camera, the eye ray is traced against the floor plane `z = 0` and every

@@ -1,5 +1,5 @@
 //! The light cube map of a point light (paper 4, §4.2 and §4.3), CPU twin of
-//! `caustics-gpu`'s `caustic_triangles` cube passes (`shaders/caustic_triangles/cube.wgsl`,
+//! `caustics-gpu`'s `caustic_triangles` cube passes (`caustic_triangles/cube.wgsl`,
 //! `shadow.wgsl`).
 //!
 //! The paper draws the caustic triangles "onto the light cube map faces": a cube map centred at

@@ -4,7 +4,7 @@
 //! material. Rays are traced against it by a linear search for a change of sign of
 //! `|l| − |l'|` (undershooting to overshooting or back) followed by a secant search.
 //!
-//! # Layout (shared with `shaders/caustic_triangles/distance_map.wgsl`)
+//! # Layout (shared with `caustic_triangles/distance_map.wgsl`)
 //! One `[f32; 4]` per texel, `(n.x, n.y, n.z, s)`, index `((layer · 6 + face) · C + row) · C + col`.
 //! The material is the sign of `s`: `s > 0` the generator's glass at distance `s` (its index of
 //! refraction is the generator's, in the uniform block: one generator per map), `s < 0` a diffuse

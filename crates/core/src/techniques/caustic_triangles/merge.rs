@@ -1,6 +1,6 @@
 //! Hierarchical merging of small caustic triangles (paper 4, §5, named there as future work: "it is
 //! worth combining small triangles into a single triangle adding up their power", mipmap based),
-//! CPU twin of `shaders/caustic_triangles/pyramid.wgsl` and `merge.wgsl`.
+//! CPU twin of `caustic_triangles/pyramid.wgsl` and `merge.wgsl`.
 //!
 //! In a focus the caustic triangles shrink below a texel: rasterised at texel centres most cover
 //! none and their power is lost (−4 to −11 % on the resting sphere). The pyramid merges them:

@@ -98,7 +98,9 @@ pub use scene::{
     FloorWindow, GlassScene, Occluder, PointLight, Shape, bounding_sphere, light_frame,
 };
 
-use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::describe::{
+    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+};
 use super::{Input, Job, Made};
 
 /// Paper 4 as registered: the water surface as its generator where the scene has water, else
@@ -231,6 +233,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     draw_buffer: buffers::draw_buffer,
     reference: false,
     validate: |t| CausticTrianglesParams::from_table(t).map(|_| ()),
+    own_defaults: serde_defaults::<CausticTrianglesParams>,
     cpu: run_cpu,
 };
 

@@ -1,6 +1,6 @@
 //! The water surface as the caustic generator of technique `caustic-triangles`: the photon pass of a
 //! height-field water surface under the sun, the CPU twin of
-//! `shaders/caustic_triangles/water_photon.wgsl`. Everything after it (vertex irradiance, caustic
+//! `caustic_triangles/water_photon.wgsl`. Everything after it (vertex irradiance, caustic
 //! triangles, the splatting baseline, §5 merging) is the glass generator's code, told about the
 //! water by [`WaterTransport`].
 //!

@@ -1,6 +1,6 @@
 //! The illumination volumes of §3.2: the refracted light at the water lattice's vertices, the slices
 //! of each triangle's volume by the reference planes drawn into an object's caustics map, the floor
-//! map, the walls' maps, and Eq. 4. GPU twins: `shaders/volumes/{water,slices,floor,walls,shade}.wgsl`.
+//! map, the walls' maps, and Eq. 4. GPU twins: `volumes/{water,slices,floor,walls,shade}.wgsl`.
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;

@@ -85,7 +85,9 @@ use crate::walls::WallMaps;
 
 pub use representation::OrthoView;
 
-use super::describe::{Change, Default as D, Descriptor, Kind, Param, Receiver};
+use super::describe::{
+    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+};
 use super::{Input, Job, Made};
 
 /// Paper 3 as registered.
@@ -176,6 +178,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     draw_buffer: buffers::draw_buffer,
     reference: false,
     validate: |t| VolumesParams::from_table(t).map(|_| ()),
+    own_defaults: serde_defaults::<VolumesParams>,
     cpu: run_cpu,
 };
 

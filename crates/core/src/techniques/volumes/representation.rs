@@ -1,6 +1,6 @@
 //! The per-object representation of §3.1-3.2: an orthographic frame aligned with a direction (the
 //! refracted viewing ray for an object, the refracted sun for the shadow map), the depth texture
-//! rendered along it, and the diffuse map. GPU twin: `shaders/volumes/depth.wgsl`.
+//! rendered along it, and the diffuse map. GPU twin: `volumes/depth.wgsl`.
 
 use glam::{DVec2, DVec3};
 

@@ -2,7 +2,7 @@
 //! refracting surface. Each pixel's viewing ray meets the water, is refracted there, and is traced
 //! against every object's reference planes and depth texture with the same acceptance test as §3.1;
 //! the pixel takes the colour of the accepted texel of the object's final image (Eq. 4), or of the
-//! floor where the ray reaches it first. GPU twin: `shaders/volumes/view.wgsl`.
+//! floor where the ray reaches it first. GPU twin: `volumes/view.wgsl`.
 //!
 //! Beyond the paper (stated): the water's Fresnel reflectance mixes in a constant sky colour, the view
 //! path is attenuated by `exp(−K d)`, and the floor is seen with one uniform albedo lit by its caustics

@@ -1,4 +1,4 @@
-// Technique `volumes`, the walls' maps (issue 18): every illumination volume of the water cut by
+// Technique `volumes`, the walls' maps: every illumination volume of the water cut by
 // one wall's plane and drawn additively into that wall's layer, in its texel space (along, z), the
 // viewport the wall's columns by its rows; fragments kept where the shadow map lets the sun through
 // (with the objects' depth bias: an object may lie beyond a wall point along t0). The wall is the

@@ -1,6 +1,8 @@
 //! Device creation (headless or for a window), adapter selection, and the translation of wgpu's
 //! failures into [`GpuError`]s that name the problem.
 
+pub mod traffic;
+
 use std::sync::{Arc, Mutex};
 
 use crate::GpuError;
@@ -26,7 +28,7 @@ pub struct GpuContext {
     pub timestamps: bool,
     errors: Arc<Mutex<Vec<String>>>,
     lost: Arc<Mutex<Option<String>>>,
-    pub(crate) traffic: Arc<crate::traffic::Traffic>,
+    pub(crate) traffic: Arc<traffic::Traffic>,
     /// The validation layer's messages, where the instance is `validation::instance`'s. Last, so
     /// that it is dropped after the device and the instance (see `validation::Guard`'s `Drop`).
     #[cfg(not(target_arch = "wasm32"))]

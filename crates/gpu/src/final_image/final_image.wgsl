@@ -113,7 +113,7 @@ struct Object {
 // The bits of the largest |h| and of the largest |∇h| on the slab lattice, as
 // final_image_slab.wgsl found them this frame.
 @group(0) @binding(7) var<storage, read> slab_max: array<u32>;
-// The walls' maps (issue 18): layer k is wall k of `Wall::ALL` (x = 0, x = size, y = 0, y = size)
+// The walls' maps: layer k is wall k of `Wall::ALL` (x = 0, x = size, y = 0, y = size)
 // in its first wall_cols[k] columns, row 0 at the floor, the rows up to the rest water level;
 // wall_cols is 0 where the technique lit no walls.
 @group(0) @binding(8) var wall_maps: texture_2d_array<f32>;
@@ -885,7 +885,7 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     emit(w, sky_radiance(d));
 }
 
-// The waves' normals filtered by each sample's footprint (issue 30): the GPU twin of
+// The waves' normals filtered by each sample's footprint: the GPU twin of
 // caustics-core's water/slopes.rs (`SlopePyramid::filtered`, `visible_facets`, `glint`) and
 // render.rs `Tracer::rough_water`, where the filter is written down and its sources cited (LEAN
 // mapping; Heitz 2014's visible normals; Cox and Munk's glint with Smith's masking).
