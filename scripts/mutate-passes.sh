@@ -50,7 +50,7 @@ yuksel fill next row's edge from this row's hit @@ $S/yuksel/fill.wgsl @@ fill_b
 yuksel prepass fill last listed pixel lost @@ $S/yuksel/prepass_fill.wgsl @@ entry < fill_args[3] @@ entry + 1u < fill_args[3] @@ $YU
 yuksel scatter fill last listed pixel lost @@ $S/yuksel/scatter_fill.wgsl @@ entry < fill_args[3] @@ entry + 1u < fill_args[3] @@ $YU
 yuksel region one row fewer @@ $S/yuksel/region.wgsl @@ out.m = u32(y.x - 1); @@ out.m = u32(y.x - 2); @@ $YU
-yuksel region 1 % narrower bound @@ $S/yuksel/region.wgsl @@ let margin = (highs[0] - lows[0]) * 0.125; @@ let margin = (highs[0] - lows[0]) * 0.12; @@ $YU
+yuksel region 1 % narrower bound @@ $S/yuksel/region.wgsl @@ let margin = (hi - lo) * 0.125; @@ let margin = (hi - lo) * 0.12; @@ $YU
 yuksel footprint 1 % wider @@ $S/yuksel/sample.wgsl @@ yp.y - ym.y)) * 0.5 / pixel; @@ yp.y - ym.y)) * 0.505 / pixel; @@ $YU
 cascaded eye x1.01 @@ $S/cascaded/eye.wgsl @@ textureStore(eye_out, vec2<i32>(id.xy), out); @@ textureStore(eye_out, vec2<i32>(id.xy), out * 1.01); @@ $CA
 cascaded water x1.01 @@ $S/cascaded/water.wgsl @@ vec4<f32>(s, height_field_normal(grad)) @@ vec4<f32>(s, height_field_normal(grad)) * 1.01 @@ $CA
@@ -89,7 +89,7 @@ triangles splat x1.01 @@ $S/caustic_triangles/splat.wgsl @@ vec4<f32>(in.e, 1.0)
 triangles pyramid x1.01 @@ $S/caustic_triangles/pyramid.wgsl @@ = vec4<f32>(phi, @@ = vec4<f32>(phi * 1.01, @@ $CT
 triangles cube x1.01 @@ $S/caustic_triangles/cube.wgsl @@ vec4<f32>(in.e, in.e * in.d, 0.0, 0.0) @@ vec4<f32>(in.e, in.e * in.d, 0.0, 0.0) * 1.01 @@ $CT
 triangles shadow x1.01 @@ $S/caustic_triangles/shadow.wgsl @@ shadow[k] = best; @@ shadow[k] = best * 1.01; @@ $CT
-triangles water photon x1.01 @@ $S/caustic_triangles/water_photon.wgsl @@ * seen * fresnel, 1.0) @@ * seen * fresnel * 1.01, 1.0) @@ $CT
+triangles water photon x1.01 @@ $S/caustic_triangles/water_photon.wgsl @@ let power = w.water.z * w.water.z * seen * fresnel; @@ let power = w.water.z * w.water.z * seen * fresnel * 1.01; @@ $CT
 triangles water photon path x1.01 @@ $S/caustic_triangles/water_photon.wgsl @@ paths[k] = d; @@ paths[k] = d * 1.01; @@ $CT
 triangles band one quad fewer drawn @@ $S/caustic_triangles/band.wgsl @@ array<u32, 4>(min(6u * most, 6u * quads * quads), @@ array<u32, 4>(min(6u * most, 6u * quads * quads) - 6u, @@ $CT
 triangles band one column narrower @@ $S/caustic_triangles/band.wgsl @@ out.band = band; @@ out.band = band - 1u; @@ $CT

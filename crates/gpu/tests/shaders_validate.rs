@@ -185,23 +185,37 @@ fn the_mutation_table_names_registered_passes_and_their_text() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let script = std::fs::read_to_string(root.join("scripts/mutate-passes.sh")).unwrap();
     let passes = all_passes();
-    let mut lines = 0;
-    for line in script.lines().filter(|l| l.contains(" @@ ")) {
+    let (mut lines, mut stale) = (0, Vec::new());
+    let table = script
+        .split_once("MUTATIONS=$(cat <<EOF\n")
+        .and_then(|(_, rest)| rest.split_once("\nEOF\n"))
+        .expect("the script's MUTATIONS table")
+        .0;
+    for line in table.lines().filter(|l| !l.trim().is_empty()) {
         let fields: Vec<&str> = line.split(" @@ ").collect();
         let [name, file, old, _new, _tests] = fields[..] else {
             panic!("a mutation line has five fields: {line}");
         };
-        let Some(rel) = file.strip_prefix("$S/") else {
-            continue; // the format's own description
-        };
+        let rel = file
+            .strip_prefix("$S/")
+            .unwrap_or_else(|| panic!("{name}: {file} is not under $S"));
         let text = std::fs::read_to_string(root.join("crates/gpu/src").join(rel))
             .unwrap_or_else(|e| panic!("{name}: {rel}: {e}"));
-        assert!(text.contains(old), "{name}: `{old}` is not in {rel}");
+        if !text.contains(old) {
+            stale.push(format!("{name}: `{old}` is not in {rel}"));
+        }
         let registered = passes
             .iter()
             .any(|p| p.file == rel || p.shared.contains(&text.as_str()));
-        assert!(registered, "{name}: {rel} is no registered pass's");
+        if !registered {
+            stale.push(format!("{name}: {rel} is no registered pass's"));
+        }
         lines += 1;
     }
-    assert!(lines >= 70, "{lines} mutation lines");
+    assert!(
+        stale.is_empty(),
+        "stale mutation lines:\n{}",
+        stale.join("\n")
+    );
+    assert!(lines >= 60, "{lines} mutation lines");
 }
