@@ -38,8 +38,8 @@ pub struct BakeArgs {
     #[arg(long, default_value = "pool")]
     scene: String,
     /// The technique (see `caustics techniques`). Default `reference`: the most accurate, and fast
-    /// enough for a bake (a 512² frame in about 0.5 s on two CPU cores, within 0.1 % of its
-    /// converged map). On a real GPU `yuksel` is the fast choice (0.2-0.4 % from the reference).
+    /// enough for a bake (its time and error: docs/bake.md). On a real GPU `yuksel` is the fast
+    /// choice.
     #[arg(long, default_value = caustics_core::bake::DEFAULT_TECHNIQUE)]
     technique: String,
     /// Frames in one loop.

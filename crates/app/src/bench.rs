@@ -26,7 +26,7 @@ use caustics_core::scene::Scene;
 use caustics_core::techniques::Input;
 use caustics_gpu::WaterTextures;
 use caustics_gpu::registry::{self, REGISTRY};
-use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+use caustics_gpu::renderer::{FrameWater, Renderer, TechniqueSpec, WaterClock};
 use caustics_gpu::water::field::GpuWater;
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
@@ -331,7 +331,7 @@ fn time_frame(
     filter_water: bool,
 ) -> Result<Measurement> {
     let mut renderer = Renderer::new(ctx)?;
-    renderer.set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)?;
+    renderer.set_water(ctx, scene.water.as_ref(), &FrameWater::Scene)?;
     renderer.set_techniques(
         ctx,
         &[Some(TechniqueSpec {

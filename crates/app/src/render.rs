@@ -452,10 +452,10 @@ fn render_frame(
     args: &RenderArgs,
     out: Option<&Path>,
 ) -> Result<()> {
-    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    use caustics_gpu::renderer::{FrameWater, Renderer, TechniqueSpec, WaterClock};
     let started = Instant::now();
     let mut renderer = Renderer::new(ctx)?;
-    renderer.set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)?;
+    renderer.set_water(ctx, scene.water.as_ref(), &FrameWater::Scene)?;
     renderer.set_techniques(
         ctx,
         &[Some(TechniqueSpec {

@@ -44,9 +44,9 @@ fn contract_dir(name: &str, surface: &Grid, toml: &str) -> PathBuf {
     d
 }
 
-/// The built-in scene `name` (`pool` or `objects`) written to `dir` with the gentle ripples it had
-/// before its waves were made to focus near the floor: the tests that use it measure a technique's
-/// flux and shadows at map sizes that resolve those ripples, not the built-in's 11 cm wavelets.
+/// The built-in scene `name` (`pool` or `objects`) written to `dir` with gentle ripples (21 cm to
+/// 1 m long) in place of its waves: the tests that use it measure a technique's flux and shadows
+/// at map sizes that resolve those ripples, not the built-in's 11 cm wavelets.
 /// Returns the file's name in `dir`.
 fn with_gentle_ripples(dir: &Path, name: &str) -> String {
     let text = caustics_core::scene::BUILTIN_SCENES
@@ -196,7 +196,7 @@ fn the_default_scene_renders_an_image() {
 }
 
 /// Mean |GPU - CPU| per channel, 0..255: measured 0.115 on lavapipe with the caustics and the
-/// tiles filtered over each sample's footprint (0.171 before); 5.5x.
+/// tiles filtered over each sample's footprint; 5.5x.
 const DEFAULT_SCENE_DIFF: f64 = 0.63;
 /// The CPU picture's mean channel value (measured 184.5 with the daylight sky, its ambient light,
 /// the stone deck and the footprint-filtered caustics and tiles, docs/look.md; held to 2 %) and
@@ -927,7 +927,7 @@ fn render_pool_with_caustic_triangles_uses_the_water_as_generator() {
 
 /// `render --scene glass` with the scene's own technique, `reference`: paper 4's photon tracer
 /// against the exact geometry makes the floor map, so the image shows the glass objects' foci and
-/// shadows (before, the reference had no map there and the objects cast neither).
+/// shadows.
 #[test]
 fn the_glass_reference_renders_foci_and_shadows() {
     let d = tmpdir("glass-reference");
@@ -1002,8 +1002,7 @@ fn the_reference_sees_the_objects() {
     let reference = raw("reference", "r.npy");
     let volumes = raw("volumes", "v.npy");
     let dark = |m: &[f32]| m.iter().filter(|&&v| v < 0.3).count() as f64 / m.len() as f64;
-    // Measured: 6.35 % of the floor in the objects' shadows in both maps (none in the floor-only
-    // reference the scene got before).
+    // Measured: 6.35 % of the floor in the objects' shadows in both maps.
     assert!(
         dark(&reference) > 0.03,
         "no shadows: {:.3}",

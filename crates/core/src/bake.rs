@@ -17,15 +17,15 @@ use crate::techniques::{Job, SceneCaustics, Spec};
 use crate::water::ocean::Ocean;
 use crate::{Error, Result};
 
-/// The technique a bake uses by default: the most accurate one, the reference itself, which is also
-/// fast enough for an offline bake: at [`REFERENCE_CELLS`] cells per texel it is within 0.1 %
-/// relative L1 of its converged map (docs/reference.md) and makes a 512² frame in about 0.5 s on
-/// two CPU cores (docs/benchmarks.md, "Baking"), against yuksel's 0.2-0.4 % (docs/results.md) at
-/// 1.6 s a frame on lavapipe. On a real GPU `--technique yuksel` is the fast choice.
+/// The technique a bake uses by default: the most accurate one, the reference itself, which at
+/// [`REFERENCE_CELLS`] cells per texel is also fast enough for an offline bake on the CPU (its
+/// error and time per frame against the GPU techniques': docs/bake.md, docs/benchmarks.md
+/// "Baking"). On a real GPU `--technique yuksel` is the fast choice.
 pub const DEFAULT_TECHNIQUE: &str = "reference";
 
-/// The reference's triangulation cells per map texel along each axis in a bake: 0.09 % relative L1
-/// on the pool at 512² (docs/reference.md; 4 cells: 0.02 % at three times the cost).
+/// The reference's triangulation cells per map texel along each axis in a bake: the fewest that
+/// keep a frame within 0.1 % relative L1 of the converged map (docs/reference.md has the error and
+/// time per cell count).
 pub const REFERENCE_CELLS: u32 = 2;
 
 /// The water made to tile and loop with period `period` seconds, and what was changed to make it

@@ -25,7 +25,7 @@
 //! mean). Triangles facing away from the sun receive nothing (the surface shadows itself).
 //!
 //! # Walls
-//! With the pool's walls as receivers ([`Floor::walls`], issue 18) the traced domain is the water
+//! With the pool's walls as receivers ([`Floor::walls`]) the traced domain is the water
 //! square itself (light enters the pool only through its surface, and nothing wraps), and each
 //! vertex's ray stops at whichever it meets first: the floor, or a wall plane (x = 0, x = size,
 //! y = 0, y = size). A triangle whose three rays meet the same receiver is deposited there as on
@@ -51,7 +51,7 @@ use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
 use crate::techniques::describe::{Descriptor, Receiver};
-use crate::techniques::{Input, Job, Made};
+use crate::techniques::{Input, Job, JobOutput};
 
 /// The ground truth as registered: this module's flux tracing for water over the floor and
 /// walls; with diffuse objects under the water, the photon reference with mesh receivers
@@ -91,7 +91,7 @@ fn run_cpu(
     job: &Job,
     _table: &toml::Table,
     progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<Made> {
+) -> Result<JobOutput> {
     use crate::techniques::{caustic_triangles as ct, volumes};
     let scene = job.scene;
     if scene.water.is_none() {
@@ -112,7 +112,10 @@ fn run_cpu(
             });
             progress(k + 1, generators);
         }
-        return Ok(Made::floor(total.expect("one glass object at least"), None));
+        return Ok(JobOutput::floor(
+            total.expect("one glass object at least"),
+            None,
+        ));
     }
     job.with_surface(DESCRIPTOR.name, |water, surface| {
         if !scene.objects.is_empty() {
@@ -129,7 +132,7 @@ fn run_cpu(
             let r = volumes::reference::mesh_reference_with_progress(
                 &setup, &input, surface, &options, progress,
             );
-            return Ok(Made::floor(r.floor, r.walls));
+            return Ok(JobOutput::floor(r.floor, r.walls));
         }
         let (width, height) = job.size();
         let input = ReferenceInput {
@@ -145,7 +148,7 @@ fn run_cpu(
             ..Default::default()
         };
         let out = reference_with_walls(&input, &options, progress)?;
-        Ok(Made::floor(out.floor, out.walls))
+        Ok(JobOutput::floor(out.floor, out.walls))
     })
 }
 

@@ -23,7 +23,7 @@
 //!   the Fresnel equations from the dense side ([`from_below`]): inside Snell's window (the cone of
 //!   half-angle asin(1/n) about the surface normal) part of it refracts out to the sky, the rest
 //!   reflects back down; beyond the window it is totally reflected, so the surface mirrors the pool.
-//! - With the pool's walls as receivers (issue 18) and a technique that lit them, a wall point gets
+//! - With the pool's walls as receivers and a technique that lit them, a wall point gets
 //!   `E_h T(θ₀) W(along, z)` from the sun, `W` its wall's map in the same relative unit as `M`
 //!   (absorption along the light's path already in it), besides the ambient term it gets anyway.
 //! - Objects under water are lit by the flat-water refracted sun with their own shadow test; they
@@ -405,7 +405,7 @@ pub fn render_with_walls(
 /// near the image's axes is resolved in `n²` steps instead of `n`, for the same rays: measured on
 /// the shore at 960 x 540 against 8 x 8 samples, mean FLIP 0.0108 against 0.0125 on the square
 /// grid (docs/look.md). For odd `n` one sample sits at the pixel's centre (for `n = 1` the only
-/// one, as before). GPU twin: `sample_offset` in final_image.wgsl.
+/// one). GPU twin: `sample_offset` in final_image.wgsl.
 pub fn sample_offset(sx: usize, sy: usize, n: usize) -> (f64, f64) {
     let n = n as f64;
     let (sx, sy) = (sx as f64, sy as f64);
@@ -989,7 +989,7 @@ struct March {
 pub const MARCH_STEPS: usize = 512;
 
 /// No step of [`first_crossing`]'s march is longer than 1/`EVEN_STEPS` of the slab's interval (or
-/// its shortest step), the even steps it replaced: a slope bound estimated too low (waves two
+/// its shortest step), so that a slope bound estimated too low (waves two
 /// lattice spacings long, seen only at their crests and troughs) cannot send it across the slab in
 /// one step.
 pub const EVEN_STEPS: usize = 24;
@@ -998,8 +998,8 @@ pub const EVEN_STEPS: usize = 24;
 /// side it starts) reaches 0. Each step is the height over its bound rate of change,
 /// `f / march.rate`, which cannot pass a crossing (sphere tracing a height field of bounded
 /// slope): a grazing ray meets the first crest that rises into it, not one it would have passed
-/// through between evenly spaced steps (24 even steps over a far ray's slab were a metre apart on
-/// the shore, where the waves are a few decimetres long: the far water was seen through its
+/// through between evenly spaced steps (24 even steps over a far ray's slab are a metre apart on
+/// the shore, where the waves are a few decimetres long: they see the far water through its
 /// nearer crests). Steps are at least `march.min_step` and 1/[`MARCH_STEPS`] of the interval, and
 /// at most 1/[`EVEN_STEPS`] of it or `min_step`, whichever is longer (a slab thinner than a few
 /// shortest steps, as flat water's, is crossed in one: steps of 1/24 of its micrometres would not
@@ -1135,9 +1135,8 @@ mod tests {
     /// crossing. The ray dips 5 mm into a 1 m sine wave's crest 5 m along (a 10 cm chord) after
     /// clearing the crest before it by 5 mm; with a shortest step of 0.1 mm, only the slope
     /// bound keeps the steps short near the crest, and the crossing found is the fine scan's
-    /// first root. Evenly spaced steps over the slab, as before (24 steps 1.3 m
-    /// apart here), went through that crest and two more, to meet the water at x = 8.07 m
-    /// (measured).
+    /// first root. Evenly spaced steps over the slab (24 steps 1.3 m apart here) go through that
+    /// crest and two more, to meet the water at x = 8.07 m (measured).
     #[test]
     fn a_grazing_ray_meets_the_first_crest_it_dips_into() {
         use crate::water::waves::{Wave, Waves};
@@ -1342,7 +1341,7 @@ mod tests {
     /// hidden from the eye's straight rays and by the extra bilinear read.
     #[test]
     fn eye_space_caustics_read_where_the_floor_projects() {
-        // The shore with its former 5 m/s ocean on a 128 grid, whose caustics a 128² map resolves
+        // The shore with a 5 m/s ocean on a 128 grid, whose caustics a 128² map resolves
         // (the built-in light breeze's wavelets alias at this size, which the test does not
         // measure).
         let text = crate::scene::BUILTIN_SCENES

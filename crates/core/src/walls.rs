@@ -1,4 +1,4 @@
-//! The pool's four walls as receivers (issue 18): in a real pool the light that the waves send
+//! The pool's four walls as receivers: in a real pool the light that the waves send
 //! sideways, and all of it under a low sun, lands on the walls, which webgl-water shows as much as
 //! the floor. A scene turns this on with `[floor] walls = true` ([`crate::scene::Floor::walls`]).
 //!

@@ -1,5 +1,5 @@
 //! The photon reference with mesh receivers (`volumes::reference`, the truth of scenes with objects
-//! under the water) with the pool's walls (issue 18): against the independent triangle-deposit
+//! under the water) with the pool's walls: against the independent triangle-deposit
 //! reference (`reference_with_walls`) on every receiver where there are no objects, and an object's
 //! shadow on a wall. Run with `--release`.
 

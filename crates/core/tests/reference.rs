@@ -1,4 +1,4 @@
-//! The reference's physical properties (issue: foundation, item 4). Run with `--release`: the
+//! The reference's physical properties. Run with `--release`: the
 //! triangulations are fine.
 
 use caustics_core::grid::{Edge, Grid};

@@ -1,4 +1,4 @@
-//! The reference with the pool's walls as receivers (issue 18): conservation of the light that
+//! The reference with the pool's walls as receivers: conservation of the light that
 //! leaves the water surface, the far wall lit and the near floor in shadow under a low sun, and the
 //! cosine law on a wall under flat water. Run with `--release`.
 
@@ -123,7 +123,7 @@ fn floor_and_walls_hold_the_light_that_leaves_the_surface() {
         "leaving {leaving:.9}, floor + walls {received:.9} (walls {:.1} %): relative {err:.2e}",
         wall_share * 100.0
     );
-    // Measured 7.0e-6 (the triangulation's flux against the quadrature); the issue asks for 1e-3.
+    // Measured 7.0e-6 (the triangulation's flux against the quadrature).
     assert!(err < 5e-5, "{err}");
     assert!(
         wall_share > 0.2,

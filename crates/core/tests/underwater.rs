@@ -252,9 +252,8 @@ fn beyond_the_window_the_surface_mirrors_the_pool() {
          than 8"
     );
     // Measured: 0 of 19600 pixels, the mirror image carrying the sample's footprint on to the floor
-    // and the walls as the direct view does (15 before the footprint, where a ray grazed a grout
-    // line or the floor's edge and the two sides' rounding picked different sides of it).
-    // The bound is the count measured before: room for a grout line's rounding.
+    // and the walls as the direct view does. The bound leaves room for rays that graze a grout line
+    // or the floor's edge, where the two sides' rounding can pick different sides of it.
     assert!(differ_out <= 15, "{differ_out} of {outside}");
     // Measured: all but 80 of 19285 (next to the edge, where little of the sky comes through).
     assert!(inside - differ_in <= 640, "{differ_in} of {inside}");

@@ -1,4 +1,4 @@
-//! The techniques that light the pool's walls (issue 18) against the reference on each receiver:
+//! The techniques that light the pool's walls against the reference on each receiver:
 //! caustic-triangles, volumes and cascaded on the built-in pool, 128² maps (cascaded: its
 //! eye-space image at 192 x 108 against the reference's maps read at each pixel's receiver point),
 //! a sun 0°, 30° and 60° from the zenith. Prints the per-receiver table of docs/results.md

@@ -1,4 +1,4 @@
-//! Technique `yuksel`'s floor map against the reference under waves (issue 20): with the region
+//! Technique `yuksel`'s floor map against the reference under waves: with the region
 //! chosen from the water it keeps the light that the paper's fixed 7 x 6 region loses, at suns up
 //! to 80 degrees from the zenith, and with 4 x 4 footprints per pixel it is within 2 % of it. Run with `--release`: the reference triangulates finely.
 

@@ -4,7 +4,7 @@
 //! [`Technique`] and [`Once`] the tools' [`RunOnce`], and [`Registered::of`] its registry entry.
 
 use caustics_core::scene::Scene;
-use caustics_core::techniques::{Descriptor, Job, Made};
+use caustics_core::techniques::{Descriptor, Job, JobOutput};
 
 use crate::shaders::PassSource;
 use crate::technique::{
@@ -88,7 +88,7 @@ pub trait Pipelines: Sized + wgpu::WasmNotSendSync + 'static {
         tables: &toml::Table,
         timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError>;
+    ) -> Result<JobOutput, GpuError>;
 }
 
 /// A technique resident on the GPU: its pipelines, its parameters and its configured frame.
@@ -164,7 +164,7 @@ impl<P: Pipelines> Technique for Resident<P> {
         &mut self,
         ctx: &GpuContext,
         scene: &Scene,
-    ) -> Result<crate::technique::Fit, GpuError> {
+    ) -> Result<crate::technique::SceneWrite, GpuError> {
         let name = P::name(self.entry, &self.params);
         let Some((frame, water)) = &mut self.frame else {
             return Err(GpuError::BadOption(format!(
@@ -172,9 +172,9 @@ impl<P: Pipelines> Technique for Resident<P> {
             )));
         };
         if self.pipelines.refit(ctx, &self.params, frame, scene)? {
-            Ok(crate::technique::Fit::Written)
+            Ok(crate::technique::SceneWrite::Written)
         } else {
-            Ok(crate::technique::Fit::Reconfigure(water.clone()))
+            Ok(crate::technique::SceneWrite::Reconfigure(water.clone()))
         }
     }
 
@@ -230,7 +230,7 @@ impl<P: Pipelines> RunOnce for Once<P> {
         params: &toml::Table,
         timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
+    ) -> Result<JobOutput, GpuError> {
         self.pipelines
             .run_once(ctx, self.entry, job, params, timer, progress)
     }

@@ -9,18 +9,13 @@ use caustics_core::map::pyramid_levels;
 
 use crate::GpuContext;
 use crate::pass::{bind_group, compute_pipeline};
-use crate::shaders::PassSource;
+use crate::shaders::passes;
 
-/// One level of the caustics map's pyramid (caustics-core's `CausticsMap::pyramid`), which the
-/// final image reads over each sample's footprint on the floor.
-pub const CAUSTICS_MIPS: PassSource = PassSource {
-    name: "caustics mips",
-    shared: &[],
-    file: "map_mips.wgsl",
-    source: include_str!("map_mips.wgsl"),
-};
-
-pub const PASSES: &[&PassSource] = &[&CAUSTICS_MIPS];
+passes! {
+    /// One level of the caustics map's pyramid (caustics-core's `CausticsMap::pyramid`), which the
+    /// final image reads over each sample's footprint on the floor.
+    CAUSTICS_MIPS = "caustics mips", [], "map_mips.wgsl";
+}
 
 /// `map_mips.wgsl`'s workgroup side.
 const TILE: u32 = 8;

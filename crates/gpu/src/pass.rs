@@ -81,6 +81,20 @@ impl GpuContext {
 
 /// A render pipeline without vertex buffers (`vs_main` pulls its vertices from storage buffers) that
 /// adds every fragment into one colour target: how caustic triangles (paper 4) and illumination
+/// The best format this device can add light into with blending: `Rgba32Float` where it has
+/// `FLOAT32_BLENDABLE`, else `Rgba16Float` (blendable everywhere, about 3 significant digits).
+pub fn blendable_map_format(ctx: &GpuContext) -> wgpu::TextureFormat {
+    if ctx
+        .device
+        .features()
+        .contains(wgpu::Features::FLOAT32_BLENDABLE)
+    {
+        wgpu::TextureFormat::Rgba32Float
+    } else {
+        wgpu::TextureFormat::Rgba16Float
+    }
+}
+
 /// volume slices (paper 3) accumulate irradiance.
 pub fn additive_pipeline(
     ctx: &GpuContext,

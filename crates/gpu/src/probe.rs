@@ -1,18 +1,13 @@
 //! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
-use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::shaders::{OPTICS, WATER, passes};
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError};
 
-pub const PROBE: PassSource = PassSource {
-    name: "probe",
-    shared: &[OPTICS, WATER],
-    file: "probe.wgsl",
-    source: include_str!("probe.wgsl"),
-};
-
-pub const PASSES: &[&PassSource] = &[&PROBE];
+passes! {
+    PROBE = "probe", [OPTICS, WATER], "probe.wgsl";
+}
 
 /// Mirrors `ProbeIn` in `probe.wgsl`.
 #[repr(C)]

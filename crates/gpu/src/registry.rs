@@ -48,8 +48,12 @@ pub fn create(
 /// The passes of the frame around the techniques: the water, the final image, the floor map's
 /// pyramid and the probe of the shared math.
 pub const FRAME_PASSES: &[&[&PassSource]] = &[
-    crate::water::PASSES,
+    crate::water::ocean::PASSES,
+    crate::water::ripple::PASSES,
+    crate::water::field::PASSES,
+    crate::water::patches::PASSES,
     crate::final_image::PASSES,
+    crate::final_image::slopes::PASSES,
     crate::map_mips::PASSES,
     crate::probe::PASSES,
 ];

@@ -27,9 +27,10 @@ pub struct TechniqueSpec {
     pub params: toml::Table,
 }
 
-/// Where the water comes from.
+/// Where the frame's water comes from: the scene's own source, or the interactive ripple
+/// simulation in its place.
 #[derive(Clone, Debug, PartialEq)]
-pub enum WaterSpec {
+pub enum FrameWater {
     /// The scene's own source (waves, paper 2's wave function, the FFT ocean, a ripple simulation, a
     /// height field).
     Scene,
@@ -101,7 +102,7 @@ fn configure_side(
     ctx: &GpuContext,
     scene: &Scene,
     side: &mut Side,
-    water: Option<&mut (GpuWater, WaterSpec)>,
+    water: Option<&mut (GpuWater, FrameWater)>,
     no_water: &WaterTextures,
     grids: &mut Vec<(u32, u32)>,
 ) {
@@ -163,7 +164,7 @@ fn configure_side(
 /// The GPU frame: water, up to two techniques, their final images.
 pub struct Renderer {
     final_image: FinalImage,
-    water: Option<(GpuWater, WaterSpec)>,
+    water: Option<(GpuWater, FrameWater)>,
     /// Bound as the water of a scene without any (glass generators need none).
     no_water: WaterTextures,
     sides: Vec<Side>,
@@ -279,7 +280,7 @@ impl Renderer {
         &mut self,
         ctx: &GpuContext,
         water: Option<&Water>,
-        spec: &WaterSpec,
+        spec: &FrameWater,
     ) -> Result<(), GpuError> {
         let Some(water) = water else {
             self.water = None;
@@ -289,8 +290,8 @@ impl Renderer {
             return Ok(());
         }
         let source = match spec {
-            WaterSpec::Scene => GpuWater::new(ctx, water)?,
-            WaterSpec::Ripples { params, .. } => GpuWater::ripples(ctx, water, params)?,
+            FrameWater::Scene => GpuWater::new(ctx, water)?,
+            FrameWater::Ripples { params, .. } => GpuWater::ripples(ctx, water, params)?,
         };
         self.water = Some((source, spec.clone()));
         // New textures: every technique configures again.

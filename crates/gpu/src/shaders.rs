@@ -26,6 +26,26 @@ pub fn compose(shared: &[&str], pass: &str) -> String {
     s
 }
 
+/// The passes a module declares: each `NAME = "label", [shared parts], "file";` (the file under
+/// `crates/gpu/src/`, whose text is the pass's own source) becomes `pub const NAME: PassSource`,
+/// and all of them the module's `PASSES`, so a pass is listed where it is declared.
+macro_rules! passes {
+    ($($(#[$attr:meta])* $id:ident = $name:literal, [$($shared:expr),* $(,)?], $file:literal;)+) => {
+        $(
+            $(#[$attr])*
+            pub const $id: $crate::shaders::PassSource = $crate::shaders::PassSource {
+                name: $name,
+                shared: &[$($shared),*],
+                file: $file,
+                source: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/", $file)),
+            };
+        )+
+        /// Every pass this module declares, for the registry.
+        pub const PASSES: &[&$crate::shaders::PassSource] = &[$(&$id),+];
+    };
+}
+pub(crate) use passes;
+
 /// A pass shader: its name (for messages), its file under `crates/gpu/src/` (for tools and
 /// messages; a test holds it to `source`), the shared files it includes, and its own source.
 pub struct PassSource {

@@ -10,7 +10,7 @@
 //! itself.
 
 use caustics_core::scene::Scene;
-use caustics_core::techniques::{Descriptor, Job, Made};
+use caustics_core::techniques::{Descriptor, Job, JobOutput};
 use caustics_core::walls::{Wall, WallMaps};
 
 use crate::shaders::PassSource;
@@ -116,7 +116,7 @@ impl<'a> WallsOutput<'a> {
 
 /// What [`Technique::write_scene`] did with a frame's scene.
 #[derive(Debug)]
-pub enum Fit {
+pub enum SceneWrite {
     /// The new values are in its uniforms.
     Written,
     /// A size changed: it needs [`Technique::configure`] again, on this water (the one it was
@@ -150,16 +150,16 @@ pub trait Technique: wgpu::WasmNotSendSync {
     ) -> Result<(), GpuError>;
 
     /// Take this frame's sun, camera and parameters as uniform writes where the configured
-    /// resources still fit them; [`Fit::Reconfigure`] (with the water it was configured with)
-    /// where they do not. An error before [`configure`](Self::configure).
-    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<Fit, GpuError>;
+    /// resources still fit them; [`SceneWrite::Reconfigure`] (with the water it was configured
+    /// with) where they do not. An error before [`configure`](Self::configure).
+    fn write_scene(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<SceneWrite, GpuError>;
 
     /// [`write_scene`](Self::write_scene), configuring again (and saying so in the log) when
     /// the sizes changed: what a frame calls.
     fn update(&mut self, ctx: &GpuContext, scene: &Scene) -> Result<(), GpuError> {
         match self.write_scene(ctx, scene)? {
-            Fit::Written => Ok(()),
-            Fit::Reconfigure(water) => {
+            SceneWrite::Written => Ok(()),
+            SceneWrite::Reconfigure(water) => {
                 tracing::debug!("{}: new sizes, configuring again", self.name());
                 self.configure(ctx, scene, &water)
             }
@@ -209,7 +209,7 @@ pub trait RunOnce {
         params: &toml::Table,
         timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError>;
+    ) -> Result<JobOutput, GpuError>;
 }
 
 /// Builds a technique's [`RunOnce`] (its pipelines) for the device, for the entry it is

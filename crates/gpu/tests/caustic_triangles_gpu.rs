@@ -205,7 +205,7 @@ fn the_half_float_fallback_gives_the_same_map() {
 }
 
 fn the_camera_uniform_matches_its_wgsl_size() {
-    let source = caustics_gpu::caustic_triangles::camera::CAMERA.composed();
+    let source = caustics_gpu::caustic_triangles::CAMERA.composed();
     let module = naga::front::wgsl::parse_str(&source).unwrap();
     let (_, ty) = module
         .types
@@ -239,7 +239,7 @@ fn the_uniform_matches_its_wgsl_size() {
         &caustics_gpu::caustic_triangles::CUBE,
         &caustics_gpu::caustic_triangles::SHADOW,
         &caustics_gpu::caustic_triangles::WATER_PHOTON,
-        &caustics_gpu::caustic_triangles::camera::CAMERA,
+        &caustics_gpu::caustic_triangles::CAMERA,
     ] {
         let src = pass.composed();
         let m = naga::front::wgsl::parse_str(&src)

@@ -250,10 +250,10 @@ fn cascades_cube_maps_and_technique_textures_beyond_the_limit_are_refused() {
 
 /// The GPU frame on `ctx` with `scene`'s water.
 fn renderer_with_water(ctx: &GpuContext, scene: &Scene) -> caustics_gpu::renderer::Renderer {
-    use caustics_gpu::renderer::{Renderer, WaterSpec};
+    use caustics_gpu::renderer::{FrameWater, Renderer};
     let mut renderer = Renderer::new(ctx).expect("renderer");
     renderer
-        .set_water(ctx, scene.water.as_ref(), &WaterSpec::Scene)
+        .set_water(ctx, scene.water.as_ref(), &FrameWater::Scene)
         .expect("water");
     renderer
 }

@@ -397,7 +397,7 @@ fn pool_walls_match_the_cpu() {
 /// create nothing.
 fn the_renderer_lights_the_walls_with_uploaded_maps() {
     use caustics_core::reference::reference_with_walls;
-    use caustics_gpu::renderer::{Renderer, WaterClock, WaterSpec};
+    use caustics_gpu::renderer::{FrameWater, Renderer, WaterClock};
     let ctx = test_gpu();
     let mut scene = small("pool");
     scene.light.direction = glam::DVec3::new(0.8, 0.6, -0.6).normalize();
@@ -421,7 +421,7 @@ fn the_renderer_lights_the_walls_with_uploaded_maps() {
     };
     let mut renderer = Renderer::new(&ctx).expect("renderer");
     renderer
-        .set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
+        .set_water(&ctx, scene.water.as_ref(), &FrameWater::Scene)
         .expect("water");
     renderer.set_techniques(&ctx, &[None]);
     renderer
@@ -603,8 +603,8 @@ fn shore_at_two_by_two_samples_matches_the_cpu() {
     check(&ctx, "shore 2x2", &small("shore"), true, bounds);
 }
 
-/// The waves' normals filtered by each sample's footprint (`RenderOptions::filter_water`, issue
-/// 30) on both sides: the slope moments' pyramid, the taps along the footprint, the visible facets'
+/// The waves' normals filtered by each sample's footprint (`RenderOptions::filter_water`) on
+/// both sides: the slope moments' pyramid, the taps along the footprint, the visible facets'
 /// Fresnel split and the glint; the far water, where the filter acts, fills the top third of the
 /// shore's picture.
 fn shore_with_filtered_water_matches_the_cpu() {

@@ -218,7 +218,7 @@ fn yuksel_follows_steeper_water_without_new_resources() {
 /// texture variant), a uniform knob and a size changed together.
 fn new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map() {
     use caustics_core::render::RenderOptions;
-    use caustics_gpu::renderer::{Renderer, TechniqueSpec, WaterClock, WaterSpec};
+    use caustics_gpu::renderer::{FrameWater, Renderer, TechniqueSpec, WaterClock};
     let ctx = test_gpu();
     let cases = [
         (
@@ -273,7 +273,7 @@ fn new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map() {
         };
         let renderer = || {
             let mut r = Renderer::new(&ctx).unwrap();
-            r.set_water(&ctx, scene.water.as_ref(), &WaterSpec::Scene)
+            r.set_water(&ctx, scene.water.as_ref(), &FrameWater::Scene)
                 .unwrap();
             r
         };

@@ -575,8 +575,8 @@ impl Page {
                 })
                 .collect(),
             water: match self.water.spec() {
-                caustics_gpu::renderer::WaterSpec::Scene => "scene",
-                caustics_gpu::renderer::WaterSpec::Ripples { .. } => "ripples",
+                caustics_gpu::renderer::FrameWater::Scene => "scene",
+                caustics_gpu::renderer::FrameWater::Ripples { .. } => "ripples",
             },
             steady: (
                 self.frames - from,

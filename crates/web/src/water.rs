@@ -5,7 +5,7 @@
 
 use caustics_core::scene::{Water, WaterSource};
 use caustics_core::water::ripple::{Drop, RippleParams};
-use caustics_gpu::renderer::{WaterClock, WaterSpec};
+use caustics_gpu::renderer::{FrameWater, WaterClock};
 
 /// Most simulation steps a frame: a slow frame (a software adapter) runs the water slower than
 /// real time rather than spending ever longer frames catching up.
@@ -74,14 +74,14 @@ impl PageWater {
         self.drops.clear();
     }
 
-    pub fn spec(&self) -> WaterSpec {
+    pub fn spec(&self) -> FrameWater {
         if self.ripples {
-            WaterSpec::Ripples {
+            FrameWater::Ripples {
                 params: self.params.clone(),
                 generation: self.generation,
             }
         } else {
-            WaterSpec::Scene
+            FrameWater::Scene
         }
     }
 

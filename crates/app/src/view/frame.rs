@@ -464,10 +464,10 @@ impl SceneRenderer {
                 steps,
             };
             let spec = match w.mode {
-                super::water::Mode::Scene => caustics_gpu::renderer::WaterSpec::Scene,
+                super::water::Mode::Scene => caustics_gpu::renderer::FrameWater::Scene,
                 super::water::Mode::Ripple => {
                     let (params, generation) = w.ripple_spec();
-                    caustics_gpu::renderer::WaterSpec::Ripples {
+                    caustics_gpu::renderer::FrameWater::Ripples {
                         params: params.clone(),
                         generation,
                     }
@@ -480,7 +480,7 @@ impl SceneRenderer {
         } else {
             frame
                 .renderer
-                .set_water(ctx, None, &caustics_gpu::renderer::WaterSpec::Scene)?;
+                .set_water(ctx, None, &caustics_gpu::renderer::FrameWater::Scene)?;
         }
         for d in &drops {
             frame.renderer.drop_ripple(ctx, d);

@@ -133,7 +133,7 @@ pub struct FloorSpec {
     #[serde(default)]
     pub pattern: FloorPattern,
     /// The four walls of the water's square receive light too, from the floor up to the rest water
-    /// level (issue 18): light that meets a wall stops there instead of wrapping round to the
+    /// level: light that meets a wall stops there instead of wrapping round to the
     /// floor. Only for a flat pool floor (no terrain); off unless asked, so that a scene's floor
     /// map keeps holding all the light.
     #[serde(default)]

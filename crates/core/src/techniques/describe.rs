@@ -10,7 +10,7 @@
 //! techniques that render a point light) is the registry's ([`super::registry`]).
 
 use super::buffers::{Buffer, BufferDesc, BufferInput, DrawBuffer, HEIGHTS, Needs, SceneHas};
-use super::job::{Job, Made, heights_for};
+use super::job::{Job, JobOutput, heights_for};
 use crate::plot::{Picture, diverging, scalar_picture};
 use crate::{Error, Result};
 
@@ -198,7 +198,7 @@ pub fn check_inputs(width: usize, height: usize, light: glam::DVec3) -> Result<g
 
 /// The CPU twin of an entry: the job, the parameter tables keyed by table (a scene file's
 /// `[caustics]`), progress `(done, total)`.
-pub type CpuRun = fn(&Job, &toml::Table, &(dyn Fn(usize, usize) + Sync)) -> Result<Made>;
+pub type CpuRun = fn(&Job, &toml::Table, &(dyn Fn(usize, usize) + Sync)) -> Result<JobOutput>;
 
 /// One registered technique, as the command line spells it: a variant (`yuksel-targets`,
 /// `procedural-texture`) is an entry of its own sharing its technique's parameter table.
@@ -249,7 +249,7 @@ impl PartialEq for Descriptor {
 }
 
 impl Descriptor {
-    /// A floor technique by design (issue 18): with the scene's walls on it still maps the floor
+    /// A floor technique by design: with the scene's walls on it still maps the floor
     /// alone, and the light that would meet a wall stays on the floor map.
     pub fn floor_only(&self) -> bool {
         !self.receivers.contains(&Receiver::Walls) && !self.receivers.contains(&Receiver::EyeSpace)

@@ -1,5 +1,5 @@
 //! The one input every technique's run takes ([`Job`]: a scene as the technique should see it
-//! this time) and what it gives back ([`Made`]), for the CPU twins here and the GPU runs of
+//! this time) and what it gives back ([`JobOutput`]), for the CPU twins here and the GPU runs of
 //! `caustics_gpu` alike, with the view of it the final image reads ([`Caustics`]).
 //!
 //! The descriptor is written in these terms, so they know no descriptor: what a job does with
@@ -126,18 +126,19 @@ impl SceneCaustics {
     }
 }
 
-/// A technique's output.
+/// What a technique's run on a [`Job`] makes: its floor map or eye-space image, and the walls'
+/// maps.
 #[derive(Clone, Debug)]
-pub struct Made {
+pub struct JobOutput {
     pub caustics: SceneCaustics,
     /// The pool's walls' maps, from a technique that lights them when the scene's walls are on;
     /// `None` from a floor-only technique.
     pub walls: Option<WallMaps>,
 }
 
-impl Made {
+impl JobOutput {
     pub fn floor(map: CausticsMap, walls: Option<WallMaps>) -> Self {
-        Made {
+        JobOutput {
             caustics: SceneCaustics::Floor(map),
             walls,
         }

@@ -12,15 +12,15 @@ use std::path::Path;
 use glam::DVec3;
 
 use super::describe::{Descriptor, Input, Param, ParamDefault, check_value};
-use super::job::{Job, Made};
+use super::job::{Job, JobOutput};
 use super::{cascaded, caustic_triangles, procedural, volumes, yuksel};
 use crate::scene::{
     Camera, CausticsSettings, CausticsSpec, Floor, Light, Look, Material, Scene, Water,
 };
 use crate::{Error, Result};
 
-/// Names an entry went by before, and the entry each now names: `yuksel-gather` was the scatter,
-/// `yuksel`'s default passes since 2026-12-03 (issue 28).
+/// Former names still read, each with the entry it now names: `yuksel-gather` is `yuksel`, whose
+/// default passes are the scatter that name ran (docs/yuksel.md).
 pub const ALIASES: &[(&str, &str)] = &[("yuksel-gather", "yuksel")];
 
 /// Every technique, in one place: the ground truth first, then the papers in order. A new
@@ -235,7 +235,11 @@ impl Spec {
     }
 
     /// Runs the CPU twin.
-    pub fn run_cpu(&self, job: &Job, progress: &(dyn Fn(usize, usize) + Sync)) -> Result<Made> {
+    pub fn run_cpu(
+        &self,
+        job: &Job,
+        progress: &(dyn Fn(usize, usize) + Sync),
+    ) -> Result<JobOutput> {
         self.entry.check_light(&job.scene.light)?;
         (self.entry.cpu)(job, &self.params, progress)
     }

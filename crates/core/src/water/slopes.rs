@@ -1,4 +1,4 @@
-//! Water normals filtered by a pixel's footprint (issue 30), as LEAN mapping does for bump maps
+//! Water normals filtered by a pixel's footprint, as LEAN mapping does for bump maps
 //! (M. Olano, D. Baker, "LEAN Mapping", I3D 2010, §3): the first and second moments of the slope,
 //! `E[∇h]` and `E[∇h ∇hᵀ]`, average linearly, so a pyramid of their box averages gives, for any
 //! footprint, the mean slope (the normal to shade with) and the slope covariance of the waves too

@@ -1,6 +1,6 @@
 // Technique `cascaded` (paper 5): the uniform block every pass shares and the geometry they repeat.
 // Mirrors `CascadedUniform` in cascaded/mod.rs and `CascadedSetup` in
-// caustics-core/src/techniques/cascaded.rs (the CPU twin of every function here).
+// caustics-core/src/techniques/cascaded/mod.rs (its common.rs: the CPU twin of every function here).
 struct Cascaded {
     light: vec4<f32>,      // xyz: unit direction the sunlight travels; w: water rest level
     e_u: vec4<f32>,        // xyz: light-view u axis; w: scene square size

@@ -4,12 +4,12 @@
 //!
 //! | pass | WGSL | CPU twin | runs |
 //! |---|---|---|---|
-//! | eye depth (compute) | `cascaded/eye.wgsl` | `eye_pass` | once |
-//! | water G-buffer (compute) | `cascaded/water.wgsl` | `water_gbuffer` | per cascade |
-//! | terrain G-buffer (compute) | `cascaded/terrain.wgsl` | `terrain_gbuffer` | per cascade, optional |
-//! | photons + splat (compute, atomics) | `cascaded/photons.wgsl` | `photons` | per cascade |
-//! | composition (compute) | `cascaded/compose.wgsl` | `compose` | once |
-//! | post-process dispersion (compute) | `cascaded/disperse.wgsl` | `disperse` | once, optional |
+//! | eye depth (compute) | `cascaded/eye.wgsl` | `eye::eye_pass` | once |
+//! | water G-buffer (compute) | `cascaded/water.wgsl` | `water::water_gbuffer` | per cascade |
+//! | terrain G-buffer (compute) | `cascaded/terrain.wgsl` | `terrain::terrain_gbuffer` | per cascade, optional |
+//! | photons + splat (compute, atomics) | `cascaded/photons.wgsl` | `photons::photons` | per cascade |
+//! | composition (compute) | `cascaded/compose.wgsl` | `compose::compose` | once |
+//! | post-process dispersion (compute) | `cascaded/disperse.wgsl` | `disperse::disperse` | once, optional |
 //!
 //! **Why compute for the G-buffers.** The paper rasterises the water and terrain meshes from the
 //! sun. Our water and terrain are height fields, not meshes: one invocation per light texel
@@ -39,57 +39,19 @@ use caustics_core::techniques::cascaded::{
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 
 pub mod technique;
-use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::shaders::{OPTICS, WATER, passes};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 const COMMON: &str = include_str!("common.wgsl");
 
-pub const EYE: PassSource = PassSource {
-    name: "cascaded eye depth",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "cascaded/eye.wgsl",
-    source: include_str!("eye.wgsl"),
-};
-pub const WATER_GBUFFER: PassSource = PassSource {
-    name: "cascaded water G-buffer",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "cascaded/water.wgsl",
-    source: include_str!("water.wgsl"),
-};
-pub const TERRAIN_GBUFFER: PassSource = PassSource {
-    name: "cascaded terrain G-buffer",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "cascaded/terrain.wgsl",
-    source: include_str!("terrain.wgsl"),
-};
-pub const PHOTONS: PassSource = PassSource {
-    name: "cascaded photons",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "cascaded/photons.wgsl",
-    source: include_str!("photons.wgsl"),
-};
-pub const COMPOSE: PassSource = PassSource {
-    name: "cascaded composition",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "cascaded/compose.wgsl",
-    source: include_str!("compose.wgsl"),
-};
-pub const DISPERSE: PassSource = PassSource {
-    name: "cascaded dispersion",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "cascaded/disperse.wgsl",
-    source: include_str!("disperse.wgsl"),
-};
-
-/// Every pass of the technique, for its registry entry.
-pub const PASSES: &[&PassSource] = &[
-    &EYE,
-    &WATER_GBUFFER,
-    &TERRAIN_GBUFFER,
-    &PHOTONS,
-    &COMPOSE,
-    &DISPERSE,
-];
+passes! {
+    EYE = "cascaded eye depth", [OPTICS, WATER, COMMON], "cascaded/eye.wgsl";
+    WATER_GBUFFER = "cascaded water G-buffer", [OPTICS, WATER, COMMON], "cascaded/water.wgsl";
+    TERRAIN_GBUFFER = "cascaded terrain G-buffer", [OPTICS, WATER, COMMON], "cascaded/terrain.wgsl";
+    PHOTONS = "cascaded photons", [OPTICS, WATER, COMMON], "cascaded/photons.wgsl";
+    COMPOSE = "cascaded composition", [OPTICS, WATER, COMMON], "cascaded/compose.wgsl";
+    DISPERSE = "cascaded dispersion", [OPTICS, WATER, COMMON], "cascaded/disperse.wgsl";
+}
 
 /// Mirrors `Cascaded` in `cascaded/common.wgsl`.
 #[repr(C)]
@@ -203,7 +165,7 @@ pub struct Cascaded {
 
 /// One frame's resources for a setup, bind groups included: built once, encoded every frame (the
 /// water texture bound at creation is read afresh by every encode).
-pub struct Frame {
+pub struct CascadedResources {
     pub setup: CascadedSetup,
     /// Per cascade, the uniform block its passes read (cascade 0's also serves the eye,
     /// composition and dispersion passes).
@@ -226,7 +188,7 @@ pub struct Frame {
     pub other_bytes: u64,
 }
 
-impl Frame {
+impl CascadedResources {
     pub fn bytes(&self) -> u64 {
         self.gbuffer_bytes + CASCADES as u64 * self.cascade_map_bytes + self.other_bytes
     }
@@ -317,7 +279,7 @@ impl Cascaded {
         setup: &CascadedSetup,
         water: &wgpu::TextureView,
         terrain: Option<&Grid>,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<CascadedResources, GpuError> {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let res = setup.res as u32;
@@ -443,7 +405,7 @@ impl Cascaded {
         });
         ctx.check()?;
         let screen = w as u64 * h as u64;
-        Ok(Frame {
+        Ok(CascadedResources {
             setup: setup.clone(),
             uniforms,
             eye,
@@ -500,7 +462,7 @@ impl Cascaded {
     /// Record one pass (the screen-space maps are cleared before the eye pass).
     pub fn encode_pass(
         &self,
-        frame: &Frame,
+        frame: &CascadedResources,
         encoder: &mut wgpu::CommandEncoder,
         pass: Pass,
         timer: &mut Option<&mut GpuTimer>,
@@ -528,7 +490,7 @@ impl Cascaded {
     /// Record cascade `k`'s G-buffer passes (water, then terrain when the setup has the pass).
     pub fn encode_gbuffers(
         &self,
-        frame: &Frame,
+        frame: &CascadedResources,
         encoder: &mut wgpu::CommandEncoder,
         k: usize,
         timer: &mut Option<&mut GpuTimer>,
@@ -541,14 +503,14 @@ impl Cascaded {
 
     /// The texture a frame's image ends in (`Rgba32Float`: `[r, g, b, cascade]`, as the CPU twin's
     /// `CascadedFrame::image`).
-    pub fn output<'f>(&self, frame: &'f Frame) -> &'f wgpu::Texture {
+    pub fn output<'f>(&self, frame: &'f CascadedResources) -> &'f wgpu::Texture {
         frame.dispersed.as_ref().unwrap_or(&frame.image)
     }
 
     /// Record the whole technique. Returns the texture the image ends in.
     pub fn encode<'f>(
         &self,
-        frame: &'f Frame,
+        frame: &'f CascadedResources,
         encoder: &mut wgpu::CommandEncoder,
         mut timer: Option<&mut GpuTimer>,
     ) -> &'f wgpu::Texture {
@@ -562,7 +524,7 @@ impl Cascaded {
     pub fn gbuffers(
         &self,
         ctx: &GpuContext,
-        frame: &Frame,
+        frame: &CascadedResources,
         k: usize,
     ) -> Result<(Vec<[f32; 4]>, Vec<f32>), GpuError> {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
@@ -575,7 +537,11 @@ impl Cascaded {
     }
 
     /// Run the technique once on `frame` and read everything back.
-    pub fn run(&self, ctx: &GpuContext, frame: &Frame) -> Result<GpuCascadedFrame, GpuError> {
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        frame: &CascadedResources,
+    ) -> Result<GpuCascadedFrame, GpuError> {
         self.run_timed(ctx, frame, None)
     }
 
@@ -583,7 +549,7 @@ impl Cascaded {
     pub fn run_timed(
         &self,
         ctx: &GpuContext,
-        frame: &Frame,
+        frame: &CascadedResources,
         mut timer: Option<&mut GpuTimer>,
     ) -> Result<GpuCascadedFrame, GpuError> {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());

@@ -10,9 +10,9 @@
 
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques::cascaded::{self, CascadedParams, CascadedSetup};
-use caustics_core::techniques::{Descriptor, Job, Made, SceneCaustics};
+use caustics_core::techniques::{Descriptor, Job, JobOutput, SceneCaustics};
 
-use super::{Cascaded, Frame};
+use super::{Cascaded, CascadedResources};
 use crate::adapter::Pipelines;
 use crate::technique::{Output, Registered, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -31,7 +31,7 @@ pub type CascadedTechnique = crate::adapter::Resident<Cascaded>;
 
 impl Pipelines for Cascaded {
     type Params = CascadedParams;
-    type Frame = Frame;
+    type Frame = CascadedResources;
 
     fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         Cascaded::new(ctx)
@@ -62,7 +62,7 @@ impl Pipelines for Cascaded {
         params: &CascadedParams,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<CascadedResources, GpuError> {
         let setup = CascadedSetup::from_scene(scene, params)?;
         Cascaded::frame(
             self,
@@ -80,7 +80,7 @@ impl Pipelines for Cascaded {
         &self,
         ctx: &GpuContext,
         params: &CascadedParams,
-        frame: &mut Frame,
+        frame: &mut CascadedResources,
         scene: &Scene,
     ) -> Result<bool, GpuError> {
         let setup = CascadedSetup::from_scene(scene, params)?;
@@ -93,18 +93,18 @@ impl Pipelines for Cascaded {
 
     fn encode(
         &self,
-        frame: &Frame,
+        frame: &CascadedResources,
         encoder: &mut wgpu::CommandEncoder,
         timer: Option<&mut GpuTimer>,
     ) {
         Cascaded::encode(self, frame, encoder, timer);
     }
 
-    fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
+    fn output<'a>(&'a self, frame: &'a CascadedResources) -> Output<'a> {
         Output::EyeSpace(Cascaded::output(self, frame))
     }
 
-    fn bytes(frame: &Frame) -> u64 {
+    fn bytes(frame: &CascadedResources) -> u64 {
         frame.bytes()
     }
 
@@ -117,14 +117,14 @@ impl Pipelines for Cascaded {
         params: &toml::Table,
         timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
+    ) -> Result<JobOutput, GpuError> {
         let (setup, water) = cascaded::job_setup(job, params)?;
         let terrain = job.scene.floor.terrain.as_ref();
         let image = self
             .caustics_timed(ctx, &setup, &water, terrain, timer)?
             .image;
         progress(1, 1);
-        Ok(Made {
+        Ok(JobOutput {
             caustics: SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {
                 width: setup.eye.width,
                 height: setup.eye.height,

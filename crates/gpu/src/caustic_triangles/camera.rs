@@ -12,17 +12,12 @@ use caustics_core::scene::Camera;
 use caustics_core::techniques::caustic_triangles::camera::CameraParams;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 
-use super::{CausticTriangles, CausticTrianglesUniform, Frame, LightCubeTarget, Reconstruction};
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{OPTICS, PassSource};
-use crate::{GpuContext, GpuError, GpuTimer};
-
-pub const CAMERA: PassSource = PassSource {
-    name: "caustic-triangles camera pass",
-    shared: &[OPTICS, super::COMMON, super::DISTANCE_MAP],
-    file: "caustic_triangles/camera.wgsl",
-    source: include_str!("camera.wgsl"),
+use super::CAMERA;
+use super::{
+    CausticTriangles, CausticTrianglesUniform, GeneratorFrame, LightCubeTarget, Reconstruction,
 };
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::{GpuContext, GpuError, GpuTimer};
 
 /// Mirrors `CameraPass` in `caustic_triangles/camera.wgsl`.
 #[repr(C)]
@@ -86,7 +81,7 @@ impl CameraRenderer {
         let point = first.0.point;
         let (w, h) = (camera.width, camera.height);
         ctx.check_buffer_size("caustic-triangles camera image", w as u64 * h as u64 * 16)?;
-        let frames: Vec<Frame> = generators
+        let frames: Vec<GeneratorFrame> = generators
             .iter()
             .map(|(s, dm)| ct.frame(ctx, s, dm))
             .collect::<Result<_, _>>()?;

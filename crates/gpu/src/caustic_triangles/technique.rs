@@ -3,10 +3,10 @@
 //! - **Water** (a scene with water): the water surface is the generator ([`WaterFrame`]) and reads
 //!   the caller's heights texture; the copy band pass fits the shifted copies of tiling water on
 //!   the GPU, so a frame reads nothing back and uploads nothing but a changed uniform.
-//! - **Glass** (a scene without water): one [`Frame`] per glass object, its distance map built on
-//!   the CPU at configure (`DistanceMap::build`: it depends on the objects only, so it is rebuilt
-//!   when they move, and moving them is a configure), every generator drawing additively into one
-//!   floor map cleared by the first. A moving light is a uniform write per generator.
+//! - **Glass** (a scene without water): one [`GeneratorFrame`] per glass object, its distance map
+//!   built on the CPU at configure (`DistanceMap::build`: it depends on the objects only, so it is
+//!   rebuilt when they move, and moving them is a configure), every generator drawing additively
+//!   into one floor map cleared by the first. A moving light is a uniform write per generator.
 //!
 //! The map is the floor square `[0, size]²` at the scene's caustics resolution, as the CPU twin's
 //! (`caustics_core::techniques::caustic_triangles::render`).
@@ -17,9 +17,11 @@ use caustics_core::techniques::caustic_triangles::water::{WaterSetup, check_flat
 use caustics_core::techniques::caustic_triangles::{
     CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, GlassScene, PointLight,
 };
-use caustics_core::techniques::{Descriptor, Job, Made};
+use caustics_core::techniques::{Descriptor, Job, JobOutput};
 
-use super::{CausticTriangles, CausticTrianglesUniform, Frame, Reconstruction, WaterFrame};
+use super::{
+    CausticTriangles, CausticTrianglesUniform, GeneratorFrame, Reconstruction, WaterFrame,
+};
 use crate::adapter::Pipelines;
 use crate::technique::{Output, OwnImage, Registered, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -51,7 +53,7 @@ pub struct Generator {
     /// Its distance map's frame (centre, radius, sizes) for the uniform; the texels are on the
     /// GPU only.
     dm: DistanceMap,
-    frame: Frame,
+    frame: GeneratorFrame,
 }
 
 /// What the glass generators' uniforms depend on in a scene, besides the objects.
@@ -363,13 +365,13 @@ impl Pipelines for CausticTriangles {
         params: &toml::Table,
         mut timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
+    ) -> Result<JobOutput, GpuError> {
         let gpu = &*self;
         if job.scene.water.is_some() {
             let (ws, heights) = ct::water_job_setup(job, params)?;
             let (map, walls) = gpu.water_caustics_walls(ctx, &ws, &heights, timer)?;
             progress(1, 1);
-            return Ok(Made::floor(map, walls));
+            return Ok(JobOutput::floor(map, walls));
         }
         let params = CausticTrianglesParams::from_table(params)?;
         let glass = ct::glass_generators(job.scene)?;
@@ -398,6 +400,9 @@ impl Pipelines for CausticTriangles {
             });
             progress(k + 1, glass);
         }
-        Ok(Made::floor(total.expect("one glass object at least"), None))
+        Ok(JobOutput::floor(
+            total.expect("one glass object at least"),
+            None,
+        ))
     }
 }

@@ -24,11 +24,11 @@
 //! - The water is the heights texture the techniques read ([`crate::WaterTextures`]), through the
 //!   bicubic of `water.wgsl` with the water's edge rule per tap, as the CPU's `Grid::sample`: in
 //!   Hermite form (`grid_sample_hermite`, from the texels' central differences written once a
-//!   frame), which reads 4 texels where `grid_sample` reads 16 for the same surface (the final
-//!   image's pass took 0.50 to 0.67 times its time on lavapipe, docs/benchmarks.md). A procedural surface is therefore the grid's interpolant here; render on the
-//!   CPU with the grid's surface ([`water_grid`] is the one [`FinalImage::render_with`] uploads)
-//!   for an exact comparison. The slab the surface lies in is found from that texture on the GPU
-//!   each frame, as the CPU finds it from its surface.
+//!   frame), which reads 4 texels where `grid_sample` reads 16 for the same surface (the time it
+//!   saves: docs/benchmarks.md). A procedural surface is therefore the grid's interpolant here;
+//!   render on the CPU with the grid's surface ([`water_grid`] is the one
+//!   [`FinalImage::render_with`] uploads) for an exact comparison. The slab the surface lies in is
+//!   found from that texture on the GPU each frame, as the CPU finds it from its surface.
 //! - The terrain is an `R32Float` texture through the same `grid_sample`, clamped; the caustics
 //!   are the technique's output texture, bound as it is: a floor map read by hand over each
 //!   sample's footprint through its pyramid like `MapPyramid::filtered` (the pyramid's levels below
@@ -68,34 +68,17 @@ use caustics_core::water::Surface;
 
 use crate::map_mips::{MapMips, mip_chain, mips_pipeline};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{BVH, OPTICS, PassSource, SHADING, WATER};
+use crate::shaders::{BVH, OPTICS, SHADING, WATER, passes};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError, GpuTimer};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
-pub const FINAL_IMAGE: PassSource = PassSource {
-    name: "final image",
-    shared: &[OPTICS, WATER, SHADING, BVH],
-    file: "final_image/final_image.wgsl",
-    source: include_str!("final_image.wgsl"),
-};
-
-pub const FINAL_IMAGE_SLAB: PassSource = PassSource {
-    name: "final image slab",
-    shared: &[WATER],
-    file: "final_image/final_image_slab.wgsl",
-    source: include_str!("final_image_slab.wgsl"),
-};
-
-/// The final image's passes.
-pub const PASSES: &[&PassSource] = &[
-    &FINAL_IMAGE,
-    &FINAL_IMAGE_SLAB,
-    &slopes::WATER_SLOPES_BASE,
-    &slopes::WATER_SLOPES_HALVE,
-];
+passes! {
+    FINAL_IMAGE = "final image", [OPTICS, WATER, SHADING, BVH], "final_image/final_image.wgsl";
+    FINAL_IMAGE_SLAB = "final image slab", [WATER], "final_image/final_image_slab.wgsl";
+}
 
 /// Pixels per workgroup side (`@workgroup_size(8, 8)`, both passes).
 const TILE: u32 = 8;

@@ -8,25 +8,16 @@
 //! alone (`slope_level` in `final_image.wgsl`).
 
 use crate::pass::{bind_group, compute_pipeline};
-use crate::shaders::{PassSource, WATER};
+use crate::shaders::{WATER, passes};
 use crate::{GpuContext, GpuError};
 
 /// The level uniform both passes read.
 const WATER_SLOPES: &str = include_str!("water_slopes.wgsl");
 
-pub const WATER_SLOPES_BASE: PassSource = PassSource {
-    name: "water slopes base",
-    shared: &[WATER, WATER_SLOPES],
-    file: "final_image/water_slopes_base.wgsl",
-    source: include_str!("water_slopes_base.wgsl"),
-};
-
-pub const WATER_SLOPES_HALVE: PassSource = PassSource {
-    name: "water slopes halve",
-    shared: &[WATER_SLOPES],
-    file: "final_image/water_slopes_halve.wgsl",
-    source: include_str!("water_slopes_halve.wgsl"),
-};
+passes! {
+    WATER_SLOPES_BASE = "water slopes base", [WATER, WATER_SLOPES], "final_image/water_slopes_base.wgsl";
+    WATER_SLOPES_HALVE = "water slopes halve", [WATER_SLOPES], "final_image/water_slopes_halve.wgsl";
+}
 
 /// The moments a texel holds: `E[h_x]`, `E[h_y]`, `E[h_x²]`, `E[h_y²]`, `E[h_x h_y]`.
 pub const MOMENTS: usize = 5;

@@ -1,6 +1,6 @@
 // Technique `procedural` (paper 2, Sanchez-Crespo): the uniform block, the bindings and the per-point
 // caustic every evaluating pass shares. Mirrors `ProceduralUniform` in procedural/mod.rs and
-// `ProceduralSetup`, `trace` and `caustic_at` in caustics-core/src/techniques/procedural.rs.
+// `ProceduralSetup`, `trace` and `caustic_at` in caustics-core/src/techniques/procedural/.
 struct Procedural {
     sun_x: vec4<f32>,      // xyz: e1 of the sun frame (its tangent plane)
     sun_y: vec4<f32>,      // xyz: e2

@@ -5,11 +5,11 @@
 //!
 //! | variant | pass | WGSL | CPU twin |
 //! |---|---|---|---|
-//! | vertex | caustic per mesh vertex (vertex shader), linear over the triangles (rasteriser) | `procedural/vertex.wgsl` | `vertex_values` + `rasterise` |
-//! | screen | caustic per map pixel, no filtering (fragment) | `screen.wgsl` | `per_pixel` |
-//! | texture | caustic per texel of the fixed-size target, mip level 0 (fragment) | `target.wgsl` | `per_pixel` |
-//! | texture | one 2 x 2 box downsample per mip level (fragment) | `downsample.wgsl` | `mip_chain` |
-//! | texture | the map reads the chain: trilinear, `anisotropy_clamp` 16 (fragment) | `resample.wgsl` | `resample` |
+//! | vertex | caustic per mesh vertex (vertex shader), linear over the triangles (rasteriser) | `procedural/vertex.wgsl` | `vertex::vertex_values` + `vertex::rasterise` |
+//! | screen | caustic per map pixel, no filtering (fragment) | `screen.wgsl` | `screen::per_pixel` |
+//! | texture | caustic per texel of the fixed-size target, mip level 0 (fragment) | `target.wgsl` | `target::target_pass` (`per_pixel` at the target's size) |
+//! | texture | one 2 x 2 box downsample per mip level (fragment) | `downsample.wgsl` | `downsample::mip_chain` |
+//! | texture | the map reads the chain: trilinear, `anisotropy_clamp` 16 (fragment) | `resample.wgsl` | `resample::resample` |
 //!
 //! Every evaluating pass shares `common.wgsl` (`procedural_caustic`), which reuses the shared
 //! `refract_dir`, `height_field_normal`, `procedural_wave` and `grid_sample`. The map and the target
@@ -21,7 +21,7 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
 use crate::pass::bind_group;
-use crate::shaders::{OPTICS, PassSource, WATER};
+use crate::shaders::{OPTICS, PassSource, WATER, passes};
 use crate::water::GpuProceduralWave;
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
@@ -29,42 +29,16 @@ pub mod technique;
 
 const COMMON: &str = include_str!("common.wgsl");
 
-pub const VERTEX: PassSource = PassSource {
-    name: "procedural vertex",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "procedural/vertex.wgsl",
-    source: include_str!("vertex.wgsl"),
-};
-pub const SCREEN: PassSource = PassSource {
-    name: "procedural screen",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "procedural/screen.wgsl",
-    source: include_str!("screen.wgsl"),
-};
-pub const TARGET: PassSource = PassSource {
-    name: "procedural target",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "procedural/target.wgsl",
-    source: include_str!("target.wgsl"),
-};
-pub const DOWNSAMPLE: PassSource = PassSource {
-    name: "procedural downsample",
-    shared: &[],
-    file: "procedural/downsample.wgsl",
-    source: include_str!("downsample.wgsl"),
-};
-pub const RESAMPLE: PassSource = PassSource {
-    name: "procedural resample",
-    shared: &[OPTICS, WATER, COMMON],
-    file: "procedural/resample.wgsl",
-    source: include_str!("resample.wgsl"),
-};
-
-/// Every pass of the technique, for its registry entry.
-pub const PASSES: &[&PassSource] = &[&VERTEX, &SCREEN, &TARGET, &DOWNSAMPLE, &RESAMPLE];
+passes! {
+    VERTEX = "procedural vertex", [OPTICS, WATER, COMMON], "procedural/vertex.wgsl";
+    SCREEN = "procedural screen", [OPTICS, WATER, COMMON], "procedural/screen.wgsl";
+    TARGET = "procedural target", [OPTICS, WATER, COMMON], "procedural/target.wgsl";
+    DOWNSAMPLE = "procedural downsample", [], "procedural/downsample.wgsl";
+    RESAMPLE = "procedural resample", [OPTICS, WATER, COMMON], "procedural/resample.wgsl";
+}
 
 /// Mirrors `Procedural` in `procedural/common.wgsl` and `ProceduralSetup` in
-/// caustics-core/src/techniques/procedural.rs.
+/// caustics-core/src/techniques/procedural/mod.rs.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ProceduralUniform {
@@ -187,8 +161,8 @@ fn render_pipeline(
 }
 
 /// One frame's resources for a given setup and water, bind groups included: a frame is built once
-/// and encoded every time the water moves ([`Frame::update_water`]).
-pub struct Frame {
+/// and encoded every time the water moves ([`ProceduralFrame::update_water`]).
+pub struct ProceduralFrame {
     uniform: wgpu::Buffer,
     /// The heights it uploaded itself ([`ProceduralCaustics::frame`]); `None` when it reads the
     /// caller's ([`ProceduralCaustics::frame_with_water`]).
@@ -222,7 +196,7 @@ enum FramePasses {
     },
 }
 
-impl Frame {
+impl ProceduralFrame {
     /// GPU memory this frame's textures and buffers take, bytes.
     pub fn bytes(&self) -> u64 {
         self.bytes
@@ -343,7 +317,7 @@ impl ProceduralCaustics {
         ctx: &GpuContext,
         setup: &ProceduralSetup,
         water: &SurfaceInput,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<ProceduralFrame, GpuError> {
         let heights = match water {
             SurfaceInput::Grid(g) => ctx.upload_grid("procedural height field", g)?,
             // The wave is evaluated in the shader; the binding still needs a texture.
@@ -370,7 +344,7 @@ impl ProceduralCaustics {
         ctx: &GpuContext,
         setup: &ProceduralSetup,
         water: &WaterTextures,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<ProceduralFrame, GpuError> {
         self.build(ctx, setup, None, &water.heights)
     }
 
@@ -380,7 +354,7 @@ impl ProceduralCaustics {
         setup: &ProceduralSetup,
         wave: Option<GpuProceduralWave>,
         heights_view: &wgpu::TextureView,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<ProceduralFrame, GpuError> {
         use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
@@ -515,7 +489,7 @@ impl ProceduralCaustics {
             }
         };
         ctx.check()?;
-        Ok(Frame {
+        Ok(ProceduralFrame {
             uniform,
             heights: None,
             wave,
@@ -530,7 +504,7 @@ impl ProceduralCaustics {
     /// Record the variant's passes for `frame`. Returns the texture the map ends in.
     pub fn encode<'f>(
         &self,
-        frame: &'f Frame,
+        frame: &'f ProceduralFrame,
         encoder: &mut wgpu::CommandEncoder,
         mut timer: Option<&mut GpuTimer>,
     ) -> &'f wgpu::Texture {

@@ -6,7 +6,7 @@ use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques::procedural::{
     self, ProceduralCausticsParams, ProceduralSetup, SurfaceInput, Variant,
 };
-use caustics_core::techniques::{Descriptor, Job, Made};
+use caustics_core::techniques::{Descriptor, Job, JobOutput};
 use glam::DVec3;
 
 use super::ProceduralCaustics;
@@ -35,9 +35,10 @@ pub struct Params {
     sun: ProceduralCausticsParams,
 }
 
-/// A configured frame and the scene it was made for.
-pub struct Frame {
-    pub frame: super::Frame,
+/// A [`super::ProceduralFrame`] and the scene it was configured for, which `refit` compares a new
+/// scene against.
+pub struct ConfiguredProcedural {
+    pub frame: super::ProceduralFrame,
     key: SceneKey,
 }
 
@@ -93,7 +94,7 @@ fn fixed_by(entry: &Descriptor) -> Option<Variant> {
 
 impl Pipelines for ProceduralCaustics {
     type Params = Params;
-    type Frame = Frame;
+    type Frame = ConfiguredProcedural;
 
     fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         ProceduralCaustics::new(ctx)
@@ -159,10 +160,10 @@ impl Pipelines for ProceduralCaustics {
         params: &Params,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<ConfiguredProcedural, GpuError> {
         let key = SceneKey::of(scene)?;
         let setup = key.setup(&params.params)?;
-        Ok(Frame {
+        Ok(ConfiguredProcedural {
             frame: self.frame_with_water(ctx, &setup, water)?,
             key,
         })
@@ -172,7 +173,7 @@ impl Pipelines for ProceduralCaustics {
         &self,
         ctx: &GpuContext,
         params: &Params,
-        frame: &mut Frame,
+        frame: &mut ConfiguredProcedural,
         scene: &Scene,
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
@@ -191,18 +192,18 @@ impl Pipelines for ProceduralCaustics {
 
     fn encode(
         &self,
-        frame: &Frame,
+        frame: &ConfiguredProcedural,
         encoder: &mut wgpu::CommandEncoder,
         timer: Option<&mut GpuTimer>,
     ) {
         ProceduralCaustics::encode(self, &frame.frame, encoder, timer);
     }
 
-    fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
+    fn output<'a>(&'a self, frame: &'a ConfiguredProcedural) -> Output<'a> {
         Output::Floor(&frame.frame.map)
     }
 
-    fn bytes(frame: &Frame) -> u64 {
+    fn bytes(frame: &ConfiguredProcedural) -> u64 {
         frame.frame.bytes()
     }
 
@@ -215,9 +216,9 @@ impl Pipelines for ProceduralCaustics {
         tables: &toml::Table,
         timer: Option<&mut GpuTimer>,
         _progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
+    ) -> Result<JobOutput, GpuError> {
         let (setup, heights) = procedural::job_setup(job, tables)?;
         let map = self.caustics_timed(ctx, &setup, &SurfaceInput::Grid(&heights), timer)?;
-        Ok(Made::floor(map, None))
+        Ok(JobOutput::floor(map, None))
     }
 }

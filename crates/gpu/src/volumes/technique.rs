@@ -4,7 +4,7 @@
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::volumes::{self, VolumesInput, VolumesParams, VolumesSetup};
-use caustics_core::techniques::{Descriptor, Job, Made};
+use caustics_core::techniques::{Descriptor, Job, JobOutput};
 use glam::DVec3;
 
 use super::Volumes;
@@ -19,9 +19,10 @@ pub const REGISTERED: Registered =
 /// The `volumes` technique resident on the GPU.
 pub type VolumesTechnique = crate::adapter::Resident<Volumes>;
 
-/// A configured frame and the scene it was made for.
-pub struct Frame {
-    pub frame: super::Frame,
+/// A [`super::VolumesFrame`] and the scene it was configured for, which `refit` compares a new
+/// scene against.
+pub struct ConfiguredVolumes {
+    pub frame: super::VolumesFrame,
     /// The scene as configured, objects included: a new sun or camera goes into it and the setup
     /// is derived again, without the meshes being read from the scene again.
     input: VolumesInput,
@@ -79,7 +80,7 @@ impl SceneKey {
 
 impl Pipelines for Volumes {
     type Params = VolumesParams;
-    type Frame = Frame;
+    type Frame = ConfiguredVolumes;
 
     fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         Volumes::new(ctx)
@@ -105,19 +106,19 @@ impl Pipelines for Volumes {
         params: &VolumesParams,
         scene: &Scene,
         water: &WaterTextures,
-    ) -> Result<Frame, GpuError> {
+    ) -> Result<ConfiguredVolumes, GpuError> {
         let key = SceneKey::of(scene)?;
         let input = VolumesInput::from_scene(scene)?;
         let setup = VolumesSetup::new(params, &input)?;
         let frame = self.frame_with_water(ctx, &setup, &input, water, key.wrap, None)?;
-        Ok(Frame { frame, input, key })
+        Ok(ConfiguredVolumes { frame, input, key })
     }
 
     fn refit(
         &self,
         ctx: &GpuContext,
         params: &VolumesParams,
-        c: &mut Frame,
+        c: &mut ConfiguredVolumes,
         scene: &Scene,
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
@@ -136,21 +137,26 @@ impl Pipelines for Volumes {
         Ok(false)
     }
 
-    fn encode(&self, c: &Frame, encoder: &mut wgpu::CommandEncoder, timer: Option<&mut GpuTimer>) {
+    fn encode(
+        &self,
+        c: &ConfiguredVolumes,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: Option<&mut GpuTimer>,
+    ) {
         Volumes::encode(self, &c.frame, encoder, timer);
     }
 
-    fn output<'a>(&'a self, c: &'a Frame) -> Output<'a> {
+    fn output<'a>(&'a self, c: &'a ConfiguredVolumes) -> Output<'a> {
         Output::Floor(&c.frame.floor)
     }
 
     /// The walls' maps on a scene with walls, in the floor map's format (`Rgba16Float` where the
     /// device cannot blend 32-bit floats).
-    fn walls(c: &Frame) -> Option<WallsOutput<'_>> {
+    fn walls(c: &ConfiguredVolumes) -> Option<WallsOutput<'_>> {
         c.frame.walls.as_ref().map(|w| w.output())
     }
 
-    fn bytes(c: &Frame) -> u64 {
+    fn bytes(c: &ConfiguredVolumes) -> u64 {
         c.frame.bytes()
     }
 
@@ -163,11 +169,11 @@ impl Pipelines for Volumes {
         params: &toml::Table,
         _timer: Option<&mut GpuTimer>,
         progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
+    ) -> Result<JobOutput, GpuError> {
         let (setup, input, heights, wrap) = volumes::job_setup(job, params)?;
         let out = self.run(ctx, &setup, &input, &heights, wrap, None)?;
         progress(1, 1);
-        Ok(Made::floor(out.floor, out.walls))
+        Ok(JobOutput::floor(out.floor, out.walls))
     }
 }
 

@@ -33,38 +33,17 @@ use super::ocean::GpuOcean;
 use super::ripple::GpuRipples;
 use super::{GpuProceduralWave, GpuSineWave};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{self, PassSource};
+use crate::shaders::{self, PassSource, passes};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 const FIELD: &str = include_str!("water_field.wgsl");
 
-pub const WAVES: PassSource = PassSource {
-    name: "water_field_waves",
-    shared: &[shaders::WATER, FIELD],
-    file: "water/water_field_waves.wgsl",
-    source: include_str!("water_field_waves.wgsl"),
-};
-
-pub const PROCEDURAL: PassSource = PassSource {
-    name: "water_field_procedural",
-    shared: &[shaders::WATER, FIELD],
-    file: "water/water_field_procedural.wgsl",
-    source: include_str!("water_field_procedural.wgsl"),
-};
-
-pub const GRID: PassSource = PassSource {
-    name: "water_field_grid",
-    shared: &[shaders::WATER, FIELD],
-    file: "water/water_field_grid.wgsl",
-    source: include_str!("water_field_grid.wgsl"),
-};
-
-pub const RIPPLE_CLEAR: PassSource = PassSource {
-    name: "ripple_clear",
-    shared: &[],
-    file: "water/ripple_clear.wgsl",
-    source: include_str!("ripple_clear.wgsl"),
-};
+passes! {
+    WAVES = "water_field_waves", [shaders::WATER, FIELD], "water/water_field_waves.wgsl";
+    PROCEDURAL = "water_field_procedural", [shaders::WATER, FIELD], "water/water_field_procedural.wgsl";
+    GRID = "water_field_grid", [shaders::WATER, FIELD], "water/water_field_grid.wgsl";
+    RIPPLE_CLEAR = "ripple_clear", [], "water/ripple_clear.wgsl";
+}
 
 /// Mirrors `FieldParams` in `water/water_field.wgsl`.
 #[repr(C)]

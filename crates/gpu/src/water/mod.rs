@@ -5,23 +5,8 @@ pub mod ocean;
 pub mod patches;
 pub mod ripple;
 
-use crate::shaders::PassSource;
 use caustics_core::water::procedural::Procedural;
 use caustics_core::water::waves::Waves;
-
-/// The water's passes: the ocean's spectrum and FFT, the ripples, the fields, the Hermite patches.
-pub const PASSES: &[&PassSource] = &[
-    &ocean::OCEAN_SPECTRUM,
-    &ocean::OCEAN_FFT,
-    &ocean::OCEAN_OUTPUT,
-    &ripple::RIPPLE_STEP,
-    &ripple::RIPPLE_DROP,
-    &field::WAVES,
-    &field::PROCEDURAL,
-    &field::GRID,
-    &field::RIPPLE_CLEAR,
-    &patches::WATER_PATCHES,
-];
 
 /// Mirrors `SineWave` in `shaders/water.wgsl`.
 #[repr(C)]

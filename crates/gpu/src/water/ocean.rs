@@ -20,30 +20,15 @@
 use caustics_core::water::ocean::Ocean;
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::PassSource;
+use crate::shaders::{PassSource, passes};
 use crate::timing::GpuTimer;
 use crate::{GpuContext, GpuError};
 
-pub const OCEAN_SPECTRUM: PassSource = PassSource {
-    name: "ocean_spectrum",
-    shared: &[],
-    file: "water/ocean_spectrum.wgsl",
-    source: include_str!("ocean_spectrum.wgsl"),
-};
-
-pub const OCEAN_FFT: PassSource = PassSource {
-    name: "ocean_fft",
-    shared: &[],
-    file: "water/ocean_fft.wgsl",
-    source: include_str!("ocean_fft.wgsl"),
-};
-
-pub const OCEAN_OUTPUT: PassSource = PassSource {
-    name: "ocean_output",
-    shared: &[],
-    file: "water/ocean_output.wgsl",
-    source: include_str!("ocean_output.wgsl"),
-};
+passes! {
+    OCEAN_SPECTRUM = "ocean_spectrum", [], "water/ocean_spectrum.wgsl";
+    OCEAN_FFT = "ocean_fft", [], "water/ocean_fft.wgsl";
+    OCEAN_OUTPUT = "ocean_output", [], "water/ocean_output.wgsl";
+}
 
 /// Mirrors `SpectrumParams` in `water/ocean_spectrum.wgsl`.
 #[repr(C)]

@@ -3,19 +3,15 @@
 //! (`water/water_patches.wgsl`), written once a frame, so that `grid_sample_hermite` reads the 4
 //! texels around a point where `grid_sample`'s bicubic reads 16. Catmull-Rom is the cubic Hermite
 //! spline on central differences, so the surface is the same (the CPU twins keep sampling their
-//! grids bicubically). Measured on lavapipe: the bicubic reads were about 60 % of yuksel's frame,
-//! which this took from 432-458 ms to 170-176 ms on the pool (docs/benchmarks.md).
+//! grids bicubically). What it saves the passes that sample the water: docs/benchmarks.md.
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{PassSource, WATER};
+use crate::shaders::{WATER, passes};
 use crate::{GpuContext, GpuTimer};
 
-pub const WATER_PATCHES: PassSource = PassSource {
-    name: "water patches",
-    shared: &[WATER],
-    file: "water/water_patches.wgsl",
-    source: include_str!("water_patches.wgsl"),
-};
+passes! {
+    WATER_PATCHES = "water patches", [WATER], "water/water_patches.wgsl";
+}
 
 /// Mirrors `Patches` in `water/water_patches.wgsl`.
 #[repr(C)]

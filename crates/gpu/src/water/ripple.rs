@@ -10,22 +10,13 @@ use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::PassSource;
+use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
-pub const RIPPLE_STEP: PassSource = PassSource {
-    name: "ripple_step",
-    shared: &[],
-    file: "water/ripple_step.wgsl",
-    source: include_str!("ripple_step.wgsl"),
-};
-
-pub const RIPPLE_DROP: PassSource = PassSource {
-    name: "ripple_drop",
-    shared: &[],
-    file: "water/ripple_drop.wgsl",
-    source: include_str!("ripple_drop.wgsl"),
-};
+passes! {
+    RIPPLE_STEP = "ripple_step", [], "water/ripple_step.wgsl";
+    RIPPLE_DROP = "ripple_drop", [], "water/ripple_drop.wgsl";
+}
 
 /// Most queued drops one [`GpuRipples::encode`] records: each needs its own uniform slot, because
 /// every `write_buffer` lands before the submission and a shared slot would hold only the last

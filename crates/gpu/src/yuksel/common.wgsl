@@ -1,5 +1,5 @@
 // Technique `yuksel` (paper 1): the uniform block every pass shares. Mirrors `YukselUniform` in
-// yuksel/mod.rs and `YukselSetup` in caustics-core/src/techniques/yuksel.rs.
+// yuksel/mod.rs and `YukselSetup` in caustics-core/src/techniques/yuksel/mod.rs.
 struct Yuksel {
     light: vec4<f32>,         // xyz: unit direction the light travels; w: eta = 1 / ior
     pixel: vec2<f32>,         // map pixel size, world units
@@ -37,7 +37,7 @@ fn pre_texel(xy: vec2<i32>, tile: vec2<u32>) -> vec3<i32> {
 }
 
 // The gather region, written by the region pass (`region.wgsl`) and read by every other pass.
-// Mirrors `Region` in caustics-core/src/techniques/yuksel.rs: samples at column offsets
+// Mirrors `Region` in caustics-core/src/techniques/yuksel/mod.rs: samples at column offsets
 // shift.x + [-N/2, N/2] and row offsets shift.y + [-M/2, M/2] from a pixel's own sample, all
 // in the pixels of the level's map.
 struct YukselRegion {
@@ -91,7 +91,7 @@ fn half_widths(packed: f32) -> vec2<f32> {
 }
 
 // How many records a side a pixel has in the pre-pass (t of k), in its records' sign bits: none
-// for k, x for 1, y for 2, both for 4. CPU twin: `Tier` in yuksel.rs.
+// for k, x for 1, y for 2, both for 4. CPU twin: `Tier` in core's yuksel/prepass.rs.
 fn tier_bits(t: u32, k: u32) -> u32 {
     if t >= k {
         return 0u;

@@ -5,7 +5,7 @@
 // edge midpoints along x and the k above, the k below kept from the row before, so a pixel
 // refracts (3k + 1) k + k rays (56 at k = 4) where its footprints one at a time would refract
 // 5 k² (80). The same points as `yuksel_part` (`yuksel_lattice` places them), so the same records.
-// CPU twin: `prepass` in yuksel.rs.
+// CPU twin: `prepass` in core's yuksel/prepass.rs.
 
 // The fill's indirect dispatch (workgroups of `FILL_GROUP` along x, 1, 1) and how many pixels the
 // tier pass listed; x and the count are cleared every frame.
@@ -22,8 +22,8 @@ struct FillArgs {
 const FILL_GROUP: u32 = 64u;
 const FILL_MAX_GROUPS: u32 = 65535u;
 const FILL_STRIDE: u32 = FILL_GROUP * FILL_MAX_GROUPS;
-// Footprints a side at k, at most (`MAX_LEVEL_SUBSAMPLES` in yuksel.rs), and the edges between
-// and around them.
+// Footprints a side at k, at most (`MAX_LEVEL_SUBSAMPLES` in core's yuksel/mod.rs), and the edges
+// between and around them.
 const MAX_FILL: u32 = 8u;
 const MAX_FILL_EDGES: u32 = 9u;
 

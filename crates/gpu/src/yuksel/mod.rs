@@ -2,14 +2,14 @@
 //! The method, its passes and where it departs from the reference are documented with its CPU twin,
 //! `caustics_core::techniques::yuksel`, which these passes mirror one for one:
 //!
-//! | pass | WGSL | CPU twin |
+//! | pass | WGSL | CPU twin (`caustics_core::techniques::yuksel`, crates/core/src/techniques/yuksel/) |
 //! |---|---|---|
 //! | the heights in Hermite form (compute, one texel an invocation; [`crate::water::patches`]), which every ray reads | `water/water_patches.wgsl` | (the grid's bicubic sample) |
-//! | region bound (compute, one texel an invocation) and region (one thread) | `yuksel/region_bound.wgsl`, `region.wgsl` | `YukselSetup::region_for` |
-//! | pre-pass (compute: each pixel's tier, listing the pixels at k; their records, one listed pixel an invocation through an indirect dispatch; the spans) | `yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl`, `fill.wgsl` | `prepass` |
-//! | pass 1 (fragment, multiple render targets) | `yuksel/pass1.wgsl` | `pass1` |
-//! | pass 2 (fragment) | `yuksel/pass2.wgsl` | `pass2` |
-//! | the scatter, the default `passes` (compute: each pixel's tier and records below k, listing the pixels at k; their records; the sums into the map) | `yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `fill.wgsl`, `scatter.wgsl` | `caustics` |
+//! | region bound (compute, one texel an invocation) and region (one thread) | `yuksel/region_bound.wgsl`, `region.wgsl` | `region.rs`: `region_bound`, `YukselSetup::region_for` |
+//! | pre-pass (compute: each pixel's tier, listing the pixels at k; their records, one listed pixel an invocation through an indirect dispatch; the spans) | `yuksel/prepass.wgsl`, `prepass_fill.wgsl`, `prepass_span.wgsl` + `sample.wgsl`, `fill.wgsl` | `prepass.rs`: `prepass` |
+//! | pass 1 (fragment, multiple render targets) | `yuksel/pass1.wgsl` | `pass1.rs`: `pass1` |
+//! | pass 2 (fragment) | `yuksel/pass2.wgsl` | `pass2.rs`: `pass2` (both passes: `caustics`, in `mod.rs`) |
+//! | the scatter, the default `passes` (compute: each pixel's tier and records below k, listing the pixels at k; their records; the sums into the map) | `yuksel/scatter_tier.wgsl`, `scatter_fill.wgsl`, `scatter_resolve.wgsl` + `sample.wgsl`, `fill.wgsl`, `scatter.wgsl` | `scatter.rs`: `scatter_tier`, `scatter_fill`, `add_record`, `scatter_resolve` (all: `scatter`) |
 //!
 //! Pass 1 writes `M + 1` channels into the layers of one `Rgba32Float` array texture, four per
 //! layer, as many layers per draw as the adapter's colour-attachment limits allow (8 targets and
@@ -20,101 +20,46 @@
 //! GPU from the heights, every frame, into a small storage buffer every later pass reads: the
 //! textures are allocated once for the largest region ([`YukselSetup::capacity`]), and the
 //! passes' loops run over this frame's region only.
+//!
+//! This file holds the passes' sources and the pipelines, and records a frame's passes
+//! ([`Yuksel::encode`]); [`frame`] a frame's textures, buffers and bind groups and their sizes;
+//! [`once`] the run-once path that uploads a height grid and reads the map back.
 
 use std::collections::HashMap;
 use std::sync::Mutex;
 
-use caustics_core::grid::Grid;
-use caustics_core::map::CausticsMap;
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{OPTICS, PassSource, REDUCE, WATER};
-use crate::water::patches::{Patches, WaterPatches};
-use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+use crate::pass::{begin_compute, compute_pipeline};
+use crate::shaders::{OPTICS, REDUCE, WATER, passes};
+use crate::water::patches::WaterPatches;
+use crate::{GpuContext, GpuError, GpuTimer};
 
+pub mod frame;
+pub mod once;
 pub mod technique;
+
+pub use frame::Frame;
+use frame::{FramePasses, prepass_pixels};
 
 const COMMON: &str = include_str!("common.wgsl");
 const SAMPLE: &str = include_str!("sample.wgsl");
 const FILL: &str = include_str!("fill.wgsl");
 
-pub const PREPASS: PassSource = PassSource {
-    name: "yuksel pre-pass",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL],
-    file: "yuksel/prepass.wgsl",
-    source: include_str!("prepass.wgsl"),
-};
-pub const PREPASS_FILL: PassSource = PassSource {
-    name: "yuksel pre-pass fill",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL],
-    file: "yuksel/prepass_fill.wgsl",
-    source: include_str!("prepass_fill.wgsl"),
-};
-pub const PREPASS_SPAN: PassSource = PassSource {
-    name: "yuksel pre-pass span",
-    shared: &[COMMON],
-    file: "yuksel/prepass_span.wgsl",
-    source: include_str!("prepass_span.wgsl"),
-};
-pub const PASS2: PassSource = PassSource {
-    name: "yuksel pass 2",
-    shared: &[COMMON],
-    file: "yuksel/pass2.wgsl",
-    source: include_str!("pass2.wgsl"),
-};
-pub const REGION_BOUND: PassSource = PassSource {
-    name: "yuksel region bound",
-    shared: &[OPTICS, COMMON, REDUCE],
-    file: "yuksel/region_bound.wgsl",
-    source: include_str!("region_bound.wgsl"),
-};
-pub const REGION: PassSource = PassSource {
-    name: "yuksel region",
-    shared: &[OPTICS, COMMON, REDUCE],
-    file: "yuksel/region.wgsl",
-    source: include_str!("region.wgsl"),
-};
 const SCATTER: &str = include_str!("scatter.wgsl");
-pub const SCATTER_TIER: PassSource = PassSource {
-    name: "yuksel scatter tiers",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER],
-    file: "yuksel/scatter_tier.wgsl",
-    source: include_str!("scatter_tier.wgsl"),
-};
-pub const SCATTER_FILL: PassSource = PassSource {
-    name: "yuksel scatter fill",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER],
-    file: "yuksel/scatter_fill.wgsl",
-    source: include_str!("scatter_fill.wgsl"),
-};
-pub const SCATTER_RESOLVE: PassSource = PassSource {
-    name: "yuksel scatter resolve",
-    shared: &[OPTICS, WATER, COMMON, SAMPLE, SCATTER],
-    file: "yuksel/scatter_resolve.wgsl",
-    source: include_str!("scatter_resolve.wgsl"),
-};
-/// Pass 1's body: [`pass1_source`] adds the output struct and entry point for a draw's targets.
-pub const PASS1: PassSource = PassSource {
-    name: "yuksel pass 1",
-    shared: &[COMMON],
-    file: "yuksel/pass1.wgsl",
-    source: include_str!("pass1.wgsl"),
-};
-
-/// Every pass of the technique, for its registry entry.
-pub const PASSES: &[&PassSource] = &[
-    &PREPASS,
-    &PREPASS_FILL,
-    &PREPASS_SPAN,
-    &PASS1,
-    &PASS2,
-    &REGION_BOUND,
-    &REGION,
-    &SCATTER_TIER,
-    &SCATTER_FILL,
-    &SCATTER_RESOLVE,
-];
+passes! {
+    PREPASS = "yuksel pre-pass", [OPTICS, WATER, COMMON, SAMPLE, FILL], "yuksel/prepass.wgsl";
+    PREPASS_FILL = "yuksel pre-pass fill", [OPTICS, WATER, COMMON, SAMPLE, FILL], "yuksel/prepass_fill.wgsl";
+    PREPASS_SPAN = "yuksel pre-pass span", [COMMON], "yuksel/prepass_span.wgsl";
+    PASS2 = "yuksel pass 2", [COMMON], "yuksel/pass2.wgsl";
+    REGION_BOUND = "yuksel region bound", [OPTICS, COMMON, REDUCE], "yuksel/region_bound.wgsl";
+    REGION = "yuksel region", [OPTICS, COMMON, REDUCE], "yuksel/region.wgsl";
+    SCATTER_TIER = "yuksel scatter tiers", [OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER], "yuksel/scatter_tier.wgsl";
+    SCATTER_FILL = "yuksel scatter fill", [OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER], "yuksel/scatter_fill.wgsl";
+    SCATTER_RESOLVE = "yuksel scatter resolve", [OPTICS, WATER, COMMON, SAMPLE, SCATTER], "yuksel/scatter_resolve.wgsl";
+    /// Pass 1's body: [`pass1_source`] adds the output struct and entry point for a draw's targets.
+    PASS1 = "yuksel pass 1", [COMMON], "yuksel/pass1.wgsl";
+}
 
 /// Pass 1 for a draw that writes `targets` render targets: the static body plus the generated output
 /// struct and entry point.
@@ -339,104 +284,6 @@ fn render_pipeline(
     })
 }
 
-/// One frame's resources for a given map and height-field size, bind groups included: a frame is
-/// built once and encoded every time the water moves (upload new heights with
-/// [`Frame::update_heights`]).
-pub struct Frame {
-    /// The heights it uploaded itself ([`Yuksel::frame`]); `None` when it reads the caller's
-    /// ([`Yuksel::frame_with_water`]).
-    heights: Option<wgpu::Texture>,
-    /// Every uniform buffer with the channel base and row phase it carries (one per pass-1 and
-    /// pass-2 draw).
-    uniforms: Vec<(wgpu::Buffer, u32, u32)>,
-    /// This frame's gather region ([`YukselRegion`]), written by the region pass.
-    pub region: wgpu::Buffer,
-    region_bind: wgpu::BindGroup,
-    /// The floor hits' offset range over the heights (`region_bound.wgsl`), and the heights' size
-    /// its dispatch covers.
-    bound: wgpu::Buffer,
-    bound_bind: wgpu::BindGroup,
-    /// The heights in Hermite form, one texel per height texel.
-    patches: Patches,
-    /// The fill's indirect dispatch and the count of the pixels at k its tier pass lists.
-    fill_args: wgpu::Buffer,
-    heights_size: wgpu::Extent3d,
-    pub map: wgpu::Texture,
-    setup: YukselSetup,
-    pub variant: Variant,
-    passes: FramePasses,
-    bytes: u64,
-    /// The pre-pass texture's tiling (one tile for the scatter variant, which has no pre-pass texture).
-    tiling: PrepassTiling,
-}
-
-enum FramePasses {
-    Scatter {
-        /// One fixed-point sum per map pixel, cleared every frame.
-        sums: wgpu::Buffer,
-        /// Tiers, fill, resolve.
-        binds: [wgpu::BindGroup; 3],
-    },
-    RenderTargets {
-        /// The pre-pass's three passes: tiers, fill, span.
-        prepass: [wgpu::BindGroup; 3],
-        phases: Vec<Phase>,
-        /// The map.
-        target: wgpu::TextureView,
-    },
-}
-
-/// The draws of one row phase: the map's rows `phase` modulo `2^level`.
-struct Phase {
-    /// Per pass-1 draw: its pipeline, bind group (with its own channel base) and target views.
-    draws: Vec<(
-        wgpu::RenderPipeline,
-        wgpu::BindGroup,
-        Vec<wgpu::TextureView>,
-    )>,
-    pass2: wgpu::BindGroup,
-}
-
-impl Frame {
-    /// GPU memory this frame's textures and buffers take, bytes.
-    pub fn bytes(&self) -> u64 {
-        self.bytes
-    }
-
-    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
-    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
-        if let Some(t) = &self.heights {
-            ctx.write_grid(t, heights);
-        }
-    }
-
-    pub fn setup(&self) -> &YukselSetup {
-        &self.setup
-    }
-
-    /// Whether `setup` fits this frame's textures (the same map size, largest region and samples
-    /// per pixel),
-    /// so that [`set_setup`](Self::set_setup) can take it.
-    pub fn fits(&self, setup: &YukselSetup) -> bool {
-        let key = |s: &YukselSetup| (s.width, s.height, s.capacity(), s.subsamples);
-        key(setup) == key(&self.setup)
-    }
-
-    /// Take a new sun or depth (a setup that [`fits`](Self::fits)): uniform writes only.
-    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
-        debug_assert!(self.fits(setup));
-        for (buffer, base, phase) in &self.uniforms {
-            ctx.write_buffer(
-                buffer,
-                0,
-                bytemuck::bytes_of(&YukselUniform::tiled(setup, *base, *phase, &self.tiling)),
-            );
-        }
-        self.patches.set_wrap(ctx, setup.wrap);
-        self.setup = setup.clone();
-    }
-}
-
 impl Yuksel {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let limits = ctx.limits();
@@ -475,347 +322,6 @@ impl Yuksel {
                 render_pipeline(ctx, "yuksel pass 1", &module, targets)
             })
             .clone()
-    }
-
-    /// Allocate a frame's textures and bind groups for `variant` and upload the height field.
-    pub fn frame(
-        &self,
-        ctx: &GpuContext,
-        setup: &YukselSetup,
-        heights: &Grid,
-        variant: Variant,
-    ) -> Result<Frame, GpuError> {
-        let texture = ctx.upload_grid("yuksel height field", heights)?;
-        let mut frame = self.frame_with_water(ctx, setup, &WaterTextures::of(&texture), variant)?;
-        frame.heights = Some(texture);
-        Ok(frame)
-    }
-
-    /// Allocate a frame's textures and bind groups for `variant`, reading the caller's heights
-    /// (any grid size: the passes sample it bicubically, as the CPU twin samples its grid).
-    pub fn frame_with_water(
-        &self,
-        ctx: &GpuContext,
-        setup: &YukselSetup,
-        water: &WaterTextures,
-        variant: Variant,
-    ) -> Result<Frame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
-        use wgpu::TextureUsages as U;
-        let (w, h) = (setup.width as u32, setup.height as u32);
-        // Sized for the largest region the region pass may choose.
-        let (_, cap_m) = setup.capacity();
-        let (pw, ph) = prepass_capacity(setup);
-        let (p1w, p1h) = (setup.width, setup.height + cap_m);
-        ctx.check_texture_size("yuksel caustics map", w, h)?;
-        let limits = ctx.limits();
-        let tiling = match variant {
-            Variant::RenderTargets => {
-                PrepassTiling::new((pw as u32, ph as u32), limits.max_texture_dimension_2d)
-            }
-            Variant::Scatter => PrepassTiling::new((1, 1), 1),
-        };
-        if tiling.layers() > limits.max_texture_array_layers {
-            return Err(GpuError::TooLarge {
-                what: "yuksel pre-pass texture".into(),
-                size: format!("{pw} x {ph} ({} layers of tiles)", tiling.layers()),
-                limit: format!(
-                    "{} layers of 1 .. {} per side",
-                    limits.max_texture_array_layers, limits.max_texture_dimension_2d
-                ),
-            });
-        }
-        // The pixels' spans and tiers: one texel per pixel of the map and its apron.
-        let (ew, eh) = prepass_pixels(setup);
-        match variant {
-            Variant::RenderTargets => {
-                ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
-                ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
-            }
-            Variant::Scatter => {
-                ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
-            }
-        }
-        ctx.check_buffer_size("yuksel fill list", (ew * eh) as u64 * 4)?;
-        let mut uniforms = Vec::new();
-        let mut uniform_for = |channel_base: u32, phase: u32| {
-            let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("yuksel uniform"),
-                contents: bytemuck::bytes_of(&YukselUniform::tiled(
-                    setup,
-                    channel_base,
-                    phase,
-                    &tiling,
-                )),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
-            uniforms.push((buffer.clone(), channel_base, phase));
-            buffer
-        };
-        let uniform = uniform_for(0, 0);
-        let heights_view = &water.heights;
-        let region = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel region"),
-            size: std::mem::size_of::<YukselRegion>() as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel region bound"),
-            size: 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let bound_bind = bind_group(
-            ctx,
-            "yuksel region bound",
-            &self.region_bound.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                View(heights_view),
-                bound.as_entire_binding(),
-            ],
-        );
-        let region_bind = bind_group(
-            ctx,
-            "yuksel region",
-            &self.region.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                bound.as_entire_binding(),
-                region.as_entire_binding(),
-            ],
-        );
-        let heights_size = heights_view.texture().size();
-        let water_patches = self.patches.frame(ctx, heights_view, setup.wrap);
-        let patches = &water_patches.view;
-        let map = ctx.texture_2d(
-            "yuksel map",
-            (w, h, 1),
-            MAP_FORMAT,
-            U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
-        );
-        let map_view = map.create_view(&Default::default());
-        let mut bytes =
-            (w * h) as u64 * 16 + uniform.size() + region.size() + water_patches.bytes();
-        // The pixels at k, listed for the fill (at most every pixel of the largest region's
-        // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
-        let list_bytes = (ew * eh) as u64 * 4;
-        let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel fill list"),
-            size: list_bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("yuksel fill dispatch"),
-            contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::INDIRECT
-                | wgpu::BufferUsages::COPY_DST,
-        });
-        bytes += list_bytes + fill_args.size();
-        let passes = match variant {
-            Variant::Scatter => {
-                let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("yuksel scatter sums"),
-                    size: (w * h) as u64 * 4,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                bytes += sums.size();
-                let [tier, fill, resolve] = &self.scatter;
-                let with = |label, pipeline: &wgpu::ComputePipeline| {
-                    bind_group(
-                        ctx,
-                        label,
-                        &pipeline.get_bind_group_layout(0),
-                        &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            sums.as_entire_binding(),
-                            region.as_entire_binding(),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
-                        ],
-                    )
-                };
-                let binds = [
-                    with("yuksel scatter tiers", tier),
-                    with("yuksel scatter fill", fill),
-                    // The resolve reads neither the heights (1) nor the region (3).
-                    ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("yuksel scatter resolve"),
-                        layout: &resolve.get_bind_group_layout(0),
-                        entries: &[
-                            (0, uniform.as_entire_binding()),
-                            (2, sums.as_entire_binding()),
-                            (4, View(&map_view)),
-                        ]
-                        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
-                    }),
-                ];
-                FramePasses::Scatter { sums, binds }
-            }
-            Variant::RenderTargets => {
-                let layers = (cap_m as u32 + 1).div_ceil(4);
-                let pre = ctx.texture_2d(
-                    "yuksel pre-pass",
-                    (tiling.tile.0, tiling.tile.1, tiling.layers()),
-                    MAP_FORMAT,
-                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
-                );
-                let channels = ctx.texture_2d(
-                    "yuksel pass-1 channels",
-                    (p1w as u32, p1h as u32, layers),
-                    MAP_FORMAT,
-                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-                );
-                // Each pixel's span along x and its tier, one texel per pixel of the pre-pass.
-                let (ew, eh) = prepass_pixels(setup);
-                let per_pixel = |label, format| {
-                    ctx.texture_2d(
-                        label,
-                        (ew, eh, 1),
-                        format,
-                        U::STORAGE_BINDING | U::TEXTURE_BINDING,
-                    )
-                    .create_view(&Default::default())
-                };
-                let extents_view =
-                    per_pixel("yuksel pre-pass extents", wgpu::TextureFormat::Rg32Float);
-                let tiers_view = per_pixel("yuksel pre-pass tiers", wgpu::TextureFormat::R32Uint);
-                bytes += tiling.tile.0 as u64 * tiling.tile.1 as u64 * tiling.layers() as u64 * 16
-                    + (p1w * p1h) as u64 * layers as u64 * 16
-                    + (ew * eh) as u64 * (8 + 4);
-                tracing::debug!(
-                    "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
-                    bytes as f64 / (1u64 << 20) as f64
-                );
-                let pre_view = pre.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
-                let prepass = [
-                    bind_group(
-                        ctx,
-                        "yuksel pre-pass",
-                        &self.prepass.get_bind_group_layout(0),
-                        &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            View(&extents_view),
-                            View(&tiers_view),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
-                        ],
-                    ),
-                    bind_group(
-                        ctx,
-                        "yuksel pre-pass fill",
-                        &self.prepass_fill.get_bind_group_layout(0),
-                        &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
-                        ],
-                    ),
-                    bind_group(
-                        ctx,
-                        "yuksel pre-pass span",
-                        &self.prepass_span.get_bind_group_layout(0),
-                        &[
-                            uniform.as_entire_binding(),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            View(&tiers_view),
-                            View(&extents_view),
-                        ],
-                    ),
-                ];
-                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
-                // Per row phase (one at level 0, up to 2^MAX_LEVEL where the water chooses the
-                // level; phases past this frame's level draw nothing): pass 1, as many layers per
-                // draw as the device allows, then pass 2 into the map's rows of that phase.
-                let per_draw = self.targets_per_draw.min(layers);
-                let mut phases = Vec::new();
-                for phase in 0..setup.phases() {
-                    let mut draws = Vec::new();
-                    let mut first = 0;
-                    while first < layers {
-                        let count = per_draw.min(layers - first);
-                        let pipeline = self.pass1_pipeline(ctx, count);
-                        let draw_uniform = uniform_for(4 * first, phase);
-                        let bind = bind_group(
-                            ctx,
-                            "yuksel pass 1",
-                            &pipeline.get_bind_group_layout(0),
-                            &[
-                                draw_uniform.as_entire_binding(),
-                                View(&pre_view),
-                                region.as_entire_binding(),
-                                View(&extents_view),
-                            ],
-                        );
-                        let views = (first..first + count)
-                            .map(|layer| {
-                                channels.create_view(&wgpu::TextureViewDescriptor {
-                                    dimension: Some(wgpu::TextureViewDimension::D2),
-                                    base_array_layer: layer,
-                                    array_layer_count: Some(1),
-                                    ..Default::default()
-                                })
-                            })
-                            .collect();
-                        draws.push((pipeline, bind, views));
-                        first += count;
-                    }
-                    let pass2_uniform = uniform_for(0, phase);
-                    let pass2 = bind_group(
-                        ctx,
-                        "yuksel pass 2",
-                        &self.pass2.get_bind_group_layout(0),
-                        &[
-                            pass2_uniform.as_entire_binding(),
-                            View(&channels_view),
-                            region.as_entire_binding(),
-                        ],
-                    );
-                    phases.push(Phase { draws, pass2 });
-                }
-                FramePasses::RenderTargets {
-                    prepass,
-                    phases,
-                    target: map_view,
-                }
-            }
-        };
-        ctx.check()?;
-        Ok(Frame {
-            heights: None,
-            uniforms,
-            region,
-            region_bind,
-            bound,
-            bound_bind,
-            patches: water_patches,
-            fill_args,
-            heights_size,
-            map,
-            setup: setup.clone(),
-            variant,
-            passes,
-            bytes,
-            tiling,
-        })
     }
 
     /// Record the technique's passes for `frame`. Returns the texture the map ends in.
@@ -921,74 +427,6 @@ impl Yuksel {
         }
         &frame.map
     }
-
-    /// The region the last encode of `frame` chose, read back (for tests and tools: it waits for
-    /// the GPU).
-    pub fn read_region(&self, ctx: &GpuContext, frame: &Frame) -> Result<Region, GpuError> {
-        let r: Vec<YukselRegion> = ctx.read_buffer(&frame.region)?;
-        Ok(r[0].into())
-    }
-
-    /// Run the technique once and read the map back.
-    pub fn caustics(
-        &self,
-        ctx: &GpuContext,
-        setup: &YukselSetup,
-        heights: &Grid,
-        variant: Variant,
-    ) -> Result<CausticsMap, GpuError> {
-        self.caustics_timed(ctx, setup, heights, variant, None)
-    }
-
-    /// As [`caustics`](Self::caustics), writing each pass's timestamps into `timer` (resolved in
-    /// the same submission; read them with [`GpuTimer::read`]).
-    pub fn caustics_timed(
-        &self,
-        ctx: &GpuContext,
-        setup: &YukselSetup,
-        heights: &Grid,
-        variant: Variant,
-        mut timer: Option<&mut GpuTimer>,
-    ) -> Result<CausticsMap, GpuError> {
-        let frame = self.frame(ctx, setup, heights, variant)?;
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        let texture = self.encode(&frame, &mut encoder, timer.as_deref_mut());
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
-        let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
-        Ok(CausticsMap {
-            width: setup.width,
-            height: setup.height,
-            size: setup.size,
-            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
-        })
-    }
-}
-
-/// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has
-/// the most): the map and the region's apron.
-fn prepass_pixels(setup: &YukselSetup) -> (u32, u32) {
-    let (cap_n, cap_m) = setup.capacity();
-    (
-        (setup.width + cap_n - 1) as u32,
-        (setup.height + cap_m) as u32,
-    )
-}
-
-/// The pre-pass texture's size for the largest region at any level the setup may choose: the
-/// level's `k × k` samples per pixel of the level's map and apron.
-fn prepass_capacity(setup: &YukselSetup) -> (usize, usize) {
-    let (cap_n, cap_m) = setup.capacity();
-    let levels = setup.phases().trailing_zeros();
-    (0..=levels).fold((0, 0), |(w, h), level| {
-        let k = setup.subsamples_at(level);
-        (
-            w.max(((setup.width >> level) + cap_n - 1) * k),
-            h.max(((setup.height >> level) + cap_m) * k),
-        )
-    })
 }
 
 fn color_attachment(

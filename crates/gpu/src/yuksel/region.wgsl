@@ -3,7 +3,8 @@
 // reduced the range of the floor hits' sideways offsets over every height texel; one thread adds
 // flat water's, widens it by an eighth of the span each way and takes, at the finest level that
 // holds it, the smallest odd run of offsets along each axis not fixed by the uniform. CPU twin:
-// `region_bound` and `YukselSetup::region_from_bound` in caustics-core's yuksel.rs, step for step.
+// `region_bound` and `YukselSetup::region_from_bound` in caustics-core's yuksel/region.rs, step
+// for step.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 // ordered(-lo.x), ordered(-lo.y), ordered(hi.x), ordered(hi.y), or 0 where no texel refracted.
@@ -11,7 +12,7 @@
 @group(0) @binding(2) var<storage, read_write> out: YukselRegion;
 
 const BIG: f32 = 3.0e38;
-// `MAX_N`, `MAX_M` and `MAX_LEVEL` in yuksel.rs.
+// `MAX_N`, `MAX_M` and `MAX_LEVEL` in core's yuksel/mod.rs.
 const MAX_N: u32 = 31u;
 const MAX_M: u32 = 30u;
 const MAX_LEVEL: u32 = 3u;

@@ -2,7 +2,7 @@
 // every height texel's normal (central differences) and reduce the range of the floor hits'
 // sideways offsets over the whole texture, one texel an invocation and one atomic per workgroup and
 // value (reduce.wgsl), so no single workgroup walks the texture. CPU twin: `region_bound` in
-// caustics-core's yuksel.rs (the same texels, the same min and max: exact).
+// caustics-core's yuksel/region.rs (the same texels, the same min and max: exact).
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 @group(0) @binding(1) var heights: texture_2d<f32>;

@@ -1,13 +1,13 @@
 // Technique `yuksel`: one water sample refracted to the floor (the pre-pass's work, shared with the
 // scatter variant). CPU twin: `hit`, `footprint` and `prepass` in
-// caustics-core/src/techniques/yuksel.rs.
+// caustics-core/src/techniques/yuksel/prepass.rs.
 
 @group(0) @binding(0) var<uniform> u: Yuksel;
 // The heights in Hermite form (`water_patches.wgsl`).
 @group(0) @binding(1) var patches: texture_2d<f32>;
 
-// The narrowest footprint half-width (`MIN_HALF_WIDTH` in yuksel.rs): a fold's light keeps a box of
-// positive area, and the half-width stays a normal f16 (so the packed channel is a normal f32).
+// The narrowest footprint half-width (`MIN_HALF_WIDTH` in prepass.rs): a fold's light keeps a box
+// of positive area, and the half-width stays a normal f16 (so the packed channel is a normal f32).
 const MIN_HALF_WIDTH: f32 = 1.0e-3;
 
 // The water at `s` (world units): xy its floor hit, z the flux its area carries relative to flat
@@ -35,7 +35,7 @@ fn yuksel_hit(s: vec2<f32>) -> vec4<f32> {
 // relative to a flat-water patch in w; and the box's misfit. The box is the footprint (the
 // patch's edge midpoints' hits along x and along y, on the light's centroid) or, without
 // `footprint`, a box of the patch's size around its hit (the paper). Where the sun cannot light
-// the patch, no flux. CPU twin: `footprint` and `misfit` in yuksel.rs.
+// the patch, no flux. CPU twin: `footprint` and `misfit` in prepass.rs.
 struct YukselFootprint {
     rec: vec4<f32>,
     misfit: f32,
@@ -146,7 +146,7 @@ var<private> tier_records: array<vec4<f32>, 16>;
 // with `u.split` >= 0, the first of 1, 2, 4 ... k whose footprints all misfit by no more than
 // `u.split` (a tier stops at its first footprint that misfits or that the sun cannot light);
 // otherwise k. At k (weighed by
-// nothing) only the first `at_k` records are made. CPU twin: `prepass` in yuksel.rs.
+// nothing) only the first `at_k` records are made. CPU twin: `prepass` in prepass.rs.
 fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, at_k: u32) -> u32 {
     var t = select(k, 1u, u.split >= 0.0 && k > 1u);
     loop {

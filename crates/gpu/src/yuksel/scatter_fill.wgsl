@@ -1,6 +1,7 @@
 // Technique `yuksel`, scatter variant, second of three: the k x k records of each pixel whose tier
 // is k (`scatter_tier.wgsl` listed them), made row by row sharing their edges' rays
-// (`yuksel_fill_row`), each added into the map where it is made.
+// (`yuksel_fill_row`), each added into the map where it is made. CPU twin: `scatter_fill` in
+// core's yuksel/scatter.rs.
 
 @group(0) @binding(4) var<storage, read> fill_args: array<u32, 4>;
 @group(0) @binding(5) var<storage, read> fill_list: array<u32>;

@@ -1,5 +1,6 @@
 // Technique `yuksel`, scatter variant, third of three: each map pixel's fixed-point sum into the
-// map, with the absorption along the flat-water path (as pass 2 applies it).
+// map, with the absorption along the flat-water path (as pass 2 applies it). CPU twin:
+// `scatter_resolve` in core's yuksel/scatter.rs.
 
 @group(0) @binding(4) var map_out: texture_storage_2d<rgba32float, write>;
 

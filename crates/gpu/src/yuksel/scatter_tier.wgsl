@@ -3,7 +3,7 @@
 // below k into the map (`add_record`); a pixel at k is listed for `scatter_fill.wgsl` instead,
 // which makes its k x k records sharing their edges' rays, one invocation per listed pixel (so
 // that neighbouring invocations do the same work). No pre-pass texture and no render targets: the
-// records are added where they are made.
+// records are added where they are made. CPU twin: `scatter_tier` in core's yuksel/scatter.rs.
 
 @group(0) @binding(4) var<storage, read_write> fill_args: FillArgs;
 // The pixels at k, as indices `row * width + column` into the pre-pass area.

@@ -3,7 +3,7 @@
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::yuksel::{self, Passes, YukselParams, YukselSetup};
-use caustics_core::techniques::{Descriptor, Job, Made};
+use caustics_core::techniques::{Descriptor, Job, JobOutput};
 
 use super::{Frame, Variant, Yuksel};
 use crate::adapter::Pipelines;
@@ -134,10 +134,10 @@ impl Pipelines for Yuksel {
         tables: &toml::Table,
         timer: Option<&mut GpuTimer>,
         _progress: &(dyn Fn(usize, usize) + Sync),
-    ) -> Result<Made, GpuError> {
+    ) -> Result<JobOutput, GpuError> {
         let (setup, heights) = yuksel::job_setup(job, tables)?;
         let (_, variant) = Self::params(entry, tables)?;
         let map = self.caustics_timed(ctx, &setup, &heights, variant, timer)?;
-        Ok(Made::floor(map, None))
+        Ok(JobOutput::floor(map, None))
     }
 }

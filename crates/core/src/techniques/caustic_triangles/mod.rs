@@ -76,32 +76,60 @@
 //! [`splat_pass`]: each valid photon adds its power as a square splat of fixed side `splat_size`
 //! texels, `ΔΦ / (s² A_texel)` over the texel centres it covers: the method the paper argues
 //! against (Fig. 1), for comparison.
+//!
+//! # Files
+//! One per pass, named as its WGSL file in `caustics-gpu`'s `caustic_triangles/`:
+//!
+//! | file | pass | GPU twin |
+//! |---|---|---|
+//! | [`photon`](mod@photon) | photon tracing (§4.1) | `photon.wgsl` + `distance_map.wgsl` |
+//! | [`irradiance`] | vertex irradiance (§5) | `irradiance.wgsl` |
+//! | [`triangles`] | caustic triangles (§4.2) | `triangles.wgsl` |
+//! | [`pyramid`] | merge pyramid (§5, with `merge_levels`) | `pyramid.wgsl` |
+//! | [`merge`] | the drawn quads of merged blocks | `merge.wgsl` |
+//! | [`splat`] | splatting baseline | `splat.wgsl` |
+//! | [`cube`] | light cube map faces and shadow distances (§4.2-4.3, point light) | `cube.wgsl`, `shadow.wgsl` |
+//! | [`camera`] | camera pass (§4.3) | `camera.wgsl` |
+//! | [`water`] | the water surface as the generator: water photons, copy band | `water_setup.wgsl`, `water_photon.wgsl`, `band_bound.wgsl`, `band.wgsl` |
+//! | [`distance_map`] | the layered distance map (§3), built on the CPU | `distance_map.wgsl` (its search) |
+//!
+//! Besides them: [`scene`] (the generator, occluders, lights, the floor window),
+//! [`reference`](mod@reference) (the path-traced check), `buffers.rs` (the intermediate buffers as
+//! pictures), and this file: the descriptor, the parameters, the setup every pass shares, and the
+//! whole technique ([`caustics`], [`render`]).
 
 mod buffers;
 pub mod camera;
 pub mod cube;
 pub mod distance_map;
+pub mod irradiance;
 pub mod merge;
+pub mod photon;
+pub mod pyramid;
 pub mod reference;
 pub mod scene;
+pub mod splat;
+pub mod triangles;
 pub mod water;
 
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::map::CausticsMap;
-use crate::optics::{fresnel_transmittance, reflect, refract};
 pub use distance_map::DistanceMap;
+pub use irradiance::{irradiance_pass, vertex_irradiance};
+pub use photon::{INVALID, photon, photon_pass, photon_power, same_path, signature};
 pub use scene::{
     FloorWindow, GlassScene, Occluder, PointLight, Shape, bounding_sphere, light_frame,
 };
+pub use splat::{splat_pass, splat_pass_with_paths};
+pub use triangles::{raster_triangle, triangles_pass, triangles_pass_with_paths};
 
 use super::describe::{
     Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
 };
-use super::{Input, Job, Made};
+use super::{Input, Job, JobOutput};
 
 /// Paper 4 as registered: the water surface as its generator where the scene has water, else
 /// the scene's glass objects.
@@ -280,11 +308,11 @@ fn run_cpu(
     job: &Job,
     table: &toml::Table,
     progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<Made> {
+) -> Result<JobOutput> {
     if job.scene.water.is_none() {
         glass_generators(job.scene)?;
         let params = CausticTrianglesParams::from_table(table)?;
-        return Ok(Made::floor(render(job.scene, &params)?, None));
+        return Ok(JobOutput::floor(render(job.scene, &params)?, None));
     }
     let (ws, heights) = water_job_setup(job, table)?;
     let walls = if ws.walls {
@@ -294,7 +322,7 @@ fn run_cpu(
     };
     let map = water::caustics(&ws, &heights)?.map;
     progress(1, 1);
-    Ok(Made::floor(map, walls))
+    Ok(JobOutput::floor(map, walls))
 }
 
 /// How a vertex's area `ΔA` is taken from the triangles around it (see the module docs).
@@ -651,350 +679,6 @@ impl CausticTrianglesSetup {
     }
 }
 
-/// The marker of an invalid photon-image texel.
-pub const INVALID: [f32; 4] = [0.0, 0.0, -1.0, 0.0];
-
-/// Path signature of a photon that refracted `refractions` times and was totally internally
-/// reflected `tir` times: `refractions + 64 tir`, exact in f32 (`depth` ≤ 32).
-pub fn signature(refractions: u32, tir: u32) -> f32 {
-    (refractions + 64 * tir) as f32
-}
-
-/// Photon tracing pass (§4.1) for texel `(i, j)`: `(x, y, Φ, σ)` of its floor hit ([`signature`]),
-/// or [`INVALID`].
-pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usize) -> [f32; 4] {
-    let Some((mut x, mut r, mut power)) = setup.photon_ray(dm, i, j) else {
-        return INVALID;
-    };
-    let mut inside = false;
-    let mut hit_glass = false;
-    let mut d0 = 0.0;
-    let (mut refractions, mut tir) = (0u32, 0u32);
-    let eps = 1e-4 * dm.radius;
-    for event in 0..=setup.depth {
-        let d_floor = if r.z < 0.0 { -x.z / r.z } else { f64::INFINITY };
-        // Where the ray leaves the sphere holding the map's surfaces.
-        let oc = x - dm.centre;
-        let b = oc.dot(r);
-        let disc = b * b - (oc.length_squared() - dm.radius * dm.radius);
-        let d_out = if disc > 0.0 { -b + disc.sqrt() } else { 0.0 };
-        let d1 = d_out.min(d_floor);
-        match dm.trace(
-            x,
-            r,
-            d0,
-            d1,
-            inside,
-            setup.linear_steps,
-            setup.secant_iterations,
-        ) {
-            None => {
-                if !hit_glass || inside || !d_floor.is_finite() {
-                    return INVALID;
-                }
-                let p = x + r * d_floor;
-                return [
-                    p.x as f32,
-                    p.y as f32,
-                    power as f32,
-                    signature(refractions, tir),
-                ];
-            }
-            Some((_, s)) if !s.glass => return INVALID,
-            Some((d, s)) => {
-                if event == setup.depth {
-                    return INVALID;
-                }
-                hit_glass = true;
-                x += r * d;
-                let (n, n1, n2) = if inside {
-                    (-s.normal, setup.ior, 1.0)
-                } else {
-                    (s.normal, 1.0, setup.ior)
-                };
-                let cos_i = -r.dot(n);
-                match refract(r, n, n1 / n2) {
-                    Some(t) => {
-                        if setup.fresnel {
-                            power *= fresnel_transmittance(cos_i, n1, n2);
-                        }
-                        r = t.normalize();
-                        inside = !inside;
-                        refractions += 1;
-                    }
-                    None => {
-                        r = reflect(r, n).normalize();
-                        tir += 1;
-                    }
-                }
-                d0 = eps;
-            }
-        }
-    }
-    INVALID
-}
-
-/// The photon hit location image, row `i` (light-space `v`) major.
-pub fn photon_pass(setup: &CausticTrianglesSetup, dm: &DistanceMap) -> Vec<[f32; 4]> {
-    let p = setup.p;
-    (0..p * p)
-        .into_par_iter()
-        .map(|k| photon(setup, dm, k / p, k % p))
-        .collect()
-}
-
-fn valid(t: &[f32; 4]) -> bool {
-    t[2] >= 0.0
-}
-
-/// Whether photon `t` is valid and took the same path (signature) as the valid photon `me`.
-pub fn same_path(me: &[f32; 4], t: &[f32; 4]) -> bool {
-    valid(t) && t[3] == me[3]
-}
-
-fn pos(t: &[f32; 4]) -> DVec2 {
-    DVec2::new(t[0] as f64, t[1] as f64)
-}
-
-fn tri_area(a: DVec2, b: DVec2, c: DVec2) -> f64 {
-    0.5 * (b - a).perp_dot(c - a).abs()
-}
-
-/// Whether all four corners of quad `(qi, qj)` (corners `(qi..=qi+1, qj..=qj+1)`) are valid and
-/// share one path signature.
-fn quad_valid(photons: &[[f32; 4]], p: usize, qi: i64, qj: i64) -> bool {
-    if qi < 0 || qj < 0 || qi + 1 >= p as i64 || qj + 1 >= p as i64 {
-        return false;
-    }
-    let (qi, qj) = (qi as usize, qj as usize);
-    let first = photons[qi * p + qj];
-    valid(&first)
-        && [(0, 1), (1, 0), (1, 1)]
-            .iter()
-            .all(|&(a, b)| same_path(&first, &photons[(qi + a) * p + qj + b]))
-}
-
-/// Vertex irradiance of texel `(i, j)` (the §5 pass): `ΔΦ / ΔA`, or −1 where invalid.
-pub fn vertex_irradiance(
-    setup: &CausticTrianglesSetup,
-    photons: &[[f32; 4]],
-    i: usize,
-    j: usize,
-) -> f32 {
-    let p = setup.p;
-    let me = photons[i * p + j];
-    if !valid(&me) {
-        return -1.0;
-    }
-    let at = |di: i64, dj: i64| -> Option<DVec2> {
-        let (a, b) = (i as i64 + di, j as i64 + dj);
-        if a < 0 || b < 0 || a >= p as i64 || b >= p as i64 {
-            return None;
-        }
-        let t = photons[a as usize * p + b as usize];
-        same_path(&me, &t).then(|| pos(&t))
-    };
-    let v = pos(&me);
-    let (mut sum, mut count) = (0.0, 0u32);
-    match setup.area_rule {
-        AreaRule::Paper => {
-            // Right, up, left, down: consecutive pairs span the four corner triangles.
-            let ring = [at(0, 1), at(1, 0), at(0, -1), at(-1, 0)];
-            for k in 0..4 {
-                if let (Some(a), Some(b)) = (ring[k], ring[(k + 1) % 4]) {
-                    sum += tri_area(v, a, b);
-                    count += 1;
-                }
-            }
-            if count == 0 {
-                return -1.0;
-            }
-            let da = 2.0 * sum / count as f64;
-            (me[2] as f64 / da.max(1e-30)) as f32
-        }
-        AreaRule::Hat => {
-            // A periodic image's quads past an edge are those at the opposite edge (triangle
-            // areas do not see the shift by `size`).
-            let wrap = setup.water.filter(|w| w.periodic).map(|w| w.lattice as i64);
-            // The quads around the vertex; in quad (qi, qj) the vertex is corner (ci, cj).
-            for (ci, cj) in [(0i64, 0i64), (0, 1), (1, 0), (1, 1)] {
-                let (mut qi, mut qj) = (i as i64 - ci, j as i64 - cj);
-                if let Some(l) = wrap {
-                    (qi, qj) = (qi.rem_euclid(l), qj.rem_euclid(l));
-                }
-                if !quad_valid(photons, p, qi, qj) {
-                    continue;
-                }
-                let c = |a: i64, b: i64| pos(&photons[((qi + a) as usize) * p + (qj + b) as usize]);
-                let (c00, c01, c10, c11) = (c(0, 0), c(0, 1), c(1, 0), c(1, 1));
-                // Triangle 1: 00, 01, 11; triangle 2: 00, 11, 10.
-                let in1 = (ci, cj) != (1, 0);
-                let in2 = (ci, cj) != (0, 1);
-                if in1 {
-                    sum += tri_area(c00, c01, c11);
-                    count += 1;
-                }
-                if in2 {
-                    sum += tri_area(c00, c11, c10);
-                    count += 1;
-                }
-            }
-            if count == 0 {
-                return -1.0;
-            }
-            let da = sum / 3.0;
-            (me[2] as f64 * setup.lattice_share(i, j) / da.max(1e-30)) as f32
-        }
-    }
-}
-
-pub fn irradiance_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> Vec<f32> {
-    let p = setup.p;
-    (0..p * p)
-        .into_par_iter()
-        .map(|k| vertex_irradiance(setup, photons, k / p, k % p))
-        .collect()
-}
-
-/// Add the Gouraud-shaded triangle `v` (map pixel coordinates) with vertex values `e` at every texel
-/// centre inside it: what the rasteriser does.
-pub fn raster_triangle(acc: &mut [f32], width: usize, height: usize, v: [DVec2; 3], e: [f64; 3]) {
-    raster_barycentric(width, height, v, |k, b| {
-        acc[k] += (b[0] * e[0] + b[1] * e[1] + b[2] * e[2]) as f32;
-    });
-}
-
-/// Every texel centre inside triangle `v` (map pixel coordinates): its index and barycentric
-/// coordinates, what the rasteriser interpolates with.
-fn raster_barycentric(
-    width: usize,
-    height: usize,
-    v: [DVec2; 3],
-    mut texel: impl FnMut(usize, [f64; 3]),
-) {
-    let area2 = (v[1] - v[0]).perp_dot(v[2] - v[0]);
-    if area2 == 0.0 || !area2.is_finite() {
-        return;
-    }
-    let lo = v[0].min(v[1]).min(v[2]);
-    let hi = v[0].max(v[1]).max(v[2]);
-    let j0 = ((lo.x - 0.5).ceil().max(0.0)) as i64;
-    let j1 = ((hi.x - 0.5).floor()).min(width as f64 - 1.0) as i64;
-    let i0 = ((lo.y - 0.5).ceil().max(0.0)) as i64;
-    let i1 = ((hi.y - 0.5).floor()).min(height as f64 - 1.0) as i64;
-    for i in i0..=i1 {
-        for j in j0..=j1 {
-            let c = DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
-            let b0 = (v[2] - v[1]).perp_dot(c - v[1]) / area2;
-            let b1 = (v[0] - v[2]).perp_dot(c - v[2]) / area2;
-            let b2 = 1.0 - b0 - b1;
-            if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
-                texel(i as usize * width + j as usize, [b0, b1, b2]);
-            }
-        }
-    }
-}
-
-fn to_map(floor: &FloorWindow, acc: Vec<[f32; 3]>) -> CausticsMap {
-    let mut map = floor.empty_map();
-    map.texels = acc;
-    map
-}
-
-/// One value per RGB channel: `e exp(−K d)` (the fragment shader's colour).
-fn attenuated(e: f64, d: f64, k: DVec3) -> [f32; 3] {
-    let a = (-k * d).exp() * e;
-    [a.x as f32, a.y as f32, a.z as f32]
-}
-
-/// Caustic triangles (§4.2): two per quad of four valid photon-image texels of one path signature,
-/// `(i, j) (i, j+1) (i+1, j+1)` and `(i, j) (i+1, j+1) (i+1, j)`, Gouraud shaded, added; with
-/// `merge_levels`, merged blocks of small quads instead ([`merge`]).
-pub fn triangles_pass(
-    setup: &CausticTrianglesSetup,
-    photons: &[[f32; 4]],
-    irradiance: &[f32],
-) -> CausticsMap {
-    triangles_pass_with_paths(setup, photons, irradiance, None)
-}
-
-/// [`triangles_pass`] with each photon's refracted path length (a water generator, [`water`]):
-/// the path length is interpolated over the triangle like the irradiance, and each texel gets
-/// `E exp(−K d)` per channel; the triangles are drawn at every offset of
-/// [`CausticTrianglesSetup::copies`].
-pub fn triangles_pass_with_paths(
-    setup: &CausticTrianglesSetup,
-    photons: &[[f32; 4]],
-    irradiance: &[f32],
-    paths: Option<&[f32]>,
-) -> CausticsMap {
-    let f = &setup.floor;
-    let k = setup.absorption();
-    let copies = setup.copies();
-    let rects: Vec<_> = (0..copies.len()).map(|k| setup.copy_rect(k)).collect();
-    let mut acc = vec![[0.0f32; 3]; f.width * f.height];
-    for (x, e, idx) in merge::drawn_quads(setup, photons, irradiance) {
-        let d = paths.map_or([0.0; 4], |p| idx.map(|i| p[i] as f64));
-        let (qi, qj) = (idx[0] / setup.p, idx[0] % setup.p);
-        for (&off, &(i0, i1, j0, j1)) in copies.iter().zip(&rects) {
-            if !((i0..i1).contains(&qi) && (j0..j1).contains(&qj)) {
-                continue;
-            }
-            let [a, b, c, q] = x.map(|x| f.to_pixel(x + off));
-            for (v, t) in [([a, b, c], [0, 1, 2]), ([a, c, q], [0, 2, 3])] {
-                raster_barycentric(f.width, f.height, v, |texel, w| {
-                    let mix = |s: [f64; 4]| w[0] * s[t[0]] + w[1] * s[t[1]] + w[2] * s[t[2]];
-                    let rgb = attenuated(mix(e), mix(d), k);
-                    acc[texel].iter_mut().zip(rgb).for_each(|(a, v)| *a += v);
-                });
-            }
-        }
-    }
-    to_map(f, acc)
-}
-
-/// The splatting baseline: each valid photon as a square of `splat_size` texels.
-pub fn splat_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> CausticsMap {
-    splat_pass_with_paths(setup, photons, None)
-}
-
-/// [`splat_pass`] for a water generator: each splat attenuated by `exp(−K d)` of its own path,
-/// drawn at every offset of [`CausticTrianglesSetup::copies`], the lattice's repeated last row
-/// and column left out ([`WaterTransport::lattice`]).
-pub fn splat_pass_with_paths(
-    setup: &CausticTrianglesSetup,
-    photons: &[[f32; 4]],
-    paths: Option<&[f32]>,
-) -> CausticsMap {
-    let f = &setup.floor;
-    let s = setup.splat_size;
-    let k = setup.absorption();
-    let lattice = setup.water.map_or(usize::MAX, |w| w.lattice);
-    let mut acc = vec![[0.0f32; 3]; f.width * f.height];
-    let splats = photons
-        .iter()
-        .enumerate()
-        .filter(|(n, t)| valid(t) && n / setup.p < lattice && n % setup.p < lattice);
-    let copies = setup.copies();
-    for ((n, t), &off) in splats.flat_map(|x| copies.iter().map(move |o| (x, o))) {
-        let c = f.to_pixel(pos(t) + off);
-        let d = paths.map_or(0.0, |p| p[n] as f64);
-        let value = attenuated(t[2] as f64 / (s * s * f.texel_area()), d, k);
-        // Texel centres in [c − s/2, c + s/2).
-        let j0 = ((c.x - s / 2.0 - 0.5).ceil().max(0.0)) as i64;
-        let j1 = ((c.x + s / 2.0 - 0.5).ceil() - 1.0).min(f.width as f64 - 1.0) as i64;
-        let i0 = ((c.y - s / 2.0 - 0.5).ceil().max(0.0)) as i64;
-        let i1 = ((c.y + s / 2.0 - 0.5).ceil() - 1.0).min(f.height as f64 - 1.0) as i64;
-        for i in i0..=i1 {
-            for j in j0..=j1 {
-                let a = &mut acc[i as usize * f.width + j as usize];
-                a.iter_mut().zip(value).for_each(|(a, v)| *a += v);
-            }
-        }
-    }
-    to_map(f, acc)
-}
-
 /// Everything one run produces.
 pub struct Output {
     pub photons: Vec<[f32; 4]>,
@@ -1012,15 +696,6 @@ pub fn caustics(setup: &CausticTrianglesSetup, dm: &DistanceMap) -> Output {
         irradiance,
         map,
     }
-}
-
-/// Total power of the valid photons, floor-area units.
-pub fn photon_power(photons: &[[f32; 4]]) -> f64 {
-    photons
-        .iter()
-        .filter(|t| valid(t))
-        .map(|t| t[2] as f64)
-        .sum()
 }
 
 /// The technique for a whole scene, over the scene square at the scene's caustics resolution: a

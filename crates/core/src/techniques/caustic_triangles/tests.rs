@@ -1,5 +1,6 @@
 use glam::{DVec2, DVec3};
 
+use super::irradiance::{quad_valid, tri_area};
 use super::reference::{ReferenceOptions, reference};
 use super::*;
 use super::{cube, distance_map};

@@ -164,7 +164,7 @@ impl WaterSetup {
         })
     }
 
-    /// With `walls` the four walls of the square stop the light (issue 18): nothing is carried
+    /// With `walls` the four walls of the square stop the light: nothing is carried
     /// across the edges any more (one copy of each triangle), the surface still tiles.
     pub fn with_walls(mut self, walls: bool) -> Self {
         self.walls = walls;
@@ -247,7 +247,7 @@ fn surface_ray(ws: &WaterSetup, heights: &Grid, i: usize, j: usize) -> Option<(D
 /// the receiver's plane, in the receiver's map coordinates (the floor: `(x, y)`; a wall: `(along,
 /// z · size / depth)`, [`WaterSetup::receiver_setup`]), and the path length to it.
 ///
-/// # Receivers (issue 18): each plane gets the whole photon image
+/// # Receivers: each plane gets the whole photon image
 /// The ray of a photon ends on the first face of the box (floor or wall) it meets; for a ray from
 /// inside a convex box that is the one face whose plane it meets within the face's rectangle. So
 /// every receiver takes the photon image of the rays *extended to its plane* (behind the floor or
@@ -595,7 +595,7 @@ mod tests {
     /// at most 2.2) of one of ours.
     #[test]
     fn pool_waves_agree_with_the_reference() {
-        // The pool with its former gentle ripples (21-100 cm long), which 128² and 256² photons
+        // The pool with gentle ripples (21-100 cm long), which 128² and 256² photons
         // resolve; the built-in pool's 11 cm wavelets need more photons than this test affords.
         let mut scene = Scene::builtin("pool").unwrap();
         let old = [

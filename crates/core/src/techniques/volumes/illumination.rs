@@ -315,7 +315,7 @@ pub fn floor_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4
     map
 }
 
-/// The wall pass (issue 18): every illumination volume of the water cut by each wall's plane
+/// The wall pass: every illumination volume of the water cut by each wall's plane
 /// `{x : n · x = c}` (`n = −wall.normal()`, the side the light travels to) and drawn into that
 /// wall's map in its texel space `(along, z)`, fragments kept where the shadow map lets the sun
 /// through; a fragment carries `Ic · (t · n)`, the irradiance on the wall (as `Ic · cos θt` on the

@@ -38,7 +38,7 @@
 //!   as its depth texture and diffuse map.
 //! - The *floor map*: the caustics-map square `[0, size]²` of the scene (like every other technique's),
 //!   drawn from the same illumination volumes cut by the floor plane `z = 0`.
-//! - With the pool's walls ([`VolumesInput::walls`], issue 18), the *walls' maps*
+//! - With the pool's walls ([`VolumesInput::walls`]), the *walls' maps*
 //!   ([`crate::walls`]'s layout): the same volumes cut by each wall's plane, drawn in the wall's
 //!   texel space `(along, z)`; the water is then the square alone and nothing reaches the floor
 //!   from beyond it ([`illumination::wall_pass`] argues why floor and walls each keep exactly
@@ -88,7 +88,7 @@ pub use representation::OrthoView;
 use super::describe::{
     Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
 };
-use super::{Input, Job, Made};
+use super::{Input, Job, JobOutput};
 
 /// Paper 3 as registered.
 pub const DESCRIPTOR: Descriptor = Descriptor {
@@ -202,10 +202,10 @@ fn run_cpu(
     job: &Job,
     table: &toml::Table,
     _progress: &(dyn Fn(usize, usize) + Sync),
-) -> Result<Made> {
+) -> Result<JobOutput> {
     let (setup, input, heights, wrap) = job_setup(job, table)?;
     let out = caustics(&setup, &input, &heights, wrap);
-    Ok(Made::floor(out.floor, out.walls))
+    Ok(JobOutput::floor(out.floor, out.walls))
 }
 
 /// The technique's parameters, `[caustics.volumes]` in a scene file.
@@ -308,7 +308,7 @@ pub struct VolumesInput {
     /// Floor map resolution.
     pub width: usize,
     pub height: usize,
-    /// The pool's walls receive light (`[floor] walls`, issue 18): the water is the square alone
+    /// The pool's walls receive light (`[floor] walls`): the water is the square alone
     /// and the wall pass draws the walls' maps ([`illumination::wall_pass`]).
     pub walls: bool,
 }

@@ -20,7 +20,7 @@
 //!   averaged over that surface.
 //!
 //! # Walls
-//! With `walls` (the scene's `[floor] walls = true`, issue 18) the pool's four walls are receivers as
+//! With `walls` (the scene's `[floor] walls = true`) the pool's four walls are receivers as
 //! in [`crate::reference`]: only photons that enter through the water's square `[0, size]²` are
 //! traced, and each ends at the first thing its straight ray meets, an object, the floor or a wall
 //! plane (the wall the ray's horizontal part leaves the square through, [`Wall::exit`]). A photon on

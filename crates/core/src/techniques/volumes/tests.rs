@@ -729,7 +729,7 @@ fn floor_and_walls_hold_the_light_that_leaves_the_surface() {
     assert!(worst < 0.12, "floor + walls flux off by {worst}");
 }
 
-/// Without walls the technique is what it was: the open-water lattice (shifted back by the
+/// Without walls the technique is the open-water one: the open-water lattice (shifted back by the
 /// refracted light's travel, widened by the waves' deflection), no wall maps, and a floor pass that
 /// does not look at the walls flag (bit for bit, on one thread so that the sums run in one order).
 #[test]

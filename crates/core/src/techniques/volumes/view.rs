@@ -145,7 +145,7 @@ pub fn view_pass(
     )
 }
 
-/// [`view_pass`] seeing the pool's walls (issue 18) when `walls` holds their maps: a refracted ray
+/// [`view_pass`] seeing the pool's walls when `walls` holds their maps: a refracted ray
 /// from the pool's surface that leaves the square through a wall before it reaches the floor sees
 /// that wall, lit by its map's nearest texel (`albedo (E + Ia)`, the floor's albedo: the pool is
 /// one material). The pool is sunk into a deck, as in the project's final image: a ray that meets

@@ -1,0 +1,214 @@
+//! The technique's tests that span its passes: flat water, the parameters and their checks, the
+//! flux a periodic surface keeps. Each pass's own tests are in its file.
+
+use glam::DVec3;
+
+use super::*;
+
+pub(super) fn setup(params: &YukselParams, res: usize, light: DVec3) -> YukselSetup {
+    YukselSetup::new(params, res, res, 1.0, 0.4, 1.333, DVec3::ZERO, true, light).unwrap()
+}
+
+#[test]
+fn flat_water_gives_one() {
+    let s = setup(&YukselParams::default(), 32, DVec3::new(0.3, 0.1, -1.0));
+    let m = caustics(&s, &Grid::new(16, 16));
+    let worst = m
+        .texels
+        .iter()
+        .map(|t| (t[0] - 1.0).abs())
+        .fold(0.0, f32::max);
+    eprintln!("flat water: worst |E - 1| {worst:.2e}");
+    // measured 0 (exact); the bound allows f32 rounding of the overlaps' sum
+    for t in &m.texels {
+        assert!((t[0] - 1.0).abs() < 1e-5, "{}", t[0]);
+    }
+}
+
+/// The scatter by default, the paper's passes for its preset, either when named; the
+/// render-target entry pins them and refuses a scatter; the scatter's former name is `yuksel`.
+#[test]
+fn the_passes_follow_the_preset_unless_named() {
+    use crate::techniques::Spec;
+    let passes = |s: &str| {
+        let spec: Spec = s.parse().unwrap();
+        (
+            spec.name(),
+            YukselParams::from_table(&spec.params).unwrap().passes(),
+        )
+    };
+    assert_eq!(passes("yuksel"), ("yuksel", Passes::Scatter));
+    assert_eq!(passes("yuksel:preset=paper"), ("yuksel", Passes::Targets));
+    assert_eq!(
+        passes("yuksel:preset=paper,passes=scatter"),
+        ("yuksel", Passes::Scatter)
+    );
+    assert_eq!(passes("yuksel:passes=targets"), ("yuksel", Passes::Targets));
+    assert_eq!(
+        passes("yuksel-targets"),
+        ("yuksel-targets", Passes::Targets)
+    );
+    assert_eq!(passes("yuksel-gather"), ("yuksel", Passes::Scatter));
+    let err = "yuksel-targets:passes=scatter".parse::<Spec>().unwrap_err();
+    assert!(err.to_string().contains("passes"), "{err}");
+    let err = "yuksel:passes=gather".parse::<Spec>().unwrap_err();
+    assert!(err.to_string().contains("passes"), "{err}");
+}
+
+/// A scene whose technique's name pins `passes` and whose table says otherwise is refused,
+/// naming the key; the same table under the name that pins nothing, or agreeing with the
+/// pin, is read.
+#[test]
+fn a_scene_table_against_its_techniques_pin_is_refused() {
+    let scene = |technique: &str, passes: &str| {
+        crate::scene::Scene::from_toml(
+            &format!(
+                "[water]\nsize = 4.0\ndepth = 1.0\n[light]\ndirection = [0.3, 0.2, -1.0]\n[caustics]\ntechnique = \"{technique}\"\n\
+                 [caustics.yuksel]\npasses = \"{passes}\"\n"
+            ),
+            std::path::Path::new("."),
+            "pinned",
+        )
+    };
+    let Err(err) = scene("yuksel-targets", "scatter") else {
+        panic!("yuksel-targets with passes scatter was accepted");
+    };
+    let text = err.to_string();
+    assert!(
+        text.contains("caustics.yuksel.passes") && text.contains("yuksel-targets"),
+        "{text}"
+    );
+    for (technique, passes) in [
+        ("yuksel-targets", "targets"),
+        ("yuksel", "scatter"),
+        ("yuksel", "targets"),
+    ] {
+        if let Err(e) = scene(technique, passes) {
+            panic!("{technique} with passes {passes}: {e}");
+        }
+    }
+}
+
+#[test]
+fn periodic_flux_is_conserved_when_the_region_holds_the_deflection() {
+    let n = 64;
+    let g = Grid::from_fn(n, n, |i, j| {
+        let x = (j as f64 + 0.5) / n as f64;
+        let y = (i as f64 + 0.5) / n as f64;
+        (0.002 * (std::f64::consts::TAU * (2.0 * x + y)).sin()) as f32
+    });
+    let water = YukselParams {
+        fresnel: false,
+        ..Default::default()
+    };
+    let paper = YukselParams {
+        fresnel: false,
+        ..YukselParams::paper()
+    };
+    // measured mean − 1 through pass 1 and pass 2: −8.38e-9 (4 × 4 footprints, level 0),
+    // 1.58e-8 (at level 1, where a level pixel's 8 × 8 samples spread over 2 × 2 map pixels),
+    // −8.38e-9 (the paper's); through the scatter, whose shares are rounded to 2^−20:
+    // −4.47e-8, 4.47e-8 and 1.04e-7; max 1.044, 1.045, 1.081 both ways
+    for (label, params, level) in [
+        ("footprints", &water, 0),
+        ("level 1", &water, 1),
+        ("paper", &paper, 0),
+    ] {
+        let mut s = setup(params, 64, DVec3::new(0.2, 0.1, -1.0));
+        s.region = Region {
+            level,
+            ..s.region_for(&g)
+        };
+        for (passes, m) in [
+            ("gather", caustics_in_region(&s, &g)),
+            ("scatter", scatter_in_region(&s, &g)),
+        ] {
+            let mean = m.texels.iter().map(|t| t[0] as f64).sum::<f64>() / m.texels.len() as f64;
+            let max = m.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+            eprintln!(
+                "periodic waves, {label}, {passes}: mean - 1 = {:.2e}, max {max}",
+                mean - 1.0
+            );
+            let bound = if passes == "gather" { 8.9e-8 } else { 1.0e-6 };
+            assert!((mean - 1.0).abs() < bound, "{label}, {passes}: mean {mean}");
+            assert!(max > 1.03, "{label}: waves focus: {max}");
+        }
+    }
+}
+
+#[test]
+fn bad_n_and_m_are_named() {
+    let e = YukselParams {
+        n: Some(0),
+        ..Default::default()
+    }
+    .validate()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("caustics.yuksel.n"), "{e}");
+    let e = YukselParams {
+        m: Some(40),
+        ..Default::default()
+    }
+    .validate()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("caustics.yuksel.m"), "{e}");
+    let e = YukselParams {
+        m: Some(3),
+        ..Default::default()
+    }
+    .validate()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("even"), "{e}");
+}
+
+/// The CPU run is the twin of the passes the GPU runs for the same spec: the scatter's for
+/// `yuksel`, pass 1 and pass 2 for `yuksel-targets` and for the paper's preset.
+#[test]
+fn the_cpu_run_follows_the_passes() {
+    use crate::techniques::{Job, Spec};
+    let scene = crate::scene::Scene::from_toml(
+        "[water]\nsize = 1.0\ndepth = 0.4\n\
+         [[water.waves]]\namplitude = 0.004\nwavelength = 0.25\ndirection = [1.0, 0.3]\n\
+         [light]\ndirection = [0.3, 0.2, -1.0]\n[caustics]\nresolution = [32, 32]\n",
+        std::path::Path::new("."),
+        "waves",
+    )
+    .unwrap();
+    let water = scene.water.as_ref().unwrap();
+    let surface = water.surface_at(scene.time).unwrap();
+    let job = Job::new(&scene, Some(surface.as_ref()), 1);
+    for (name, scattered) in [
+        ("yuksel", true),
+        ("yuksel-targets", false),
+        ("yuksel:preset=paper", false),
+    ] {
+        let spec: Spec = name.parse().unwrap();
+        let made = spec
+            .run_cpu(&job, &|_, _| {})
+            .unwrap()
+            .caustics
+            .into_floor(name)
+            .unwrap();
+        let (setup, heights) = job_setup(&job, &spec.params).unwrap();
+        let twin = if scattered {
+            scatter(&setup, &heights)
+        } else {
+            caustics(&setup, &heights)
+        };
+        let other = if scattered {
+            caustics(&setup, &heights)
+        } else {
+            scatter(&setup, &heights)
+        };
+        assert!(made == twin, "{name}: not its passes' twin");
+        assert!(
+            made != other,
+            "{name}: the two twins' maps are to the bit the same"
+        );
+        let max = made.texels.iter().map(|t| t[0]).fold(0.0, f32::max);
+        assert!(max > 1.05, "{name}: the waves focus the light: {max}");
+    }
+}

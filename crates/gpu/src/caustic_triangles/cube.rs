@@ -1,0 +1,154 @@
+//! The light cube map of a point light: each generator's caustic triangles on its faces
+//! (`cube.wgsl`) and its surfaces into the shadow distances (`shadow.wgsl`).
+
+use caustics_core::techniques::caustic_triangles::cube::FAR;
+
+use super::{CausticTriangles, GeneratorFrame};
+use crate::pass::{begin_compute, bind_group};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+/// The light cube map of a point light on the GPU (paper 4, §4.2-4.3; CPU twin
+/// `caustics_core::techniques::caustic_triangles::cube`): the six `C x C` faces stacked in one
+/// `C x 6C` texture (face `f` in rows `f C .. (f + 1) C`, one viewport and scissor per face), `(Σ E,
+/// Σ E d)` in red and green, and the shadow distances in a storage buffer. Every generator adds
+/// into the same target.
+pub struct LightCubeTarget {
+    pub resolution: u32,
+    pub texture: wgpu::Texture,
+    pub view: wgpu::TextureView,
+    pub shadow: wgpu::Buffer,
+}
+
+/// One generator's bindings to a [`LightCubeTarget`].
+pub struct CubeBinds {
+    cube: wgpu::BindGroup,
+    shadow: wgpu::BindGroup,
+}
+
+impl CausticTriangles {
+    pub fn light_cube(
+        &self,
+        ctx: &GpuContext,
+        resolution: u32,
+    ) -> Result<LightCubeTarget, GpuError> {
+        ctx.check_texture_size(
+            "caustic-triangles light cube map",
+            resolution,
+            6 * resolution,
+        )?;
+        let n = 6 * resolution as u64 * resolution as u64;
+        ctx.check_buffer_size("caustic-triangles light cube shadow distances", n * 4)?;
+        let texture = ctx.texture_2d(
+            "caustic-triangles light cube map",
+            (resolution, 6 * resolution, 1),
+            self.map_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let view = texture.create_view(&Default::default());
+        let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles light cube shadow distances"),
+            size: n * 4,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        ctx.check()?;
+        Ok(LightCubeTarget {
+            resolution,
+            texture,
+            view,
+            shadow,
+        })
+    }
+
+    pub fn cube_binds(
+        &self,
+        ctx: &GpuContext,
+        frame: &GeneratorFrame,
+        target: &LightCubeTarget,
+    ) -> CubeBinds {
+        let cube = bind_group(
+            ctx,
+            "caustic-triangles light cube map",
+            &self.cube.get_bind_group_layout(0),
+            &[
+                frame.uniform.as_entire_binding(),
+                frame.photons.as_entire_binding(),
+                frame.irradiance.as_entire_binding(),
+                frame.pyramid.as_entire_binding(),
+            ],
+        );
+        let shadow = bind_group(
+            ctx,
+            "caustic-triangles light cube shadow distances",
+            &self.shadow.get_bind_group_layout(0),
+            &[
+                frame.uniform.as_entire_binding(),
+                frame.dm_buffer.as_entire_binding(),
+                target.shadow.as_entire_binding(),
+            ],
+        );
+        CubeBinds { cube, shadow }
+    }
+
+    /// Reset the shadow distances to "no surface" before the first generator's
+    /// [`encode_cube`](Self::encode_cube) (a queue write: it lands before the next submission).
+    pub fn reset_cube(&self, ctx: &GpuContext, target: &LightCubeTarget) {
+        let n = 6 * target.resolution as usize * target.resolution as usize;
+        ctx.write_buffer(&target.shadow, 0, bytemuck::cast_slice(&vec![FAR; n]));
+    }
+
+    /// Record one generator's reconstruction into the light cube map (§4.2): the vertex irradiance
+    /// pass, its caustic triangles drawn into each face (cleared first when `clear`), and its
+    /// surfaces into the shadow distances. The photon image must be in `frame.photons`.
+    pub fn encode_cube(
+        &self,
+        frame: &GeneratorFrame,
+        binds: &CubeBinds,
+        target: &LightCubeTarget,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        clear: bool,
+    ) {
+        let p = frame.setup.p as u32;
+        let c = target.resolution;
+        self.encode_irradiance(frame, encoder, timer.as_deref_mut());
+        {
+            let label = "caustic-triangles light cube map";
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &target.view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: if clear {
+                            wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                        } else {
+                            wgpu::LoadOp::Load
+                        },
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.cube);
+            pass.set_bind_group(0, &binds.cube, &[]);
+            for face in 0..6 {
+                pass.set_viewport(0.0, (face * c) as f32, c as f32, c as f32, 0.0, 1.0);
+                pass.set_scissor_rect(0, face * c, c, c);
+                pass.draw(0..6 * (p - 1) * (p - 1), face..face + 1);
+            }
+        }
+        let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles shadow distances");
+        pass.set_pipeline(&self.shadow);
+        pass.set_bind_group(0, &binds.shadow, &[]);
+        pass.dispatch_workgroups(c.div_ceil(8), (6 * c).div_ceil(8), 1);
+    }
+}

@@ -1,0 +1,405 @@
+//! One generator's frame (a glass object's, or the water surface's for the floor or a wall): its
+//! buffers, floor map and bind groups, and the passes that draw its floor map: photon tracing
+//! (`photon.wgsl`), vertex irradiance (`irradiance.wgsl`) and the merge pyramid (`pyramid.wgsl`),
+//! the caustic triangles (`triangles.wgsl`) or the splats (`splat.wgsl`).
+
+use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
+
+use super::{CausticTriangles, CausticTrianglesUniform, CopyBandBuffer, Reconstruction};
+use crate::pass::{begin_compute, bind_group};
+use crate::{GpuContext, GpuError, GpuTimer};
+
+/// One generator's resources (a glass object's, or the water surface's for the floor or a wall):
+/// the distance map, the photon image, the vertex irradiances, the floor map, and the bind groups.
+/// Built once; encode it every frame the light or object moves (the uniform and distance map can be
+/// rewritten in place for the same sizes).
+pub struct GeneratorFrame {
+    pub setup: CausticTrianglesSetup,
+    pub uniform: wgpu::Buffer,
+    pub dm_buffer: wgpu::Buffer,
+    pub photons: wgpu::Buffer,
+    /// Refracted path length per photon (a water generator's; zeros for glass).
+    pub paths: wgpu::Buffer,
+    pub irradiance: wgpu::Buffer,
+    pub map: wgpu::Texture,
+    pub map_view: wgpu::TextureView,
+    pub(crate) photon_bind: wgpu::BindGroup,
+    pub(crate) irradiance_bind: wgpu::BindGroup,
+    /// The merge pyramid (§5) and one bind group per level.
+    pub pyramid: wgpu::Buffer,
+    pub(super) pyramid_binds: Vec<wgpu::BindGroup>,
+    /// The band the GPU fitted and the indirect draw of the shifted copies ([`CopyBandBuffer`]).
+    pub copy_band: wgpu::Buffer,
+    /// Whether the shifted copies are drawn indirectly from `copy_band` (a water frame of tiling
+    /// water, whose copy band pass writes it) rather than from the setup's band.
+    pub(super) gpu_band: bool,
+    pub(super) triangles_bind: wgpu::BindGroup,
+    pub(super) splat_bind: wgpu::BindGroup,
+    pub(super) bytes: u64,
+}
+
+impl GeneratorFrame {
+    /// GPU memory this frame's buffers and map take, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+}
+
+impl CausticTriangles {
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+    ) -> Result<GeneratorFrame, GpuError> {
+        self.frame_drawing_into(ctx, setup, dm, None)
+    }
+
+    /// A frame whose floor map is `map` when given (a floor map of the setup's size and this
+    /// format that several generators draw into, [`draw_floor`](Self::draw_floor) with `clear`
+    /// for the first only), else its own.
+    pub fn frame_drawing_into(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+        map: Option<&wgpu::Texture>,
+    ) -> Result<GeneratorFrame, GpuError> {
+        self.frame_into_layer(ctx, setup, dm, map.map(|m| (m, 0)))
+    }
+
+    /// [`frame_drawing_into`](Self::frame_drawing_into) a layer of a shared 2-D array texture at
+    /// least as wide as the setup's map (the wall maps: the map in the layer's first columns).
+    pub fn frame_into_layer(
+        &self,
+        ctx: &GpuContext,
+        setup: &CausticTrianglesSetup,
+        dm: &DistanceMap,
+        map: Option<(&wgpu::Texture, u32)>,
+    ) -> Result<GeneratorFrame, GpuError> {
+        use wgpu::BufferUsages as B;
+        let (w, h) = (setup.floor.width as u32, setup.floor.height as u32);
+        ctx.check_texture_size("caustic-triangles floor map", w, h)?;
+        let p = setup.p as u64;
+        let dm_bytes = dm.texels.len() as u64 * 16;
+        ctx.check_buffer_size("caustic-triangles distance map", dm_bytes)?;
+        ctx.check_buffer_size("caustic-triangles photon image", p * p * 16)?;
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles uniform"),
+            contents: bytemuck::bytes_of(&CausticTrianglesUniform::new(setup, dm)),
+            usage: B::UNIFORM | B::COPY_DST,
+        });
+        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles distance map"),
+            contents: bytemuck::cast_slice(&dm.texels),
+            usage: B::STORAGE | B::COPY_DST,
+        });
+        let photons = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles photon image"),
+            size: p * p * 16,
+            usage: B::STORAGE | B::COPY_SRC | B::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let paths = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles photon path lengths"),
+            size: p * p * 4,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let irradiance = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles vertex irradiance"),
+            size: p * p * 4,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let own_map = map.is_none();
+        let layer = map.map_or(0, |m| m.1);
+        let map = match map.map(|m| m.0) {
+            Some(m) => {
+                if m.width() < w
+                    || (m.height(), m.format()) != (h, self.map_format)
+                    || layer >= m.depth_or_array_layers()
+                {
+                    return Err(GpuError::Validation(format!(
+                        "caustic-triangles: a shared floor map of {} x {} {:?} for a {w} x {h} {:?} frame",
+                        m.width(),
+                        m.height(),
+                        m.format(),
+                        self.map_format
+                    )));
+                }
+                m.clone()
+            }
+            None => ctx.texture_2d(
+                "caustic-triangles floor map",
+                (w, h, 1),
+                self.map_format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+            ),
+        };
+        let map_view = map.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2),
+            base_array_layer: layer,
+            array_layer_count: Some(1),
+            ..Default::default()
+        });
+        let photon_bind = bind_group(
+            ctx,
+            "caustic-triangles photon tracing",
+            &self.photon.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                dm_buffer.as_entire_binding(),
+                photons.as_entire_binding(),
+            ],
+        );
+        let irradiance_bind = bind_group(
+            ctx,
+            "caustic-triangles vertex irradiance",
+            &self.irradiance.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                photons.as_entire_binding(),
+                irradiance.as_entire_binding(),
+            ],
+        );
+        let (sides, offsets) = caustics_core::techniques::caustic_triangles::merge::layout(
+            setup.p,
+            setup.merge_levels,
+        );
+        let pyramid_texels = (offsets.last().unwrap() + sides.last().unwrap().pow(2)) as u64;
+        ctx.check_buffer_size(
+            "caustic-triangles merge pyramid",
+            pyramid_texels.max(1) * 16,
+        )?;
+        let pyramid = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("caustic-triangles merge pyramid"),
+            size: pyramid_texels.max(1) * 16,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let pyramid_binds = (0..=setup.merge_levels)
+            .map(|k| {
+                let level = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("caustic-triangles merge level"),
+                    contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
+                    usage: B::UNIFORM,
+                });
+                bind_group(
+                    ctx,
+                    "caustic-triangles merge pyramid",
+                    &self.pyramid.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        photons.as_entire_binding(),
+                        irradiance.as_entire_binding(),
+                        pyramid.as_entire_binding(),
+                        level.as_entire_binding(),
+                    ],
+                )
+            })
+            .collect();
+        let copy_band = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles copy band"),
+            contents: bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
+            usage: B::STORAGE | B::INDIRECT | B::COPY_SRC,
+        });
+        let triangles_bind = bind_group(
+            ctx,
+            "caustic-triangles triangles",
+            &self.triangles.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                photons.as_entire_binding(),
+                irradiance.as_entire_binding(),
+                pyramid.as_entire_binding(),
+                paths.as_entire_binding(),
+                copy_band.as_entire_binding(),
+            ],
+        );
+        let splat_bind = bind_group(
+            ctx,
+            "caustic-triangles splats",
+            &self.splat.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                photons.as_entire_binding(),
+                paths.as_entire_binding(),
+            ],
+        );
+        ctx.check()?;
+        let texel = self.map_format.block_copy_size(None).unwrap_or(16) as u64;
+        Ok(GeneratorFrame {
+            setup: setup.clone(),
+            uniform,
+            dm_buffer,
+            photons,
+            paths,
+            irradiance,
+            map,
+            map_view,
+            photon_bind,
+            irradiance_bind,
+            pyramid,
+            pyramid_binds,
+            triangles_bind,
+            splat_bind,
+            copy_band,
+            gpu_band: false,
+            bytes: dm_bytes
+                + p * p * 24
+                + own_map as u64 * (w * h) as u64 * texel
+                + 176
+                + std::mem::size_of::<CopyBandBuffer>() as u64,
+        })
+    }
+
+    /// Record the photon tracing pass, then the reconstruction into the floor map (cleared first).
+    pub fn encode(
+        &self,
+        frame: &GeneratorFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+    ) {
+        self.encode_photons(frame, encoder, timer.as_deref_mut());
+        self.encode_reconstruction(frame, encoder, timer, reconstruction);
+    }
+
+    /// Record the photon tracing pass alone (§4.1) into `frame.photons`.
+    pub fn encode_photons(
+        &self,
+        frame: &GeneratorFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let p = frame.setup.p as u32;
+        let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles photon tracing");
+        pass.set_pipeline(&self.photon);
+        pass.set_bind_group(0, &frame.photon_bind, &[]);
+        pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+    }
+
+    /// Record the reconstruction only (vertex irradiance and triangles, or splats) from the photon
+    /// image already in `frame.photons`, into the floor map (cleared first).
+    pub fn encode_reconstruction(
+        &self,
+        frame: &GeneratorFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+    ) {
+        if reconstruction == Reconstruction::Triangles {
+            self.encode_irradiance(frame, encoder, timer.as_deref_mut());
+        }
+        self.draw_floor(frame, encoder, timer, reconstruction, &frame.map_view, true);
+    }
+
+    /// The vertex irradiance pass (§5), then, with `merge_levels`, the merge pyramid level by level.
+    pub fn encode_irradiance(
+        &self,
+        frame: &GeneratorFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let p = frame.setup.p as u32;
+        {
+            let mut pass =
+                begin_compute(encoder, &mut timer, "caustic-triangles vertex irradiance");
+            pass.set_pipeline(&self.irradiance);
+            pass.set_bind_group(0, &frame.irradiance_bind, &[]);
+            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        if frame.setup.merge_levels == 0 {
+            return;
+        }
+        for (k, bind) in frame.pyramid_binds.iter().enumerate() {
+            let n = (p - 1) >> k;
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles merge pyramid");
+            pass.set_pipeline(&self.pyramid);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(n.div_ceil(8).max(1), n.div_ceil(8).max(1), 1);
+        }
+    }
+
+    /// The floor-map render pass alone (triangles from the vertex irradiances already computed, or
+    /// splats) into `target` (a floor map of this frame's size), cleared first or added to
+    /// (several generators into one map).
+    pub fn draw_floor(
+        &self,
+        frame: &GeneratorFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+        target: &wgpu::TextureView,
+        clear: bool,
+    ) {
+        let p = frame.setup.p as u32;
+        let copies = frame.setup.copies().len() as u32;
+        let label = match reconstruction {
+            Reconstruction::Triangles => "caustic-triangles triangles",
+            Reconstruction::Splats => "caustic-triangles splats",
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: if clear {
+                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
+                    } else {
+                        wgpu::LoadOp::Load
+                    },
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        // The map may fill only the first columns of its target (a wall map in its layer).
+        let f = &frame.setup.floor;
+        pass.set_viewport(0.0, 0.0, f.width as f32, f.height as f32, 0.0, 1.0);
+        match reconstruction {
+            Reconstruction::Triangles => {
+                pass.set_pipeline(&self.triangles);
+                pass.set_bind_group(0, &frame.triangles_bind, &[]);
+                let all = 6 * (p - 1) * (p - 1);
+                if copies == 1 {
+                    pass.draw(0..all, 0..1);
+                } else {
+                    // The unshifted copy (instance 8) over every quad, the eight shifted ones
+                    // (instances 0..8, `copy_of_instance` in common.wgsl) over their bands only
+                    // (`copy_rect`): an edge band is at most `band` quads deep. The band is the
+                    // GPU's own where the copy band pass fitted it, else the setup's.
+                    pass.draw(0..all, 8..9);
+                    if frame.gpu_band {
+                        pass.draw_indirect(
+                            &frame.copy_band,
+                            std::mem::offset_of!(CopyBandBuffer, draw) as u64,
+                        );
+                    } else {
+                        let area =
+                            |(i0, i1, j0, j1): (usize, usize, usize, usize)| (i1 - i0) * (j1 - j0);
+                        let most = (0..9)
+                            .filter(|&k| k != 4)
+                            .map(|k| area(frame.setup.copy_rect(k)))
+                            .max()
+                            .unwrap_or(0) as u32;
+                        pass.draw(0..(6 * most).min(all), 0..8);
+                    }
+                }
+            }
+            Reconstruction::Splats => {
+                pass.set_pipeline(&self.splat);
+                pass.set_bind_group(0, &frame.splat_bind, &[]);
+                pass.draw(0..6 * p * p, 0..copies);
+            }
+        }
+    }
+}

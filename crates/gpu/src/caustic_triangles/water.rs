@@ -1,0 +1,361 @@
+//! The water surface as the generator: its frame, the water photon pass (`water_photon.wgsl`),
+//! the copy band of tiling water (`band_bound.wgsl`, `band.wgsl`) and the pool's walls as
+//! receivers.
+
+use caustics_core::grid::Grid;
+use caustics_core::techniques::caustic_triangles::DistanceMap;
+use caustics_core::techniques::caustic_triangles::water::WaterSetup;
+use caustics_core::walls::{Wall, WallMaps};
+
+use super::{
+    BAND_BOUND, COPY_BAND, CausticTriangles, CausticTrianglesUniform, GeneratorFrame,
+    Reconstruction, WaterPhotonUniform,
+};
+use crate::pass::{begin_compute, bind_group};
+use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+
+/// Tiling water's copy band on the GPU: the bound pass's buffer and bind group, the band pass's, and
+/// the height grid the bound pass covers.
+struct BandPasses {
+    bound: wgpu::Buffer,
+    bound_bind: wgpu::BindGroup,
+    band: wgpu::BindGroup,
+    grid: (u32, u32),
+}
+
+/// The water surface as the generator: a [`GeneratorFrame`] whose photon image the water photon
+/// pass writes from a height texture (no distance map), and whose shifted copies of tiling water
+/// the copy band pass fits from the same texture. Built once per lattice, map and height-grid size;
+/// every encode reads the heights afresh (the caller's texture, [`CausticTriangles::water_frame_with_water`],
+/// or its own, rewritten by [`update_heights`](Self::update_heights)).
+pub struct WaterFrame {
+    pub frame: GeneratorFrame,
+    /// The setup its uniforms hold; the band of `setup.setup.water` is the lattice's (every
+    /// quad): the copy band pass narrows it on the GPU.
+    pub setup: WaterSetup,
+    /// The heights it uploaded itself ([`CausticTriangles::water_frame`]); `None` when it reads
+    /// the caller's.
+    pub heights: Option<wgpu::Texture>,
+    /// The grid size of the heights it reads.
+    pub grid: (u32, u32),
+    pub water_uniform: wgpu::Buffer,
+    water_bind: wgpu::BindGroup,
+    /// The copy band pass's bind group (tiling water only).
+    band_bind: Option<BandPasses>,
+    /// The walls' receivers when the setup has walls ([`WaterSetup::with_walls`]).
+    pub walls: Option<WallFrames>,
+}
+
+/// The pool's walls as receivers of a water frame (CPU twin `water::wall_caustics`):
+/// each wall has its own photon image (the rays extended to its plane), vertex irradiance and
+/// caustic triangles, a [`GeneratorFrame`] drawing into its layer of one 2-D array texture
+/// ([`crate::technique::Technique::walls`]'s layout).
+pub struct WallFrames {
+    /// 4 layers in `Wall::ALL`'s order, as wide as the widest wall map, as tall as the maps.
+    pub texture: wgpu::Texture,
+    /// Empty maps: the walls' sizes.
+    pub layout: WallMaps,
+    /// One per wall, in `Wall::ALL`'s order.
+    pub walls: Vec<WallFrame>,
+}
+
+/// One wall's receiver: its frame and its photon pass's uniform and bind group.
+pub struct WallFrame {
+    pub frame: GeneratorFrame,
+    pub water_uniform: wgpu::Buffer,
+    water_bind: wgpu::BindGroup,
+}
+
+impl WaterFrame {
+    /// Overwrite the heights with a grid of the same size, in a frame that uploaded its own (the
+    /// copy band pass refits the band on the GPU at the next encode).
+    pub fn update_heights(&mut self, ctx: &GpuContext, heights: &Grid) -> Result<(), GpuError> {
+        let Some(texture) = &self.heights else {
+            return Err(GpuError::BadOption(
+                "caustic-triangles water frame: it reads the caller's heights texture; write that instead".into(),
+            ));
+        };
+        if (heights.cols as u32, heights.rows as u32) != self.grid {
+            return Err(GpuError::Validation(format!(
+                "caustic-triangles water heights: a {} x {} grid for a {} x {} frame",
+                heights.cols, heights.rows, self.grid.0, self.grid.1
+            )));
+        }
+        ctx.write_grid(texture, heights);
+        Ok(())
+    }
+
+    /// Whether `ws` fits this frame's buffers and bind groups (the same lattice, map size and
+    /// wrap), so that [`set_setup`](Self::set_setup) can take it.
+    pub fn fits(&self, ws: &WaterSetup) -> bool {
+        let f = &self.setup.setup.floor;
+        (
+            ws.lattice,
+            ws.setup.floor.width,
+            ws.setup.floor.height,
+            ws.setup.merge_levels,
+            ws.wrap(),
+        ) == (
+            self.setup.lattice,
+            f.width,
+            f.height,
+            self.setup.setup.merge_levels,
+            self.setup.wrap(),
+        )
+    }
+
+    /// Take a new sun, water depth, index or parameters (a setup that [`fits`](Self::fits)): two
+    /// uniform writes, none when nothing changed.
+    pub fn set_setup(&mut self, ctx: &GpuContext, ws: &WaterSetup) {
+        debug_assert!(self.fits(ws));
+        let old_ct = CausticTrianglesUniform::new(&self.frame.setup, &no_distance_map());
+        let old_w = WaterPhotonUniform::new(&self.setup);
+        let ct = CausticTrianglesUniform::new(&ws.setup, &no_distance_map());
+        let w = WaterPhotonUniform::new(ws);
+        if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
+            ctx.write_buffer(&self.frame.uniform, 0, bytemuck::bytes_of(&ct));
+        }
+        if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
+            ctx.write_buffer(&self.water_uniform, 0, bytemuck::bytes_of(&w));
+        }
+        if let Some(walls) = &mut self.walls {
+            for (wall, wf) in Wall::ALL.into_iter().zip(&mut walls.walls) {
+                let setup = ws.receiver_setup(Some(wall), &walls.layout);
+                let old_ct = CausticTrianglesUniform::new(&wf.frame.setup, &no_distance_map());
+                let ct = CausticTrianglesUniform::new(&setup, &no_distance_map());
+                if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
+                    ctx.write_buffer(&wf.frame.uniform, 0, bytemuck::bytes_of(&ct));
+                }
+                let old_w = WaterPhotonUniform::for_receiver(&self.setup, Some(wall));
+                let w = WaterPhotonUniform::for_receiver(ws, Some(wall));
+                if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
+                    ctx.write_buffer(&wf.water_uniform, 0, bytemuck::bytes_of(&w));
+                }
+                wf.frame.setup = setup;
+            }
+        }
+        self.setup = ws.clone();
+        self.frame.setup = ws.setup.clone();
+    }
+
+    pub fn bytes(&self) -> u64 {
+        self.frame.bytes()
+            + self
+                .heights
+                .as_ref()
+                .map_or(0, |_| (self.grid.0 * self.grid.1) as u64 * 4)
+            + 48
+            + self.walls.as_ref().map_or(0, |w| {
+                let t = &w.texture;
+                let texel = t.format().block_copy_size(None).unwrap_or(16) as u64;
+                w.walls.iter().map(|f| f.frame.bytes() + 48).sum::<u64>()
+                    + (t.width() * t.height() * 4) as u64 * texel
+            })
+    }
+}
+
+/// A water frame's distance map, unused: one texel fills its binding.
+fn no_distance_map() -> DistanceMap {
+    DistanceMap {
+        resolution: 1,
+        layers: 1,
+        centre: glam::DVec3::ZERO,
+        radius: 0.0,
+        texels: vec![[0.0; 4]],
+    }
+}
+
+impl CausticTriangles {
+    /// A water frame that uploads `heights` itself (rewrite them with
+    /// [`WaterFrame::update_heights`]).
+    pub fn water_frame(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &Grid,
+    ) -> Result<WaterFrame, GpuError> {
+        let texture = ctx.upload_grid("caustic-triangles water heights", heights)?;
+        let mut wf = self.water_frame_with_water(ctx, ws, &WaterTextures::of(&texture))?;
+        wf.heights = Some(texture);
+        Ok(wf)
+    }
+
+    /// A water frame reading the caller's heights (any grid size: the passes sample it
+    /// bicubically, as the CPU twin samples its grid). The band of `ws` is kept as an upper bound
+    /// the GPU's fit narrows (a fresh [`WaterSetup`] has every quad).
+    pub fn water_frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        water: &WaterTextures,
+    ) -> Result<WaterFrame, GpuError> {
+        let mut frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
+        let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("caustic-triangles water photons"),
+            contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let view = wgpu::BindingResource::TextureView(&water.heights);
+        let water_bind = bind_group(
+            ctx,
+            "caustic-triangles water photons",
+            &self.water_photon.get_bind_group_layout(0),
+            &[
+                water_uniform.as_entire_binding(),
+                view.clone(),
+                frame.photons.as_entire_binding(),
+                frame.paths.as_entire_binding(),
+            ],
+        );
+        let band_bind = ws.wrap().then(|| {
+            let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(BAND_BOUND.name),
+                size: 16,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let bound_bind = bind_group(
+                ctx,
+                BAND_BOUND.name,
+                &self.band_bound.get_bind_group_layout(0),
+                &[
+                    water_uniform.as_entire_binding(),
+                    view.clone(),
+                    bound.as_entire_binding(),
+                ],
+            );
+            let band = bind_group(
+                ctx,
+                COPY_BAND.name,
+                &self.copy_band.get_bind_group_layout(0),
+                &[
+                    water_uniform.as_entire_binding(),
+                    frame.uniform.as_entire_binding(),
+                    bound.as_entire_binding(),
+                    frame.copy_band.as_entire_binding(),
+                ],
+            );
+            BandPasses {
+                bound,
+                bound_bind,
+                band,
+                grid: (water.cols, water.rows),
+            }
+        });
+        frame.gpu_band = band_bind.is_some();
+        let walls = if ws.walls {
+            Some(self.wall_frames(ctx, ws, &view)?)
+        } else {
+            None
+        };
+        ctx.check()?;
+        Ok(WaterFrame {
+            frame,
+            setup: ws.clone(),
+            heights: None,
+            grid: (water.cols, water.rows),
+            water_uniform,
+            water_bind,
+            band_bind,
+            walls,
+        })
+    }
+
+    /// The walls' receivers of a water frame with walls, reading the heights through `heights`.
+    fn wall_frames(
+        &self,
+        ctx: &GpuContext,
+        ws: &WaterSetup,
+        heights: &wgpu::BindingResource,
+    ) -> Result<WallFrames, GpuError> {
+        let f = &ws.setup.floor;
+        let layout = WallMaps::for_floor_map(f.width, f.height, ws.size, ws.depth);
+        let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
+        let rows = layout.maps[0].rows as u32;
+        ctx.check_texture_size("caustic-triangles wall maps", cols, rows)?;
+        let texture = ctx.texture_2d(
+            "caustic-triangles wall maps",
+            (cols, rows, 4),
+            self.map_format,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let mut walls = Vec::with_capacity(4);
+        for wall in Wall::ALL {
+            let setup = ws.receiver_setup(Some(wall), &layout);
+            let frame = self.frame_into_layer(
+                ctx,
+                &setup,
+                &no_distance_map(),
+                Some((&texture, wall.index() as u32)),
+            )?;
+            let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("caustic-triangles wall photons"),
+                contents: bytemuck::bytes_of(&WaterPhotonUniform::for_receiver(ws, Some(wall))),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+            let water_bind = bind_group(
+                ctx,
+                "caustic-triangles wall photons",
+                &self.water_photon.get_bind_group_layout(0),
+                &[
+                    water_uniform.as_entire_binding(),
+                    heights.clone(),
+                    frame.photons.as_entire_binding(),
+                    frame.paths.as_entire_binding(),
+                ],
+            );
+            walls.push(WallFrame {
+                frame,
+                water_uniform,
+                water_bind,
+            });
+        }
+        Ok(WallFrames {
+            texture,
+            layout,
+            walls,
+        })
+    }
+
+    /// Record the water photon pass, then the reconstruction into the floor map (cleared first).
+    pub fn encode_water(
+        &self,
+        wf: &WaterFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+        reconstruction: Reconstruction,
+    ) {
+        let p = wf.frame.setup.p as u32;
+        {
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles water photons");
+            pass.set_pipeline(&self.water_photon);
+            pass.set_bind_group(0, &wf.water_bind, &[]);
+            pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+        }
+        if let Some(b) = &wf.band_bind {
+            encoder.clear_buffer(&b.bound, 0, None);
+            {
+                let mut pass = begin_compute(encoder, &mut timer, BAND_BOUND.name);
+                pass.set_pipeline(&self.band_bound);
+                pass.set_bind_group(0, &b.bound_bind, &[]);
+                pass.dispatch_workgroups(b.grid.0.div_ceil(16), b.grid.1.div_ceil(16), 1);
+            }
+            let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles copy band");
+            pass.set_pipeline(&self.copy_band);
+            pass.set_bind_group(0, &b.band, &[]);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
+        self.encode_reconstruction(&wf.frame, encoder, timer.as_deref_mut(), reconstruction);
+        for wall in wf.walls.iter().flat_map(|w| &w.walls) {
+            {
+                let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles wall photons");
+                pass.set_pipeline(&self.water_photon);
+                pass.set_bind_group(0, &wall.water_bind, &[]);
+                pass.dispatch_workgroups(p.div_ceil(8), p.div_ceil(8), 1);
+            }
+            self.encode_reconstruction(&wall.frame, encoder, timer.as_deref_mut(), reconstruction);
+        }
+    }
+}

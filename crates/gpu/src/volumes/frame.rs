@@ -1,0 +1,525 @@
+//! One scene's resources: what a frame allocates and binds for every pass, and the uniform writes
+//! that refit it to a new sun or camera.
+
+use caustics_core::grid::Grid;
+use caustics_core::techniques::volumes::{VolumesInput, VolumesSetup};
+use caustics_core::walls::WallMaps;
+
+use super::{CameraUniform, PassUniform, ViewOptions, Volumes, VolumesUniform};
+use crate::bvh::{FlatBvhs, GpuBvhNode, GpuBvhTriangle};
+use crate::pass::bind_group;
+use crate::technique::WallsOutput;
+use crate::{GpuContext, GpuError, WaterTextures};
+
+pub(super) struct ObjectFrame {
+    /// The object's layer of the frame's depth-texture and image arrays.
+    pub(super) layer: u32,
+    /// Its [`PassUniform`].
+    uniform: wgpu::Buffer,
+    pub(super) caustics: wgpu::Texture,
+    pub(super) caustics_view: wgpu::TextureView,
+    pub(super) diffuse: wgpu::Texture,
+    pub(super) depth_bind: wgpu::BindGroup,
+    pub(super) slices_bind: wgpu::BindGroup,
+    pub(super) shade_bind: wgpu::BindGroup,
+    pub(super) vertices: u32,
+    pub(super) res: u32,
+}
+
+/// One scene's resources: the BVH buffers, textures per object, the water buffer, the floor map and
+/// every bind group. Built once; encode it every frame (upload new heights with
+/// [`VolumesFrame::update_heights`]).
+pub struct VolumesFrame {
+    pub setup: VolumesSetup,
+    /// The heights it uploaded itself ([`Volumes::frame`]); `None` when it reads the caller's
+    /// ([`Volumes::frame_with_water`]).
+    heights: Option<wgpu::Texture>,
+    wrap: bool,
+    /// The [`VolumesUniform`] every pass reads.
+    uniform: wgpu::Buffer,
+    pub water: wgpu::Buffer,
+    /// The shadow map, its depth pass's bind group and [`PassUniform`].
+    pub(super) shadow: Option<(wgpu::Texture, wgpu::BindGroup, wgpu::Buffer)>,
+    pub(super) objects: Vec<ObjectFrame>,
+    pub(super) bvh_bind: wgpu::BindGroup,
+    pub(super) water_bind: wgpu::BindGroup,
+    pub(super) floor_bind: wgpu::BindGroup,
+    pub floor: wgpu::Texture,
+    pub(super) floor_view: wgpu::TextureView,
+    /// The walls' maps when the setup has walls.
+    pub walls: Option<WallsFrame>,
+    /// Every object's depth texture and final image (Eq. 4), one layer each.
+    pub(super) depths: wgpu::Texture,
+    pub(super) images: wgpu::Texture,
+    /// The refracted view's image, bind group and its copy of every object's [`PassUniform`], when
+    /// one was asked for.
+    pub(super) view: Option<(wgpu::Texture, wgpu::BindGroup, wgpu::Buffer)>,
+    bytes: u64,
+}
+
+impl VolumesFrame {
+    /// GPU memory the frame's buffers and textures take, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+
+    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
+    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
+        if let Some(t) = &self.heights {
+            ctx.write_grid(t, heights);
+        }
+    }
+
+    /// Whether `setup` fits this frame's buffers, textures and bind groups (the same parameters,
+    /// map, lattice size and objects), so that [`set_setup`](Self::set_setup) can take it. A new
+    /// sun moves the lattice, the shadow map's frame and each object's cells; a new camera turns
+    /// each object's view: none of that changes a size.
+    pub fn fits(&self, setup: &VolumesSetup) -> bool {
+        let s = &self.setup;
+        setup.params == s.params
+            && setup.walls == s.walls
+            && (setup.width, setup.height) == (s.width, s.height)
+            && (setup.lattice.nx, setup.lattice.ny) == (s.lattice.nx, s.lattice.ny)
+            && setup.shadow.as_ref().map(|v| v.res) == s.shadow.as_ref().map(|v| v.res)
+            && setup.objects.len() == s.objects.len()
+            && setup
+                .objects
+                .iter()
+                .zip(&s.objects)
+                .all(|(a, b)| a.view.res == b.view.res && slice_vertices(a).is_some())
+    }
+
+    /// Take a new sun or camera (a setup that [`fits`](Self::fits)): uniform writes only, and each
+    /// object's slice draw resized to its new cells.
+    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &VolumesSetup) {
+        debug_assert!(self.fits(setup));
+        ctx.write_buffer(
+            &self.uniform,
+            0,
+            bytemuck::bytes_of(&VolumesUniform::new(setup, self.wrap)),
+        );
+        if let (Some((_, _, buffer)), Some(view)) = (&self.shadow, &setup.shadow) {
+            let u = PassUniform::shadow(view, setup.objects.len());
+            ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&u));
+        }
+        let uniforms: Vec<PassUniform> = (0..setup.objects.len())
+            .map(|k| PassUniform::object(setup, k))
+            .collect();
+        for ((o, u), view) in self.objects.iter_mut().zip(&uniforms).zip(&setup.objects) {
+            ctx.write_buffer(&o.uniform, 0, bytemuck::bytes_of(u));
+            o.vertices = slice_vertices(view).expect("fits checked the count");
+        }
+        if let Some((_, _, buffer)) = &self.view
+            && !uniforms.is_empty()
+        {
+            ctx.write_buffer(buffer, 0, bytemuck::cast_slice(&uniforms));
+        }
+        self.setup = setup.clone();
+    }
+
+    /// Triangles the slice pass draws per frame (all objects, all planes).
+    pub fn slice_triangles(&self) -> u64 {
+        self.objects.iter().map(|o| o.vertices as u64 / 3).sum()
+    }
+}
+
+/// The pool's walls as receivers of a frame (CPU twin `illumination::wall_pass`): one
+/// layer per wall of a 2-D array texture in `Wall::ALL`'s order, as wide as the widest wall map
+/// and as tall as the maps ([`crate::technique::Technique::walls`]'s layout), made once.
+pub struct WallsFrame {
+    pub texture: wgpu::Texture,
+    /// Empty maps: the walls' sizes.
+    pub layout: WallMaps,
+    pub(super) layers: Vec<wgpu::TextureView>,
+    pub(super) bind: wgpu::BindGroup,
+}
+
+impl WallsFrame {
+    /// The final image's view of the maps.
+    pub fn output(&self) -> WallsOutput<'_> {
+        WallsOutput::of(&self.texture, &self.layout)
+    }
+}
+
+/// Vertices of an object's slice draw (one triangle per reference plane and lattice triangle of its
+/// cells), `None` beyond what one draw can take.
+fn slice_vertices(o: &caustics_core::techniques::volumes::ObjectView) -> Option<u32> {
+    u32::try_from(o.cells.triangles() as u64 * o.planes as u64 * 3).ok()
+}
+
+impl Volumes {
+    /// Allocate a frame for `setup` (built from `input`), with the refracted view when `view` is
+    /// given, and upload the meshes and the heights.
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &VolumesSetup,
+        input: &VolumesInput,
+        heights: &Grid,
+        wrap: bool,
+        view: Option<&ViewOptions>,
+    ) -> Result<VolumesFrame, GpuError> {
+        let texture = ctx.upload_grid("volumes height field", heights)?;
+        let mut frame =
+            self.frame_with_water(ctx, setup, input, &WaterTextures::of(&texture), wrap, view)?;
+        frame.bytes += (heights.cols * heights.rows) as u64 * 4;
+        frame.heights = Some(texture);
+        Ok(frame)
+    }
+
+    /// Allocate a frame for `setup` (built from `input`) that reads the caller's heights (any grid
+    /// size: the water pass samples it bicubically, as the CPU twin samples its grid), and upload
+    /// the meshes' trees.
+    pub fn frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        setup: &VolumesSetup,
+        input: &VolumesInput,
+        heights: &WaterTextures,
+        wrap: bool,
+        view: Option<&ViewOptions>,
+    ) -> Result<VolumesFrame, GpuError> {
+        use wgpu::BindingResource::TextureView as View;
+        use wgpu::BufferUsages as B;
+        use wgpu::TextureUsages as U;
+        let (w, h) = (setup.width as u32, setup.height as u32);
+        ctx.check_texture_size("volumes floor map", w, h)?;
+        let FlatBvhs {
+            mut nodes,
+            mut triangles,
+            roots,
+        } = FlatBvhs::of(input.objects.iter().map(|o| &o.mesh));
+        // Bindings may not be empty: a scene without objects binds one unused node and slot.
+        if nodes.is_empty() {
+            nodes.push(GpuBvhNode::default());
+            triangles.push(GpuBvhTriangle::default());
+        }
+        let storage = |label: &str, bytes: &[u8]| {
+            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: B::STORAGE,
+            })
+        };
+        ctx.check_buffer_size("volumes BVH triangles", triangles.len() as u64 * 96)?;
+        let node_buf = storage("volumes BVH nodes", bytemuck::cast_slice(&nodes));
+        let tri_buf = storage("volumes BVH triangles", bytemuck::cast_slice(&triangles));
+        let mut root_list: Vec<u32> = roots.clone();
+        root_list.push(0);
+        let root_buf = storage("volumes roots", bytemuck::cast_slice(&root_list));
+        let mut bytes = node_buf.size() + tri_buf.size() + root_buf.size();
+        let bvh_bind = bind_group(
+            ctx,
+            "volumes BVH",
+            &self.depth.get_bind_group_layout(1),
+            &[node_buf.as_entire_binding(), tri_buf.as_entire_binding()],
+        );
+        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("volumes uniform"),
+            contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
+            usage: B::UNIFORM | B::COPY_DST,
+        });
+        let pass_uniform = |p: PassUniform| {
+            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("volumes pass uniform"),
+                contents: bytemuck::bytes_of(&p),
+                usage: B::UNIFORM | B::COPY_DST,
+            })
+        };
+        let depth_texture = |label: &str, res: u32| -> Result<wgpu::Texture, GpuError> {
+            ctx.check_texture_size(label, res, res)?;
+            Ok(ctx.texture_2d(
+                label,
+                (res, res, 1),
+                wgpu::TextureFormat::Rgba32Float,
+                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+            ))
+        };
+        // The shadow map, or a 1 x 1 stand-in the shaders never read (flags.y = 0).
+        let (shadow_tex, shadow) = match &setup.shadow {
+            Some(view) => {
+                let res = view.res as u32;
+                let tex = depth_texture("volumes shadow map", res)?;
+                let u = pass_uniform(PassUniform::shadow(view, roots.len()));
+                let bind = bind_group(
+                    ctx,
+                    "volumes shadow map",
+                    &self.depth.get_bind_group_layout(0),
+                    &[
+                        u.as_entire_binding(),
+                        root_buf.as_entire_binding(),
+                        View(&tex.create_view(&Default::default())),
+                    ],
+                );
+                bytes += (res * res) as u64 * 16;
+                (tex.clone(), Some((tex, bind, u)))
+            }
+            None => (depth_texture("volumes shadow stand-in", 1)?, None),
+        };
+        let shadow_view = shadow_tex.create_view(&Default::default());
+
+        let lattice_vertices = setup.lattice.vertex_count() as u64;
+        ctx.check_buffer_size("volumes water vertices", lattice_vertices * 32)?;
+        let water = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("volumes water"),
+            size: lattice_vertices * 32,
+            usage: B::STORAGE | B::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        bytes += water.size();
+        let water_bind = bind_group(
+            ctx,
+            "volumes water",
+            &self.water.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                View(&heights.heights),
+                water.as_entire_binding(),
+            ],
+        );
+        let map_texture = |label: &str, w: u32, h: u32| {
+            ctx.texture_2d(
+                label,
+                (w, h, 1),
+                self.map_format,
+                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+            )
+        };
+        let texel_bytes = if self.map_format == wgpu::TextureFormat::Rgba16Float {
+            8
+        } else {
+            16
+        };
+        let floor = map_texture("volumes floor map", w, h);
+        bytes += (w * h) as u64 * texel_bytes;
+        let floor_bind = bind_group(
+            ctx,
+            "volumes floor",
+            &self.floor.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                water.as_entire_binding(),
+                View(&shadow_view),
+            ],
+        );
+
+        let walls = match setup.wall_layout() {
+            None => None,
+            Some(layout) => {
+                let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
+                let rows = layout.maps[0].rows as u32;
+                ctx.check_texture_size("volumes wall maps", cols, rows)?;
+                let texture = ctx.texture_2d(
+                    "volumes wall maps",
+                    (cols, rows, 4),
+                    self.map_format,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
+                );
+                bytes += (cols * rows * 4) as u64 * texel_bytes;
+                let layers = (0..4)
+                    .map(|k| {
+                        texture.create_view(&wgpu::TextureViewDescriptor {
+                            dimension: Some(wgpu::TextureViewDimension::D2),
+                            base_array_layer: k,
+                            array_layer_count: Some(1),
+                            ..Default::default()
+                        })
+                    })
+                    .collect();
+                let bind = bind_group(
+                    ctx,
+                    "volumes walls",
+                    &self.walls.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        water.as_entire_binding(),
+                        View(&shadow_view),
+                    ],
+                );
+                Some(WallsFrame {
+                    texture,
+                    layout,
+                    layers,
+                    bind,
+                })
+            }
+        };
+
+        // One layer per object (all objects share the texture size); one unused layer without any.
+        let res_all = setup.params.texture;
+        ctx.check_texture_size("volumes depth texture", res_all, res_all)?;
+        let layers = (setup.objects.len() as u32).max(1);
+        let array = |label: &str| {
+            ctx.texture_2d(
+                label,
+                (res_all, res_all, layers),
+                wgpu::TextureFormat::Rgba32Float,
+                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+            )
+        };
+        let depths = array("volumes depth textures");
+        let images = array("volumes images");
+        bytes += (res_all * res_all * layers) as u64 * 32;
+        let layer_view = |t: &wgpu::Texture, k: u32| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: k,
+                array_layer_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let mut pass_uniforms = Vec::new();
+        let mut objects = Vec::new();
+        for (k, o) in setup.objects.iter().enumerate() {
+            let res = o.view.res as u32;
+            let object_uniform = PassUniform::object(setup, k);
+            pass_uniforms.push(object_uniform);
+            let u = pass_uniform(object_uniform);
+            let depth_view = layer_view(&depths, k as u32);
+            let caustics = map_texture("volumes caustics map", res, res);
+            let caustics_view = caustics.create_view(&Default::default());
+            let diffuse = depth_texture("volumes diffuse map", res)?;
+            bytes += (res * res) as u64 * (16 + texel_bytes);
+            let depth_bind = bind_group(
+                ctx,
+                "volumes depth",
+                &self.depth.get_bind_group_layout(0),
+                &[
+                    u.as_entire_binding(),
+                    root_buf.as_entire_binding(),
+                    View(&depth_view),
+                ],
+            );
+            let slices_bind = bind_group(
+                ctx,
+                "volumes slices",
+                &self.slices.get_bind_group_layout(0),
+                &[
+                    uniform.as_entire_binding(),
+                    u.as_entire_binding(),
+                    water.as_entire_binding(),
+                    View(&depth_view),
+                    View(&shadow_view),
+                ],
+            );
+            let shade_bind = bind_group(
+                ctx,
+                "volumes shade",
+                &self.shade.get_bind_group_layout(0),
+                &[
+                    u.as_entire_binding(),
+                    View(&depth_view),
+                    View(&caustics_view),
+                    View(&diffuse.create_view(&Default::default())),
+                    View(&layer_view(&images, k as u32)),
+                ],
+            );
+            let Some(vertices) = slice_vertices(o) else {
+                return Err(GpuError::TooLarge {
+                    what: format!("volumes slices of objects[{k}]"),
+                    size: format!(
+                        "{} vertices",
+                        o.cells.triangles() as u64 * o.planes as u64 * 3
+                    ),
+                    limit: format!("{} per draw", u32::MAX),
+                });
+            };
+            objects.push(ObjectFrame {
+                layer: k as u32,
+                uniform: u,
+                caustics,
+                caustics_view,
+                diffuse,
+                depth_bind,
+                slices_bind,
+                shade_bind,
+                vertices,
+                res,
+            });
+        }
+        let view = match view {
+            None => None,
+            Some(v) => {
+                let (w, h) = (v.camera.width as u32, v.camera.height as u32);
+                ctx.check_texture_size("volumes refracted view", w, h)?;
+                let image = ctx.texture_2d(
+                    "volumes refracted view",
+                    (w, h, 1),
+                    wgpu::TextureFormat::Rgba32Float,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                );
+                bytes += (w * h) as u64 * 16;
+                if pass_uniforms.is_empty() {
+                    pass_uniforms.push(PassUniform::default());
+                }
+                let camera = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("volumes camera"),
+                    contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
+                    usage: B::UNIFORM,
+                });
+                let object_buf = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("volumes objects"),
+                    contents: bytemuck::cast_slice(&pass_uniforms),
+                    usage: B::STORAGE | B::COPY_DST,
+                });
+                let array_view = |t: &wgpu::Texture| {
+                    t.create_view(&wgpu::TextureViewDescriptor {
+                        dimension: Some(wgpu::TextureViewDimension::D2Array),
+                        ..Default::default()
+                    })
+                };
+                // Without walls the view binds a one-texel stand-in it never reads (flags.z = 0).
+                let stand_in;
+                let walls_texture = match &walls {
+                    Some(w) => &w.texture,
+                    None => {
+                        stand_in = ctx.texture_2d(
+                            "volumes wall maps stand-in",
+                            (1, 1, 1),
+                            self.map_format,
+                            U::TEXTURE_BINDING,
+                        );
+                        &stand_in
+                    }
+                };
+                let bind = bind_group(
+                    ctx,
+                    "volumes view",
+                    &self.view.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        camera.as_entire_binding(),
+                        View(&heights.heights),
+                        object_buf.as_entire_binding(),
+                        View(&array_view(&depths)),
+                        View(&array_view(&images)),
+                        View(&floor.create_view(&Default::default())),
+                        View(&image.create_view(&Default::default())),
+                        View(&array_view(walls_texture)),
+                    ],
+                );
+                Some((image, bind, object_buf))
+            }
+        };
+        ctx.check()?;
+        Ok(VolumesFrame {
+            setup: setup.clone(),
+            heights: None,
+            wrap,
+            uniform,
+            water,
+            shadow,
+            objects,
+            bvh_bind,
+            water_bind,
+            floor_bind,
+            floor_view: floor.create_view(&Default::default()),
+            floor,
+            walls,
+            depths,
+            images,
+            view,
+            bytes,
+        })
+    }
+}

@@ -1,0 +1,476 @@
+//! One frame's resources for a map and height-field size: the textures and buffers each variant's
+//! passes read and write, sized for the largest region the region pass may choose
+//! ([`YukselSetup::capacity`]), their bind groups, and the memory they take.
+
+use caustics_core::grid::Grid;
+use caustics_core::techniques::yuksel::YukselSetup;
+
+use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
+use crate::pass::bind_group;
+use crate::water::patches::Patches;
+use crate::{GpuContext, GpuError, WaterTextures};
+
+/// One frame's resources for a given map and height-field size, bind groups included: a frame is
+/// built once and encoded every time the water moves (upload new heights with
+/// [`Frame::update_heights`]).
+pub struct Frame {
+    /// The heights it uploaded itself ([`Yuksel::frame`]); `None` when it reads the caller's
+    /// ([`Yuksel::frame_with_water`]).
+    heights: Option<wgpu::Texture>,
+    /// Every uniform buffer with the channel base and row phase it carries (one per pass-1 and
+    /// pass-2 draw).
+    uniforms: Vec<(wgpu::Buffer, u32, u32)>,
+    /// This frame's gather region ([`YukselRegion`]), written by the region pass.
+    pub region: wgpu::Buffer,
+    pub(super) region_bind: wgpu::BindGroup,
+    /// The floor hits' offset range over the heights (`region_bound.wgsl`), and the heights' size
+    /// its dispatch covers.
+    pub(super) bound: wgpu::Buffer,
+    pub(super) bound_bind: wgpu::BindGroup,
+    /// The heights in Hermite form, one texel per height texel.
+    pub(super) patches: Patches,
+    /// The fill's indirect dispatch and the count of the pixels at k its tier pass lists.
+    pub(super) fill_args: wgpu::Buffer,
+    pub(super) heights_size: wgpu::Extent3d,
+    pub map: wgpu::Texture,
+    pub(super) setup: YukselSetup,
+    pub variant: Variant,
+    pub(super) passes: FramePasses,
+    bytes: u64,
+    /// The pre-pass texture's tiling (one tile for the scatter variant, which has no pre-pass texture).
+    tiling: PrepassTiling,
+}
+
+pub(super) enum FramePasses {
+    Scatter {
+        /// One fixed-point sum per map pixel, cleared every frame.
+        sums: wgpu::Buffer,
+        /// Tiers, fill, resolve.
+        binds: [wgpu::BindGroup; 3],
+    },
+    RenderTargets {
+        /// The pre-pass's three passes: tiers, fill, span.
+        prepass: [wgpu::BindGroup; 3],
+        phases: Vec<Phase>,
+        /// The map.
+        target: wgpu::TextureView,
+    },
+}
+
+/// The draws of one row phase: the map's rows `phase` modulo `2^level`.
+pub(super) struct Phase {
+    /// Per pass-1 draw: its pipeline, bind group (with its own channel base) and target views.
+    pub(super) draws: Vec<(
+        wgpu::RenderPipeline,
+        wgpu::BindGroup,
+        Vec<wgpu::TextureView>,
+    )>,
+    pub(super) pass2: wgpu::BindGroup,
+}
+
+impl Frame {
+    /// GPU memory this frame's textures and buffers take, bytes.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
+    }
+
+    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
+    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
+        if let Some(t) = &self.heights {
+            ctx.write_grid(t, heights);
+        }
+    }
+
+    pub fn setup(&self) -> &YukselSetup {
+        &self.setup
+    }
+
+    /// Whether `setup` fits this frame's textures (the same map size, largest region and samples
+    /// per pixel),
+    /// so that [`set_setup`](Self::set_setup) can take it.
+    pub fn fits(&self, setup: &YukselSetup) -> bool {
+        let key = |s: &YukselSetup| (s.width, s.height, s.capacity(), s.subsamples);
+        key(setup) == key(&self.setup)
+    }
+
+    /// Take a new sun or depth (a setup that [`fits`](Self::fits)): uniform writes only.
+    pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
+        debug_assert!(self.fits(setup));
+        for (buffer, base, phase) in &self.uniforms {
+            ctx.write_buffer(
+                buffer,
+                0,
+                bytemuck::bytes_of(&YukselUniform::tiled(setup, *base, *phase, &self.tiling)),
+            );
+        }
+        self.patches.set_wrap(ctx, setup.wrap);
+        self.setup = setup.clone();
+    }
+}
+
+impl Yuksel {
+    /// Allocate a frame's textures and bind groups for `variant` and upload the height field.
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        setup: &YukselSetup,
+        heights: &Grid,
+        variant: Variant,
+    ) -> Result<Frame, GpuError> {
+        let texture = ctx.upload_grid("yuksel height field", heights)?;
+        let mut frame = self.frame_with_water(ctx, setup, &WaterTextures::of(&texture), variant)?;
+        frame.heights = Some(texture);
+        Ok(frame)
+    }
+
+    /// Allocate a frame's textures and bind groups for `variant`, reading the caller's heights
+    /// (any grid size: the passes sample it bicubically, as the CPU twin samples its grid).
+    pub fn frame_with_water(
+        &self,
+        ctx: &GpuContext,
+        setup: &YukselSetup,
+        water: &WaterTextures,
+        variant: Variant,
+    ) -> Result<Frame, GpuError> {
+        use wgpu::BindingResource::TextureView as View;
+        use wgpu::TextureUsages as U;
+        let (w, h) = (setup.width as u32, setup.height as u32);
+        // Sized for the largest region the region pass may choose.
+        let (_, cap_m) = setup.capacity();
+        let (pw, ph) = prepass_capacity(setup);
+        let (p1w, p1h) = (setup.width, setup.height + cap_m);
+        ctx.check_texture_size("yuksel caustics map", w, h)?;
+        let limits = ctx.limits();
+        let tiling = match variant {
+            Variant::RenderTargets => {
+                PrepassTiling::new((pw as u32, ph as u32), limits.max_texture_dimension_2d)
+            }
+            Variant::Scatter => PrepassTiling::new((1, 1), 1),
+        };
+        if tiling.layers() > limits.max_texture_array_layers {
+            return Err(GpuError::TooLarge {
+                what: "yuksel pre-pass texture".into(),
+                size: format!("{pw} x {ph} ({} layers of tiles)", tiling.layers()),
+                limit: format!(
+                    "{} layers of 1 .. {} per side",
+                    limits.max_texture_array_layers, limits.max_texture_dimension_2d
+                ),
+            });
+        }
+        // The pixels' spans and tiers: one texel per pixel of the map and its apron.
+        let (ew, eh) = prepass_pixels(setup);
+        match variant {
+            Variant::RenderTargets => {
+                ctx.check_texture_size("yuksel pass-1 targets", p1w as u32, p1h as u32)?;
+                ctx.check_texture_size("yuksel pre-pass spans", ew, eh)?;
+            }
+            Variant::Scatter => {
+                ctx.check_buffer_size("yuksel scatter sums", (w * h) as u64 * 4)?;
+            }
+        }
+        ctx.check_buffer_size("yuksel fill list", (ew * eh) as u64 * 4)?;
+        let mut uniforms = Vec::new();
+        let mut uniform_for = |channel_base: u32, phase: u32| {
+            let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("yuksel uniform"),
+                contents: bytemuck::bytes_of(&YukselUniform::tiled(
+                    setup,
+                    channel_base,
+                    phase,
+                    &tiling,
+                )),
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            });
+            uniforms.push((buffer.clone(), channel_base, phase));
+            buffer
+        };
+        let uniform = uniform_for(0, 0);
+        let heights_view = &water.heights;
+        let region = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("yuksel region"),
+            size: std::mem::size_of::<YukselRegion>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("yuksel region bound"),
+            size: 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bound_bind = bind_group(
+            ctx,
+            "yuksel region bound",
+            &self.region_bound.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                View(heights_view),
+                bound.as_entire_binding(),
+            ],
+        );
+        let region_bind = bind_group(
+            ctx,
+            "yuksel region",
+            &self.region.get_bind_group_layout(0),
+            &[
+                uniform.as_entire_binding(),
+                bound.as_entire_binding(),
+                region.as_entire_binding(),
+            ],
+        );
+        let heights_size = heights_view.texture().size();
+        let water_patches = self.patches.frame(ctx, heights_view, setup.wrap);
+        let patches = &water_patches.view;
+        let map = ctx.texture_2d(
+            "yuksel map",
+            (w, h, 1),
+            MAP_FORMAT,
+            U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
+        );
+        let map_view = map.create_view(&Default::default());
+        let mut bytes =
+            (w * h) as u64 * 16 + uniform.size() + region.size() + water_patches.bytes();
+        // The pixels at k, listed for the fill (at most every pixel of the largest region's
+        // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
+        let list_bytes = (ew * eh) as u64 * 4;
+        let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("yuksel fill list"),
+            size: list_bytes,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("yuksel fill dispatch"),
+            contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::INDIRECT
+                | wgpu::BufferUsages::COPY_DST,
+        });
+        bytes += list_bytes + fill_args.size();
+        let passes = match variant {
+            Variant::Scatter => {
+                let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("yuksel scatter sums"),
+                    size: (w * h) as u64 * 4,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                bytes += sums.size();
+                let [tier, fill, resolve] = &self.scatter;
+                let with = |label, pipeline: &wgpu::ComputePipeline| {
+                    bind_group(
+                        ctx,
+                        label,
+                        &pipeline.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(patches),
+                            sums.as_entire_binding(),
+                            region.as_entire_binding(),
+                            fill_args.as_entire_binding(),
+                            fill_list.as_entire_binding(),
+                        ],
+                    )
+                };
+                let binds = [
+                    with("yuksel scatter tiers", tier),
+                    with("yuksel scatter fill", fill),
+                    // The resolve reads neither the heights (1) nor the region (3).
+                    ctx.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("yuksel scatter resolve"),
+                        layout: &resolve.get_bind_group_layout(0),
+                        entries: &[
+                            (0, uniform.as_entire_binding()),
+                            (2, sums.as_entire_binding()),
+                            (4, View(&map_view)),
+                        ]
+                        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
+                    }),
+                ];
+                FramePasses::Scatter { sums, binds }
+            }
+            Variant::RenderTargets => {
+                let layers = (cap_m as u32 + 1).div_ceil(4);
+                let pre = ctx.texture_2d(
+                    "yuksel pre-pass",
+                    (tiling.tile.0, tiling.tile.1, tiling.layers()),
+                    MAP_FORMAT,
+                    U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                );
+                let channels = ctx.texture_2d(
+                    "yuksel pass-1 channels",
+                    (p1w as u32, p1h as u32, layers),
+                    MAP_FORMAT,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                );
+                // Each pixel's span along x and its tier, one texel per pixel of the pre-pass.
+                let (ew, eh) = prepass_pixels(setup);
+                let per_pixel = |label, format| {
+                    ctx.texture_2d(
+                        label,
+                        (ew, eh, 1),
+                        format,
+                        U::STORAGE_BINDING | U::TEXTURE_BINDING,
+                    )
+                    .create_view(&Default::default())
+                };
+                let extents_view =
+                    per_pixel("yuksel pre-pass extents", wgpu::TextureFormat::Rg32Float);
+                let tiers_view = per_pixel("yuksel pre-pass tiers", wgpu::TextureFormat::R32Uint);
+                bytes += tiling.tile.0 as u64 * tiling.tile.1 as u64 * tiling.layers() as u64 * 16
+                    + (p1w * p1h) as u64 * layers as u64 * 16
+                    + (ew * eh) as u64 * (8 + 4);
+                tracing::debug!(
+                    "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
+                    bytes as f64 / (1u64 << 20) as f64
+                );
+                let pre_view = pre.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                });
+                let prepass = [
+                    bind_group(
+                        ctx,
+                        "yuksel pre-pass",
+                        &self.prepass.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(patches),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                            View(&extents_view),
+                            View(&tiers_view),
+                            fill_args.as_entire_binding(),
+                            fill_list.as_entire_binding(),
+                        ],
+                    ),
+                    bind_group(
+                        ctx,
+                        "yuksel pre-pass fill",
+                        &self.prepass_fill.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(patches),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                            fill_args.as_entire_binding(),
+                            fill_list.as_entire_binding(),
+                        ],
+                    ),
+                    bind_group(
+                        ctx,
+                        "yuksel pre-pass span",
+                        &self.prepass_span.get_bind_group_layout(0),
+                        &[
+                            uniform.as_entire_binding(),
+                            View(&pre_view),
+                            region.as_entire_binding(),
+                            View(&tiers_view),
+                            View(&extents_view),
+                        ],
+                    ),
+                ];
+                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
+                    dimension: Some(wgpu::TextureViewDimension::D2Array),
+                    ..Default::default()
+                });
+                // Per row phase (one at level 0, up to 2^MAX_LEVEL where the water chooses the
+                // level; phases past this frame's level draw nothing): pass 1, as many layers per
+                // draw as the device allows, then pass 2 into the map's rows of that phase.
+                let per_draw = self.targets_per_draw.min(layers);
+                let mut phases = Vec::new();
+                for phase in 0..setup.phases() {
+                    let mut draws = Vec::new();
+                    let mut first = 0;
+                    while first < layers {
+                        let count = per_draw.min(layers - first);
+                        let pipeline = self.pass1_pipeline(ctx, count);
+                        let draw_uniform = uniform_for(4 * first, phase);
+                        let bind = bind_group(
+                            ctx,
+                            "yuksel pass 1",
+                            &pipeline.get_bind_group_layout(0),
+                            &[
+                                draw_uniform.as_entire_binding(),
+                                View(&pre_view),
+                                region.as_entire_binding(),
+                                View(&extents_view),
+                            ],
+                        );
+                        let views = (first..first + count)
+                            .map(|layer| {
+                                channels.create_view(&wgpu::TextureViewDescriptor {
+                                    dimension: Some(wgpu::TextureViewDimension::D2),
+                                    base_array_layer: layer,
+                                    array_layer_count: Some(1),
+                                    ..Default::default()
+                                })
+                            })
+                            .collect();
+                        draws.push((pipeline, bind, views));
+                        first += count;
+                    }
+                    let pass2_uniform = uniform_for(0, phase);
+                    let pass2 = bind_group(
+                        ctx,
+                        "yuksel pass 2",
+                        &self.pass2.get_bind_group_layout(0),
+                        &[
+                            pass2_uniform.as_entire_binding(),
+                            View(&channels_view),
+                            region.as_entire_binding(),
+                        ],
+                    );
+                    phases.push(Phase { draws, pass2 });
+                }
+                FramePasses::RenderTargets {
+                    prepass,
+                    phases,
+                    target: map_view,
+                }
+            }
+        };
+        ctx.check()?;
+        Ok(Frame {
+            heights: None,
+            uniforms,
+            region,
+            region_bind,
+            bound,
+            bound_bind,
+            patches: water_patches,
+            fill_args,
+            heights_size,
+            map,
+            setup: setup.clone(),
+            variant,
+            passes,
+            bytes,
+            tiling,
+        })
+    }
+}
+
+/// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has
+/// the most): the map and the region's apron.
+pub(super) fn prepass_pixels(setup: &YukselSetup) -> (u32, u32) {
+    let (cap_n, cap_m) = setup.capacity();
+    (
+        (setup.width + cap_n - 1) as u32,
+        (setup.height + cap_m) as u32,
+    )
+}
+
+/// The pre-pass texture's size for the largest region at any level the setup may choose: the
+/// level's `k × k` samples per pixel of the level's map and apron.
+fn prepass_capacity(setup: &YukselSetup) -> (usize, usize) {
+    let (cap_n, cap_m) = setup.capacity();
+    let levels = setup.phases().trailing_zeros();
+    (0..=levels).fold((0, 0), |(w, h), level| {
+        let k = setup.subsamples_at(level);
+        (
+            w.max(((setup.width >> level) + cap_n - 1) * k),
+            h.max(((setup.height >> level) + cap_m) * k),
+        )
+    })
+}
