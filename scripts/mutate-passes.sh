@@ -78,9 +78,9 @@ final image slab bound 1 % low @@ $S/final_image/final_image_slab.wgsl @@ bitcas
 final image slab slope 1 % low @@ $S/final_image/final_image_slab.wgsl @@ bitcast<u32>(length(h.yz)) @@ bitcast<u32>(length(h.yz) * 0.99) @@ $FI
 filtered water: slopes base x1.01 @@ $S/final_image/water_slopes_base.wgsl @@ first += vec4<f32>(g, g * g) * w; @@ first += vec4<f32>(g, g * g) * w * 1.01; @@ render_gpu
 filtered water: slopes halve x1.01 @@ $S/final_image/water_slopes_halve.wgsl @@ n += 1.0; @@ n += 0.99; @@ render_gpu
-filtered water: rough water sky x1.01 @@ $S/final_image/final_image.wgsl @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w); @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w * 1.01); @@ render_gpu
-filtered water: glint x1.01 @@ $S/final_image/final_image.wgsl @@ return sun_radiance() * (3.14159265 * f * g); @@ return sun_radiance() * (3.14159265 * f * g * 1.01); @@ render_gpu
-filtered water: from below, slopes x1.01 @@ $S/final_image/final_image.wgsl @@ n = height_field_normal(water_slopes(p, d).mean); @@ n = height_field_normal(water_slopes(p, d).mean * 1.01); @@ render_gpu
+filtered water: rough water sky x1.01 @@ $S/final_image/final_image_rough_water.wgsl @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w); @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w * 1.01); @@ render_gpu
+filtered water: glint x1.01 @@ $S/final_image/final_image_rough_water.wgsl @@ return sun_radiance() * (3.14159265 * f * g); @@ return sun_radiance() * (3.14159265 * f * g * 1.01); @@ render_gpu
+filtered water: from below, slopes x1.01 @@ $S/final_image/final_image_march.wgsl @@ n = height_field_normal(water_slopes(p, d).mean); @@ n = height_field_normal(water_slopes(p, d).mean * 1.01); @@ render_gpu
 triangles photon x1.01 @@ $S/caustic_triangles/photon.wgsl @@ = trace_photon(id.y, id.x); @@ = trace_photon(id.y, id.x) * 1.01; @@ $CT
 triangles irradiance x1.01 @@ $S/caustic_triangles/irradiance.wgsl @@ = vertex_irradiance(i32(id.y), i32(id.x)); @@ = vertex_irradiance(i32(id.y), i32(id.x)) * 1.01; @@ $CT
 triangles hat edge share 1 % more @@ $S/caustic_triangles/irradiance.wgsl @@ select(1.0, 0.5, i == 0 || i == l) @@ select(1.0, 0.505, i == 0 || i == l) @@ $CT

@@ -131,7 +131,7 @@ impl CausticsMap {
 
 /// Most taps a footprint-filtered lookup takes along its footprint's long axis (as a GPU's
 /// anisotropic filtering does); longer footprints take coarser levels. `MAX_TAPS` in
-/// final_image.wgsl.
+/// final_image_inputs.wgsl.
 pub const MAX_TAPS: usize = 8;
 
 /// A caustics map and its box-filtered halvings: level `L` has `max(1, width >> L)` x
@@ -140,7 +140,7 @@ pub const MAX_TAPS: usize = 8;
 /// side. The final image reads it over each sample's footprint on the floor, so that caustics
 /// seen far away or through waves blend as the many rays of a pixel would instead of aliasing.
 /// GPU twin: `caustics_mips.wgsl` builds the same levels, `sample_caustics_filtered` in
-/// final_image.wgsl reads them.
+/// final_image_inputs.wgsl reads them.
 #[derive(Clone, Debug)]
 pub struct MapPyramid {
     pub levels: Vec<CausticsMap>,

@@ -2,7 +2,7 @@
 //! Model for Daylight" (SIGGRAPH 99), the clear sky's luminance and chromaticity from the sun's
 //! height and the air's turbidity, with the sun's disk at its true size. Its GPU twin is `perez_sky`
 //! and `xyy_to_rgb` in caustics-gpu's `shaders/shading.wgsl`, called by `sky_radiance` in
-//! `final_image/final_image.wgsl`, which evaluate the same Perez functions from the coefficients
+//! `final_image/final_image_inputs.wgsl`, which evaluate the same Perez functions from the coefficients
 //! [`Sky::coefficients`] hands them.
 //!
 //! The model (§ 3 and appendix A.2 of the paper): each of the luminance `Y` and the chromaticities

@@ -16,7 +16,7 @@
 //!
 //! Off by default (`RenderOptions::filter_water`, `caustics render --filter-water`): against many
 //! samples it does not yet beat the exact normals (docs/look.md). Its GPU twin is
-//! caustics-gpu's `final_image::slopes` and `final_image.wgsl`'s `rough_water`.
+//! caustics-gpu's `final_image::slopes` and `final_image_rough_water.wgsl`'s `rough_water`.
 
 use glam::{DVec2, DVec3};
 

@@ -1,6 +1,6 @@
 //! The final image on the GPU: the scene from its camera with the water, its Fresnel reflection of
 //! the sky, the refracted floor lit through a caustics map, and the objects. It is the GPU twin of
-//! the CPU renderer `caustics_core::render` (`crates/core/src/render.rs`, where the light transport
+//! the CPU renderer `caustics_core::render` (`crates/core/src/render/`, where the light transport
 //! is written down) and gives the same image up to f32 rounding; `tests/render_gpu.rs` holds the
 //! two together.
 //!
@@ -10,7 +10,7 @@
 //! | water slab bounds (compute, 128² samples) | `final_image/final_image_slab.wgsl` | [`slab_bounds`]: the slab's half height and the slope bound of the march |
 //! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `map_mips.wgsl` | `CausticsMap::pyramid` |
 //! | the water's slope moments' pyramid (compute, one dispatch a level, in the image's pass, when the normals are filtered) | `final_image/water_slopes_base.wgsl`, `final_image/water_slopes_halve.wgsl` ([`slopes`]) | `SlopePyramid::new` |
-//! | final image (compute, one invocation per pixel) | `final_image/final_image.wgsl` | `render::render` and `Tracer` |
+//! | final image (compute, one invocation per pixel) | `final_image/final_image.wgsl`, after its parts `final_image_inputs.wgsl` (the uniform, bindings and inputs' reads), `final_image_spread.wgsl`, `final_image_receivers.wgsl`, `final_image_march.wgsl`, `final_image_shade.wgsl`, `final_image_rough_water.wgsl` | `render::render` and `Tracer` (`render/mod.rs`, `spread.rs`, `shade.rs`, `march.rs`, `sky.rs`, `trace.rs`) |
 //! | (shared) sky, floor albedo, tone map | `shaders/shading.wgsl` | `Tracer::sky`, `tone_map`, `Albedo::filtered` |
 //! | (shared) mesh ray queries | `shaders/bvh.wgsl` | `MeshBvh::intersect` |
 //!
@@ -48,35 +48,52 @@
 //!
 //! WGSL has no recursion: the CPU's recursive trace (water surface, glass reflection and
 //! refraction) becomes a loop over a small stack of weighted rays, with the CPU's depth limit; the
-//! header of `final_image.wgsl` explains why the sum is the same. The whole image is one dispatch,
-//! which a desktop GPU finishes in milliseconds; a driver with a watchdog and a very large,
-//! heavily supersampled image would want it split into bands.
+//! header of `final_image_inputs.wgsl` explains why the sum is the same. The whole image is one
+//! dispatch, which a desktop GPU finishes in milliseconds; a driver with a watchdog and a very
+//! large, heavily supersampled image would want it split into bands.
 
+mod encode;
+mod frame;
+mod readback;
+mod resources;
 pub mod slopes;
 mod upload;
 
+pub use resources::{upload_map, upload_walls, write_map};
 pub use upload::{
     FinalImageUniform, GpuObject, Meshes, SLAB_LATTICE, Slab, SlabUniform, albedo, flags, meshes,
     slab_bounds, water_grid, water_grid_resolution,
 };
 
-use caustics_core::map::{CausticsMap, pyramid_levels};
-use caustics_core::render::{Caustics, Image, RenderOptions};
-use caustics_core::scene::{Albedo, Scene};
-use caustics_core::walls::WallMaps;
-use caustics_core::water::Surface;
-
-use crate::map_mips::{MapMips, mip_chain, mips_pipeline};
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::map_mips::{MapMips, mips_pipeline};
+use crate::pass::compute_pipeline;
 use crate::shaders::{BVH, OPTICS, SHADING, WATER, passes};
-use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::water::patches::{Patches, WaterPatches};
-use crate::{GpuContext, GpuError, GpuTimer};
+use crate::{GpuContext, GpuError};
+use resources::{float_texture, storage_entry, texture_entry};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
+// The final image pass's parts, composed in this order after the shared files and before its own
+// `final_image.wgsl`, each the twin of a file of `caustics_core::render`.
+/// The pass's header, uniform, bindings and reads of its inputs (the floor map's pyramid too).
+const INPUTS: &str = include_str!("final_image_inputs.wgsl");
+/// The ray differentials (`render/spread.rs`).
+const SPREAD: &str = include_str!("final_image_spread.wgsl");
+/// What a view ray reads where it ends besides the floor map: eye-space caustics, the objects, the
+/// pool's walls.
+const RECEIVERS: &str = include_str!("final_image_receivers.wgsl");
+/// The march to the water surface and the floor, and the surface from below (`render/march.rs`).
+const MARCH: &str = include_str!("final_image_march.wgsl");
+/// The floor, the objects, the deck and the open air (`render/shade.rs`).
+const SHADE: &str = include_str!("final_image_shade.wgsl");
+/// The water's normals filtered by each sample's footprint, and the glint (`render/sky.rs`).
+const ROUGH_WATER: &str = include_str!("final_image_rough_water.wgsl");
+
 passes! {
-    FINAL_IMAGE = "final image", [OPTICS, WATER, SHADING, BVH], "final_image/final_image.wgsl";
+    FINAL_IMAGE = "final image",
+        [OPTICS, WATER, SHADING, BVH, INPUTS, SPREAD, RECEIVERS, MARCH, SHADE, ROUGH_WATER],
+        "final_image/final_image.wgsl";
     FINAL_IMAGE_SLAB = "final image slab", [WATER], "final_image/final_image_slab.wgsl";
 }
 
@@ -148,174 +165,6 @@ pub struct FinalImageFrame {
     /// Kept alive with the bind groups that read them.
     _resources: Vec<wgpu::Buffer>,
     _textures: Vec<wgpu::Texture>,
-}
-
-fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        // Read with textureLoad only, so 32-bit float textures need not be filterable.
-        ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
-            view_dimension: wgpu::TextureViewDimension::D2,
-            multisampled: false,
-        },
-        count: None,
-    }
-}
-
-/// The final image's view of a walls texture: all its layers.
-fn walls_view(texture: &wgpu::Texture) -> wgpu::TextureView {
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2Array),
-        ..Default::default()
-    })
-}
-
-/// Upload CPU-made walls' maps (the reference's) as the final image reads them: an `Rgba32Float`
-/// 2D array texture of four layers, as wide as the widest wall ([`WallsOutput`]'s layout), and
-/// each layer's column count. Once per set of maps, not per frame.
-pub fn upload_walls(
-    ctx: &GpuContext,
-    maps: &WallMaps,
-) -> Result<(wgpu::Texture, [u32; 4]), GpuError> {
-    let cols = maps.maps.each_ref().map(|m| m.cols as u32);
-    let width = cols.iter().copied().max().unwrap_or(1).max(1);
-    let rows = maps.maps[0].rows as u32;
-    ctx.check_texture_size("walls' maps", width, rows)?;
-    let mut texels = vec![[0f32; 4]; (width * rows) as usize * 4];
-    for (k, m) in maps.maps.iter().enumerate() {
-        for i in 0..m.rows {
-            for j in 0..m.cols {
-                let t = m.texels[i * m.cols + j];
-                texels[(k * rows as usize + i) * width as usize + j] = [t[0], t[1], t[2], 1.0];
-            }
-        }
-    }
-    let texture = ctx.create_texture_with_data(
-        &wgpu::TextureDescriptor {
-            label: Some("walls' maps"),
-            size: wgpu::Extent3d {
-                width,
-                height: rows,
-                depth_or_array_layers: 4,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&texels),
-    );
-    Ok((texture, cols))
-}
-
-fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: true },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
-
-fn float_texture(
-    ctx: &GpuContext,
-    what: &str,
-    format: wgpu::TextureFormat,
-    width: u32,
-    height: u32,
-    texels: &[u8],
-) -> Result<wgpu::Texture, GpuError> {
-    ctx.check_texture_size(what, width, height)?;
-    let size = wgpu::Extent3d {
-        width,
-        height,
-        depth_or_array_layers: 1,
-    };
-    let texel = format
-        .block_copy_size(None)
-        .expect("an uncompressed format");
-    debug_assert_eq!(texels.len(), (width * height * texel) as usize);
-    Ok(ctx.create_texture_with_data(
-        &wgpu::TextureDescriptor {
-            label: Some(what),
-            size,
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        texels,
-    ))
-}
-
-/// A CPU caustics map as the `Rgba32Float` texture a technique's floor output is
-/// ([`Output::Floor`]), for [`FinalImage::frame`] or [`FinalImage::render_with`].
-pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, GpuError> {
-    float_texture(
-        ctx,
-        "caustics map",
-        wgpu::TextureFormat::Rgba32Float,
-        map.width as u32,
-        map.height as u32,
-        bytemuck::cast_slice(&rgba32(&map.texels)),
-    )
-}
-
-/// `map`'s texels into mip 0 of `texture` (`Rgba32Float`, `COPY_DST`, at least the map's size):
-/// a floor map the CPU made, for a texture that lives across frames.
-pub fn write_map(ctx: &GpuContext, texture: &wgpu::Texture, map: &CausticsMap) {
-    ctx.write_texture(
-        texture.as_image_copy(),
-        bytemuck::cast_slice(&rgba32(&map.texels)),
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(16 * map.width as u32),
-            rows_per_image: Some(map.height as u32),
-        },
-        wgpu::Extent3d {
-            width: map.width as u32,
-            height: map.height as u32,
-            depth_or_array_layers: 1,
-        },
-    );
-}
-
-/// An RGB image as `Rgba32Float` texels (alpha 1).
-fn rgba32(texels: &[[f32; 3]]) -> Vec<[f32; 4]> {
-    texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect()
-}
-
-fn storage_buffer<T: bytemuck::Pod + Default>(
-    ctx: &GpuContext,
-    what: &str,
-    items: &[T],
-) -> Result<wgpu::Buffer, GpuError> {
-    // A storage binding may not be empty: one zeroed element stands for none.
-    let fallback = [T::default()];
-    let items = if items.is_empty() {
-        &fallback[..]
-    } else {
-        items
-    };
-    let bytes: &[u8] = bytemuck::cast_slice(items);
-    ctx.check_buffer_size(what, bytes.len() as u64)?;
-    Ok(ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(what),
-        contents: bytes,
-        usage: wgpu::BufferUsages::STORAGE,
-    }))
 }
 
 impl FinalImage {
@@ -438,531 +287,5 @@ impl FinalImage {
     /// since the CPU renderer needs no texture fetches and no SIMD lanes wait on each other.
     pub fn software_adapter(ctx: &GpuContext) -> bool {
         ctx.info.device_type == wgpu::DeviceType::Cpu
-    }
-
-    /// The final image of `scene` at its camera's size, every resource built here once: the
-    /// objects' trees (a scene whose objects change needs a new frame), the terrain and albedo
-    /// textures, the `Rgba8Unorm` output, the uniform and the bind groups.
-    ///
-    /// `water`: the heights as the techniques read them, bound as they are (the caller may rewrite
-    /// the texture every frame); `None` without water. `caustics`: the technique's output texture,
-    /// bound as it is: a floor map over the water square (over the scene square without water), or
-    /// an eye-space image of the scene's camera; `None` lights the floor as under flat water.
-    /// [`update`](FinalImageFrame::update) takes the first frame's camera and sun before
-    /// [`encode`](FinalImageFrame::encode).
-    pub fn frame(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        options: &RenderOptions,
-    ) -> Result<FinalImageFrame, GpuError> {
-        self.build(ctx, scene, water, caustics, None, None, options)
-    }
-
-    /// [`frame`](Self::frame) with the walls' maps of a technique that lit the pool's walls (bound
-    /// as they are; ignored when the scene's walls are off).
-    pub fn frame_with_walls(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        walls: Option<WallsOutput>,
-        options: &RenderOptions,
-    ) -> Result<FinalImageFrame, GpuError> {
-        self.build(ctx, scene, water, caustics, walls, None, options)
-    }
-
-    /// [`frame_with_walls`](Self::frame_with_walls), a floor map's square given (`map_size`) or
-    /// the scene's.
-    #[allow(clippy::too_many_arguments)]
-    fn build(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        walls: Option<WallsOutput>,
-        map_size: Option<f64>,
-        options: &RenderOptions,
-    ) -> Result<FinalImageFrame, GpuError> {
-        let (width, height) = (scene.camera.width, scene.camera.height);
-        ctx.check_texture_size("final image", width, height)?;
-        // Heights without water in the scene have no square to cover: the frame has no surface.
-        let water = water.filter(|_| scene.water.is_some());
-        let lighting = match caustics {
-            Some(Output::Floor(_)) => Lighting::Floor {
-                size: map_size.unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
-            },
-            Some(Output::EyeSpace(_)) => Lighting::EyeSpace,
-            None => Lighting::Flat,
-        };
-
-        let meshes = meshes(scene);
-        let terrain = match &scene.floor.terrain {
-            Some(t) => Some(ctx.upload_grid("terrain height field", t)?),
-            None => None,
-        };
-        let albedo_image = match &scene.floor.albedo {
-            Albedo::Image {
-                width,
-                height,
-                texels,
-            } => Some(float_texture(
-                ctx,
-                "floor albedo image",
-                wgpu::TextureFormat::Rgba32Float,
-                *width as u32,
-                *height as u32,
-                bytemuck::cast_slice(&rgba32(texels)),
-            )?),
-            Albedo::Pattern(_) => None,
-        };
-        let walls = walls.filter(|_| scene.floor.walls && scene.water.is_some());
-        let wall_cols =
-            storage_buffer(ctx, "walls' columns", &walls.map_or([0u32; 4], |w| w.cols))?;
-        let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
-        let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.trees.nodes)?;
-        let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.trees.triangles)?;
-        let uniform = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image uniform"),
-            size: std::mem::size_of::<FinalImageUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let slab_max = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image slab bounds"),
-            size: 8,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let output = ctx.texture_2d(
-            "final image",
-            (width, height, 1),
-            wgpu::TextureFormat::Rgba8Unorm,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
-
-        let (mips, mips_groups) = match caustics {
-            Some(Output::Floor(map)) => self.pyramid(ctx, map).unzip(),
-            _ => (None, None),
-        };
-        let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
-            t.unwrap_or(empty).create_view(&Default::default())
-        };
-        let patches = water.map(|w| {
-            let wrap = scene.water.as_ref().is_some_and(|sw| sw.wrap);
-            self.patches.frame(ctx, &w.heights, wrap)
-        });
-        let water_view = match &patches {
-            Some(p) => p.view.clone(),
-            None => view(None, &self.empty_rgba32),
-        };
-        let no_slopes = storage_buffer(ctx, "no water slope moments", &[0f32; 5])?;
-        // The slope moments' pyramid is made by `update` (the first below, when the options filter
-        // the water), which leaves the water unfiltered where it cannot be made.
-        let slopes_group = bind_group(
-            ctx,
-            "water slope moments",
-            &self.slopes_layout,
-            &[no_slopes.as_entire_binding()],
-        );
-        let views = [
-            view(terrain.as_ref(), &self.empty_r32),
-            view(caustics.map(|c| c.texture()), &self.empty_rgba32),
-            view(albedo_image.as_ref(), &self.empty_rgba32),
-            output.create_view(&Default::default()),
-            walls_view(walls.map_or(&self.empty_walls, |w| w.texture)),
-            view(mips.as_ref(), &self.empty_rgba32),
-        ];
-        let scene_group = bind_group(
-            ctx,
-            "final image scene",
-            &self.scene_layout,
-            &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&water_view),
-                wgpu::BindingResource::TextureView(&views[0]),
-                wgpu::BindingResource::TextureView(&views[1]),
-                wgpu::BindingResource::TextureView(&views[2]),
-                objects.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[3]),
-                slab_max.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[4]),
-                wall_cols.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[5]),
-            ],
-        );
-        let mesh_group = bind_group(
-            ctx,
-            "scene meshes",
-            &self.mesh_layout,
-            &[nodes.as_entire_binding(), triangles.as_entire_binding()],
-        );
-        let mut resources = vec![objects, nodes, triangles, wall_cols, no_slopes];
-        let slab_group = match (water, &scene.water) {
-            (Some(w), Some(sw)) => {
-                // The water's square and edge rule are the scene's: a new frame when they change.
-                let slab = SlabUniform {
-                    size: sw.size as f32,
-                    wrap: sw.wrap as u32,
-                    lattice: SLAB_LATTICE,
-                    _pad: 0,
-                };
-                let slab_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("final image slab uniform"),
-                    contents: bytemuck::bytes_of(&slab),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let group = bind_group(
-                    ctx,
-                    "final image slab",
-                    &self.slab_pipeline.get_bind_group_layout(0),
-                    &[
-                        slab_uniform.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&w.heights),
-                        slab_max.as_entire_binding(),
-                    ],
-                );
-                resources.push(slab_uniform);
-                Some(group)
-            }
-            _ => None,
-        };
-
-        let mut frame = FinalImageFrame {
-            pipeline: self.pipeline.clone(),
-            slab_pipeline: self.slab_pipeline.clone(),
-            patches_pipeline: self.patches.clone(),
-            patches,
-            mips_groups,
-            scene_group,
-            mesh_group,
-            slab_group,
-            uniform,
-            slab_max,
-            output,
-            lighting,
-            map_size,
-            object_count: meshes.objects.len() as u32,
-            size: (width, height),
-            written: None,
-            _resources: resources,
-            pyramid: mips,
-            slopes: None,
-            slope_pipelines: self.slopes.clone(),
-            slopes_layout: self.slopes_layout.clone(),
-            slopes_group,
-            slopes_failed: false,
-            _textures: terrain.into_iter().chain(albedo_image).collect(),
-        };
-        frame.update(ctx, scene, options);
-        ctx.check()?;
-        Ok(frame)
-    }
-
-    /// The levels of `map`'s pyramid below level 0 (`CausticsMap::pyramid`: level `L` is
-    /// `max(1, size >> L)`), as the mips of one `Rgba32Float` texture whose level `L - 1` is the
-    /// pyramid's level `L`, and the dispatches that fill it; none for a map of one texel.
-    fn pyramid(&self, ctx: &GpuContext, map: &wgpu::Texture) -> Option<(wgpu::Texture, MapMips)> {
-        let levels = pyramid_levels(map.width() as usize, map.height() as usize) as u32 - 1;
-        if levels == 0 {
-            return None;
-        }
-        let mips = mip_chain(
-            ctx,
-            "caustics map pyramid",
-            ((map.width() / 2).max(1), (map.height() / 2).max(1)),
-            levels,
-            wgpu::TextureUsages::COPY_SRC,
-        );
-        let groups = MapMips::beside(ctx, &self.mips_pipeline, map, &mips);
-        Some((mips, groups))
-    }
-
-    /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with
-    /// the same arguments (no progress: the image is one dispatch). `surface` is sampled on
-    /// [`water_grid`]'s lattice; `caustics` is the floor's map (none: lit as if the water were
-    /// flat). With a `timer`, the passes are timed as [`encode`](FinalImageFrame::encode) says and
-    /// the timestamps resolved; read them with [`GpuTimer::read`].
-    pub fn render(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        surface: Option<&dyn Surface>,
-        caustics: Option<&CausticsMap>,
-        options: &RenderOptions,
-        timer: Option<&mut GpuTimer>,
-    ) -> Result<Image, GpuError> {
-        self.render_with(
-            ctx,
-            scene,
-            surface,
-            caustics.map(Caustics::Floor),
-            options,
-            timer,
-        )
-    }
-
-    /// [`render`](Self::render) with the caustics from either source, the GPU counterpart of
-    /// `caustics_core::render::render_with`: a floor map, or an eye-space image made for the
-    /// scene's camera (`cascaded`), read at the pixel each floor point projects to. A one-off
-    /// image from CPU inputs: the water grid and the map are uploaded into textures, a
-    /// [`FinalImageFrame`] is built on them, and the image is read back.
-    pub fn render_with(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        surface: Option<&dyn Surface>,
-        caustics: Option<Caustics>,
-        options: &RenderOptions,
-        timer: Option<&mut GpuTimer>,
-    ) -> Result<Image, GpuError> {
-        self.render_with_walls(ctx, scene, surface, caustics, None, options, timer)
-    }
-
-    /// [`render_with`](Self::render_with), the pool's walls lit through CPU-made walls' maps (the
-    /// reference's), the GPU counterpart of `caustics_core::render::render_with_walls`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn render_with_walls(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        surface: Option<&dyn Surface>,
-        caustics: Option<Caustics>,
-        walls: Option<&WallMaps>,
-        options: &RenderOptions,
-        mut timer: Option<&mut GpuTimer>,
-    ) -> Result<Image, GpuError> {
-        let grid = surface.and_then(|s| water_grid(scene, s));
-        let heights = match &grid {
-            Some(g) => Some(ctx.upload_grid("water height field", &g.grid)?),
-            None => None,
-        };
-        let water = heights.as_ref().map(WaterTextures::of);
-        let map = match caustics {
-            Some(Caustics::Floor(m)) => Some(upload_map(ctx, m)?),
-            Some(Caustics::EyeSpace(e)) => Some(float_texture(
-                ctx,
-                "eye-space caustics",
-                wgpu::TextureFormat::Rgba32Float,
-                e.width as u32,
-                e.height as u32,
-                bytemuck::cast_slice(&e.texels),
-            )?),
-            None => None,
-        };
-        let (output, map_size) = match (caustics, &map) {
-            (Some(Caustics::Floor(m)), Some(t)) => (Some(Output::Floor(t)), Some(m.size)),
-            (Some(Caustics::EyeSpace(_)), Some(t)) => (Some(Output::EyeSpace(t)), None),
-            _ => (None, None),
-        };
-        let walls = match walls {
-            Some(w) => Some(upload_walls(ctx, w)?),
-            None => None,
-        };
-        let walls_output = walls.as_ref().map(|(texture, cols)| WallsOutput {
-            texture,
-            cols: *cols,
-        });
-        let frame = self.build(
-            ctx,
-            scene,
-            water.as_ref(),
-            output,
-            walls_output,
-            map_size,
-            options,
-        )?;
-
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("final image"),
-            });
-        frame.encode(&mut encoder, timer.as_deref_mut());
-        if let Some(t) = &timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
-        ctx.check()?;
-        let texels: Vec<[u8; 4]> = ctx.read_texture(frame.output())?;
-        Ok(Image {
-            width: frame.size.0,
-            height: frame.size.1,
-            rgb: texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect(),
-        })
-    }
-}
-
-impl FinalImageFrame {
-    /// Take this frame's camera, sun, exposure and supersampling from `scene` and `options`: one
-    /// uniform write (and the slope moments' pyramid made, the first time the options filter the
-    /// water). What the frame was built with stays: the image size (the aspect ratio is the
-    /// frame's), the textures, the objects; a change to those needs a new frame.
-    pub fn update(&mut self, ctx: &GpuContext, scene: &Scene, options: &RenderOptions) {
-        let wrap = scene.water.as_ref().is_some_and(|w| w.wrap);
-        if let Some(patches) = &mut self.patches {
-            patches.set_wrap(ctx, wrap);
-        }
-        if options.filter_water && self.slopes.is_none() && !self.slopes_failed {
-            self.make_slopes(ctx, scene);
-        }
-        if let Some(slopes) = &mut self.slopes {
-            slopes.set_wrap(ctx, wrap);
-        }
-        let lighting = match self.lighting {
-            // A floor map covers the water square (the scene's without water), as the techniques
-            // lay their maps out, unless the caller said otherwise.
-            Lighting::Floor { .. } => Lighting::Floor {
-                size: self
-                    .map_size
-                    .unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
-            },
-            other => other,
-        };
-        let params = upload::uniform(
-            scene,
-            self.slab_group.is_some(),
-            self.slopes.as_ref().map(|s| s.lattice()),
-            lighting,
-            options,
-            self.object_count,
-            self.size,
-        );
-        if self
-            .written
-            .is_some_and(|w| bytemuck::bytes_of(&w) == bytemuck::bytes_of(&params))
-        {
-            return;
-        }
-        ctx.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&params));
-        self.written = Some(params);
-    }
-
-    /// Record the water's patches and slab bound (when there is water) and the image into
-    /// `encoder`. With a `timer`, every pass is timed: the patches as "water patches", the slab
-    /// pass (128² bicubic samples) as "final image slab", the image as "final image"; a timer
-    /// needs room for three passes per image.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
-        if let Some(patches) = &self.patches {
-            self.patches_pipeline.encode(patches, encoder, &mut timer);
-        }
-        if let Some(group) = &self.slab_group {
-            encoder.clear_buffer(&self.slab_max, 0, None);
-            let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE_SLAB.name);
-            pass.set_pipeline(&self.slab_pipeline);
-            pass.set_bind_group(0, group, &[]);
-            let groups = SLAB_LATTICE.div_ceil(TILE);
-            pass.dispatch_workgroups(groups, groups, 1);
-        }
-        let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE.name);
-        // The floor map's pyramid, finest level first; the image's dispatch reads it all.
-        if let Some(mips) = &self.mips_groups {
-            mips.encode(&mut pass);
-        }
-        if let Some(slopes) = self.slopes.as_ref().filter(|_| self.filters_water()) {
-            slopes.encode(&mut pass);
-        }
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.scene_group, &[]);
-        pass.set_bind_group(1, &self.mesh_group, &[]);
-        pass.set_bind_group(2, &self.slopes_group, &[]);
-        let (width, height) = self.size;
-        pass.dispatch_workgroups(width.div_ceil(TILE), height.div_ceil(TILE), 1);
-    }
-
-    /// The slope moments' pyramid, for options that filter the water's normals in a frame built
-    /// without them: made once, on the frame's heights. Where it cannot be made (a lattice whose
-    /// pyramid exceeds the adapter's buffers), the water stays unfiltered, said in the log.
-    fn make_slopes(&mut self, ctx: &GpuContext, scene: &Scene) {
-        let (Some(patches), Some(water)) = (&self.patches, &scene.water) else {
-            return;
-        };
-        match self.slope_pipelines.pyramid(
-            ctx,
-            &patches.view,
-            patches.size(),
-            water.size,
-            water.wrap,
-        ) {
-            Ok(pyramid) => {
-                self.slopes_group = bind_group(
-                    ctx,
-                    "water slope moments",
-                    &self.slopes_layout,
-                    &[pyramid.moments.as_entire_binding()],
-                );
-                self.slopes = Some(pyramid);
-            }
-            Err(e) => {
-                tracing::warn!("the water's normals stay unfiltered: {e}");
-                self.slopes_failed = true;
-            }
-        }
-    }
-
-    /// Whether the uniform last written filters the waves' normals by the samples' footprints.
-    fn filters_water(&self) -> bool {
-        self.written
-            .is_some_and(|w| w.flags & flags::FILTER_WATER != 0)
-    }
-
-    /// The levels of the water's slope moments the last submitted frame built, finest first (none
-    /// without a surface; stale when the options do not filter the normals): for tests against
-    /// `caustics_core::water::slopes::SlopePyramid`. A readback; not for the frame.
-    pub fn read_slopes(
-        &self,
-        ctx: &GpuContext,
-    ) -> Result<Vec<Vec<[f32; slopes::MOMENTS]>>, GpuError> {
-        match &self.slopes {
-            Some(s) => s.read(ctx),
-            None => Ok(Vec::new()),
-        }
-    }
-
-    /// The image: `Rgba8Unorm`, tone-mapped and sRGB-encoded (the 8-bit codes of
-    /// `caustics_core::render`'s image), usable as a storage, sampled or copied texture.
-    pub fn output(&self) -> &wgpu::Texture {
-        &self.output
-    }
-
-    /// The levels below level 0 of the floor map's pyramid the last submitted frame built (none
-    /// without a floor map), finest first, each with its width: for tests against
-    /// `CausticsMap::pyramid`. Readbacks; not for the frame.
-    pub fn read_pyramid(&self, ctx: &GpuContext) -> Result<Vec<PyramidLevel>, GpuError> {
-        let Some(mips) = &self.pyramid else {
-            return Ok(Vec::new());
-        };
-        (0..mips.mip_level_count())
-            .map(|k| {
-                let w = mips
-                    .size()
-                    .mip_level_size(k, wgpu::TextureDimension::D2)
-                    .width;
-                Ok((w, ctx.read_texture_mip(mips, 0, k)?))
-            })
-            .collect()
-    }
-
-    /// The slab the last submitted frame searched for the water surface in and the slope bound
-    /// of its march (zeros without a surface): for tests against [`slab_bounds`]. A readback;
-    /// not for the frame.
-    pub fn read_slab(&self, ctx: &GpuContext) -> Result<Slab, GpuError> {
-        if self.slab_group.is_none() {
-            return Ok(Slab::default());
-        }
-        let bits: Vec<u32> = ctx.read_buffer(&self.slab_max)?;
-        let scaled = |b: u32| f32::from_bits(b) as f64 * 1.5 + 1e-6;
-        Ok(Slab {
-            half_height: scaled(bits[0]),
-            slope: scaled(bits[1]),
-        })
     }
 }

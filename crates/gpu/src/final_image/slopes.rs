@@ -5,7 +5,7 @@
 //! (`final_image/water_slopes_base.wgsl`); each level above averages 2 x 2 of the one below
 //! (`final_image/water_slopes_halve.wgsl`), up to one texel. All levels lie in one storage buffer, five
 //! floats a texel, level after level; the final image finds a level's place from the lattice
-//! alone (`slope_level` in `final_image.wgsl`).
+//! alone (`slope_level` in `final_image_rough_water.wgsl`).
 
 use crate::pass::{bind_group, compute_pipeline};
 use crate::shaders::{WATER, passes};

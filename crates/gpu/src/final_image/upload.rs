@@ -1,8 +1,8 @@
-//! What the final-image pass reads, laid out as the structs of `final_image/final_image.wgsl` and
+//! What the final-image pass reads, laid out as the structs of `final_image/final_image_inputs.wgsl` and
 //! `shaders/bvh.wgsl`: the frame's uniform (camera, sun, water, flags), the objects with their
 //! flattened trees, and the frozen water surface as a height grid.
 //!
-//! Everything the CPU renderer derives once per image (`render.rs`, `render`: the refracted sun and
+//! Everything the CPU renderer derives once per image (`render/mod.rs`, `render`: the refracted sun and
 //! its flat-water transmittance, the camera basis) is derived here in f64 the same way and handed
 //! to the shader rounded to f32, so the two sides start from the same numbers. The slab's bounds
 //! (`h_max` and the slope bound of the march) depend on the water, which lives on the GPU:
@@ -18,7 +18,7 @@ use glam::DVec3;
 
 use crate::bvh::FlatBvhs;
 
-/// Mirrors `FinalImage` in `final_image/final_image.wgsl` (uniform layout: each `vec3` is padded by the
+/// Mirrors `FinalImage` in `final_image/final_image_inputs.wgsl` (uniform layout: each `vec3` is padded by the
 /// scalar after it).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
@@ -78,10 +78,10 @@ pub struct SlabUniform {
     pub _pad: u32,
 }
 
-/// Samples along each side of the lattice the slab bound is taken on (render.rs `render_with`).
+/// Samples along each side of the lattice the slab bound is taken on (render/mod.rs `render_with`).
 pub const SLAB_LATTICE: u32 = caustics_core::render::SLAB_LATTICE as u32;
 
-/// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image.wgsl`.
+/// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image_inputs.wgsl`.
 pub mod flags {
     pub const WATER: u32 = 1;
     pub const SURFACE: u32 = 2;
@@ -107,7 +107,7 @@ pub mod albedo {
     pub const IMAGE: u32 = 3;
 }
 
-/// Mirrors `Object` in `final_image/final_image.wgsl` (storage layout).
+/// Mirrors `Object` in `final_image/final_image_inputs.wgsl` (storage layout).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuObject {

@@ -214,7 +214,7 @@ pub fn view_pass_with_walls(
         .collect()
 }
 
-/// The deck's height: the final image's (`crates/core/src/render.rs`, `shade_above`) less its
+/// The deck's height: the final image's (`crates/core/src/render/shade.rs`, `shade_above`) less its
 /// bound on the waves' height, which the view does not know.
 pub fn deck_height(setup: &VolumesSetup) -> f64 {
     setup.depth + 0.1 * setup.size.min(1.0)

@@ -1,0 +1,155 @@
+// The view ray's search for the water surface and the floor, and the surface seen from below: the
+// GPU twin of caustics-core/src/render/march.rs (and trace.rs's `leave_water`). A part of the final
+// image pass, composed in the order of `passes!` in final_image/mod.rs.
+
+// Height of the ray above the water surface at distance t.
+fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
+    let p = o + d * t;
+    return p.z - params.water_level - water_height_gradient(p.xy).x;
+}
+
+// The first crossing of the ray with z = level + h(x, y): xyz the point, w the distance (-1: none).
+fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    let top = params.water_level + h_max;
+    let bottom = params.water_level - h_max;
+    if o.z < bottom || d.z >= 0.0 {
+        return vec4<f32>(o, -1.0);
+    }
+    let t0 = max((top - o.z) / d.z, 0.0);
+    let t1 = (bottom - o.z) / d.z;
+    let t = first_crossing(o, d, t0, t1, 1.0);
+    return vec4<f32>(o + d * t, t);
+}
+
+// render.rs `first_crossing`: the first t in [t0, t1] where the ray's signed distance to the
+// surface, `side * water_gap` (side 1: from above, -1: from below), reaches 0; -1 for none. Each
+// step is that distance over the bound on its rate of change, `|d_z| + slope_max |d_xy|` (no
+// step can pass a crossing), at least a quarter of the slab lattice's spacing and 1/MARCH_STEPS
+// of the interval, at most 1/EVEN_STEPS of it or the shortest step, whichever is longer (a slab
+// of micrometres, flat water's, in one step: 1/24 of it would not move an f32 distance of metres);
+// then bisections of the step that crossed, or of what is left of [t0, t1] when the march ends
+// without one (the slab's far side lies beyond the surface: only rounding, or the steps spent,
+// leave it uncrossed).
+fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
+    let rate = abs(d.z) + slope_max * length(d.xy);
+    let min_step = params.water_size / f32(4u * SLAB_LATTICE);
+    let shortest = max(min_step, (t1 - t0) / f32(MARCH_STEPS));
+    let longest = max((t1 - t0) / f32(EVEN_STEPS), min_step);
+    var a = t0;
+    var gap = side * water_gap(o, d, a);
+    if gap <= 0.0 {
+        return t0;
+    }
+    var hi = t1;
+    // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding.
+    for (var k = 0u; k < MARCH_STEPS + 2u && a < t1; k++) {
+        let b = min(a + min(max(gap / rate, shortest), longest), t1);
+        let next = side * water_gap(o, d, b);
+        if next <= 0.0 {
+            hi = b;
+            break;
+        }
+        a = b;
+        gap = next;
+    }
+    var lo = a;
+    for (var s = 0u; s < BISECTIONS; s++) {
+        let m = 0.5 * (lo + hi);
+        if side * water_gap(o, d, m) > 0.0 {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    return 0.5 * (lo + hi);
+}
+
+// render.rs `hit_water_from_below`: the first crossing of a rising underwater ray with
+// z = level + h(x, y) (the rest plane without a surface): xyz the point, w the distance (-1: none).
+fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    if d.z <= 0.0 {
+        return vec4<f32>(o, -1.0);
+    }
+    if !has(FLAG_SURFACE) {
+        let t = max((params.water_level - o.z) / d.z, 0.0);
+        return vec4<f32>(o + d * t, t);
+    }
+    let top = params.water_level + h_max;
+    let bottom = params.water_level - h_max;
+    if o.z > top {
+        return vec4<f32>(o, -1.0);
+    }
+    let t0 = max((bottom - o.z) / d.z, 0.0);
+    let t1 = (top - o.z) / d.z;
+    let t = first_crossing(o, d, t0, t1, -1.0);
+    return vec4<f32>(o + d * t, t);
+}
+
+// render.rs `leave_water` with `from_below`: a ray meeting the surface at `p` from below splits by
+// the Fresnel equations from the dense side: out to the air through Snell's window, the rest (all of
+// it beyond the window) mirrored back into the water.
+fn leave_water(p: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, t_ray: f32) {
+    var n = water_normal(p.xy);
+    if has(FLAG_FILTER_WATER) && has(FLAG_SURFACE) {
+        n = height_field_normal(water_slopes(p, d).mean);
+    }
+    let mirrored = bent_spread(spread, p, d, t_ray, n, true);
+    let r = refract_dir(d, -n, params.ior);
+    var t = 0.0;
+    if r.w != 0.0 {
+        t = fresnel_transmittance(dot(d, n), params.ior, 1.0);
+        push_ray(p + n * 1e-5, r.xyz, w * t, depth + 1u, false);
+    }
+    push_ray_spread(p - n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, true, mirrored);
+}
+
+// render.rs `camera_under_water`: inside the water's square and below the surface there.
+fn camera_under_water() -> bool {
+    if !has(FLAG_WATER) {
+        return false;
+    }
+    let c = params.camera_position;
+    var h = 0.0;
+    if has(FLAG_SURFACE) {
+        h = water_height_gradient(c.xy).x;
+    }
+    return inside(c.xy, params.water_size) && c.z < params.water_level + h;
+}
+
+// Height of the ray above the floor or terrain at distance t.
+fn floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
+    let p = o + d * t;
+    return p.z - floor_height(p.xy);
+}
+
+// Where an underwater ray meets the floor or terrain: xyz the point, w the distance (FAR, at `o`,
+// for a ray going up).
+fn hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    if d.z >= 0.0 {
+        return vec4<f32>(o, FAR);
+    }
+    let t_end = -o.z / d.z;
+    if !has(FLAG_TERRAIN) {
+        return vec4<f32>(o + d * t_end, t_end);
+    }
+    var a = 0.0;
+    for (var k = 1u; k <= FLOOR_STEPS; k++) {
+        let b = t_end * f32(k) / f32(FLOOR_STEPS);
+        if floor_gap(o, d, b) <= 0.0 {
+            var lo = a;
+            var hi = b;
+            for (var s = 0u; s < BISECTIONS; s++) {
+                let m = 0.5 * (lo + hi);
+                if floor_gap(o, d, m) > 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let t = 0.5 * (lo + hi);
+            return vec4<f32>(o + d * t, t);
+        }
+        a = b;
+    }
+    return vec4<f32>(o + d * t_end, t_end);
+}

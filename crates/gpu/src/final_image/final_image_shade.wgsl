@@ -1,0 +1,130 @@
+// Shading where a view ray ends: the floor, the objects, the deck and the sky, and the open air:
+// the GPU twin of caustics-core/src/render/shade.rs (and trace.rs's `trace_air`). A part of the
+// final image pass, composed in the order of `passes!` in final_image/mod.rs.
+
+// The floor at `p`, its caustics and albedo filtered over the sample's footprint `fa`, `fb`.
+fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
+    let size = params.water_size;
+    let albedo = albedo_at(p.xy, size, abs(fa) + abs(fb));
+    let e_h = params.sun_intensity * -params.sun.z;
+    let flat = absorbed((params.water_level - p.z) / -params.sun_water.z);
+    var relative = flat;
+    // Beyond a map that does not tile, the flat water's light, tap by tap (render.rs
+    // `shade_floor`).
+    if has(FLAG_CAUSTICS) {
+        relative = sample_caustics_filtered(p.xy, fa, fb, has(FLAG_WRAP_CAUSTICS), flat, true);
+    } else if has(FLAG_EYE_CAUSTICS) {
+        let e = sample_eye_space(p);
+        if e.w != 0.0 {
+            relative = e.rgb;
+        }
+    }
+    var shadow = 1.0;
+    if occluded(p + vec3<f32>(0.0, 0.0, 1e-4), -params.sun_water, FAR) {
+        shadow = 0.0;
+    }
+    let direct = relative * (e_h * params.t_flat * shadow);
+    let ambient = params.ambient * absorbed(params.water_level);
+    return albedo * (direct + ambient) * params.light_color;
+}
+
+fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32, under: bool, w: vec3<f32>) {
+    let obj = objects[k];
+    // Closed meshes with outward normals: the ray enters where it meets the outside.
+    let entering = dot(n_out, d) < 0.0;
+    let n = select(-n_out, n_out, entering);
+    if obj.glass == 0u {
+        var sun_dir = params.sun;
+        var t = 1.0;
+        if under {
+            sun_dir = params.sun_water;
+            t = params.t_flat;
+        }
+        let lambert = max(dot(n, -sun_dir), 0.0);
+        var lit = 0.0;
+        if lambert > 0.0 && !occluded(p + n * 1e-4, -sun_dir, FAR) {
+            lit = 1.0;
+        }
+        var water_path = vec3<f32>(1.0);
+        if has(FLAG_WATER) && under {
+            water_path = absorbed(max(params.water_level - p.z, 0.0) / -sun_dir.z);
+        }
+        emit(w, obj.color * (water_path * (params.sun_intensity * lambert * lit * t) + params.ambient) * params.light_color);
+        return;
+    }
+    var outside_ior = 1.0;
+    if under {
+        outside_ior = params.ior;
+    }
+    var n1 = outside_ior;
+    var n2 = obj.ior;
+    if !entering {
+        n1 = obj.ior;
+        n2 = outside_ior;
+    }
+    let cos_i = -dot(d, n);
+    let t = fresnel_transmittance(cos_i, n1, n2);
+    push_ray(p + n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, under);
+    let r = refract_dir(d, n, n1 / n2);
+    if r.w != 0.0 {
+        push_ray(p - n * 1e-5, r.xyz, w * t * obj.color, depth + 1u, under);
+    }
+}
+
+// Above the water, outside the pool: the deck, or the sky.
+fn shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
+    if is_pool() && d.z < 0.0 {
+        let deck = params.water_level + 0.1 * min(params.water_size, 1.0) + h_max;
+        let t = (deck - o.z) / d.z;
+        if t > 0.0 {
+            let p = o + d * t;
+            // render.rs `shade_above`: a sample's footprint on the deck, stretched by the
+            // grazing angle; the sample's angle is a pixel's over the samples per side
+            // (`sample_spread`), |camera_up| being tan(fov_y / 2).
+            let spread = 2.0 * length(params.camera_up) / f32(params.height) / f32(max(params.supersampling, 1u));
+            let footprint = length(p - o) * spread / max(abs(d.z), 0.05);
+            let albedo = deck_albedo(deck_kind(), p.xy, params.water_size, footprint);
+            return albedo * (vec3<f32>(params.sun_intensity * -params.sun.z) + params.ambient) * params.light_color;
+        }
+    }
+    if !is_pool() && d.z < 0.0 {
+        // Beyond the surface's slab the open sea: the flat-water Fresnel reflection of the sky.
+        let r = fresnel_transmittance(-d.z, 1.0, params.ior);
+        return sky_radiance(reflect(d, vec3<f32>(0.0, 0.0, 1.0))) * (1.0 - r);
+    }
+    return sky_radiance(d);
+}
+
+// No water in the scene: objects over the floor plane in open air.
+fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+    var t_floor = FAR;
+    if d.z < 0.0 {
+        t_floor = -o.z / d.z;
+    }
+    let obj = nearest_object(o, d, t_floor);
+    if obj.found {
+        shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
+        return;
+    }
+    if t_floor < FAR {
+        let p = o + d * t_floor;
+        let fa = on_plane(spread.a, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+        let fb = on_plane(spread.b, d, t_floor, vec3<f32>(0.0, 0.0, 1.0));
+        let albedo = albedo_at(p.xy, params.scene_size, abs(fa) + abs(fb));
+        let start = p + vec3<f32>(0.0, 0.0, 1e-5);
+        var lit = 1.0;
+        var caustic = vec3<f32>(0.0);
+        if has(FLAG_AIR_CAUSTICS) {
+            caustic = sample_caustics_filtered(p.xy, fa, fb, false, vec3<f32>(0.0), false);
+            if occluded_by_any(start, -params.sun, FAR) {
+                lit = 0.0;
+            }
+        } else if occluded(start, -params.sun, FAR) {
+            lit = 0.0;
+        }
+        let e = (vec3<f32>(lit) + caustic) * (params.sun_intensity * -params.sun.z) + params.ambient;
+        emit(w, albedo * e * params.light_color);
+        return;
+    }
+    emit(w, sky_radiance(d));
+}

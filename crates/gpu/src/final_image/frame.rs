@@ -1,0 +1,262 @@
+//! Building a [`FinalImageFrame`]: every resource of one scene at one image size, made once.
+
+use caustics_core::map::pyramid_levels;
+use caustics_core::render::RenderOptions;
+use caustics_core::scene::{Albedo, Scene};
+
+use crate::map_mips::{MapMips, mip_chain};
+use crate::pass::bind_group;
+use crate::technique::{Output, WallsOutput, WaterTextures};
+use crate::{GpuContext, GpuError};
+
+use super::resources::{float_texture, rgba32, storage_buffer, walls_view};
+use super::upload::Lighting;
+use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUniform, meshes};
+
+impl FinalImage {
+    /// The final image of `scene` at its camera's size, every resource built here once: the
+    /// objects' trees (a scene whose objects change needs a new frame), the terrain and albedo
+    /// textures, the `Rgba8Unorm` output, the uniform and the bind groups.
+    ///
+    /// `water`: the heights as the techniques read them, bound as they are (the caller may rewrite
+    /// the texture every frame); `None` without water. `caustics`: the technique's output texture,
+    /// bound as it is: a floor map over the water square (over the scene square without water), or
+    /// an eye-space image of the scene's camera; `None` lights the floor as under flat water.
+    /// [`update`](FinalImageFrame::update) takes the first frame's camera and sun before
+    /// [`encode`](FinalImageFrame::encode).
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: Option<&WaterTextures>,
+        caustics: Option<Output>,
+        options: &RenderOptions,
+    ) -> Result<FinalImageFrame, GpuError> {
+        self.build(ctx, scene, water, caustics, None, None, options)
+    }
+
+    /// [`frame`](Self::frame) with the walls' maps of a technique that lit the pool's walls (bound
+    /// as they are; ignored when the scene's walls are off).
+    pub fn frame_with_walls(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: Option<&WaterTextures>,
+        caustics: Option<Output>,
+        walls: Option<WallsOutput>,
+        options: &RenderOptions,
+    ) -> Result<FinalImageFrame, GpuError> {
+        self.build(ctx, scene, water, caustics, walls, None, options)
+    }
+
+    /// [`frame_with_walls`](Self::frame_with_walls), a floor map's square given (`map_size`) or
+    /// the scene's.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn build(
+        &self,
+        ctx: &GpuContext,
+        scene: &Scene,
+        water: Option<&WaterTextures>,
+        caustics: Option<Output>,
+        walls: Option<WallsOutput>,
+        map_size: Option<f64>,
+        options: &RenderOptions,
+    ) -> Result<FinalImageFrame, GpuError> {
+        let (width, height) = (scene.camera.width, scene.camera.height);
+        ctx.check_texture_size("final image", width, height)?;
+        // Heights without water in the scene have no square to cover: the frame has no surface.
+        let water = water.filter(|_| scene.water.is_some());
+        let lighting = match caustics {
+            Some(Output::Floor(_)) => Lighting::Floor {
+                size: map_size.unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
+            },
+            Some(Output::EyeSpace(_)) => Lighting::EyeSpace,
+            None => Lighting::Flat,
+        };
+
+        let meshes = meshes(scene);
+        let terrain = match &scene.floor.terrain {
+            Some(t) => Some(ctx.upload_grid("terrain height field", t)?),
+            None => None,
+        };
+        let albedo_image = match &scene.floor.albedo {
+            Albedo::Image {
+                width,
+                height,
+                texels,
+            } => Some(float_texture(
+                ctx,
+                "floor albedo image",
+                wgpu::TextureFormat::Rgba32Float,
+                *width as u32,
+                *height as u32,
+                bytemuck::cast_slice(&rgba32(texels)),
+            )?),
+            Albedo::Pattern(_) => None,
+        };
+        let walls = walls.filter(|_| scene.floor.walls && scene.water.is_some());
+        let wall_cols =
+            storage_buffer(ctx, "walls' columns", &walls.map_or([0u32; 4], |w| w.cols))?;
+        let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
+        let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.trees.nodes)?;
+        let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.trees.triangles)?;
+        let uniform = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("final image uniform"),
+            size: std::mem::size_of::<FinalImageUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let slab_max = ctx.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("final image slab bounds"),
+            size: 8,
+            usage: wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_DST
+                | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let output = ctx.texture_2d(
+            "final image",
+            (width, height, 1),
+            wgpu::TextureFormat::Rgba8Unorm,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+
+        let (mips, mips_groups) = match caustics {
+            Some(Output::Floor(map)) => self.pyramid(ctx, map).unzip(),
+            _ => (None, None),
+        };
+        let view = |t: Option<&wgpu::Texture>, empty: &wgpu::Texture| {
+            t.unwrap_or(empty).create_view(&Default::default())
+        };
+        let patches = water.map(|w| {
+            let wrap = scene.water.as_ref().is_some_and(|sw| sw.wrap);
+            self.patches.frame(ctx, &w.heights, wrap)
+        });
+        let water_view = match &patches {
+            Some(p) => p.view.clone(),
+            None => view(None, &self.empty_rgba32),
+        };
+        let no_slopes = storage_buffer(ctx, "no water slope moments", &[0f32; 5])?;
+        // The slope moments' pyramid is made by `update` (the first below, when the options filter
+        // the water), which leaves the water unfiltered where it cannot be made.
+        let slopes_group = bind_group(
+            ctx,
+            "water slope moments",
+            &self.slopes_layout,
+            &[no_slopes.as_entire_binding()],
+        );
+        let views = [
+            view(terrain.as_ref(), &self.empty_r32),
+            view(caustics.map(|c| c.texture()), &self.empty_rgba32),
+            view(albedo_image.as_ref(), &self.empty_rgba32),
+            output.create_view(&Default::default()),
+            walls_view(walls.map_or(&self.empty_walls, |w| w.texture)),
+            view(mips.as_ref(), &self.empty_rgba32),
+        ];
+        let scene_group = bind_group(
+            ctx,
+            "final image scene",
+            &self.scene_layout,
+            &[
+                uniform.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&water_view),
+                wgpu::BindingResource::TextureView(&views[0]),
+                wgpu::BindingResource::TextureView(&views[1]),
+                wgpu::BindingResource::TextureView(&views[2]),
+                objects.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[3]),
+                slab_max.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[4]),
+                wall_cols.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&views[5]),
+            ],
+        );
+        let mesh_group = bind_group(
+            ctx,
+            "scene meshes",
+            &self.mesh_layout,
+            &[nodes.as_entire_binding(), triangles.as_entire_binding()],
+        );
+        let mut resources = vec![objects, nodes, triangles, wall_cols, no_slopes];
+        let slab_group = match (water, &scene.water) {
+            (Some(w), Some(sw)) => {
+                // The water's square and edge rule are the scene's: a new frame when they change.
+                let slab = SlabUniform {
+                    size: sw.size as f32,
+                    wrap: sw.wrap as u32,
+                    lattice: SLAB_LATTICE,
+                    _pad: 0,
+                };
+                let slab_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("final image slab uniform"),
+                    contents: bytemuck::bytes_of(&slab),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let group = bind_group(
+                    ctx,
+                    "final image slab",
+                    &self.slab_pipeline.get_bind_group_layout(0),
+                    &[
+                        slab_uniform.as_entire_binding(),
+                        wgpu::BindingResource::TextureView(&w.heights),
+                        slab_max.as_entire_binding(),
+                    ],
+                );
+                resources.push(slab_uniform);
+                Some(group)
+            }
+            _ => None,
+        };
+
+        let mut frame = FinalImageFrame {
+            pipeline: self.pipeline.clone(),
+            slab_pipeline: self.slab_pipeline.clone(),
+            patches_pipeline: self.patches.clone(),
+            patches,
+            mips_groups,
+            scene_group,
+            mesh_group,
+            slab_group,
+            uniform,
+            slab_max,
+            output,
+            lighting,
+            map_size,
+            object_count: meshes.objects.len() as u32,
+            size: (width, height),
+            written: None,
+            _resources: resources,
+            pyramid: mips,
+            slopes: None,
+            slope_pipelines: self.slopes.clone(),
+            slopes_layout: self.slopes_layout.clone(),
+            slopes_group,
+            slopes_failed: false,
+            _textures: terrain.into_iter().chain(albedo_image).collect(),
+        };
+        frame.update(ctx, scene, options);
+        ctx.check()?;
+        Ok(frame)
+    }
+
+    /// The levels of `map`'s pyramid below level 0 (`CausticsMap::pyramid`: level `L` is
+    /// `max(1, size >> L)`), as the mips of one `Rgba32Float` texture whose level `L - 1` is the
+    /// pyramid's level `L`, and the dispatches that fill it; none for a map of one texel.
+    fn pyramid(&self, ctx: &GpuContext, map: &wgpu::Texture) -> Option<(wgpu::Texture, MapMips)> {
+        let levels = pyramid_levels(map.width() as usize, map.height() as usize) as u32 - 1;
+        if levels == 0 {
+            return None;
+        }
+        let mips = mip_chain(
+            ctx,
+            "caustics map pyramid",
+            ((map.width() / 2).max(1), (map.height() / 2).max(1)),
+            levels,
+            wgpu::TextureUsages::COPY_SRC,
+        );
+        let groups = MapMips::beside(ctx, &self.mips_pipeline, map, &mips);
+        Some((mips, groups))
+    }
+}

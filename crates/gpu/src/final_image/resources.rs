@@ -1,0 +1,178 @@
+//! The textures and buffers the final image binds: the layouts' entries, the uploads of CPU-made
+//! inputs (caustics maps, walls' maps) and the storage buffers that may not be empty.
+
+use caustics_core::map::CausticsMap;
+use caustics_core::walls::WallMaps;
+
+use crate::{GpuContext, GpuError};
+
+pub(super) fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        // Read with textureLoad only, so 32-bit float textures need not be filterable.
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// The final image's view of a walls texture: all its layers.
+pub(super) fn walls_view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// Upload CPU-made walls' maps (the reference's) as the final image reads them: an `Rgba32Float`
+/// 2D array texture of four layers, as wide as the widest wall
+/// ([`WallsOutput`](crate::technique::WallsOutput)'s layout), and each layer's column count. Once
+/// per set of maps, not per frame.
+pub fn upload_walls(
+    ctx: &GpuContext,
+    maps: &WallMaps,
+) -> Result<(wgpu::Texture, [u32; 4]), GpuError> {
+    let cols = maps.maps.each_ref().map(|m| m.cols as u32);
+    let width = cols.iter().copied().max().unwrap_or(1).max(1);
+    let rows = maps.maps[0].rows as u32;
+    ctx.check_texture_size("walls' maps", width, rows)?;
+    let mut texels = vec![[0f32; 4]; (width * rows) as usize * 4];
+    for (k, m) in maps.maps.iter().enumerate() {
+        for i in 0..m.rows {
+            for j in 0..m.cols {
+                let t = m.texels[i * m.cols + j];
+                texels[(k * rows as usize + i) * width as usize + j] = [t[0], t[1], t[2], 1.0];
+            }
+        }
+    }
+    let texture = ctx.create_texture_with_data(
+        &wgpu::TextureDescriptor {
+            label: Some("walls' maps"),
+            size: wgpu::Extent3d {
+                width,
+                height: rows,
+                depth_or_array_layers: 4,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&texels),
+    );
+    Ok((texture, cols))
+}
+
+pub(super) fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+pub(super) fn float_texture(
+    ctx: &GpuContext,
+    what: &str,
+    format: wgpu::TextureFormat,
+    width: u32,
+    height: u32,
+    texels: &[u8],
+) -> Result<wgpu::Texture, GpuError> {
+    ctx.check_texture_size(what, width, height)?;
+    let size = wgpu::Extent3d {
+        width,
+        height,
+        depth_or_array_layers: 1,
+    };
+    let texel = format
+        .block_copy_size(None)
+        .expect("an uncompressed format");
+    debug_assert_eq!(texels.len(), (width * height * texel) as usize);
+    Ok(ctx.create_texture_with_data(
+        &wgpu::TextureDescriptor {
+            label: Some(what),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        texels,
+    ))
+}
+
+/// A CPU caustics map as the `Rgba32Float` texture a technique's floor output is
+/// ([`Output::Floor`](crate::technique::Output::Floor)), for
+/// [`FinalImage::frame`](super::FinalImage::frame) or
+/// [`FinalImage::render_with`](super::FinalImage::render_with).
+pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, GpuError> {
+    float_texture(
+        ctx,
+        "caustics map",
+        wgpu::TextureFormat::Rgba32Float,
+        map.width as u32,
+        map.height as u32,
+        bytemuck::cast_slice(&rgba32(&map.texels)),
+    )
+}
+
+/// `map`'s texels into mip 0 of `texture` (`Rgba32Float`, `COPY_DST`, at least the map's size):
+/// a floor map the CPU made, for a texture that lives across frames.
+pub fn write_map(ctx: &GpuContext, texture: &wgpu::Texture, map: &CausticsMap) {
+    ctx.write_texture(
+        texture.as_image_copy(),
+        bytemuck::cast_slice(&rgba32(&map.texels)),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(16 * map.width as u32),
+            rows_per_image: Some(map.height as u32),
+        },
+        wgpu::Extent3d {
+            width: map.width as u32,
+            height: map.height as u32,
+            depth_or_array_layers: 1,
+        },
+    );
+}
+
+/// An RGB image as `Rgba32Float` texels (alpha 1).
+pub(super) fn rgba32(texels: &[[f32; 3]]) -> Vec<[f32; 4]> {
+    texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect()
+}
+
+pub(super) fn storage_buffer<T: bytemuck::Pod + Default>(
+    ctx: &GpuContext,
+    what: &str,
+    items: &[T],
+) -> Result<wgpu::Buffer, GpuError> {
+    // A storage binding may not be empty: one zeroed element stands for none.
+    let fallback = [T::default()];
+    let items = if items.is_empty() {
+        &fallback[..]
+    } else {
+        items
+    };
+    let bytes: &[u8] = bytemuck::cast_slice(items);
+    ctx.check_buffer_size(what, bytes.len() as u64)?;
+    Ok(ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(what),
+        contents: bytes,
+        usage: wgpu::BufferUsages::STORAGE,
+    }))
+}
