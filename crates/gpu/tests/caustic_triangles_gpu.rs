@@ -919,6 +919,21 @@ mod through_the_trait {
             cpu_band < ws.lattice as u32,
             "the pool's band narrows the copies"
         );
+        // The bound the band is fitted from, held to its CPU twin: the same texels, f32 against
+        // f64 slopes. Measured on lavapipe 25.0.7 (Mesa): 2.2e-8 in the slope, the heights exact.
+        let [slope, lo, hi] = t
+            .water_frame()
+            .unwrap()
+            .read_band_bound(&ctx)
+            .unwrap()
+            .expect("tiling water has a band bound");
+        let (cpu_slope, cpu_lo, cpu_hi) = water::band_bound(ws.size, &h);
+        let rel = (slope as f64 - cpu_slope).abs() / cpu_slope;
+        eprintln!(
+            "band bound: GPU {slope} {lo} {hi}, CPU {cpu_slope} {cpu_lo} {cpu_hi}, slope {rel:.2e}"
+        );
+        assert!(rel < 2e-7, "slope {slope} against the CPU's {cpu_slope}");
+        assert_eq!((lo, hi), (cpu_lo, cpu_hi));
         // The GPU's band is the CPU's bound plus the one quad it adds for its f32 (band.wgsl's
         // `+ 2u` against the CPU's `+ 1`): measured 13 against 12 on lavapipe 25.0.7 (Mesa). A
         // narrower band changes no texel here (the bound is generous), so it is checked itself.

@@ -138,6 +138,29 @@ impl WaterFrame {
         self.frame.setup = ws.setup.clone();
     }
 
+    /// The bound pass's last result (the grid's steepest slope, its lowest and highest height:
+    /// the CPU twin's `water::band_bound`), `None` for water that does not tile: a readback, for
+    /// tests and tools.
+    pub fn read_band_bound(&self, ctx: &GpuContext) -> Result<Option<[f32; 3]>, GpuError> {
+        let Some(b) = &self.band_bind else {
+            return Ok(None);
+        };
+        // reduce.wgsl's order-preserving map, undone.
+        let unordered = |u: u32| {
+            f32::from_bits(if u & 0x8000_0000 != 0 {
+                u & 0x7fff_ffff
+            } else {
+                !u
+            })
+        };
+        let raw: Vec<u32> = ctx.read_buffer(&b.bound)?;
+        Ok(Some([
+            unordered(raw[0]),
+            -unordered(raw[1]),
+            unordered(raw[2]),
+        ]))
+    }
+
     pub fn bytes(&self) -> u64 {
         self.frame.bytes()
             + self
@@ -211,7 +234,9 @@ impl CausticTriangles {
             let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(BAND_BOUND.name),
                 size: 16,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                usage: wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_DST
+                    | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
             let bound_bind = bind_group(

@@ -357,16 +357,12 @@ fn check_heights(heights: &Grid) -> Result<()> {
     heights.check_finite("the water height grid")
 }
 
-/// Quads from an edge of the lattice whose refracted light can reach past that edge: the farthest
-/// the light travels sideways between the surface and the floor, `(depth + h_max) tan(θ_t + α)`,
-/// in lattice cells, plus one. `α = atan s` is the steepest tilt of the surface's normal (`s` the
-/// grid's largest finite-difference slope, times 1.25 · √2 for the bicubic interpolant's overshoot
-/// and the diagonal), the incidence angle is at most the sun's zenith angle plus `α`, `θ_t` its
-/// refraction, and the refracted ray leans from the vertical by at most `θ_t + α`. A bound, never
-/// an estimate: light it leaves out would be lost. Every quad where the bound reaches 89°.
-pub fn copy_band(ws: &WaterSetup, heights: &Grid) -> usize {
+/// The bound the copy band is fitted from (the CPU twin of `band_bound.wgsl`): the grid's largest
+/// forward finite-difference slope over a square of side `size`, wrapping at the edges, and its
+/// lowest and highest heights.
+pub fn band_bound(size: f64, heights: &Grid) -> (f64, f32, f32) {
     let (cols, rows) = (heights.cols.max(1), heights.rows.max(1));
-    let (dx, dy) = (ws.size / cols as f64, ws.size / rows as f64);
+    let (dx, dy) = (size / cols as f64, size / rows as f64);
     let at = |i: usize, j: usize| heights.at(i, j) as f64;
     let mut slope: f64 = 0.0;
     for i in 0..heights.rows {
@@ -378,6 +374,18 @@ pub fn copy_band(ws: &WaterSetup, heights: &Grid) -> usize {
         }
     }
     let (lo, hi) = heights.min_max();
+    (slope, lo, hi)
+}
+
+/// Quads from an edge of the lattice whose refracted light can reach past that edge: the farthest
+/// the light travels sideways between the surface and the floor, `(depth + h_max) tan(θ_t + α)`,
+/// in lattice cells, plus one. `α = atan s` is the steepest tilt of the surface's normal (`s` the
+/// grid's largest finite-difference slope, times 1.25 · √2 for the bicubic interpolant's overshoot
+/// and the diagonal), the incidence angle is at most the sun's zenith angle plus `α`, `θ_t` its
+/// refraction, and the refracted ray leans from the vertical by at most `θ_t + α`. A bound, never
+/// an estimate: light it leaves out would be lost. Every quad where the bound reaches 89°.
+pub fn copy_band(ws: &WaterSetup, heights: &Grid) -> usize {
+    let (slope, lo, hi) = band_bound(ws.size, heights);
     let h_max = hi as f64 + 0.25 * (hi - lo) as f64;
     let tilt = (slope * 1.25 * std::f64::consts::SQRT_2).atan();
     let zenith = (-ws.light.z).clamp(-1.0, 1.0).acos();
