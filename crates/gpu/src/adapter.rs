@@ -126,11 +126,6 @@ impl<P: Pipelines> Resident<P> {
     pub fn frame(&self) -> Option<&P::Frame> {
         self.frame.as_ref().map(|(f, _)| f)
     }
-
-    /// The pipelines, for tests and tools that read a frame back.
-    pub fn pipelines(&self) -> &P {
-        &self.pipelines
-    }
 }
 
 impl<P: Pipelines> Technique for Resident<P> {
