@@ -16,7 +16,7 @@
 mod material;
 mod render;
 
-use bevy::asset::{RenderAssetUsages, embedded_asset};
+use bevy::asset::{RenderAssetUsages, embedded_asset, uuid_handle};
 use bevy::prelude::*;
 use bevy::render::render_resource::{
     Extent3d, TextureDimension, TextureFormat, TextureUsages, TextureViewDescriptor,
@@ -29,6 +29,7 @@ use caustics_core::scene::Scene;
 use caustics_core::techniques::describe::Receiver as Receives;
 use caustics_core::walls::WallMaps;
 use caustics_core::water::ripple::Drop;
+use caustics_gpu::shaders::CAUSTICS_SAMPLING;
 
 pub use material::{CausticsExtension, CausticsMaterial, CausticsUniform, Receiver};
 pub use render::CausticsStats;
@@ -40,6 +41,13 @@ pub struct CausticsPlugin;
 impl Plugin for CausticsPlugin {
     fn build(&self, app: &mut App) {
         embedded_asset!(app, "caustics.wesl");
+        // The maps' sampling, the final image's own module, imported by `caustics.wesl`.
+        if let Some(mut shaders) = app.world_mut().get_resource_mut::<Assets<Shader>>() {
+            let sampling = Shader::from_wesl(CAUSTICS_SAMPLING, CAUSTICS_SAMPLING_PATH);
+            if let Err(e) = shaders.insert(CAUSTICS_SAMPLING_SHADER.id(), sampling) {
+                warn!("bevy_caustics: the maps' sampling shader was not registered: {e}");
+            }
+        }
         let stats = CausticsStats::default();
         app.add_plugins(MaterialPlugin::<CausticsMaterial>::default())
             .add_message::<DropRipple>()
@@ -57,6 +65,12 @@ impl Plugin for CausticsPlugin {
         render::build(render_app);
     }
 }
+
+/// `caustics_gpu::shaders::CAUSTICS_SAMPLING` as the WESL module
+/// `caustics_gpu::caustics_sampling` (Bevy names an `embedded://` shader by its path).
+const CAUSTICS_SAMPLING_PATH: &str = "embedded://caustics_gpu/caustics_sampling.wesl";
+const CAUSTICS_SAMPLING_SHADER: Handle<Shader> =
+    uuid_handle!("6f0c1d52-8a3e-4b7f-9c21-3d5e7a9b1c40");
 
 /// Where a [`CausticWater`]'s heights come from.
 #[derive(Clone, Debug, Default)]

@@ -1,6 +1,7 @@
 //! The WGSL shared by the passes, once: the optics (`shaders/optics.wgsl`), the water surface
-//! (`shaders/water.wgsl`), the reductions, the shading and the BVH. Each pass is a file of its
-//! own beside the Rust that runs it, composed with the shared files it needs by [`compose`].
+//! (`shaders/water.wgsl`), the reductions, the shading, the caustics maps' sampling and the BVH.
+//! Each pass is a file of its own beside the Rust that runs it, composed with the shared files it
+//! needs by [`compose`].
 //!
 //! A technique's registry entry lists its passes, and the frame lists its own
 //! ([`crate::registry::all_passes`]): a test validates every one with naga without a GPU, and
@@ -12,6 +13,10 @@ pub const WATER: &str = include_str!("shaders/water.wgsl");
 pub const REDUCE: &str = include_str!("shaders/reduce.wgsl");
 /// The final image's shading of a surface point: sky, sun, walls, objects.
 pub const SHADING: &str = include_str!("shaders/shading.wgsl");
+/// How a surface reads the floor map's pyramid and the walls' maps: the final image's and
+/// bevy_caustics' material's one copy, a module of functions of their arguments alone (textures
+/// included), so it composes here as WGSL and imports there as WESL.
+pub const CAUSTICS_SAMPLING: &str = include_str!("shaders/caustics_sampling.wgsl");
 /// Rays against the objects' bounding-volume hierarchies, in buffers of [`crate::bvh`]'s layout.
 pub const BVH: &str = include_str!("shaders/bvh.wgsl");
 

@@ -116,25 +116,6 @@ fn wall_at(p: vec3<f32>, size: f32) -> u32 {
     return k;
 }
 
-// `WallMap::sample`: bilinear between texel centres, clamped at the wall's edges.
-fn sample_wall(k: u32, along: f32, z: f32) -> vec3<f32> {
-    let cols = wall_cols[k];
-    let rows = textureDimensions(wall_maps).y;
-    let u = clamp(along / params.water_size * f32(cols) - 0.5, 0.0, f32(cols - 1u));
-    let v = clamp(z / params.water_level * f32(rows) - 0.5, 0.0, f32(rows - 1u));
-    let j0 = u32(floor(u));
-    let i0 = u32(floor(v));
-    let j1 = min(j0 + 1u, cols - 1u);
-    let i1 = min(i0 + 1u, rows - 1u);
-    let fu = u - f32(j0);
-    let fv = v - f32(i0);
-    let layer = i32(k);
-    let a = textureLoad(wall_maps, vec2<u32>(j0, i0), layer, 0).rgb;
-    let b = textureLoad(wall_maps, vec2<u32>(j1, i0), layer, 0).rgb;
-    let c = textureLoad(wall_maps, vec2<u32>(j0, i1), layer, 0).rgb;
-    let d = textureLoad(wall_maps, vec2<u32>(j1, i1), layer, 0).rgb;
-    return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
-}
 
 // `Tracer::wall_light`: the sun's light on wall point p through its wall's map, or the eye-space
 // image where p projects (cascaded); none without either; shadowed by the objects.
@@ -168,7 +149,7 @@ fn wall_light(p: vec3<f32>, size: f32) -> vec3<f32> {
     }
     var c = eye.rgb;
     if wall_cols[k] != 0u {
-        c = sample_wall(k, along, p.z);
+        c = wall_sample(wall_maps, wall_cols[k], k, along, p.z, params.water_size, params.water_level);
     }
     if occluded(p + normal * 1e-4, -params.sun_water, FAR) {
         return vec3<f32>(0.0);

@@ -67,7 +67,7 @@ pub use upload::{
 
 use crate::map_mips::{MapMips, mips_pipeline};
 use crate::pass::compute_pipeline;
-use crate::shaders::{BVH, OPTICS, SHADING, WATER, passes};
+use crate::shaders::{BVH, CAUSTICS_SAMPLING, OPTICS, SHADING, WATER, passes};
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError};
 use resources::{float_texture, storage_entry, texture_entry};
@@ -92,7 +92,7 @@ const ROUGH_WATER: &str = include_str!("final_image_rough_water.wgsl");
 
 passes! {
     FINAL_IMAGE = "final image",
-        [OPTICS, WATER, SHADING, BVH, INPUTS, SPREAD, RECEIVERS, MARCH, SHADE, ROUGH_WATER],
+        [OPTICS, WATER, SHADING, CAUSTICS_SAMPLING, BVH, INPUTS, SPREAD, RECEIVERS, MARCH, SHADE, ROUGH_WATER],
         "final_image/final_image.wgsl";
     FINAL_IMAGE_SLAB = "final image slab", [WATER], "final_image/final_image_slab.wgsl";
 }
