@@ -82,6 +82,7 @@ filtered water: rough water sky x1.01 @@ $S/final_image/final_image_rough_water.
 filtered water: glint x1.01 @@ $S/final_image/final_image_rough_water.wgsl @@ return sun_radiance() * (3.14159265 * f * g); @@ return sun_radiance() * (3.14159265 * f * g * 1.01); @@ render_gpu
 filtered water: from below, slopes x1.01 @@ $S/final_image/final_image_march.wgsl @@ n = height_field_normal(water_slopes(p, d).mean); @@ n = height_field_normal(water_slopes(p, d).mean * 1.01); @@ render_gpu
 caustics sampling: floor map x1.01 @@ $S/shaders/caustics_sampling.wgsl @@ return sum / taps; @@ return sum * 1.01 / taps; @@ render_gpu
+caustics sampling: wall map x1.01 @@ $S/shaders/caustics_sampling.wgsl @@ = textureLoad(walls, @@ = 1.01 * textureLoad(walls, @@ render_gpu
 map mips x1.01 @@ $S/map_mips.wgsl @@ (a + b + e + d) * 0.25 @@ (a + b + e + d) * 0.2525 @@ render_gpu
 yuksel region bound 1 % short @@ $S/yuksel/region_bound.wgsl @@ let d = tr.xy / -tr.z * max(u.depth + h, 0.0); @@ let d = tr.xy / -tr.z * max(u.depth + h, 0.0) * 0.99; @@ $YU
 yuksel prepass record flux x1.01 in the texture @@ $S/yuksel/prepass.wgsl @@ textureStore(pre_out, at.xy, at.z, rec); @@ textureStore(pre_out, at.xy, at.z, rec * vec4<f32>(1.0, 1.0, 1.0, 1.01)); @@ $YU

@@ -29,7 +29,7 @@ use caustics_core::scene::Scene;
 use caustics_core::techniques::describe::Receiver as Receives;
 use caustics_core::walls::WallMaps;
 use caustics_core::water::ripple::Drop;
-use caustics_gpu::shaders::CAUSTICS_SAMPLING;
+use caustics_gpu::shaders;
 
 pub use material::{CausticsExtension, CausticsMaterial, CausticsUniform, Receiver};
 pub use render::CausticsStats;
@@ -41,11 +41,11 @@ pub struct CausticsPlugin;
 impl Plugin for CausticsPlugin {
     fn build(&self, app: &mut App) {
         embedded_asset!(app, "caustics.wesl");
-        // The maps' sampling, the final image's own module, imported by `caustics.wesl`.
-        if let Some(mut shaders) = app.world_mut().get_resource_mut::<Assets<Shader>>() {
-            let sampling = Shader::from_wesl(CAUSTICS_SAMPLING, CAUSTICS_SAMPLING_PATH);
-            if let Err(e) = shaders.insert(CAUSTICS_SAMPLING_SHADER.id(), sampling) {
-                warn!("bevy_caustics: the maps' sampling shader was not registered: {e}");
+        if let Some(mut assets) = app.world_mut().get_resource_mut::<Assets<Shader>>() {
+            for (handle, source, path) in SHARED_WGSL {
+                if let Err(e) = assets.insert(handle.id(), Shader::from_wesl(source, path)) {
+                    warn!("bevy_caustics: {path} was not registered: {e}");
+                }
             }
         }
         let stats = CausticsStats::default();
@@ -66,11 +66,20 @@ impl Plugin for CausticsPlugin {
     }
 }
 
-/// `caustics_gpu::shaders::CAUSTICS_SAMPLING` as the WESL module
-/// `caustics_gpu::caustics_sampling` (Bevy names an `embedded://` shader by its path).
-const CAUSTICS_SAMPLING_PATH: &str = "embedded://caustics_gpu/caustics_sampling.wesl";
-const CAUSTICS_SAMPLING_SHADER: Handle<Shader> =
-    uuid_handle!("6f0c1d52-8a3e-4b7f-9c21-3d5e7a9b1c40");
+/// caustics-gpu's shared WGSL that `caustics.wesl` imports, the final image's own copies: each as
+/// the WESL module its path names (Bevy names an `embedded://` shader `caustics_gpu::<file>`).
+const SHARED_WGSL: [(Handle<Shader>, &str, &str); 2] = [
+    (
+        uuid_handle!("6f0c1d52-8a3e-4b7f-9c21-3d5e7a9b1c40"),
+        shaders::CAUSTICS_SAMPLING,
+        "embedded://caustics_gpu/caustics_sampling.wesl",
+    ),
+    (
+        uuid_handle!("0b7d4e21-5c9a-4f3e-8d62-1a4f6c8e2b95"),
+        shaders::OPTICS,
+        "embedded://caustics_gpu/optics.wesl",
+    ),
+];
 
 /// Where a [`CausticWater`]'s heights come from.
 #[derive(Clone, Debug, Default)]
