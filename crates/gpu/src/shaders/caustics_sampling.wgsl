@@ -121,9 +121,9 @@ fn wall_sample(walls: texture_2d_array<f32>, cols: u32, k: u32, along: f32, z: f
     let fu = u - f32(j0);
     let fv = v - f32(i0);
     let layer = i32(k);
-    let a = 1.01 * textureLoad(walls, vec2<u32>(j0, i0), layer, 0).rgb;
-    let b = 1.01 * textureLoad(walls, vec2<u32>(j1, i0), layer, 0).rgb;
-    let c = 1.01 * textureLoad(walls, vec2<u32>(j0, i1), layer, 0).rgb;
-    let d = 1.01 * textureLoad(walls, vec2<u32>(j1, i1), layer, 0).rgb;
+    let a = textureLoad(walls, vec2<u32>(j0, i0), layer, 0).rgb;
+    let b = textureLoad(walls, vec2<u32>(j1, i0), layer, 0).rgb;
+    let c = textureLoad(walls, vec2<u32>(j0, i1), layer, 0).rgb;
+    let d = textureLoad(walls, vec2<u32>(j1, i1), layer, 0).rgb;
     return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
 }
