@@ -2,9 +2,9 @@
 # Mutation check of the WGSL passes ("a 1 % change to the output of any WGSL pass, or the
 # loss of any channel, layer or cascade, fails at least one test").
 #
-# For each mutation below: edit one pass under crates/gpu/src/shaders (most scale what the pass
+# For each mutation below: edit one WGSL file under crates/gpu/src (most scale what the pass
 # writes by 1.01; index, count and bound outputs get an off-by-one or a 1 % tighter bound instead),
-# rebuild caustics-gpu's test binaries that exercise that pass (the shaders are include_str!'d, so
+# rebuild caustics-gpu's test binaries that exercise that pass (build.rs compiles the WGSL, so
 # only caustics-gpu and its tests rebuild), check the mutated shader still validates (else the
 # mutation proves nothing), run those tests, record which failed, and put the file back (a trap
 # restores it on any exit). Prints a table; results also go to $OUT (default mutations.tsv).

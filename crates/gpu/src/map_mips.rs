@@ -14,7 +14,7 @@ use crate::shaders::passes;
 passes! {
     /// One level of the caustics map's pyramid (caustics-core's `CausticsMap::pyramid`), which the
     /// final image reads over each sample's footprint on the floor.
-    CAUSTICS_MIPS = "caustics mips", [], "map_mips.wgsl";
+    CAUSTICS_MIPS = "caustics mips", "map_mips.wgsl";
 }
 
 /// `map_mips.wgsl`'s workgroup side.

@@ -1,12 +1,12 @@
 //! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
-use crate::shaders::{OPTICS, WATER, passes};
+use crate::shaders::passes;
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError};
 
 passes! {
-    PROBE = "probe", [OPTICS, WATER], "probe.wgsl";
+    PROBE = "probe", "probe.wgsl";
 }
 
 /// Mirrors `ProbeIn` in `probe.wgsl`.

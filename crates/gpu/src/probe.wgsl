@@ -1,5 +1,10 @@
 // Evaluates the shared WGSL math on a list of inputs, so tests can hold it against the CPU twins.
 
+import package::shaders::optics::{fresnel_transmittance, refract_dir};
+import package::shaders::water::{
+    ProceduralWave, SineWave, grid_sample, grid_sample_hermite, procedural_wave, sine_wave,
+};
+
 struct ProbeIn {
     incident: vec4<f32>,   // xyz direction, w = eta
     normal: vec4<f32>,     // xyz normal, w = n2 for the Fresnel test (n1 = 1)

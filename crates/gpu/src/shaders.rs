@@ -1,48 +1,35 @@
-//! The WGSL shared by the passes, once: the optics (`shaders/optics.wgsl`), the water surface
-//! (`shaders/water.wgsl`), the reductions, the shading, the caustics maps' sampling and the BVH.
-//! Each pass is a file of its own beside the Rust that runs it, composed with the shared files it
-//! needs by [`compose`].
+//! How the passes' WGSL is built. Each pass is a WESL main module beside the Rust that runs it,
+//! importing what it shares by path (`import package::shaders::optics::refract_dir;`): the
+//! modules under `shaders/` (the optics, the water surface, the reductions, the shading, the
+//! caustics maps' sampling, the BVH) and its technique's own (`package::yuksel::common`).
+//! build.rs compiles each into one WGSL string (names of imported items mangled as
+//! `package_<module path>_<name>`), which [`passes!`] embeds.
 //!
 //! A technique's registry entry lists its passes, and the frame lists its own
 //! ([`crate::registry::all_passes`]): a test validates every one with naga without a GPU, and
-//! another that every `.wgsl` file of the crate is one of them or a part they share.
+//! another that every `.wgsl` file of the crate is one of them or a module they import.
 
+/// The optics every technique shares: Fresnel, refraction, the height field's normal. bevy_caustics'
+/// material imports it as the WESL module `caustics_gpu::optics`.
 pub const OPTICS: &str = include_str!("shaders/optics.wgsl");
-pub const WATER: &str = include_str!("shaders/water.wgsl");
-/// Min and max across workgroups through order-preserving u32 atomics.
-pub const REDUCE: &str = include_str!("shaders/reduce.wgsl");
-/// The final image's shading of a surface point: sky, sun, walls, objects.
-pub const SHADING: &str = include_str!("shaders/shading.wgsl");
 /// How a surface reads the floor map's pyramid and the walls' maps: the final image's and
-/// bevy_caustics' material's one copy, a module of functions of their arguments alone (textures
-/// included), so it composes here as WGSL and imports there as WESL.
+/// bevy_caustics' material's one copy, functions of their arguments alone (textures included),
+/// imported here as `package::shaders::caustics_sampling` and there as
+/// `caustics_gpu::caustics_sampling`.
 pub const CAUSTICS_SAMPLING: &str = include_str!("shaders/caustics_sampling.wgsl");
-/// Rays against the objects' bounding-volume hierarchies, in buffers of [`crate::bvh`]'s layout.
-pub const BVH: &str = include_str!("shaders/bvh.wgsl");
 
-/// Shared files followed by a pass's own source.
-pub fn compose(shared: &[&str], pass: &str) -> String {
-    let mut s = String::new();
-    for part in shared {
-        s.push_str(part);
-        s.push('\n');
-    }
-    s.push_str(pass);
-    s
-}
-
-/// The passes a module declares: each `NAME = "label", [shared parts], "file";` (the file under
-/// `crates/gpu/src/`, whose text is the pass's own source) becomes `pub const NAME: PassSource`,
-/// and all of them the module's `PASSES`, so a pass is listed where it is declared.
+/// The passes a module declares: each `NAME = "label", "file";` (the file under
+/// `crates/gpu/src/`, the pass's WESL main module) becomes `pub const NAME: PassSource` holding
+/// the WGSL build.rs compiled from it, and all of them the module's `PASSES`, so a pass is listed
+/// where it is declared.
 macro_rules! passes {
-    ($($(#[$attr:meta])* $id:ident = $name:literal, [$($shared:expr),* $(,)?], $file:literal;)+) => {
+    ($($(#[$attr:meta])* $id:ident = $name:literal, $file:literal;)+) => {
         $(
             $(#[$attr])*
             pub const $id: $crate::shaders::PassSource = $crate::shaders::PassSource {
                 name: $name,
-                shared: &[$($shared),*],
                 file: $file,
-                source: include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/", $file)),
+                source: include_str!(concat!(env!("OUT_DIR"), "/wgsl/", $file)),
             };
         )+
         /// Every pass this module declares, for the registry.
@@ -51,24 +38,19 @@ macro_rules! passes {
 }
 pub(crate) use passes;
 
-/// A pass shader: its name (for messages), its file under `crates/gpu/src/` (for tools and
-/// messages; a test holds it to `source`), the shared files it includes, and its own source.
+/// A pass shader: its name (for messages), its main module's file under `crates/gpu/src/` (for
+/// tools and messages) and the WGSL compiled from it with everything it imports.
 pub struct PassSource {
     pub name: &'static str,
     pub file: &'static str,
-    pub shared: &'static [&'static str],
     pub source: &'static str,
 }
 
 impl PassSource {
-    pub fn composed(&self) -> String {
-        compose(self.shared, self.source)
-    }
-
     pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
         device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(self.name),
-            source: wgpu::ShaderSource::Wgsl(self.composed().into()),
+            source: wgpu::ShaderSource::Wgsl(self.source.into()),
         })
     }
 }

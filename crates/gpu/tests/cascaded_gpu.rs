@@ -4,6 +4,7 @@
 
 #[macro_use]
 mod common;
+mod wgsl;
 
 use caustics_core::scene::Scene;
 use caustics_core::techniques::cascaded::{
@@ -21,15 +22,8 @@ fn shore(width: u32, height: u32) -> Scene {
 }
 
 fn uniform_matches_its_wgsl_size() {
-    let source = caustics_gpu::cascaded::PHOTONS.composed();
-    let module = naga::front::wgsl::parse_str(&source).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("Cascaded"))
-        .unwrap();
     assert_eq!(
-        ty.inner.size(module.to_ctx()) as usize,
+        wgsl::wgsl_struct_size(&caustics_gpu::cascaded::PHOTONS, "Cascaded"),
         std::mem::size_of::<CascadedUniform>()
     );
 }

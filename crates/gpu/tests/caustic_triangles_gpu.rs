@@ -4,6 +4,7 @@
 
 #[macro_use]
 mod common;
+mod wgsl;
 
 use caustics_core::metrics::compare;
 use caustics_core::techniques::caustic_triangles::{
@@ -205,29 +206,18 @@ fn the_half_float_fallback_gives_the_same_map() {
 }
 
 fn the_camera_uniform_matches_its_wgsl_size() {
-    let source = caustics_gpu::caustic_triangles::CAMERA.composed();
-    let module = naga::front::wgsl::parse_str(&source).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("CameraPass"))
-        .unwrap();
     assert_eq!(
-        ty.inner.size(module.to_ctx()) as usize,
+        wgsl::wgsl_struct_size(&caustics_gpu::caustic_triangles::CAMERA, "CameraPass"),
         std::mem::size_of::<caustics_gpu::caustic_triangles::camera::CameraUniform>()
     );
 }
 
 fn the_uniform_matches_its_wgsl_size() {
-    let source = caustics_gpu::caustic_triangles::IRRADIANCE.composed();
-    let module = naga::front::wgsl::parse_str(&source).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("CausticTriangles"))
-        .unwrap();
     assert_eq!(
-        ty.inner.size(module.to_ctx()) as usize,
+        wgsl::wgsl_struct_size(
+            &caustics_gpu::caustic_triangles::IRRADIANCE,
+            "CausticTriangles"
+        ),
         std::mem::size_of::<CausticTrianglesUniform>()
     );
     for pass in [
@@ -241,15 +231,7 @@ fn the_uniform_matches_its_wgsl_size() {
         &caustics_gpu::caustic_triangles::WATER_PHOTON,
         &caustics_gpu::caustic_triangles::CAMERA,
     ] {
-        let src = pass.composed();
-        let m = naga::front::wgsl::parse_str(&src)
-            .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&src)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::all(),
-        )
-        .validate(&m)
-        .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&src)));
+        wgsl::validated(pass);
     }
 }
 
@@ -773,15 +755,11 @@ fn water_generator_matches_the_cpu_twin() {
 }
 
 fn the_water_photon_uniform_matches_its_wgsl_size() {
-    let source = caustics_gpu::caustic_triangles::WATER_PHOTON.composed();
-    let module = naga::front::wgsl::parse_str(&source).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("WaterPhoton"))
-        .unwrap();
     assert_eq!(
-        ty.inner.size(module.to_ctx()) as usize,
+        wgsl::wgsl_struct_size(
+            &caustics_gpu::caustic_triangles::WATER_PHOTON,
+            "WaterPhoton"
+        ),
         std::mem::size_of::<caustics_gpu::caustic_triangles::WaterPhotonUniform>()
     );
 }

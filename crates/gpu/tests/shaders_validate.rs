@@ -1,27 +1,21 @@
-//! Every WGSL pass, composed with the shared math it includes, parses and validates with naga. Needs
-//! no GPU, so a shader error fails CI even where no adapter exists. The passes are the registry's
-//! (`caustics_gpu::registry::all_passes`), and every `.wgsl` file of the crate must be one of them
-//! or a part they share, so a pass left out of its technique's list fails here.
+//! Every WGSL pass, compiled by build.rs with the modules it imports, parses and validates with naga.
+//! Needs no GPU, so a shader error fails CI even where no adapter exists. The passes are the
+//! registry's (`caustics_gpu::registry::all_passes`), and every `.wgsl` file of the crate must be
+//! one of them or a module they import, so a pass left out of its technique's list fails here.
+
+mod wgsl;
 
 use std::path::{Path, PathBuf};
 
 use caustics_gpu::registry::all_passes;
+use wgsl::{validated, validated_wgsl, wgsl_struct_size};
 
 #[test]
 fn every_pass_parses_and_validates() {
     let passes = all_passes();
     assert!(passes.len() >= 55, "{}", passes.len());
     for pass in passes {
-        let source = pass.composed();
-        let module = naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| {
-            panic!("{}: {}", pass.name, e.emit_to_string(&source));
-        });
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::all(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
+        validated(pass);
     }
 }
 
@@ -36,49 +30,57 @@ fn wgsl_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Each pass's `file` holds its `source`, and every `.wgsl` file under `src/` is a registered
-/// pass or a part one of them composes.
-#[test]
-fn every_wgsl_file_is_a_registered_pass_or_a_shared_part() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let passes = all_passes();
-    for pass in &passes {
-        let text = std::fs::read_to_string(src.join(pass.file))
-            .unwrap_or_else(|e| panic!("{}: {}: {e}", pass.name, pass.file));
-        assert_eq!(
-            text, pass.source,
-            "{}: `{}` is not its source",
-            pass.name, pass.file
-        );
+/// The files under `src/` a pass's main module reaches through its `import package::...` lines,
+/// itself included.
+fn reached(src: &Path, file: &str, out: &mut Vec<String>) {
+    if out.iter().any(|f| f == file) {
+        return;
     }
+    out.push(file.to_string());
+    let text = std::fs::read_to_string(src.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+    for import in text.split("import package::").skip(1) {
+        let path = import.split(';').next().unwrap();
+        let module = match path.split_once("::{") {
+            Some((module, _)) => module,
+            None => path.rsplit_once("::").map_or(path, |(module, _)| module),
+        };
+        reached(src, &format!("{}.wgsl", module.replace("::", "/")), out);
+    }
+}
+
+/// The files every registered pass reaches.
+fn registered_files(src: &Path) -> Vec<String> {
+    let mut files = Vec::new();
+    for pass in all_passes() {
+        reached(src, pass.file, &mut files);
+    }
+    files
+}
+
+/// Every `.wgsl` file under `src/` is a registered pass's main module or a module one imports.
+#[test]
+fn every_wgsl_file_is_a_registered_pass_or_a_module_it_imports() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let registered = registered_files(&src);
     let mut files = Vec::new();
     wgsl_files(&src, &mut files);
     assert!(files.len() >= 60, "{}", files.len());
     for file in files {
-        let text = std::fs::read_to_string(&file).unwrap();
-        let used = passes
-            .iter()
-            .any(|p| p.source == text || p.shared.contains(&text.as_str()));
+        let rel = file
+            .strip_prefix(&src)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
         assert!(
-            used,
-            "{} is in no registered pass: list it in its technique's PASSES (or the frame's)",
-            file.display()
+            registered.contains(&rel),
+            "{rel} is in no registered pass: list it in its technique's PASSES (or the frame's)"
         );
     }
 }
 
 #[test]
-fn uniform_structs_match_their_wgsl_size() {
-    let source = caustics_gpu::probe::PROBE.composed();
-    let module = naga::front::wgsl::parse_str(&source).unwrap();
-    let size_of = |name: &str| {
-        let (_, ty) = module
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
-        ty.inner.size(module.to_ctx()) as usize
-    };
+fn uniform_structs_match_their_wgsl_struct_size() {
+    let size_of = |name: &str| wgsl_struct_size(&caustics_gpu::probe::PROBE, name);
     use caustics_gpu::probe::{ProbeIn, ProbeOut};
     use caustics_gpu::water::{GpuProceduralWave, GpuSineWave};
     assert_eq!(size_of("SineWave"), std::mem::size_of::<GpuSineWave>());
@@ -90,33 +92,25 @@ fn uniform_structs_match_their_wgsl_size() {
     assert_eq!(size_of("ProbeOut"), std::mem::size_of::<ProbeOut>());
 }
 
-/// The size naga gives the WGSL struct `name` of a pass.
-fn wgsl_size(pass: &caustics_gpu::shaders::PassSource, name: &str) -> usize {
-    let module = naga::front::wgsl::parse_str(&pass.composed()).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some(name))
-        .unwrap_or_else(|| panic!("{}: no WGSL struct {name}", pass.name));
-    ty.inner.size(module.to_ctx()) as usize
-}
-
 #[test]
-fn water_uniform_structs_match_their_wgsl_size() {
+fn water_uniform_structs_match_their_wgsl_struct_size() {
     use caustics_gpu::water::ocean::{FftStage, OCEAN_FFT, OCEAN_SPECTRUM, SpectrumParams};
     use caustics_gpu::water::ripple::{RIPPLE_DROP, RIPPLE_STEP, RippleDrop, RippleStep};
     use std::mem::size_of;
     assert_eq!(
-        wgsl_size(&OCEAN_SPECTRUM, "SpectrumParams"),
+        wgsl_struct_size(&OCEAN_SPECTRUM, "SpectrumParams"),
         size_of::<SpectrumParams>()
     );
-    assert_eq!(wgsl_size(&OCEAN_FFT, "FftStage"), size_of::<FftStage>());
     assert_eq!(
-        wgsl_size(&RIPPLE_STEP, "RippleStep"),
+        wgsl_struct_size(&OCEAN_FFT, "FftStage"),
+        size_of::<FftStage>()
+    );
+    assert_eq!(
+        wgsl_struct_size(&RIPPLE_STEP, "RippleStep"),
         size_of::<RippleStep>()
     );
     assert_eq!(
-        wgsl_size(&RIPPLE_DROP, "RippleDrop"),
+        wgsl_struct_size(&RIPPLE_DROP, "RippleDrop"),
         size_of::<RippleDrop>()
     );
 }
@@ -125,51 +119,43 @@ fn water_uniform_structs_match_their_wgsl_size() {
 fn yuksel_pass1_validates_for_every_target_count() {
     for targets in 1..=8 {
         let source = caustics_gpu::yuksel::pass1_source(targets);
-        let module = naga::front::wgsl::parse_str(&source)
-            .unwrap_or_else(|e| panic!("{targets} targets: {}", e.emit_to_string(&source)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::all(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{targets} targets: {}", e.emit_to_string(&source)));
+        validated_wgsl(&format!("{targets} targets"), &source);
     }
-    let source = caustics_gpu::yuksel::PASS2.composed();
-    let module = naga::front::wgsl::parse_str(&source).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("Yuksel"))
-        .unwrap();
     assert_eq!(
-        ty.inner.size(module.to_ctx()) as usize,
+        wgsl_struct_size(&caustics_gpu::yuksel::PASS2, "Yuksel"),
         std::mem::size_of::<caustics_gpu::yuksel::YukselUniform>()
     );
 }
 
 #[test]
-fn final_image_structs_match_their_wgsl_size() {
+fn final_image_structs_match_their_wgsl_struct_size() {
     use caustics_gpu::bvh::{GpuBvhNode, GpuBvhTriangle};
     use caustics_gpu::final_image::{FINAL_IMAGE, FinalImageUniform, GpuObject};
     use std::mem::size_of;
     assert_eq!(
-        wgsl_size(&FINAL_IMAGE, "FinalImage"),
+        wgsl_struct_size(&FINAL_IMAGE, "FinalImage"),
         size_of::<FinalImageUniform>()
     );
-    assert_eq!(wgsl_size(&FINAL_IMAGE, "Object"), size_of::<GpuObject>());
-    assert_eq!(wgsl_size(&FINAL_IMAGE, "BvhNode"), size_of::<GpuBvhNode>());
     assert_eq!(
-        wgsl_size(&FINAL_IMAGE, "BvhTriangle"),
+        wgsl_struct_size(&FINAL_IMAGE, "Object"),
+        size_of::<GpuObject>()
+    );
+    assert_eq!(
+        wgsl_struct_size(&FINAL_IMAGE, "BvhNode"),
+        size_of::<GpuBvhNode>()
+    );
+    assert_eq!(
+        wgsl_struct_size(&FINAL_IMAGE, "BvhTriangle"),
         size_of::<GpuBvhTriangle>()
     );
 }
 
 #[test]
-fn procedural_uniform_matches_its_wgsl_size() {
+fn procedural_uniform_matches_its_wgsl_struct_size() {
     use caustics_gpu::procedural::{ProceduralUniform, RESAMPLE, SCREEN, TARGET, VERTEX};
     for pass in [&VERTEX, &SCREEN, &TARGET, &RESAMPLE] {
         assert_eq!(
-            wgsl_size(pass, "Procedural"),
+            wgsl_struct_size(pass, "Procedural"),
             std::mem::size_of::<ProceduralUniform>(),
             "{}",
             pass.name
@@ -178,13 +164,13 @@ fn procedural_uniform_matches_its_wgsl_size() {
 }
 
 /// `scripts/mutate-passes.sh`'s table follows the code: each mutation names a registered pass's
-/// file (or a part the passes share) and the exact text it changes is still there, so no line of
+/// file (or a module the passes import) and the exact text it changes is still there, so no line of
 /// the table goes stale unseen.
 #[test]
 fn the_mutation_table_names_registered_passes_and_their_text() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let script = std::fs::read_to_string(root.join("scripts/mutate-passes.sh")).unwrap();
-    let passes = all_passes();
+    let registered = registered_files(&root.join("crates/gpu/src"));
     let (mut lines, mut stale) = (0, Vec::new());
     let table = script
         .split_once("MUTATIONS=$(cat <<EOF\n")
@@ -204,10 +190,7 @@ fn the_mutation_table_names_registered_passes_and_their_text() {
         if !text.contains(old) {
             stale.push(format!("{name}: `{old}` is not in {rel}"));
         }
-        let registered = passes
-            .iter()
-            .any(|p| p.file == rel || p.shared.contains(&text.as_str()));
-        if !registered {
+        if !registered.iter().any(|f| f == rel) {
             stale.push(format!("{name}: {rel} is no registered pass's"));
         }
         lines += 1;

@@ -5,6 +5,7 @@
 
 #[macro_use]
 mod common;
+mod wgsl;
 
 use caustics_core::grid::Grid;
 use caustics_core::mesh::{cuboid, sphere};
@@ -229,27 +230,13 @@ fn half_float_maps_match_full_float() {
 }
 
 fn uniform_structs_match_their_wgsl_size() {
-    let module = naga::front::wgsl::parse_str(&caustics_gpu::volumes::SLICES.composed()).unwrap();
-    let size_of = |name: &str| {
-        let (_, ty) = module
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("no WGSL struct {name}"));
-        ty.inner.size(module.to_ctx()) as usize
-    };
+    let size_of = |name: &str| wgsl::wgsl_struct_size(&caustics_gpu::volumes::SLICES, name);
     assert_eq!(size_of("View"), std::mem::size_of::<ViewUniform>());
     assert_eq!(size_of("Volumes"), std::mem::size_of::<VolumesUniform>());
     assert_eq!(size_of("Pass"), std::mem::size_of::<PassUniform>());
     assert_eq!(size_of("WaterVertex"), 32);
-    let module = naga::front::wgsl::parse_str(&caustics_gpu::volumes::VIEW.composed()).unwrap();
-    let (_, ty) = module
-        .types
-        .iter()
-        .find(|(_, t)| t.name.as_deref() == Some("Camera"))
-        .unwrap();
     assert_eq!(
-        ty.inner.size(module.to_ctx()) as usize,
+        wgsl::wgsl_struct_size(&caustics_gpu::volumes::VIEW, "Camera"),
         std::mem::size_of::<CameraUniform>()
     );
 }
@@ -278,15 +265,7 @@ fn a_texture_beyond_the_device_limit_is_refused() {
 fn every_volumes_pass_validates() {
     use caustics_gpu::volumes::{DEPTH, FLOOR, SHADE, SLICES, VIEW, WALLS, WATER_PASS};
     for pass in [&DEPTH, &WATER_PASS, &SLICES, &FLOOR, &WALLS, &SHADE, &VIEW] {
-        let source = pass.composed();
-        let module = naga::front::wgsl::parse_str(&source)
-            .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::all(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{}: {}", pass.name, e.emit_to_string(&source)));
+        wgsl::validated(pass);
     }
 }
 

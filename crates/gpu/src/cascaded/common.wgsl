@@ -1,6 +1,9 @@
 // Technique `cascaded` (paper 5): the uniform block every pass shares and the geometry they repeat.
 // Mirrors `CascadedUniform` in cascaded/mod.rs and `CascadedSetup` in
 // caustics-core/src/techniques/cascaded/mod.rs (its common.rs: the CPU twin of every function here).
+
+import package::shaders::water::grid_sample;
+
 struct Cascaded {
     light: vec4<f32>,      // xyz: unit direction the sunlight travels; w: water rest level
     e_u: vec4<f32>,        // xyz: light-view u axis; w: scene square size

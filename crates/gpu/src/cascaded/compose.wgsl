@@ -2,6 +2,8 @@
 // in, fading into the next over the last `blend` of the interval, and turns the fixed-point flux into
 // relative irradiance by the pixel's floor area. CPU twin: `compose`.
 
+import package::cascaded::common::Cascaded;
+
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var eye: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read> acc: array<u32>;

@@ -2,6 +2,8 @@
 // pixel are read from the composed image where flat water would have sent green, F - d shift_c with
 // d the water column over the pixel's floor point F. CPU twin: `disperse`.
 
+import package::cascaded::common::{Cascaded, eye_project, eye_ray};
+
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var eye: texture_2d<f32>;
 @group(0) @binding(2) var composed: texture_2d<f32>;

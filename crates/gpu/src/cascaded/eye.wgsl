@@ -3,6 +3,9 @@
 // its edges' midpoints, see `eye_pass`), the floor's height and that floor's normal z (0: no
 // floor). CPU twin: `eye_pass`.
 
+import package::cascaded::common::{Cascaded, eye_ray, receiver_normal, terrain_height, terrain_hit};
+import package::shaders::optics::height_field_normal;
+
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var terrain: texture_2d<f32>;
 @group(0) @binding(2) var eye_out: texture_storage_2d<rgba32float, write>;

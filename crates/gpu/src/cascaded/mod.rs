@@ -39,18 +39,16 @@ use caustics_core::techniques::cascaded::{
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
 
 pub mod technique;
-use crate::shaders::{OPTICS, WATER, passes};
+use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
-const COMMON: &str = include_str!("common.wgsl");
-
 passes! {
-    EYE = "cascaded eye depth", [OPTICS, WATER, COMMON], "cascaded/eye.wgsl";
-    WATER_GBUFFER = "cascaded water G-buffer", [OPTICS, WATER, COMMON], "cascaded/water.wgsl";
-    TERRAIN_GBUFFER = "cascaded terrain G-buffer", [OPTICS, WATER, COMMON], "cascaded/terrain.wgsl";
-    PHOTONS = "cascaded photons", [OPTICS, WATER, COMMON], "cascaded/photons.wgsl";
-    COMPOSE = "cascaded composition", [OPTICS, WATER, COMMON], "cascaded/compose.wgsl";
-    DISPERSE = "cascaded dispersion", [OPTICS, WATER, COMMON], "cascaded/disperse.wgsl";
+    EYE = "cascaded eye depth", "cascaded/eye.wgsl";
+    WATER_GBUFFER = "cascaded water G-buffer", "cascaded/water.wgsl";
+    TERRAIN_GBUFFER = "cascaded terrain G-buffer", "cascaded/terrain.wgsl";
+    PHOTONS = "cascaded photons", "cascaded/photons.wgsl";
+    COMPOSE = "cascaded composition", "cascaded/compose.wgsl";
+    DISPERSE = "cascaded dispersion", "cascaded/disperse.wgsl";
 }
 
 /// Mirrors `Cascaded` in `cascaded/common.wgsl`.

@@ -5,6 +5,9 @@
 // wavelength dispersion (§3.6) one photon per RGB channel. CPU twin: `photons`, `footprint_side`,
 // `splat_footprint`.
 
+import package::cascaded::common::{Cascaded, box_hit, eye_project, ray_origin};
+import package::shaders::optics::{fresnel_transmittance, refract_dir};
+
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var gwater: texture_2d<f32>;
 @group(0) @binding(2) var gterrain: texture_2d<f32>;

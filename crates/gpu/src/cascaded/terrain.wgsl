@@ -1,6 +1,8 @@
 // Technique `cascaded`, terrain G-buffer pass (paper §3.3 terrain position, §3.3.1): per light texel
 // the light-view depth of the terrain under the unrefracted sun ray. CPU twin: `terrain_gbuffer`.
 
+import package::cascaded::common::{Cascaded, ray_origin, terrain_hit};
+
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var terrain: texture_2d<f32>;
 @group(0) @binding(2) var gbuffer: texture_storage_2d<r32float, write>;

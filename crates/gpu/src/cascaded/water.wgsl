@@ -2,6 +2,10 @@
 // texel the light-view depth of the water surface z = level + h and its normal. CPU twin:
 // `water_gbuffer`.
 
+import package::cascaded::common::{Cascaded, WATER_STEPS, ray_origin};
+import package::shaders::optics::height_field_normal;
+import package::shaders::water::grid_sample;
+
 @group(0) @binding(0) var<uniform> cfg: Cascaded;
 @group(0) @binding(1) var water: texture_2d<f32>;
 @group(0) @binding(2) var gbuffer: texture_storage_2d<rgba32float, write>;

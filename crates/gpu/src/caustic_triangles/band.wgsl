@@ -8,6 +8,10 @@
 // writes the indirect draw of the eight shifted copies (`CopyBand.draw`), the vertex count of the
 // largest band rectangle as `draw_floor` computes it from a CPU band.
 
+import package::caustic_triangles::common::{CausticTriangles, CopyBand, copy_rect, with_band};
+import package::caustic_triangles::water_setup::WaterPhoton;
+import package::shaders::reduce::unordered;
+
 @group(0) @binding(0) var<uniform> w: WaterPhoton;
 @group(0) @binding(1) var<uniform> u: CausticTriangles;
 // ordered(slope), ordered(-lo), ordered(hi), or 0 where there was no texel.

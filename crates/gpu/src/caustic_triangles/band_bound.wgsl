@@ -3,6 +3,9 @@
 // an invocation and one atomic per workgroup and value (reduce.wgsl), so no single workgroup walks
 // the heights. CPU twin: the slope and range `water::copy_band` takes (the same texels, exact).
 
+import package::caustic_triangles::water_setup::WaterPhoton;
+import package::shaders::reduce::ordered;
+
 @group(0) @binding(0) var<uniform> w: WaterPhoton;
 @group(0) @binding(1) var heights: texture_2d<f32>;
 // ordered(slope), ordered(-lo), ordered(hi); cleared to 0 before this pass.

@@ -207,8 +207,8 @@ impl CameraRenderer {
             &self.pipeline.get_bind_group_layout(0),
             &[
                 uniform.as_entire_binding(),
-                gens_buffer.as_entire_binding(),
                 dm_buffer.as_entire_binding(),
+                gens_buffer.as_entire_binding(),
                 shadow.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&cube_view),
                 wgpu::BindingResource::TextureView(&floor_view),

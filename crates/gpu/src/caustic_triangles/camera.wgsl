@@ -6,6 +6,12 @@
 // its distance map), which end at diffuse points shaded the same way. Linear RGB out.
 // CPU twin: caustics-core/src/techniques/caustic_triangles/camera.rs (the model is documented there).
 
+import package::caustic_triangles::common::CausticTriangles;
+import package::caustic_triangles::distance_map::{
+    dm_info, dm_trace_mode, dmg, face_st, sphere_span,
+};
+import package::shaders::optics::{fresnel_transmittance, refract_dir};
+
 struct CameraPass {
     position: vec4<f32>,     // xyz: the eye; w: tan(fov_y / 2)
     forward: vec4<f32>,      // w: aspect (width / height)
@@ -29,8 +35,7 @@ struct CameraPass {
 }
 
 @group(0) @binding(0) var<uniform> cam: CameraPass;
-@group(0) @binding(1) var<storage, read> gens: array<CausticTriangles>;
-@group(0) @binding(2) var<storage, read> dm: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> gens: array<CausticTriangles>;
 @group(0) @binding(3) var<storage, read> shadow: array<f32>;
 @group(0) @binding(4) var cube_map: texture_2d<f32>;
 @group(0) @binding(5) var floor_map: texture_2d<f32>;

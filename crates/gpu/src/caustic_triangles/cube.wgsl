@@ -6,8 +6,9 @@
 // distance d to the light is linear interpolation on the floor triangle. Output (E, E d), added.
 // CPU twin: `cube_triangles_pass` in caustics-core/src/techniques/caustic_triangles/cube.rs.
 
-@group(0) @binding(0) var<uniform> u: CausticTriangles;
-@group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
+import package::caustic_triangles::common::CULLED;
+import package::caustic_triangles::merge::{photons, quad_draw, u};
+
 @group(0) @binding(2) var<storage, read> irradiance: array<f32>;
 
 struct VsOut {

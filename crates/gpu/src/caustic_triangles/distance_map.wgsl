@@ -2,8 +2,11 @@
 // linear then secant search. CPU twin: caustics-core/src/techniques/caustic_triangles/distance_map.rs
 // (layout, face convention and search documented there).
 
-// The pass including this file declares `dm: array<vec4<f32>>` (one or several distance maps, one
-// after the other) and sets `dmg` to the map a ray is traced in before calling these functions.
+import package::caustic_triangles::common::CausticTriangles;
+
+// One or several distance maps, one after the other, bound second by every pass that traces them;
+// a pass sets `dmg` to the map a ray is traced in before calling these functions.
+@group(0) @binding(1) var<storage, read> dm: array<vec4<f32>>;
 
 struct DistanceMapInfo {
     centre: vec4<f32>,  // xyz: reference point; w: radius of the sphere holding its surfaces

@@ -4,6 +4,8 @@
 // signature (w) count. CPU twin: `vertex_irradiance` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs, where both area rules are derived.
 
+import package::caustic_triangles::common::CausticTriangles;
+
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read_write> irradiance: array<f32>;

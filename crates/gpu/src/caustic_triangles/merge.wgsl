@@ -3,6 +3,10 @@
 // level l > 0 the merged block of 2^l x 2^l quads it is the corner of, flat shaded at power / area.
 // Without merging (u.merge_levels == 0) the quad's own validity. CPU twin: `merge::quad_draw`.
 
+import package::caustic_triangles::common::{CausticTriangles, pyr_offset, pyr_side};
+
+@group(0) @binding(0) var<uniform> u: CausticTriangles;
+@group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> pyramid: array<vec4<f32>>;
 
 fn quad_draw(qi: u32, qj: u32) -> vec2<f32> {

@@ -61,26 +61,21 @@ pub use uniforms::{CausticTrianglesUniform, CopyBandBuffer, WaterPhotonUniform};
 pub use water::{WallFrame, WallFrames, WaterFrame};
 
 use crate::pass::{additive_pipeline, blendable_map_format, compute_pipeline};
-use crate::shaders::{OPTICS, REDUCE, WATER, passes};
+use crate::shaders::passes;
 use crate::{GpuContext, GpuError};
 
-const COMMON: &str = include_str!("common.wgsl");
-const DISTANCE_MAP: &str = include_str!("distance_map.wgsl");
-const MERGE: &str = include_str!("merge.wgsl");
-const WATER_SETUP: &str = include_str!("water_setup.wgsl");
-
 passes! {
-    PHOTON = "caustic-triangles photon tracing", [OPTICS, COMMON, DISTANCE_MAP], "caustic_triangles/photon.wgsl";
-    IRRADIANCE = "caustic-triangles vertex irradiance", [COMMON], "caustic_triangles/irradiance.wgsl";
-    TRIANGLES = "caustic-triangles triangles", [COMMON, MERGE], "caustic_triangles/triangles.wgsl";
-    PYRAMID = "caustic-triangles merge pyramid", [COMMON], "caustic_triangles/pyramid.wgsl";
-    CUBE = "caustic-triangles light cube map", [COMMON, MERGE], "caustic_triangles/cube.wgsl";
-    SHADOW = "caustic-triangles light cube shadow distances", [COMMON, DISTANCE_MAP], "caustic_triangles/shadow.wgsl";
-    WATER_PHOTON = "caustic-triangles water photons", [OPTICS, WATER, WATER_SETUP], "caustic_triangles/water_photon.wgsl";
-    COPY_BAND = "caustic-triangles copy band", [COMMON, WATER_SETUP, REDUCE], "caustic_triangles/band.wgsl";
-    BAND_BOUND = "caustic-triangles band bound", [COMMON, WATER_SETUP, REDUCE], "caustic_triangles/band_bound.wgsl";
-    SPLAT = "caustic-triangles splats", [COMMON], "caustic_triangles/splat.wgsl";
-    CAMERA = "caustic-triangles camera pass", [OPTICS, COMMON, DISTANCE_MAP], "caustic_triangles/camera.wgsl";
+    PHOTON = "caustic-triangles photon tracing", "caustic_triangles/photon.wgsl";
+    IRRADIANCE = "caustic-triangles vertex irradiance", "caustic_triangles/irradiance.wgsl";
+    TRIANGLES = "caustic-triangles triangles", "caustic_triangles/triangles.wgsl";
+    PYRAMID = "caustic-triangles merge pyramid", "caustic_triangles/pyramid.wgsl";
+    CUBE = "caustic-triangles light cube map", "caustic_triangles/cube.wgsl";
+    SHADOW = "caustic-triangles light cube shadow distances", "caustic_triangles/shadow.wgsl";
+    WATER_PHOTON = "caustic-triangles water photons", "caustic_triangles/water_photon.wgsl";
+    COPY_BAND = "caustic-triangles copy band", "caustic_triangles/band.wgsl";
+    BAND_BOUND = "caustic-triangles band bound", "caustic_triangles/band_bound.wgsl";
+    SPLAT = "caustic-triangles splats", "caustic_triangles/splat.wgsl";
+    CAMERA = "caustic-triangles camera pass", "caustic_triangles/camera.wgsl";
 }
 
 /// How the photon hits become the floor map.

@@ -5,8 +5,11 @@
 // reflections (quads whose corners took different paths are not drawn). CPU twin: `photon` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
+import package::caustic_triangles::common::CausticTriangles;
+import package::caustic_triangles::distance_map::{dm_info, dm_trace, dmg};
+import package::shaders::optics::{fresnel_transmittance, refract_dir};
+
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
-@group(0) @binding(1) var<storage, read> dm: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read_write> photons: array<vec4<f32>>;
 
 const INVALID: vec4<f32> = vec4<f32>(0.0, 0.0, -1.0, 0.0);

@@ -5,6 +5,8 @@
 // u.merge_small). One dispatch per level, lowest first. CPU twin: `merge::pyramid_pass` in
 // caustics-core/src/techniques/caustic_triangles/merge.rs.
 
+import package::caustic_triangles::common::{CausticTriangles, pyr_offset, pyr_side};
+
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> irradiance: array<f32>;

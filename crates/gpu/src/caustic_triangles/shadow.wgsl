@@ -4,8 +4,12 @@
 // than what earlier generators left (the host fills the buffer with f32 max first). CPU twin:
 // `shadow_pass` / `first_surface` in caustics-core/src/techniques/caustic_triangles/cube.rs.
 
+import package::caustic_triangles::common::CausticTriangles;
+import package::caustic_triangles::distance_map::{
+    cube_texel_dir, dm_info, dm_trace_mode, dmg, sphere_span,
+};
+
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
-@group(0) @binding(1) var<storage, read> dm: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read_write> shadow: array<f32>;
 
 @compute @workgroup_size(8, 8)

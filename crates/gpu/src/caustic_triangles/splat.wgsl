@@ -4,6 +4,10 @@
 // lattice's repeated last row and column left out. CPU twin: `splat_pass_with_paths` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
+import package::caustic_triangles::common::{
+    CULLED, CausticTriangles, copy_offset, pixel_to_clip, to_pixel,
+};
+
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> paths: array<f32>;

@@ -10,8 +10,12 @@
 // and instances map to copies by `copy_of_instance`). CPU twin: `triangles_pass_with_paths` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs.
 
-@group(0) @binding(0) var<uniform> u: CausticTriangles;
-@group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
+import package::caustic_triangles::common::{
+    CULLED, CopyBand, copy_of_instance, copy_offset, copy_rect, meets_square, pixel_to_clip,
+    to_pixel, with_band,
+};
+import package::caustic_triangles::merge::{photons, quad_draw, u};
+
 @group(0) @binding(2) var<storage, read> irradiance: array<f32>;
 @group(0) @binding(4) var<storage, read> paths: array<f32>;
 @group(0) @binding(5) var<storage, read> copy_band: CopyBand;

@@ -10,6 +10,10 @@
 // stretched alike, invalid where the ray runs away from the wall or ends more than `size` below the
 // floor. CPU twin: `receiver_photon` in caustics-core/src/techniques/caustic_triangles/water.rs.
 
+import package::caustic_triangles::water_setup::WaterPhoton;
+import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::water::grid_sample;
+
 // The uniform block `WaterPhoton`: water_setup.wgsl.
 @group(0) @binding(0) var<uniform> w: WaterPhoton;
 @group(0) @binding(1) var heights: texture_2d<f32>;

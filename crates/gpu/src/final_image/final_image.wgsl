@@ -1,7 +1,27 @@
-// The final image pass's own file, composed after its shared parts (`passes!` in
-// final_image/mod.rs; the pass's header, uniform and bindings open final_image_inputs.wgsl): the
+// The final image pass's main module (the uniform and bindings are final_image_inputs.wgsl's): the
 // view ray's trace above and under the water, the ray stack's drain and the image loop, the GPU
 // twin of caustics-core/src/render/trace.rs and render/mod.rs.
+
+import package::final_image::final_image_inputs::{
+    FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER, MAX_DEPTH, absorbed, albedo_at,
+    emit, h_max, has, image, is_pool, params, pixel_radiance, ray_count, rays, sky_radiance,
+    slab_half_height, slab_slope, slope_max, terrain_height, water_height_gradient,
+};
+import package::final_image::final_image_march::{
+    camera_under_water, hit_floor, hit_water, hit_water_from_below, leave_water,
+};
+import package::final_image::final_image_receivers::{
+    inside, nearest_object, wall_at, wall_distance, wall_light,
+};
+import package::final_image::final_image_rough_water::rough_water;
+import package::final_image::final_image_shade::{shade_above, shade_floor, shade_object, trace_air};
+import package::final_image::final_image_spread::{
+    NO_SLOT, Spread, bent_spread, camera_ray, camera_spread, no_spread, on_plane, on_plane3,
+    pending_slot, pending_spread, push_ray_spread, spread,
+};
+import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::shading::tone_map;
+import package::shaders::water::grid_sample;
 
 fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if !has(FLAG_WATER) {
@@ -110,13 +130,6 @@ fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: Spread) -> vec3<f32> {
         }
     }
     return pixel_radiance;
-}
-
-// `Camera::ray`: the primary ray through image point (x + 0.5, y + 0.5), y down the image.
-fn camera_ray(x: f32, y: f32) -> vec3<f32> {
-    let sx = 2.0 * (x + 0.5) / f32(params.width) - 1.0;
-    let sy = 1.0 - 2.0 * (y + 0.5) / f32(params.height);
-    return normalize(params.camera_forward + params.camera_right * sx + params.camera_up * sy);
 }
 
 // render.rs `sample_offset`: sample (sx, sy) of a pixel's n x n on a rotated grid (n-rooks).

@@ -2,7 +2,8 @@
 // for function (`render`, `Tracer::trace`, `trace_under`, `shade_floor`, `shade_object`,
 // `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`, `wall_light`,
 // `wall_at`, `hit_water_from_below`, `leave_water`, `camera_under_water`). The light
-// transport is documented there. Composed after optics.wgsl, water.wgsl, shading.wgsl and bvh.wgsl.
+// transport is documented there. This module holds the pass's uniform, bindings and reads of its
+// inputs; final_image.wgsl, the pass's main module, imports it and the other parts.
 //
 // WGSL has no recursion, and the CPU's recursion is linear in what it returns: `trace` returns the
 // reflected sky plus `t_view` times what `trace_under` returns, a glass object returns
@@ -11,6 +12,10 @@
 // by, adds `w * colour` for what it would return directly (`emit`), and pushes the rays it would
 // recurse into with their weights on a small stack (`push_ray`) that `radiance` drains. The sum is
 // the CPU's up to the order of the additions.
+
+import package::shaders::caustics_sampling::caustics_filtered;
+import package::shaders::shading::{floor_albedo, perez_sky, xyy_to_rgb};
+import package::shaders::water::{grid_sample, grid_sample_hermite};
 
 // Mirrors `FinalImageUniform` in crates/gpu/src/final_image/upload.rs.
 struct FinalImage {

@@ -1,6 +1,18 @@
 // The view ray's search for the water surface and the floor, and the surface seen from below: the
-// GPU twin of caustics-core/src/render/march.rs (and trace.rs's `leave_water`). A part of the final
-// image pass, composed in the order of `passes!` in final_image/mod.rs.
+// GPU twin of caustics-core/src/render/march.rs (and trace.rs's `leave_water`). A module of the
+// final image pass.
+
+import package::final_image::final_image_inputs::{
+    BISECTIONS, EVEN_STEPS, FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER,
+    FLOOR_STEPS, MARCH_STEPS, SLAB_LATTICE, floor_height, h_max, has, params, push_ray, slope_max,
+    water_height_gradient,
+};
+import package::final_image::final_image_receivers::inside;
+import package::final_image::final_image_rough_water::water_slopes;
+import package::final_image::final_image_spread::{
+    bent_spread, push_ray_spread, spread, water_normal,
+};
+import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
 
 // Height of the ray above the water surface at distance t.
 fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {

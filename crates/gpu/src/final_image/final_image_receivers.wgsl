@@ -1,6 +1,12 @@
 // What a view ray reads where it ends besides the floor map: the eye-space caustics image, the
 // objects' ray queries and the pool's walls (CPU twins in caustics-core/src/render/shade.rs and
-// march.rs). A part of the final image pass, composed in the order of `passes!` in mod.rs.
+// march.rs). A module of the final image pass.
+
+import package::final_image::final_image_inputs::{
+    FAR, FLAG_EYE_CAUSTICS, caustics_map, has, objects, params, wall_cols, wall_maps,
+};
+import package::shaders::bvh::bvh_intersect;
+import package::shaders::caustics_sampling::wall_sample;
 
 // `EyeSpaceCaustics::sample`: the floor point projected through the camera onto the eye-space
 // image, bilinear between the centres of the valid texels around it, renormalised; w = 0 where the
@@ -115,7 +121,6 @@ fn wall_at(p: vec3<f32>, size: f32) -> u32 {
     }
     return k;
 }
-
 
 // `Tracer::wall_light`: the sun's light on wall point p through its wall's map, or the eye-space
 // image where p projects (cascaded); none without either; shadowed by the objects.

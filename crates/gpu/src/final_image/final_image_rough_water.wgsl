@@ -3,6 +3,12 @@
 // render.rs `Tracer::rough_water`, where the filter is written down and its sources cited (LEAN
 // mapping; Heitz 2014's visible normals; Cox and Munk's glint with Smith's masking).
 
+import package::final_image::final_image_inputs::{
+    FLAG_WRAP_SURFACE, has, params, sky_without_sun, slope_moments, sun_radiance,
+    water_height_gradient,
+};
+import package::shaders::optics::{fresnel_transmittance, height_field_normal};
+
 // slopes.rs `MAX_TAPS`.
 const MAX_SLOPE_TAPS: u32 = 16u;
 

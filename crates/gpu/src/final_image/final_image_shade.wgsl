@@ -1,6 +1,18 @@
 // Shading where a view ray ends: the floor, the objects, the deck and the sky, and the open air:
-// the GPU twin of caustics-core/src/render/shade.rs (and trace.rs's `trace_air`). A part of the
-// final image pass, composed in the order of `passes!` in final_image/mod.rs.
+// the GPU twin of caustics-core/src/render/shade.rs (and trace.rs's `trace_air`). A module of
+// the final image pass.
+
+import package::final_image::final_image_inputs::{
+    FAR, FLAG_AIR_CAUSTICS, FLAG_CAUSTICS, FLAG_EYE_CAUSTICS, FLAG_WATER, FLAG_WRAP_CAUSTICS,
+    absorbed, albedo_at, deck_kind, emit, h_max, has, is_pool, objects, params, push_ray,
+    sample_caustics_filtered, sky_radiance,
+};
+import package::final_image::final_image_receivers::{
+    nearest_object, occluded, occluded_by_any, sample_eye_space,
+};
+import package::final_image::final_image_spread::{on_plane, spread};
+import package::shaders::optics::{fresnel_transmittance, refract_dir};
+import package::shaders::shading::deck_albedo;
 
 // The floor at `p`, its caustics and albedo filtered over the sample's footprint `fa`, `fb`.
 fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {

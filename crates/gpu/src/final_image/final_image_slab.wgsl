@@ -2,11 +2,13 @@
 // techniques read, for the final image's water search (`hit_water`, `first_crossing`) and the pool
 // deck's height. CPU twin: caustics-core/src/render.rs `slab_bounds`, 1.5 times the largest |h|
 // and |∇h| at the centres of a 128² lattice over the water square plus 1e-6; the maxima are taken
-// here, the final image scales them. Composed after water.wgsl.
+// here, the final image scales them.
 //
 // |h| and |∇h| are non-negative, and the bits of non-negative f32 order as u32 do, so atomicMax
 // on the bits is a max on the values. Each workgroup reduces its 64 samples first, so the storage buffer sees
 // one atomic per workgroup.
+
+import package::shaders::water::grid_sample;
 
 struct Slab {
     // The water square's side.

@@ -1,5 +1,10 @@
-// The final image's ray differentials: the GPU twin of caustics-core/src/render/spread.rs. A part
-// of the final image pass, composed in the order of `passes!` in final_image/mod.rs.
+// The final image's ray differentials: the GPU twin of caustics-core/src/render/spread.rs. A module
+// of the final image pass.
+
+import package::final_image::final_image_inputs::{
+    FLAG_SURFACE, RAY_STACK, has, params, push_ray, ray_count, water_height_gradient,
+};
+import package::shaders::optics::{height_field_normal, refract_dir};
 
 // One image axis of render.rs `Spread`: how the rays half a sample spacing either side of a
 // sample's ray differ from each other, in origin and in direction.
@@ -36,6 +41,13 @@ fn push_ray_spread(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, un
         pending_spread = s;
     }
     push_ray(o, d, weight, depth, under);
+}
+
+// `Camera::ray`: the primary ray through image point (x + 0.5, y + 0.5), y down the image.
+fn camera_ray(x: f32, y: f32) -> vec3<f32> {
+    let sx = 2.0 * (x + 0.5) / f32(params.width) - 1.0;
+    let sy = 1.0 - 2.0 * (y + 0.5) / f32(params.height);
+    return normalize(params.camera_forward + params.camera_right * sx + params.camera_up * sy);
 }
 
 // `Spread::of_camera`.

@@ -67,34 +67,21 @@ pub use upload::{
 
 use crate::map_mips::{MapMips, mips_pipeline};
 use crate::pass::compute_pipeline;
-use crate::shaders::{BVH, CAUSTICS_SAMPLING, OPTICS, SHADING, WATER, passes};
+use crate::shaders::passes;
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError};
 use resources::{float_texture, storage_entry, texture_entry};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
-// The final image pass's parts, composed in this order after the shared files and before its own
-// `final_image.wgsl`, each the twin of a file of `caustics_core::render`.
-/// The pass's header, uniform, bindings and reads of its inputs (the floor map's pyramid too).
-const INPUTS: &str = include_str!("final_image_inputs.wgsl");
-/// The ray differentials (`render/spread.rs`).
-const SPREAD: &str = include_str!("final_image_spread.wgsl");
-/// What a view ray reads where it ends besides the floor map: eye-space caustics, the objects, the
-/// pool's walls.
-const RECEIVERS: &str = include_str!("final_image_receivers.wgsl");
-/// The march to the water surface and the floor, and the surface from below (`render/march.rs`).
-const MARCH: &str = include_str!("final_image_march.wgsl");
-/// The floor, the objects, the deck and the open air (`render/shade.rs`).
-const SHADE: &str = include_str!("final_image_shade.wgsl");
-/// The water's normals filtered by each sample's footprint, and the glint (`render/sky.rs`).
-const ROUGH_WATER: &str = include_str!("final_image_rough_water.wgsl");
-
+// The final image pass is `final_image.wgsl` and the modules it imports, each the twin of a file of
+// `caustics_core::render`: `final_image_inputs` (the uniform, bindings and input reads),
+// `final_image_spread` (ray differentials, `render/spread.rs`), `final_image_receivers` (eye-space
+// caustics, objects, the pool's walls), `final_image_march` (`render/march.rs`),
+// `final_image_shade` (`render/shade.rs`) and `final_image_rough_water` (`render/sky.rs`).
 passes! {
-    FINAL_IMAGE = "final image",
-        [OPTICS, WATER, SHADING, CAUSTICS_SAMPLING, BVH, INPUTS, SPREAD, RECEIVERS, MARCH, SHADE, ROUGH_WATER],
-        "final_image/final_image.wgsl";
-    FINAL_IMAGE_SLAB = "final image slab", [WATER], "final_image/final_image_slab.wgsl";
+    FINAL_IMAGE = "final image", "final_image/final_image.wgsl";
+    FINAL_IMAGE_SLAB = "final image slab", "final_image/final_image_slab.wgsl";
 }
 
 /// Pixels per workgroup side (`@workgroup_size(8, 8)`, both passes).

@@ -8,15 +8,12 @@
 //! alone (`slope_level` in `final_image_rough_water.wgsl`).
 
 use crate::pass::{bind_group, compute_pipeline};
-use crate::shaders::{WATER, passes};
+use crate::shaders::passes;
 use crate::{GpuContext, GpuError};
 
-/// The level uniform both passes read.
-const WATER_SLOPES: &str = include_str!("water_slopes.wgsl");
-
 passes! {
-    WATER_SLOPES_BASE = "water slopes base", [WATER, WATER_SLOPES], "final_image/water_slopes_base.wgsl";
-    WATER_SLOPES_HALVE = "water slopes halve", [WATER_SLOPES], "final_image/water_slopes_halve.wgsl";
+    WATER_SLOPES_BASE = "water slopes base", "final_image/water_slopes_base.wgsl";
+    WATER_SLOPES_HALVE = "water slopes halve", "final_image/water_slopes_halve.wgsl";
 }
 
 /// The moments a texel holds: `E[h_x]`, `E[h_y]`, `E[h_x²]`, `E[h_y²]`, `E[h_x h_y]`.

@@ -2,8 +2,10 @@
 // the GPU twin of caustics-core's `SlopePyramid::new` (water/slopes.rs): per texel of the heights'
 // lattice, the mean over a 4 x 4 lattice inside it of `h_x`, `h_y`, `h_x²`, `h_y²` and `h_x h_y`,
 // the interpolant's gradient read as the final image reads it (`grid_sample_hermite`). The
-// gradient at the texel's centre alone misses the slope of the shortest waves. Composed after
-// water.wgsl and water_slopes.wgsl.
+// gradient at the texel's centre alone misses the slope of the shortest waves.
+
+import package::final_image::water_slopes::SlopeLevel;
+import package::shaders::water::grid_sample_hermite;
 
 @group(0) @binding(0) var<uniform> level: SlopeLevel;
 // The water's heights in Hermite form (`water_patches.wgsl`).

@@ -1,7 +1,8 @@
 // A level above 0 of the pyramid of the water's slope moments, the GPU twin of caustics-core's
 // `Level::halved` (water/slopes.rs): each texel the mean of the 2 x 2 texels of the level below
-// it (fewer at an odd last row or column), so that every level keeps the moments' mean. Composed
-// after water_slopes.wgsl.
+// it (fewer at an odd last row or column), so that every level keeps the moments' mean.
+
+import package::final_image::water_slopes::SlopeLevel;
 
 @group(0) @binding(0) var<uniform> level: SlopeLevel;
 @group(0) @binding(1) var<storage, read_write> moments: array<f32>;

@@ -1,6 +1,10 @@
 // Technique `procedural` (paper 2, Sanchez-Crespo): the uniform block, the bindings and the per-point
 // caustic every evaluating pass shares. Mirrors `ProceduralUniform` in procedural/mod.rs and
 // `ProceduralSetup`, `trace` and `caustic_at` in caustics-core/src/techniques/procedural/.
+
+import package::shaders::optics::{height_field_normal, refract_dir};
+import package::shaders::water::{ProceduralWave, grid_sample, procedural_wave};
+
 struct Procedural {
     sun_x: vec4<f32>,      // xyz: e1 of the sun frame (its tangent plane)
     sun_y: vec4<f32>,      // xyz: e2

@@ -21,20 +21,18 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
 use crate::pass::bind_group;
-use crate::shaders::{OPTICS, PassSource, WATER, passes};
+use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 pub mod technique;
 
-const COMMON: &str = include_str!("common.wgsl");
-
 passes! {
-    VERTEX = "procedural vertex", [OPTICS, WATER, COMMON], "procedural/vertex.wgsl";
-    SCREEN = "procedural screen", [OPTICS, WATER, COMMON], "procedural/screen.wgsl";
-    TARGET = "procedural target", [OPTICS, WATER, COMMON], "procedural/target.wgsl";
-    DOWNSAMPLE = "procedural downsample", [], "procedural/downsample.wgsl";
-    RESAMPLE = "procedural resample", [OPTICS, WATER, COMMON], "procedural/resample.wgsl";
+    VERTEX = "procedural vertex", "procedural/vertex.wgsl";
+    SCREEN = "procedural screen", "procedural/screen.wgsl";
+    TARGET = "procedural target", "procedural/target.wgsl";
+    DOWNSAMPLE = "procedural downsample", "procedural/downsample.wgsl";
+    RESAMPLE = "procedural resample", "procedural/resample.wgsl";
 }
 
 /// Mirrors `Procedural` in `procedural/common.wgsl` and `ProceduralSetup` in

@@ -3,6 +3,8 @@
 // anisotropy_clamp = 16 (the paper: "automatic mipmap generation and anisotropic filtering to reduce
 // aliasing"). CPU twin: `resample` (Vulkan's LOD rule and N trilinear taps along the major axis).
 
+import package::procedural::common::{full_screen, u};
+
 @group(0) @binding(3) var target_mips: texture_2d<f32>;
 @group(0) @binding(4) var mip_sampler: sampler;
 

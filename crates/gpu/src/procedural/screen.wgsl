@@ -2,6 +2,8 @@
 // pixel evaluates the caustic at its own centre, at full resolution, with no filtering.
 // CPU twin: `per_pixel` at the map's size.
 
+import package::procedural::common::{full_screen, procedural_caustic, u};
+
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
     return full_screen(v);

@@ -2,6 +2,8 @@
 // caustic per texel of a fixed-size render target over the floor square, mip level 0.
 // CPU twin: `per_pixel` at the target's size.
 
+import package::procedural::common::{full_screen, procedural_caustic, u};
+
 @vertex
 fn vs_main(@builtin(vertex_index) v: u32) -> @builtin(position) vec4<f32> {
     return full_screen(v);

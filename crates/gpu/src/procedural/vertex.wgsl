@@ -4,6 +4,8 @@
 // drawn indexed, so a vertex shared by six triangles is shaded once (where the vertex cache allows).
 // CPU twin: `vertex_values` + `rasterise`.
 
+import package::procedural::common::{procedural_caustic, u};
+
 struct VertexOut {
     @builtin(position) position: vec4<f32>,
     @location(0) caustic: vec3<f32>,

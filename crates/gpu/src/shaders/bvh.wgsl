@@ -1,7 +1,7 @@
 // Ray queries against the objects' bounding volume hierarchies, node for node the CPU's
 // `MeshBvh::intersect`, `Node::enter` and `intersect_triangle` (caustics-core/src/mesh/bvh.rs) and
 // `TriangleMesh::interpolated_normal` (mesh/mod.rs). The trees of all objects share the two buffers
-// of bind group 1, so any pass that includes this file can query the scene's meshes; a node's
+// of bind group 1, so any pass that imports this module can query the scene's meshes; a node's
 // `start` is global (into `bvh_nodes` for an interior node, into `bvh_triangles` for a leaf).
 
 struct BvhNode {

@@ -1,7 +1,7 @@
 // How a surface reads the caustics maps: the floor map's pyramid over a footprint, and the pool's
-// walls' maps. One module for every reader (the final image composes it; bevy_caustics' material
-// imports it), each passing its own textures: a function of its arguments alone, with no binding
-// of its own, so it composes as WGSL and imports as WESL.
+// walls' maps. One module for every reader (the final image's passes and bevy_caustics' material
+// import it), each passing its own textures: functions of their arguments alone, with no binding
+// of their own, so the module imports the same under either package.
 //
 // The floor map is a box-filter pyramid (caustics-core's `MapPyramid`): level 0 is `map`, level
 // L ≥ 1 is mip `L - mips_from` of `mips` (the final image keeps levels 1.. in a texture of their

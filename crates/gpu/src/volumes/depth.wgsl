@@ -3,6 +3,9 @@
 // [depth, outward normal], zero where no surface is. CPU twin: `depth_pass` in
 // caustics-core/src/techniques/volumes/representation.rs.
 
+import package::shaders::bvh::bvh_intersect;
+import package::volumes::common::{Pass, texel_point};
+
 @group(0) @binding(0) var<uniform> obj: Pass;
 @group(0) @binding(1) var<storage, read> roots: array<u32>;
 @group(0) @binding(2) var out_depth: texture_storage_2d<rgba32float, write>;

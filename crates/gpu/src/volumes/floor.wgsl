@@ -2,6 +2,11 @@
 // drawn additively, fragments kept where the shadow map lets the sun through. CPU twin: `floor_pass`
 // in caustics-core/src/techniques/volumes/illumination.rs.
 
+import package::volumes::common::{
+    CULLED, FLOOR_BIAS, SliceOut, Volumes, WaterVertex, cut_volume, lattice_triangle, lit,
+    pixel_to_clip,
+};
+
 @group(0) @binding(0) var<uniform> c: Volumes;
 @group(0) @binding(1) var<storage, read> water: array<WaterVertex>;
 @group(0) @binding(2) var shadow: texture_2d<f32>;

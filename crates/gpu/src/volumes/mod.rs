@@ -37,19 +37,17 @@ pub use readback::GpuOutput;
 pub use uniforms::{CameraUniform, PassUniform, ViewOptions, ViewUniform, VolumesUniform};
 
 use crate::pass::{additive_pipeline, blendable_map_format, compute_pipeline};
-use crate::shaders::{BVH, OPTICS, WATER, passes};
+use crate::shaders::passes;
 use crate::{GpuContext, GpuError};
 
-const COMMON: &str = include_str!("common.wgsl");
-
 passes! {
-    DEPTH = "volumes depth", [COMMON, BVH], "volumes/depth.wgsl";
-    WATER_PASS = "volumes water", [OPTICS, WATER, COMMON], "volumes/water.wgsl";
-    SLICES = "volumes slices", [COMMON], "volumes/slices.wgsl";
-    FLOOR = "volumes floor", [COMMON], "volumes/floor.wgsl";
-    WALLS = "volumes walls", [COMMON], "volumes/walls.wgsl";
-    VIEW = "volumes view", [OPTICS, WATER, COMMON], "volumes/view.wgsl";
-    SHADE = "volumes shade", [COMMON], "volumes/shade.wgsl";
+    DEPTH = "volumes depth", "volumes/depth.wgsl";
+    WATER_PASS = "volumes water", "volumes/water.wgsl";
+    SLICES = "volumes slices", "volumes/slices.wgsl";
+    FLOOR = "volumes floor", "volumes/floor.wgsl";
+    WALLS = "volumes walls", "volumes/walls.wgsl";
+    VIEW = "volumes view", "volumes/view.wgsl";
+    SHADE = "volumes shade", "volumes/shade.wgsl";
 }
 
 /// The technique's pipelines, built once per device for one caustics-map format.

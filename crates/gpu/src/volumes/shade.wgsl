@@ -2,6 +2,8 @@
 // depth texture is covered, and the final colour Io = Id (Ic + Ia). CPU twins: `diffuse_map` and
 // `shade_pass` in caustics-core/src/techniques/volumes/.
 
+import package::volumes::common::{Pass, covered};
+
 @group(0) @binding(0) var<uniform> obj: Pass;
 @group(0) @binding(1) var depth: texture_2d<f32>;
 @group(0) @binding(2) var caustics: texture_2d<f32>;

@@ -5,6 +5,11 @@
 // within Δ/2 of the plane's) and the shadow map lets the sun through. CPU twin: `slice_pass` in
 // caustics-core/src/techniques/volumes/illumination.rs.
 
+import package::volumes::common::{
+    CULLED, Pass, SliceOut, Volumes, WaterVertex, covered, cut_volume, lattice_triangle, lit,
+    pixel_to_clip, texel_point, to_frame,
+};
+
 @group(0) @binding(0) var<uniform> c: Volumes;
 @group(0) @binding(1) var<uniform> obj: Pass;
 @group(0) @binding(2) var<storage, read> water: array<WaterVertex>;

@@ -8,6 +8,10 @@
 // `view_pass_with_walls` in
 // caustics-core/src/techniques/volumes/view.rs.
 
+import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::water::grid_sample;
+import package::volumes::common::{Pass, Volumes, covered, to_frame};
+
 struct Camera {
     position: vec4<f32>,      // xyz; w: ambient Ia
     forward: vec4<f32>,       // xyz; w: number of objects

@@ -5,6 +5,10 @@
 // instance index, in `Wall::ALL`'s order (x = 0, x = size, y = 0, y = size). CPU twin: `wall_pass`
 // in caustics-core/src/techniques/volumes/illumination.rs, which argues the clip.
 
+import package::volumes::common::{
+    CULLED, Volumes, WaterVertex, cut_volume, lattice_triangle, lit, pixel_to_clip,
+};
+
 @group(0) @binding(0) var<uniform> c: Volumes;
 @group(0) @binding(1) var<storage, read> water: array<WaterVertex>;
 @group(0) @binding(2) var shadow: texture_2d<f32>;

@@ -2,6 +2,10 @@
 // bicubic interpolant of the height texture). CPU twin: `water_vertex` in
 // caustics-core/src/techniques/volumes/illumination.rs.
 
+import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::water::grid_sample;
+import package::volumes::common::{Volumes, WaterVertex};
+
 @group(0) @binding(0) var<uniform> c: Volumes;
 @group(0) @binding(1) var heights: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read_write> water: array<WaterVertex>;

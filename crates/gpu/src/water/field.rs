@@ -33,16 +33,14 @@ use super::ocean::GpuOcean;
 use super::ripple::GpuRipples;
 use super::{GpuProceduralWave, GpuSineWave};
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{self, PassSource, passes};
+use crate::shaders::{PassSource, passes};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
-const FIELD: &str = include_str!("water_field.wgsl");
-
 passes! {
-    WAVES = "water_field_waves", [shaders::WATER, FIELD], "water/water_field_waves.wgsl";
-    PROCEDURAL = "water_field_procedural", [shaders::WATER, FIELD], "water/water_field_procedural.wgsl";
-    GRID = "water_field_grid", [shaders::WATER, FIELD], "water/water_field_grid.wgsl";
-    RIPPLE_CLEAR = "ripple_clear", [], "water/ripple_clear.wgsl";
+    WAVES = "water_field_waves", "water/water_field_waves.wgsl";
+    PROCEDURAL = "water_field_procedural", "water/water_field_procedural.wgsl";
+    GRID = "water_field_grid", "water/water_field_grid.wgsl";
+    RIPPLE_CLEAR = "ripple_clear", "water/ripple_clear.wgsl";
 }
 
 /// Mirrors `FieldParams` in `water/water_field.wgsl`.

@@ -25,9 +25,9 @@ use crate::timing::GpuTimer;
 use crate::{GpuContext, GpuError};
 
 passes! {
-    OCEAN_SPECTRUM = "ocean_spectrum", [], "water/ocean_spectrum.wgsl";
-    OCEAN_FFT = "ocean_fft", [], "water/ocean_fft.wgsl";
-    OCEAN_OUTPUT = "ocean_output", [], "water/ocean_output.wgsl";
+    OCEAN_SPECTRUM = "ocean_spectrum", "water/ocean_spectrum.wgsl";
+    OCEAN_FFT = "ocean_fft", "water/ocean_fft.wgsl";
+    OCEAN_OUTPUT = "ocean_output", "water/ocean_output.wgsl";
 }
 
 /// Mirrors `SpectrumParams` in `water/ocean_spectrum.wgsl`.

@@ -6,11 +6,11 @@
 //! grids bicubically). What it saves the passes that sample the water: docs/benchmarks.md.
 
 use crate::pass::{begin_compute, bind_group, compute_pipeline};
-use crate::shaders::{WATER, passes};
+use crate::shaders::passes;
 use crate::{GpuContext, GpuTimer};
 
 passes! {
-    WATER_PATCHES = "water patches", [WATER], "water/water_patches.wgsl";
+    WATER_PATCHES = "water patches", "water/water_patches.wgsl";
 }
 
 /// Mirrors `Patches` in `water/water_patches.wgsl`.

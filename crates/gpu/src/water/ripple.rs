@@ -14,8 +14,8 @@ use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
 passes! {
-    RIPPLE_STEP = "ripple_step", [], "water/ripple_step.wgsl";
-    RIPPLE_DROP = "ripple_drop", [], "water/ripple_drop.wgsl";
+    RIPPLE_STEP = "ripple_step", "water/ripple_step.wgsl";
+    RIPPLE_DROP = "ripple_drop", "water/ripple_drop.wgsl";
 }
 
 /// Most queued drops one [`GpuRipples::encode`] records: each needs its own uniform slot, because

@@ -1,7 +1,7 @@
 // The water field's output passes (crates/gpu/src/water/field.rs): the water's heights at this
 // frame into an R32Float texture, texel (j, i) at ((j + ½) size / cols, (i + ½) size / rows) as
 // `caustics_core::water::sample_grid` lays a grid out, times the height factor. One pass per kind of
-// source, each composed after water.wgsl and this file.
+// source, each importing this module.
 
 struct FieldParams {
     // Side of the square the output covers, world units.

@@ -2,6 +2,9 @@
 // field file) read through the shared bicubic interpolant at each texel centre, wrapped or clamped
 // at its edges. CPU twin: `GridSurface::height` (`Grid::sample`) in caustics-core.
 
+import package::shaders::water::grid_sample;
+import package::water::water_field::{FieldParams, field_point};
+
 @group(0) @binding(0) var<uniform> field: FieldParams;
 // Heights in the red channel, texel (j, i) at ((j + ½), (i + ½)) grid_size / dims.
 @group(0) @binding(1) var grid: texture_2d<f32>;

@@ -1,6 +1,9 @@
 // Water field, paper 2's wave function evaluated exactly at each texel centre. CPU twin:
 // `Procedural::height` in caustics-core/src/water/procedural.rs.
 
+import package::shaders::water::{ProceduralWave, procedural_wave};
+import package::water::water_field::{FieldParams, field_point};
+
 @group(0) @binding(0) var<uniform> field: FieldParams;
 @group(0) @binding(1) var<uniform> wave: ProceduralWave;
 @group(0) @binding(2) var output: texture_storage_2d<r32float, write>;

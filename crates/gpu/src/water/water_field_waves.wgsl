@@ -2,6 +2,9 @@
 // centre. CPU twin: `Waves::height` in caustics-core/src/water/waves.rs, whose terms (phases reduced
 // mod 2π at this frame's time) the CPU writes into `waves` each frame.
 
+import package::shaders::water::{SineWave, sine_wave};
+import package::water::water_field::{FieldParams, field_point};
+
 @group(0) @binding(0) var<uniform> field: FieldParams;
 @group(0) @binding(1) var<storage, read> waves: array<SineWave>;
 @group(0) @binding(2) var output: texture_storage_2d<r32float, write>;

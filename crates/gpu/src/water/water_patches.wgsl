@@ -1,7 +1,9 @@
 // A height texture in Hermite form (`grid_hermite_texel` in water.wgsl), one invocation per texel,
 // written each frame before the passes that sample the water many times a pixel (yuksel's rays,
 // the final image's search for the surface): `grid_sample_hermite` then reads 4 texels where
-// `grid_sample` reads 16, for the same bicubic surface. Composed after water.wgsl.
+// `grid_sample` reads 16, for the same bicubic surface.
+
+import package::shaders::water::grid_hermite_texel;
 
 struct Patches {
     // The water's edge rule (1: periodic), as `grid_sample` takes it.

@@ -23,6 +23,9 @@ struct Yuksel {
     _pad: u32,
 }
 
+// Every yuksel pass binds the uniform first.
+@group(0) @binding(0) var<uniform> u: Yuksel;
+
 // Where texel `xy` of the pre-pass texture (k x k texels per pixel of the level's map and apron)
 // lies in its array of tiles `tile` texels each (`PrepassTiling` in yuksel/mod.rs): texel
 // `xy % tile` of layer `(y / tile.y) u.pre_tiles + x / tile.x`, so that a map whose pre-pass is

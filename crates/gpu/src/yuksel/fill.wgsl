@@ -7,6 +7,11 @@
 // 5 k² (80). The same points as `yuksel_part` (`yuksel_lattice` places them), so the same records.
 // CPU twin: `prepass` in core's yuksel/prepass.rs.
 
+import package::yuksel::common::u;
+import package::yuksel::sample::{
+    YukselFootprint, yuksel_footprint, yuksel_hit, yuksel_lattice, yuksel_part, yuksel_record,
+};
+
 // The fill's indirect dispatch (workgroups of `FILL_GROUP` along x, 1, 1) and how many pixels the
 // tier pass listed; x and the count are cleared every frame.
 struct FillArgs {

@@ -31,7 +31,7 @@ use std::sync::Mutex;
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
 use crate::pass::{begin_compute, compute_pipeline};
-use crate::shaders::{OPTICS, REDUCE, WATER, passes};
+use crate::shaders::passes;
 use crate::water::patches::WaterPatches;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -42,29 +42,24 @@ pub mod technique;
 pub use frame::Frame;
 use frame::{FramePasses, prepass_pixels};
 
-const COMMON: &str = include_str!("common.wgsl");
-const SAMPLE: &str = include_str!("sample.wgsl");
-const FILL: &str = include_str!("fill.wgsl");
-
-const SCATTER: &str = include_str!("scatter.wgsl");
 passes! {
-    PREPASS = "yuksel pre-pass", [OPTICS, WATER, COMMON, SAMPLE, FILL], "yuksel/prepass.wgsl";
-    PREPASS_FILL = "yuksel pre-pass fill", [OPTICS, WATER, COMMON, SAMPLE, FILL], "yuksel/prepass_fill.wgsl";
-    PREPASS_SPAN = "yuksel pre-pass span", [COMMON], "yuksel/prepass_span.wgsl";
-    PASS2 = "yuksel pass 2", [COMMON], "yuksel/pass2.wgsl";
-    REGION_BOUND = "yuksel region bound", [OPTICS, COMMON, REDUCE], "yuksel/region_bound.wgsl";
-    REGION = "yuksel region", [OPTICS, COMMON, REDUCE], "yuksel/region.wgsl";
-    SCATTER_TIER = "yuksel scatter tiers", [OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER], "yuksel/scatter_tier.wgsl";
-    SCATTER_FILL = "yuksel scatter fill", [OPTICS, WATER, COMMON, SAMPLE, FILL, SCATTER], "yuksel/scatter_fill.wgsl";
-    SCATTER_RESOLVE = "yuksel scatter resolve", [OPTICS, WATER, COMMON, SAMPLE, SCATTER], "yuksel/scatter_resolve.wgsl";
+    PREPASS = "yuksel pre-pass", "yuksel/prepass.wgsl";
+    PREPASS_FILL = "yuksel pre-pass fill", "yuksel/prepass_fill.wgsl";
+    PREPASS_SPAN = "yuksel pre-pass span", "yuksel/prepass_span.wgsl";
+    PASS2 = "yuksel pass 2", "yuksel/pass2.wgsl";
+    REGION_BOUND = "yuksel region bound", "yuksel/region_bound.wgsl";
+    REGION = "yuksel region", "yuksel/region.wgsl";
+    SCATTER_TIER = "yuksel scatter tiers", "yuksel/scatter_tier.wgsl";
+    SCATTER_FILL = "yuksel scatter fill", "yuksel/scatter_fill.wgsl";
+    SCATTER_RESOLVE = "yuksel scatter resolve", "yuksel/scatter_resolve.wgsl";
     /// Pass 1's body: [`pass1_source`] adds the output struct and entry point for a draw's targets.
-    PASS1 = "yuksel pass 1", [COMMON], "yuksel/pass1.wgsl";
+    PASS1 = "yuksel pass 1", "yuksel/pass1.wgsl";
 }
 
 /// Pass 1 for a draw that writes `targets` render targets: the static body plus the generated output
 /// struct and entry point.
 pub fn pass1_source(targets: u32) -> String {
-    let mut s = PASS1.composed();
+    let mut s = PASS1.source.to_string();
     s.push_str("\nstruct Pass1Out {\n");
     for t in 0..targets {
         s.push_str(&format!("    @location({t}) c{t}: vec4<f32>,\n"));

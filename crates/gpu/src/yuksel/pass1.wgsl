@@ -5,7 +5,10 @@
 // channels leave through multiple render targets; the output struct (`Pass1Out`, one vec4 per
 // target) and `fs_main` that fills it are generated for the number of targets one draw writes.
 
-@group(0) @binding(0) var<uniform> u: Yuksel;
+import package::yuksel::common::{
+    YukselRegion, box_share, half_widths, level_size, level_subsamples, pre_texel, tier_side, u,
+};
+
 @group(0) @binding(1) var pre: texture_2d_array<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
 // Per pixel of the pre-pass, the span along x its records' boxes cover (`prepass.wgsl`,

@@ -2,7 +2,8 @@
 // k of pass-1 row i / 2^level + M - k (the row whose samples gave pixel i that channel; the
 // region's shift cancels), then the absorption. The other rows are left to their phases' draws.
 
-@group(0) @binding(0) var<uniform> u: Yuksel;
+import package::yuksel::common::{YukselRegion, u};
+
 @group(0) @binding(1) var channels: texture_2d_array<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
 

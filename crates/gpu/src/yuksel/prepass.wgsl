@@ -7,6 +7,13 @@
 // (one invocation per listed pixel, so that neighbouring invocations do the same work), and
 // `prepass_span.wgsl` does the rest. The textures are sized for the largest region; texels beyond this frame's are left alone.
 
+import package::yuksel::common::{
+    YukselRegion, in_prepass_area, level_subsamples, pre_texel, prepass_area, prepass_level_pixel,
+    span_with, u,
+};
+import package::yuksel::fill::{FILL_GROUP, FILL_STRIDE, FillArgs};
+import package::yuksel::sample::{tier_records, yuksel_tier};
+
 @group(0) @binding(2) var pre_out: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 // Per pixel, the span along x its lit records' boxes cover (pixels from its centre; empty where

@@ -2,6 +2,11 @@
 // (`prepass.wgsl` listed them), made row by row sharing their edges' rays (`yuksel_fill_row`).
 // Texel (c, r) is footprint (c % k, r % k) of its pixel.
 
+import package::yuksel::common::{
+    YukselRegion, level_subsamples, pre_texel, prepass_area, prepass_level_pixel, u,
+};
+import package::yuksel::fill::{FILL_GROUP, FILL_STRIDE, fill_listed, fill_row, yuksel_fill_row};
+
 @group(0) @binding(2) var pre_out: texture_storage_2d_array<rgba32float, write>;
 @group(0) @binding(3) var<storage, read> region: YukselRegion;
 @group(0) @binding(4) var<storage, read> fill_args: array<u32, 4>;

@@ -1,7 +1,10 @@
 // Technique `yuksel`, pre-pass, third of three: the span along x of the pixels whose tier is k
 // (their records from `prepass_fill.wgsl`), as `prepass.wgsl` writes it for the others.
 
-@group(0) @binding(0) var<uniform> u: Yuksel;
+import package::yuksel::common::{
+    YukselRegion, in_prepass_area, level_subsamples, pre_texel, span_with,
+};
+
 @group(0) @binding(1) var pre: texture_2d_array<f32>;
 @group(0) @binding(2) var<storage, read> region: YukselRegion;
 @group(0) @binding(3) var tiers: texture_2d<u32>;

@@ -6,7 +6,10 @@
 // `region_bound` and `YukselSetup::region_from_bound` in caustics-core's yuksel/region.rs, step
 // for step.
 
-@group(0) @binding(0) var<uniform> u: Yuksel;
+import package::shaders::optics::refract_dir;
+import package::shaders::reduce::unordered;
+import package::yuksel::common::{YukselRegion, u};
+
 // ordered(-lo.x), ordered(-lo.y), ordered(hi.x), ordered(hi.y), or 0 where no texel refracted.
 @group(0) @binding(1) var<storage, read> bound: array<u32, 4>;
 @group(0) @binding(2) var<storage, read_write> out: YukselRegion;

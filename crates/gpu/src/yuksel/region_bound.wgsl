@@ -4,7 +4,10 @@
 // value (reduce.wgsl), so no single workgroup walks the texture. CPU twin: `region_bound` in
 // caustics-core's yuksel/region.rs (the same texels, the same min and max: exact).
 
-@group(0) @binding(0) var<uniform> u: Yuksel;
+import package::shaders::optics::{height_field_normal, refract_dir};
+import package::shaders::reduce::ordered;
+import package::yuksel::common::u;
+
 @group(0) @binding(1) var heights: texture_2d<f32>;
 // ordered(-lo.x), ordered(-lo.y), ordered(hi.x), ordered(hi.y); cleared to 0 before this pass.
 @group(0) @binding(2) var<storage, read_write> bound: array<atomic<u32>, 4>;

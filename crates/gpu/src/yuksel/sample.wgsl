@@ -2,7 +2,10 @@
 // scatter variant). CPU twin: `hit`, `footprint` and `prepass` in
 // caustics-core/src/techniques/yuksel/prepass.rs.
 
-@group(0) @binding(0) var<uniform> u: Yuksel;
+import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::water::grid_sample_hermite;
+import package::yuksel::common::{tier_bits, u};
+
 // The heights in Hermite form (`water_patches.wgsl`).
 @group(0) @binding(1) var patches: texture_2d<f32>;
 

@@ -1,8 +1,10 @@
-// Technique `yuksel`, the scatter variant's shared part (`scatter_tier.wgsl`, `scatter_fill.wgsl`):
+// Technique `yuksel`, the scatter variant's shared module (`scatter_tier.wgsl`, `scatter_fill.wgsl`):
 // a record's light added into the map's pixels its box covers, in fixed point with integer
 // atomics, so that the sum does not depend on the order in which the invocations add. The same
 // shares as pass 1 + pass 2, clipped to the same region. CPU twin: `add_record` and `FIXED` in
 // caustics-core/src/techniques/yuksel/scatter.rs.
+
+import package::yuksel::common::{YukselRegion, box_share, half_widths, u};
 
 // One fixed-point sum per map pixel, row by row; cleared before the frame's first scatter pass.
 @group(0) @binding(2) var<storage, read_write> sums: array<atomic<u32>>;

@@ -3,6 +3,10 @@
 // (`yuksel_fill_row`), each added into the map where it is made. CPU twin: `scatter_fill` in
 // core's yuksel/scatter.rs.
 
+import package::yuksel::common::{level_subsamples, prepass_area, prepass_level_pixel, u};
+import package::yuksel::fill::{FILL_GROUP, FILL_STRIDE, fill_listed, fill_row, yuksel_fill_row};
+import package::yuksel::scatter::{add_record, region};
+
 @group(0) @binding(4) var<storage, read> fill_args: array<u32, 4>;
 @group(0) @binding(5) var<storage, read> fill_list: array<u32>;
 

@@ -2,6 +2,9 @@
 // map, with the absorption along the flat-water path (as pass 2 applies it). CPU twin:
 // `scatter_resolve` in core's yuksel/scatter.rs.
 
+import package::yuksel::common::u;
+import package::yuksel::scatter::{FIXED, sums};
+
 @group(0) @binding(4) var map_out: texture_storage_2d<rgba32float, write>;
 
 @compute @workgroup_size(8, 8)

@@ -5,6 +5,11 @@
 // that neighbouring invocations do the same work). No pre-pass texture and no render targets: the
 // records are added where they are made. CPU twin: `scatter_tier` in core's yuksel/scatter.rs.
 
+import package::yuksel::common::{level_subsamples, prepass_area, prepass_level_pixel, u};
+import package::yuksel::fill::{FILL_GROUP, FILL_STRIDE, FillArgs};
+import package::yuksel::sample::{tier_records, yuksel_tier};
+import package::yuksel::scatter::{add_record, region};
+
 @group(0) @binding(4) var<storage, read_write> fill_args: FillArgs;
 // The pixels at k, as indices `row * width + column` into the pre-pass area.
 @group(0) @binding(5) var<storage, read_write> fill_list: array<u32>;
