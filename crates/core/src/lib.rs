@@ -23,3 +23,5 @@ pub mod walls;
 pub mod water;
 
 pub use error::{Error, Result};
+/// The versions of the vector and table types this crate's API takes.
+pub use {glam, toml};

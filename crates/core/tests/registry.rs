@@ -285,3 +285,31 @@ fn scene_arrays_have_their_length() {
     }
     assert!(refused >= 10, "{refused}");
 }
+
+/// The front door's water: `size` held once (the scene's square is the water's), the defaults a
+/// user expects, and what a scene file would refuse refused by name.
+#[test]
+fn water_only_is_a_checked_scene_of_water_alone() {
+    use caustics_core::scene::{WaterOnly, WaterSource};
+    let scene = WaterOnly::new(4.0, 1.5)
+        .absorption([0.3, 0.05, 0.02])
+        .clamped()
+        .map(128)
+        .scene()
+        .unwrap();
+    let water = scene.water.as_ref().unwrap();
+    assert_eq!((scene.size, water.size, water.depth), (4.0, 4.0, 1.5));
+    assert_eq!((water.ior, water.wrap), (1.333, false));
+    assert!(matches!(water.source, WaterSource::Flat));
+    assert_eq!((scene.caustics.width, scene.caustics.height), (128, 128));
+    assert!(scene.objects.is_empty() && !scene.floor.walls);
+    assert!((scene.light.direction.length() - 1.0).abs() < 1e-12 && scene.light.direction.z < 0.0);
+    for (bad, named) in [
+        (WaterOnly::new(4.0, -1.0), "depth"),
+        (WaterOnly::new(4.0, 1.0).sun([0.0, 0.0, 1.0]), "direction"),
+        (WaterOnly::new(4.0, 1.0).ior(0.5), "ior"),
+    ] {
+        let err = bad.scene().err().expect("refused").to_string();
+        assert!(err.contains(named), "{err}");
+    }
+}

@@ -11,7 +11,7 @@
 //! ```
 
 use caustics_core::scene::Scene;
-use caustics_gpu::registry::{self, REGISTRY};
+use caustics_gpu::registry;
 use caustics_gpu::{GpuContext, Output, WaterTextures};
 
 /// The application's water: a few travelling sine waves, height in metres, written per texel.
@@ -75,7 +75,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let spec = args.next().unwrap_or_else(|| "yuksel".to_string());
     let out = args.next();
-    let (name, params) = parse_spec(&spec)?;
 
     // 1. The application's device, made however it makes it; the GPU crate wraps it.
     let instance =
@@ -149,7 +148,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let size = scene.water.as_ref().map_or(1.0, |w| w.size) as f32;
 
     // 4. The technique, by name: pipelines once, its frame configured on our water texture.
-    let mut technique = registry::create(&ctx, &name, &params)?;
+    let mut technique = registry::from_spec(&ctx, &spec)?;
     technique.configure(&ctx, &scene, &WaterTextures::of(&heights))?;
     let output = technique.output().expect("configured");
     let caustics = output.texture().clone();
@@ -271,29 +270,4 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("wrote {out}");
     }
     Ok(())
-}
-
-/// `name` or `name:key=value,...` into the registry's name and its parameter tables.
-fn parse_spec(spec: &str) -> Result<(String, toml::Table), Box<dyn std::error::Error>> {
-    let (name, rest) = spec.split_once(':').unwrap_or((spec, ""));
-    let name = caustics_core::techniques::canonical(name);
-    let key = REGISTRY
-        .iter()
-        .find(|r| r.name() == name)
-        .map_or(name, |r| r.describe.table);
-    let mut table = toml::Table::new();
-    for kv in rest.split(',').filter(|s| !s.is_empty()) {
-        let (k, v) = kv
-            .split_once('=')
-            .ok_or_else(|| format!("`{kv}`: expected key=value"))?;
-        let value = format!("v = {v}")
-            .parse::<toml::Table>()
-            .ok()
-            .and_then(|t| t.get("v").cloned())
-            .unwrap_or_else(|| toml::Value::String(v.to_string()));
-        table.insert(k.to_string(), value);
-    }
-    let mut params = toml::Table::new();
-    params.insert(key.to_string(), toml::Value::Table(table));
-    Ok((name.to_string(), params))
 }

@@ -33,6 +33,11 @@ pub use context::{GpuContext, GpuOptions};
 pub use technique::{Output, Technique, WallsOutput, WaterTextures};
 pub use timing::{GpuTimer, PassTime};
 
+/// The versions this crate's API speaks: an application names `caustics_gpu::wgpu` and
+/// `caustics_gpu::glam` (and the core crate's types) without matching them by hand.
+pub use caustics_core::{self as core, glam, toml};
+pub use wgpu;
+
 /// Everything that can go wrong on the GPU side, each naming the problem.
 #[derive(Debug, thiserror::Error)]
 pub enum GpuError {

@@ -45,6 +45,14 @@ pub fn create(
     entry.create(ctx, params)
 }
 
+/// The technique a spec string names, with its parameters: `yuksel`, `yuksel:n=15,m=14`,
+/// `caustic-triangles:photon_image=256` (the command line's and a scene's spelling, parsed and
+/// checked by [`caustics_core::techniques::registry::Spec`]), its pipelines built for `ctx`.
+pub fn from_spec(ctx: &GpuContext, spec: &str) -> Result<Box<dyn Technique>, GpuError> {
+    let spec: caustics_core::techniques::registry::Spec = spec.parse()?;
+    create(ctx, spec.name(), &spec.params)
+}
+
 /// The passes of the frame around the techniques: the water, the final image, the floor map's
 /// pyramid and the probe of the shared math.
 pub const FRAME_PASSES: &[&[&PassSource]] = &[

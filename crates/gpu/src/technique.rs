@@ -256,11 +256,13 @@ impl Registered {
 
     /// The GPU-resident technique with the parameter tables `params`, its pipelines built for
     /// `ctx`.
+    /// A table named after no technique (`yuksel-targets` for `yuksel`'s) is refused by name.
     pub fn create(
         &self,
         ctx: &GpuContext,
         params: &toml::Table,
     ) -> Result<Box<dyn Technique>, GpuError> {
+        caustics_core::techniques::registry::check_tables(params)?;
         (self.make)(self.describe, ctx, params)
     }
 

@@ -8,6 +8,7 @@
 mod builtin;
 pub mod exact;
 mod validate;
+mod water_only;
 
 use std::path::{Path, PathBuf};
 
@@ -25,6 +26,7 @@ use crate::water::{Flat, GridSurface, Surface};
 
 pub use crate::grid::MAX_RESOLUTION;
 pub use builtin::BUILTIN_SCENES;
+pub use water_only::WaterOnly;
 
 /// The check of a scene file's `technique` and `[caustics.<name>]` tables, run while the file is
 /// read (after its light, water and map size, before its floor). The scene model knows no
@@ -775,6 +777,17 @@ impl Scene {
             path: PathBuf::from(format!("<{name}>")),
             message: e.to_string(),
         })?;
+        Scene::from_file_with(file, base, name, check_technique)
+    }
+
+    /// A scene from its file's schema, checked as a file is, its technique by `check_technique`;
+    /// relative paths inside it are relative to `base`.
+    pub fn from_file_with(
+        file: SceneFile,
+        base: &Path,
+        name: &str,
+        check_technique: TechniqueCheck,
+    ) -> Result<Scene> {
         validate::validate(file, base, name, check_technique)
     }
 

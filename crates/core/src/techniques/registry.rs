@@ -15,7 +15,7 @@ use super::describe::{Descriptor, Input, Param, ParamDefault, check_value};
 use super::job::{Job, JobOutput};
 use super::{cascaded, caustic_triangles, procedural, volumes, yuksel};
 use crate::scene::{
-    Camera, CausticsSettings, CausticsSpec, Floor, Light, Look, Material, Scene, Water,
+    Camera, CausticsSettings, CausticsSpec, Floor, Light, Look, Material, Scene, Water, WaterOnly,
 };
 use crate::{Error, Result};
 
@@ -456,6 +456,14 @@ impl Scene {
 
     pub fn from_toml(text: &str, base: &Path, name: &str) -> Result<Scene> {
         Scene::from_toml_with(text, base, name, check_scene_technique)
+    }
+}
+
+impl WaterOnly {
+    /// The scene: flat water (the application's heights replace it), a flat floor, the sun;
+    /// checked as a scene file is, so a depth or index out of range is refused by name.
+    pub fn scene(&self) -> Result<Scene> {
+        Scene::from_file_with(self.file(), Path::new("."), "water", check_scene_technique)
     }
 }
 
