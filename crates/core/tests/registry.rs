@@ -309,7 +309,7 @@ fn water_only_is_a_checked_scene_of_water_alone() {
         (WaterOnly::new(4.0, 1.0).sun([0.0, 0.0, 1.0]), "direction"),
         (WaterOnly::new(4.0, 1.0).ior(0.5), "ior"),
     ] {
-        let err = bad.scene().err().expect("refused").to_string();
+        let err = bad.scene().expect_err("refused").to_string();
         assert!(err.contains(named), "{err}");
     }
 }
