@@ -332,13 +332,7 @@ fn time_frame(
 ) -> Result<Measurement> {
     let mut renderer = Renderer::new(ctx)?;
     renderer.set_water(ctx, scene.water.as_ref(), &FrameWater::Scene)?;
-    renderer.set_techniques(
-        ctx,
-        &[Some(TechniqueSpec {
-            name: spec.name().to_string(),
-            params: spec.params.clone(),
-        })],
-    );
+    renderer.set_techniques(ctx, &[Some(TechniqueSpec::from(spec))]);
     let options = RenderOptions {
         supersampling: 1,
         filter_water,

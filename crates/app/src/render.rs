@@ -456,13 +456,7 @@ fn render_frame(
     let started = Instant::now();
     let mut renderer = Renderer::new(ctx)?;
     renderer.set_water(ctx, scene.water.as_ref(), &FrameWater::Scene)?;
-    renderer.set_techniques(
-        ctx,
-        &[Some(TechniqueSpec {
-            name: spec.name().to_string(),
-            params: spec.params.clone(),
-        })],
-    );
+    renderer.set_techniques(ctx, &[Some(TechniqueSpec::from(spec))]);
     let options = RenderOptions {
         filter_water: args.filter_water,
         ..RenderOptions::for_scene(scene, args.supersampling.max(1))

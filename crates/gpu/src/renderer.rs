@@ -27,6 +27,15 @@ pub struct TechniqueSpec {
     pub params: toml::Table,
 }
 
+impl From<&caustics_core::techniques::registry::Spec> for TechniqueSpec {
+    fn from(spec: &caustics_core::techniques::registry::Spec) -> Self {
+        TechniqueSpec {
+            name: spec.name().to_string(),
+            params: spec.params.clone(),
+        }
+    }
+}
+
 /// Where the frame's water comes from: the scene's own source, or the interactive ripple
 /// simulation in its place.
 #[derive(Clone, Debug, PartialEq)]

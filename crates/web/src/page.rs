@@ -299,10 +299,7 @@ impl Page {
                 )));
             }
             labels.push(s.to_string());
-            sides.push(Some(TechniqueSpec {
-                name: spec.name().to_string(),
-                params: spec.params,
-            }));
+            sides.push(Some(TechniqueSpec::from(&spec)));
         }
         self.sides = sides;
         self.labels = labels;

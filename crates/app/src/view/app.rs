@@ -217,6 +217,21 @@ impl GpuImage {
         write_rgba(ctx, &self.texture, rgba);
     }
 
+    /// Show picture `p`, and what the panel says of it.
+    fn picture(
+        &mut self,
+        ctx: &GpuContext,
+        renderer: &mut egui_wgpu::Renderer,
+        p: caustics_core::plot::Picture,
+    ) -> Shown {
+        self.set(ctx, renderer, p.width, p.height, &p.rgba);
+        Shown {
+            size: Some([p.width, p.height]),
+            legend: p.legend,
+            error: None,
+        }
+    }
+
     /// Show a texture of the GPU frame as it is: egui is told once per texture, no texel moves.
     fn show(
         &mut self,
@@ -863,21 +878,11 @@ impl Viewer {
                     continue;
                 }
                 m.maps[k] = match (&slot.caustics, &slot.error) {
-                    (Some(caustics), _) => {
-                        let p = pictures::caustics_picture(caustics, slot.walls.as_ref());
-                        self.map_images[k].set(
-                            ctx,
-                            &mut self.egui_renderer,
-                            p.width,
-                            p.height,
-                            &p.rgba,
-                        );
-                        Shown {
-                            size: Some([p.width, p.height]),
-                            legend: p.legend,
-                            error: None,
-                        }
-                    }
+                    (Some(caustics), _) => self.map_images[k].picture(
+                        ctx,
+                        &mut self.egui_renderer,
+                        pictures::caustics_picture(caustics, slot.walls.as_ref()),
+                    ),
                     (None, Some(e)) => Shown {
                         error: Some(e.clone()),
                         ..Shown::default()
@@ -893,20 +898,9 @@ impl Viewer {
             {
                 m.difference = match (m.slots[0].floor_map(), m.slots[1].floor_map()) {
                     (Some(a), Some(b)) => match pictures::difference_picture(a, b) {
-                        Some(p) => {
-                            self.difference_image.set(
-                                ctx,
-                                &mut self.egui_renderer,
-                                p.width,
-                                p.height,
-                                &p.rgba,
-                            );
-                            Shown {
-                                size: Some([p.width, p.height]),
-                                legend: p.legend,
-                                error: None,
-                            }
-                        }
+                        Some(p) => self
+                            .difference_image
+                            .picture(ctx, &mut self.egui_renderer, p),
                         None => Shown {
                             error: Some("the maps differ in size".into()),
                             ..Shown::default()
@@ -960,20 +954,7 @@ impl Viewer {
                     m.buffer,
                     &input,
                 ) {
-                    Ok(p) => {
-                        self.buffer_image.set(
-                            ctx,
-                            &mut self.egui_renderer,
-                            p.width,
-                            p.height,
-                            &p.rgba,
-                        );
-                        Shown {
-                            size: Some([p.width, p.height]),
-                            legend: p.legend,
-                            error: None,
-                        }
-                    }
+                    Ok(p) => self.buffer_image.picture(ctx, &mut self.egui_renderer, p),
                     Err(e) => Shown {
                         error: Some(format!("{e:#}")),
                         ..Shown::default()

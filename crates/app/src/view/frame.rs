@@ -494,12 +494,8 @@ impl SceneRenderer {
             slot.map_changed = false;
             slot.technique_ms = None;
             let spec = slot.choice.spec()?;
-            let name = slot.choice.name().to_string();
-            if caustics_gpu::registry::find(&name).is_some() {
-                specs.push(Some(caustics_gpu::renderer::TechniqueSpec {
-                    name,
-                    params: spec.params.clone(),
-                }));
+            if caustics_gpu::registry::find(slot.choice.name()).is_some() {
+                specs.push(Some((&spec).into()));
                 slot.backend = "GPU";
                 continue;
             }
