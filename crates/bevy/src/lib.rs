@@ -12,6 +12,48 @@
 //! is y-up. The water entity's transform places the scene: scene `(x, y, z)` is the entity's
 //! local `(x, z, −y)`, so the square runs along +x and −z from the entity's origin, the floor at
 //! its height and the rest water level `depth` above it.
+//!
+//! A pool's floor lit by `caustic-triangles` from the built-in pool's moving water:
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use bevy_caustics::{CausticMaps, CausticWater, CausticsExtension, CausticsMaterial};
+//! use bevy_caustics::{CausticsPlugin, Receiver};
+//! use caustics_core::scene::Scene;
+//!
+//! fn main() {
+//!     App::new()
+//!         .add_plugins((DefaultPlugins, CausticsPlugin))
+//!         .add_systems(Startup, setup)
+//!         .run();
+//! }
+//!
+//! fn setup(
+//!     mut commands: Commands,
+//!     mut images: ResMut<Assets<Image>>,
+//!     mut meshes: ResMut<Assets<Mesh>>,
+//!     mut materials: ResMut<Assets<CausticsMaterial>>,
+//! ) -> Result {
+//!     let water = CausticWater::new(Scene::builtin("pool")?, "caustic-triangles")?;
+//!     let maps = CausticMaps::new(&water, &mut images); // the images the technique fills
+//!     let at = Transform::from_xyz(-2.0, 0.0, 2.0); // the 4 m square runs along +x and -z
+//!     let floor = materials.add(CausticsExtension::material(
+//!         StandardMaterial::default(),
+//!         &water,
+//!         &maps,
+//!         &GlobalTransform::from(at),
+//!         Receiver::Pool,
+//!     ));
+//!     commands.spawn((water, maps, at));
+//!     let plane = meshes.add(Plane3d::default().mesh().size(4.0, 4.0));
+//!     commands.spawn((Mesh3d(plane), MeshMaterial3d(floor)));
+//!     let sun = Vec3::new(0.3, -1.0, -0.1);
+//!     commands.spawn((DirectionalLight::default(), Transform::default().looking_to(sun, Vec3::Y)));
+//!     let eye = Transform::from_xyz(0.0, 5.0, 6.0).looking_at(Vec3::ZERO, Vec3::Y);
+//!     commands.spawn((Camera3d::default(), eye));
+//!     Ok(())
+//! }
+//! ```
 
 mod material;
 mod render;
@@ -23,6 +65,7 @@ use bevy::render::render_resource::{
     TextureViewDimension,
 };
 use bevy::render::{ExtractSchedule, RenderApp};
+use bevy::transform::TransformSystems;
 
 use caustics_core::map::pyramid_levels;
 use caustics_core::scene::Scene;
@@ -54,7 +97,13 @@ impl Plugin for CausticsPlugin {
             .init_resource::<PendingDrops>()
             .insert_resource(stats.clone())
             .add_systems(First, clear_drops)
-            .add_systems(PostUpdate, (queue_drops, material::follow_technique));
+            .add_systems(
+                PostUpdate,
+                (
+                    queue_drops,
+                    material::follow_water.after(TransformSystems::Propagate),
+                ),
+            );
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             warn!("bevy_caustics: no render app (headless without rendering): no caustics");
             return;
@@ -368,4 +417,36 @@ pub fn scene_from_world(at: &GlobalTransform) -> Mat4 {
 /// The entity's local y-up frame to the scene's z-up one: local `(x, y, z)` is scene `(x, −z, y)`.
 fn scene_from_local() -> Mat4 {
     Mat4::from_cols(Vec4::X, Vec4::Z, -Vec4::Y, Vec4::W)
+}
+
+#[cfg(test)]
+mod tests {
+    /// docs/bevy.md's example is this crate's front-page example, which `cargo test` compiles.
+    #[test]
+    fn the_guide_shows_the_compiled_example() {
+        let lib = include_str!("lib.rs");
+        let front: Vec<&str> = lib
+            .lines()
+            .filter_map(|l| l.strip_prefix("//!"))
+            .map(|l| l.strip_prefix(' ').unwrap_or(l))
+            .skip_while(|l| !l.starts_with("```no_run"))
+            .skip(1)
+            .take_while(|l| !l.starts_with("```"))
+            .collect();
+        let guide = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/bevy.md");
+        let guide = std::fs::read_to_string(&guide).expect("docs/bevy.md beside the crate");
+        let shown: Vec<&str> = guide
+            .lines()
+            .skip_while(|l| *l != "## Using it")
+            .skip_while(|l| *l != "```rust")
+            .skip(1)
+            .take_while(|l| *l != "```")
+            .collect();
+        assert!(
+            front.len() > 20,
+            "{} lines in the front page's example",
+            front.len()
+        );
+        assert_eq!(shown, front);
+    }
 }

@@ -121,24 +121,98 @@ pub fn technique_flags(water: &CausticWater) -> u32 {
     u32::from(water.eye_space()) | (u32::from(water.lights_walls()) << 1)
 }
 
-/// A water whose technique changed kind (floor map, eye-space image, wall maps or not): its
-/// materials read accordingly from the next frame on (a rare change; the bind group is made again
-/// then).
-pub(crate) fn follow_technique(
-    waters: Query<(&CausticWater, &CausticMaps), Changed<CausticWater>>,
+/// A water, its maps (which name its materials) and where it stands.
+type WaterPlaced = (
+    &'static CausticWater,
+    &'static CausticMaps,
+    &'static GlobalTransform,
+);
+
+type MovedOrChanged = Or<(Changed<CausticWater>, Changed<GlobalTransform>)>;
+
+/// A water that moved, or whose technique changed kind (floor map, eye-space image, wall maps or
+/// not): its materials find their fragments where the water now is, and read what its technique
+/// makes, from the next frame on (a uniform write; the bind group is made again only then).
+pub(crate) fn follow_water(
+    waters: Query<WaterPlaced, MovedOrChanged>,
     mut materials: ResMut<Assets<CausticsMaterial>>,
 ) {
-    for (water, maps) in &waters {
-        let eye = technique_flags(water);
+    for (water, maps, at) in &waters {
+        let kind = technique_flags(water);
+        let placed = scene_from_world(at);
         let ids: Vec<_> = materials
             .iter()
-            .filter(|(_, m)| m.extension.floor == maps.floor && m.extension.uniform.flags.z != eye)
+            .filter(|(_, m)| {
+                let u = &m.extension.uniform;
+                m.extension.floor == maps.floor
+                    && (u.flags.z != kind || u.scene_from_world != placed)
+            })
             .map(|(id, _)| id)
             .collect();
         for id in ids {
             if let Some(mut m) = materials.get_mut(id) {
-                m.extension.uniform.flags.z = eye;
+                m.extension.uniform.flags.z = kind;
+                m.extension.uniform.scene_from_world = placed;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use bevy::ecs::system::RunSystemOnce;
+    use caustics_core::scene::Scene;
+
+    use super::*;
+
+    /// The material follows its water: moved, the water's materials map world points to the
+    /// scene where the water now stands (a point above the moved floor's corner is the scene's
+    /// origin again); another water's materials stay.
+    #[test]
+    fn materials_follow_their_water_when_it_moves() {
+        let mut world = World::new();
+        world.init_resource::<Assets<Image>>();
+        world.init_resource::<Assets<CausticsMaterial>>();
+        let water = CausticWater::new(Scene::builtin("pool").unwrap(), "yuksel").unwrap();
+        let (mut ids, mut entities) = (Vec::new(), Vec::new());
+        for x in [0.0, 10.0] {
+            let at = GlobalTransform::from(Transform::from_xyz(x, 0.0, 0.0));
+            let maps = world.resource_scope(|_, mut images: Mut<Assets<Image>>| {
+                CausticMaps::new(&water, &mut images)
+            });
+            let material = CausticsExtension::material(
+                StandardMaterial::default(),
+                &water,
+                &maps,
+                &at,
+                Receiver::Pool,
+            );
+            ids.push(
+                world
+                    .resource_mut::<Assets<CausticsMaterial>>()
+                    .add(material),
+            );
+            entities.push(world.spawn((water.clone(), maps, at)).id());
+        }
+        let placed = |world: &World, k: usize| {
+            let materials = world.resource::<Assets<CausticsMaterial>>();
+            materials
+                .get(&ids[k])
+                .unwrap()
+                .extension
+                .uniform
+                .scene_from_world
+        };
+        world.run_system_once(follow_water).unwrap();
+        let before = [placed(&world, 0), placed(&world, 1)];
+        let moved = Transform::from_xyz(3.0, -2.0, 7.0).with_rotation(Quat::from_rotation_y(0.4));
+        world
+            .entity_mut(entities[0])
+            .insert(GlobalTransform::from(moved));
+        world.run_system_once(follow_water).unwrap();
+        let corner = placed(&world, 0).transform_point3(moved.translation);
+        assert!(corner.length() < 1e-5, "{corner}");
+        assert_ne!(placed(&world, 0), before[0]);
+        assert_eq!(placed(&world, 1), before[1]);
     }
 }

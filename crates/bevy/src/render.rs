@@ -61,10 +61,11 @@ impl CausticsStats {
     }
 }
 
-/// One water as the main world left it this frame.
+/// One water as the main world left it this frame: its component only when it changed (the render
+/// world keeps the last one), so that a scene is not copied every frame.
 struct Extracted {
     entity: Entity,
-    water: CausticWater,
+    water: Option<CausticWater>,
     maps: CausticMaps,
     scene_from_world: Mat4,
     drops: Vec<Drop>,
@@ -81,6 +82,14 @@ pub(crate) struct ExtractedWaters {
     time: f64,
 }
 
+/// A water as extracted: its component with its change ticks, its maps and where it stands.
+type WaterItems = (
+    Entity,
+    Ref<'static, CausticWater>,
+    &'static CausticMaps,
+    &'static GlobalTransform,
+);
+
 /// What an eye-space technique takes from Bevy's 3D cameras.
 type Cameras = (
     &'static Camera,
@@ -90,7 +99,7 @@ type Cameras = (
 
 pub(crate) fn extract(
     mut commands: Commands,
-    waters: Extract<Query<(Entity, &CausticWater, &CausticMaps, &GlobalTransform)>>,
+    waters: Extract<Query<WaterItems>>,
     lights: Extract<Query<&GlobalTransform, With<DirectionalLight>>>,
     cameras: Extract<Query<Cameras, With<Camera3d>>>,
     drops: Extract<Res<PendingDrops>>,
@@ -110,7 +119,7 @@ pub(crate) fn extract(
             let m = scene_from_world(at);
             Extracted {
                 entity,
-                water: water.clone(),
+                water: water.is_changed().then(|| water.as_ref().clone()),
                 maps: maps.clone(),
                 scene_from_world: m,
                 drops: drops
@@ -171,6 +180,8 @@ pub(crate) struct Waters {
     /// `caustics_mips.wgsl`'s pipeline, made with the context.
     mips: Option<wgpu::ComputePipeline>,
     states: HashMap<Entity, WaterState>,
+    /// Each water's component as last extracted.
+    known: HashMap<Entity, CausticWater>,
     /// Waters whose build failed, with the key it failed for: not tried again until it changes.
     failed: HashMap<Entity, Key>,
     /// The traffic counts when the last frame's `prepare` began, and whether that frame built
@@ -181,7 +192,7 @@ pub(crate) struct Waters {
 #[allow(clippy::too_many_arguments)]
 fn prepare(
     mut waters: ResMut<Waters>,
-    extracted: Res<ExtractedWaters>,
+    mut extracted: ResMut<ExtractedWaters>,
     device: Res<RenderDevice>,
     queue: Res<RenderQueue>,
     adapter: Res<RenderAdapter>,
@@ -189,8 +200,15 @@ fn prepare(
     images: Res<RenderAssets<GpuImage>>,
     stats: Res<CausticsStats>,
 ) {
-    let waters = &mut *waters;
-    let ctx = waters.ctx.get_or_insert_with(|| {
+    let Waters {
+        ctx,
+        mips,
+        states,
+        known,
+        failed,
+        last,
+    } = &mut *waters;
+    let ctx = ctx.get_or_insert_with(|| {
         GpuContext::shared(
             (**instance).clone(),
             (**adapter).clone(),
@@ -199,7 +217,7 @@ fn prepare(
         )
     });
     let before = ctx.traffic();
-    if let Some((start, built)) = waters.last.take() {
+    if let Some((start, built)) = last.take() {
         let spent = before.since(&start);
         stats.update(|s| {
             s.frames += 1;
@@ -210,11 +228,20 @@ fn prepare(
         });
     }
     let mut built = false;
+    for w in &mut extracted.waters {
+        if let Some(water) = w.water.take() {
+            known.insert(w.entity, water);
+        }
+    }
     let alive = |e: &Entity| extracted.waters.iter().any(|w| w.entity == *e);
-    waters.states.retain(|e, _| alive(e));
-    waters.failed.retain(|e, _| alive(e));
+    states.retain(|e, _| alive(e));
+    failed.retain(|e, _| alive(e));
+    known.retain(|e, _| alive(e));
     for w in &extracted.waters {
-        let heights = match &w.water.heights {
+        let Some(water) = known.get(&w.entity) else {
+            continue;
+        };
+        let heights = match &water.heights {
             Heights::Scene => HeightsKey::Scene,
             Heights::Image(h) => match images.get(h) {
                 Some(g) => HeightsKey::Image(h.id(), g.texture.id()),
@@ -222,17 +249,17 @@ fn prepare(
             },
         };
         let key = Key {
-            technique: w.water.technique.clone(),
-            params: w.water.params.clone(),
+            technique: water.technique.clone(),
+            params: water.params.clone(),
             heights,
         };
-        let stale = waters.states.get(&w.entity).is_none_or(|s| s.key != key);
+        let stale = states.get(&w.entity).is_none_or(|s| s.key != key);
         if stale {
-            if waters.failed.get(&w.entity) == Some(&key) {
+            if failed.get(&w.entity) == Some(&key) {
                 continue;
             }
             built = true;
-            match build_state(ctx, w, key.clone(), &images) {
+            match build_state(ctx, water, &w.maps, key.clone(), &images) {
                 Ok(state) => {
                     info!(
                         "bevy_caustics: {} on {:?} ({:.1} MiB on the GPU)",
@@ -240,28 +267,25 @@ fn prepare(
                         w.entity,
                         state.technique.bytes() as f64 / (1024.0 * 1024.0)
                     );
-                    waters.failed.remove(&w.entity);
-                    waters.states.insert(w.entity, state);
+                    failed.remove(&w.entity);
+                    states.insert(w.entity, state);
                 }
                 Err(e) => {
-                    let e = format!(
-                        "bevy_caustics: {} on {:?}: {e}",
-                        w.water.technique, w.entity
-                    );
+                    let e = format!("bevy_caustics: {} on {:?}: {e}", water.technique, w.entity);
                     error!("{e}");
                     stats.update(|s| s.error = Some(e));
-                    waters.states.remove(&w.entity);
-                    waters.failed.insert(w.entity, key);
+                    states.remove(&w.entity);
+                    failed.insert(w.entity, key);
                     continue;
                 }
             }
         }
-        let state = waters.states.get_mut(&w.entity).expect("built above");
+        let state = states.get_mut(&w.entity).expect("built above");
         state.maps = w.maps.clone();
         if let Some(floor) = images.get(&state.maps.floor) {
             let id = floor.texture.id();
             if state.floor_mips.as_ref().is_none_or(|(t, _)| *t != id) {
-                let pipeline = waters.mips.get_or_insert_with(|| mips_pipeline(ctx));
+                let pipeline = mips.get_or_insert_with(|| mips_pipeline(ctx));
                 built = true;
                 state.floor_mips = Some((id, MapMips::in_place(ctx, pipeline, &floor.texture)));
             }
@@ -301,22 +325,18 @@ fn prepare(
         }
         built |= ctx.traffic().created() != had;
     }
-    waters.last = Some((before, built));
-    let names = waters
-        .states
-        .values()
-        .map(|s| s.key.technique.clone())
-        .collect();
+    *last = Some((before, built));
+    let names = states.values().map(|s| s.key.technique.clone()).collect();
     stats.update(|s| s.techniques = names);
 }
 
 fn build_state(
     ctx: &GpuContext,
-    w: &Extracted,
+    water: &CausticWater,
+    maps: &CausticMaps,
     key: Key,
     images: &RenderAssets<GpuImage>,
 ) -> Result<WaterState, String> {
-    let water = &w.water;
     let mut scene = water.scene.clone();
     scene.caustics.technique = water.technique.clone();
     let mut technique = caustics_gpu::registry::create(ctx, &water.technique, &water.params)
@@ -351,7 +371,7 @@ fn build_state(
         source,
         technique,
         scene,
-        maps: w.maps.clone(),
+        maps: maps.clone(),
         floor_mips: None,
     })
 }

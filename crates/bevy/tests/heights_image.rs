@@ -65,7 +65,17 @@ fn water(images: &mut Assets<Image>, heights: impl Fn(f32, f32) -> f32) -> Caust
 /// Runs a windowless app for a few frames with `heights` and reads the floor map back: its texels
 /// (RGB) and the plugin's counts.
 fn floor_map(heights: fn(f32, f32) -> f32) -> Result<(Vec<[f32; 3]>, CausticsStats), Failed> {
-    let got: Arc<Mutex<Option<Vec<u8>>>> = Arc::default();
+    let (mut maps, stats) = floor_maps(vec![heights])?;
+    Ok((maps.remove(0), stats))
+}
+
+/// A floor map's texels (RGB).
+type Texels = Vec<[f32; 3]>;
+
+/// [`floor_map`] of one water entity per entry of `heights`, all in one world.
+fn floor_maps(heights: Vec<fn(f32, f32) -> f32>) -> Result<(Vec<Texels>, CausticsStats), Failed> {
+    let n = heights.len();
+    let got: Arc<Mutex<Vec<Option<Vec<u8>>>>> = Arc::new(Mutex::new(vec![None; n]));
     let mut app = App::new();
     app.add_plugins(
         DefaultPlugins
@@ -88,29 +98,35 @@ fn floor_map(heights: fn(f32, f32) -> f32) -> Result<(Vec<[f32; 3]>, CausticsSta
     app.add_systems(
         Startup,
         move |mut commands: Commands, mut images: ResMut<Assets<Image>>| {
-            let w = water(&mut images, heights);
-            let maps = CausticMaps::new(&w, &mut images);
-            let floor = maps.floor.clone();
-            commands.spawn((w, maps));
+            let mut floors = Vec::new();
+            for (k, &h) in heights.iter().enumerate() {
+                let w = water(&mut images, h);
+                let maps = CausticMaps::new(&w, &mut images);
+                floors.push(maps.floor.clone());
+                // Side by side, 5 m apart: where a water stands does not change its map.
+                commands.spawn((w, maps, Transform::from_xyz(5.0 * k as f32, 0.0, 0.0)));
+            }
             // The pool scene's sun, (0.3, 0.1, −1) in its z-up frame.
             commands.spawn((
                 DirectionalLight::default(),
                 Transform::default().looking_to(Vec3::new(0.3, -1.0, -0.1), Vec3::Z),
             ));
-            commands.insert_resource(Floor(floor));
+            commands.insert_resource(Floors(floors));
         },
     );
     app.add_systems(
         Update,
-        move |mut commands: Commands, floor: Res<Floor>, mut frame: Local<u32>| {
+        move |mut commands: Commands, floors: Res<Floors>, mut frame: Local<u32>| {
             *frame += 1;
             if *frame == 4 {
-                let sink = sink.clone();
-                commands
-                    .spawn(ReadbackOnce::texture(floor.0.clone()))
-                    .observe(move |done: On<ReadbackComplete>| {
-                        *sink.lock().unwrap() = Some(done.data.clone());
-                    });
+                for (k, floor) in floors.0.iter().enumerate() {
+                    let sink = sink.clone();
+                    commands
+                        .spawn(ReadbackOnce::texture(floor.clone()))
+                        .observe(move |done: On<ReadbackComplete>| {
+                            sink.lock().unwrap()[k] = Some(done.data.clone());
+                        });
+                }
             }
         },
     );
@@ -121,31 +137,33 @@ fn floor_map(heights: fn(f32, f32) -> f32) -> Result<(Vec<[f32; 3]>, CausticsSta
     app.cleanup();
     for _ in 0..60 {
         app.update();
-        if got.lock().unwrap().is_some() {
+        if got.lock().unwrap().iter().all(Option::is_some) {
             break;
         }
     }
     let stats = app.world().resource::<CausticsStats>().clone();
-    let bytes = got
-        .lock()
-        .unwrap()
-        .take()
-        .ok_or("the floor map never came back")?;
-    let texels: Vec<[f32; 3]> = bytes
-        .chunks_exact(16)
-        .map(|t| {
-            let f = |k: usize| f32::from_le_bytes(t[4 * k..4 * k + 4].try_into().unwrap());
-            [f(0), f(1), f(2)]
-        })
-        .collect();
-    if texels.len() != (MAP * MAP) as usize {
-        return Err(format!("{} texels came back, {} expected", texels.len(), MAP * MAP).into());
+    let mut maps = Vec::new();
+    for bytes in got.lock().unwrap().iter_mut() {
+        let bytes = bytes.take().ok_or("a floor map never came back")?;
+        let texels: Vec<[f32; 3]> = bytes
+            .chunks_exact(16)
+            .map(|t| {
+                let f = |k: usize| f32::from_le_bytes(t[4 * k..4 * k + 4].try_into().unwrap());
+                [f(0), f(1), f(2)]
+            })
+            .collect();
+        if texels.len() != (MAP * MAP) as usize {
+            return Err(
+                format!("{} texels came back, {} expected", texels.len(), MAP * MAP).into(),
+            );
+        }
+        maps.push(texels);
     }
-    Ok((texels, stats))
+    Ok((maps, stats))
 }
 
 #[derive(Resource)]
-struct Floor(Handle<Image>);
+struct Floors(Vec<Handle<Image>>);
 
 /// The flat water's light on the pool's floor, per channel: the sun refracted into the water and
 /// absorbed along its path, `exp(−K d / cos θ_t)` (the map's unit).
@@ -164,21 +182,30 @@ fn mean(texels: &[[f32; 3]], c: usize) -> f64 {
 }
 
 fn still_water() -> Result<(), Failed> {
-    let (texels, stats) = floor_map(|_, _| 0.0)?;
+    let (texels, stats) = floor_map(still)?;
     if let Some(e) = stats.get().error {
         return Err(e.into());
     }
+    is_flat("still water", &texels)
+}
+
+fn still(_: f32, _: f32) -> f32 {
+    0.0
+}
+
+/// Every texel the flat water's light.
+fn is_flat(what: &str, texels: &[[f32; 3]]) -> Result<(), Failed> {
     let flat = flat_light();
     let mut worst = 0.0f64;
-    for t in &texels {
+    for t in texels {
         for c in 0..3 {
             worst = worst.max((t[c] as f64 / flat[c] - 1.0).abs());
         }
     }
-    println!("still water: largest texel off the flat water's light: {worst:.2e}");
+    println!("{what}: largest texel off the flat water's light: {worst:.2e}");
     // Measured on lavapipe: 2.15e-6 (f32 rounding).
     if worst > 2e-5 {
-        return Err(format!("still water: a texel is {worst:.3} off exp(-K d / cos θ_t)").into());
+        return Err(format!("{what}: a texel is {worst:.3} off exp(-K d / cos θ_t)").into());
     }
     Ok(())
 }
@@ -192,12 +219,16 @@ fn wave(x: f32, y: f32) -> f32 {
 
 fn wave_keeps_the_light() -> Result<(), Failed> {
     let (texels, stats) = floor_map(wave)?;
-    let s = stats.get();
-    if let Some(e) = s.error {
+    if let Some(e) = stats.get().error {
         return Err(e.into());
     }
+    keeps_the_light("wave", &texels)
+}
+
+/// The floor's mean light is the flat water's, and the waves focus it (contrast).
+fn keeps_the_light(what: &str, texels: &[[f32; 3]]) -> Result<(), Failed> {
     let flat = flat_light();
-    let g = mean(&texels, 1);
+    let g = mean(texels, 1);
     let var = texels
         .iter()
         .map(|t| (t[1] as f64 - g).powi(2))
@@ -205,19 +236,34 @@ fn wave_keeps_the_light() -> Result<(), Failed> {
         / texels.len() as f64;
     let contrast = var.sqrt() / g;
     let off = (0..3)
-        .map(|c| (mean(&texels, c) / flat[c] - 1.0).abs())
+        .map(|c| (mean(texels, c) / flat[c] - 1.0).abs())
         .fold(0.0, f64::max);
-    println!("wave: mean off the flat light by {off:.2e}, contrast {contrast:.3}");
+    println!("{what}: mean off the flat light by {off:.2e}, contrast {contrast:.3}");
     // Measured on lavapipe: 5.3e-4; contrast 0.241.
     if off > 5e-3 {
         return Err(
-            format!("wave: the floor's mean light is {off:.3} off the flat water's").into(),
+            format!("{what}: the floor's mean light is {off:.3} off the flat water's").into(),
         );
     }
     if contrast < 0.1 {
-        return Err(format!("wave: no caustics (contrast {contrast:.3})").into());
+        return Err(format!("{what}: no caustics (contrast {contrast:.3})").into());
     }
     Ok(())
+}
+
+/// Two waters in one world, each with its own technique state and maps: still water beside waves,
+/// neither's light in the other's map.
+fn two_waters_each_light_their_own_floor() -> Result<(), Failed> {
+    let (maps, stats) = floor_maps(vec![still, wave])?;
+    let s = stats.get();
+    if let Some(e) = s.error {
+        return Err(e.into());
+    }
+    if s.techniques.len() != 2 {
+        return Err(format!("{} techniques recorded, 2 expected", s.techniques.len()).into());
+    }
+    is_flat("two waters, the still one", &maps[0])?;
+    keeps_the_light("two waters, the waves", &maps[1])
 }
 
 /// A round bump (Gaussian, 4 cm high, σ 10 cm: curvature 4 /m at its top, focusing the sun about
@@ -274,6 +320,11 @@ fn main() {
         Trial::test("wave_keeps_the_light", wave_keeps_the_light).with_ignored_flag(skip.is_some()),
         Trial::test("bump_focuses_under_it", bump_focuses_under_it)
             .with_ignored_flag(skip.is_some()),
+        Trial::test(
+            "two_waters_each_light_their_own_floor",
+            two_waters_each_light_their_own_floor,
+        )
+        .with_ignored_flag(skip.is_some()),
     ];
     libtest_mimic::run(&args, trials).exit();
 }
