@@ -38,6 +38,7 @@ FI="render_gpu caustic_triangles_gpu"
 MUTATIONS=$(cat <<EOF
 probe x1.01 @@ $S/probe.wgsl @@ outputs[k] = o; @@ o.refracted *= 1.01; o.fresnel_sine_procedural *= 1.01; o.procedural *= 1.01; o.grid *= 1.01; outputs[k] = o; @@ shared_math
 yuksel prepass record flux x1.01 @@ $S/yuksel/sample.wgsl @@ f.rec.w / f32(t * t)); @@ f.rec.w * 1.01 / f32(t * t)); @@ $YU
+yuksel footprint flux ramp dropped @@ $S/yuksel/sample.wgsl @@ const RAMP_WEIGHT: f32 = 4.0; @@ const RAMP_WEIGHT: f32 = 0.0; @@ yuksel_gpu
 yuksel prepass tiles overlap @@ $S/yuksel/common.wgsl @@ (xy.y / t.y) * i32(u.pre_tiles) + xy.x / t.x @@ xy.x / t.x @@ limits_gpu
 yuksel pass1 x1.01 @@ $S/yuksel/pass1.wgsl @@ += ax * ay * p.w * area; @@ += ax * ay * p.w * area * 1.01; @@ $YU
 yuksel pass1 last channel lost @@ $S/yuksel/pass1.wgsl @@ i32(region.m) + 1); @@ i32(region.m)); @@ $YU

@@ -74,6 +74,14 @@ fn gpu_variants_match_the_cpu_twin() {
             DVec3::new(0.3, 0.1, -1.0),
             (64, 40),
         ),
+        // A sun 5° above the horizon: the flux changes steeply across the patches, which takes
+        // finer tiers (`RAMP_WEIGHT`).
+        (
+            YukselParams::default(),
+            true,
+            DVec3::new(0.9464, 0.3108, -0.0872),
+            (64, 40),
+        ),
         // Every pixel's 4 x 4 footprints.
         (
             YukselParams {

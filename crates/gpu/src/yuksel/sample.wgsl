@@ -12,6 +12,8 @@ import package::yuksel::common::{tier_bits, u};
 // The narrowest footprint half-width (`MIN_HALF_WIDTH` in prepass.rs): a fold's light keeps a box
 // of positive area, and the half-width stays a normal f16 (so the packed channel is a normal f32).
 const MIN_HALF_WIDTH: f32 = 1.0e-3;
+// How much a patch's flux may change across it against the split (`RAMP_WEIGHT` in prepass.rs).
+const RAMP_WEIGHT: f32 = 4.0;
 
 // The water at `s` (world units): xy its floor hit, z the flux its area carries relative to flat
 // water, w 1 where the sun lights it (0: nothing reaches the floor).
@@ -67,7 +69,9 @@ fn yuksel_footprint(h: vec4<f32>, raw_xm: vec4<f32>, raw_xp: vec4<f32>, raw_ym: 
     let shear = vec2<f32>(abs(yp.x - ym.x), abs(xp.y - xm.y)) * 0.5;
     let off = (bend + shear) / pixel;
     let width = max(2.0 * half, vec2<f32>(u.pixel.x / pixel.x));
-    var misfit = max(off.x / width.x, off.y / width.y);
+    // The flux's change across the patch, weighted (`RAMP_WEIGHT` in prepass.rs).
+    let ramp = max(abs(exp.z - exm.z), abs(eyp.z - eym.z)) / max(h.z, 1.0e-30);
+    var misfit = max(max(off.x / width.x, off.y / width.y), RAMP_WEIGHT * ramp);
     if unlit {
         misfit = 3.0e38;
     }
