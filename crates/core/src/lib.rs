@@ -23,5 +23,7 @@ pub mod walls;
 pub mod water;
 
 pub use error::{Error, Result};
-/// The versions of the vector and table types this crate's API takes.
-pub use {glam, toml};
+/// The version of the vector types this crate's API takes.
+pub use glam;
+/// The version of the table type this crate's API takes (technique parameters).
+pub use toml;
