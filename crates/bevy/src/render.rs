@@ -82,11 +82,11 @@ pub(crate) struct ExtractedWaters {
     time: f64,
 }
 
-/// A water as extracted: its component with its change ticks, its maps and where it stands.
+/// A water as extracted: its component and its maps with their change ticks, and where it stands.
 type WaterItems = (
     Entity,
     Ref<'static, CausticWater>,
-    &'static CausticMaps,
+    Ref<'static, CausticMaps>,
     &'static GlobalTransform,
 );
 
@@ -119,8 +119,10 @@ pub(crate) fn extract(
             let m = scene_from_world(at);
             Extracted {
                 entity,
-                water: water.is_changed().then(|| water.as_ref().clone()),
-                maps: maps.clone(),
+                // Also when the maps are new: a water that got them after its component (or got
+                // new ones) enters the query then, and the render world must learn it anew.
+                water: (water.is_changed() || maps.is_changed()).then(|| water.as_ref().clone()),
+                maps: maps.as_ref().clone(),
                 scene_from_world: m,
                 drops: drops
                     .0

@@ -112,7 +112,9 @@ pub fn floor(spec: &str, n: u32) -> Result<Vec<[u8; 4]>, Box<dyn std::error::Err
             resource: wgpu::BindingResource::TextureView(&map),
         }],
     });
-    // One frame: the technique's passes, then yours, in your encoder.
+    // One frame: the technique's uniforms (sun, camera) brought up to date, its passes, then
+    // yours, in your encoder.
+    technique.update(&ctx, &scene)?;
     let mut encoder = ctx.device.create_command_encoder(&Default::default());
     technique.encode(&mut encoder, None);
     let view = target.create_view(&Default::default());
