@@ -8,7 +8,8 @@ use caustics_core::techniques::caustic_triangles::{
     CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, FloorWindow, GlassScene, Shape,
 };
 use caustics_gpu::caustic_triangles::{CausticTriangles, Reconstruction};
-use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
+use caustics_gpu::timing::median_runs;
+use caustics_gpu::{GpuContext, GpuOptions};
 use glam::{DVec2, DVec3};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -45,36 +46,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let setup = CausticTrianglesSetup::new(&params, &scene)?;
         let frame = ct.frame(&ctx, &setup, &dm)?;
         for rec in [Reconstruction::Triangles, Reconstruction::Splats] {
-            let mut samples: Vec<Vec<(String, f64)>> = Vec::new();
-            let mut walls = Vec::new();
-            for run in 0..8 {
-                let mut timer = GpuTimer::new(&ctx, 4);
-                let mut encoder = ctx.device.create_command_encoder(&Default::default());
-                ct.encode(&frame, &mut encoder, Some(&mut timer), rec);
-                timer.resolve(&mut encoder);
-                let t0 = std::time::Instant::now();
-                ctx.queue.submit([encoder.finish()]);
-                ctx.wait()?;
-                let wall = t0.elapsed().as_secs_f64() * 1e3;
-                let times = timer.read(&ctx)?;
-                if run > 0 {
-                    samples.push(times.into_iter().map(|t| (t.label, t.ms)).collect());
-                    walls.push(wall);
-                }
+            let m = median_runs(&ctx, 4, 7, |encoder, timer| {
+                ct.encode(&frame, encoder, Some(timer), rec)
+            })?;
+            for (label, ms) in &m.passes {
+                println!("| {p}x{p} | 6x{cube}x{cube} | {label} | {ms:.2} |");
             }
-            for k in 0..samples[0].len() {
-                let mut v: Vec<f64> = samples.iter().map(|s| s[k].1).collect();
-                v.sort_by(f64::total_cmp);
-                println!(
-                    "| {p}x{p} | 6x{cube}x{cube} | {} | {:.2} |",
-                    samples[0][k].0,
-                    v[v.len() / 2]
-                );
-            }
-            walls.sort_by(f64::total_cmp);
             println!(
                 "| {p}x{p} | 6x{cube}x{cube} | whole submission {rec:?} (wall clock) | {:.2} |",
-                walls[walls.len() / 2]
+                m.wall_ms
             );
         }
     }

@@ -9,13 +9,9 @@
 use caustics_core::scene::Scene;
 use caustics_core::techniques::volumes::view::ViewCamera;
 use caustics_core::techniques::volumes::{VolumesInput, VolumesParams, VolumesSetup};
+use caustics_gpu::timing::median_runs;
 use caustics_gpu::volumes::{ViewOptions, Volumes};
-use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use caustics_gpu::{GpuContext, GpuOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ctx = GpuContext::headless(&GpuOptions::default())?;
@@ -50,28 +46,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let setup = VolumesSetup::new(&params, &input)?;
         let frame = volumes.frame(&ctx, &setup, &input, &heights, water.wrap, Some(&view))?;
-        let mut samples: Vec<Vec<(String, f64)>> = Vec::new();
-        let mut walls = Vec::new();
-        for run in 0..6 {
-            let mut timer = GpuTimer::new(&ctx, 9);
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            volumes.encode(&frame, &mut encoder, Some(&mut timer));
-            timer.resolve(&mut encoder);
-            let t0 = std::time::Instant::now();
-            ctx.queue.submit([encoder.finish()]);
-            ctx.wait()?;
-            let wall = t0.elapsed().as_secs_f64() * 1e3;
-            let times = timer.read(&ctx)?;
-            if run > 0 {
-                samples.push(times.into_iter().map(|t| (t.label, t.ms)).collect());
-                walls.push(wall);
-            }
+        let m = median_runs(&ctx, 9, 5, |encoder, timer| {
+            volumes.encode(&frame, encoder, Some(timer))
+        })?;
+        for (label, ms) in &m.passes {
+            println!("| {planes} | {label} | {ms:.1} |");
         }
-        for k in 0..samples[0].len() {
-            let v = samples.iter().map(|s| s[k].1).collect();
-            println!("| {planes} | {} | {:.1} |", samples[0][k].0, median(v));
-        }
-        let wall = median(walls);
+        let wall = m.wall_ms;
         println!("| {planes} | whole frame (wall clock) | {wall:.1} |");
         summary.push((planes, wall, frame.slice_triangles(), frame.bytes()));
     }

@@ -215,3 +215,56 @@ impl GpuTimer {
         Ok(self.times(labels.into_iter(), &stamps))
     }
 }
+
+/// What [`median_runs`] measured, milliseconds: each pass's median GPU time, in the order the
+/// passes ran, and the submissions' median wall-clock time.
+pub struct Medians {
+    pub passes: Vec<(String, f64)>,
+    pub wall_ms: f64,
+}
+
+/// `runs` submissions of what `encode` records, after one more left out (pipeline compilation,
+/// caches), each waited for: the median of each pass's GPU time and of the submission's
+/// wall-clock time. For measuring one piece of a frame on its own (`caustics bench` times whole
+/// techniques and frames).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn median_runs(
+    ctx: &GpuContext,
+    passes: u32,
+    runs: usize,
+    mut encode: impl FnMut(&mut wgpu::CommandEncoder, &mut GpuTimer),
+) -> Result<Medians, GpuError> {
+    let mut samples: Vec<Vec<PassTime>> = Vec::new();
+    let mut walls = Vec::new();
+    for run in 0..=runs {
+        let mut timer = GpuTimer::new(ctx, passes);
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        encode(&mut encoder, &mut timer);
+        timer.resolve(&mut encoder);
+        let t0 = std::time::Instant::now();
+        ctx.queue.submit([encoder.finish()]);
+        ctx.wait()?;
+        let wall = t0.elapsed().as_secs_f64() * 1e3;
+        let times = timer.read(ctx)?;
+        if run > 0 {
+            samples.push(times);
+            walls.push(wall);
+        }
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(0.0)
+    };
+    let passes = samples.first().map_or(Vec::new(), |first| {
+        (0..first.len())
+            .map(|k| {
+                let ms = samples.iter().filter_map(|s| s.get(k)).map(|t| t.ms);
+                (first[k].label.clone(), median(ms.collect()))
+            })
+            .collect()
+    });
+    Ok(Medians {
+        passes,
+        wall_ms: median(walls),
+    })
+}
