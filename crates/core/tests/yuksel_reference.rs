@@ -6,8 +6,10 @@ use caustics_core::cases::{Case, cases};
 use caustics_core::map::CausticsMap;
 use caustics_core::metrics::{Metrics, compare};
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
+use caustics_core::scene::{Floor, Water};
 use caustics_core::techniques::yuksel::{self, YukselParams, YukselSetup};
-use caustics_core::water::sample_grid;
+use caustics_core::water::{Surface, sample_grid};
+use glam::DVec3;
 
 const RES: usize = 128;
 
@@ -18,39 +20,50 @@ fn case(name: &str) -> Case {
         .unwrap_or_else(|| panic!("no case {name}"))
 }
 
+/// The reference's `res`² map of `surface` as `water` over `floor` under `light`.
+fn truth(
+    surface: &dyn Surface,
+    water: &Water,
+    floor: &Floor,
+    light: DVec3,
+    res: usize,
+) -> CausticsMap {
+    let input = ReferenceInput {
+        surface,
+        water,
+        floor,
+        light,
+        width: res,
+        height: res,
+    };
+    reference(&input, &ReferenceOptions::default(), &|_, _| {}).unwrap()
+}
+
+/// yuksel's `res`² setup for `w` under `light`.
+fn setup(params: &YukselParams, res: usize, w: &Water, light: DVec3) -> YukselSetup {
+    YukselSetup::new(
+        params,
+        res,
+        res,
+        w.size,
+        w.depth,
+        w.ior,
+        w.absorption,
+        w.wrap,
+        light,
+    )
+    .unwrap()
+}
+
 /// The reference, yuksel at the defaults and yuksel with the paper's region, all against the
 /// reference.
 fn measure(name: &str) -> (Metrics, Metrics, yuksel::Region) {
     let c = case(name);
     let surface = c.water.surface_at(c.time).unwrap();
-    let truth = reference(
-        &ReferenceInput {
-            surface: surface.as_ref(),
-            water: &c.water,
-            floor: &c.floor,
-            light: c.light,
-            width: RES,
-            height: RES,
-        },
-        &ReferenceOptions::default(),
-        &|_, _| {},
-    )
-    .unwrap();
+    let truth = truth(surface.as_ref(), &c.water, &c.floor, c.light, RES);
     let heights = sample_grid(surface.as_ref(), RES, RES, c.water.size);
     let run = |params: &YukselParams| -> (CausticsMap, YukselSetup) {
-        let w = &c.water;
-        let mut setup = YukselSetup::new(
-            params,
-            RES,
-            RES,
-            w.size,
-            w.depth,
-            w.ior,
-            w.absorption,
-            w.wrap,
-            c.light,
-        )
-        .unwrap();
+        let mut setup = setup(params, RES, &c.water, c.light);
         let map = yuksel::caustics(&setup, &heights);
         setup.fit_region(&heights);
         (map, setup)
@@ -97,20 +110,7 @@ fn the_region_from_the_waves_keeps_the_light_the_papers_loses() {
     let c = case("waves-grazing-deep");
     let surface = c.water.surface_at(c.time).unwrap();
     let heights = sample_grid(surface.as_ref(), 512, 512, c.water.size);
-    let w = &c.water;
-    let setup = YukselSetup::new(
-        &YukselParams::default(),
-        512,
-        512,
-        w.size,
-        w.depth,
-        w.ior,
-        w.absorption,
-        w.wrap,
-        c.light,
-    )
-    .unwrap();
-    let region = setup.region_for(&heights);
+    let region = setup(&YukselParams::default(), 512, &c.water, c.light).region_for(&heights);
     assert_eq!((region.level, region.clamped), (2, false), "{region:?}");
 }
 
@@ -135,34 +135,14 @@ fn swell_under_a_low_sun(res: usize) -> (Metrics, Metrics) {
     .unwrap();
     let w = scene.water.as_ref().unwrap();
     let surface = w.surface_at(0.0).unwrap();
-    let truth = reference(
-        &ReferenceInput {
-            surface: surface.as_ref(),
-            water: w,
-            floor: &scene.floor,
-            light: scene.light.direction,
-            width: res,
-            height: res,
-        },
-        &ReferenceOptions::default(),
-        &|_, _| {},
-    )
-    .unwrap();
+    let light = scene.light.direction;
+    let truth = truth(surface.as_ref(), w, &scene.floor, light, res);
     let heights = sample_grid(surface.as_ref(), res, res, w.size);
     let run = |params: &YukselParams| {
-        let setup = YukselSetup::new(
-            params,
-            res,
-            res,
-            w.size,
-            w.depth,
-            w.ior,
-            w.absorption,
-            w.wrap,
-            scene.light.direction,
+        compare(
+            &yuksel::caustics(&setup(params, res, w, light), &heights),
+            &truth,
         )
-        .unwrap();
-        compare(&yuksel::caustics(&setup, &heights), &truth)
     };
     let finest = YukselParams {
         split: 0.0,
