@@ -38,7 +38,7 @@ pub struct BenchArgs {
     /// Techniques, `name` or `name:key=value,...` as registered (`caustics techniques`); repeat
     /// the flag. Default: every registered technique.
     #[arg(long = "technique")]
-    techniques: Vec<Spec>,
+    pub(crate) techniques: Vec<Spec>,
     /// Resolutions WIDTHxHEIGHT, comma-separated: the camera's (the frame) and the caustics map's
     /// (the technique). Default 1280x720,1920x1080 (with --small: 64x36).
     #[arg(long, value_delimiter = ',')]

@@ -159,7 +159,9 @@ fn run(cli: Cli) -> Result<()> {
         Command::Render(args) => render::run(args),
         Command::Bake(args) => bake::run(args),
         Command::Compare(args) => compare::run(args),
-        Command::Bench(args) if args.tradeoff => tradeoff::run(&args.gpu, args.small, &args.out),
+        Command::Bench(args) if args.tradeoff => {
+            tradeoff::run(&args.gpu, args.small, &args.techniques, &args.out)
+        }
         Command::Bench(args) => bench::run(args),
         Command::View(args) => view::run(args),
         Command::Techniques {

@@ -108,7 +108,8 @@ struct Sizes {
     timing: Timing,
 }
 
-pub fn run(gpu: &crate::GpuArgs, small: bool, out: &Path) -> Result<()> {
+/// `only`: the techniques `--technique` names (a family's name takes its variants); empty, all.
+pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Result<()> {
     let s = if small {
         Sizes {
             map: 48,
@@ -157,7 +158,14 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, out: &Path) -> Result<()> {
     }
     let pool = pool_scene(&s);
     let mut points = Vec::new();
-    for (name, settings) in sweep(small) {
+    let named = |name: &str| {
+        only.is_empty()
+            || only.iter().any(|o| {
+                let family = name.strip_prefix(o.entry.name);
+                family.is_some_and(|rest| rest.is_empty() || rest.starts_with('-'))
+            })
+    };
+    for (name, settings) in sweep(small).into_iter().filter(|(n, _)| named(n)) {
         for setting in settings {
             let text = if setting.is_empty() {
                 name.to_string()

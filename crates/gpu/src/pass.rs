@@ -79,8 +79,6 @@ impl GpuContext {
     }
 }
 
-/// A render pipeline without vertex buffers (`vs_main` pulls its vertices from storage buffers) that
-/// adds every fragment into one colour target: how caustic triangles (paper 4) and illumination
 /// The best format this device can add light into with blending: `Rgba32Float` where it has
 /// `FLOAT32_BLENDABLE`, else `Rgba16Float` (blendable everywhere, about 3 significant digits).
 pub fn blendable_map_format(ctx: &GpuContext) -> wgpu::TextureFormat {
@@ -95,46 +93,62 @@ pub fn blendable_map_format(ctx: &GpuContext) -> wgpu::TextureFormat {
     }
 }
 
-/// volume slices (paper 3) accumulate irradiance.
+/// A render pipeline without vertex buffers (`vs_main` pulls its vertices from storage buffers or
+/// makes them from its index) whose `fs_main` writes `targets`. Triangle list, no culling: folded
+/// caustic triangles and slices of folded illumination volumes face either way.
+pub fn pulled_pipeline(
+    ctx: &GpuContext,
+    label: &str,
+    module: &wgpu::ShaderModule,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> wgpu::RenderPipeline {
+    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+/// A [`pulled_pipeline`] that adds every fragment into one colour target: how caustic triangles
+/// (paper 4) and illumination volume slices (paper 3) accumulate irradiance.
 pub fn additive_pipeline(
     ctx: &GpuContext,
     source: &PassSource,
     format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
-    let module = source.module(&ctx.device);
     let add = wgpu::BlendComponent {
         src_factor: wgpu::BlendFactor::One,
         dst_factor: wgpu::BlendFactor::One,
         operation: wgpu::BlendOperation::Add,
     };
-    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(source.name),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        // Triangle list, no culling: folded caustic triangles and slices of folded
-        // illumination volumes face either way.
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: Some(wgpu::BlendState {
-                    color: add,
-                    alpha: add,
-                }),
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+    let target = wgpu::ColorTargetState {
+        format,
+        blend: Some(wgpu::BlendState {
+            color: add,
+            alpha: add,
         }),
-        multiview_mask: None,
-        cache: None,
-    })
+        write_mask: wgpu::ColorWrites::ALL,
+    };
+    pulled_pipeline(
+        ctx,
+        source.name,
+        &source.module(&ctx.device),
+        &[Some(target)],
+    )
 }

@@ -233,24 +233,21 @@ impl FinalImage {
             ctx,
             "no height field",
             wgpu::TextureFormat::R32Float,
-            1,
-            1,
+            (1, 1, 1),
             bytemuck::bytes_of(&0f32),
         )?;
         let empty_rgba32 = float_texture(
             ctx,
             "no map",
             wgpu::TextureFormat::Rgba32Float,
-            1,
-            1,
+            (1, 1, 1),
             bytemuck::bytes_of(&[1f32; 4]),
         )?;
         let empty_walls = float_texture(
             ctx,
             "no walls' maps",
             wgpu::TextureFormat::Rgba32Float,
-            1,
-            1,
+            (1, 1, 1),
             bytemuck::bytes_of(&[0f32; 4]),
         )?;
         ctx.check()?;

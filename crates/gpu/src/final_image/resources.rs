@@ -39,7 +39,6 @@ pub fn upload_walls(
     let cols = maps.maps.each_ref().map(|m| m.cols as u32);
     let width = cols.iter().copied().max().unwrap_or(1).max(1);
     let rows = maps.maps[0].rows as u32;
-    ctx.check_texture_size("walls' maps", width, rows)?;
     let mut texels = vec![[0f32; 4]; (width * rows) as usize * 4];
     for (k, m) in maps.maps.iter().enumerate() {
         for i in 0..m.rows {
@@ -49,24 +48,13 @@ pub fn upload_walls(
             }
         }
     }
-    let texture = ctx.create_texture_with_data(
-        &wgpu::TextureDescriptor {
-            label: Some("walls' maps"),
-            size: wgpu::Extent3d {
-                width,
-                height: rows,
-                depth_or_array_layers: 4,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
+    let texture = float_texture(
+        ctx,
+        "walls' maps",
+        wgpu::TextureFormat::Rgba32Float,
+        (width, rows, 4),
         bytemuck::cast_slice(&texels),
-    );
+    )?;
     Ok((texture, cols))
 }
 
@@ -83,28 +71,28 @@ pub(super) fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A sampled texture of one mip level, `layers` deep, holding `texels` (layer after layer), its size
+/// refused by name where the device cannot hold it.
 pub(super) fn float_texture(
     ctx: &GpuContext,
     what: &str,
     format: wgpu::TextureFormat,
-    width: u32,
-    height: u32,
+    (width, height, layers): (u32, u32, u32),
     texels: &[u8],
 ) -> Result<wgpu::Texture, GpuError> {
     ctx.check_texture_size(what, width, height)?;
-    let size = wgpu::Extent3d {
-        width,
-        height,
-        depth_or_array_layers: 1,
-    };
     let texel = format
         .block_copy_size(None)
         .expect("an uncompressed format");
-    debug_assert_eq!(texels.len(), (width * height * texel) as usize);
+    debug_assert_eq!(texels.len(), (width * height * layers * texel) as usize);
     Ok(ctx.create_texture_with_data(
         &wgpu::TextureDescriptor {
             label: Some(what),
-            size,
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: layers,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -126,8 +114,7 @@ pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, 
         ctx,
         "caustics map",
         wgpu::TextureFormat::Rgba32Float,
-        map.width as u32,
-        map.height as u32,
+        (map.width as u32, map.height as u32, 1),
         bytemuck::cast_slice(&rgba32(&map.texels)),
     )
 }

@@ -20,7 +20,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
-use crate::pass::bind_group;
+use crate::pass::{bind_group, pulled_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
@@ -128,34 +128,7 @@ fn render_pipeline(
     format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
     let module = pass.module(&ctx.device);
-    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(pass.name),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: wgpu::PrimitiveState {
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+    pulled_pipeline(ctx, pass.name, &module, &[Some(format.into())])
 }
 
 /// One frame's resources for a given setup and water, bind groups included: a frame is built once

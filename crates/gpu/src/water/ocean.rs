@@ -201,22 +201,14 @@ impl GpuOcean {
             })
             .collect();
 
-        let texture = ctx.create_texture(&wgpu::TextureDescriptor {
-            label: Some("ocean height and slopes"),
-            size: wgpu::Extent3d {
-                width: n,
-                height: n,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::STORAGE_BINDING
+        let texture = ctx.texture_2d(
+            "ocean height and slopes",
+            (n, n, 1),
+            wgpu::TextureFormat::Rgba32Float,
+            wgpu::TextureUsages::STORAGE_BINDING
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
+        );
         let view = texture.create_view(&Default::default());
         let output = Pass::new(
             ctx,

@@ -93,22 +93,14 @@ impl GpuRipples {
         let cpu = Ripples::new(params, size, edge)?;
         let n = side;
         let texture = |label| {
-            ctx.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: n,
-                    height: n,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::R32Float,
-                usage: wgpu::TextureUsages::STORAGE_BINDING
+            ctx.texture_2d(
+                label,
+                (n, n, 1),
+                wgpu::TextureFormat::R32Float,
+                wgpu::TextureUsages::STORAGE_BINDING
                     | wgpu::TextureUsages::TEXTURE_BINDING
                     | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
+            )
         };
         // Textures start zeroed: the surface at rest.
         let textures = [texture("ripple heights A"), texture("ripple heights B")];

@@ -30,7 +30,7 @@ use std::sync::Mutex;
 
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
-use crate::pass::{begin_compute, compute_pipeline};
+use crate::pass::{begin_compute, compute_pipeline, pulled_pipeline};
 use crate::shaders::passes;
 use crate::water::patches::WaterPatches;
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -250,33 +250,8 @@ fn render_pipeline(
     module: &wgpu::ShaderModule,
     targets: u32,
 ) -> wgpu::RenderPipeline {
-    let target = Some(wgpu::ColorTargetState {
-        format: MAP_FORMAT,
-        blend: None,
-        write_mask: wgpu::ColorWrites::ALL,
-    });
-    let targets: Vec<_> = (0..targets).map(|_| target.clone()).collect();
-    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: None,
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    })
+    let targets = vec![Some(MAP_FORMAT.into()); targets as usize];
+    pulled_pipeline(ctx, label, module, &targets)
 }
 
 impl Yuksel {
