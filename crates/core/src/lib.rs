@@ -13,6 +13,7 @@ pub mod metrics;
 pub mod optics;
 pub mod orbit;
 pub mod plot;
+pub mod receivers;
 pub mod reference;
 pub mod render;
 pub mod scene;

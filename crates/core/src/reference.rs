@@ -46,6 +46,7 @@ use rayon::prelude::*;
 use crate::error::{Error, Result};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::receivers::HeightMarch;
 use crate::scene::{Floor, Scene, Water};
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
@@ -301,10 +302,8 @@ pub fn reference_with_walls(
     } else {
         texel / cpt as f64
     };
-    let terrain_march = floor
-        .terrain
-        .as_ref()
-        .map(|g| TerrainMarch::new(floor, g, size));
+    let terrain_march = floor.terrain.as_ref().map(|g| HeightMarch::new(g, size));
+    let terrain_height = |p: DVec2| floor.height_gradient(p, size).0;
 
     let vertex = |a: usize, b: usize| -> Hit {
         let p = origin + DVec2::new(b as f64, a as f64) * cell;
@@ -344,8 +343,8 @@ pub fn reference_with_walls(
                 let d = s.z / -t.z;
                 ((s + t * d).truncate(), d)
             }
-            Some(m) => match m.intersect(s, t) {
-                Some(hit) => hit,
+            Some(m) => match m.intersect(s, t, &terrain_height) {
+                Some(u) => ((s + t * u).truncate(), u),
                 None => return unlit,
             },
         };
@@ -723,40 +722,9 @@ impl Deposit {
     /// Spread `flux` (per channel) uniformly over the triangle `p` (world xy) and add each texel's share,
     /// the triangle's area inside the texel over its whole area.
     fn triangle(&self, acc: &mut [DVec3], p: [DVec2; 3], flux: DVec3) {
-        let q = p.map(|v| v / self.texel);
-        let area2 = (q[1] - q[0]).perp_dot(q[2] - q[0]).abs();
-        let lo = q[0].min(q[1]).min(q[2]);
-        let hi = q[0].max(q[1]).max(q[2]);
-        let (j0, i0) = (lo.x.floor() as i64, lo.y.floor() as i64);
-        let (j1, i1) = (hi.x.floor() as i64, hi.y.floor() as i64);
-        // Inside one texel, or so thin that its area is lost in rounding: all of it goes to one texel.
-        if (j0 == j1 && i0 == i1) || area2 < 1e-12 {
-            let c = (q[0] + q[1] + q[2]) / 3.0;
-            self.add(acc, c.y.floor() as i64, c.x.floor() as i64, flux);
-            return;
-        }
-        let inv = 1.0 / (0.5 * area2);
-        let mut row = [DVec2::ZERO; 8];
-        let mut cellp = [DVec2::ZERO; 10];
-        let mut tmp = [DVec2::ZERO; 10];
-        for i in i0..=i1 {
-            let n = clip_slab(&q, &mut row, 1, i as f64, i as f64 + 1.0, &mut tmp);
-            if n < 3 {
-                continue;
-            }
-            let rlo = row[..n].iter().fold(f64::INFINITY, |m, v| m.min(v.x));
-            let rhi = row[..n].iter().fold(f64::NEG_INFINITY, |m, v| m.max(v.x));
-            for j in (rlo.floor() as i64)..=(rhi.floor() as i64).min(j1) {
-                let m = clip_slab(&row[..n], &mut cellp, 0, j as f64, j as f64 + 1.0, &mut tmp);
-                if m < 3 {
-                    continue;
-                }
-                let a = polygon_area(&cellp[..m]);
-                if a > 0.0 {
-                    self.add(acc, i, j, flux * (a * inv));
-                }
-            }
-        }
+        spread(&p.map(|v| v / self.texel), flux, &mut |i, j, v| {
+            self.add(acc, i, j, v)
+        });
     }
 
     #[inline]
@@ -815,74 +783,4 @@ fn polygon_area(poly: &[DVec2]) -> f64 {
         s += poly[k].perp_dot(poly[(k + 1) % poly.len()]);
     }
     0.5 * s.abs()
-}
-
-/// Ray against the terrain height field: conservative steps bounded by the terrain's steepest slope,
-/// then bisection on the sign change.
-struct TerrainMarch<'a> {
-    floor: &'a Floor,
-    size: f64,
-    max_slope: f64,
-}
-
-impl<'a> TerrainMarch<'a> {
-    fn new(floor: &'a Floor, g: &crate::grid::Grid, size: f64) -> Self {
-        let (dx, dy) = (size / g.cols as f64, size / g.rows as f64);
-        let mut max_slope: f64 = 0.0;
-        for i in 0..g.rows {
-            for j in 0..g.cols {
-                let v = g.at(i, j) as f64;
-                if j + 1 < g.cols {
-                    max_slope = max_slope.max((g.at(i, j + 1) as f64 - v).abs() / dx);
-                }
-                if i + 1 < g.rows {
-                    max_slope = max_slope.max((g.at(i + 1, j) as f64 - v).abs() / dy);
-                }
-            }
-        }
-        // The bicubic interpolant overshoots the samples' slopes by at most 25 % (Catmull-Rom).
-        TerrainMarch {
-            floor,
-            size,
-            max_slope: max_slope * 1.25 * std::f64::consts::SQRT_2,
-        }
-    }
-
-    /// Where the ray `s + u t` (t going down) first meets the terrain, and the path length `u`.
-    fn intersect(&self, s: DVec3, t: DVec3) -> Option<(DVec2, f64)> {
-        let gap = |u: f64| {
-            let p = s + t * u;
-            p.z - self.floor.height_gradient(p.truncate(), self.size).0
-        };
-        let rate = -t.z + self.max_slope * t.truncate().length();
-        let mut u = 0.0;
-        let mut g = gap(0.0);
-        if g <= 0.0 {
-            return None; // the floor rises above the water here: dry land
-        }
-        let tol = 1e-7 * self.size;
-        for _ in 0..256 {
-            let step = (g / rate).max(tol);
-            let g_next = gap(u + step);
-            if g_next <= 0.0 {
-                let (mut a, mut b) = (u, u + step);
-                for _ in 0..48 {
-                    let m = 0.5 * (a + b);
-                    if gap(m) > 0.0 {
-                        a = m;
-                    } else {
-                        b = m;
-                    }
-                }
-                let u = 0.5 * (a + b);
-                return Some(((s + t * u).truncate(), u));
-            }
-            u += step;
-            g = g_next;
-            if g < tol {
-                return Some(((s + t * u).truncate(), u));
-            }
-        }
-        Some(((s + t * u).truncate(), u))
-    }
 }

@@ -127,16 +127,7 @@ impl Tracer<'_> {
                 for k in 1..=steps {
                     let b = t_end * k as f64 / steps as f64;
                     if gap(b) <= 0.0 {
-                        let (mut lo, mut hi) = (a, b);
-                        for _ in 0..30 {
-                            let m = 0.5 * (lo + hi);
-                            if gap(m) > 0.0 {
-                                lo = m;
-                            } else {
-                                hi = m;
-                            }
-                        }
-                        let t = 0.5 * (lo + hi);
+                        let t = crate::receivers::bisect(gap, a, b, 30);
                         return (t, o + d * t);
                     }
                     a = b;

@@ -125,17 +125,9 @@ pub fn terrain_march(
     let step = (s_b - s_a) / steps as f64;
     let mut a = s_a;
     for n in 1..=steps {
-        let mut b = s_a + step * n as f64;
+        let b = s_a + step * n as f64;
         if gap(b) <= 0.0 {
-            for _ in 0..BISECTION_STEPS {
-                let m = 0.5 * (a + b);
-                if gap(m) > 0.0 {
-                    a = m;
-                } else {
-                    b = m;
-                }
-            }
-            return Some(0.5 * (a + b));
+            return Some(crate::receivers::bisect(gap, a, b, BISECTION_STEPS));
         }
         a = b;
     }

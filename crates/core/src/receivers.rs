@@ -1,0 +1,336 @@
+//! What lies under the water as the sun sees it through flat water, and how a technique's light
+//! meets it: the receivers' height map in the light's space.
+//!
+//! This is caustics mapping's receiver model (Shah, Konttinen & Pattanaik, "Caustics Mapping: An
+//! Image-Space Technique for Real-Time Caustics", TVCG 13(2), 2007, §3: the receivers' positions
+//! rendered from the light, the refracted rays met against them in the light's image) and paper 5's
+//! light-view terrain depth, written for one sun under one water surface.
+//!
+//! # The light's space
+//! Orthographic along `t₀`, the sun refracted by flat water: every ray a technique follows leaves
+//! the surface near `t₀`. A point `P`'s light-space coordinate is where the line through it along
+//! `t₀` meets the floor plane, `q(P) = P_xy + P_z · t₀_xy / −t₀_z` (an oblique projection: on the
+//! plane `z = 0` a point is its own light-space point, so on a flat floor the light's texels are
+//! the floor's); its depth is its height `P_z`. [`ReceiverHeights`] holds, per light-space texel,
+//! the height of the first receiver that line meets coming down from the water: the one nearest
+//! the light.
+//!
+//! # Meeting a ray
+//! A ray `s + d t` leaving the surface meets the receivers where `g(d) = P_z(d) − H(q(P(d)))`
+//! changes sign (`H` the map, bilinear). Along `t₀` itself `q` does not move and one step of
+//! `g / −t_z` lands on the receiver; a ray tilted from `t₀` moves `q` by `t_xy − t_z t₀_xy / t₀_z`
+//! per unit `d`, so steps bounded by `g` over the largest rate (`−t_z` plus that drift times the
+//! map's steepest slope) never step over a receiver, and bisection finishes the sign change.
+//!
+//! # Looking the light up
+//! A technique that meets the receivers this way deposits its light in light space: flux per unit
+//! area of the plane `z = 0` along the light, which is the relative irradiance of a flat floor. A
+//! receiver point `P` with normal `n` then takes [`lookup`]: the deposit at `q(P)` times
+//! `n · (−t₀) / −t₀_z` (its area as the light sees it over its horizontal area under a flat floor's
+//! light), and nothing where it lies below the map's height at `q(P)` (something nearer the light
+//! covers it), as a shadow map's depth test.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use crate::map::CausticsMap;
+use crate::optics::refract;
+use crate::scene::Floor;
+
+/// Light-space coordinate of `p`: where the line through it along `t0` meets the plane `z = 0`.
+pub fn light_space(p: DVec3, t0: DVec3) -> DVec2 {
+    p.truncate() + t0.truncate() * (p.z / -t0.z)
+}
+
+/// The direction the sun (`light`, travelling, `z < 0`) takes under flat water of `ior`.
+pub fn flat_refracted(light: DVec3, ior: f64) -> DVec3 {
+    refract(light, DVec3::Z, 1.0 / ior).unwrap_or(DVec3::NEG_Z)
+}
+
+/// The receivers' heights in the light's space: per texel of a square light-space window, the
+/// height of the first receiver met coming down along `t0` from the water.
+#[derive(Clone, Debug)]
+pub struct ReceiverHeights {
+    /// The flat-water refracted sun, unit, `z < 0`.
+    pub t0: DVec3,
+    /// Light-space corner of texel (0, 0).
+    pub origin: DVec2,
+    /// Side of a texel.
+    pub texel: f64,
+    pub cols: usize,
+    pub rows: usize,
+    /// Row-major heights.
+    pub heights: Vec<f32>,
+    /// The largest change of the bilinear map's height per unit light-space distance.
+    pub max_slope: f64,
+    /// The floor's terrain over the `size` square (`None`: the plane `z = 0`), for the receivers'
+    /// points and normals in [`lookup`].
+    pub terrain: Option<crate::grid::Grid>,
+    pub size: f64,
+}
+
+impl ReceiverHeights {
+    /// The floor's receivers seen along `t0` from water `depth` deep over the `size` square, at
+    /// `resolution` texels across the square. The window is the square widened by how far along
+    /// `t0` the floor's highest point moves in light space, so every receiver point over the square
+    /// has its texel; lookups beyond it take the nearest edge texel.
+    pub fn of_floor(floor: &Floor, size: f64, depth: f64, t0: DVec3, resolution: usize) -> Self {
+        let resolution = resolution.max(1);
+        let texel = size / resolution as f64;
+        let top = floor
+            .terrain
+            .as_ref()
+            .map_or(0.0, |g| g.min_max().1 as f64)
+            .clamp(0.0, depth);
+        let shift = t0.truncate().abs() * (top / -t0.z);
+        let margin = ((shift.max_element() / texel).ceil() as usize) + 2;
+        let n = resolution + 2 * margin;
+        let origin = DVec2::splat(-(margin as f64) * texel);
+        let march = floor.terrain.as_ref().map(|g| HeightMarch::new(g, size));
+        let heights = (0..n * n)
+            .into_par_iter()
+            .map(|k| {
+                let q = origin + (DVec2::new((k % n) as f64, (k / n) as f64) + 0.5) * texel;
+                let Some(m) = &march else { return 0.0 };
+                // The line through q along t0, from the water's rest level down.
+                let s = q.extend(0.0) + t0 * (depth / t0.z);
+                let height = |p: DVec2| floor.height_gradient(p, size).0;
+                match m.intersect(s, t0, &height) {
+                    Some(d) => (s + t0 * d).z as f32,
+                    None => depth as f32,
+                }
+            })
+            .collect();
+        let mut map = ReceiverHeights {
+            t0,
+            origin,
+            texel,
+            cols: n,
+            rows: n,
+            heights,
+            max_slope: 0.0,
+            terrain: floor.terrain.clone(),
+            size,
+        };
+        map.max_slope = map.steepest();
+        map
+    }
+
+    fn steepest(&self) -> f64 {
+        let mut slope: f32 = 0.0;
+        for i in 0..self.rows {
+            for j in 0..self.cols {
+                let h = self.at(i, j);
+                if j + 1 < self.cols {
+                    slope = slope.max((self.at(i, j + 1) - h).abs());
+                }
+                if i + 1 < self.rows {
+                    slope = slope.max((self.at(i + 1, j) - h).abs());
+                }
+            }
+        }
+        // Bilinear: the gradient's two components each bounded by the steepest edge.
+        slope as f64 * std::f64::consts::SQRT_2 / self.texel
+    }
+
+    fn at(&self, i: usize, j: usize) -> f32 {
+        self.heights[i * self.cols + j]
+    }
+
+    /// The map's height at light-space point `q`, bilinear between texel centres, clamped at the
+    /// window's edges.
+    pub fn height(&self, q: DVec2) -> f64 {
+        let u = (q - self.origin) / self.texel - 0.5;
+        let (j0, i0) = (u.x.floor(), u.y.floor());
+        let (fu, fv) = (u.x - j0, u.y - i0);
+        let fetch = |i: f64, j: f64| {
+            let i = (i as i64).clamp(0, self.rows as i64 - 1) as usize;
+            let j = (j as i64).clamp(0, self.cols as i64 - 1) as usize;
+            self.at(i, j) as f64
+        };
+        let (a, b) = (fetch(i0, j0), fetch(i0, j0 + 1.0));
+        let (c, d) = (fetch(i0 + 1.0, j0), fetch(i0 + 1.0, j0 + 1.0));
+        (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv
+    }
+
+    /// Where the ray `s + d t` (`t` unit, going down) first meets the receivers, and its length
+    /// `d`; `None` where it starts below them (dry land above the water) or never comes down.
+    pub fn meet(&self, s: DVec3, t: DVec3) -> Option<(DVec3, f64)> {
+        if t.z >= 0.0 {
+            return None;
+        }
+        let drift = (t.truncate() - self.t0.truncate() * (t.z / self.t0.z)).length();
+        let rate = -t.z + self.max_slope * drift;
+        let gap = |d: f64| {
+            let p = s + t * d;
+            p.z - self.height(light_space(p, self.t0))
+        };
+        let d = march(gap, rate, self.texel)?;
+        Some((s + t * d, d))
+    }
+
+    /// Whether receiver point `p` is the first the light meets along `t0` (within `bias`), not
+    /// covered by another receiver nearer the light.
+    pub fn lit(&self, p: DVec3, bias: f64) -> bool {
+        p.z >= self.height(light_space(p, self.t0)) - bias
+    }
+}
+
+/// The first zero of `gap` from `d = 0` (positive there), when `gap` changes at most `rate` per
+/// unit `d`: conservative steps, then bisection on the sign change. `None` where `gap(0) ≤ 0`.
+/// Steps no shorter than `1e-7 · scale`.
+pub fn march(gap: impl Fn(f64) -> f64, rate: f64, scale: f64) -> Option<f64> {
+    let mut g = gap(0.0);
+    if g <= 0.0 {
+        return None;
+    }
+    let tol = 1e-7 * scale;
+    let mut d = 0.0;
+    for _ in 0..256 {
+        let step = (g / rate).max(tol);
+        let g_next = gap(d + step);
+        if g_next <= 0.0 {
+            return Some(bisect(&gap, d, d + step, 48));
+        }
+        d += step;
+        g = g_next;
+        if g < tol {
+            return Some(d);
+        }
+    }
+    Some(d)
+}
+
+/// The sign change of `gap` between `a` (positive) and `b` (not), halved `iterations` times: the
+/// middle of the last bracket.
+pub fn bisect(gap: impl Fn(f64) -> f64, mut a: f64, mut b: f64, iterations: u32) -> f64 {
+    for _ in 0..iterations {
+        let m = 0.5 * (a + b);
+        if gap(m) > 0.0 {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// A ray against a bicubic height field: the bound [`march`] steps by.
+pub struct HeightMarch {
+    max_slope: f64,
+    size: f64,
+}
+
+impl HeightMarch {
+    /// For the bicubic interpolant of `g` over the `size` square.
+    pub fn new(g: &crate::grid::Grid, size: f64) -> Self {
+        let (dx, dy) = (size / g.cols as f64, size / g.rows as f64);
+        let mut max_slope: f64 = 0.0;
+        for i in 0..g.rows {
+            for j in 0..g.cols {
+                let v = g.at(i, j) as f64;
+                if j + 1 < g.cols {
+                    max_slope = max_slope.max((g.at(i, j + 1) as f64 - v).abs() / dx);
+                }
+                if i + 1 < g.rows {
+                    max_slope = max_slope.max((g.at(i + 1, j) as f64 - v).abs() / dy);
+                }
+            }
+        }
+        // The bicubic interpolant overshoots the samples' slopes by at most 25 % (Catmull-Rom).
+        HeightMarch {
+            max_slope: max_slope * 1.25 * std::f64::consts::SQRT_2,
+            size,
+        }
+    }
+
+    /// The length `d` along `s + d t` to where the ray first meets the surface `height`.
+    pub fn intersect(&self, s: DVec3, t: DVec3, height: &dyn Fn(DVec2) -> f64) -> Option<f64> {
+        let rate = -t.z + self.max_slope * t.truncate().length();
+        march(
+            |d| {
+                let p = s + t * d;
+                p.z - height(p.truncate())
+            },
+            rate,
+            self.size,
+        )
+    }
+}
+
+/// A floor map (the floor's `(x, y)` texels) from a light-space deposit `light` (flux per unit
+/// area of `z = 0` along the light, on the same window as the floor map): each floor texel's
+/// centre `P` on the floor takes the deposit at `q(P)` times `n · (−t₀) / −t₀_z`, and nothing
+/// where another receiver covers it. On a flat floor this is `light` itself.
+pub fn lookup(light: &CausticsMap, receivers: &ReceiverHeights, wrap: bool) -> CausticsMap {
+    let (w, h, size) = (light.width, light.height, light.size);
+    let t0 = receivers.t0;
+    let mut out = CausticsMap::new(w, h, size);
+    let texel = DVec2::new(size / w as f64, size / h as f64);
+    for (k, t) in out.texels.iter_mut().enumerate() {
+        let c = (DVec2::new((k % w) as f64, (k / w) as f64) + 0.5) * texel;
+        let (z, grad) = receivers.terrain.as_ref().map_or((0.0, DVec2::ZERO), |g| {
+            g.sample(c, receivers.size, crate::grid::Edge::Clamp)
+        });
+        let p = c.extend(z);
+        if !receivers.lit(p, 0.5 * receivers.texel * receivers.max_slope.max(1.0)) {
+            *t = [0.0; 3];
+            continue;
+        }
+        let n = crate::optics::height_field_normal(grad);
+        let facing = (n.dot(-t0) / -t0.z).max(0.0) as f32;
+        let q = light_space(p, t0);
+        *t = light.sample(q.x, q.y, wrap).map(|v| v * facing);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Grid;
+    use crate::scene::{Albedo, Deck};
+
+    fn floor(terrain: Option<Grid>) -> Floor {
+        Floor {
+            terrain,
+            albedo: Albedo::Pattern(Default::default()),
+            walls: false,
+            deck: Deck::Stone,
+        }
+    }
+
+    fn slope(n: usize, size: f64, rise: f64) -> Grid {
+        Grid::from_fn(n, n, |_, j| {
+            (rise * (j as f64 + 0.5) / n as f64 * size) as f32
+        })
+    }
+
+    #[test]
+    fn a_flat_floor_is_its_own_light_space() {
+        let t0 = flat_refracted(DVec3::new(-0.35, 0.2, -1.0).normalize(), 1.333);
+        let r = ReceiverHeights::of_floor(&floor(None), 4.0, 1.0, t0, 16);
+        assert!(r.heights.iter().all(|&h| h == 0.0));
+        let s = DVec3::new(1.3, 2.1, 1.02);
+        let t = DVec3::new(0.1, -0.05, -1.0).normalize();
+        let (hit, d) = r.meet(s, t).unwrap();
+        assert!(hit.z.abs() < 1e-9, "{hit}");
+        assert!((d - s.z / -t.z).abs() < 1e-9);
+        assert!(light_space(hit, t0).distance(hit.truncate()) < 1e-12);
+    }
+
+    #[test]
+    fn rays_meet_a_plane_slope_where_the_plane_is() {
+        // z = 0.2 x over a 4 m square: the bilinear light-space map of a plane is the plane.
+        let (size, depth) = (4.0, 1.5);
+        let f = floor(Some(slope(64, size, 0.2)));
+        let t0 = flat_refracted(DVec3::new(0.4, -0.3, -1.0).normalize(), 1.333);
+        let r = ReceiverHeights::of_floor(&f, size, depth, t0, 64);
+        for (x, y, tx) in [(1.0, 1.0, 0.0), (2.5, 3.0, 0.15), (0.5, 2.0, -0.2)] {
+            let s = DVec3::new(x, y, depth + 0.03);
+            let t = (t0 + DVec3::new(tx, 0.05, 0.0)).normalize();
+            let (hit, _) = r.meet(s, t).unwrap();
+            assert!((hit.z - 0.2 * hit.x).abs() < 1e-6, "{hit}");
+        }
+    }
+}
