@@ -30,6 +30,8 @@
 //! light), and nothing where it lies below the map's height at `q(P)` (something nearer the light
 //! covers it), as a shadow map's depth test.
 
+use std::sync::Arc;
+
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -67,6 +69,9 @@ pub struct ReceiverHeights {
     /// points and normals in [`lookup`].
     pub terrain: Option<crate::grid::Grid>,
     pub size: f64,
+    /// The water's depth and the texels across the square it was made for.
+    pub depth: f64,
+    pub resolution: usize,
 }
 
 impl ReceiverHeights {
@@ -111,9 +116,35 @@ impl ReceiverHeights {
             max_slope: 0.0,
             terrain: floor.terrain.clone(),
             size,
+            depth,
+            resolution,
         };
         map.max_slope = map.steepest();
         map
+    }
+
+    /// [`of_floor`](Self::of_floor), or `previous` where it was made from the same floor, water
+    /// and sun (a frame that refits every frame builds the map once).
+    pub fn of_floor_reusing(
+        previous: Option<&Arc<ReceiverHeights>>,
+        floor: &Floor,
+        size: f64,
+        depth: f64,
+        t0: DVec3,
+        resolution: usize,
+    ) -> Arc<ReceiverHeights> {
+        match previous {
+            Some(p)
+                if p.t0 == t0
+                    && p.size == size
+                    && p.depth == depth
+                    && p.resolution == resolution
+                    && p.terrain == floor.terrain =>
+            {
+                p.clone()
+            }
+            _ => Arc::new(Self::of_floor(floor, size, depth, t0, resolution)),
+        }
     }
 
     fn steepest(&self) -> f64 {

@@ -14,6 +14,7 @@ pub mod map_mips;
 pub mod pass;
 pub mod probe;
 pub mod procedural;
+pub mod receivers;
 pub mod registry;
 pub mod renderer;
 pub mod shaders;

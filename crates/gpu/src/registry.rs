@@ -63,6 +63,7 @@ pub const FRAME_PASSES: &[&[&PassSource]] = &[
     crate::final_image::PASSES,
     crate::final_image::slopes::PASSES,
     crate::map_mips::PASSES,
+    crate::receivers::PASSES,
     crate::probe::PASSES,
 ];
 

@@ -683,6 +683,32 @@ fn merging_matches_the_cpu_twin() {
     }
 }
 
+/// The water generator of `ws` on both twins (triangles), and how their photons agree: the share
+/// of validity flips, p99 position and power differences ([`photon_agreement`]), the worst path.
+fn water_twins(
+    ctx: &caustics_gpu::GpuContext,
+    ct_gpu: &CausticTriangles,
+    ws: &caustics_core::techniques::caustic_triangles::water::WaterSetup,
+    heights: &caustics_core::grid::Grid,
+) -> (
+    caustics_core::techniques::caustic_triangles::water::WaterOutput,
+    caustics_gpu::caustic_triangles::WaterGpuOutput,
+    [f64; 4],
+) {
+    let cpu = caustics_core::techniques::caustic_triangles::water::caustics(ws, heights).unwrap();
+    let gpu = ct_gpu
+        .run_water(ctx, ws, heights, Reconstruction::Triangles)
+        .expect("gpu run");
+    let (flips, dpos, dpow) = photon_agreement(&cpu.photons, &gpu.photons);
+    let dpath = cpu
+        .paths
+        .iter()
+        .zip(&gpu.paths)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    (cpu, gpu, [flips, dpos, dpow, dpath as f64])
+}
+
 /// The water surface as the generator: the pool's waves through the water photon pass, its
 /// photons, path lengths and maps (triangles and splats, wrapped, with absorption) against the CPU
 /// twin; and clamped water's single copy. Both area rules: the hat rule's edge vertices differ
@@ -709,17 +735,7 @@ fn water_generator_matches_the_cpu_twin() {
             ..Default::default()
         };
         let ws = WaterSetup::new(&params, &w, scene.light.direction, 128, 128).unwrap();
-        let cpu = water::caustics(&ws, &heights).unwrap();
-        let gpu = ct_gpu
-            .run_water(&ctx, &ws, &heights, Reconstruction::Triangles)
-            .expect("gpu run");
-        let (flips, dpos, dpow) = photon_agreement(&cpu.photons, &gpu.photons);
-        let dpath = cpu
-            .paths
-            .iter()
-            .zip(&gpu.paths)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0f32, f32::max);
+        let (cpu, gpu, [flips, dpos, dpow, dpath]) = water_twins(&ctx, &ct_gpu, &ws, &heights);
         eprintln!(
             "wrap {wrap}, {area_rule:?}: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}"
         );
@@ -752,6 +768,54 @@ fn water_generator_matches_the_cpu_twin() {
             assert!(mean > 0.8, "mean blue {mean}");
         }
     }
+}
+
+/// Over a terrain the photons meet the receivers' map and the lookup lights the floor's texels:
+/// the pool's ripples over the shore's beach scaled into the pool (its far side 80 % of the way
+/// up), photons, paths and the looked-up floor map against the CPU twin.
+fn water_over_a_terrain_matches_the_cpu_twin() {
+    use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
+    let ctx = test_gpu();
+    let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
+    let mut scene = common::with_gentle_ripples("pool");
+    scene.floor.walls = false;
+    let w = scene.water.clone().unwrap();
+    let mut beach = caustics_core::scene::Scene::builtin("shore")
+        .unwrap()
+        .floor
+        .terrain
+        .unwrap();
+    let top = beach.min_max().1;
+    beach
+        .data
+        .iter_mut()
+        .for_each(|h| *h *= 0.8 * w.depth as f32 / top);
+    scene.floor.terrain = Some(beach);
+    let surface = w.surface_at(scene.time).unwrap();
+    let heights = water::heights(&w, surface.as_ref(), 256, 256);
+    let params = CausticTrianglesParams {
+        photon_image: 96,
+        ..Default::default()
+    };
+    let ws = WaterSetup::new(&params, &w, scene.light.direction, 128, 128)
+        .unwrap()
+        .with_floor(&scene.floor, None);
+    assert!(ws.receivers.is_some());
+    let (cpu, gpu, [flips, dpos, dpow, dpath]) = water_twins(&ctx, &ct_gpu, &ws, &heights);
+    let m = compare(&gpu.map, &cpu.map);
+    eprintln!(
+        "terrain: flips {flips}, p99 position {dpos:.2e}, p99 power {dpow:.2e}, path {dpath:.2e}; map {m:?}"
+    );
+    assert_eq!(flips, 0.0);
+    // f32 marching against f64 (lavapipe 25.0.7): p99 position 4.9e-7, power 2.0e-7, worst
+    // path 3.3e-6; map relative L1 1.6e-6, flux 2.5e-7. Bounds 10x.
+    assert!(dpos < 4.9e-6, "positions {dpos}");
+    assert!(dpow < 2e-6, "powers {dpow}");
+    assert!(dpath < 3.3e-5, "paths {dpath}");
+    assert!(
+        m.relative_l1 < 1.6e-5 && m.flux_error.abs() < 2.5e-6,
+        "{m:?}"
+    );
 }
 
 fn the_water_photon_uniform_matches_its_wgsl_size() {
@@ -1197,6 +1261,7 @@ test_main! {
     gpu camera_pass_with_the_sun_matches_the_cpu_twin,
     gpu merging_matches_the_cpu_twin,
     gpu water_generator_matches_the_cpu_twin,
+    gpu water_over_a_terrain_matches_the_cpu_twin,
     cpu the_water_photon_uniform_matches_its_wgsl_size,
     gpu through_the_trait::water_generator_through_the_trait_matches_the_cpu_twin,
     gpu through_the_trait::water_generator_frames_create_and_read_nothing,

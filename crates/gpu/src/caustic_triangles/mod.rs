@@ -99,6 +99,8 @@ pub struct CausticTriangles {
     water_photon: wgpu::ComputePipeline,
     copy_band: wgpu::ComputePipeline,
     band_bound: wgpu::ComputePipeline,
+    /// The receivers' lookup of a water frame over a terrain.
+    lookup: crate::receivers::ReceiverLookup,
     /// `Rgba32Float` with `FLOAT32_BLENDABLE`, else `Rgba16Float` (floor and light cube maps).
     pub map_format: wgpu::TextureFormat,
 }
@@ -125,6 +127,7 @@ impl CausticTriangles {
             water_photon: compute_pipeline(ctx, &WATER_PHOTON),
             copy_band: compute_pipeline(ctx, &COPY_BAND),
             band_bound: compute_pipeline(ctx, &BAND_BOUND),
+            lookup: crate::receivers::ReceiverLookup::new(ctx),
             map_format,
         };
         ctx.check()?;

@@ -45,6 +45,23 @@ impl CausticTriangles {
         })
     }
 
+    /// A water frame's floor map: the receivers' lookup where it has receivers, else the
+    /// triangles' map.
+    pub fn read_water_map(
+        &self,
+        ctx: &GpuContext,
+        wf: &WaterFrame,
+    ) -> Result<CausticsMap, GpuError> {
+        let f = &wf.frame.setup.floor;
+        let texels = ctx.read_rgba_f32(wf.floor_map())?;
+        Ok(CausticsMap {
+            width: f.width,
+            height: f.height,
+            size: f.size,
+            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+        })
+    }
+
     /// Run the technique once and read everything back.
     pub fn run(
         &self,
@@ -134,7 +151,7 @@ impl CausticTriangles {
             t.resolve(&mut encoder);
         }
         ctx.queue.submit([encoder.finish()]);
-        let map = self.read_map(ctx, &wf.frame)?;
+        let map = self.read_water_map(ctx, &wf)?;
         let walls = self.read_walls(ctx, &wf)?;
         ctx.check()?;
         Ok((map, walls))
@@ -152,7 +169,7 @@ impl CausticTriangles {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode_water(&wf, &mut encoder, None, reconstruction);
         ctx.queue.submit([encoder.finish()]);
-        let map = self.read_map(ctx, &wf.frame)?;
+        let map = self.read_water_map(ctx, &wf)?;
         Ok(WaterGpuOutput {
             photons: ctx.read_buffer(&wf.frame.photons)?,
             paths: ctx.read_buffer(&wf.frame.paths)?,

@@ -11,9 +11,10 @@
 //! The map is the floor square `[0, size]²` at the scene's caustics resolution, as the CPU twin's
 //! (`caustics_core::techniques::caustic_triangles::render`).
 
+use caustics_core::receivers::ReceiverHeights;
 use caustics_core::scene::{Light, Scene, WaterSource};
 use caustics_core::techniques::caustic_triangles as ct;
-use caustics_core::techniques::caustic_triangles::water::{WaterSetup, check_flat_floor};
+use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_core::techniques::caustic_triangles::{
     CausticTrianglesParams, CausticTrianglesSetup, DistanceMap, GlassScene, PointLight,
 };
@@ -97,10 +98,14 @@ impl CausticTrianglesTechnique {
 }
 
 /// The water generator's setup for `scene` (the app's water job: the sun, the map at the scene's
-/// caustics resolution over the water square).
-fn water_setup(params: &CausticTrianglesParams, scene: &Scene) -> Result<WaterSetup, GpuError> {
+/// caustics resolution over the water square, the terrain's receivers, `previous` where they did
+/// not change).
+fn water_setup(
+    params: &CausticTrianglesParams,
+    scene: &Scene,
+    previous: Option<&std::sync::Arc<ReceiverHeights>>,
+) -> Result<WaterSetup, GpuError> {
     let water = scene.water.as_ref().expect("a water scene");
-    check_flat_floor(scene)?;
     if !scene.light.is_sun() {
         return Err(GpuError::BadOption(format!(
             "scene `{}`: caustic-triangles lights its water surface with the directional sun only (light.position is set)",
@@ -114,7 +119,8 @@ fn water_setup(params: &CausticTrianglesParams, scene: &Scene) -> Result<WaterSe
         scene.caustics.width as usize,
         scene.caustics.height as usize,
     )?
-    .with_walls(scene.floor.walls))
+    .with_walls(scene.floor.walls)
+    .with_floor(&scene.floor, previous))
 }
 
 /// A generator per glass object, drawing into one floor map.
@@ -235,7 +241,7 @@ impl Pipelines for CausticTriangles {
         water: &WaterTextures,
     ) -> Result<State, GpuError> {
         if scene.water.is_some() {
-            let ws = water_setup(params, scene)?;
+            let ws = water_setup(params, scene, None)?;
             Ok(State::Water(Box::new(
                 self.water_frame_with_water(ctx, &ws, water)?,
             )))
@@ -253,8 +259,12 @@ impl Pipelines for CausticTriangles {
         state: &mut State,
         scene: &Scene,
     ) -> Result<bool, GpuError> {
+        let previous = match &*state {
+            State::Water(frame) => frame.setup.receivers.clone(),
+            State::Glass { .. } => None,
+        };
         let ws = match scene.water {
-            Some(_) => Some(water_setup(params, scene)?),
+            Some(_) => Some(water_setup(params, scene, previous.as_ref())?),
             None => None,
         };
         match (state, ws) {
@@ -330,7 +340,7 @@ impl Pipelines for CausticTriangles {
 
     fn output<'a>(&'a self, state: &'a State) -> Output<'a> {
         match state {
-            State::Water(frame) => Output::Floor(&frame.frame.map),
+            State::Water(frame) => Output::Floor(frame.floor_map()),
             State::Glass { map, .. } => Output::Floor(map),
         }
     }

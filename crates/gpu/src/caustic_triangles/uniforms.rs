@@ -1,5 +1,6 @@
 //! The uniform blocks and the copy band's buffer, as the WGSL files declare them.
 
+use crate::receivers::ReceiversUniform;
 use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 use caustics_core::walls::Wall;
@@ -107,6 +108,8 @@ pub struct WaterPhotonUniform {
     pub fresnel: u32,
     /// 0: the floor; `1 + k`: wall `k` of `Wall::ALL` (its own photon image, `receiver_photon`).
     pub receiver: u32,
+    /// What the floor's photons meet (the plane `z = 0` where `t0[3]` is 0).
+    pub receivers: ReceiversUniform,
 }
 
 impl WaterPhotonUniform {
@@ -129,6 +132,7 @@ impl WaterPhotonUniform {
             wrap: ws.surface_wrap as u32,
             fresnel: ws.fresnel as u32,
             receiver: wall.map_or(0, |w| 1 + w.index() as u32),
+            receivers: ReceiversUniform::of(ws.receivers.as_deref()),
         }
     }
 }

@@ -11,7 +11,10 @@ use super::{
     BAND_BOUND, COPY_BAND, CausticTriangles, CausticTrianglesUniform, GeneratorFrame,
     Reconstruction, WaterPhotonUniform,
 };
+use std::sync::Arc;
+
 use crate::pass::{begin_compute, bind_group};
+use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
 /// Tiling water's copy band on the GPU: the bound pass's buffer and bind group, the band pass's, and
@@ -44,6 +47,10 @@ pub struct WaterFrame {
     band_bind: Option<BandPasses>,
     /// The walls' receivers when the setup has walls ([`WaterSetup::with_walls`]).
     pub walls: Option<WallFrames>,
+    /// The terrain's receivers when the setup has them ([`WaterSetup::with_receivers`]): the
+    /// photons meet their heights, the triangles are drawn in the light's space, and the lookup
+    /// writes the floor map.
+    pub receivers: Option<ReceiverFrame>,
 }
 
 /// The pool's walls as receivers of a water frame (CPU twin `water::wall_caustics`):
@@ -85,23 +92,35 @@ impl WaterFrame {
         Ok(())
     }
 
-    /// Whether `ws` fits this frame's buffers and bind groups (the same lattice, map size and
-    /// wrap), so that [`set_setup`](Self::set_setup) can take it.
+    /// The floor map: the receivers' lookup where the frame has receivers, else the triangles'.
+    pub fn floor_map(&self) -> &wgpu::Texture {
+        self.receivers
+            .as_ref()
+            .map_or(&self.frame.map, |r| &r.floor)
+    }
+
+    /// Whether `ws` fits this frame's buffers and bind groups (the same lattice, map size, wrap
+    /// and receivers), so that [`set_setup`](Self::set_setup) can take it.
     pub fn fits(&self, ws: &WaterSetup) -> bool {
         let f = &self.setup.setup.floor;
-        (
-            ws.lattice,
-            ws.setup.floor.width,
-            ws.setup.floor.height,
-            ws.setup.merge_levels,
-            ws.wrap(),
-        ) == (
-            self.setup.lattice,
-            f.width,
-            f.height,
-            self.setup.setup.merge_levels,
-            self.setup.wrap(),
-        )
+        let same_receivers = match (&ws.receivers, &self.setup.receivers) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        same_receivers
+            && (
+                ws.lattice,
+                ws.setup.floor.width,
+                ws.setup.floor.height,
+                ws.setup.merge_levels,
+                ws.wrap(),
+            ) == (
+                self.setup.lattice,
+                f.width,
+                f.height,
+                self.setup.setup.merge_levels,
+                self.setup.wrap(),
+            )
     }
 
     /// Take a new sun, water depth, index or parameters (a setup that [`fits`](Self::fits)): two
@@ -168,6 +187,7 @@ impl WaterFrame {
                 .as_ref()
                 .map_or(0, |_| (self.grid.0 * self.grid.1) as u64 * 4)
             + 48
+            + self.receivers.as_ref().map_or(0, |r| r.bytes())
             + self.walls.as_ref().map_or(0, |w| {
                 let t = &w.texture;
                 let texel = t.format().block_copy_size(None).unwrap_or(16) as u64;
@@ -219,6 +239,15 @@ impl CausticTriangles {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let view = wgpu::BindingResource::TextureView(&water.heights);
+        let receivers = match &ws.receivers {
+            Some(r) => Some(self.lookup.frame(ctx, r, &frame.map, ws.wrap())?),
+            None => None,
+        };
+        let heights_of_receivers = match &receivers {
+            Some(r) => r.heights.create_view(&Default::default()),
+            None => heights_texture(ctx, None)?.create_view(&Default::default()),
+        };
+        let receiver_view = wgpu::BindingResource::TextureView(&heights_of_receivers);
         let water_bind = bind_group(
             ctx,
             "caustic-triangles water photons",
@@ -228,6 +257,7 @@ impl CausticTriangles {
                 view.clone(),
                 frame.photons.as_entire_binding(),
                 frame.paths.as_entire_binding(),
+                receiver_view.clone(),
             ],
         );
         let band_bind = ws.wrap().then(|| {
@@ -269,7 +299,7 @@ impl CausticTriangles {
         });
         frame.gpu_band = band_bind.is_some();
         let walls = if ws.walls {
-            Some(self.wall_frames(ctx, ws, &view)?)
+            Some(self.wall_frames(ctx, ws, &view, &receiver_view)?)
         } else {
             None
         };
@@ -283,6 +313,7 @@ impl CausticTriangles {
             water_bind,
             band_bind,
             walls,
+            receivers,
         })
     }
 
@@ -292,6 +323,7 @@ impl CausticTriangles {
         ctx: &GpuContext,
         ws: &WaterSetup,
         heights: &wgpu::BindingResource,
+        receiver_heights: &wgpu::BindingResource,
     ) -> Result<WallFrames, GpuError> {
         let f = &ws.setup.floor;
         let layout = WallMaps::for_floor_map(f.width, f.height, ws.size, ws.depth);
@@ -329,6 +361,7 @@ impl CausticTriangles {
                     heights.clone(),
                     frame.photons.as_entire_binding(),
                     frame.paths.as_entire_binding(),
+                    receiver_heights.clone(),
                 ],
             );
             walls.push(WallFrame {
@@ -373,6 +406,9 @@ impl CausticTriangles {
             pass.dispatch_workgroups(1, 1, 1);
         }
         self.encode_reconstruction(&wf.frame, encoder, timer.as_deref_mut(), reconstruction);
+        if let Some(r) = &wf.receivers {
+            self.lookup.encode(r, encoder, timer.as_deref_mut());
+        }
         for wall in wf.walls.iter().flat_map(|w| &w.walls) {
             {
                 let mut pass = begin_compute(encoder, &mut timer, "caustic-triangles wall photons");

@@ -1,8 +1,9 @@
 // Technique `caustic-triangles` with the water surface as the caustic generator, the water photon
 // pass (paper §4.1, the photon image of a height field): photon (i, j) at the lattice corner
 // (j, i) * spacing of the water square, its surface point from the bicubic height interpolant, the
-// sun refracted by exact Snell through its true normal, the floor z = 0 met analytically. Writes
-// (x, y, power, 1) of the floor hit (power -1 where the surface faces away from the sun) and the
+// sun refracted by exact Snell through its true normal, the floor z = 0 met analytically, or, over
+// a terrain, the receivers' map met by marching and the hit written at its light-space point
+// (docs/receivers.md). Writes (x, y, power, 1) of the floor hit (power -1 where the surface faces away from the sun) and the
 // refracted path length (Beer-Lambert in the triangles pass). Power: the cell's area projected
 // along the light onto the horizontal, times the Fresnel transmittance relative to flat water (the
 // reference's normalisation). With walls each receiver (the floor, one wall) has its own photon
@@ -12,6 +13,7 @@
 
 import package::caustic_triangles::water_setup::WaterPhoton;
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::receivers::{light_space, meet_receivers};
 import package::shaders::water::grid_sample;
 
 // The uniform block `WaterPhoton`: water_setup.wgsl.
@@ -19,6 +21,8 @@ import package::shaders::water::grid_sample;
 @group(0) @binding(1) var heights: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read_write> photons: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read_write> paths: array<f32>;
+// The receivers' heights in the light's space (a 1 x 1 texture where the floor is the plane z = 0).
+@group(0) @binding(4) var receiver_heights: texture_2d<f32>;
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -46,6 +50,18 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let power = w.water.z * w.water.z * seen * fresnel;
     let z = w.water.x + hg.x;
+    if w.receiver == 0u && w.receivers.t0.w != 0.0 {
+        let start = vec3<f32>(s, z);
+        let d = meet_receivers(receiver_heights, w.receivers, start, t.xyz);
+        if d < 0.0 {
+            photons[k] = vec4<f32>(0.0, 0.0, -1.0, 0.0);
+            paths[k] = 0.0;
+            return;
+        }
+        photons[k] = vec4<f32>(light_space(start + t.xyz * d, w.receivers.t0.xyz), power, 1.0);
+        paths[k] = d;
+        return;
+    }
     if w.receiver == 0u {
         let d = z / -t.z;
         photons[k] = vec4<f32>(s + t.xy * d, power, 1.0);

@@ -256,7 +256,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: true,
-    flat_floor: Some("draws the water's caustic triangles on the floor plane z = 0"),
+    flat_floor: None,
     buffers: buffers::BUFFERS,
     draw_buffer: buffers::draw_buffer,
     reference: false,
@@ -294,12 +294,12 @@ pub fn water_job_setup(
             job.scene.name
         )));
     }
-    job.flat_floor(&DESCRIPTOR)?;
     let params = CausticTrianglesParams::from_table(table)?;
     let (width, height) = job.size();
     job.with_surface(DESCRIPTOR.name, |w, surface| {
         let ws = water::WaterSetup::new(&params, w, job.light(), width, height)?
-            .with_walls(job.floor().walls);
+            .with_walls(job.floor().walls)
+            .with_floor(job.floor(), None);
         Ok((ws, super::heights_for(w, surface, width, height)))
     })
 }

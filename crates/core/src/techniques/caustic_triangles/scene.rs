@@ -257,6 +257,13 @@ impl GlassScene {
     /// The scene's `index`-th glass object as the generator (its mesh), its diffuse objects as
     /// occluders, the caustics resolution over the scene square.
     pub fn from_scene(scene: &Scene, index: usize) -> Result<Self> {
+        if scene.floor.terrain.is_some() {
+            return Err(Error::InvalidParameter(format!(
+                "scene `{}`: caustic-triangles draws glass objects' caustics on the floor plane z = 0 \
+                 only, and the scene has a terrain",
+                scene.name
+            )));
+        }
         let glass: Vec<_> = scene
             .objects
             .iter()

@@ -55,8 +55,8 @@ use crate::error::{Error, Result};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
-use crate::receivers::{ReceiverHeights, light_space, lookup};
-use crate::scene::{Scene, Water, WaterSource};
+use crate::receivers::{ReceiverHeights, flat_refracted, light_space, lookup};
+use crate::scene::{Floor, Scene, Water, WaterSource};
 use crate::walls::{Wall, WallMaps};
 use crate::water::{Surface, sample_grid};
 
@@ -190,6 +190,20 @@ impl WaterSetup {
             w.periodic = false;
         }
         self
+    }
+
+    /// The photons meet `floor`'s terrain where it has one ([`with_receivers`](Self::with_receivers)),
+    /// through the receivers' map at the floor map's resolution, taken from `previous` where
+    /// nothing it depends on changed.
+    pub fn with_floor(self, floor: &Floor, previous: Option<&Arc<ReceiverHeights>>) -> Self {
+        if floor.terrain.is_none() {
+            return self;
+        }
+        let t0 = flat_refracted(self.light, self.ior);
+        let width = self.setup.floor.width;
+        let r =
+            ReceiverHeights::of_floor_reusing(previous, floor, self.size, self.depth, t0, width);
+        self.with_receivers(r)
     }
 
     /// The reconstruction's setup for receiver `wall` (`None`: the floor): a wall's map is the
@@ -470,46 +484,22 @@ pub fn heights(water: &Water, surface: &dyn Surface, width: usize, height: usize
 /// scene's caustics resolution; with the scene's walls, nothing carried across the edges (the
 /// walls' own maps: [`render_with_walls`]).
 pub fn render(scene: &Scene, params: &CausticTrianglesParams) -> Result<CausticsMap> {
-    let water = scene.water.as_ref().ok_or_else(|| {
-        Error::InvalidParameter(format!(
-            "scene `{}` has no water: no water surface to generate caustics",
-            scene.name
-        ))
-    })?;
-    check_flat_floor(scene)?;
-    if !scene.light.is_sun() {
-        return Err(Error::field(
-            "light.position",
-            "caustic-triangles lights a water surface with the directional sun only",
-        ));
-    }
-    let (w, h) = (
-        scene.caustics.width as usize,
-        scene.caustics.height as usize,
-    );
-    let ws =
-        WaterSetup::new(params, water, scene.light.direction, w, h)?.with_walls(scene.floor.walls);
-    let surface = water.surface_at(scene.time)?;
-    Ok(caustics(&ws, &heights(water, surface.as_ref(), w, h))?.map)
+    Ok(render_with_walls(scene, params)?.0)
 }
 
 /// [`render`] with the scene's walls (`floor.walls`): the floor map with nothing carried across
 /// the edges, and the walls' maps ([`wall_caustics`]); `None` for the walls when the scene has
-/// none (the floor map is then [`render`]'s).
+/// none. Over a terrain the photons meet it ([`WaterSetup::with_floor`]).
 pub fn render_with_walls(
     scene: &Scene,
     params: &CausticTrianglesParams,
 ) -> Result<(CausticsMap, Option<WallMaps>)> {
-    if !scene.floor.walls {
-        return Ok((render(scene, params)?, None));
-    }
     let water = scene.water.as_ref().ok_or_else(|| {
         Error::InvalidParameter(format!(
             "scene `{}` has no water: no water surface to generate caustics",
             scene.name
         ))
     })?;
-    check_flat_floor(scene)?;
     if !scene.light.is_sun() {
         return Err(Error::field(
             "light.position",
@@ -520,16 +510,17 @@ pub fn render_with_walls(
         scene.caustics.width as usize,
         scene.caustics.height as usize,
     );
-    let ws = WaterSetup::new(params, water, scene.light.direction, w, h)?.with_walls(true);
+    let ws = WaterSetup::new(params, water, scene.light.direction, w, h)?
+        .with_walls(scene.floor.walls)
+        .with_floor(&scene.floor, None);
     let surface = water.surface_at(scene.time)?;
     let heights = heights(water, surface.as_ref(), w, h);
     let map = caustics(&ws, &heights)?.map;
-    Ok((map, Some(wall_caustics(&ws, &heights)?)))
-}
-
-/// The water generator's caustic triangles lie on the plane `z = 0`.
-pub fn check_flat_floor(scene: &Scene) -> Result<()> {
-    super::DESCRIPTOR.check_floor(scene)
+    let walls = match ws.walls {
+        true => Some(wall_caustics(&ws, &heights)?),
+        false => None,
+    };
+    Ok((map, walls))
 }
 
 #[cfg(test)]

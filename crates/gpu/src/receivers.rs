@@ -1,0 +1,174 @@
+//! The receivers on the GPU (docs/receivers.md): the light-space heights a technique's rays meet,
+//! uploaded from [`ReceiverHeights`] once per terrain and sun, and the lookup pass that lights the
+//! floor map's texels from a technique's light-space deposit (CPU twin:
+//! `caustics_core::receivers::lookup`).
+
+use std::sync::Arc;
+
+use caustics_core::grid::Grid;
+use caustics_core::receivers::ReceiverHeights;
+
+use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::shaders::passes;
+use crate::{GpuContext, GpuError, GpuTimer};
+
+passes! {
+    LOOKUP = "receivers lookup", "receivers_lookup.wgsl";
+}
+
+/// Mirrors `Receivers` in `shaders/receivers.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ReceiversUniform {
+    /// Light-space corner of texel (0, 0), texel side, the map's steepest slope.
+    pub view: [f32; 4],
+    /// The flat-water refracted sun; `w`: 1 where the receivers are met, 0 for the plane `z = 0`.
+    pub t0: [f32; 4],
+}
+
+impl ReceiversUniform {
+    /// `r`'s view, or the plane `z = 0` where there is none.
+    pub fn of(r: Option<&ReceiverHeights>) -> Self {
+        let Some(r) = r else {
+            return Self::default();
+        };
+        let t = r.t0.as_vec3();
+        ReceiversUniform {
+            view: [
+                r.origin.x as f32,
+                r.origin.y as f32,
+                r.texel as f32,
+                r.max_slope as f32,
+            ],
+            t0: [t.x, t.y, t.z, 1.0],
+        }
+    }
+}
+
+/// Mirrors `Lookup` in `receivers_lookup.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LookupUniform {
+    pub receivers: ReceiversUniform,
+    /// Side of the square, 1 where the light wraps, the depth test's bias, 1 over a terrain.
+    pub floor: [f32; 4],
+}
+
+/// The receivers' heights as an `R32Float` texture (1 x 1 and zero for the plane `z = 0`).
+pub fn heights_texture(
+    ctx: &GpuContext,
+    r: Option<&ReceiverHeights>,
+) -> Result<wgpu::Texture, GpuError> {
+    let grid = match r {
+        Some(r) => Grid {
+            cols: r.cols,
+            rows: r.rows,
+            data: r.heights.clone(),
+        },
+        None => Grid::new(1, 1),
+    };
+    ctx.upload_grid("receivers' heights", &grid)
+}
+
+/// The lookup pass's pipeline.
+pub struct ReceiverLookup {
+    pipeline: wgpu::ComputePipeline,
+}
+
+/// One technique's receivers: the heights its rays meet, and the floor map the lookup writes from
+/// its deposit.
+pub struct ReceiverFrame {
+    pub receivers: Arc<ReceiverHeights>,
+    pub heights: wgpu::Texture,
+    /// The floor map: `Rgba32Float`, the floor's texels.
+    pub floor: wgpu::Texture,
+    bind: wgpu::BindGroup,
+    _terrain: wgpu::Texture,
+}
+
+impl ReceiverFrame {
+    pub fn bytes(&self) -> u64 {
+        let texels = |t: &wgpu::Texture| (t.width() * t.height()) as u64;
+        texels(&self.heights) * 4 + texels(&self.floor) * 16 + texels(&self._terrain) * 4
+    }
+}
+
+impl ReceiverLookup {
+    pub fn new(ctx: &GpuContext) -> Self {
+        ReceiverLookup {
+            pipeline: compute_pipeline(ctx, &LOOKUP),
+        }
+    }
+
+    /// The receivers `r` met by a technique whose light-space deposit is `deposit` (the floor map's
+    /// size and window), looked up into a floor map of the same size.
+    pub fn frame(
+        &self,
+        ctx: &GpuContext,
+        r: &Arc<ReceiverHeights>,
+        deposit: &wgpu::Texture,
+        wrap: bool,
+    ) -> Result<ReceiverFrame, GpuError> {
+        let heights = heights_texture(ctx, Some(r))?;
+        let terrain = ctx.upload_grid(
+            "receivers' terrain",
+            r.terrain.as_ref().unwrap_or(&Grid::new(1, 1)),
+        )?;
+        let (w, h) = (deposit.width(), deposit.height());
+        let floor = ctx.texture_2d(
+            "floor map (receivers' lookup)",
+            (w, h, 1),
+            wgpu::TextureFormat::Rgba32Float,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
+        );
+        let uniform = LookupUniform {
+            receivers: ReceiversUniform::of(Some(r)),
+            floor: [
+                r.size as f32,
+                wrap as u32 as f32,
+                (0.5 * r.texel * r.max_slope.max(1.0)) as f32,
+                r.terrain.is_some() as u32 as f32,
+            ],
+        };
+        let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(LOOKUP.name),
+            contents: bytemuck::bytes_of(&uniform),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let view = |t: &wgpu::Texture| t.create_view(&Default::default());
+        let (d, hv, tv, fv) = (view(deposit), view(&heights), view(&terrain), view(&floor));
+        let bind = bind_group(
+            ctx,
+            LOOKUP.name,
+            &self.pipeline.get_bind_group_layout(0),
+            &[
+                buffer.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&d),
+                wgpu::BindingResource::TextureView(&hv),
+                wgpu::BindingResource::TextureView(&tv),
+                wgpu::BindingResource::TextureView(&fv),
+            ],
+        );
+        Ok(ReceiverFrame {
+            receivers: r.clone(),
+            heights,
+            floor,
+            bind,
+            _terrain: terrain,
+        })
+    }
+
+    pub fn encode(
+        &self,
+        f: &ReceiverFrame,
+        encoder: &mut wgpu::CommandEncoder,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let mut pass = begin_compute(encoder, &mut timer, LOOKUP.name);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &f.bind, &[]);
+        pass.dispatch_workgroups(f.floor.width().div_ceil(8), f.floor.height().div_ceil(8), 1);
+    }
+}

@@ -1,0 +1,72 @@
+// The receivers' heights in the light's space: what lies under the water as the sun sees it through
+// flat water (caustics mapping's receiver model; docs/receivers.md). CPU twin:
+// caustics-core/src/receivers.rs, `ReceiverHeights`.
+
+// Mirrors `ReceiversUniform` in crates/gpu/src/receivers.rs.
+struct Receivers {
+    view: vec4<f32>,   // xy: light-space corner of texel (0, 0); z: texel side; w: the map's steepest slope
+    t0: vec4<f32>,     // xyz: the flat-water refracted sun; w: 1 where the receivers are met, 0: the plane z = 0
+}
+
+// Where the line through p along t0 meets the plane z = 0.
+fn light_space(p: vec3<f32>, t0: vec3<f32>) -> vec2<f32> {
+    return p.xy + t0.xy * (p.z / -t0.z);
+}
+
+// The map's height at light-space point q, bilinear between texel centres, clamped at the edges.
+fn receiver_height(map: texture_2d<f32>, r: Receivers, q: vec2<f32>) -> f32 {
+    let dims = vec2<i32>(textureDimensions(map));
+    let u = (q - r.view.xy) / r.view.z - 0.5;
+    let c = floor(u);
+    let f = u - c;
+    let i = vec2<i32>(c);
+    let a = textureLoad(map, clamp(i, vec2<i32>(0), dims - 1), 0).x;
+    let b = textureLoad(map, clamp(i + vec2<i32>(1, 0), vec2<i32>(0), dims - 1), 0).x;
+    let d = textureLoad(map, clamp(i + vec2<i32>(0, 1), vec2<i32>(0), dims - 1), 0).x;
+    let e = textureLoad(map, clamp(i + vec2<i32>(1, 1), vec2<i32>(0), dims - 1), 0).x;
+    return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
+}
+
+// The length d along s + d t (t unit, going down) to where the ray first meets the receivers, or
+// -1 where it starts below them or never comes down: steps bounded by the map's slope times the
+// ray's drift from t0, then bisection (the CPU twin's `ReceiverHeights::meet`, in f32: steps no
+// shorter than 1e-4 texel).
+fn meet_receivers(map: texture_2d<f32>, r: Receivers, s: vec3<f32>, t: vec3<f32>) -> f32 {
+    if t.z >= 0.0 {
+        return -1.0;
+    }
+    let t0 = r.t0.xyz;
+    let drift = length(t.xy - t0.xy * (t.z / t0.z));
+    let rate = -t.z + r.view.w * drift;
+    var g = s.z - receiver_height(map, r, light_space(s, t0));
+    if g <= 0.0 {
+        return -1.0;
+    }
+    let tol = 1e-4 * r.view.z;
+    var d = 0.0;
+    for (var k = 0; k < 256; k++) {
+        let step = max(g / rate, tol);
+        let p = s + t * (d + step);
+        let g_next = p.z - receiver_height(map, r, light_space(p, t0));
+        if g_next <= 0.0 {
+            var a = d;
+            var b = d + step;
+            for (var n = 0; n < 24; n++) {
+                let m = 0.5 * (a + b);
+                let pm = s + t * m;
+                if pm.z - receiver_height(map, r, light_space(pm, t0)) > 0.0 {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            return 0.5 * (a + b);
+        }
+        d += step;
+        g = g_next;
+        if g < tol {
+            return d;
+        }
+    }
+    return d;
+}
