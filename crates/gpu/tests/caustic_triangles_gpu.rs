@@ -1052,6 +1052,76 @@ mod through_the_trait {
         );
     }
 
+    /// 10x the worst agreement measured over a terrain through the trait (lavapipe 25.0.7):
+    /// relative L1 1.05e-6, flux 4.0e-7.
+    const TERRAIN_L1: f64 = 1.05e-5;
+    const TERRAIN_FLUX: f64 = 4.0e-6;
+
+    /// Over a terrain through the trait: the pool's water over the shore's beach scaled into it.
+    /// Frames of moving water under a fixed sun reuse the receivers (nothing created, uploaded
+    /// past the heights, or read back), and the last map is the CPU twin's; a new sun configures
+    /// the frame again with the receivers it sees.
+    pub fn a_terrain_through_the_trait_matches_the_cpu_twin() {
+        let ctx = test_gpu();
+        let mut scene = pool(0.0);
+        let w = scene.water.clone().unwrap();
+        let shore = Scene::builtin("shore").unwrap();
+        let mut beach = shore.floor.terrain.unwrap();
+        let top = beach.min_max().1;
+        beach
+            .data
+            .iter_mut()
+            .for_each(|h| *h *= 0.8 * w.depth as f32 / top);
+        scene.floor.terrain = Some(beach);
+        let mut t =
+            caustics_gpu::registry::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
+                .unwrap();
+        let mut h = heights(t.as_ref(), &scene);
+        let tex = ctx.upload_grid("test heights", &h).unwrap();
+        t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
+        t.update(&ctx, &scene).unwrap();
+        frame(&ctx, t.as_ref());
+        ctx.wait().unwrap();
+        let before = ctx.traffic();
+        for f in 1..=5 {
+            scene.time = 0.1 * f as f64;
+            h = heights(t.as_ref(), &scene);
+            write_heights(&ctx, &tex, &h);
+            t.update(&ctx, &scene).unwrap();
+            frame(&ctx, t.as_ref());
+        }
+        ctx.wait().unwrap();
+        let d = ctx.traffic().since(&before);
+        eprintln!("five water frames over a terrain: {d:?}");
+        assert_eq!(d.created(), 0, "{d:?}");
+        assert_eq!(d.readbacks, 0, "{d:?}");
+        assert_eq!(d.uploaded_bytes, 0, "{d:?}");
+        let cpu_map = |scene: &Scene, h: &Grid| {
+            let ws = water_setup(scene).with_floor(&scene.floor, None);
+            water::caustics(&ws, h).unwrap().map
+        };
+        let m = compare(&read_floor(&ctx, t.as_ref(), &scene), &cpu_map(&scene, &h));
+        eprintln!("terrain through the trait: GPU vs CPU {m:?}");
+        assert!(
+            m.relative_l1 < TERRAIN_L1 && m.flux_error.abs() < TERRAIN_FLUX,
+            "{m:?}"
+        );
+        scene.light.direction = glam::DVec3::new(0.35, 0.1, -1.0).normalize();
+        let write = t.write_scene(&ctx, &scene).unwrap();
+        assert!(
+            matches!(write, caustics_gpu::technique::SceneWrite::Reconfigure(_)),
+            "a new sun over a terrain reconfigures"
+        );
+        t.update(&ctx, &scene).unwrap();
+        frame(&ctx, t.as_ref());
+        let m = compare(&read_floor(&ctx, t.as_ref(), &scene), &cpu_map(&scene, &h));
+        eprintln!("terrain under a new sun: GPU vs CPU {m:?}");
+        assert!(
+            m.relative_l1 < TERRAIN_L1 && m.flux_error.abs() < TERRAIN_FLUX,
+            "{m:?}"
+        );
+    }
+
     /// The pool with its walls through the trait: ten frames of moving water and a
     /// moving sun create and read nothing; the last frame's floor map and the four wall maps of
     /// [`Technique::walls`] (layer k = `Wall::ALL[k]`) equal the CPU twin's `wall_caustics`.
@@ -1265,6 +1335,7 @@ test_main! {
     cpu the_water_photon_uniform_matches_its_wgsl_size,
     gpu through_the_trait::water_generator_through_the_trait_matches_the_cpu_twin,
     gpu through_the_trait::water_generator_frames_create_and_read_nothing,
+    gpu through_the_trait::a_terrain_through_the_trait_matches_the_cpu_twin,
     gpu through_the_trait::walls_through_the_trait_match_the_cpu_twin,
     gpu through_the_trait::glass_generators_through_the_trait_match_the_cpu_twin,
     gpu through_the_trait::glass_generator_frames_create_and_read_nothing,
