@@ -6,6 +6,8 @@ pub mod bake;
 pub mod cases;
 pub mod error;
 pub mod eye;
+#[cfg(test)]
+mod fixtures;
 pub mod grid;
 pub mod map;
 pub mod mesh;

@@ -51,7 +51,7 @@ pub fn flat_refracted(light: DVec3, ior: f64) -> DVec3 {
 
 /// The receivers' heights in the light's space: per texel of a square light-space window, the
 /// height of the first receiver met coming down along `t0` from the water.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ReceiverHeights {
     /// The flat-water refracted sun, unit, `z < 0`.
     pub t0: DVec3,
@@ -292,8 +292,15 @@ impl HeightMarch {
 /// A floor map (the floor's `(x, y)` texels) from a light-space deposit `light` (flux per unit
 /// area of `z = 0` along the light, on the same window as the floor map): each floor texel's
 /// centre `P` on the floor takes the deposit at `q(P)` times `n · (−t₀) / −t₀_z`, and nothing
-/// where another receiver covers it. On a flat floor this is `light` itself.
-pub fn lookup(light: &CausticsMap, receivers: &ReceiverHeights, wrap: bool) -> CausticsMap {
+/// where another receiver covers it. `absorption` (`K` per channel; zero where the deposit
+/// carries its own paths' absorption) attenuates by `exp(−K d)` along the flat-water path to `P`,
+/// `d = (depth − P_z) / −t₀_z`. On a flat floor without absorption this is `light` itself.
+pub fn lookup(
+    light: &CausticsMap,
+    receivers: &ReceiverHeights,
+    wrap: bool,
+    absorption: DVec3,
+) -> CausticsMap {
     let (w, h, size) = (light.width, light.height, light.size);
     let t0 = receivers.t0;
     let mut out = CausticsMap::new(w, h, size);
@@ -311,7 +318,10 @@ pub fn lookup(light: &CausticsMap, receivers: &ReceiverHeights, wrap: bool) -> C
         let n = crate::optics::height_field_normal(grad);
         let facing = (n.dot(-t0) / -t0.z).max(0.0) as f32;
         let q = light_space(p, t0);
-        *t = light.sample(q.x, q.y, wrap).map(|v| v * facing);
+        let path = (receivers.depth - p.z) / -t0.z;
+        let a = (-absorption * path).exp().as_vec3();
+        let e = light.sample(q.x, q.y, wrap);
+        *t = std::array::from_fn(|c| e[c] * facing * a[c]);
     }
     out
 }

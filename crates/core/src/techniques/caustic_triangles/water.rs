@@ -450,7 +450,7 @@ pub fn caustics(ws: &WaterSetup, heights: &Grid) -> Result<WaterOutput> {
     let irradiance = irradiance_pass(&ws.setup, &photons);
     let mut map = triangles_pass_with_paths(&ws.setup, &photons, &irradiance, Some(&paths));
     if let Some(r) = &ws.receivers {
-        map = lookup(&map, r, ws.wrap());
+        map = lookup(&map, r, ws.wrap(), DVec3::ZERO);
     }
     Ok(WaterOutput {
         photons,
@@ -681,52 +681,19 @@ mod tests {
         .unwrap()
     }
 
-    /// The pool with gentle ripples (21-100 cm long), which 128² and 256² photons resolve; the
-    /// built-in pool's 11 cm wavelets need more photons than these tests afford.
-    fn gentle_pool() -> Scene {
-        let mut scene = Scene::builtin("pool").unwrap();
-        let old = [
-            (0.0040, 0.50, [1.0, 0.25], 0.0),
-            (0.0032, 0.36, [-0.4, 1.0], 1.3),
-            (0.0025, 0.27, [0.8, -0.7], 2.1),
-            (0.0020, 0.21, [0.1, 1.0], 0.4),
-            (0.0050, 1.00, [1.0, 0.9], 4.0),
-        ];
-        scene.water.as_mut().unwrap().source = crate::scene::WaterSource::Waves(
-            old.iter()
-                .map(
-                    |&(amplitude, wavelength, direction, phase)| crate::water::waves::Wave {
-                        amplitude,
-                        wavelength,
-                        direction,
-                        phase,
-                        period: None,
-                    },
-                )
-                .collect(),
-        );
-        scene
-    }
-
     /// The pool's ripples over a sand bar (a ridge across the pool, periodic like the light, its
     /// faces up to 31° steep, its crest 60 % of the way up): the photons meet the sand through the
     /// receivers' map and the floor map agrees with the reference, which marches the terrain
     /// itself, about as well as over the flat floor.
     #[test]
     fn a_sand_bar_agrees_with_the_reference() {
-        let mut scene = gentle_pool();
+        let mut scene = crate::fixtures::gentle_pool();
         scene.floor.walls = false;
         let res = 256;
         let water = scene.water.clone().unwrap();
         let surface = water.surface_at(scene.time).unwrap();
         let heights = heights(&water, surface.as_ref(), 512, 512);
-        let n = 128;
-        let crest = 0.6 * water.depth;
-        let bar = Grid::from_fn(n, n, |i, j| {
-            let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / n as f64);
-            let ridge = 0.5 - 0.5 * (std::f64::consts::TAU * x).cos();
-            (crest * ridge * (1.0 + 0.1 * (std::f64::consts::TAU * 2.0 * y).sin()) / 1.1) as f32
-        });
+        let bar = crate::fixtures::sand_bar(&water);
         let mut l1 = Vec::new();
         for terrain in [None, Some(bar)] {
             scene.floor.terrain = terrain;
@@ -752,7 +719,7 @@ mod tests {
     /// at most 2.2) of one of ours.
     #[test]
     fn pool_waves_agree_with_the_reference() {
-        let mut scene = gentle_pool();
+        let mut scene = crate::fixtures::gentle_pool();
         // The floor map alone, as this twin makes it (the pool's walls are off: nothing lost to
         // them, and the light wraps round as here).
         scene.floor.walls = false;

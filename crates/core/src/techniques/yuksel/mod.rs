@@ -89,6 +89,8 @@
 //! pixel over `k` (times `2^level` where the region needs a coarser level), independent of the
 //! height field's.
 
+use std::sync::Arc;
+
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -96,6 +98,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, refract};
+use crate::receivers::ReceiverHeights;
 
 use super::describe::{
     Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
@@ -550,8 +553,11 @@ pub struct YukselSetup {
     /// `T(θ0)`, or 1 without the Fresnel option.
     pub t_flat: f64,
     pub fresnel: bool,
-    /// Per-channel `exp(−K d0)` applied in pass 2.
+    /// Per-channel `exp(−K d0)` applied in pass 2 (1 over receivers: the lookup attenuates).
     pub attenuation: DVec3,
+    /// What the samples' light meets instead of the plane `z = 0` ([`YukselSetup::with_floor`]),
+    /// and the absorption `K` the lookup applies along the flat-water path to each receiver.
+    pub receivers: Option<(Arc<ReceiverHeights>, DVec3)>,
 }
 
 impl YukselSetup {
@@ -608,7 +614,45 @@ impl YukselSetup {
             } else {
                 DVec3::ONE
             },
+            receivers: None,
         })
+    }
+
+    /// The samples' light meets `floor`'s terrain where it has one: the receivers' map at the
+    /// map's resolution (from `previous` where nothing it depends on changed), the light deposited
+    /// in the light's space and looked up per floor pixel ([`crate::receivers`]). The
+    /// absorption moves into the lookup, along the flat-water path to each receiver point, as the
+    /// paper takes the flat floor's.
+    pub fn with_floor(
+        mut self,
+        floor: &crate::scene::Floor,
+        absorption: DVec3,
+        previous: Option<&Arc<ReceiverHeights>>,
+    ) -> Self {
+        if floor.terrain.is_none() {
+            return self;
+        }
+        let t0 = crate::receivers::flat_refracted(self.light, self.ior);
+        let r = ReceiverHeights::of_floor_reusing(
+            previous, floor, self.size, self.depth, t0, self.width,
+        );
+        let k = if self.attenuation == DVec3::ONE {
+            DVec3::ZERO
+        } else {
+            absorption
+        };
+        self.attenuation = DVec3::ONE;
+        self.receivers = Some((r, k));
+        self
+    }
+
+    /// `map` (the light's deposit) as the floor receives it: itself on the plane `z = 0`, else
+    /// looked up per floor pixel through the receivers.
+    pub fn received(&self, map: CausticsMap) -> CausticsMap {
+        match &self.receivers {
+            None => map,
+            Some((r, k)) => crate::receivers::lookup(&map, r, self.wrap, *k),
+        }
     }
 
     /// Samples per pixel along each axis at `level`: `k · 2^level`, at most
@@ -691,5 +735,5 @@ pub fn caustics_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
         let p1 = pass1(setup, &pre, phase);
         pass2(setup, &p1, phase, &mut map);
     }
-    map
+    setup.received(map)
 }

@@ -9,6 +9,7 @@ use glam::DVec2;
 
 use crate::grid::{Edge, Grid};
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::receivers::light_space;
 
 use super::YukselSetup;
 
@@ -28,7 +29,13 @@ fn hit(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, f64)> {
     let cos_i = -l.dot(normal);
     let seen = 1.0 + l.truncate().dot(grad) / -l.z;
     let t = refract(l, normal, setup.eta).filter(|_| cos_i > 0.0 && seen > 0.0)?;
-    let hit = s + t.truncate() * ((setup.depth + h) / -t.z);
+    let hit = match &setup.receivers {
+        None => s + t.truncate() * ((setup.depth + h) / -t.z),
+        Some((r, _)) => {
+            let (at, _) = r.meet(s.extend(setup.depth + h), t)?;
+            light_space(at, r.t0)
+        }
+    };
     let fresnel = if setup.fresnel {
         fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
     } else {

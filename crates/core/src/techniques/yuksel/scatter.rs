@@ -41,7 +41,7 @@ pub fn scatter_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     let mut sums = vec![0u32; setup.width * setup.height];
     let listed = scatter_tier(setup, &pre, &mut sums);
     scatter_fill(setup, &pre, &listed, &mut sums);
-    scatter_resolve(setup, &sums)
+    setup.received(scatter_resolve(setup, &sums))
 }
 
 /// The pre-pass's pixels at the region's level, `(columns, rows)`: the level's map and the
