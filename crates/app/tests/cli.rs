@@ -559,7 +559,7 @@ fn render_uses_the_chosen_technique() {
             "--scene",
             "shore",
             "--technique",
-            "yuksel",
+            "procedural",
             "--cpu",
             "--raw",
             "s.npy",

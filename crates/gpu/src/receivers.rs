@@ -52,6 +52,9 @@ pub struct LookupUniform {
     pub receivers: ReceiversUniform,
     /// Side of the square, 1 where the light wraps, the depth test's bias, 1 over a terrain.
     pub floor: [f32; 4],
+    /// `K` along the flat-water path to each receiver point (zero where the deposit carries its
+    /// own absorption), and the water's depth.
+    pub absorption: [f32; 4],
 }
 
 /// The receivers' heights as an `R32Float` texture (1 x 1 and zero for the plane `z = 0`).
@@ -101,13 +104,15 @@ impl ReceiverLookup {
     }
 
     /// The receivers `r` met by a technique whose light-space deposit is `deposit` (the floor map's
-    /// size and window), looked up into a floor map of the same size.
+    /// size and window), looked up into a floor map of the same size, attenuated by `absorption`
+    /// along the flat-water path (`caustics_core::receivers::lookup`).
     pub fn frame(
         &self,
         ctx: &GpuContext,
         r: &Arc<ReceiverHeights>,
         deposit: &wgpu::Texture,
         wrap: bool,
+        absorption: glam::DVec3,
     ) -> Result<ReceiverFrame, GpuError> {
         let heights = heights_texture(ctx, Some(r))?;
         let terrain = ctx.upload_grid(
@@ -131,6 +136,7 @@ impl ReceiverLookup {
                 (0.5 * r.texel * r.max_slope.max(1.0)) as f32,
                 r.terrain.is_some() as u32 as f32,
             ],
+            absorption: absorption.as_vec3().extend(r.depth as f32).to_array(),
         };
         let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(LOOKUP.name),

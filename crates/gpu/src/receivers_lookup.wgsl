@@ -1,7 +1,8 @@
 // The receivers' lookup (docs/receivers.md): each floor texel's centre on the floor (the terrain's
 // bicubic surface, or z = 0) takes a technique's light-space deposit at its light-space point, times
-// n . (-t0) / -t0.z, and nothing where the receivers' map lies above it (something nearer the light
-// covers it). CPU twin: `lookup` in caustics-core/src/receivers.rs.
+// n . (-t0) / -t0.z, attenuated along the flat-water path to it where the deposit carries no
+// absorption of its own, and nothing where the receivers' map lies above it (something nearer the
+// light covers it). CPU twin: `lookup` in caustics-core/src/receivers.rs.
 
 import package::shaders::optics::height_field_normal;
 import package::shaders::receivers::{Receivers, light_space, receiver_height};
@@ -11,6 +12,7 @@ import package::shaders::water::grid_sample;
 struct Lookup {
     receivers: Receivers,
     floor: vec4<f32>,   // x: side of the square; y: 1 where the light wraps; z: the depth test's bias; w: 1 over a terrain
+    absorption: vec4<f32>, // xyz: K, attenuating along the flat-water path to each receiver point (0: the deposit's own); w: the water's depth
 }
 
 @group(0) @binding(0) var<uniform> u: Lookup;
@@ -58,7 +60,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var rgb = vec3<f32>(0.0);
     if p.z >= receiver_height(heights, u.receivers, q) - u.floor.z {
         let facing = max(dot(height_field_normal(hg.yz), -t0) / -t0.z, 0.0);
-        rgb = deposit_at(q) * facing;
+        let path = (u.absorption.w - p.z) / -t0.z;
+        rgb = deposit_at(q) * facing * exp(-u.absorption.xyz * path);
     }
     textureStore(floor_map, vec2<i32>(id.xy), vec4<f32>(rgb, 1.0));
 }

@@ -493,6 +493,15 @@ mod for_scene_tests {
         assert_eq!(glass, ["caustic-triangles", "reference"]);
         // Over a terrain, the techniques that follow it.
         let shore = for_scene(&Scene::builtin("shore").unwrap());
-        assert_eq!(shore, ["caustic-triangles", "cascaded", "reference"]);
+        assert_eq!(
+            shore,
+            [
+                "yuksel",
+                "yuksel-targets",
+                "caustic-triangles",
+                "cascaded",
+                "reference"
+            ]
+        );
     }
 }

@@ -240,7 +240,10 @@ impl CausticTriangles {
         });
         let view = wgpu::BindingResource::TextureView(&water.heights);
         let receivers = match &ws.receivers {
-            Some(r) => Some(self.lookup.frame(ctx, r, &frame.map, ws.wrap())?),
+            Some(r) => Some(
+                self.lookup
+                    .frame(ctx, r, &frame.map, ws.wrap(), glam::DVec3::ZERO)?,
+            ),
             None => None,
         };
         let heights_of_receivers = match &receivers {

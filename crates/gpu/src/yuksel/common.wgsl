@@ -1,5 +1,8 @@
 // Technique `yuksel` (paper 1): the uniform block every pass shares. Mirrors `YukselUniform` in
 // yuksel/mod.rs and `YukselSetup` in caustics-core/src/techniques/yuksel/mod.rs.
+
+import package::shaders::receivers::Receivers;
+
 struct Yuksel {
     light: vec4<f32>,         // xyz: unit direction the light travels; w: eta = 1 / ior
     pixel: vec2<f32>,         // map pixel size, world units
@@ -21,6 +24,7 @@ struct Yuksel {
     split: f32,               // misfit above which a pixel takes its k x k samples; < 0: always
     pre_tiles: u32,           // tiles along x of the pre-pass texture's array; 0: one layer
     _pad: u32,
+    receivers: Receivers,     // what the samples' light meets (t0.w = 0: the plane z = 0)
 }
 
 // Every yuksel pass binds the uniform first.

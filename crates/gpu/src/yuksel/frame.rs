@@ -6,7 +6,10 @@ use caustics_core::grid::Grid;
 use caustics_core::techniques::yuksel::YukselSetup;
 
 use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
+use std::sync::Arc;
+
 use crate::pass::bind_group;
+use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
 
@@ -39,6 +42,9 @@ pub struct Frame {
     bytes: u64,
     /// The pre-pass texture's tiling (one tile for the scatter variant, which has no pre-pass texture).
     tiling: PrepassTiling,
+    /// The terrain's receivers where the setup has them: the samples meet their heights, the map
+    /// is the light's deposit, and the lookup writes the floor map.
+    pub receivers: Option<ReceiverFrame>,
 }
 
 pub(super) enum FramePasses {
@@ -85,12 +91,18 @@ impl Frame {
         &self.setup
     }
 
+    /// The floor map: the receivers' lookup where the frame has receivers, else the map.
+    pub fn floor_map(&self) -> &wgpu::Texture {
+        self.receivers.as_ref().map_or(&self.map, |r| &r.floor)
+    }
+
     /// Whether `setup` fits this frame's textures (the same map size, largest region and samples
     /// per pixel),
     /// so that [`set_setup`](Self::set_setup) can take it.
     pub fn fits(&self, setup: &YukselSetup) -> bool {
         let key = |s: &YukselSetup| (s.width, s.height, s.capacity(), s.subsamples);
-        key(setup) == key(&self.setup)
+        let receivers = |s: &YukselSetup| s.receivers.as_ref().map(|(r, k)| (Arc::as_ptr(r), *k));
+        key(setup) == key(&self.setup) && receivers(setup) == receivers(&self.setup)
     }
 
     /// Take a new sun or depth (a setup that [`fits`](Self::fits)): uniform writes only.
@@ -228,6 +240,18 @@ impl Yuksel {
             U::RENDER_ATTACHMENT | U::STORAGE_BINDING | U::COPY_SRC | U::TEXTURE_BINDING,
         );
         let map_view = map.create_view(&Default::default());
+        let receivers = match &setup.receivers {
+            Some((r, k)) => Some(self.lookup.frame(ctx, r, &map, setup.wrap, *k)?),
+            None => None,
+        };
+        let receiver_heights = match &receivers {
+            Some(r) => r.heights.create_view(&Default::default()),
+            None => heights_texture(ctx, None)?.create_view(&Default::default()),
+        };
+        let with_receivers =
+            |label, pipeline: &wgpu::ComputePipeline, resources: &[wgpu::BindingResource]| {
+                bind_with_receivers(ctx, label, pipeline, resources, &receiver_heights)
+            };
         let mut bytes =
             (w * h) as u64 * 16 + uniform.size() + region.size() + water_patches.bytes();
         // The pixels at k, listed for the fill (at most every pixel of the largest region's
@@ -258,10 +282,9 @@ impl Yuksel {
                 bytes += sums.size();
                 let [tier, fill, resolve] = &self.scatter;
                 let with = |label, pipeline: &wgpu::ComputePipeline| {
-                    bind_group(
-                        ctx,
+                    with_receivers(
                         label,
-                        &pipeline.get_bind_group_layout(0),
+                        pipeline,
                         &[
                             uniform.as_entire_binding(),
                             View(patches),
@@ -329,10 +352,9 @@ impl Yuksel {
                     ..Default::default()
                 });
                 let prepass = [
-                    bind_group(
-                        ctx,
+                    with_receivers(
                         "yuksel pre-pass",
-                        &self.prepass.get_bind_group_layout(0),
+                        &self.prepass,
                         &[
                             uniform.as_entire_binding(),
                             View(patches),
@@ -344,10 +366,9 @@ impl Yuksel {
                             fill_list.as_entire_binding(),
                         ],
                     ),
-                    bind_group(
-                        ctx,
+                    with_receivers(
                         "yuksel pre-pass fill",
-                        &self.prepass_fill.get_bind_group_layout(0),
+                        &self.prepass_fill,
                         &[
                             uniform.as_entire_binding(),
                             View(patches),
@@ -445,10 +466,39 @@ impl Yuksel {
             setup: setup.clone(),
             variant,
             passes,
-            bytes,
+            bytes: bytes + receivers.as_ref().map_or(0, |r| r.bytes()),
             tiling,
+            receivers,
         })
     }
+}
+
+/// A bind group of `resources` at bindings 0, 1, ... and the receivers' heights at binding 8
+/// (`sample.wgsl`'s), for the passes that refract the water's samples.
+fn bind_with_receivers(
+    ctx: &GpuContext,
+    label: &str,
+    pipeline: &wgpu::ComputePipeline,
+    resources: &[wgpu::BindingResource],
+    receivers: &wgpu::TextureView,
+) -> wgpu::BindGroup {
+    let mut entries: Vec<wgpu::BindGroupEntry> = resources
+        .iter()
+        .enumerate()
+        .map(|(k, resource)| wgpu::BindGroupEntry {
+            binding: k as u32,
+            resource: resource.clone(),
+        })
+        .collect();
+    entries.push(wgpu::BindGroupEntry {
+        binding: 8,
+        resource: wgpu::BindingResource::TextureView(receivers),
+    });
+    ctx.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    })
 }
 
 /// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has

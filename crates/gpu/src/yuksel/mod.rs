@@ -31,6 +31,7 @@ use std::sync::Mutex;
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
 use crate::pass::{begin_compute, compute_pipeline, pulled_pipeline};
+use crate::receivers::ReceiversUniform;
 use crate::shaders::passes;
 use crate::water::patches::WaterPatches;
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -119,6 +120,8 @@ pub struct YukselUniform {
     /// Tiles along x of the pre-pass texture's array ([`PrepassTiling`]); 0 where it is one.
     pub pre_tiles: u32,
     pub _pad: u32,
+    /// What the samples' light meets (the plane `z = 0` where `t0[3]` is 0).
+    pub receivers: ReceiversUniform,
 }
 
 /// Mirrors `YukselRegion` in `yuksel/common.wgsl`: what the region pass writes.
@@ -179,6 +182,7 @@ impl YukselUniform {
             split: s.split.map_or(-1.0, |v| v as f32),
             pre_tiles: 0,
             _pad: 0,
+            receivers: ReceiversUniform::of(s.receivers.as_ref().map(|(r, _)| r.as_ref())),
         }
     }
 
@@ -228,6 +232,8 @@ impl PrepassTiling {
 pub struct Yuksel {
     /// The heights in Hermite form, which every ray reads.
     patches: WaterPatches,
+    /// The receivers' lookup of a frame over a terrain.
+    lookup: crate::receivers::ReceiverLookup,
     region: wgpu::ComputePipeline,
     region_bound: wgpu::ComputePipeline,
     prepass: wgpu::ComputePipeline,
@@ -262,6 +268,7 @@ impl Yuksel {
         let pass2_module = PASS2.module(&ctx.device);
         let y = Yuksel {
             patches: WaterPatches::new(ctx),
+            lookup: crate::receivers::ReceiverLookup::new(ctx),
             region: compute_pipeline(ctx, &REGION),
             region_bound: compute_pipeline(ctx, &REGION_BOUND),
             prepass: compute_pipeline(ctx, &PREPASS),
@@ -395,7 +402,10 @@ impl Yuksel {
                 }
             }
         }
-        &frame.map
+        if let Some(r) = &frame.receivers {
+            self.lookup.encode(r, encoder, timer);
+        }
+        frame.floor_map()
     }
 }
 

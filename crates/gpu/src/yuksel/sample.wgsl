@@ -3,11 +3,14 @@
 // caustics-core/src/techniques/yuksel/prepass.rs.
 
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::receivers::{light_space, meet_receivers};
 import package::shaders::water::grid_sample_hermite;
 import package::yuksel::common::{tier_bits, u};
 
 // The heights in Hermite form (`water_patches.wgsl`).
 @group(0) @binding(1) var patches: texture_2d<f32>;
+// The receivers' heights in the light's space (1 x 1 where the floor is the plane z = 0).
+@group(0) @binding(8) var receiver_heights: texture_2d<f32>;
 
 // The narrowest footprint half-width (`MIN_HALF_WIDTH` in prepass.rs): a fold's light keeps a box
 // of positive area, and the half-width stays a normal f16 (so the packed channel is a normal f32).
@@ -31,6 +34,14 @@ fn yuksel_hit(s: vec2<f32>) -> vec4<f32> {
     var fresnel = 1.0;
     if u.fresnel != 0u {
         fresnel = fresnel_transmittance(cos_i, 1.0, u.ior) / u.attenuation.w;
+    }
+    if u.receivers.t0.w != 0.0 {
+        let start = vec3<f32>(s, z);
+        let d = meet_receivers(receiver_heights, u.receivers, start, t.xyz);
+        if d < 0.0 {
+            return vec4<f32>(0.0);
+        }
+        return vec4<f32>(light_space(start + t.xyz * d, u.receivers.t0.xyz), seen * fresnel, 1.0);
     }
     return vec4<f32>(s + t.xy * (z / -t.z), seen * fresnel, 1.0);
 }

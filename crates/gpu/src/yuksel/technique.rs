@@ -44,10 +44,15 @@ impl Variant {
     }
 }
 
-/// The frame's setup from the scene and the parameters.
-fn setup(params: &YukselParams, scene: &Scene) -> Result<YukselSetup, GpuError> {
-    yuksel::DESCRIPTOR.check_floor(scene)?;
+/// The frame's setup from the scene and the parameters, its receivers `previous` where they did
+/// not change.
+fn setup(
+    params: &YukselParams,
+    scene: &Scene,
+    previous: Option<&Frame>,
+) -> Result<YukselSetup, GpuError> {
     let w = scene_water(scene, "yuksel")?;
+    let previous = previous.and_then(|f| f.setup().receivers.as_ref().map(|(r, _)| r));
     Ok(YukselSetup::new(
         params,
         scene.caustics.width as usize,
@@ -58,7 +63,8 @@ fn setup(params: &YukselParams, scene: &Scene) -> Result<YukselSetup, GpuError> 
         w.absorption,
         w.wrap,
         scene.light.direction,
-    )?)
+    )?
+    .with_floor(&scene.floor, w.absorption, previous))
 }
 
 impl Pipelines for Yuksel {
@@ -87,7 +93,7 @@ impl Pipelines for Yuksel {
         scene: &Scene,
         water: &WaterTextures,
     ) -> Result<Frame, GpuError> {
-        let setup = setup(params, scene)?;
+        let setup = setup(params, scene, None)?;
         self.frame_with_water(ctx, &setup, water, *variant)
     }
 
@@ -98,7 +104,7 @@ impl Pipelines for Yuksel {
         frame: &mut Frame,
         scene: &Scene,
     ) -> Result<bool, GpuError> {
-        let setup = setup(params, scene)?;
+        let setup = setup(params, scene, Some(frame))?;
         if *frame.setup() == setup {
             return Ok(true);
         }
@@ -119,7 +125,7 @@ impl Pipelines for Yuksel {
     }
 
     fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
-        Output::Floor(&frame.map)
+        Output::Floor(frame.floor_map())
     }
 
     fn bytes(frame: &Frame) -> u64 {

@@ -134,7 +134,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: PARAMS,
     fixed: &[],
     point_light: false,
-    flat_floor: Some("computes caustics on a flat floor (paper 1, §3)"),
+    flat_floor: None,
     buffers: BUFFERS,
     draw_buffer,
     reference: false,
@@ -265,7 +265,6 @@ const ABSORPTION: Param = Param {
 /// The setup and the heights a job gives paper 1 (both twins): the flat floor it maps, the water's
 /// own lattice where the water is a grid ([`super::lattice_heights`]).
 pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(YukselSetup, Grid)> {
-    job.flat_floor(&DESCRIPTOR)?;
     job.note_floor_only(&DESCRIPTOR);
     let params = YukselParams::from_table(table)?;
     let (width, height) = job.size();
@@ -280,7 +279,8 @@ pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(YukselSetup, Grid)> 
             w.absorption,
             w.wrap,
             job.light(),
-        )?;
+        )?
+        .with_floor(job.floor(), w.absorption, None);
         Ok((setup, super::lattice_heights(w, surface, width, height)))
     })
 }
