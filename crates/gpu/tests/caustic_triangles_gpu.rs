@@ -780,17 +780,7 @@ fn water_over_a_terrain_matches_the_cpu_twin() {
     let mut scene = common::with_gentle_ripples("pool");
     scene.floor.walls = false;
     let w = scene.water.clone().unwrap();
-    let mut beach = caustics_core::scene::Scene::builtin("shore")
-        .unwrap()
-        .floor
-        .terrain
-        .unwrap();
-    let top = beach.min_max().1;
-    beach
-        .data
-        .iter_mut()
-        .for_each(|h| *h *= 0.8 * w.depth as f32 / top);
-    scene.floor.terrain = Some(beach);
+    scene.floor.terrain = Some(common::beach_under(w.depth));
     let surface = w.surface_at(scene.time).unwrap();
     let heights = water::heights(&w, surface.as_ref(), 256, 256);
     let params = CausticTrianglesParams {
@@ -1065,14 +1055,7 @@ mod through_the_trait {
         let ctx = test_gpu();
         let mut scene = pool(0.0);
         let w = scene.water.clone().unwrap();
-        let shore = Scene::builtin("shore").unwrap();
-        let mut beach = shore.floor.terrain.unwrap();
-        let top = beach.min_max().1;
-        beach
-            .data
-            .iter_mut()
-            .for_each(|h| *h *= 0.8 * w.depth as f32 / top);
-        scene.floor.terrain = Some(beach);
+        scene.floor.terrain = Some(super::common::beach_under(w.depth));
         let mut t =
             caustics_gpu::registry::create(&ctx, "caustic-triangles", &params(WATER_PARAMS))
                 .unwrap();

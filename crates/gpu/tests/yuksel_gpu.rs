@@ -214,18 +214,8 @@ fn a_terrain_matches_the_cpu_twin() {
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
     let heights = surface(48);
     let depth = 0.35;
-    let mut beach = caustics_core::scene::Scene::builtin("shore")
-        .unwrap()
-        .floor
-        .terrain
-        .unwrap();
-    let top = beach.min_max().1;
-    beach
-        .data
-        .iter_mut()
-        .for_each(|h| *h *= 0.8 * depth as f32 / top);
     let floor = caustics_core::scene::Floor {
-        terrain: Some(beach),
+        terrain: Some(common::beach_under(depth)),
         albedo: caustics_core::scene::Albedo::Pattern(Default::default()),
         walls: false,
         deck: Default::default(),

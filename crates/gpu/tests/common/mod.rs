@@ -129,3 +129,16 @@ pub fn with_gentle_ripples(name: &str) -> caustics_core::scene::Scene {
     }
     scene
 }
+
+/// The shore's beach scaled to water `depth` deep: its far side 80 % of the way up (over any
+/// square: the grid's samples cover whatever square the scene has).
+pub fn beach_under(depth: f64) -> caustics_core::grid::Grid {
+    let shore = caustics_core::scene::Scene::builtin("shore").expect("built-in scene");
+    let mut beach = shore.floor.terrain.expect("the shore has a beach");
+    let top = beach.min_max().1;
+    beach
+        .data
+        .iter_mut()
+        .for_each(|h| *h *= 0.8 * depth as f32 / top);
+    beach
+}
