@@ -113,6 +113,9 @@ volumes view x1.01 @@ $S/volumes/view.wgsl @@ vec4<f32>(colour, 1.0) @@ vec4<f32
 volumes walls x1.01 @@ $S/volumes/walls.wgsl @@ vec4<f32>(in.intensity * dot(normalize(in.dir), wall_normal(in.wall)), 0.0) @@ vec4<f32>(in.intensity * dot(normalize(in.dir), wall_normal(in.wall)) * 1.01, 0.0) @@ $VO
 volumes walls last wall lost @@ $S/volumes/walls.wgsl @@ if !s.ok || @@ if wall == 3u || !s.ok || @@ $VO
 volumes view wall light x1.01 @@ $S/volumes/view.wgsl @@ i32(k), 0).xyz; @@ i32(k), 0).xyz * 1.01; @@ $VO
+receivers lookup x1.01 @@ $S/receivers_lookup.wgsl @@ vec4<f32>(rgb, 1.0) @@ vec4<f32>(rgb * 1.01, 1.0) @@ $CT yuksel_gpu
+receivers meet 1 % short @@ $S/shaders/receivers.wgsl @@ return 0.5 * (a + b); @@ return 0.99 * 0.5 * (a + b); @@ $CT yuksel_gpu
+receivers heights half a texel off @@ $S/shaders/receivers.wgsl @@ let u = (q - r.view.xy) / r.view.z - 0.5; @@ let u = (q - r.view.xy) / r.view.z; @@ $CT yuksel_gpu
 EOF
 )
 
