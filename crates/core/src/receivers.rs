@@ -289,39 +289,51 @@ impl HeightMarch {
     }
 }
 
+/// Where each texel of a `width x height` floor map looks the light up, made once per terrain
+/// and sun: its centre `P` on the floor, as `[q_x, q_y, share, d]` with `q` its light-space point,
+/// `share = n · (−t₀) / −t₀_z` (0 where another receiver covers it, a shadow map's depth test)
+/// and `d = (depth − P_z) / −t₀_z` its flat-water path. The GPU uploads the same numbers.
+pub fn floor_texels(receivers: &ReceiverHeights, width: usize, height: usize) -> Vec<[f32; 4]> {
+    let t0 = receivers.t0;
+    let size = receivers.size;
+    let texel = DVec2::new(size / width as f64, size / height as f64);
+    let bias = 0.5 * receivers.texel * receivers.max_slope.max(1.0);
+    (0..width * height)
+        .map(|k| {
+            let c = (DVec2::new((k % width) as f64, (k / width) as f64) + 0.5) * texel;
+            let (z, grad) = receivers.terrain.as_ref().map_or((0.0, DVec2::ZERO), |g| {
+                g.sample(c, size, crate::grid::Edge::Clamp)
+            });
+            let p = c.extend(z);
+            let n = crate::optics::height_field_normal(grad);
+            let share = match receivers.lit(p, bias) {
+                true => (n.dot(-t0) / -t0.z).max(0.0),
+                false => 0.0,
+            };
+            let q = light_space(p, t0);
+            let path = (receivers.depth - p.z) / -t0.z;
+            [q.x as f32, q.y as f32, share as f32, path as f32]
+        })
+        .collect()
+}
+
 /// A floor map (the floor's `(x, y)` texels) from a light-space deposit `light` (flux per unit
-/// area of `z = 0` along the light, on the same window as the floor map): each floor texel's
-/// centre `P` on the floor takes the deposit at `q(P)` times `n · (−t₀) / −t₀_z`, and nothing
-/// where another receiver covers it. `absorption` (`K` per channel; zero where the deposit
-/// carries its own paths' absorption) attenuates by `exp(−K d)` along the flat-water path to `P`,
-/// `d = (depth − P_z) / −t₀_z`. On a flat floor without absorption this is `light` itself.
+/// area of `z = 0` along the light, on the same window as the floor map): each texel takes the
+/// deposit at its light-space point times its share ([`floor_texels`]). `absorption` (`K` per
+/// channel; zero where the deposit carries its own paths' absorption) attenuates by `exp(−K d)`
+/// along the flat-water path. On a flat floor without absorption this is `light` itself.
 pub fn lookup(
     light: &CausticsMap,
     receivers: &ReceiverHeights,
     wrap: bool,
     absorption: DVec3,
 ) -> CausticsMap {
-    let (w, h, size) = (light.width, light.height, light.size);
-    let t0 = receivers.t0;
-    let mut out = CausticsMap::new(w, h, size);
-    let texel = DVec2::new(size / w as f64, size / h as f64);
-    for (k, t) in out.texels.iter_mut().enumerate() {
-        let c = (DVec2::new((k % w) as f64, (k / w) as f64) + 0.5) * texel;
-        let (z, grad) = receivers.terrain.as_ref().map_or((0.0, DVec2::ZERO), |g| {
-            g.sample(c, receivers.size, crate::grid::Edge::Clamp)
-        });
-        let p = c.extend(z);
-        if !receivers.lit(p, 0.5 * receivers.texel * receivers.max_slope.max(1.0)) {
-            *t = [0.0; 3];
-            continue;
-        }
-        let n = crate::optics::height_field_normal(grad);
-        let facing = (n.dot(-t0) / -t0.z).max(0.0) as f32;
-        let q = light_space(p, t0);
-        let path = (receivers.depth - p.z) / -t0.z;
-        let a = (-absorption * path).exp().as_vec3();
-        let e = light.sample(q.x, q.y, wrap);
-        *t = std::array::from_fn(|c| e[c] * facing * a[c]);
+    let mut out = CausticsMap::new(light.width, light.height, light.size);
+    let texels = floor_texels(receivers, light.width, light.height);
+    for (t, &[qx, qy, share, path]) in out.texels.iter_mut().zip(&texels) {
+        let a = (-absorption * path as f64).exp().as_vec3();
+        let e = light.sample(qx as f64, qy as f64, wrap);
+        *t = std::array::from_fn(|c| e[c] * share * a[c]);
     }
     out
 }

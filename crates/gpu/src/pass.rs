@@ -3,7 +3,7 @@
 //! 2-D texture.
 
 use crate::shaders::PassSource;
-use crate::{GpuContext, GpuTimer};
+use crate::{GpuContext, GpuError, GpuTimer};
 
 /// A compute pipeline of a pass's `main`, its layout derived from the shader.
 pub fn compute_pipeline(ctx: &GpuContext, source: &PassSource) -> wgpu::ComputePipeline {
@@ -77,6 +77,40 @@ impl GpuContext {
             view_formats: &[],
         })
     }
+}
+
+/// A sampled texture of one mip level, `layers` deep, holding `texels` (layer after layer), its size
+/// refused by name where the device cannot hold it.
+pub fn float_texture(
+    ctx: &GpuContext,
+    what: &str,
+    format: wgpu::TextureFormat,
+    (width, height, layers): (u32, u32, u32),
+    texels: &[u8],
+) -> Result<wgpu::Texture, GpuError> {
+    ctx.check_texture_size(what, width, height)?;
+    let texel = format
+        .block_copy_size(None)
+        .expect("an uncompressed format");
+    debug_assert_eq!(texels.len(), (width * height * layers * texel) as usize);
+    Ok(ctx.create_texture_with_data(
+        &wgpu::TextureDescriptor {
+            label: Some(what),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: layers,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        texels,
+    ))
 }
 
 /// The best format this device can add light into with blending: `Rgba32Float` where it has

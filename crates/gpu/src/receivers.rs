@@ -6,9 +6,9 @@
 use std::sync::Arc;
 
 use caustics_core::grid::Grid;
-use caustics_core::receivers::ReceiverHeights;
+use caustics_core::receivers::{ReceiverHeights, floor_texels};
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{begin_compute, bind_group, compute_pipeline, float_texture};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -49,11 +49,10 @@ impl ReceiversUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct LookupUniform {
-    pub receivers: ReceiversUniform,
-    /// Side of the square, 1 where the light wraps, the depth test's bias, 1 over a terrain.
+    /// Side of the square, 1 where the light wraps.
     pub floor: [f32; 4],
     /// `K` along the flat-water path to each receiver point (zero where the deposit carries its
-    /// own absorption), and the water's depth.
+    /// own absorption).
     pub absorption: [f32; 4],
 }
 
@@ -86,13 +85,15 @@ pub struct ReceiverFrame {
     /// The floor map: `Rgba32Float`, the floor's texels.
     pub floor: wgpu::Texture,
     bind: wgpu::BindGroup,
-    _terrain: wgpu::Texture,
+    /// Per floor texel: light-space point, share, flat-water path
+    /// (`caustics_core::receivers::floor_texels`).
+    texels: wgpu::Texture,
 }
 
 impl ReceiverFrame {
     pub fn bytes(&self) -> u64 {
         let texels = |t: &wgpu::Texture| (t.width() * t.height()) as u64;
-        texels(&self.heights) * 4 + texels(&self.floor) * 16 + texels(&self._terrain) * 4
+        texels(&self.heights) * 4 + texels(&self.floor) * 16 + texels(&self.texels) * 16
     }
 }
 
@@ -115,11 +116,15 @@ impl ReceiverLookup {
         absorption: glam::DVec3,
     ) -> Result<ReceiverFrame, GpuError> {
         let heights = heights_texture(ctx, Some(r))?;
-        let terrain = ctx.upload_grid(
-            "receivers' terrain",
-            r.terrain.as_ref().unwrap_or(&Grid::new(1, 1)),
-        )?;
         let (w, h) = (deposit.width(), deposit.height());
+        let floor_texels = floor_texels(r, w as usize, h as usize);
+        let texels = float_texture(
+            ctx,
+            "receivers' floor texels",
+            wgpu::TextureFormat::Rgba32Float,
+            (w, h, 1),
+            bytemuck::cast_slice(&floor_texels),
+        )?;
         let floor = ctx.texture_2d(
             "floor map (receivers' lookup)",
             (w, h, 1),
@@ -129,14 +134,8 @@ impl ReceiverLookup {
                 | wgpu::TextureUsages::COPY_SRC,
         );
         let uniform = LookupUniform {
-            receivers: ReceiversUniform::of(Some(r)),
-            floor: [
-                r.size as f32,
-                wrap as u32 as f32,
-                (0.5 * r.texel * r.max_slope.max(1.0)) as f32,
-                r.terrain.is_some() as u32 as f32,
-            ],
-            absorption: absorption.as_vec3().extend(r.depth as f32).to_array(),
+            floor: [r.size as f32, wrap as u32 as f32, 0.0, 0.0],
+            absorption: absorption.as_vec3().extend(0.0).to_array(),
         };
         let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(LOOKUP.name),
@@ -144,7 +143,7 @@ impl ReceiverLookup {
             usage: wgpu::BufferUsages::UNIFORM,
         });
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let (d, hv, tv, fv) = (view(deposit), view(&heights), view(&terrain), view(&floor));
+        let (d, tv, fv) = (view(deposit), view(&texels), view(&floor));
         let bind = bind_group(
             ctx,
             LOOKUP.name,
@@ -152,7 +151,6 @@ impl ReceiverLookup {
             &[
                 buffer.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&d),
-                wgpu::BindingResource::TextureView(&hv),
                 wgpu::BindingResource::TextureView(&tv),
                 wgpu::BindingResource::TextureView(&fv),
             ],
@@ -162,7 +160,7 @@ impl ReceiverLookup {
             heights,
             floor,
             bind,
-            _terrain: terrain,
+            texels,
         })
     }
 

@@ -1,25 +1,20 @@
-// The receivers' lookup (docs/receivers.md): each floor texel's centre on the floor (the terrain's
-// bicubic surface, or z = 0) takes a technique's light-space deposit at its light-space point, times
-// n . (-t0) / -t0.z, attenuated along the flat-water path to it where the deposit carries no
-// absorption of its own, and nothing where the receivers' map lies above it (something nearer the
-// light covers it). CPU twin: `lookup` in caustics-core/src/receivers.rs.
-
-import package::shaders::optics::height_field_normal;
-import package::shaders::receivers::{Receivers, light_space, receiver_height};
-import package::shaders::water::grid_sample;
+// The receivers' lookup (docs/receivers.md): each floor texel takes a technique's light-space
+// deposit at its light-space point, times its share (the cosine of its face against the light, 0
+// where something nearer the light covers it), attenuated along its flat-water path where the
+// deposit carries no absorption of its own. The points, shares and paths are made once per terrain
+// and sun (`floor_texels`). CPU twin: `lookup` in caustics-core/src/receivers.rs.
 
 // Mirrors `LookupUniform` in crates/gpu/src/receivers.rs.
 struct Lookup {
-    receivers: Receivers,
-    floor: vec4<f32>,   // x: side of the square; y: 1 where the light wraps; z: the depth test's bias; w: 1 over a terrain
-    absorption: vec4<f32>, // xyz: K, attenuating along the flat-water path to each receiver point (0: the deposit's own); w: the water's depth
+    floor: vec4<f32>,      // x: side of the square; y: 1 where the light wraps
+    absorption: vec4<f32>, // xyz: K along the flat-water path (0: the deposit's own)
 }
 
 @group(0) @binding(0) var<uniform> u: Lookup;
 @group(0) @binding(1) var deposit: texture_2d<f32>;
-@group(0) @binding(2) var heights: texture_2d<f32>;
-@group(0) @binding(3) var terrain: texture_2d<f32>;
-@group(0) @binding(4) var floor_map: texture_storage_2d<rgba32float, write>;
+// Per floor texel: its light-space point, its share, its flat-water path.
+@group(0) @binding(2) var texels: texture_2d<f32>;
+@group(0) @binding(3) var floor_map: texture_storage_2d<rgba32float, write>;
 
 // The deposit at floor point q, bilinear between texel centres, wrapped or clamped (`CausticsMap::sample`).
 fn deposit_at(q: vec2<f32>) -> vec3<f32> {
@@ -48,20 +43,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= dims.x || id.y >= dims.y {
         return;
     }
-    let size = u.floor.x;
-    let c = (vec2<f32>(id.xy) + 0.5) * size / vec2<f32>(dims);
-    var hg = vec3<f32>(0.0);
-    if u.floor.w != 0.0 {
-        hg = grid_sample(terrain, c, size, false);
-    }
-    let p = vec3<f32>(c, hg.x);
-    let t0 = u.receivers.t0.xyz;
-    let q = light_space(p, t0);
+    let t = textureLoad(texels, vec2<i32>(id.xy), 0);
     var rgb = vec3<f32>(0.0);
-    if p.z >= receiver_height(heights, u.receivers, q) - u.floor.z {
-        let facing = max(dot(height_field_normal(hg.yz), -t0) / -t0.z, 0.0);
-        let path = (u.absorption.w - p.z) / -t0.z;
-        rgb = deposit_at(q) * facing * exp(-u.absorption.xyz * path);
+    if t.z > 0.0 {
+        rgb = deposit_at(t.xy) * t.z * exp(-u.absorption.xyz * t.w);
     }
     textureStore(floor_map, vec2<i32>(id.xy), vec4<f32>(rgb, 1.0));
 }

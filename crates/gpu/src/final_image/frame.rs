@@ -9,9 +9,10 @@ use crate::pass::bind_group;
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError};
 
-use super::resources::{float_texture, rgba32, storage_buffer, walls_view};
+use super::resources::{rgba32, storage_buffer, walls_view};
 use super::upload::Lighting;
 use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUniform, meshes};
+use crate::pass::float_texture;
 
 impl FinalImage {
     /// The final image of `scene` at its camera's size, every resource built here once: the

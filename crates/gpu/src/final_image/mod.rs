@@ -67,10 +67,11 @@ pub use upload::{
 
 use crate::map_mips::{MapMips, mips_pipeline};
 use crate::pass::compute_pipeline;
+use crate::pass::float_texture;
 use crate::shaders::passes;
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError};
-use resources::{float_texture, storage_entry, texture_entry};
+use resources::{storage_entry, texture_entry};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 

@@ -10,9 +10,10 @@ use caustics_core::water::Surface;
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-use super::resources::{float_texture, upload_map, upload_walls};
+use super::resources::{upload_map, upload_walls};
 use super::slopes;
 use super::{FinalImage, FinalImageFrame, PyramidLevel, Slab, water_grid};
+use crate::pass::float_texture;
 
 impl FinalImage {
     /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with

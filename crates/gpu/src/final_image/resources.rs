@@ -1,6 +1,7 @@
 //! The textures and buffers the final image binds: the layouts' entries, the uploads of CPU-made
 //! inputs (caustics maps, walls' maps) and the storage buffers that may not be empty.
 
+use crate::pass::float_texture;
 use caustics_core::map::CausticsMap;
 use caustics_core::walls::WallMaps;
 
@@ -69,40 +70,6 @@ pub(super) fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
         },
         count: None,
     }
-}
-
-/// A sampled texture of one mip level, `layers` deep, holding `texels` (layer after layer), its size
-/// refused by name where the device cannot hold it.
-pub(super) fn float_texture(
-    ctx: &GpuContext,
-    what: &str,
-    format: wgpu::TextureFormat,
-    (width, height, layers): (u32, u32, u32),
-    texels: &[u8],
-) -> Result<wgpu::Texture, GpuError> {
-    ctx.check_texture_size(what, width, height)?;
-    let texel = format
-        .block_copy_size(None)
-        .expect("an uncompressed format");
-    debug_assert_eq!(texels.len(), (width * height * layers * texel) as usize);
-    Ok(ctx.create_texture_with_data(
-        &wgpu::TextureDescriptor {
-            label: Some(what),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        texels,
-    ))
 }
 
 /// A CPU caustics map as the `Rgba32Float` texture a technique's floor output is
