@@ -51,7 +51,7 @@ pub fn flat_refracted(light: DVec3, ior: f64) -> DVec3 {
 
 /// The receivers' heights in the light's space: per texel of a square light-space window, the
 /// height of the first receiver met coming down along `t0` from the water.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct ReceiverHeights {
     /// The flat-water refracted sun, unit, `z < 0`.
     pub t0: DVec3,
@@ -204,6 +204,25 @@ impl ReceiverHeights {
     /// covered by another receiver nearer the light.
     pub fn lit(&self, p: DVec3, bias: f64) -> bool {
         p.z >= self.height(light_space(p, self.t0)) - bias
+    }
+}
+
+/// One receivers' map shared between a technique's setups, equal only to itself: a setup compared
+/// every frame compares the map's identity, not its texels ([`ReceiverHeights::of_floor_reusing`]
+/// hands back the same map while nothing it depends on changed).
+#[derive(Clone, Debug)]
+pub struct Shared(pub Arc<ReceiverHeights>);
+
+impl PartialEq for Shared {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl std::ops::Deref for Shared {
+    type Target = ReceiverHeights;
+    fn deref(&self) -> &ReceiverHeights {
+        &self.0
     }
 }
 

@@ -253,6 +253,80 @@ fn a_terrain_matches_the_cpu_twin() {
     }
 }
 
+/// Through the `Technique` trait on the pool over the beach: frames of moving water under a steady
+/// sun reuse the receivers (nothing created, uploaded past the heights, or read back), and the
+/// last floor map is the CPU twin's run on the same job.
+fn a_terrain_through_the_trait_creates_and_reads_nothing() {
+    use caustics_gpu::WaterTextures;
+    let ctx = test_gpu();
+    let mut scene = common::with_gentle_ripples("pool");
+    scene.floor.walls = false;
+    scene.caustics.width = 64;
+    scene.caustics.height = 64;
+    let w = scene.water.clone().unwrap();
+    scene.floor.terrain = Some(common::beach_under(w.depth));
+    let mut t = caustics_gpu::registry::create(&ctx, "yuksel", &toml::Table::new()).unwrap();
+    let (cols, rows) = t.water_resolution(&scene);
+    let grid = |time: f64| {
+        let surface = w.surface_at(time).unwrap();
+        caustics_core::water::sample_grid(surface.as_ref(), cols as usize, rows as usize, w.size)
+    };
+    let tex = ctx.upload_grid("test heights", &grid(0.0)).unwrap();
+    t.configure(&ctx, &scene, &WaterTextures::of(&tex)).unwrap();
+    let run = |t: &dyn caustics_gpu::Technique| {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        t.encode(&mut encoder, None);
+        ctx.queue.submit([encoder.finish()]);
+    };
+    t.update(&ctx, &scene).unwrap();
+    run(t.as_ref());
+    ctx.wait().unwrap();
+    let before = ctx.traffic();
+    let mut heights = grid(0.0);
+    for f in 1..=3 {
+        scene.time = 0.1 * f as f64;
+        heights = grid(scene.time);
+        // The test's own upload, past the context's counters.
+        ctx.queue.write_texture(
+            tex.as_image_copy(),
+            bytemuck::cast_slice(&heights.data),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(heights.cols as u32 * 4),
+                rows_per_image: Some(heights.rows as u32),
+            },
+            tex.size(),
+        );
+        t.update(&ctx, &scene).unwrap();
+        run(t.as_ref());
+    }
+    ctx.wait().unwrap();
+    let d = ctx.traffic().since(&before);
+    eprintln!("three yuksel frames over a terrain: {d:?}");
+    assert_eq!(
+        (d.created(), d.readbacks, d.uploaded_bytes),
+        (0, 0, 0),
+        "{d:?}"
+    );
+    let texels: Vec<[f32; 4]> = ctx.read_texture(t.output().unwrap().texture()).unwrap();
+    let gpu = CausticsMap {
+        width: 64,
+        height: 64,
+        size: w.size,
+        texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+    };
+    let surface = w.surface_at(scene.time).unwrap();
+    let job = caustics_core::techniques::Job::new(&scene, Some(surface.as_ref()), 1);
+    let (setup, cpu_heights) = yuksel::job_setup(&job, &toml::Table::new()).unwrap();
+    assert_eq!(cpu_heights, heights);
+    let cpu = yuksel::scatter(&setup, &cpu_heights);
+    let (mean, _) = spread(&cpu, &gpu);
+    eprintln!(
+        "through the trait over a terrain: worst {:.2e}, mean {mean:.2e}",
+        worst(&cpu, &gpu)
+    );
+}
+
 /// The scatter variant against its CPU twin, `yuksel::scatter` (the same loops: each record added
 /// into the map pixels its box covers, clipped to its region, in the same fixed point, then
 /// resolved): the defaults, every pixel at 4 x 4, at most 3 x 3, the paper's preset, a fixed
@@ -628,6 +702,7 @@ test_main! {
     gpu gpu_variants_match_the_cpu_twin,
     gpu the_scatter_matches_its_cpu_twin,
     gpu a_terrain_matches_the_cpu_twin,
+    gpu a_terrain_through_the_trait_creates_and_reads_nothing,
     gpu fewer_render_targets_give_the_same_map,
     gpu a_map_beyond_the_device_limit_is_refused,
     gpu the_gpu_chooses_the_cpus_region,

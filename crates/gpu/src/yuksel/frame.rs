@@ -6,8 +6,6 @@ use caustics_core::grid::Grid;
 use caustics_core::techniques::yuksel::YukselSetup;
 
 use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
-use std::sync::Arc;
-
 use crate::pass::bind_group;
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
@@ -101,8 +99,7 @@ impl Frame {
     /// so that [`set_setup`](Self::set_setup) can take it.
     pub fn fits(&self, setup: &YukselSetup) -> bool {
         let key = |s: &YukselSetup| (s.width, s.height, s.capacity(), s.subsamples);
-        let receivers = |s: &YukselSetup| s.receivers.as_ref().map(|(r, k)| (Arc::as_ptr(r), *k));
-        key(setup) == key(&self.setup) && receivers(setup) == receivers(&self.setup)
+        key(setup) == key(&self.setup) && setup.receivers == self.setup.receivers
     }
 
     /// Take a new sun or depth (a setup that [`fits`](Self::fits)): uniform writes only.
@@ -241,7 +238,7 @@ impl Yuksel {
         );
         let map_view = map.create_view(&Default::default());
         let receivers = match &setup.receivers {
-            Some((r, k)) => Some(self.lookup.frame(ctx, r, &map, setup.wrap, *k)?),
+            Some((r, k)) => Some(self.lookup.frame(ctx, &r.0, &map, setup.wrap, *k)?),
             None => None,
         };
         let receiver_heights = match &receivers {

@@ -98,7 +98,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, refract};
-use crate::receivers::ReceiverHeights;
+use crate::receivers::{ReceiverHeights, Shared};
 
 use super::describe::{
     Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
@@ -557,7 +557,7 @@ pub struct YukselSetup {
     pub attenuation: DVec3,
     /// What the samples' light meets instead of the plane `z = 0` ([`YukselSetup::with_floor`]),
     /// and the absorption `K` the lookup applies along the flat-water path to each receiver.
-    pub receivers: Option<(Arc<ReceiverHeights>, DVec3)>,
+    pub receivers: Option<(Shared, DVec3)>,
 }
 
 impl YukselSetup {
@@ -642,7 +642,7 @@ impl YukselSetup {
             absorption
         };
         self.attenuation = DVec3::ONE;
-        self.receivers = Some((r, k));
+        self.receivers = Some((Shared(r), k));
         self
     }
 
