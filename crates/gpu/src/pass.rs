@@ -25,13 +25,20 @@ pub fn bind_group(
     layout: &wgpu::BindGroupLayout,
     resources: &[wgpu::BindingResource],
 ) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .enumerate()
-        .map(|(k, resource)| wgpu::BindGroupEntry {
-            binding: k as u32,
-            resource: resource.clone(),
-        })
+    let numbered = resources.iter().cloned().enumerate();
+    bind_group_at(ctx, label, layout, numbered.map(|(k, r)| (k as u32, r)))
+}
+
+/// A bind group for `layout` with each `(binding, resource)`.
+pub fn bind_group_at<'a>(
+    ctx: &GpuContext,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    entries: impl IntoIterator<Item = (u32, wgpu::BindingResource<'a>)>,
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = entries
+        .into_iter()
+        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource })
         .collect();
     ctx.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
@@ -52,30 +59,40 @@ pub fn begin_compute<'e>(
     })
 }
 
+/// A 2-D texture (or array of `layers`) of one mip level.
+fn texture_2d_descriptor<'a>(
+    label: &'a str,
+    (width, height, layers): (u32, u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureDescriptor<'a> {
+    wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    }
+}
+
 impl GpuContext {
     /// A 2-D texture (or array of `layers`) of one mip level, refused with a named error by the
     /// caller's size check beforehand.
     pub fn texture_2d(
         &self,
         label: &str,
-        (width, height, layers): (u32, u32, u32),
+        size: (u32, u32, u32),
         format: wgpu::TextureFormat,
         usage: wgpu::TextureUsages,
     ) -> wgpu::Texture {
-        self.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        })
+        self.create_texture(&texture_2d_descriptor(label, size, format, usage))
     }
 }
 
@@ -93,21 +110,9 @@ pub fn float_texture(
         .block_copy_size(None)
         .expect("an uncompressed format");
     debug_assert_eq!(texels.len(), (width * height * layers * texel) as usize);
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
     Ok(ctx.create_texture_with_data(
-        &wgpu::TextureDescriptor {
-            label: Some(what),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: layers,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
+        &texture_2d_descriptor(what, (width, height, layers), format, usage),
         wgpu::util::TextureDataOrder::LayerMajor,
         texels,
     ))

@@ -378,16 +378,7 @@ mod through_the_trait {
             scene.camera.position = start + glam::DVec3::new(0.03 * f, -0.02 * f, 0.01 * f);
             scene.light.direction = glam::DVec3::new(0.3 + 0.01 * f, 0.1, -1.0).normalize();
             h = heights(t.as_ref(), &scene);
-            ctx.queue.write_texture(
-                tex.as_image_copy(),
-                bytemuck::cast_slice(&h.data),
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(h.cols as u32 * 4),
-                    rows_per_image: Some(h.rows as u32),
-                },
-                tex.size(),
-            );
+            common::write_heights(&ctx, &tex, &h);
             t.update(&ctx, &scene).unwrap();
             frame(&ctx, t.as_ref());
         }

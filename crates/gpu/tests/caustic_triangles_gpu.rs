@@ -861,20 +861,6 @@ mod through_the_trait {
         ctx.queue.submit([encoder.finish()]);
     }
 
-    /// The test's own upload of new heights, past the context's counters.
-    fn write_heights(ctx: &GpuContext, texture: &wgpu::Texture, grid: &Grid) {
-        ctx.queue.write_texture(
-            texture.as_image_copy(),
-            bytemuck::cast_slice(&grid.data),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(grid.cols as u32 * 4),
-                rows_per_image: Some(grid.rows as u32),
-            },
-            texture.size(),
-        );
-    }
-
     /// 10x the worst agreement measured through the trait (see the tests).
     const WATER_L1: f64 = 1.5e-5;
     const WATER_FLUX: f64 = 1.7e-6;
@@ -1017,7 +1003,7 @@ mod through_the_trait {
             scene.time = 0.1 * f as f64;
             scene.light.direction = glam::DVec3::new(0.3 + 0.02 * f as f64, 0.1, -1.0).normalize();
             h = heights(t.as_ref(), &scene);
-            write_heights(&ctx, &tex, &h);
+            super::common::write_heights(&ctx, &tex, &h);
             t.update(&ctx, &scene).unwrap();
             frame(&ctx, t.as_ref());
         }
@@ -1069,7 +1055,7 @@ mod through_the_trait {
         for f in 1..=5 {
             scene.time = 0.1 * f as f64;
             h = heights(t.as_ref(), &scene);
-            write_heights(&ctx, &tex, &h);
+            super::common::write_heights(&ctx, &tex, &h);
             t.update(&ctx, &scene).unwrap();
             frame(&ctx, t.as_ref());
         }
@@ -1138,7 +1124,7 @@ mod through_the_trait {
             scene.time = 0.1 * f as f64;
             scene.light.direction = glam::DVec3::new(0.3 + 0.05 * f as f64, 0.15, -1.0).normalize();
             h = heights(t.as_ref(), &scene);
-            write_heights(&ctx, &tex, &h);
+            super::common::write_heights(&ctx, &tex, &h);
             t.update(&ctx, &scene).unwrap();
             frame(&ctx, t.as_ref());
         }
@@ -1285,7 +1271,7 @@ mod through_the_trait {
         let before = ctx.traffic();
         for f in 1..=10 {
             scene.light.direction = glam::DVec3::new(0.45, 0.3 + 0.01 * f as f64, -0.8).normalize();
-            write_heights(&ctx, &tex, &Grid::from_fn(1, 1, |_, _| 0.01 * f as f32));
+            super::common::write_heights(&ctx, &tex, &Grid::from_fn(1, 1, |_, _| 0.01 * f as f32));
             t.update(&ctx, &scene).unwrap();
             frame(&ctx, t.as_ref());
         }

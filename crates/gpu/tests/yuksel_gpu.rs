@@ -234,7 +234,7 @@ fn a_terrain_matches_the_cpu_twin() {
         light,
     )
     .unwrap()
-    .with_floor(&floor, absorption, None);
+    .with_floor(&floor, None);
     assert!(setup.receivers.is_some());
     let cpu = yuksel::caustics(&setup, &heights);
     for variant in [Variant::RenderTargets, Variant::Scatter] {
@@ -286,17 +286,7 @@ fn a_terrain_through_the_trait_creates_and_reads_nothing() {
     for f in 1..=3 {
         scene.time = 0.1 * f as f64;
         heights = grid(scene.time);
-        // The test's own upload, past the context's counters.
-        ctx.queue.write_texture(
-            tex.as_image_copy(),
-            bytemuck::cast_slice(&heights.data),
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(heights.cols as u32 * 4),
-                rows_per_image: Some(heights.rows as u32),
-            },
-            tex.size(),
-        );
+        common::write_heights(&ctx, &tex, &heights);
         t.update(&ctx, &scene).unwrap();
         run(t.as_ref());
     }

@@ -6,7 +6,7 @@ use caustics_core::grid::Grid;
 use caustics_core::techniques::yuksel::YukselSetup;
 
 use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
-use crate::pass::bind_group;
+use crate::pass::{bind_group, bind_group_at};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
@@ -238,7 +238,10 @@ impl Yuksel {
         );
         let map_view = map.create_view(&Default::default());
         let receivers = match &setup.receivers {
-            Some((r, k)) => Some(self.lookup.frame(ctx, &r.0, &map, setup.wrap, *k)?),
+            Some(r) => Some(
+                self.lookup
+                    .frame(ctx, &r.0, &map, setup.wrap, setup.absorption)?,
+            ),
             None => None,
         };
         let receiver_heights = match &receivers {
@@ -296,16 +299,16 @@ impl Yuksel {
                     with("yuksel scatter tiers", tier),
                     with("yuksel scatter fill", fill),
                     // The resolve reads neither the heights (1) nor the region (3).
-                    ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("yuksel scatter resolve"),
-                        layout: &resolve.get_bind_group_layout(0),
-                        entries: &[
+                    bind_group_at(
+                        ctx,
+                        "yuksel scatter resolve",
+                        &resolve.get_bind_group_layout(0),
+                        [
                             (0, uniform.as_entire_binding()),
                             (2, sums.as_entire_binding()),
                             (4, View(&map_view)),
-                        ]
-                        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource }),
-                    }),
+                        ],
+                    ),
                 ];
                 FramePasses::Scatter { sums, binds }
             }
@@ -479,23 +482,11 @@ fn bind_with_receivers(
     resources: &[wgpu::BindingResource],
     receivers: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
-    let mut entries: Vec<wgpu::BindGroupEntry> = resources
-        .iter()
-        .enumerate()
-        .map(|(k, resource)| wgpu::BindGroupEntry {
-            binding: k as u32,
-            resource: resource.clone(),
-        })
-        .collect();
-    entries.push(wgpu::BindGroupEntry {
-        binding: 8,
-        resource: wgpu::BindingResource::TextureView(receivers),
-    });
-    ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
+    let numbered = resources.iter().cloned().enumerate();
+    let entries = numbered
+        .map(|(k, r)| (k as u32, r))
+        .chain([(8, wgpu::BindingResource::TextureView(receivers))]);
+    bind_group_at(ctx, label, &pipeline.get_bind_group_layout(0), entries)
 }
 
 /// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has

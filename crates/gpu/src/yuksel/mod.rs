@@ -182,7 +182,7 @@ impl YukselUniform {
             split: s.split.map_or(-1.0, |v| v as f32),
             pre_tiles: 0,
             _pad: 0,
-            receivers: ReceiversUniform::of(s.receivers.as_ref().map(|(r, _)| &**r)),
+            receivers: ReceiversUniform::of(s.receivers.as_deref()),
         }
     }
 

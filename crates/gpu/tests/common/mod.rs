@@ -142,3 +142,23 @@ pub fn beach_under(depth: f64) -> caustics_core::grid::Grid {
         .for_each(|h| *h *= 0.8 * depth as f32 / top);
     beach
 }
+
+/// A test's own upload of new heights into `texture` (an `R32Float` texture of the grid's size),
+/// past the context's counters, so that a count of what a frame uploads is the technique's alone.
+pub fn write_heights(
+    ctx: &caustics_gpu::GpuContext,
+    texture: &wgpu::Texture,
+    grid: &caustics_core::grid::Grid,
+) {
+    let bytes: Vec<u8> = grid.data.iter().flat_map(|h| h.to_ne_bytes()).collect();
+    ctx.queue.write_texture(
+        texture.as_image_copy(),
+        &bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(grid.cols as u32 * 4),
+            rows_per_image: Some(grid.rows as u32),
+        },
+        texture.size(),
+    );
+}

@@ -280,7 +280,7 @@ pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(YukselSetup, Grid)> 
             w.wrap,
             job.light(),
         )?
-        .with_floor(job.floor(), w.absorption, None);
+        .with_floor(job.floor(), None);
         Ok((setup, super::lattice_heights(w, surface, width, height)))
     })
 }
@@ -553,11 +553,12 @@ pub struct YukselSetup {
     /// `T(θ0)`, or 1 without the Fresnel option.
     pub t_flat: f64,
     pub fresnel: bool,
+    /// `K` per channel, zero without the absorption option.
+    pub absorption: DVec3,
     /// Per-channel `exp(−K d0)` applied in pass 2 (1 over receivers: the lookup attenuates).
     pub attenuation: DVec3,
-    /// What the samples' light meets instead of the plane `z = 0` ([`YukselSetup::with_floor`]),
-    /// and the absorption `K` the lookup applies along the flat-water path to each receiver.
-    pub receivers: Option<(Shared, DVec3)>,
+    /// What the samples' light meets instead of the plane `z = 0` ([`YukselSetup::with_floor`]).
+    pub receivers: Option<Shared>,
 }
 
 impl YukselSetup {
@@ -609,6 +610,11 @@ impl YukselSetup {
                 1.0
             },
             fresnel: params.fresnel,
+            absorption: if params.absorption {
+                absorption
+            } else {
+                DVec3::ZERO
+            },
             attenuation: if params.absorption {
                 (-absorption * d0).exp()
             } else {
@@ -626,7 +632,6 @@ impl YukselSetup {
     pub fn with_floor(
         mut self,
         floor: &crate::scene::Floor,
-        absorption: DVec3,
         previous: Option<&Arc<ReceiverHeights>>,
     ) -> Self {
         if floor.terrain.is_none() {
@@ -636,13 +641,8 @@ impl YukselSetup {
         let r = ReceiverHeights::of_floor_reusing(
             previous, floor, self.size, self.depth, t0, self.width,
         );
-        let k = if self.attenuation == DVec3::ONE {
-            DVec3::ZERO
-        } else {
-            absorption
-        };
         self.attenuation = DVec3::ONE;
-        self.receivers = Some((Shared(r), k));
+        self.receivers = Some(Shared(r));
         self
     }
 
@@ -651,7 +651,7 @@ impl YukselSetup {
     pub fn received(&self, map: CausticsMap) -> CausticsMap {
         match &self.receivers {
             None => map,
-            Some((r, k)) => crate::receivers::lookup(&map, r, self.wrap, *k),
+            Some(r) => crate::receivers::lookup(&map, r, self.wrap, self.absorption),
         }
     }
 

@@ -31,7 +31,7 @@ fn hit(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, f64)> {
     let t = refract(l, normal, setup.eta).filter(|_| cos_i > 0.0 && seen > 0.0)?;
     let hit = match &setup.receivers {
         None => s + t.truncate() * ((setup.depth + h) / -t.z),
-        Some((r, _)) => {
+        Some(r) => {
             let (at, _) = r.meet(s.extend(setup.depth + h), t)?;
             light_space(at, r.t0)
         }

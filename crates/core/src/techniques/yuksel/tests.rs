@@ -256,7 +256,7 @@ fn a_sand_bar_agrees_with_the_reference() {
             light,
         )
         .unwrap()
-        .with_floor(&scene.floor, w.absorption, None);
+        .with_floor(&scene.floor, None);
         for (name, map) in [
             ("scatter", scatter(&s, &heights)),
             ("targets", caustics(&s, &heights)),
