@@ -559,7 +559,7 @@ fn render_uses_the_chosen_technique() {
             "--scene",
             "shore",
             "--technique",
-            "procedural",
+            "volumes",
             "--cpu",
             "--raw",
             "s.npy",
@@ -567,7 +567,7 @@ fn render_uses_the_chosen_technique() {
         &d,
     );
     assert!(
-        !o.status.success() && stderr(&o).contains("flat floor"),
+        !o.status.success() && stderr(&o).contains("has a terrain"),
         "{}",
         stderr(&o)
     );

@@ -311,9 +311,12 @@ fn a_terrain_through_the_trait_creates_and_reads_nothing() {
     assert_eq!(cpu_heights, heights);
     let cpu = yuksel::scatter(&setup, &cpu_heights);
     let (mean, _) = spread(&cpu, &gpu);
-    eprintln!(
-        "through the trait over a terrain: worst {:.2e}, mean {mean:.2e}",
-        worst(&cpu, &gpu)
+    let worst = worst(&cpu, &gpu);
+    eprintln!("through the trait over a terrain: worst {worst:.2e}, mean {mean:.2e}");
+    // Measured on lavapipe: worst 3.7e-4 of the mean. Bounds 10x, the mean's as the direct test's.
+    assert!(
+        worst < 3.7e-3 && mean < 3.3e-5,
+        "worst {worst}, mean {mean}"
     );
 }
 

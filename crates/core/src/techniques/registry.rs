@@ -498,6 +498,10 @@ mod for_scene_tests {
             [
                 "yuksel",
                 "yuksel-targets",
+                "procedural",
+                "procedural-vertex",
+                "procedural-screen",
+                "procedural-texture",
                 "caustic-triangles",
                 "cascaded",
                 "reference"

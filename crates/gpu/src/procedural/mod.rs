@@ -21,6 +21,7 @@ use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
 use crate::pass::{bind_group, pulled_pipeline};
+use crate::receivers::{ReceiverFrame, ReceiverLookup};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
@@ -81,7 +82,7 @@ impl ProceduralUniform {
             sun_z: v4(s.sun_frame[2]),
             up: v4(s.up),
             absorption: {
-                let mut a = v4(s.absorption);
+                let mut a = v4(s.gathered_absorption());
                 a[3] = s.ground as f32;
                 a
             },
@@ -117,6 +118,8 @@ pub struct ProceduralCaustics {
     target: wgpu::RenderPipeline,
     downsample: wgpu::RenderPipeline,
     resample: wgpu::RenderPipeline,
+    /// The receivers' lookup of a frame over a terrain.
+    lookup: ReceiverLookup,
     /// The texture variant's target and mip chain: `Rgba32Float` where the adapter filters it,
     /// `Rgba16Float` otherwise.
     pub chain_format: wgpu::TextureFormat,
@@ -140,8 +143,11 @@ pub struct ProceduralFrame {
     heights: Option<wgpu::Texture>,
     /// The paper's wave when the shader evaluates it, `None` when it reads the height grid.
     wave: Option<GpuProceduralWave>,
+    /// The passes' map: the floor map on the plane `z = 0`, the light-space map over receivers.
     pub map: wgpu::Texture,
     map_view: wgpu::TextureView,
+    /// The terrain's receivers where the setup has them: the lookup writes the floor map.
+    pub receivers: Option<ReceiverFrame>,
     setup: ProceduralSetup,
     passes: FramePasses,
     bytes: u64,
@@ -175,6 +181,11 @@ impl ProceduralFrame {
 
     pub fn setup(&self) -> &ProceduralSetup {
         &self.setup
+    }
+
+    /// The floor map: the receivers' lookup where the frame has receivers, else the map.
+    pub fn floor_map(&self) -> &wgpu::Texture {
+        self.receivers.as_ref().map_or(&self.map, |r| &r.floor)
     }
 
     /// Replace the water for the next encode: a height grid of the frame's grid size, or the wave
@@ -225,6 +236,8 @@ impl ProceduralFrame {
             s.anisotropy,
             s.wrap,
         ) && setup.light == s.light
+            && setup.receivers == s.receivers
+            && (s.receivers.is_none() || setup.absorption == s.absorption)
     }
 
     /// Take a new sun, depth or absorption (a setup that [`fits`](Self::fits)): one uniform write.
@@ -275,6 +288,7 @@ impl ProceduralCaustics {
             target: render_pipeline(ctx, &TARGET, chain_format),
             downsample: render_pipeline(ctx, &DOWNSAMPLE, chain_format),
             resample: render_pipeline(ctx, &RESAMPLE, MAP_FORMAT),
+            lookup: ReceiverLookup::new(ctx),
             chain_format,
         };
         ctx.check()?;
@@ -459,6 +473,14 @@ impl ProceduralCaustics {
                 }
             }
         };
+        let receivers = match &setup.receivers {
+            Some(r) => Some(
+                self.lookup
+                    .frame(ctx, &r.0, &map, setup.wrap, setup.absorption)?,
+            ),
+            None => None,
+        };
+        bytes += receivers.as_ref().map_or(0, |r| r.bytes());
         ctx.check()?;
         Ok(ProceduralFrame {
             uniform,
@@ -466,13 +488,15 @@ impl ProceduralCaustics {
             wave,
             map,
             map_view,
+            receivers,
             setup: setup.clone(),
             passes,
             bytes,
         })
     }
 
-    /// Record the variant's passes for `frame`. Returns the texture the map ends in.
+    /// Record the variant's passes for `frame`, and the receivers' lookup over a terrain. Returns
+    /// the texture the floor map ends in.
     pub fn encode<'f>(
         &self,
         frame: &'f ProceduralFrame,
@@ -522,7 +546,10 @@ impl ProceduralCaustics {
                 pass.draw(0..3, 0..1);
             }
         }
-        &frame.map
+        if let Some(r) = &frame.receivers {
+            self.lookup.encode(r, encoder, timer);
+        }
+        frame.floor_map()
     }
 
     /// Run the technique once and read the map back.

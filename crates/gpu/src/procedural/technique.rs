@@ -70,8 +70,15 @@ impl SceneKey {
         })
     }
 
-    /// The setup for this key from `params`, as the application's Runner builds it for a water job.
-    fn setup(&self, params: &ProceduralCausticsParams) -> Result<ProceduralSetup, GpuError> {
+    /// The setup for this key from `params` over `scene`'s floor, as the application's Runner
+    /// builds it for a water job; its receivers `previous`'s where they did not change.
+    fn setup(
+        &self,
+        params: &ProceduralCausticsParams,
+        scene: &Scene,
+        previous: Option<&ProceduralSetup>,
+    ) -> Result<ProceduralSetup, GpuError> {
+        let previous = previous.and_then(|s| s.receivers.as_ref().map(|r| &r.0));
         Ok(ProceduralSetup::new(
             params,
             self.width as usize,
@@ -81,7 +88,8 @@ impl SceneKey {
             self.absorption,
             self.wrap,
             self.light,
-        )?)
+        )?
+        .with_floor(&scene.floor, previous))
     }
 }
 
@@ -162,7 +170,7 @@ impl Pipelines for ProceduralCaustics {
         water: &WaterTextures,
     ) -> Result<ConfiguredProcedural, GpuError> {
         let key = SceneKey::of(scene)?;
-        let setup = key.setup(&params.params)?;
+        let setup = key.setup(&params.params, scene, None)?;
         Ok(ConfiguredProcedural {
             frame: self.frame_with_water(ctx, &setup, water)?,
             key,
@@ -177,10 +185,10 @@ impl Pipelines for ProceduralCaustics {
         scene: &Scene,
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
-        if frame.key == key {
+        let mut setup = key.setup(&params.sun, scene, Some(frame.frame.setup()))?;
+        if frame.key == key && setup.receivers == frame.frame.setup().receivers {
             return Ok(true);
         }
-        let mut setup = key.setup(&params.sun)?;
         setup.light = frame.frame.setup().light.clone();
         if frame.frame.fits(&setup) {
             frame.frame.set_setup(ctx, &setup);
@@ -200,7 +208,7 @@ impl Pipelines for ProceduralCaustics {
     }
 
     fn output<'a>(&'a self, frame: &'a ConfiguredProcedural) -> Output<'a> {
-        Output::Floor(&frame.frame.map)
+        Output::Floor(frame.frame.floor_map())
     }
 
     fn bytes(frame: &ConfiguredProcedural) -> u64 {

@@ -204,6 +204,6 @@ pub fn caustic_at(setup: &ProceduralSetup, water: &SurfaceInput, p: DVec2) -> [f
     let t = trace(setup, water, p);
     let e = t.uv.map_or(0.0, |uv| setup.light.sample(uv));
     let d = (setup.depth + t.height) / setup.up.z;
-    let a = (-setup.absorption * d).exp() * (setup.ground + (1.0 - setup.ground) * e);
+    let a = (-setup.gathered_absorption() * d).exp() * (setup.ground + (1.0 - setup.ground) * e);
     [a.x as f32, a.y as f32, a.z as f32]
 }

@@ -81,6 +81,16 @@
 //!   footprint even where the footprint is square, where hardware reduces to trilinear;
 //!   `anisotropy = 1` gives plain trilinear filtering everywhere.
 //!
+//! # Over a terrain
+//! The paper's floor is flat; its rule carries to any floor because the gathering ray is a line
+//! along the technique's light (`up`): every point on that line reaches the surface at the same
+//! place, so the caustic of a floor point is the flat floor's at the point's light-space position
+//! ([`crate::receivers`], with `t₀ = −up`). The passes evaluate the map on the plane `z = 0` as
+//! they do for a flat floor and the receivers' lookup reads it per floor texel, with the face's
+//! cosine against the light, the depth test, and `exp(−K d)` along the point's own path to the
+//! rest level ([`ProceduralSetup::with_floor`]). Under the paper's overhead sun the light space is
+//! the floor's own texels and the cosine is the normal's `z`.
+//!
 //! # Where it departs from the reference
 //! By design, everywhere: the caustic is not the focusing of flux but the brightness of the sky seen
 //! straight up through the surface. Bright spots sit where the surface is nearly flat (its crests,
@@ -105,6 +115,7 @@ pub use target::target_pass;
 pub use vertex::{rasterise, vertex_values};
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -113,6 +124,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::refract;
+use crate::receivers::{ReceiverHeights, Shared};
 use crate::water::Surface;
 
 /// The paper's index of refraction of water.
@@ -165,7 +177,7 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: with_shared_params![VARIANT, MESH_RESOLUTION, TARGET_RESOLUTION, ANISOTROPY,],
     fixed: &[],
     point_light: false,
-    flat_floor: Some("lights a flat floor at a constant depth (paper 2, \"Our Approach\")"),
+    flat_floor: None,
     buffers: &[],
     draw_buffer: crate::techniques::buffers::no_buffers,
     reference: false,
@@ -344,7 +356,6 @@ const GROUND: Param = Param::new(
 
 /// The setup and heights a job gives paper 2 (both twins).
 pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(ProceduralSetup, Grid)> {
-    job.flat_floor(&DESCRIPTOR)?;
     job.note_floor_only(&DESCRIPTOR);
     let params = ProceduralCausticsParams::from_table(table)?;
     let (width, height) = job.size();
@@ -358,7 +369,8 @@ pub fn job_setup(job: &Job, table: &toml::Table) -> Result<(ProceduralSetup, Gri
             w.absorption,
             w.wrap,
             job.light(),
-        )?;
+        )?
+        .with_floor(job.floor(), None);
         let heights = job_heights(w, surface, &setup);
         Ok((setup, heights))
     })
@@ -393,7 +405,7 @@ fn run_cpu(
 ) -> Result<JobOutput> {
     let (setup, heights) = job_setup(job, table)?;
     Ok(JobOutput::floor(
-        caustics(&setup, &SurfaceInput::Grid(&heights)),
+        setup.received(caustics(&setup, &SurfaceInput::Grid(&heights))),
         None,
     ))
 }
@@ -624,6 +636,8 @@ pub struct ProceduralSetup {
     /// [`ProceduralCausticsParams::ground`].
     pub ground: f64,
     pub light: LightMap,
+    /// The terrain the gathering rays start from ([`ProceduralSetup::with_floor`]).
+    pub receivers: Option<Shared>,
 }
 
 impl ProceduralSetup {
@@ -670,7 +684,45 @@ impl ProceduralSetup {
             },
             ground: params.ground,
             light: LightMap::from_params(params)?,
+            receivers: None,
         })
+    }
+
+    /// The gathering rays start from `floor`'s terrain where it has one. Every point on a line
+    /// along the technique's light (`−up`) gathers through the same surface point, so the
+    /// caustic is the flat floor's at the point's light-space position: the passes evaluate the
+    /// light-space map as on the plane `z = 0`, and the receivers' lookup gives each floor texel
+    /// its value, its face's cosine against the light, the depth test, and the absorption along
+    /// its own path (`(depth − z) / up_z`, the rest level's: the paper's `h` is left out there).
+    /// The receivers' map is `previous` where nothing it depends on changed.
+    pub fn with_floor(
+        mut self,
+        floor: &crate::scene::Floor,
+        previous: Option<&Arc<ReceiverHeights>>,
+    ) -> Self {
+        if floor.terrain.is_some() {
+            self.receivers = Some(Shared(ReceiverHeights::of_floor_reusing(
+                previous, floor, self.size, self.depth, -self.up, self.width,
+            )));
+        }
+        self
+    }
+
+    /// `K` per channel along each gathering ray: zero over receivers, whose lookup attenuates.
+    pub fn gathered_absorption(&self) -> DVec3 {
+        match self.receivers {
+            Some(_) => DVec3::ZERO,
+            None => self.absorption,
+        }
+    }
+
+    /// The passes' map as the floor receives it: itself on the plane `z = 0`, else looked up per
+    /// floor texel through the receivers.
+    pub fn received(&self, map: CausticsMap) -> CausticsMap {
+        match &self.receivers {
+            None => map,
+            Some(r) => crate::receivers::lookup(&map, r, self.wrap, self.absorption),
+        }
     }
 
     /// Mip levels of the texture variant's target, level 0 included.
