@@ -112,16 +112,13 @@ pub(crate) fn registered() -> Result<Vec<Spec>> {
 }
 
 /// The built-in scenes `spec` applies to: the pool (its water) for every technique, the glass
-/// scene (its objects) for those that take glass generators, and the shore (its beach) for those
-/// that follow a terrain.
+/// scene (its objects) for those that take glass generators, and the shore (its beach).
 pub(crate) fn scenes_for(spec: &Spec) -> Result<Vec<Scene>> {
     let mut out = vec![Scene::builtin("pool")?];
     if spec.entry.input == Input::GlassOrWater {
         out.push(Scene::builtin("glass")?);
     }
-    if spec.entry.flat_floor.is_none() {
-        out.push(Scene::builtin("shore")?);
-    }
+    out.push(Scene::builtin("shore")?);
     Ok(out)
 }
 

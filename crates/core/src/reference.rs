@@ -69,7 +69,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: &[],
     fixed: &[],
     point_light: false,
-    flat_floor: None,
     buffers: &[],
     draw_buffer: crate::techniques::buffers::no_buffers,
     reference: true,

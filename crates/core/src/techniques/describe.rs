@@ -222,9 +222,6 @@ pub struct Descriptor {
     /// Whether a point or spot light is rendered (paper 4's light cube map); the others need the
     /// directional sun.
     pub point_light: bool,
-    /// Why it draws on the plane z = 0 only (it then refuses a scene with a terrain, and the
-    /// front ends do not offer it there); `None` where it follows a terrain.
-    pub flat_floor: Option<&'static str>,
     /// The intermediate buffers a view can show, beyond the water's heights.
     pub buffers: &'static [BufferDesc],
     /// Draws them, with the CPU twin's passes.
@@ -277,18 +274,6 @@ impl Descriptor {
     /// walls.
     pub fn floor_only_note(&self) -> String {
         floor_only_note(self.name)
-    }
-
-    /// Refuses a scene with a terrain where the technique draws on the plane z = 0
-    /// ([`flat_floor`](Self::flat_floor)): one wording for both twins.
-    pub fn check_floor(&self, scene: &crate::scene::Scene) -> Result<()> {
-        if let (Some(why), Some(_)) = (self.flat_floor, &scene.floor.terrain) {
-            return Err(Error::InvalidParameter(format!(
-                "technique `{}` {why}; scene `{}` has a terrain",
-                self.name, scene.name
-            )));
-        }
-        Ok(())
     }
 }
 
@@ -394,12 +379,6 @@ pub fn serde_defaults<T: Default + serde::Serialize>() -> toml::Table {
 // buffers, which the descriptor is made of, stay below it.
 
 impl Job<'_> {
-    /// Refuses a floor with a terrain for a technique that draws on the plane z = 0
-    /// ([`Descriptor::flat_floor`]).
-    pub fn flat_floor(&self, technique: &Descriptor) -> Result<()> {
-        technique.check_floor(self.scene)
-    }
-
     /// Says once in the log that a floor technique leaves the scene's walls unlit.
     pub fn note_floor_only(&self, technique: &Descriptor) {
         if self.scene.floor.walls && technique.floor_only() {

@@ -3,7 +3,7 @@
 //! `caustics_gpu` alike, with the view of it the final image reads ([`Caustics`]).
 //!
 //! The descriptor is written in these terms, so they know no descriptor: what a job does with
-//! one ([`Job::flat_floor`], [`Job::note_floor_only`]) is in [`super::describe`].
+//! one ([`Job::note_floor_only`]) is in [`super::describe`].
 
 use glam::DVec3;
 

@@ -40,9 +40,8 @@ pub const REGISTRY: &[&Descriptor] = &[
 
 /// The techniques a front end offers for `scene`: every registered technique that computes
 /// caustics from what the scene has (its water: floor maps, a technique whose generator may be
-/// the water surface, and eye-space images; else its glass objects) and its floor (a terrain
-/// rules out those drawn on a flat floor), the reference always (for glass, paper 4's photon
-/// tracer), after the others.
+/// the water surface, and eye-space images; else its glass objects), the reference always (for
+/// glass, paper 4's photon tracer), after the others.
 pub fn for_scene(scene: &Scene) -> Vec<String> {
     let inputs: &[Input] = if scene.water.is_some() {
         &[Input::Water, Input::GlassOrWater, Input::EyeSpace]
@@ -59,7 +58,6 @@ pub fn for_scene(scene: &Scene) -> Vec<String> {
         .iter()
         .copied()
         .filter(|d| inputs.contains(&d.input) || d.reference)
-        .filter(|d| d.flat_floor.is_none() || scene.floor.terrain.is_none())
         .collect();
     // The techniques first, the reference they are judged against after.
     entries.sort_by_key(|d| d.reference);
@@ -491,7 +489,7 @@ mod for_scene_tests {
         // A scene of glass objects offers the techniques whose generators they are.
         let glass = for_scene(&Scene::builtin("glass").unwrap());
         assert_eq!(glass, ["caustic-triangles", "reference"]);
-        // Over a terrain, the techniques that follow it.
+        // Over a terrain, every technique of the water.
         let shore = for_scene(&Scene::builtin("shore").unwrap());
         assert_eq!(
             shore,
@@ -502,6 +500,7 @@ mod for_scene_tests {
                 "procedural-vertex",
                 "procedural-screen",
                 "procedural-texture",
+                "volumes",
                 "caustic-triangles",
                 "cascaded",
                 "reference"

@@ -56,7 +56,6 @@ struct SceneKey {
 
 impl SceneKey {
     fn of(scene: &Scene) -> Result<SceneKey, GpuError> {
-        procedural::DESCRIPTOR.check_floor(scene)?;
         procedural::DESCRIPTOR.check_light(&scene.light)?;
         let w = scene_water(scene, "procedural")?;
         Ok(SceneKey {

@@ -35,6 +35,13 @@ impl Volumes {
             let n = frame.setup.lattice.vertex_count() as u32;
             pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
         }
+        if let Some(r) = &frame.receivers {
+            let mut pass = begin_compute(encoder, &mut timer, "volumes meet");
+            pass.set_pipeline(&self.meet);
+            pass.set_bind_group(0, &r.meet_bind, &[]);
+            let n = (r.hits.size() / 16) as u32;
+            pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
+        }
         for (k, o) in frame.objects.iter().enumerate() {
             let label = format!("volumes slices, object {k}");
             let label = label.as_str();
@@ -59,10 +66,16 @@ impl Volumes {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.floor);
+            pass.set_pipeline(match frame.receivers {
+                None => &self.floor,
+                Some(_) => &self.floor_receivers,
+            });
             pass.set_bind_group(0, &frame.floor_bind, &[]);
             let triangles = 2 * frame.setup.lattice.nx * frame.setup.lattice.ny;
             pass.draw(0..(3 * triangles) as u32, 0..1);
+        }
+        if let Some(r) = &frame.receivers {
+            self.lookup.encode(&r.frame, encoder, timer.as_deref_mut());
         }
         if let Some(walls) = &frame.walls {
             let triangles = 2 * frame.setup.lattice.nx * frame.setup.lattice.ny;

@@ -4,10 +4,12 @@
 use caustics_core::grid::Grid;
 use caustics_core::techniques::volumes::{VolumesInput, VolumesSetup};
 use caustics_core::walls::WallMaps;
+use glam::DVec3;
 
 use super::{CameraUniform, PassUniform, ViewOptions, Volumes, VolumesUniform};
 use crate::bvh::{FlatBvhs, GpuBvhNode, GpuBvhTriangle};
 use crate::pass::bind_group;
+use crate::receivers::{ReceiverFrame, ReceiversUniform};
 use crate::technique::WallsOutput;
 use crate::{GpuContext, GpuError, WaterTextures};
 
@@ -44,8 +46,12 @@ pub struct VolumesFrame {
     pub(super) bvh_bind: wgpu::BindGroup,
     pub(super) water_bind: wgpu::BindGroup,
     pub(super) floor_bind: wgpu::BindGroup,
+    /// The floor pass's map: the floor map on the plane `z = 0`, the light-space deposit over
+    /// receivers ([`VolumesFrame::floor_map`]).
     pub floor: wgpu::Texture,
     pub(super) floor_view: wgpu::TextureView,
+    /// Over a terrain: where the rays meet it, and its lookup.
+    pub(super) receivers: Option<FrameReceivers>,
     /// The walls' maps when the setup has walls.
     pub walls: Option<WallsFrame>,
     /// Every object's depth texture and final image (Eq. 4), one layer each.
@@ -57,7 +63,22 @@ pub struct VolumesFrame {
     bytes: u64,
 }
 
+/// A frame's receivers: the meeting pass's hits and bind group, the floor pass over them, and the
+/// lookup that writes the floor map.
+pub(super) struct FrameReceivers {
+    pub(super) hits: wgpu::Buffer,
+    pub(super) meet_bind: wgpu::BindGroup,
+    pub(super) frame: ReceiverFrame,
+}
+
 impl VolumesFrame {
+    /// The floor map: the receivers' lookup over a terrain, else the floor pass's map.
+    pub fn floor_map(&self) -> &wgpu::Texture {
+        self.receivers
+            .as_ref()
+            .map_or(&self.floor, |r| &r.frame.floor)
+    }
+
     /// GPU memory the frame's buffers and textures take, bytes.
     pub fn bytes(&self) -> u64 {
         self.bytes
@@ -77,6 +98,7 @@ impl VolumesFrame {
     pub fn fits(&self, setup: &VolumesSetup) -> bool {
         let s = &self.setup;
         setup.params == s.params
+            && setup.receivers == s.receivers
             && setup.walls == s.walls
             && (setup.width, setup.height) == (s.width, s.height)
             && (setup.lattice.nx, setup.lattice.ny) == (s.lattice.nx, s.lattice.ny)
@@ -292,16 +314,68 @@ impl Volumes {
         };
         let floor = map_texture("volumes floor map", w, h);
         bytes += (w * h) as u64 * texel_bytes;
-        let floor_bind = bind_group(
-            ctx,
-            "volumes floor",
-            &self.floor.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                water.as_entire_binding(),
-                View(&shadow_view),
-            ],
-        );
+        let (floor_bind, receivers) = match &setup.receivers {
+            None => (
+                bind_group(
+                    ctx,
+                    "volumes floor",
+                    &self.floor.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        water.as_entire_binding(),
+                        View(&shadow_view),
+                    ],
+                ),
+                None,
+            ),
+            Some(r) => {
+                let frame = self.lookup.frame(ctx, &r.0, &floor, wrap, DVec3::ZERO)?;
+                let r_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("volumes receivers"),
+                    contents: bytemuck::bytes_of(&ReceiversUniform::of(Some(&r.0))),
+                    usage: B::UNIFORM,
+                });
+                let hits = ctx.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("volumes hits"),
+                    size: lattice_vertices * 16,
+                    usage: B::STORAGE | B::COPY_SRC,
+                    mapped_at_creation: false,
+                });
+                bytes += hits.size() + frame.bytes();
+                let heights_view = frame.heights.create_view(&Default::default());
+                let meet_bind = bind_group(
+                    ctx,
+                    "volumes meet",
+                    &self.meet.get_bind_group_layout(0),
+                    &[
+                        r_uniform.as_entire_binding(),
+                        water.as_entire_binding(),
+                        View(&heights_view),
+                        hits.as_entire_binding(),
+                    ],
+                );
+                let floor_bind = bind_group(
+                    ctx,
+                    "volumes floor over receivers",
+                    &self.floor_receivers.get_bind_group_layout(0),
+                    &[
+                        uniform.as_entire_binding(),
+                        water.as_entire_binding(),
+                        View(&shadow_view),
+                        r_uniform.as_entire_binding(),
+                        View(&heights_view),
+                        hits.as_entire_binding(),
+                    ],
+                );
+                let receivers = FrameReceivers {
+                    hits,
+                    meet_bind,
+                    frame,
+                };
+                (floor_bind, Some(receivers))
+            }
+        };
+        let floor_map = receivers.as_ref().map_or(&floor, |r| &r.frame.floor);
 
         let walls = match setup.wall_layout() {
             None => None,
@@ -493,7 +567,7 @@ impl Volumes {
                         object_buf.as_entire_binding(),
                         View(&array_view(&depths)),
                         View(&array_view(&images)),
-                        View(&floor.create_view(&Default::default())),
+                        View(&floor_map.create_view(&Default::default())),
                         View(&image.create_view(&Default::default())),
                         View(&array_view(walls_texture)),
                     ],
@@ -515,6 +589,7 @@ impl Volumes {
             floor_bind,
             floor_view: floor.create_view(&Default::default()),
             floor,
+            receivers,
             walls,
             depths,
             images,

@@ -9,6 +9,8 @@
 //! | water (compute) | `volumes/water.wgsl` | `illumination::water_pass` |
 //! | illumination volumes × reference planes (raster, additive) | `volumes/slices.wgsl` | `illumination::slice_pass` |
 //! | floor map (raster, additive) | `volumes/floor.wgsl` | `illumination::floor_pass` |
+//! | over a terrain: each vertex's ray meets the receivers (compute) | `volumes/meet.wgsl` | `illumination::meet_pass` |
+//! | over a terrain: the floor's light in the light's space (raster, additive), then the receivers' lookup | `volumes/floor_receivers.wgsl` | `illumination::received_floor_pass` |
 //! | walls' maps, with walls (raster, additive, one layer per wall) | `volumes/walls.wgsl` | `illumination::wall_pass` |
 //! | diffuse map and Eq. 4 (compute) | `volumes/shade.wgsl` | `representation::diffuse_map`, `illumination::shade_pass` |
 //! | refracted view, §3.3 (compute) | `volumes/view.wgsl` | `view::view_pass` |
@@ -45,6 +47,8 @@ passes! {
     WATER_PASS = "volumes water", "volumes/water.wgsl";
     SLICES = "volumes slices", "volumes/slices.wgsl";
     FLOOR = "volumes floor", "volumes/floor.wgsl";
+    MEET = "volumes meet", "volumes/meet.wgsl";
+    FLOOR_RECEIVERS = "volumes floor over receivers", "volumes/floor_receivers.wgsl";
     WALLS = "volumes walls", "volumes/walls.wgsl";
     VIEW = "volumes view", "volumes/view.wgsl";
     SHADE = "volumes shade", "volumes/shade.wgsl";
@@ -56,6 +60,9 @@ pub struct Volumes {
     water: wgpu::ComputePipeline,
     slices: wgpu::RenderPipeline,
     floor: wgpu::RenderPipeline,
+    meet: wgpu::ComputePipeline,
+    floor_receivers: wgpu::RenderPipeline,
+    lookup: crate::receivers::ReceiverLookup,
     walls: wgpu::RenderPipeline,
     shade: wgpu::ComputePipeline,
     view: wgpu::ComputePipeline,
@@ -79,6 +86,9 @@ impl Volumes {
             water: compute_pipeline(ctx, &WATER_PASS),
             slices: additive_pipeline(ctx, &SLICES, map_format),
             floor: additive_pipeline(ctx, &FLOOR, map_format),
+            meet: compute_pipeline(ctx, &MEET),
+            floor_receivers: additive_pipeline(ctx, &FLOOR_RECEIVERS, map_format),
+            lookup: crate::receivers::ReceiverLookup::new(ctx),
             walls: additive_pipeline(ctx, &WALLS, map_format),
             shade: compute_pipeline(ctx, &SHADE),
             view: compute_pipeline(ctx, &VIEW),

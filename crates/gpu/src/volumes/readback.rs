@@ -50,7 +50,7 @@ impl Volumes {
                 width: s.width,
                 height: s.height,
                 size: s.size,
-                texels: self.read_map(ctx, &frame.floor)?,
+                texels: self.read_map(ctx, frame.floor_map())?,
             },
             walls: match &frame.walls {
                 Some(w) => Some(read_walls(ctx, w)?),

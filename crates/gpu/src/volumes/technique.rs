@@ -47,7 +47,6 @@ struct SceneKey {
 
 impl SceneKey {
     fn of(scene: &Scene) -> Result<SceneKey, GpuError> {
-        volumes::DESCRIPTOR.check_floor(scene)?;
         volumes::DESCRIPTOR.check_light(&scene.light)?;
         let w = scene_water(scene, "volumes")?;
         Ok(SceneKey {
@@ -109,7 +108,7 @@ impl Pipelines for Volumes {
     ) -> Result<ConfiguredVolumes, GpuError> {
         let key = SceneKey::of(scene)?;
         let input = VolumesInput::from_scene(scene)?;
-        let setup = VolumesSetup::new(params, &input)?;
+        let setup = VolumesSetup::new(params, &input)?.with_floor(&scene.floor, None);
         let frame = self.frame_with_water(ctx, &setup, &input, water, key.wrap, None)?;
         Ok(ConfiguredVolumes { frame, input, key })
     }
@@ -122,12 +121,19 @@ impl Pipelines for Volumes {
         scene: &Scene,
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
-        if c.key == key {
+        let receivers = c.frame.setup.receivers.as_ref();
+        let same_floor = match (receivers, &scene.floor.terrain) {
+            (None, None) => true,
+            (Some(r), Some(t)) => r.terrain.as_ref() == Some(t),
+            _ => false,
+        };
+        if c.key == key && same_floor {
             return Ok(true);
         }
         if c.key.wrap == key.wrap {
             key.apply(&mut c.input);
-            let setup = VolumesSetup::new(params, &c.input)?;
+            let previous = receivers.map(|r| &r.0);
+            let setup = VolumesSetup::new(params, &c.input)?.with_floor(&scene.floor, previous);
             if c.frame.fits(&setup) {
                 c.frame.set_setup(ctx, &setup);
                 c.key = key;
@@ -147,7 +153,7 @@ impl Pipelines for Volumes {
     }
 
     fn output<'a>(&'a self, c: &'a ConfiguredVolumes) -> Output<'a> {
-        Output::Floor(&c.frame.floor)
+        Output::Floor(c.frame.floor_map())
     }
 
     /// The walls' maps on a scene with walls, in the floor map's format (`Rgba16Float` where the

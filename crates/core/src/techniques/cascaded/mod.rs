@@ -271,7 +271,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: false,
-    flat_floor: None,
     buffers: &[BufferDesc {
         key: "cascade",
         label: "cascade {k}: caustic map",

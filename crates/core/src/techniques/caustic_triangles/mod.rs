@@ -256,7 +256,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: true,
-    flat_floor: None,
     buffers: buffers::BUFFERS,
     draw_buffer: buffers::draw_buffer,
     reference: false,

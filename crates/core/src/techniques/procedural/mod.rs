@@ -177,7 +177,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: with_shared_params![VARIANT, MESH_RESOLUTION, TARGET_RESOLUTION, ANISOTROPY,],
     fixed: &[],
     point_light: false,
-    flat_floor: None,
     buffers: &[],
     draw_buffer: crate::techniques::buffers::no_buffers,
     reference: false,

@@ -10,6 +10,7 @@ use super::{CellRect, ObjectView, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::receivers::{ReceiverHeights, light_space};
 use crate::walls::{Wall, WallMaps};
 
 /// One lattice vertex after refraction: `[x, y, z, weight, tx, ty, tz, 0]`: the point on the surface,
@@ -264,10 +265,100 @@ pub fn slice_pass(
 /// floor map, fragments kept where the shadow map lets the sun through. `Ic · cos θt` on the floor is
 /// `Φ w exp(−K d) / Ad`: the flux over the area it lands on.
 pub fn floor_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4]]) -> CausticsMap {
+    let shadow_view = setup.shadow.as_ref();
+    draw_floor(setup, |idx, scale, acc| {
+        let tri = idx.map(|i| &water[i]);
+        let Some(s) = slice(setup, tri, DVec3::NEG_Z, 0.0) else {
+            return;
+        };
+        let px = s.points.map(|p| p.truncate() * scale);
+        raster(setup.width, setup.height, px, |i, j, b| {
+            let dir = interpolate(&s.dirs, b).normalize();
+            let p = DVec3::new((j as f64 + 0.5) / scale.x, (i as f64 + 0.5) / scale.y, 0.0);
+            if lit(shadow_view, shadow, p, FLOOR_BIAS) {
+                acc[i * setup.width + j] += interpolate(&s.intensity, b) * -dir.z;
+            }
+        });
+    })
+}
+
+/// Where each lattice vertex's refracted ray first meets the receivers (GPU twin `meet.wgsl`):
+/// `[q_x, q_y, d, 1]` with `q` the hit's light-space point and `d` the path in the water, `[0, 0,
+/// 0, 0]` where no light leaves the vertex or its ray never comes down onto them.
+pub fn meet_pass(water: &[WaterVertex], receivers: &ReceiverHeights) -> Vec<[f32; 4]> {
+    water
+        .par_iter()
+        .map(|v| {
+            if v[3] <= 0.0 {
+                return [0.0; 4];
+            }
+            match receivers.meet(v3(v, 0), v3(v, 4)) {
+                Some((hit, d)) => {
+                    let q = light_space(hit, receivers.t0);
+                    [q.x as f32, q.y as f32, d as f32, 1.0]
+                }
+                None => [0.0; 4],
+            }
+        })
+        .collect()
+}
+
+/// The floor pass over receivers (GPU twin `floor_receivers.wgsl`): each illumination volume ends
+/// where its vertices' rays meet the receivers ([`meet_pass`]) and is drawn in the light's space
+/// at their light-space points, each vertex carrying `Φ w exp(−K d) / A_q` with `A_q` the drawn
+/// triangle's area: flux per unit area of `z = 0` along the light, the deposit the receivers'
+/// lookup reads ([`crate::receivers::lookup`], no absorption: each vertex carries its own path's).
+/// Fragments are kept where the shadow map lets the sun reach the receiver point under them.
+pub fn received_floor_pass(
+    setup: &VolumesSetup,
+    receivers: &ReceiverHeights,
+    water: &[WaterVertex],
+    hits: &[[f32; 4]],
+    shadow: &[[f32; 4]],
+) -> CausticsMap {
+    let shadow_view = setup.shadow.as_ref();
+    let t0 = receivers.t0;
+    draw_floor(setup, |idx, scale, acc| {
+        let h = idx.map(|i| hits[i]);
+        if h.iter().any(|h| h[3] == 0.0) {
+            return;
+        }
+        let s = idx.map(|i| v3(&water[i], 0));
+        let l = setup.light;
+        let flux = -l.dot((s[1] - s[0]).cross(s[2] - s[0])) / (2.0 * -l.z);
+        let q = h.map(|h| DVec2::new(h[0] as f64, h[1] as f64));
+        let area = 0.5 * (q[1] - q[0]).perp_dot(q[2] - q[0]).abs();
+        if flux <= 0.0 || !(area > 0.0 && area.is_finite()) {
+            return;
+        }
+        let intensity: [DVec3; 3] = std::array::from_fn(|k| {
+            (-setup.absorption * h[k][2] as f64).exp() * (flux * water[idx[k]][3] as f64 / area)
+        });
+        raster(
+            setup.width,
+            setup.height,
+            q.map(|q| q * scale),
+            |i, j, b| {
+                let c = DVec2::new((j as f64 + 0.5) / scale.x, (i as f64 + 0.5) / scale.y);
+                let z = receivers.height(c);
+                let p = (c - t0.truncate() * (z / -t0.z)).extend(z);
+                if lit(shadow_view, shadow, p, FLOOR_BIAS) {
+                    acc[i * setup.width + j] += interpolate(&intensity, b);
+                }
+            },
+        );
+    })
+}
+
+/// The floor map's texels summed over every triangle of the lattice: `draw` adds one triangle's
+/// fragments (its water vertices' indices, the map's texels per unit length).
+fn draw_floor(
+    setup: &VolumesSetup,
+    draw: impl Fn([usize; 3], DVec2, &mut [DVec3]) + Sync,
+) -> CausticsMap {
     let (w, h) = (setup.width, setup.height);
     let scale = DVec2::new(w as f64 / setup.size, h as f64 / setup.size);
     let cells: CellRect = setup.all_cells();
-    let shadow_view = setup.shadow.as_ref();
     let rows: Vec<usize> = (cells.i0..cells.i1).collect();
     let acc = rows
         .par_chunks(8)
@@ -277,24 +368,7 @@ pub fn floor_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4
                 for &ci in band {
                     for cj in cells.j0..cells.j1 {
                         for which in 0..2 {
-                            let idx = setup.lattice.triangle(ci, cj, which);
-                            let tri = idx.map(|i| &water[i]);
-                            let Some(s) = slice(setup, tri, DVec3::NEG_Z, 0.0) else {
-                                continue;
-                            };
-                            let px = s.points.map(|p| p.truncate() * scale);
-                            raster(w, h, px, |i, j, b| {
-                                let dir = interpolate(&s.dirs, b).normalize();
-                                let p = DVec3::new(
-                                    (j as f64 + 0.5) / scale.x,
-                                    (i as f64 + 0.5) / scale.y,
-                                    0.0,
-                                );
-                                if !lit(shadow_view, shadow, p, FLOOR_BIAS) {
-                                    return;
-                                }
-                                acc[i * w + j] += interpolate(&s.intensity, b) * -dir.z;
-                            });
+                            draw(setup.lattice.triangle(ci, cj, which), scale, &mut acc);
                         }
                     }
                 }

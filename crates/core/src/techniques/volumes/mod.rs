@@ -51,6 +51,11 @@
 //!   under an object would be lit.
 //! - The illumination volumes drawn for an object are those of the lattice cells whose light can
 //!   reach its box (its footprint on the water widened by the waves' deflection), not the whole water.
+//! - A terrain floor ([`VolumesSetup::with_floor`]): each lattice vertex's ray ends where it first
+//!   meets the receivers' heights ([`illumination::meet_pass`]), as the paper's volumes end on its
+//!   objects' depth textures; each volume is drawn in the light's space between its rays' ends with
+//!   the flux over that triangle's area ([`illumination::received_floor_pass`]), and each floor
+//!   texel looks it up with its face's cosine and the depth test ([`crate::receivers`]).
 //!
 //! # Where it departs from the reference
 //! The acceptance range puts every beam slice up to `Δ/2` from the true surface along the view, so
@@ -72,6 +77,8 @@ pub mod representation;
 mod tests;
 pub mod view;
 
+use std::sync::Arc;
+
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -80,6 +87,7 @@ use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::mesh::{MeshBvh, TriangleMesh};
 use crate::optics::{fresnel_transmittance, refract};
+use crate::receivers::{ReceiverHeights, Shared};
 use crate::scene::{Material, Scene};
 use crate::walls::WallMaps;
 
@@ -173,7 +181,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     ],
     fixed: &[],
     point_light: false,
-    flat_floor: Some("draws its floor map on the plane z = 0"),
     buffers: buffers::BUFFERS,
     draw_buffer: buffers::draw_buffer,
     reference: false,
@@ -191,7 +198,7 @@ pub fn job_setup(
     let params = VolumesParams::from_table(table)?;
     job.with_surface(DESCRIPTOR.name, |water, surface| {
         let input = VolumesInput::from_scene(job.scene)?;
-        let setup = VolumesSetup::new(&params, &input)?;
+        let setup = VolumesSetup::new(&params, &input)?.with_floor(job.floor(), None);
         let n = (input.size / setup.lattice.cell).round() as usize;
         let heights = crate::water::sample_grid(surface, n, n, water.size);
         Ok((setup, input, heights, water.wrap))
@@ -321,7 +328,6 @@ impl VolumesInput {
                 scene.name
             ))
         })?;
-        DESCRIPTOR.check_floor(scene)?;
         let mut objects = Vec::new();
         for (k, o) in scene.objects.iter().enumerate() {
             match &o.material {
@@ -464,6 +470,8 @@ pub struct VolumesSetup {
     pub shadow_bias: f64,
     /// The pool's walls receive light ([`VolumesInput::walls`]).
     pub walls: bool,
+    /// What the floor's light meets instead of the plane `z = 0` ([`VolumesSetup::with_floor`]).
+    pub receivers: Option<Shared>,
 }
 
 /// A mesh the technique can use: not empty, not larger than the pool, under the water. An open mesh
@@ -609,7 +617,25 @@ impl VolumesSetup {
             shadow,
             shadow_bias,
             walls: input.walls,
+            receivers: None,
         })
+    }
+
+    /// The floor's light meets `floor`'s terrain where it has one: each lattice vertex's ray ends
+    /// on the receivers' map (at the map's resolution, `previous` where nothing it depends on
+    /// changed), the volumes are drawn in the light's space and looked up per floor texel
+    /// ([`crate::receivers`]). The walls and the objects keep their own passes.
+    pub fn with_floor(
+        mut self,
+        floor: &crate::scene::Floor,
+        previous: Option<&Arc<ReceiverHeights>>,
+    ) -> Self {
+        if floor.terrain.is_some() {
+            self.receivers = Some(Shared(ReceiverHeights::of_floor_reusing(
+                previous, floor, self.size, self.depth, self.t0, self.width,
+            )));
+        }
+        self
     }
 
     /// The walls' empty maps (their sizes) when the walls receive light.
@@ -712,7 +738,14 @@ pub fn caustics(
             }
         })
         .collect();
-    let floor = illumination::floor_pass(setup, &water, &shadow);
+    let floor = match &setup.receivers {
+        None => illumination::floor_pass(setup, &water, &shadow),
+        Some(r) => {
+            let hits = illumination::meet_pass(&water, r);
+            let light = illumination::received_floor_pass(setup, r, &water, &hits, &shadow);
+            crate::receivers::lookup(&light, r, wrap, DVec3::ZERO)
+        }
+    };
     let walls = setup
         .walls
         .then(|| illumination::wall_pass(setup, &water, &shadow));
@@ -727,7 +760,7 @@ pub fn caustics(
 /// The technique for a scene at its time, on the CPU.
 pub fn render(scene: &Scene, params: &VolumesParams) -> Result<VolumesOutput> {
     let input = VolumesInput::from_scene(scene)?;
-    let setup = VolumesSetup::new(params, &input)?;
+    let setup = VolumesSetup::new(params, &input)?.with_floor(&scene.floor, None);
     let water = scene.water.as_ref().expect("checked by from_scene");
     let surface = water.surface_at(scene.time)?;
     let n = (input.size / setup.lattice.cell).round() as usize;

@@ -134,7 +134,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
     params: PARAMS,
     fixed: &[],
     point_light: false,
-    flat_floor: None,
     buffers: BUFFERS,
     draw_buffer,
     reference: false,
