@@ -9,9 +9,10 @@ use anyhow::{Context, Result};
 use clap::Args;
 use image::{Rgb, RgbImage};
 
-use caustics_core::cases::{Case, cases};
+use caustics_core::cases::{Case, RECEIVERS, cases, receiver_cases};
 use caustics_core::map::CausticsMap;
-use caustics_core::metrics::{Metrics, compare};
+use caustics_core::metrics::{Metrics, compare, compare_grids};
+use caustics_core::walls::WallMaps;
 
 use crate::progress;
 use caustics_core::techniques::{reference, water_scene};
@@ -43,6 +44,10 @@ pub struct CompareArgs {
     /// Only these cases (comma-separated names, e.g. `waves-mid-deep`) get pictures; default: all.
     #[arg(long, value_delimiter = ',')]
     picture_cases: Vec<String>,
+    /// The receivers instead of the surfaces: one water over a flat floor, a sand bar, rocks and
+    /// the pool's walls, and a table technique x receiver.
+    #[arg(long)]
+    receivers: bool,
     #[command(flatten)]
     gpu: crate::GpuArgs,
 }
@@ -78,7 +83,11 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
         .gpu
         .as_ref()
         .map_or("none (CPU twins)".to_string(), |c| c.describe());
-    let cases = cases(args.quick);
+    let cases = if args.receivers {
+        receiver_cases()
+    } else {
+        cases(args.quick)
+    };
     let bar = progress::bar("compare");
     bar.set_length((cases.len() * args.resolution.len()) as u64);
     let mut rows = Vec::new();
@@ -94,14 +103,25 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                 case.time,
             );
             let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);
-            let truth = runner
-                .run(&reference(), &job, &|_, _| {})?
-                .map(reference().name())?;
+            let truth = runner.run(&reference(), &job, &|_, _| {})?;
+            let truth_walls = truth.walls.as_ref().map(stacked);
+            let truth = truth.map(reference().name())?;
             for spec in &specs {
                 let out = runner
                     .run(spec, &job, &|_, _| {})
                     .with_context(|| format!("{} on {}", spec.label, case.name))?;
                 let backend = out.backend;
+                if let (Some(walls), Some(truth)) = (&out.walls, &truth_walls) {
+                    rows.push(Row {
+                        case: format!("{}:walls", case.name),
+                        technique: spec.label.clone(),
+                        resolution: res,
+                        backend,
+                        metrics: compare_grids(&stacked(walls), truth),
+                        picture: None,
+                        diff_range: 0.0,
+                    });
+                }
                 let map = out.map(spec.name())?;
                 let metrics = compare(&map, &truth);
                 let wanted =
@@ -152,6 +172,67 @@ fn default_specs() -> Result<Vec<Spec>> {
         .collect()
 }
 
+/// The walls' maps one above the other (mean channel), to be measured as one map.
+fn stacked(walls: &WallMaps) -> caustics_core::grid::Grid {
+    let cols = walls.maps[0].cols;
+    let data = walls
+        .maps
+        .iter()
+        .flat_map(|m| {
+            assert_eq!(m.cols, cols, "square floor maps give walls of one width");
+            m.texels.iter().map(|t| (t[0] + t[1] + t[2]) / 3.0)
+        })
+        .collect::<Vec<f32>>();
+    caustics_core::grid::Grid {
+        cols,
+        rows: data.len() / cols,
+        data,
+    }
+}
+
+/// Relative L1 per technique (rows) and receiver (columns) of the receivers' cases.
+fn receivers_table(rows: &[Row]) -> String {
+    let mut s = String::from("## Technique x receiver (relative L1)\n\n| technique |");
+    let mut columns: Vec<String> = RECEIVERS.iter().map(|r| format!("receivers-{r}")).collect();
+    columns.push("receivers-walls:walls".into());
+    for c in &columns {
+        let label = c.trim_start_matches("receivers-");
+        let _ = write!(
+            s,
+            " {} |",
+            if label == "walls" {
+                "floor (walls on)"
+            } else {
+                label
+            }
+        );
+    }
+    s += "\n|---|";
+    s += &"---|".repeat(columns.len());
+    s += "\n";
+    let mut techniques: Vec<&str> = Vec::new();
+    for r in rows {
+        if !techniques.contains(&r.technique.as_str()) {
+            techniques.push(&r.technique);
+        }
+    }
+    for t in techniques {
+        let _ = write!(s, "| {t} |");
+        for c in &columns {
+            match rows.iter().find(|r| r.technique == t && &r.case == c) {
+                Some(r) => {
+                    let _ = write!(s, " {:.2} % |", 100.0 * r.metrics.relative_l1);
+                }
+                None => s += " - |",
+            }
+        }
+        s += "\n";
+    }
+    s += "\nThe same water (`waves-mid-deep`) over each receiver; `walls:walls` is the four walls' maps \
+          measured as one, `-` where a technique lights no walls.\n\n";
+    s
+}
+
 fn file_safe(s: &str) -> String {
     s.chars()
         .map(|c| {
@@ -188,31 +269,47 @@ pub fn csv(rows: &[Row]) -> String {
 fn markdown(rows: &[Row], cases: &[Case], adapter: &str, args: &CompareArgs) -> String {
     let mut s = String::from("# Techniques against the reference\n\n");
     let join = |v: Vec<String>| v.join(", ");
+    let what = if args.receivers {
+        format!(
+            "one water over each receiver ({})",
+            join(RECEIVERS.iter().map(|r| r.to_string()).collect())
+        )
+    } else {
+        format!(
+            "water kinds x suns (zenith angle {} degrees) x depths ({} on the unit square)",
+            join(
+                caustics_core::cases::SUNS
+                    .iter()
+                    .map(|(_, z)| format!("{z}"))
+                    .collect()
+            ),
+            join(
+                caustics_core::cases::DEPTHS
+                    .iter()
+                    .map(|(_, d)| format!("{d}"))
+                    .collect()
+            ),
+        )
+    };
+    let flag = match (args.quick, args.receivers) {
+        (_, true) => " --receivers",
+        (true, false) => " --quick",
+        (false, false) => "",
+    };
     let _ = writeln!(
         s,
-        "Generated by `caustics compare{}` on adapter: {adapter}. The reference uses {} triangulation cells \
-         per texel. {} cases: water kinds x suns (zenith angle {} degrees) x depths ({} on the unit \
-         square).\n",
-        if args.quick { " --quick" } else { "" },
+        "Generated by `caustics compare{flag}` on adapter: {adapter}. The reference uses {} \
+         triangulation cells per texel. {} cases: {what}.\n",
         args.cells_per_texel,
         cases.len(),
-        join(
-            caustics_core::cases::SUNS
-                .iter()
-                .map(|(_, z)| format!("{z}"))
-                .collect()
-        ),
-        join(
-            caustics_core::cases::DEPTHS
-                .iter()
-                .map(|(_, d)| format!("{d}"))
-                .collect()
-        ),
     );
     s += "- **rel. L1**: sum |technique - reference| / sum reference: the share of the light misplaced or lost.\n";
     s += "- **rel. RMSE**: root mean square difference over the mean irradiance.\n";
     s += "- **flux**: total light of the map over the reference's, minus 1 (negative: light lost).\n";
     s += "- **SSIM**: structural similarity of the tone-mapped maps (1 = identical).\n\n";
+    if args.receivers {
+        s += &receivers_table(rows);
+    }
     // Means per technique and resolution.
     s += "## Summary (mean over cases)\n\n| technique | resolution | rel. L1 | rel. RMSE | flux | SSIM |\n|---|---|---|---|---|---|\n";
     let mut keys: Vec<(String, u32)> = rows

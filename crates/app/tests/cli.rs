@@ -518,6 +518,52 @@ fn a_small_compare_writes_its_tables_and_scores_correctly() {
     );
 }
 
+/// `caustics compare --receivers`: the table technique x receiver, each receiver a column, the
+/// walls where the technique lights them; the reference against itself scores zero everywhere.
+#[test]
+fn compare_receivers_writes_the_technique_by_receiver_table() {
+    let d = tmpdir("compare-receivers");
+    let o = caustics(
+        &[
+            "compare",
+            "--receivers",
+            "--cpu",
+            "--resolution",
+            "48",
+            "--cells-per-texel",
+            "2",
+            "--technique",
+            "reference",
+            "--technique",
+            "yuksel",
+            "--out",
+            "cmp",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(d.join("cmp/compare.md")).unwrap();
+    let table: Vec<&str> = md
+        .lines()
+        .skip_while(|l| !l.starts_with("## Technique x receiver"))
+        .filter(|l| l.starts_with('|'))
+        .take(4)
+        .collect();
+    assert!(
+        table[0].contains("sand-bar") && table[0].contains("rocks") && table[0].contains("walls"),
+        "{md}"
+    );
+    assert_eq!(
+        table[2], "| reference | 0.00 % | 0.00 % | 0.00 % | 0.00 % | 0.00 % |",
+        "{md}"
+    );
+    // yuksel maps the floor only: no walls.
+    assert!(
+        table[3].starts_with("| yuksel |") && table[3].ends_with(" - |"),
+        "{md}"
+    );
+}
+
 /// `--technique` runs the technique on the scene: yuksel's map of a gentle swell is close to the
 /// reference's.
 #[test]

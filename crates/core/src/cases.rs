@@ -1,5 +1,6 @@
 //! The generated, seeded test surfaces on which every technique is measured against the reference
-//! (`caustics compare`): four kinds of water, four suns, shallow and deep water.
+//! (`caustics compare`): four kinds of water, four suns, shallow and deep water; and the receivers
+//! (`caustics compare --receivers`): one water over a flat floor, a sand bar, rocks and the walls.
 
 use std::f64::consts::TAU;
 
@@ -124,4 +125,73 @@ pub fn cases(quick: bool) -> Vec<Case> {
         }
     }
     out
+}
+
+/// The receivers `caustics compare --receivers` measures, as the cases' name suffixes.
+pub const RECEIVERS: &[&str] = &["flat", "sand-bar", "rocks", "walls"];
+
+/// The receivers' terrains rise inside the square and lie flat at its edges: where the water
+/// wraps and a terrain does not tile, the light that crosses an edge meets a different floor on
+/// each side of it, and the reference and the techniques settle that seam each their own way. A
+/// border as wide as the light's travel and the waves' throw keeps every case clear of it.
+const BORDER: f64 = 0.25;
+
+/// `0` in the border, rising smoothly (cosine) to `1` at the square's centre line along `x`.
+fn ridge(x: f64) -> f64 {
+    let u = ((x - BORDER) / (1.0 - 2.0 * BORDER)).clamp(0.0, 1.0);
+    0.5 - 0.5 * (TAU * u).cos()
+}
+
+/// A sand bar: a ridge along y whose crest stands 60 % of the way up to the water, its faces up
+/// to 43° steep on the unit square under 0.5 of water, rippled 10 % along its length where it
+/// rises.
+pub fn sand_bar(depth: f64) -> Grid {
+    let n = 128;
+    Grid::from_fn(n, n, |i, j| {
+        let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / n as f64);
+        let ripple = 1.0 + 0.1 * ridge(y) * (TAU * 4.0 * y).sin();
+        (0.6 * depth * ridge(x) * ripple / 1.1) as f32
+    })
+}
+
+/// Rocks on a flat bed: three round mounds 6 % of the square wide (their standard deviation)
+/// standing 40-55 % of the way up to the water, faces up to about 60° steep, so that they shade
+/// the bed behind them from a sun 30° from the zenith.
+pub fn rocks(depth: f64) -> Grid {
+    let n = 128;
+    let rocks = [(0.4, 0.42, 0.55), (0.6, 0.55, 0.45), (0.45, 0.62, 0.4)];
+    Grid::from_fn(n, n, |i, j| {
+        let p = DVec2::new(j as f64 + 0.5, i as f64 + 0.5) / n as f64;
+        let h: f64 = rocks
+            .iter()
+            .map(|&(x, y, top)| {
+                top * (-(p - DVec2::new(x, y)).length_squared() / (2.0 * 0.06 * 0.06)).exp()
+            })
+            .sum();
+        (depth * h) as f32
+    })
+}
+
+/// The receivers' cases: the gentle waves under the mid sun over deep water (the surface cases'
+/// `waves-mid-deep`), over each of [`RECEIVERS`].
+pub fn receiver_cases() -> Vec<Case> {
+    let base = cases(true)
+        .into_iter()
+        .find(|c| c.name == "waves-mid-deep")
+        .expect("the quick cases hold waves-mid-deep");
+    RECEIVERS
+        .iter()
+        .map(|&r| {
+            let mut c = base.clone();
+            c.name = format!("receivers-{r}");
+            let depth = c.water.depth;
+            match r {
+                "sand-bar" => c.floor.terrain = Some(sand_bar(depth)),
+                "rocks" => c.floor.terrain = Some(rocks(depth)),
+                "walls" => c.floor.walls = true,
+                _ => {}
+            }
+            c
+        })
+        .collect()
 }

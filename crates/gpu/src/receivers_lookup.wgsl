@@ -16,6 +16,15 @@ struct Lookup {
 @group(0) @binding(2) var texels: texture_2d<f32>;
 @group(0) @binding(3) var floor_map: texture_storage_2d<rgba32float, write>;
 
+// The deposit's texel t, wrapped or clamped.
+fn deposit_texel(t: vec2<i32>, dims: vec2<i32>) -> vec3<f32> {
+    var k = clamp(t, vec2<i32>(0), dims - 1);
+    if u.floor.y != 0.0 {
+        k = ((t % dims) + dims) % dims;
+    }
+    return textureLoad(deposit, k, 0).xyz;
+}
+
 // The deposit at floor point q, bilinear between texel centres, wrapped or clamped (`CausticsMap::sample`).
 fn deposit_at(q: vec2<f32>) -> vec3<f32> {
     let dims = vec2<i32>(textureDimensions(deposit));
@@ -23,18 +32,11 @@ fn deposit_at(q: vec2<f32>) -> vec3<f32> {
     let c = floor(x);
     let f = x - c;
     let i = vec2<i32>(c);
-    var k = array<vec2<i32>, 4>(i, i + vec2<i32>(1, 0), i + vec2<i32>(0, 1), i + vec2<i32>(1, 1));
-    var v: array<vec3<f32>, 4>;
-    for (var n = 0; n < 4; n++) {
-        var t = k[n];
-        if u.floor.y != 0.0 {
-            t = ((t % dims) + dims) % dims;
-        } else {
-            t = clamp(t, vec2<i32>(0), dims - 1);
-        }
-        v[n] = textureLoad(deposit, t, 0).xyz;
-    }
-    return mix(mix(v[0], v[1], f.x), mix(v[2], v[3], f.x), f.y);
+    let a = deposit_texel(i, dims);
+    let b = deposit_texel(i + vec2<i32>(1, 0), dims);
+    let d = deposit_texel(i + vec2<i32>(0, 1), dims);
+    let e = deposit_texel(i + vec2<i32>(1, 1), dims);
+    return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
 }
 
 @compute @workgroup_size(8, 8)
