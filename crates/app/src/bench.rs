@@ -112,13 +112,15 @@ pub(crate) fn registered() -> Result<Vec<Spec>> {
 }
 
 /// The built-in scenes `spec` applies to: the pool (its water) for every technique, the glass
-/// scene (its objects) for those that take glass generators, and the shore (its beach).
+/// scene (its objects) for those that take glass generators, the shore (its beach) and the reef (its
+/// sea bed and rocks).
 pub(crate) fn scenes_for(spec: &Spec) -> Result<Vec<Scene>> {
     let mut out = vec![Scene::builtin("pool")?];
     if spec.entry.input == Input::GlassOrWater {
         out.push(Scene::builtin("glass")?);
     }
     out.push(Scene::builtin("shore")?);
+    out.push(Scene::builtin("reef")?);
     Ok(out)
 }
 

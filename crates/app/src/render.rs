@@ -24,7 +24,7 @@ use crate::view::ImageOn;
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass, underwater.
+    /// A scene file (.toml) or a built-in scene: pool, shore, reef, objects, glass, underwater.
     #[arg(long, default_value = "pool")]
     scene: String,
     /// The caustics technique (see `caustics techniques`); the scene's own by default.

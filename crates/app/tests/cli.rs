@@ -415,7 +415,7 @@ fn inputs_are_never_overwritten() {
 #[test]
 fn scene_check_and_techniques() {
     let d = tmpdir("check");
-    for name in ["pool", "shore", "objects", "glass", "underwater"] {
+    for (name, _) in caustics_core::scene::BUILTIN_SCENES {
         let o = caustics(&["scene", "check", name], &d);
         assert!(o.status.success(), "{name}: {}", stderr(&o));
     }

@@ -13,7 +13,7 @@ pub enum Error {
     InvalidField { field: String, problem: String },
     #[error("{}: {problem}", path.display())]
     BadFile { path: PathBuf, problem: String },
-    #[error("unknown built-in scene `{0}` (known: pool, shore, objects, glass, underwater)")]
+    #[error("unknown built-in scene `{0}` (known: pool, shore, reef, objects, glass, underwater)")]
     UnknownScene(String),
     #[error("unknown technique `{0}`; `caustics techniques` lists them")]
     UnknownTechnique(String),

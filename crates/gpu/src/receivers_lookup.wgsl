@@ -16,27 +16,26 @@ struct Lookup {
 @group(0) @binding(2) var texels: texture_2d<f32>;
 @group(0) @binding(3) var floor_map: texture_storage_2d<rgba32float, write>;
 
-// The deposit's texel t, wrapped or clamped.
-fn deposit_texel(t: vec2<i32>, dims: vec2<i32>) -> vec3<f32> {
-    var k = clamp(t, vec2<i32>(0), dims - 1);
-    if u.floor.y != 0.0 {
-        k = ((t % dims) + dims) % dims;
-    }
-    return textureLoad(deposit, k, 0).xyz;
-}
-
 // The deposit at floor point q, bilinear between texel centres, wrapped or clamped (`CausticsMap::sample`).
 fn deposit_at(q: vec2<f32>) -> vec3<f32> {
     let dims = vec2<i32>(textureDimensions(deposit));
     let x = q / u.floor.x * vec2<f32>(dims) - 0.5;
     let c = floor(x);
     let f = x - c;
-    let i = vec2<i32>(c);
-    let a = deposit_texel(i, dims);
-    let b = deposit_texel(i + vec2<i32>(1, 0), dims);
-    let d = deposit_texel(i + vec2<i32>(0, 1), dims);
-    let e = deposit_texel(i + vec2<i32>(1, 1), dims);
-    return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
+    var a = vec2<i32>(c);
+    var b = a + 1;
+    if u.floor.y != 0.0 {
+        a = ((a % dims) + dims) % dims;
+        b = select(a + 1, vec2<i32>(0), a + 1 == dims);
+    } else {
+        a = clamp(a, vec2<i32>(0), dims - 1);
+        b = clamp(b, vec2<i32>(0), dims - 1);
+    }
+    let t00 = textureLoad(deposit, a, 0).xyz;
+    let t10 = textureLoad(deposit, vec2<i32>(b.x, a.y), 0).xyz;
+    let t01 = textureLoad(deposit, vec2<i32>(a.x, b.y), 0).xyz;
+    let t11 = textureLoad(deposit, b, 0).xyz;
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
 @compute @workgroup_size(8, 8)

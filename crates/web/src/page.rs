@@ -149,7 +149,7 @@ fn param_js(p: &describe::Param) -> Option<ParamJs> {
 
 #[wasm_bindgen]
 impl Page {
-    /// The built-in scene `scene` (pool, shore, underwater) on `canvas`, with technique `technique`
+    /// The built-in scene `scene` (pool, shore, reef, underwater) on `canvas`, with technique `technique`
     /// (`name` or `name:key=value,...`; empty: the first the page offers) alone. Fails, naming why, where WebGPU or an adapter is
     /// missing or the scene has no water.
     pub async fn start(
@@ -161,7 +161,7 @@ impl Page {
         let scene = Scene::builtin(&scene).map_err(js)?;
         let Some(water) = &scene.water else {
             return Err(js(format!(
-                "scene `{}` has no water: the page shows the water scenes (pool, shore, underwater)",
+                "scene `{}` has no water: the page shows the water scenes (pool, shore, reef, underwater)",
                 scene.name
             )));
         };

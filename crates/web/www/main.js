@@ -9,7 +9,7 @@
 import init, { Page } from "./caustics_web.js";
 
 const query = new URLSearchParams(location.search);
-const SCENES = ["pool", "shore", "underwater"];
+const SCENES = ["pool", "shore", "reef", "underwater"];
 const scene = query.get("scene") || "pool";
 const frames = query.has("frames") ? Number(query.get("frames")) : null;
 const canvas = document.getElementById("view");

@@ -34,7 +34,7 @@ use clap::Args;
 
 #[derive(Args, Clone, Debug)]
 pub struct ViewArgs {
-    /// A scene file (.toml) or a built-in scene: pool, shore, objects, glass, underwater.
+    /// A scene file (.toml) or a built-in scene: pool, shore, reef, objects, glass, underwater.
     #[arg(long, default_value = "pool")]
     pub scene: String,
     /// The technique shown, with parameters as `caustics compare` spells them

@@ -266,6 +266,21 @@ pub struct BeachSpec {
     pub dunes: f64,
     #[serde(default = "default_terrain_resolution")]
     pub resolution: usize,
+    /// Rocks standing on the slope.
+    #[serde(default)]
+    pub rocks: Vec<RockSpec>,
+}
+
+/// A rounded rock on a generated beach: `height · (1 − (d / radius)²)²` above the slope at
+/// distance `d` from its centre, level with the slope at its rim.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RockSpec {
+    /// Its centre on the floor, world units.
+    #[serde(deserialize_with = "crate::scene::exact::array")]
+    pub position: [f64; 2],
+    pub radius: f64,
+    pub height: f64,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]

@@ -386,6 +386,17 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
                         ),
                     ));
                 }
+                for (k, r) in b.rocks.iter().enumerate() {
+                    let f = format!("floor.terrain.beach.rocks[{k}]");
+                    finite(&f, &[r.position[0], r.position[1], r.radius, r.height])?;
+                    positive(&format!("{f}.radius"), r.radius)?;
+                    if r.height < 0.0 {
+                        return Err(Error::field(
+                            format!("{f}.height"),
+                            format!("must not be negative, got {}", r.height),
+                        ));
+                    }
+                }
                 beach(b, size)
             }
             _ => {
@@ -441,7 +452,8 @@ fn srgb_to_linear(c: f32) -> f32 {
     }
 }
 
-/// A beach: a smooth ramp from `deep` to `shallow` across x, with gentle sand dunes across y.
+/// A beach: a smooth ramp from `deep` to `shallow` across x, with gentle sand dunes across y, and
+/// its rocks.
 fn beach(b: &BeachSpec, size: f64) -> Grid {
     let n = b.resolution;
     Grid::from_fn(n, n, |i, j| {
@@ -451,7 +463,15 @@ fn beach(b: &BeachSpec, size: f64) -> Grid {
         let dunes = b.dunes
             * ((x * 23.0 + (y * 5.0).sin()) * std::f64::consts::TAU).sin()
             * (0.5 + 0.5 * (y * 7.0 * size).cos());
-        (ramp + dunes).max(0.0) as f32
+        let rocks: f64 = b
+            .rocks
+            .iter()
+            .map(|r| {
+                let d = (x * size - r.position[0]).hypot(y * size - r.position[1]) / r.radius;
+                r.height * (1.0 - d * d).max(0.0).powi(2)
+            })
+            .sum();
+        (ramp + dunes + rocks).max(0.0) as f32
     })
 }
 

@@ -506,5 +506,6 @@ mod for_scene_tests {
                 "reference"
             ]
         );
+        assert_eq!(for_scene(&Scene::builtin("reef").unwrap()), shore);
     }
 }
