@@ -128,9 +128,10 @@ fn yuksel_runs_within_webgpus_default_limits() {
     ctx.check().expect("wgpu saw nothing");
 }
 
-/// A device whose textures are at most 256 a side: yuksel's pre-pass texture for a 96 x 48 map
-/// (its capacity over the levels: 624 x 432 texels) is cut into 3 x 2 layers of 208 x 216, and
-/// the map is to the bit the one a device holding it whole makes (and it is not flat water's).
+/// A device whose textures are at most 256 a side: yuksel's pre-pass texture for a 96 x 64 map
+/// (its capacity over the levels: 624 x 496 texels) is cut into 3 x 2 layers of 208 x 248, every
+/// pixel's 4 x 4 samples reach into the second row of layers, and the map is to the bit the one a
+/// device holding it whole makes (and it is not flat water's).
 fn yuksel_tiles_a_prepass_wider_than_the_device() {
     use caustics_core::techniques::yuksel::{YukselParams, YukselSetup};
     use caustics_gpu::yuksel::{PrepassTiling, Variant, Yuksel};
@@ -139,7 +140,7 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
         ..adapter
     });
     let full = device_with(|adapter| adapter);
-    let (n, rows) = (96, 48);
+    let (n, rows) = (96, 64);
     let heights = Grid::from_fn(n, rows, |i, j| {
         let (x, y) = ((j as f64 + 0.5) / n as f64, (i as f64 + 0.5) / rows as f64);
         let tau = std::f64::consts::TAU;
@@ -148,7 +149,11 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     // The pool's depth and sun on the unit square, a map of `w` x `h`.
     let setup_of = |w: usize, h: usize| {
         YukselSetup::new(
-            &YukselParams::default(),
+            // Every pixel 4 x 4: the pre-pass fills its texture's second row of tiles.
+            &YukselParams {
+                split: 0.0,
+                ..Default::default()
+            },
             w,
             h,
             1.0,
@@ -162,10 +167,10 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     };
     let setup = setup_of(n, rows);
     assert_eq!(
-        PrepassTiling::new((624, 432), 256),
+        PrepassTiling::new((624, 496), 256),
         PrepassTiling {
             tiles: (3, 2),
-            tile: (208, 216)
+            tile: (208, 248)
         }
     );
     let map = |ctx: &GpuContext| {
