@@ -143,7 +143,7 @@ fn ridge(x: f64) -> f64 {
 }
 
 /// A sand bar: a ridge along y whose crest stands 60 % of the way up to the water, its faces up
-/// to 43° steep on the unit square under 0.5 of water, rippled 10 % along its length where it
+/// to 62° steep on the unit square under 0.5 of water, rippled 10 % along its length where it
 /// rises.
 pub fn sand_bar(depth: f64) -> Grid {
     let n = 128;
@@ -155,8 +155,8 @@ pub fn sand_bar(depth: f64) -> Grid {
 }
 
 /// Rocks on a flat bed: three round mounds 6 % of the square wide (their standard deviation)
-/// standing 40-55 % of the way up to the water, faces up to about 60° steep, so that they shade
-/// the bed behind them from a sun 30° from the zenith.
+/// standing 40-55 % of the way up to the water, faces up to 70° steep: under a sun 30° from the
+/// zenith their far sides turn almost edge-on to the refracted light.
 pub fn rocks(depth: f64) -> Grid {
     let n = 128;
     let rocks = [(0.4, 0.42, 0.55), (0.6, 0.55, 0.45), (0.45, 0.62, 0.4)];

@@ -219,6 +219,50 @@ impl PartialEq for Shared {
     }
 }
 
+impl Shared {
+    /// The receivers of `floor`'s terrain seen along `t0` at `resolution` texels a side
+    /// ([`ReceiverHeights::of_floor_reusing`], `previous` where nothing it depends on changed);
+    /// `None` on the plane `z = 0`, which every technique lights directly.
+    pub fn of_floor(
+        previous: Option<&Shared>,
+        floor: &Floor,
+        size: f64,
+        depth: f64,
+        t0: DVec3,
+        resolution: usize,
+    ) -> Option<Shared> {
+        floor.terrain.as_ref()?;
+        let previous = previous.map(|p| &p.0);
+        Some(Shared(ReceiverHeights::of_floor_reusing(
+            previous, floor, size, depth, t0, resolution,
+        )))
+    }
+
+    /// Whether `receivers` were made from `floor`'s terrain (both absent on the plane `z = 0`): a
+    /// frame whose sun, water and map are unchanged keeps them without building a setup.
+    pub fn fits(receivers: Option<&Shared>, floor: &Floor) -> bool {
+        match (receivers, &floor.terrain) {
+            (None, None) => true,
+            (Some(r), Some(t)) => r.terrain.as_ref() == Some(t),
+            _ => false,
+        }
+    }
+}
+
+/// `map` (a technique's deposit) as the floor receives it: itself on the plane `z = 0`, else
+/// looked up per floor texel through `receivers` ([`lookup`]).
+pub fn received(
+    map: CausticsMap,
+    receivers: Option<&Shared>,
+    wrap: bool,
+    absorption: DVec3,
+) -> CausticsMap {
+    match receivers {
+        None => map,
+        Some(r) => lookup(&map, r, wrap, absorption),
+    }
+}
+
 impl std::ops::Deref for Shared {
     type Target = ReceiverHeights;
     fn deref(&self) -> &ReceiverHeights {
@@ -361,16 +405,8 @@ pub fn lookup(
 mod tests {
     use super::*;
     use crate::grid::Grid;
-    use crate::scene::{Albedo, Deck};
 
-    fn floor(terrain: Option<Grid>) -> Floor {
-        Floor {
-            terrain,
-            albedo: Albedo::Pattern(Default::default()),
-            walls: false,
-            deck: Deck::Stone,
-        }
-    }
+    use crate::fixtures::open_floor as floor;
 
     fn slope(n: usize, size: f64, rise: f64) -> Grid {
         Grid::from_fn(n, n, |_, j| {

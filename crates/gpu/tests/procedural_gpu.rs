@@ -592,12 +592,7 @@ fn a_terrain_matches_the_cpu_twin() {
     let ctx = test_gpu();
     let gpu = ProceduralCaustics::new(&ctx).expect("pipelines");
     let grid = surface(48);
-    let floor = caustics_core::scene::Floor {
-        terrain: Some(common::beach_under(0.35)),
-        albedo: caustics_core::scene::Albedo::Pattern(Default::default()),
-        walls: false,
-        deck: Default::default(),
-    };
+    let floor = common::beach_floor(0.35);
     let light = DVec3::new(0.3, -0.2, -1.0).normalize();
     for variant in Variant::ALL {
         for follow_sun in [false, true] {

@@ -629,12 +629,7 @@ fn a_terrain_matches_the_cpu_twin() {
     let res = 64;
     let input = scene(res);
     let h = heights(res);
-    let floor = caustics_core::scene::Floor {
-        terrain: Some(common::beach_under(input.depth)),
-        albedo: caustics_core::scene::Albedo::Pattern(Default::default()),
-        walls: false,
-        deck: Default::default(),
-    };
+    let floor = common::beach_floor(input.depth);
     let params = VolumesParams {
         texture: 64,
         water_cells: 64,

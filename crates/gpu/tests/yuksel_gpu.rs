@@ -214,12 +214,7 @@ fn a_terrain_matches_the_cpu_twin() {
     let yuksel = Yuksel::new(&ctx).expect("pipelines");
     let heights = surface(48);
     let depth = 0.35;
-    let floor = caustics_core::scene::Floor {
-        terrain: Some(common::beach_under(depth)),
-        albedo: caustics_core::scene::Albedo::Pattern(Default::default()),
-        walls: false,
-        deck: Default::default(),
-    };
+    let floor = common::beach_floor(depth);
     let absorption = DVec3::new(0.4, 0.1, 0.05);
     let light = DVec3::new(0.3, 0.1, -1.0).normalize();
     let setup = YukselSetup::new(

@@ -2,6 +2,7 @@
 //! uniform write (the light map is the sky around the sun, the same whichever way the sun stands,
 //! so it is uploaded once).
 
+use caustics_core::receivers::Shared;
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques::procedural::{
     self, ProceduralCausticsParams, ProceduralSetup, SurfaceInput, Variant,
@@ -77,7 +78,6 @@ impl SceneKey {
         scene: &Scene,
         previous: Option<&ProceduralSetup>,
     ) -> Result<ProceduralSetup, GpuError> {
-        let previous = previous.and_then(|s| s.receivers.as_ref().map(|r| &r.0));
         Ok(ProceduralSetup::new(
             params,
             self.width as usize,
@@ -88,7 +88,7 @@ impl SceneKey {
             self.wrap,
             self.light,
         )?
-        .with_floor(&scene.floor, previous))
+        .with_floor(&scene.floor, previous.and_then(|s| s.receivers.as_ref())))
     }
 }
 
@@ -184,10 +184,11 @@ impl Pipelines for ProceduralCaustics {
         scene: &Scene,
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
-        let mut setup = key.setup(&params.sun, scene, Some(frame.frame.setup()))?;
-        if frame.key == key && setup.receivers == frame.frame.setup().receivers {
+        let receivers = frame.frame.setup().receivers.as_ref();
+        if frame.key == key && Shared::fits(receivers, &scene.floor) {
             return Ok(true);
         }
+        let mut setup = key.setup(&params.sun, scene, Some(frame.frame.setup()))?;
         setup.light = frame.frame.setup().light.clone();
         if frame.frame.fits(&setup) {
             frame.frame.set_setup(ctx, &setup);

@@ -338,7 +338,7 @@ impl Volumes {
                 let hits = ctx.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("volumes hits"),
                     size: lattice_vertices * 16,
-                    usage: B::STORAGE | B::COPY_SRC,
+                    usage: B::STORAGE,
                     mapped_at_creation: false,
                 });
                 bytes += hits.size() + frame.bytes();

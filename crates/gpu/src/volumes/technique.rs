@@ -2,6 +2,7 @@
 //! the objects' shadows in it) and, on a scene with walls, the walls' maps; the objects' trees
 //! built once in configure, the caller's heights, a new sun or camera as uniform writes.
 
+use caustics_core::receivers::Shared;
 use caustics_core::scene::Scene;
 use caustics_core::techniques::volumes::{self, VolumesInput, VolumesParams, VolumesSetup};
 use caustics_core::techniques::{Descriptor, Job, JobOutput};
@@ -122,18 +123,12 @@ impl Pipelines for Volumes {
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
         let receivers = c.frame.setup.receivers.as_ref();
-        let same_floor = match (receivers, &scene.floor.terrain) {
-            (None, None) => true,
-            (Some(r), Some(t)) => r.terrain.as_ref() == Some(t),
-            _ => false,
-        };
-        if c.key == key && same_floor {
+        if c.key == key && Shared::fits(receivers, &scene.floor) {
             return Ok(true);
         }
         if c.key.wrap == key.wrap {
             key.apply(&mut c.input);
-            let previous = receivers.map(|r| &r.0);
-            let setup = VolumesSetup::new(params, &c.input)?.with_floor(&scene.floor, previous);
+            let setup = VolumesSetup::new(params, &c.input)?.with_floor(&scene.floor, receivers);
             if c.frame.fits(&setup) {
                 c.frame.set_setup(ctx, &setup);
                 c.key = key;

@@ -52,7 +52,7 @@ fn setup(
     previous: Option<&Frame>,
 ) -> Result<YukselSetup, GpuError> {
     let w = scene_water(scene, "yuksel")?;
-    let previous = previous.and_then(|f| f.setup().receivers.as_ref().map(|r| &r.0));
+    let previous = previous.and_then(|f| f.setup().receivers.as_ref());
     Ok(YukselSetup::new(
         params,
         scene.caustics.width as usize,

@@ -143,6 +143,16 @@ pub fn beach_under(depth: f64) -> caustics_core::grid::Grid {
     beach
 }
 
+/// An open floor (no walls) over [`beach_under`]`(depth)`.
+pub fn beach_floor(depth: f64) -> caustics_core::scene::Floor {
+    caustics_core::scene::Floor {
+        terrain: Some(beach_under(depth)),
+        albedo: caustics_core::scene::Albedo::Pattern(Default::default()),
+        walls: false,
+        deck: Default::default(),
+    }
+}
+
 /// A test's own upload of new heights into `texture` (an `R32Float` texture of the grid's size),
 /// past the context's counters, so that a count of what a frame uploads is the technique's alone.
 pub fn write_heights(

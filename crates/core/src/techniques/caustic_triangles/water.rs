@@ -526,6 +526,7 @@ pub fn render_with_walls(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixtures::{open_floor, slope, worst_off_the_attenuated_cosine};
     use crate::metrics::compare;
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
 
@@ -589,38 +590,14 @@ mod tests {
         let k = DVec3::new(0.45, 0.09, 0.05);
         let water = flat_water(true, k);
         let (a, b) = (0.12, 0.1);
-        let n = 64;
-        let terrain = Grid::from_fn(n, n, |_, j| {
-            (b + a * (j as f64 + 0.5) / n as f64 * water.size) as f32
-        });
-        let floor = crate::scene::Floor {
-            terrain: Some(terrain),
-            albedo: crate::scene::Albedo::Pattern(Default::default()),
-            walls: false,
-            deck: Default::default(),
-        };
+        let floor = open_floor(Some(slope(a, b, water.size, 64)));
         let t0 = crate::receivers::flat_refracted(light, water.ior);
         let r = ReceiverHeights::of_floor(&floor, water.size, water.depth, t0, 96);
         let ws = WaterSetup::new(&params(96), &water, light, 96, 96)
             .unwrap()
             .with_receivers(Arc::new(r));
         let out = caustics(&ws, &Grid::new(16, 16)).unwrap();
-        let normal = height_field_normal(DVec2::new(a, 0.0));
-        let facing = normal.dot(-t0) / -t0.z;
-        let mut worst: f64 = 0.0;
-        // Away from the x edges, where the clamped slope bends and the light wraps onto it.
-        for (idx, t) in out.map.texels.iter().enumerate() {
-            let j = idx % 96;
-            if !(8..88).contains(&j) {
-                continue;
-            }
-            let x = (j as f64 + 0.5) / 96.0 * water.size;
-            let d = (water.depth - (b + a * x)) / -t0.z;
-            let expect = (-k * d).exp() * facing;
-            for c in 0..3 {
-                worst = worst.max((t[c] as f64 / expect[c] - 1.0).abs());
-            }
-        }
+        let worst = worst_off_the_attenuated_cosine(&out.map, (a, b), water.depth, t0, k);
         eprintln!("flat water over a slope: worst texel {worst:.2e}");
         // measured 4.77e-6
         assert!(worst < 4.8e-5, "worst texel off by {worst}");

@@ -115,7 +115,6 @@ pub use target::target_pass;
 pub use vertex::{rasterise, vertex_values};
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -124,7 +123,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::refract;
-use crate::receivers::{ReceiverHeights, Shared};
+use crate::receivers::Shared;
 use crate::water::Surface;
 
 /// The paper's index of refraction of water.
@@ -694,16 +693,9 @@ impl ProceduralSetup {
     /// its value, its face's cosine against the light, the depth test, and the absorption along
     /// its own path (`(depth − z) / up_z`, the rest level's: the paper's `h` is left out there).
     /// The receivers' map is `previous` where nothing it depends on changed.
-    pub fn with_floor(
-        mut self,
-        floor: &crate::scene::Floor,
-        previous: Option<&Arc<ReceiverHeights>>,
-    ) -> Self {
-        if floor.terrain.is_some() {
-            self.receivers = Some(Shared(ReceiverHeights::of_floor_reusing(
-                previous, floor, self.size, self.depth, -self.up, self.width,
-            )));
-        }
+    pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
+        self.receivers =
+            Shared::of_floor(previous, floor, self.size, self.depth, -self.up, self.width);
         self
     }
 
@@ -718,10 +710,7 @@ impl ProceduralSetup {
     /// The passes' map as the floor receives it: itself on the plane `z = 0`, else looked up per
     /// floor texel through the receivers.
     pub fn received(&self, map: CausticsMap) -> CausticsMap {
-        match &self.receivers {
-            None => map,
-            Some(r) => crate::receivers::lookup(&map, r, self.wrap, self.absorption),
-        }
+        crate::receivers::received(map, self.receivers.as_ref(), self.wrap, self.absorption)
     }
 
     /// Mip levels of the texture variant's target, level 0 included.

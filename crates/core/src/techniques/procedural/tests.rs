@@ -1,6 +1,7 @@
 use glam::DVec2;
 
 use super::*;
+use crate::fixtures::{open_floor, slope, worst_off_the_attenuated_cosine};
 use crate::optics::height_field_normal;
 use crate::water::procedural::{Procedural, ProceduralParams};
 
@@ -493,15 +494,6 @@ fn a_png_light_map_is_normalised_at_its_centre() {
     assert!(e.contains("black.png") && e.contains("centre"), "{e}");
 }
 
-fn floor_of(terrain: Grid) -> crate::scene::Floor {
-    crate::scene::Floor {
-        terrain: Some(terrain),
-        albedo: crate::scene::Albedo::Pattern(Default::default()),
-        walls: false,
-        deck: Default::default(),
-    }
-}
-
 /// Flat water over a plane slope `z = b + a x`: every floor point gets 1 (flat water's caustic)
 /// times its face's cosine against the technique's light over the flat floor's,
 /// `n · (−t₀) / −t₀_z`, times `exp(−K d)` along its own path to the rest level, `d = (depth − z) /
@@ -510,7 +502,7 @@ fn floor_of(terrain: Grid) -> crate::scene::Floor {
 fn flat_water_over_a_slope_gives_each_point_its_attenuated_cosine() {
     let k = DVec3::new(0.45, 0.09, 0.05);
     let (a, b, n) = (0.3, 0.05, 96);
-    let terrain = Grid::from_fn(64, 64, |_, j| (b + a * (j as f64 + 0.5) / 64.0) as f32);
+    let terrain = slope(a, b, 1.0, 64);
     let light = DVec3::new(0.3, 0.1, -1.0).normalize();
     let flat = Grid::new(8, 8);
     for follow_sun in [false, true] {
@@ -520,25 +512,10 @@ fn flat_water_over_a_slope_gives_each_point_its_attenuated_cosine() {
         };
         let s = ProceduralSetup::new(&params, n, n, 1.0, 0.4, k, true, light)
             .unwrap()
-            .with_floor(&floor_of(terrain.clone()), None);
+            .with_floor(&open_floor(Some(terrain.clone())), None);
         assert!(s.receivers.is_some());
         let out = s.received(caustics(&s, &SurfaceInput::Grid(&flat)));
-        let t0 = -s.up;
-        let facing = height_field_normal(DVec2::new(a, 0.0)).dot(-t0) / -t0.z;
-        let mut worst: f64 = 0.0;
-        // Away from the x edges, where the clamped slope bends.
-        for (idx, t) in out.texels.iter().enumerate() {
-            let j = idx % n;
-            if !(8..n - 8).contains(&j) {
-                continue;
-            }
-            let x = (j as f64 + 0.5) / n as f64;
-            let d = (0.4 - (b + a * x)) / -t0.z;
-            let expect = (-k * d).exp() * facing;
-            for c in 0..3 {
-                worst = worst.max((t[c] as f64 / expect[c] - 1.0).abs());
-            }
-        }
+        let worst = worst_off_the_attenuated_cosine(&out, (a, b), 0.4, -s.up, k);
         eprintln!("follow_sun {follow_sun}: worst texel {worst:.2e}");
         // measured 5.2e-7 under the paper's sun, 2.2e-7 following it
         assert!(
@@ -569,7 +546,7 @@ fn a_terrain_point_gathers_along_its_own_ray() {
     let n = 128;
     let s = ProceduralSetup::new(&params, n, n, 1.0, 0.4, DVec3::ZERO, true, light)
         .unwrap()
-        .with_floor(&floor_of(terrain.clone()), None);
+        .with_floor(&open_floor(Some(terrain.clone())), None);
     let r = s.receivers.clone().unwrap();
     let out = s.received(caustics(&s, &SurfaceInput::Grid(&g)));
     let texels = crate::receivers::floor_texels(&r, n, n);

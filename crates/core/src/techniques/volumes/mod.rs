@@ -77,8 +77,6 @@ pub mod representation;
 mod tests;
 pub mod view;
 
-use std::sync::Arc;
-
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -87,7 +85,7 @@ use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::mesh::{MeshBvh, TriangleMesh};
 use crate::optics::{fresnel_transmittance, refract};
-use crate::receivers::{ReceiverHeights, Shared};
+use crate::receivers::Shared;
 use crate::scene::{Material, Scene};
 use crate::walls::WallMaps;
 
@@ -625,16 +623,9 @@ impl VolumesSetup {
     /// on the receivers' map (at the map's resolution, `previous` where nothing it depends on
     /// changed), the volumes are drawn in the light's space and looked up per floor texel
     /// ([`crate::receivers`]). The walls and the objects keep their own passes.
-    pub fn with_floor(
-        mut self,
-        floor: &crate::scene::Floor,
-        previous: Option<&Arc<ReceiverHeights>>,
-    ) -> Self {
-        if floor.terrain.is_some() {
-            self.receivers = Some(Shared(ReceiverHeights::of_floor_reusing(
-                previous, floor, self.size, self.depth, self.t0, self.width,
-            )));
-        }
+    pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
+        self.receivers =
+            Shared::of_floor(previous, floor, self.size, self.depth, self.t0, self.width);
         self
     }
 

@@ -769,15 +769,6 @@ fn without_walls_nothing_changes() {
     );
 }
 
-fn floor_of(terrain: Grid) -> crate::scene::Floor {
-    crate::scene::Floor {
-        terrain: Some(terrain),
-        albedo: crate::scene::Albedo::Pattern(Default::default()),
-        walls: false,
-        deck: Default::default(),
-    }
-}
-
 /// Flat water over a plane slope `z = b + a x`: each floor point gets its face's cosine against
 /// the refracted sun over the flat floor's, `n · (−t₀) / −t₀_z`, times `exp(−K d)` along its path
 /// `d = (depth − z) / −t₀_z`.
@@ -792,28 +783,19 @@ fn flat_water_over_a_slope_gives_each_point_its_attenuated_cosine() {
         absorption: true,
         ..params(5, n as u32)
     };
-    let terrain = Grid::from_fn(64, 64, |_, j| (b + a * (j as f64 + 0.5) / 64.0) as f32);
+    let floor = crate::fixtures::open_floor(Some(crate::fixtures::slope(a, b, 1.0, 64)));
     let setup = VolumesSetup::new(&p, &inp)
         .unwrap()
-        .with_floor(&floor_of(terrain), None);
+        .with_floor(&floor, None);
     assert!(setup.receivers.is_some());
     let out = caustics(&setup, &inp, &flat(n), true);
-    let t0 = setup.t0;
-    let facing = crate::optics::height_field_normal(glam::DVec2::new(a, 0.0)).dot(-t0) / -t0.z;
-    let mut worst: f64 = 0.0;
-    // Away from the x edges, where the clamped slope bends and the light wraps onto it.
-    for (idx, t) in out.floor.texels.iter().enumerate() {
-        let j = idx % n;
-        if !(8..n - 8).contains(&j) {
-            continue;
-        }
-        let x = (j as f64 + 0.5) / n as f64;
-        let d = (inp.depth - (b + a * x)) / -t0.z;
-        let expect = (-k * d).exp() * facing;
-        for c in 0..3 {
-            worst = worst.max((t[c] as f64 / expect[c] - 1.0).abs());
-        }
-    }
+    let worst = crate::fixtures::worst_off_the_attenuated_cosine(
+        &out.floor,
+        (a, b),
+        inp.depth,
+        setup.t0,
+        k,
+    );
     eprintln!("flat water over a slope: worst texel {worst:.2e}");
     // measured 4.52e-6
     assert!(worst < 4.5e-5, "worst texel off by {worst}");

@@ -89,8 +89,6 @@
 //! pixel over `k` (times `2^level` where the region needs a coarser level), independent of the
 //! height field's.
 
-use std::sync::Arc;
-
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -98,7 +96,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, refract};
-use crate::receivers::{ReceiverHeights, Shared};
+use crate::receivers::Shared;
 
 use super::describe::{
     Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
@@ -628,30 +626,19 @@ impl YukselSetup {
     /// in the light's space and looked up per floor pixel ([`crate::receivers`]). The
     /// absorption moves into the lookup, along the flat-water path to each receiver point, as the
     /// paper takes the flat floor's.
-    pub fn with_floor(
-        mut self,
-        floor: &crate::scene::Floor,
-        previous: Option<&Arc<ReceiverHeights>>,
-    ) -> Self {
-        if floor.terrain.is_none() {
-            return self;
-        }
+    pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
         let t0 = crate::receivers::flat_refracted(self.light, self.ior);
-        let r = ReceiverHeights::of_floor_reusing(
-            previous, floor, self.size, self.depth, t0, self.width,
-        );
-        self.attenuation = DVec3::ONE;
-        self.receivers = Some(Shared(r));
+        self.receivers = Shared::of_floor(previous, floor, self.size, self.depth, t0, self.width);
+        if self.receivers.is_some() {
+            self.attenuation = DVec3::ONE;
+        }
         self
     }
 
     /// `map` (the light's deposit) as the floor receives it: itself on the plane `z = 0`, else
     /// looked up per floor pixel through the receivers.
     pub fn received(&self, map: CausticsMap) -> CausticsMap {
-        match &self.receivers {
-            None => map,
-            Some(r) => crate::receivers::lookup(&map, r, self.wrap, self.absorption),
-        }
+        crate::receivers::received(map, self.receivers.as_ref(), self.wrap, self.absorption)
     }
 
     /// Samples per pixel along each axis at `level`: `k · 2^level`, at most
