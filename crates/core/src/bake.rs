@@ -174,8 +174,12 @@ pub fn colour_scenes(scene: &Scene, dispersion: bool) -> Vec<Scene> {
 /// row 0 at y = 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
+    /// Texels along x, across the water's square.
     pub width: usize,
+    /// Texels along y, across the water's square.
     pub height: usize,
+    /// One map a colour (red, green, blue with dispersion; one without), each `width · height`
+    /// texels row by row; 1 is flat water's irradiance.
     pub channels: Vec<Vec<f32>>,
 }
 

@@ -15,10 +15,15 @@ use crate::water::waves::Wave;
 /// One comparison case: water over a flat floor under a sun.
 #[derive(Clone, Debug)]
 pub struct Case {
+    /// `<surface>-<sun>-<depth>` (e.g. `waves-mid-deep`), or `receivers-<receiver>`.
     pub name: String,
+    /// The water: one of [`SURFACES`] on the unit square, wrapping, at one of [`DEPTHS`].
     pub water: Water,
+    /// The receiver under the water: a plain flat floor, or one of [`RECEIVERS`].
     pub floor: Floor,
+    /// The direction the sunlight travels, unit length, pointing down (z < 0).
     pub light: DVec3,
+    /// Simulation time at which the water is frozen, seconds.
     pub time: f64,
 }
 

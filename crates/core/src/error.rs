@@ -2,21 +2,50 @@
 
 use std::path::PathBuf;
 
+/// Every failure of the library, each worded for the user: what input, and what is wrong.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// Reading or writing a file failed; the message names the file and the system's reason.
     #[error("{}: {err}", path.display())]
-    Io { path: PathBuf, err: std::io::Error },
+    Io {
+        /// The file read or written.
+        path: PathBuf,
+        /// The system's reason.
+        err: std::io::Error,
+    },
+    /// A scene file is not valid TOML or does not fit the scene schema (an unknown key, a value of
+    /// the wrong type).
     #[error("{}: malformed scene file: {message}", path.display())]
-    SceneSyntax { path: PathBuf, message: String },
+    SceneSyntax {
+        /// The scene file; `<name>` for a built-in scene or text not read from a file.
+        path: PathBuf,
+        /// The TOML reader's message, with the line and column at fault.
+        message: String,
+    },
+    /// A scene's field holds a value the scene model does not accept.
     #[error("invalid scene: `{field}` {problem}")]
-    InvalidField { field: String, problem: String },
+    InvalidField {
+        /// The field's dotted name as the scene file spells it (`water.depth`, `light.direction`).
+        field: String,
+        /// What is wrong, as the tail of a sentence (`must be positive, got -1`).
+        problem: String,
+    },
+    /// A file other than a scene file (a mesh, a height field, an image) cannot be used.
     #[error("{}: {problem}", path.display())]
-    BadFile { path: PathBuf, problem: String },
+    BadFile {
+        /// The file at fault.
+        path: PathBuf,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// No built-in scene has this name.
     #[error("unknown built-in scene `{0}` (known: pool, shore, reef, objects, glass, underwater)")]
     UnknownScene(String),
+    /// No technique has this name.
     #[error("unknown technique `{0}`; `caustics techniques` lists them")]
     UnknownTechnique(String),
+    /// A parameter given outside a scene's fields (a command-line option, a technique's setting, a
+    /// function's argument) is malformed or out of range; the message names it.
     #[error("invalid parameter: {0}")]
     InvalidParameter(String),
     /// What was asked for does not exist here (an intermediate buffer of a scene without water,
@@ -26,6 +55,7 @@ pub enum Error {
 }
 
 impl Error {
+    /// [`Error::InvalidField`]: the field's dotted name and what is wrong with it.
     pub fn field(field: impl Into<String>, problem: impl Into<String>) -> Self {
         Error::InvalidField {
             field: field.into(),
@@ -33,6 +63,7 @@ impl Error {
         }
     }
 
+    /// [`Error::BadFile`]: the file and what is wrong with it.
     pub fn bad_file(path: impl Into<PathBuf>, problem: impl Into<String>) -> Self {
         Error::BadFile {
             path: path.into(),
@@ -40,6 +71,19 @@ impl Error {
         }
     }
 
+    /// [`Error::BadFile`] for a file this build cannot read or write: `what` ("an OBJ mesh") needs
+    /// the crate feature `feature`, which the application did not turn on.
+    pub fn feature_off(path: impl Into<PathBuf>, what: &str, feature: &str) -> Self {
+        Self::bad_file(
+            path,
+            format!(
+                "{what} needs caustics-core's `{feature}` feature, which this build leaves out \
+                 (add `features = [\"{feature}\"]` to its dependency)"
+            ),
+        )
+    }
+
+    /// [`Error::Io`]: the file and the system's error reading or writing it.
     pub fn io(path: impl Into<PathBuf>, err: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
@@ -48,4 +92,5 @@ impl Error {
     }
 }
 
+/// The library's result, failing with [`Error`] unless told otherwise.
 pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -12,18 +12,26 @@ use crate::scene::Camera;
 /// The eye camera as a pinhole: `Camera::ray`'s basis with the field of view folded in.
 #[derive(Clone, Copy, Debug)]
 pub struct EyeCamera {
+    /// The eye's position, world units.
     pub position: DVec3,
+    /// Unit view direction, from the eye towards the camera's target.
     pub forward: DVec3,
+    /// Unit screen x axis: horizontal (perpendicular to `forward` and world z), to the right.
     pub right: DVec3,
+    /// Unit screen up axis, perpendicular to `forward` and `right` (pixel y grows the other way).
     pub up: DVec3,
     /// `tan(fov_y / 2)`.
     pub half: f64,
+    /// Image width over height.
     pub aspect: f64,
+    /// Image width, pixels.
     pub width: usize,
+    /// Image height, pixels.
     pub height: usize,
 }
 
 impl EyeCamera {
+    /// The pinhole of the scene's camera, at the camera's own image size.
     pub fn new(c: &Camera) -> Self {
         let forward = (c.target - c.position).normalize();
         let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
@@ -71,8 +79,11 @@ impl EyeCamera {
 /// at the floor point the pixel's straight ray meets; `flag < 0` where the technique has none.
 #[derive(Clone, Debug)]
 pub struct EyeSpaceCaustics {
+    /// Image width, pixels.
     pub width: usize,
+    /// Image height, pixels.
     pub height: usize,
+    /// `width · height` texels `[r, g, b, flag]`, row by row, row 0 at the top of the image.
     pub texels: Vec<[f32; 4]>,
 }
 

@@ -7,6 +7,7 @@
 //! file has a continuous normal, and its gradient is the exact derivative of the interpolated height
 //! (at the samples it reduces to the central difference).
 
+#[cfg(feature = "formats")]
 use std::io::{BufReader, BufWriter};
 use std::path::Path;
 
@@ -28,15 +29,20 @@ pub enum Edge {
     Clamp,
 }
 
+/// A scalar field sampled on a `cols × rows` lattice over `[0, size]²` (the size is given at each
+/// lookup): a height field in world units above its rest level, or a map's values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Grid {
+    /// Samples along x.
     pub cols: usize,
+    /// Samples along y.
     pub rows: usize,
     /// Row-major, row 0 at y = 0.
     pub data: Vec<f32>,
 }
 
 impl Grid {
+    /// A grid of zeros.
     pub fn new(cols: usize, rows: usize) -> Self {
         Grid {
             cols,
@@ -45,6 +51,7 @@ impl Grid {
         }
     }
 
+    /// A grid whose sample at row `i`, column `j` is `f(i, j)`.
     pub fn from_fn(cols: usize, rows: usize, mut f: impl FnMut(usize, usize) -> f32) -> Self {
         let mut data = Vec::with_capacity(cols * rows);
         for i in 0..rows {
@@ -55,6 +62,7 @@ impl Grid {
         Grid { cols, rows, data }
     }
 
+    /// The sample at row `i` (along y), column `j` (along x); panics outside the grid.
     #[inline]
     pub fn at(&self, i: usize, j: usize) -> f32 {
         self.data[i * self.cols + j]
@@ -120,6 +128,7 @@ impl Grid {
         h
     }
 
+    /// The smallest and largest samples (`(+∞, −∞)` for an empty grid).
     pub fn min_max(&self) -> (f32, f32) {
         self.data
             .iter()
@@ -128,6 +137,7 @@ impl Grid {
             })
     }
 
+    /// The mean of the samples (NaN for an empty grid).
     pub fn mean(&self) -> f64 {
         self.data.iter().map(|&v| v as f64).sum::<f64>() / self.data.len() as f64
     }
@@ -183,34 +193,44 @@ impl Grid {
 
     /// Write as float32 `.npy` of shape (rows, cols), row 0 first.
     pub fn write_npy(&self, path: &Path) -> Result<()> {
-        use npyz::WriterBuilder;
-        let file = std::fs::File::create(path).map_err(|e| Error::io(path, e))?;
-        let mut writer = npyz::WriteOptions::new()
-            .default_dtype()
-            .shape(&[self.rows as u64, self.cols as u64])
-            .writer(BufWriter::new(file))
-            .begin_nd()
-            .map_err(|e| Error::io(path, e))?;
-        writer
-            .extend(self.data.iter().copied())
-            .map_err(|e| Error::io(path, e))?;
-        writer.finish().map_err(|e| Error::io(path, e))
+        #[cfg(not(feature = "formats"))]
+        return Err(Error::feature_off(path, "writing .npy", "formats"));
+        #[cfg(feature = "formats")]
+        {
+            use npyz::WriterBuilder;
+            let file = std::fs::File::create(path).map_err(|e| Error::io(path, e))?;
+            let mut writer = npyz::WriteOptions::new()
+                .default_dtype()
+                .shape(&[self.rows as u64, self.cols as u64])
+                .writer(BufWriter::new(file))
+                .begin_nd()
+                .map_err(|e| Error::io(path, e))?;
+            writer
+                .extend(self.data.iter().copied())
+                .map_err(|e| Error::io(path, e))?;
+            writer.finish().map_err(|e| Error::io(path, e))
+        }
     }
 
     /// Write as a single-channel (`Y`) float32 OpenEXR image, row 0 first.
     pub fn write_exr(&self, path: &Path) -> Result<()> {
-        use exr::prelude::*;
-        let channel = AnyChannel::new("Y", FlatSamples::F32(self.data.clone()));
-        let layer = Layer::new(
-            (self.cols, self.rows),
-            LayerAttributes::named("caustics"),
-            Encoding::FAST_LOSSLESS,
-            AnyChannels::sort(SmallVec::from_vec(vec![channel])),
-        );
-        Image::from_layer(layer)
-            .write()
-            .to_file(path)
-            .map_err(|e| crate::Error::bad_file(path, e.to_string()))
+        #[cfg(not(feature = "formats"))]
+        return Err(Error::feature_off(path, "writing .exr", "formats"));
+        #[cfg(feature = "formats")]
+        {
+            use exr::prelude::*;
+            let channel = AnyChannel::new("Y", FlatSamples::F32(self.data.clone()));
+            let layer = Layer::new(
+                (self.cols, self.rows),
+                LayerAttributes::named("caustics"),
+                Encoding::FAST_LOSSLESS,
+                AnyChannels::sort(SmallVec::from_vec(vec![channel])),
+            );
+            Image::from_layer(layer)
+                .write()
+                .to_file(path)
+                .map_err(|e| crate::Error::bad_file(path, e.to_string()))
+        }
     }
 }
 
@@ -234,6 +254,7 @@ fn catmull_rom(t: f64) -> ([f64; 4], [f64; 4]) {
     )
 }
 
+#[cfg(feature = "formats")]
 /// The byte offset of a `.npy` file's samples, from its preamble: the magic string, the version,
 /// and the header's length (2 bytes in version 1, 4 in versions 2 and 3).
 ///
@@ -274,6 +295,7 @@ fn npy_data_offset(path: &Path, file: &mut std::fs::File, len: u64) -> Result<u6
     Ok(start + header)
 }
 
+#[cfg(feature = "formats")]
 fn read_npy(path: &Path) -> Result<Grid> {
     use std::io::{Seek, SeekFrom};
     let mut file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
@@ -337,6 +359,7 @@ fn read_npy(path: &Path) -> Result<Grid> {
     Ok(Grid { cols, rows, data })
 }
 
+#[cfg(feature = "formats")]
 fn read_exr(path: &Path) -> Result<Grid> {
     use exr::prelude::*;
     // exr sizes its sample buffers from the header's data window before it reads a pixel, so a
@@ -372,6 +395,7 @@ fn read_exr(path: &Path) -> Result<Grid> {
     Ok(Grid { cols, rows, data })
 }
 
+#[cfg(feature = "formats")]
 fn read_png16(path: &Path, range: [f32; 2]) -> Result<Grid> {
     let img = image::open(path).map_err(|e| Error::bad_file(path, e.to_string()))?;
     let image::DynamicImage::ImageLuma16(img) = img else {
@@ -388,6 +412,21 @@ fn read_png16(path: &Path, range: [f32; 2]) -> Result<Grid> {
         .map(|v| range[0] + (range[1] - range[0]) * v as f32 / 65535.0)
         .collect();
     Ok(Grid { cols, rows, data })
+}
+
+#[cfg(not(feature = "formats"))]
+fn read_npy(path: &Path) -> Result<Grid> {
+    Err(Error::feature_off(path, "a .npy height field", "formats"))
+}
+
+#[cfg(not(feature = "formats"))]
+fn read_exr(path: &Path) -> Result<Grid> {
+    Err(Error::feature_off(path, "an .exr height field", "formats"))
+}
+
+#[cfg(not(feature = "formats"))]
+fn read_png16(path: &Path, _range: [f32; 2]) -> Result<Grid> {
+    Err(Error::feature_off(path, "a PNG height field", "formats"))
 }
 
 #[cfg(test)]

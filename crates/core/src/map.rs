@@ -7,15 +7,21 @@ use std::path::Path;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 
+/// Relative irradiance on the floor square `[0, size]²`, RGB per texel (see the module's doc).
 #[derive(Clone, Debug, PartialEq)]
 pub struct CausticsMap {
+    /// Texels along x.
     pub width: usize,
+    /// Texels along y.
     pub height: usize,
+    /// Side of the floor square the map covers, world units.
     pub size: f64,
+    /// `width · height` texels of `[r, g, b]` relative irradiance, row by row, row 0 at y = 0.
     pub texels: Vec<[f32; 3]>,
 }
 
 impl CausticsMap {
+    /// A black map (no light anywhere) over the square of side `size`.
     pub fn new(width: usize, height: usize, size: f64) -> Self {
         CausticsMap {
             width,
@@ -25,6 +31,7 @@ impl CausticsMap {
         }
     }
 
+    /// A grey map over the square of side `size`: each grid sample in all three channels.
     pub fn from_grid(g: &Grid, size: f64) -> Self {
         CausticsMap {
             width: g.cols,
@@ -70,6 +77,7 @@ impl CausticsMap {
         sum * self.size * self.size / (self.width * self.height) as f64
     }
 
+    /// Channel `c` (0 red, 1 green, 2 blue) alone, as a grid of the map's size; panics past 2.
     pub fn channel(&self, c: usize) -> Grid {
         Grid {
             cols: self.width,
@@ -143,6 +151,7 @@ pub const MAX_TAPS: usize = 8;
 /// final_image_inputs.wgsl reads them.
 #[derive(Clone, Debug)]
 pub struct MapPyramid {
+    /// Level 0 (the map itself) first, each next one half the size, down to one texel.
     pub levels: Vec<CausticsMap>,
 }
 

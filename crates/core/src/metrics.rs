@@ -10,18 +10,27 @@
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 
+/// A map's distances from the reference, as defined in the module's doc.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Metrics {
+    /// `Σ|a − r| / Σ|r|`: the share of the reference's light misplaced or missing (0 is exact).
     pub relative_l1: f64,
+    /// `sqrt(mean((a − r)²)) / mean(r)` (0 is exact).
     pub relative_rmse: f64,
+    /// `Σa / Σr − 1`: light gained (+) or lost (−) over the whole map.
     pub flux_error: f64,
+    /// Mean SSIM of the tone-mapped maps, up to 1 for identical ones.
     pub ssim: f64,
 }
 
+/// The metrics of a technique's map against the reference's, on their channel means; the maps
+/// must have the same size (panics otherwise).
 pub fn compare(technique: &CausticsMap, reference: &CausticsMap) -> Metrics {
     compare_grids(&technique.mean_channel(), &reference.mean_channel())
 }
 
+/// The metrics of single-channel map `a` against the reference `r`, of the same size (panics
+/// otherwise).
 pub fn compare_grids(a: &Grid, r: &Grid) -> Metrics {
     assert_eq!(
         (a.cols, a.rows),

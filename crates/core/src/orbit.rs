@@ -3,7 +3,7 @@
 //! elevation, and the pick of a water point under the pointer.
 //!
 //! The world is z-up, as in the scene files; the camera is turned into a
-//! [`caustics_core::scene::Camera`] each frame so that the final image is traced exactly as
+//! [`crate::scene::Camera`] each frame so that the final image is traced exactly as
 //! `caustics render` traces it, and a pick uses that camera's own [`Camera::ray`].
 
 use glam::{DVec2, DVec3};
@@ -17,9 +17,14 @@ const MAX_PITCH: f64 = 1.55;
 /// `pitch` (radians). Orbiting keeps the target; flying moves both.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OrbitCamera {
+    /// The point looked at and orbited, world units.
     pub target: DVec3,
+    /// Radians from +x towards +y of the direction from the target to the eye.
     pub yaw: f64,
+    /// Radians of the eye above the target's horizontal plane (below it when negative), within
+    /// ±1.55 once orbited.
     pub pitch: f64,
+    /// From the target to the eye, world units; zoom keeps it within 0.02 to 30 times `scale`.
     pub distance: f64,
     /// Vertical field of view, degrees.
     pub fov_y: f64,
@@ -43,6 +48,7 @@ impl OrbitCamera {
         }
     }
 
+    /// The eye's position, world units.
     pub fn position(&self) -> DVec3 {
         let (sy, cy) = self.yaw.sin_cos();
         let (sp, cp) = self.pitch.sin_cos();

@@ -8,9 +8,13 @@ use crate::grid::Grid;
 /// An RGBA8 picture, top row first, with a line saying how its colours read.
 #[derive(Clone, Debug)]
 pub struct Picture {
+    /// Width, pixels.
     pub width: u32,
+    /// Height, pixels.
     pub height: u32,
+    /// Display colours, four bytes (red, green, blue, alpha) a pixel, row by row, top row first.
     pub rgba: Vec<u8>,
+    /// How the colours read, for the user (`black 0, white 2.00 ...`); may be empty.
     pub legend: String,
 }
 

@@ -32,8 +32,8 @@
 
 use std::sync::Arc;
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use crate::map::CausticsMap;
 use crate::optics::refract;
@@ -59,7 +59,9 @@ pub struct ReceiverHeights {
     pub origin: DVec2,
     /// Side of a texel.
     pub texel: f64,
+    /// Texels along light-space x: the square's `resolution` plus a margin each side.
     pub cols: usize,
+    /// Texels along light-space y (as many as `cols`: the window is square).
     pub rows: usize,
     /// Row-major heights.
     pub heights: Vec<f32>,
@@ -68,9 +70,12 @@ pub struct ReceiverHeights {
     /// The floor's terrain over the `size` square (`None`: the plane `z = 0`), for the receivers'
     /// points and normals in [`lookup`].
     pub terrain: Option<crate::grid::Grid>,
+    /// Side of the floor square, world units.
     pub size: f64,
-    /// The water's depth and the texels across the square it was made for.
+    /// The water's depth it was made for: the rest level the lines along `t0` start from, and the
+    /// height a texel holds where its line meets no receiver.
     pub depth: f64,
+    /// Texels across the floor square (the window's texels less the margins).
     pub resolution: usize,
 }
 

@@ -40,8 +40,8 @@
 //! (a wave crest's own edge) goes to its top row. A wall texel's value is its flux over its area
 //! in the floor's unit ([`crate::walls`]).
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::map::CausticsMap;
@@ -152,6 +152,8 @@ fn run_cpu(
     })
 }
 
+/// How finely, and with which physics, the reference traces (default: 4 cells per texel, Fresnel
+/// and absorption on).
 #[derive(Clone, Debug)]
 pub struct ReferenceOptions {
     /// Triangulation cells per map texel along each axis.
@@ -174,16 +176,24 @@ impl Default for ReferenceOptions {
 
 /// What the reference needs to know, independent of how the scene was described.
 pub struct ReferenceInput<'a> {
+    /// The water surface at the instant traced: heights above the rest level and their gradient.
     pub surface: &'a dyn Surface,
+    /// The water's square, depth, index of refraction, wrap and absorption (its source is not read:
+    /// `surface` stands for it).
     pub water: &'a Water,
+    /// The receiver: flat or terrain, with or without the pool's walls.
     pub floor: &'a Floor,
     /// Unit direction the sunlight travels, `z < 0`.
     pub light: DVec3,
+    /// Floor map texels along x.
     pub width: usize,
+    /// Floor map texels along y.
     pub height: usize,
 }
 
 impl<'a> ReferenceInput<'a> {
+    /// The scene's water, floor, sun and caustics map size, with `surface` standing for its water
+    /// at the instant traced; fails for a scene without water.
     pub fn from_scene(scene: &'a Scene, surface: &'a dyn Surface) -> Result<Self> {
         let water = scene.water.as_ref().ok_or_else(|| {
             Error::InvalidParameter(format!(
@@ -227,6 +237,7 @@ pub const MAX_ACCUMULATOR_BYTES: u64 = 8 << 30;
 /// What the reference lights: the floor map, and the walls' maps when the floor has walls.
 #[derive(Clone, Debug)]
 pub struct ReferenceOutput {
+    /// The floor's caustics map: relative irradiance, 1 under flat water.
     pub floor: CausticsMap,
     /// `Some` when [`Floor::walls`]: light that meets a wall is here, not on the floor.
     pub walls: Option<WallMaps>,
@@ -395,7 +406,7 @@ pub fn reference_with_walls(
             MAX_ACCUMULATOR_BYTES >> 30
         )));
     }
-    let workers = rayon::current_num_threads()
+    let workers = crate::parallel::workers()
         .min(by_memory)
         .clamp(1, bands.max(1));
     let (acc, transmitted) = (0..workers)

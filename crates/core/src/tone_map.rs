@@ -29,6 +29,7 @@ pub enum ToneMap {
 }
 
 impl ToneMap {
+    /// The curves' names as scene files and `--tone-map` spell them, in [`ToneMap::code`] order.
     pub const NAMES: [&'static str; 3] = ["aces", "agx", "none"];
 
     /// The value of `FinalImageUniform::tone_map` (`TONE_*` in `shading.wgsl`).

@@ -43,6 +43,7 @@ impl Wall {
         }
     }
 
+    /// Its position in [`Wall::ALL`] (0 to 3): its map in [`WallMaps::maps`], its GPU layer.
     pub fn index(self) -> usize {
         self as usize
     }
@@ -103,7 +104,9 @@ impl Wall {
 /// One wall's map (see the module's layout).
 #[derive(Clone, Debug, PartialEq)]
 pub struct WallMap {
+    /// Texels along the wall: the floor map's texels along that side.
     pub cols: usize,
+    /// Texels up the wall, from the floor to the rest water level.
     pub rows: usize,
     /// The wall's length (the square's side).
     pub length: f64,
@@ -114,6 +117,8 @@ pub struct WallMap {
 }
 
 impl WallMap {
+    /// A dark map (no light) of `cols` x `rows` texels on a wall `length` long and `height` high
+    /// (world units).
     pub fn new(cols: usize, rows: usize, length: f64, height: f64) -> Self {
         WallMap {
             cols,
@@ -189,6 +194,7 @@ impl WallMap {
 /// The four walls' maps, in [`Wall::ALL`]'s order.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WallMaps {
+    /// The x = 0, x = size, y = 0 and y = size walls' maps.
     pub maps: [WallMap; 4],
 }
 
@@ -210,10 +216,12 @@ impl WallMaps {
         }
     }
 
+    /// Wall `w`'s map.
     pub fn get(&self, w: Wall) -> &WallMap {
         &self.maps[w.index()]
     }
 
+    /// Wall `w`'s map, to write into.
     pub fn get_mut(&mut self, w: Wall) -> &mut WallMap {
         &mut self.maps[w.index()]
     }

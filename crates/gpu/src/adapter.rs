@@ -20,6 +20,8 @@ pub trait Pipelines: Sized + wgpu::WasmNotSendSync + 'static {
     /// scene [`refit`](Self::refit) compares against.
     type Frame: wgpu::WasmNotSendSync;
 
+    /// Build the technique's pipelines (shader modules, layouts, samplers) for the device: once
+    /// per device, whatever the parameters that do not change them.
     fn new(ctx: &GpuContext) -> Result<Self, GpuError>;
 
     /// The parameters of registry entry `entry` from the tables keyed by technique (a variant's
@@ -61,6 +63,8 @@ pub trait Pipelines: Sized + wgpu::WasmNotSendSync + 'static {
         scene: &Scene,
     ) -> Result<bool, GpuError>;
 
+    /// Record the frame's passes into the caller's encoder, timing each one on `timer`
+    /// ([`Technique::encode`]).
     fn encode(
         &self,
         frame: &Self::Frame,
@@ -68,6 +72,7 @@ pub trait Pipelines: Sized + wgpu::WasmNotSendSync + 'static {
         timer: Option<&mut GpuTimer>,
     );
 
+    /// The texture `frame`'s passes end in ([`Technique::output`]).
     fn output<'a>(&'a self, frame: &'a Self::Frame) -> Output<'a>;
 
     /// The walls' maps, where the technique lights them.
@@ -100,6 +105,8 @@ pub struct Resident<P: Pipelines> {
 }
 
 impl<P: Pipelines> Resident<P> {
+    /// Build the pipelines and read the parameters of registry entry `entry` from `tables`
+    /// (keyed by technique); no frame until [`Technique::configure`].
     pub fn new(
         entry: &'static Descriptor,
         ctx: &GpuContext,

@@ -14,6 +14,8 @@ use crate::technique::{Output, Technique};
 use crate::water::field::GpuWater;
 use crate::{GpuContext, GpuError, Readback};
 
+/// The resident state of a `caustics bake` on the GPU: one water simulation, one configured
+/// technique per colour scene, and the read-back buffer with one layer per colour.
 pub struct BakeFrames {
     water: GpuWater,
     techniques: Vec<(Box<dyn Technique>, Scene)>,

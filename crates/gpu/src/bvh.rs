@@ -8,9 +8,13 @@ use caustics_core::mesh::TriangleMesh;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuBvhNode {
+    /// The box's lower corner, world units (z up).
     pub min: [f32; 3],
+    /// A leaf's first triangle slot, or an interior node's left child (the right one follows it).
     pub start: u32,
+    /// The box's upper corner, world units.
     pub max: [f32; 3],
+    /// Triangles in a leaf; 0 marks an interior node.
     pub count: u32,
 }
 
@@ -18,18 +22,26 @@ pub struct GpuBvhNode {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuBvhTriangle {
+    /// xyz: the first vertex, world units.
     pub p0: [f32; 4],
+    /// xyz: the edge from `p0` to the second vertex.
     pub e1: [f32; 4],
+    /// xyz: the edge from `p0` to the third vertex.
     pub e2: [f32; 4],
+    /// xyz: the first vertex's unit outward normal.
     pub n0: [f32; 4],
+    /// xyz: the second vertex's unit outward normal.
     pub n1: [f32; 4],
+    /// xyz: the third vertex's unit outward normal.
     pub n2: [f32; 4],
 }
 
 /// Every mesh's tree appended to one node and one triangle-slot buffer, its indices made global.
 #[derive(Default)]
 pub struct FlatBvhs {
+    /// Every mesh's nodes, each tree's root first and its `start`s made global.
     pub nodes: Vec<GpuBvhNode>,
+    /// Every mesh's triangle slots, in its leaves' order.
     pub triangles: Vec<GpuBvhTriangle>,
     /// Each mesh's root in `nodes`.
     pub roots: Vec<u32>,

@@ -138,6 +138,8 @@ impl MapMips {
         self.levels.len()
     }
 
+    /// Whether there is no level to write (a 1 x 1 map, or one made with a single mip):
+    /// [`encode`](Self::encode) then records nothing.
     pub fn is_empty(&self) -> bool {
         self.levels.is_empty()
     }

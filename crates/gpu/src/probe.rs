@@ -17,6 +17,8 @@ pub struct ProbeIn {
     pub incident: [f32; 4],
     /// Normal, then `n2` for the Fresnel transmittance from `n1 = 1`.
     pub normal: [f32; 4],
+    /// xy: the point on the water the surfaces are evaluated at, world units (`[0, size]²`);
+    /// zw unused.
     pub point: [f32; 4],
 }
 
@@ -24,9 +26,15 @@ pub struct ProbeIn {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ProbeOut {
+    /// `refract_dir` of the input: xyz the refracted unit direction, w 1 where it exists and 0 on
+    /// total internal reflection.
     pub refracted: [f32; 4],
+    /// x: the Fresnel transmittance from `n1 = 1` into `n2`; yzw: the sum of the sine waves at
+    /// `point` (height, ∂h/∂x, ∂h/∂y). `fresnel_sine_procedural` in the WGSL.
     pub fresnel_sine: [f32; 4],
+    /// xyz: paper 2's procedural wave at `point` (height, ∂h/∂x, ∂h/∂y); w 0.
     pub procedural: [f32; 4],
+    /// xyz: the bicubic interpolant of the height grid at `point` (height, ∂h/∂x, ∂h/∂y); w 0.
     pub grid: [f32; 4],
     /// The same surface from the heights' Hermite form ([`crate::water::patches`]).
     pub hermite: [f32; 4],
@@ -43,14 +51,23 @@ struct ProbeParams {
     _pad: u32,
 }
 
+/// The surfaces the probe evaluates at each input's `point`.
 pub struct ProbeSetup<'a> {
+    /// The sine waves whose sum is [`ProbeOut::fresnel_sine`]'s yzw (none gives zero).
     pub waves: &'a [GpuSineWave],
+    /// Paper 2's wave, with its clock, for [`ProbeOut::procedural`].
     pub procedural: GpuProceduralWave,
+    /// The height grid, samples at texel centres over `[0, size]²`, for [`ProbeOut::grid`] and
+    /// [`ProbeOut::hermite`].
     pub grid: &'a caustics_core::grid::Grid,
+    /// Side of the square the grid covers, world units.
     pub size: f32,
+    /// Whether the grid tiles (periodic) or clamps at its edges.
     pub wrap: bool,
 }
 
+/// Evaluate the shared WGSL math on each of `inputs` in one compute dispatch and read the results
+/// back, one [`ProbeOut`] per input, in order.
 pub fn run(
     ctx: &GpuContext,
     inputs: &[ProbeIn],

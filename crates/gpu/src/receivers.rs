@@ -80,7 +80,10 @@ pub struct ReceiverLookup {
 /// One technique's receivers: the heights its rays meet, and the floor map the lookup writes from
 /// its deposit.
 pub struct ReceiverFrame {
+    /// The receivers the frame was built for (their light-space window, `t0` and terrain).
     pub receivers: Arc<ReceiverHeights>,
+    /// `receivers`' heights as an `R32Float` texture over their light-space window, world units
+    /// ([`heights_texture`]).
     pub heights: wgpu::Texture,
     /// The floor map: `Rgba32Float`, the floor's texels.
     pub floor: wgpu::Texture,
@@ -91,6 +94,7 @@ pub struct ReceiverFrame {
 }
 
 impl ReceiverFrame {
+    /// GPU memory of the frame's textures, bytes.
     pub fn bytes(&self) -> u64 {
         let texels = |t: &wgpu::Texture| (t.width() * t.height()) as u64;
         texels(&self.heights) * 4 + texels(&self.floor) * 16 + texels(&self.texels) * 16
@@ -98,6 +102,7 @@ impl ReceiverFrame {
 }
 
 impl ReceiverLookup {
+    /// Build the lookup pass's pipeline for the device.
     pub fn new(ctx: &GpuContext) -> Self {
         ReceiverLookup {
             pipeline: compute_pipeline(ctx, &LOOKUP),
@@ -164,6 +169,8 @@ impl ReceiverLookup {
         })
     }
 
+    /// Record the lookup pass, writing `f`'s floor map from the deposit it was built on; run it
+    /// after the technique's passes that fill the deposit.
     pub fn encode(
         &self,
         f: &ReceiverFrame,

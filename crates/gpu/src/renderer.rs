@@ -23,7 +23,10 @@ use crate::{GpuContext, GpuError, GpuTimer, TrafficCounts};
 /// technique as in a scene file's `[caustics]`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TechniqueSpec {
+    /// The registered name, with its variant (`yuksel-targets`, `procedural-texture`).
     pub name: String,
+    /// Parameter tables keyed by technique (`{ yuksel = { n = 15 } }`); a missing one means the
+    /// defaults.
     pub params: toml::Table,
 }
 
@@ -45,7 +48,10 @@ pub enum FrameWater {
     Scene,
     /// The interactive ripple simulation with these parameters; `generation` tells a restart.
     Ripples {
+        /// The simulation's grid, wave speed, damping, time step and initial drops.
         params: RippleParams,
+        /// Bumped by the application to restart the simulation with the same parameters: a
+        /// different value makes [`Renderer::set_water`] build the water again.
         generation: u64,
     },
 }
@@ -179,6 +185,8 @@ pub struct Renderer {
     sides: Vec<Side>,
     /// Techniques switched away from, most recent last.
     parked: Vec<Side>,
+    /// Times every pass of a frame (water, techniques, final images), read a frame or two late;
+    /// `None` where the device has no timestamp queries.
     pub timer: Option<GpuTimer>,
 }
 
@@ -190,6 +198,8 @@ pub const PARKED: usize = 12;
 const TIMED_PASSES: u32 = 96;
 
 impl Renderer {
+    /// The final image's pipelines and an empty frame: no water, no side until
+    /// [`set_water`](Self::set_water) and [`set_techniques`](Self::set_techniques).
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let empty = ctx.texture_2d(
             "no water",

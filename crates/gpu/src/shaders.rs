@@ -3,7 +3,7 @@
 //! modules under `shaders/` (the optics, the water surface, the reductions, the shading, the
 //! caustics maps' sampling, the BVH) and its technique's own (`package::yuksel::common`).
 //! build.rs compiles each into one WGSL string (names of imported items mangled as
-//! `package_<module path>_<name>`), which [`passes!`] embeds.
+//! `package_<module path>_<name>`), which `passes!` embeds.
 //!
 //! A technique's registry entry lists its passes, and the frame lists its own
 //! ([`crate::registry::all_passes`]): a test validates every one with naga without a GPU, and
@@ -25,6 +25,8 @@ pub const CAUSTICS_SAMPLING: &str = include_str!("shaders/caustics_sampling.wgsl
 macro_rules! passes {
     ($($(#[$attr:meta])* $id:ident = $name:literal, $file:literal;)+) => {
         $(
+            #[doc = concat!("The `", $name, "` pass: the WGSL compiled from `", $file, "`.")]
+            #[doc = ""]
             $(#[$attr])*
             pub const $id: $crate::shaders::PassSource = $crate::shaders::PassSource {
                 name: $name,
@@ -41,12 +43,16 @@ pub(crate) use passes;
 /// A pass shader: its name (for messages), its main module's file under `crates/gpu/src/` (for
 /// tools and messages) and the WGSL compiled from it with everything it imports.
 pub struct PassSource {
+    /// The pass's label, e.g. "yuksel pass 2": the shader module's and the messages' name.
     pub name: &'static str,
+    /// Its main WESL module, relative to `crates/gpu/src/`, e.g. "yuksel/pass2.wgsl".
     pub file: &'static str,
+    /// The complete WGSL build.rs compiled from it, imports included.
     pub source: &'static str,
 }
 
 impl PassSource {
+    /// The pass's shader module on `device`, labelled with its name.
     pub fn module(&self, device: &wgpu::Device) -> wgpu::ShaderModule {
         device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(self.name),

@@ -27,8 +27,11 @@ use crate::{GpuContext, GpuError, GpuTimer};
 /// [`configure`](Technique::configure).
 #[derive(Clone, Debug)]
 pub struct WaterTextures {
+    /// The heights above the rest level, world units: a view of the whole `R32Float` texture.
     pub heights: wgpu::TextureView,
+    /// Texels along x (the texture's width).
     pub cols: u32,
+    /// Texels along y (the texture's height).
     pub rows: u32,
 }
 
@@ -58,6 +61,7 @@ pub enum Output<'a> {
 }
 
 impl<'a> Output<'a> {
+    /// The texture, whichever space it is in.
     pub fn texture(&self) -> &'a wgpu::Texture {
         match self {
             Output::Floor(t) | Output::EyeSpace(t) => t,
@@ -71,7 +75,9 @@ impl<'a> Output<'a> {
 /// the floor, the rows up to the rest water level, the floor map's unit).
 #[derive(Clone, Copy, Debug)]
 pub struct WallsOutput<'a> {
+    /// The four-layer array texture, one layer per wall in `Wall::ALL`'s order.
     pub texture: &'a wgpu::Texture,
+    /// Texels across each wall's map: layer `k` holds it in its first `cols[k]` columns.
     pub cols: [u32; 4],
 }
 
@@ -202,6 +208,9 @@ pub type Make =
 /// `compare`, the viewer's CPU-image mode), its pipelines kept between runs: the GPU twin of the
 /// descriptor's [`CpuRun`](caustics_core::techniques::describe::CpuRun).
 pub trait RunOnce {
+    /// Run on `job` with the parameter tables `params` (keyed by technique) and read its maps
+    /// back, timing the passes on `timer` and reporting `progress(done, total)` where the run is
+    /// long.
     fn run(
         &mut self,
         ctx: &GpuContext,
@@ -219,8 +228,11 @@ pub type MakeOnce = fn(&'static Descriptor, &GpuContext) -> Result<Box<dyn RunOn
 /// A technique's own final image (paper 4's camera pass, §4.3; paper 3's refracted view, §3.3),
 /// linear RGB at the scene camera's size.
 pub struct OwnImage {
+    /// Pixels across (the scene camera's width).
     pub width: u32,
+    /// Pixels down (the scene camera's height).
     pub height: u32,
+    /// Linear RGB before exposure and tone mapping, `width × height`, row by row, top row first.
     pub rgb: Vec<[f32; 3]>,
     /// "GPU" or "CPU".
     pub backend: &'static str,
@@ -237,6 +249,7 @@ pub type MakeOwnImage =
 /// One entry of the registry: the technique's description (core's, the one every front end
 /// reads), its two GPU forms and its passes.
 pub struct Registered {
+    /// Core's description: name, paper, parameters, receivers, CPU twin.
     pub describe: &'static Descriptor,
     /// Every pass shader the technique builds (validated with naga by a test, without a GPU).
     pub passes: &'static [&'static PassSource],

@@ -13,6 +13,8 @@ use std::sync::atomic::{AtomicU8, Ordering};
 
 use crate::{GpuContext, GpuError};
 
+/// Timestamp queries for up to a fixed number of passes, labelled as they are recorded, and the
+/// buffers their stamps are resolved into and read back from.
 pub struct GpuTimer {
     query_set: Option<wgpu::QuerySet>,
     resolve: Option<wgpu::Buffer>,
@@ -43,7 +45,9 @@ enum Staged {
 /// One pass's GPU time.
 #[derive(Clone, Debug)]
 pub struct PassTime {
+    /// The pass's name, as given to [`GpuTimer::compute_pass`] or [`GpuTimer::render_pass`].
     pub label: String,
+    /// GPU time between the pass's start and end stamps, milliseconds.
     pub ms: f64,
 }
 
@@ -156,6 +160,8 @@ impl GpuTimer {
             .collect()
     }
 
+    /// Whether the device writes timestamps; a timer without them times nothing and reads back no
+    /// pass.
     pub fn enabled(&self) -> bool {
         self.query_set.is_some()
     }
@@ -219,7 +225,9 @@ impl GpuTimer {
 /// What [`median_runs`] measured, milliseconds: each pass's median GPU time, in the order the
 /// passes ran, and the submissions' median wall-clock time.
 pub struct Medians {
+    /// Each pass's label and median GPU time, milliseconds.
     pub passes: Vec<(String, f64)>,
+    /// Median wall-clock time from a submission to the end of the wait for it, milliseconds.
     pub wall_ms: f64,
 }
 

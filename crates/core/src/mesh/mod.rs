@@ -34,6 +34,7 @@ pub use teapot::teapot;
 /// repeat their vertices instead, one copy per normal.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriangleMesh {
+    /// Vertex positions, in the shape's own units or world units once placed, z up.
     pub positions: Vec<DVec3>,
     /// Unit, outward, one per position.
     pub normals: Vec<DVec3>,
@@ -82,6 +83,7 @@ impl TriangleMesh {
         }
     }
 
+    /// Total surface area of the triangles, in the square of the positions' unit.
     pub fn area(&self) -> f64 {
         self.triangles()
             .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())

@@ -1,12 +1,8 @@
 //! Meshes from Wavefront OBJ files, the format every modelling tool writes.
 
-use std::fs::File;
-use std::io::BufReader;
 use std::path::Path;
 
-use glam::DVec3;
-
-use super::{TriangleMesh, smooth_normals_welded};
+use super::TriangleMesh;
 use crate::error::{Error, Result};
 
 /// Reads every object of an OBJ file into one mesh; polygons are split into triangles, and points
@@ -18,6 +14,21 @@ use crate::error::{Error, Result};
 /// Errors name `path`: a file that cannot be read, OBJ syntax tobj rejects, a file without
 /// triangles, or non-finite coordinates.
 pub fn load_obj(path: &Path) -> Result<TriangleMesh> {
+    #[cfg(not(feature = "formats"))]
+    return Err(Error::feature_off(path, "an OBJ mesh", "formats"));
+    #[cfg(feature = "formats")]
+    load_obj_file(path)
+}
+
+#[cfg(feature = "formats")]
+fn load_obj_file(path: &Path) -> Result<TriangleMesh> {
+    use std::fs::File;
+    use std::io::BufReader;
+
+    use glam::DVec3;
+
+    use super::smooth_normals_welded;
+
     let file = File::open(path).map_err(|e| Error::io(path, e))?;
     let (models, _materials) =
         tobj::load_obj_buf(&mut BufReader::new(file), &tobj::GPU_LOAD_OPTIONS, |_| {
@@ -78,6 +89,8 @@ pub fn load_obj(path: &Path) -> Result<TriangleMesh> {
 
 #[cfg(test)]
 mod tests {
+    use glam::DVec3;
+
     use super::*;
 
     /// A fresh directory under the system's temporary one, removed when dropped.

@@ -16,7 +16,7 @@ pub struct Slab {
     /// Half the height of the slab the surface lies in, `|z − level| <= half_height`.
     pub half_height: f64,
     /// A bound on the surface's slope `|∇h|`, which limits how fast a ray's height above the
-    /// surface can change ([`first_crossing`]).
+    /// surface can change (`first_crossing`).
     pub slope: f64,
 }
 
@@ -42,7 +42,7 @@ pub fn slab_bounds(surface: &dyn Surface, size: f64) -> Slab {
 }
 
 impl Tracer<'_> {
-    /// How a ray along `d` marches through the water's slab ([`first_crossing`]): its height
+    /// How a ray along `d` marches through the water's slab (`first_crossing`): its height
     /// above the surface changes by at most `|d_z| + slope · |d_xy|` per unit of distance.
     fn march(&self, d: DVec3) -> March {
         March {
@@ -142,7 +142,7 @@ pub(super) fn inside(p: DVec2, size: f64) -> bool {
     p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size
 }
 
-/// A ray's march through the water's slab ([`first_crossing`]).
+/// A ray's march through the water's slab (`first_crossing`).
 #[derive(Clone, Copy, Debug)]
 struct March {
     /// A bound on how fast the ray's height above the surface changes per unit distance.
@@ -151,11 +151,11 @@ struct March {
     min_step: f64,
 }
 
-/// Most steps of [`first_crossing`]'s march: no step is shorter than 1/`MARCH_STEPS` of the slab's
+/// Most steps of `first_crossing`'s march: no step is shorter than 1/`MARCH_STEPS` of the slab's
 /// interval.
 pub const MARCH_STEPS: usize = 512;
 
-/// No step of [`first_crossing`]'s march is longer than 1/`EVEN_STEPS` of the slab's interval (or
+/// No step of `first_crossing`'s march is longer than 1/`EVEN_STEPS` of the slab's interval (or
 /// its shortest step), so that a slope bound estimated too low (waves two
 /// lattice spacings long, seen only at their crests and troughs) cannot send it across the slab in
 /// one step.

@@ -39,8 +39,8 @@ mod trace;
 #[cfg(test)]
 mod tests;
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use crate::eye::EyeCamera;
 use crate::map::{CausticsMap, MapPyramid};
@@ -83,11 +83,14 @@ pub fn eye_floor_points(scene: &Scene) -> crate::Result<Vec<Option<glam::DVec3>>
         .collect())
 }
 
+/// How the CPU final image is traced and shown: supersampling, exposure, tone curve and the
+/// water's normal filtering (default: 2 × 2 samples, exposure 1, ACES, exact normals).
 pub struct RenderOptions {
     /// Samples per pixel along each axis (n² rays per pixel).
     pub supersampling: u32,
     /// Radiance is multiplied by this before the tone curve.
     pub exposure: f64,
+    /// The curve from exposed radiance to display light.
     pub tone_map: ToneMap,
     /// Filter the water's normals by each sample's footprint ([`crate::water::slopes`]): far
     /// water shades with the mean slope and the roughness of the waves it cannot resolve. Off
@@ -122,8 +125,11 @@ impl RenderOptions {
 
 /// An 8-bit sRGB image, rows top to bottom.
 pub struct Image {
+    /// Width, pixels.
     pub width: u32,
+    /// Height, pixels.
     pub height: u32,
+    /// sRGB-encoded bytes, three (red, green, blue) a pixel, row by row, top row first.
     pub rgb: Vec<u8>,
 }
 
@@ -318,6 +324,7 @@ pub fn to_rgb8(linear: &[[f32; 3]], exposure: f64, curve: ToneMap) -> Vec<u8> {
 }
 
 /// Tone map linear radiance ([`to_rgb8`]) and write it as an sRGB PNG.
+#[cfg_attr(not(feature = "formats"), allow(unused_variables))]
 pub fn write_png(
     path: &std::path::Path,
     width: u32,
@@ -326,6 +333,9 @@ pub fn write_png(
     exposure: f64,
     curve: crate::render::ToneMap,
 ) -> crate::Result<()> {
+    #[cfg(not(feature = "formats"))]
+    return Err(crate::Error::feature_off(path, "writing a PNG", "formats"));
+    #[cfg(feature = "formats")]
     image::save_buffer(
         path,
         &to_rgb8(linear, exposure, curve),

@@ -1,5 +1,7 @@
 //! The built-in scenes, usable by name; each is an ordinary scene file.
 
+/// The built-in scenes as (name, scene file text) pairs;
+/// [`Scene::builtin`](crate::scene::Scene::builtin) reads one by name.
 pub const BUILTIN_SCENES: &[(&str, &str)] = &[
     ("pool", include_str!("scenes/pool.toml")),
     ("shore", include_str!("scenes/shore.toml")),

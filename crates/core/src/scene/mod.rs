@@ -38,17 +38,26 @@ pub type TechniqueCheck = fn(&CausticsSpec) -> Result<()>;
 // ---------------------------------------------------------------------------------------------
 // The file schema.
 
+/// A scene file as written: the serde schema of its TOML, unknown keys rejected, not yet checked
+/// ([`Scene::from_file_with`] checks it into a [`Scene`]).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
+    /// The `[water]` table; absent, a scene without water (the floor under the light, on a unit
+    /// square).
     pub water: Option<WaterSpec>,
+    /// The `[light]` table: the sun, or a point or spot light.
     pub light: LightSpec,
+    /// The `[caustics]` table: the map's size, the technique and its parameter tables.
     #[serde(default)]
     pub caustics: CausticsSpec,
+    /// The `[floor]` table: flat at z = 0 or a terrain, its albedo, walls and deck.
     #[serde(default)]
     pub floor: FloorSpec,
+    /// The `[[objects]]` in the scene, in file order (`objects[k]` in error messages).
     #[serde(default)]
     pub objects: Vec<ObjectSpec>,
+    /// The `[camera]` table; absent, a view of the whole square from above one corner.
     #[serde(default)]
     pub camera: Option<CameraSpec>,
     /// Simulation time at which the water is frozen, seconds.
@@ -56,6 +65,9 @@ pub struct SceneFile {
     pub time: f64,
 }
 
+/// The `[water]` table: the square `[0, size]²` of water whose rest level lies `depth` above the
+/// floor plane z = 0, its surface from at most one source (`heightfield`, `waves`, `procedural`,
+/// `ocean` or `ripple`; none is still water).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WaterSpec {
@@ -64,15 +76,27 @@ pub struct WaterSpec {
     /// For 16-bit PNG height fields: the displacements that 0 and 65535 stand for.
     #[serde(default, deserialize_with = "crate::scene::exact::option")]
     pub heightfield_range: Option<[f32; 2]>,
+    /// A sum of directional sine waves (`[[water.waves]]`), snapped so that it tiles the square.
     pub waves: Option<Vec<Wave>>,
+    /// The procedural wave function of paper 2 (Sánchez-Crespo, "The wave function"), by default
+    /// with the paper's constants.
     pub procedural: Option<ProceduralParams>,
+    /// A Tessendorf FFT ocean tiling the square.
     pub ocean: Option<OceanParams>,
+    /// The interactive ripple simulation (the damped wave equation on a grid), from its initial
+    /// drops.
     pub ripple: Option<RippleParams>,
+    /// Side of the square `[0, size]²` the water, the floor and the caustics map cover, world
+    /// units (default 1).
     #[serde(default = "one")]
     pub size: f64,
+    /// Height of the rest level above the floor plane z = 0, world units: a flat pool's depth.
     pub depth: f64,
+    /// The water's index of refraction, at least 1 (default 1.333).
     #[serde(default = "water_ior")]
     pub ior: f64,
+    /// Whether the surface tiles across the square's edges (the default) or clamps at them; also
+    /// the ripple simulation's boundary.
     #[serde(default = "yes")]
     pub wrap: bool,
     /// Absorption coefficient `K` per RGB channel, per world unit of path (Beer-Lambert `exp(-K d)`).
@@ -81,6 +105,8 @@ pub struct WaterSpec {
     pub absorption: [f64; 3],
 }
 
+/// The `[light]` table: the sun (a `direction` alone) or a point light (a `position`; a spot light
+/// with a `cone`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LightSpec {
@@ -97,18 +123,28 @@ pub struct LightSpec {
     /// around `direction`.
     #[serde(default)]
     pub cone: Option<f64>,
+    /// The light's linear-RGB colour, a factor on its intensity (default white).
     #[serde(default = "white")]
     #[serde(deserialize_with = "crate::scene::exact::array")]
     pub color: [f64; 3],
+    /// The irradiance the sun puts on a surface facing it, or a point light on the floor straight
+    /// below it, in the renderer's relative units (default 1; not negative).
     #[serde(default = "one")]
     pub intensity: f64,
 }
 
+/// The `[caustics]` table: the caustics map's size, the technique that computes it and, beside
+/// them, the techniques' own parameter tables.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct CausticsSpec {
+    /// Texels of the caustics map along x and y over the water's square (default 256 × 256, at
+    /// most [`MAX_RESOLUTION`]).
     #[serde(default = "default_resolution")]
     #[serde(deserialize_with = "crate::scene::exact::array")]
     pub resolution: [u32; 2],
+    /// The technique that computes the caustics map, by its registry name (`yuksel`,
+    /// `procedural`, `volumes`, `caustic-triangles`, `cascaded`, ...; default `reference`, the
+    /// physically based reference).
     #[serde(default = "default_technique")]
     pub technique: String,
     /// Per-technique parameter tables, `[caustics.<technique>]`, read by each technique.
@@ -126,12 +162,15 @@ impl Default for CausticsSpec {
     }
 }
 
+/// The `[floor]` table: the plane z = 0 unless it has a terrain, its albedo, walls and deck.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FloorSpec {
+    /// A terrain instead of the flat floor (open water: no walls, no deck).
     pub terrain: Option<TerrainSpec>,
     /// An albedo image (sRGB PNG) stretched over the floor square.
     pub albedo: Option<PathBuf>,
+    /// The built-in albedo pattern, used when no `albedo` image is given (default tiles).
     #[serde(default)]
     pub pattern: FloorPattern,
     /// The four walls of the water's square receive light too, from the floor up to the rest water
@@ -231,6 +270,8 @@ impl Deck {
     }
 }
 
+/// The floor's built-in albedo patterns (`[floor] pattern`), laid over the water's square. GPU
+/// twin: `floor_albedo` in shading.wgsl.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FloorPattern {
@@ -243,17 +284,23 @@ pub enum FloorPattern {
     Plain,
 }
 
+/// `[floor.terrain]`: a floor that is not flat, from exactly one of a height field file or a
+/// generated beach.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TerrainSpec {
     /// A terrain height field file (same formats and centring as the water's); heights above z = 0.
     pub heightfield: Option<PathBuf>,
+    /// For a 16-bit PNG height field: the heights that 0 and 65535 stand for, world units
+    /// (default `[0, 1]`).
     #[serde(default, deserialize_with = "crate::scene::exact::option")]
     pub heightfield_range: Option<[f32; 2]>,
     /// A generated beach: the floor rises from `deep` at x = 0 to `shallow` at x = size.
     pub beach: Option<BeachSpec>,
 }
 
+/// A generated beach terrain: a smooth ramp across x from `deep` to `shallow` (heights above
+/// z = 0, world units), with sand dunes and rocks.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BeachSpec {
@@ -264,6 +311,7 @@ pub struct BeachSpec {
     /// Amplitude of the sand ripples on the slope.
     #[serde(default)]
     pub dunes: f64,
+    /// Samples of the generated height grid along each side (2 to [`MAX_RESOLUTION`], default 256).
     #[serde(default = "default_terrain_resolution")]
     pub resolution: usize,
     /// Rocks standing on the slope.
@@ -279,13 +327,18 @@ pub struct RockSpec {
     /// Its centre on the floor, world units.
     #[serde(deserialize_with = "crate::scene::exact::array")]
     pub position: [f64; 2],
+    /// Radius of its footprint, world units (positive).
     pub radius: f64,
+    /// Its height above the slope at its centre, world units (not negative).
     pub height: f64,
 }
 
+/// An `[[objects]]` entry: a shape of one material, scaled, turned about the vertical axis and
+/// moved by `position`.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
+    /// What it is: a built-in shape or a mesh file, at its native size.
     pub shape: ShapeSpec,
     /// Centre of the object's base (it rests at this point), world units.
     #[serde(default)]
@@ -297,10 +350,12 @@ pub struct ObjectSpec {
     /// Rotation about the vertical axis, degrees.
     #[serde(default)]
     pub rotation: f64,
+    /// What its surface does to light (default diffuse, albedo 0.8 grey).
     #[serde(default)]
     pub material: MaterialSpec,
 }
 
+/// An object's shape, by its table's `kind`: `teapot`, `sphere`, `cuboid` or `mesh`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum ShapeSpec {
@@ -310,22 +365,33 @@ pub enum ShapeSpec {
     Sphere,
     /// A box with the given half extents before scaling.
     Cuboid {
+        /// Half its sides along x, y and z before scaling, world units (positive).
         #[serde(deserialize_with = "crate::scene::exact::array")]
         half_extents: [f64; 3],
     },
     /// A triangle mesh from an OBJ file.
-    Mesh { path: PathBuf },
+    Mesh {
+        /// The OBJ file, relative to the scene file.
+        path: PathBuf,
+    },
 }
 
+/// An object's material, by its table's `kind`: `diffuse` or `glass`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum MaterialSpec {
+    /// A matte (Lambertian) surface.
     Diffuse {
+        /// Its linear-RGB albedo.
         #[serde(deserialize_with = "crate::scene::exact::array")]
         color: [f64; 3],
     },
+    /// A clear dielectric that reflects and refracts by Fresnel's equations.
     Glass {
+        /// Its index of refraction, at least 1.
         ior: f64,
+        /// Linear-RGB factor on the light it refracts, at each crossing of its surface (default
+        /// white: clear glass).
         #[serde(default, deserialize_with = "crate::scene::exact::option")]
         tint: Option<[f64; 3]>,
     },
@@ -339,15 +405,20 @@ impl Default for MaterialSpec {
     }
 }
 
+/// The `[camera]` table: the final image's viewpoint, field of view, size and look.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
+    /// The eye, world coordinates (z up); not under a pool's floor.
     #[serde(deserialize_with = "crate::scene::exact::array")]
     pub position: [f64; 3],
+    /// The point at the image's centre, world coordinates.
     #[serde(deserialize_with = "crate::scene::exact::array")]
     pub target: [f64; 3],
+    /// Vertical field of view, degrees, in (1, 170) (default 50).
     #[serde(default = "default_fov")]
     pub fov_y: f64,
+    /// The final image's width and height, pixels (default 960 × 540).
     #[serde(default = "default_image")]
     #[serde(deserialize_with = "crate::scene::exact::array")]
     pub resolution: [u32; 2],
@@ -393,41 +464,66 @@ fn default_image() -> [u32; 2] {
 /// A scene whose every field has been checked: positive sizes, a downward sun, finite height fields.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The scene's name: its file's stem or its built-in name, shown in titles and messages.
     pub name: String,
+    /// The water; `None` for a scene without it (the floor under the light, on a unit square).
     pub water: Option<Water>,
+    /// The light: the sun, or a point or spot light.
     pub light: Light,
+    /// The caustics map's size and technique, with the technique's parameter tables.
     pub caustics: CausticsSettings,
+    /// The floor: the plane z = 0 or a terrain, its albedo, walls and deck.
     pub floor: Floor,
+    /// The objects in and around the water, their meshes in world coordinates.
     pub objects: Vec<Object>,
+    /// The final image's camera: the file's, or a view of the whole square from above one corner.
     pub camera: Camera,
     /// How the final image shows the camera's radiance.
     pub look: Look,
+    /// Simulation time at which the water is frozen, seconds.
     pub time: f64,
     /// The square `[0, size]²` the water, the floor and the caustics map cover (1 without water).
     pub size: f64,
 }
 
+/// The scene's water, checked: the square `[0, size]²` of water whose rest level lies `depth` above
+/// z = 0, its surface shaped by `source`.
 #[derive(Clone, Debug)]
 pub struct Water {
+    /// What shapes the surface about its rest level.
     pub source: WaterSource,
+    /// Side of the square, world units (the scene's [`Scene::size`]).
     pub size: f64,
+    /// Height of the rest level above z = 0, world units: a flat pool's depth.
     pub depth: f64,
+    /// The water's index of refraction, at least 1.
     pub ior: f64,
+    /// Whether the surface tiles across the square's edges or clamps at them ([`Water::edge`]).
     pub wrap: bool,
+    /// Beer-Lambert absorption `K` per RGB channel, per world unit of path (`exp(-K d)`).
     pub absorption: DVec3,
 }
 
+/// Where the water's heights, its displacements from the rest level, come from.
 #[derive(Clone, Debug)]
 pub enum WaterSource {
+    /// Still water at the rest level (the file names no source).
     Flat,
+    /// A sum of directional sine waves.
     Waves(Vec<Wave>),
+    /// The procedural wave function of paper 2 (Sánchez-Crespo).
     Procedural(ProceduralParams),
+    /// A Tessendorf FFT ocean, its spectrum drawn once.
     Ocean(Box<Ocean>),
+    /// The ripple simulation's parameters; [`Water::surface_at`] runs it to the time asked.
     Ripple(RippleParams),
+    /// A height field file's samples: displacements in world units, stretched over the square.
     HeightField(Grid),
 }
 
 impl Water {
+    /// How the surface is read outside its square: [`Edge::Wrap`] if it tiles, else
+    /// [`Edge::Clamp`].
     pub fn edge(&self) -> Edge {
         if self.wrap { Edge::Wrap } else { Edge::Clamp }
     }
@@ -507,12 +603,16 @@ impl RippleParams {
     }
 }
 
+/// The scene's light, checked: the sun, or a point light (a spot light with `cone`).
 #[derive(Clone, Debug)]
 pub struct Light {
     /// Unit direction of travel, z < 0 (the sun's; a spot light's axis; straight down for a bare
     /// point light).
     pub direction: DVec3,
+    /// Linear-RGB colour, a factor on `intensity`.
     pub color: DVec3,
+    /// The irradiance the sun puts on a surface facing it, or a point light on the floor straight
+    /// below it, in the renderer's relative units.
     pub intensity: f64,
     /// A point light here instead of the sun (z > 0).
     pub position: Option<DVec3>,
@@ -528,21 +628,31 @@ impl Light {
     }
 }
 
+/// The caustics map to compute: its size over the water's square, and the technique, by name, with
+/// its parameter tables.
 #[derive(Clone, Debug)]
 pub struct CausticsSettings {
+    /// Texels of the caustics map along x.
     pub width: u32,
+    /// Texels of the caustics map along y.
     pub height: u32,
+    /// The technique's registry name (`reference` unless the file names one).
     pub technique: String,
+    /// The `[caustics]` table's other entries, the `[caustics.<technique>]` tables each
+    /// technique reads its parameters from.
     pub params: toml::Table,
 }
 
+/// The scene's floor, checked: the plane z = 0 or a terrain, its albedo, walls and deck.
 #[derive(Clone, Debug)]
 pub struct Floor {
     /// Terrain heights above z = 0 on the scene square (clamped at its edges); `None` is the plane z = 0.
     pub terrain: Option<Grid>,
+    /// Its albedo: a built-in pattern or an image over the square.
     pub albedo: Albedo,
     /// The pool's walls are receivers ([`FloorSpec::walls`]); see [`crate::walls`].
     pub walls: bool,
+    /// What the deck around a pool is paved with.
     pub deck: Deck,
 }
 
@@ -556,13 +666,19 @@ impl Floor {
     }
 }
 
+/// The floor's albedo over the square `[0, size]²`: a built-in pattern, or an image stretched over
+/// the square (repeating beyond it).
 #[derive(Clone, Debug)]
 pub enum Albedo {
+    /// A built-in pattern.
     Pattern(FloorPattern),
     /// Linear RGB texels, row 0 at y = 0.
     Image {
+        /// Texels along x.
         width: usize,
+        /// Texels along y.
         height: usize,
+        /// Row-major, `width × height` of them, row 0 at y = 0.
         texels: Vec<[f32; 3]>,
     },
 }
@@ -657,7 +773,7 @@ impl Albedo {
     /// [`at`](Self::at), the pattern box-filtered over a footprint `extent` wide along x and y
     /// (world units; zero for a point): the tiles' grout lines through the integral of their
     /// pulse train (as the deck's joints), the sand's ripples through the sinc of a sinusoid's
-    /// mean over the box, its grain and patches through their exact box mean ([`value_noise`]),
+    /// mean over the box, its grain and patches through their exact box mean (`value_noise`),
     /// so that far away each keeps its mean instead of aliasing. An image is read at its nearest
     /// texel. GPU twin: `floor_albedo` in shading.wgsl.
     pub fn filtered(&self, p: DVec2, size: f64, extent: DVec2) -> DVec3 {
@@ -699,32 +815,54 @@ impl Albedo {
     }
 }
 
+/// An object of the scene, checked and placed.
 #[derive(Clone, Debug)]
 pub struct Object {
+    /// Its triangles in world coordinates (scaled, turned and moved into place).
     pub mesh: TriangleMesh,
+    /// What its surface does to light.
     pub material: Material,
 }
 
+/// An object's material, checked.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Material {
-    Diffuse { color: DVec3 },
-    Glass { ior: f64, tint: DVec3 },
+    /// A matte (Lambertian) surface.
+    Diffuse {
+        /// Its linear-RGB albedo.
+        color: DVec3,
+    },
+    /// A clear dielectric that reflects and refracts by Fresnel's equations.
+    Glass {
+        /// Its index of refraction, at least 1.
+        ior: f64,
+        /// Linear-RGB factor on the light it refracts, at each crossing of its surface (white
+        /// for clear glass).
+        tint: DVec3,
+    },
 }
 
+/// The final image's camera: a pinhole at `position` looking at `target`, z up.
 #[derive(Clone, Debug)]
 pub struct Camera {
+    /// The eye, world coordinates.
     pub position: DVec3,
+    /// The point at the image's centre, world coordinates.
     pub target: DVec3,
     /// Vertical field of view, degrees.
     pub fov_y: f64,
+    /// Image width, pixels.
     pub width: u32,
+    /// Image height, pixels.
     pub height: u32,
 }
 
 /// How the final image turns radiance into display values (`[camera]` `exposure`, `tone_map`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Look {
+    /// Factor on radiance before the tone curve (positive; default 1).
     pub exposure: f64,
+    /// The tone curve from exposed radiance to display values (default ACES).
     pub tone_map: crate::tone_map::ToneMap,
 }
 

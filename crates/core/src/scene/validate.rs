@@ -409,26 +409,7 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
     };
     let albedo = match &f.albedo {
         None => Albedo::Pattern(f.pattern),
-        Some(p) => {
-            let path = resolve(base, p);
-            let img = image::open(&path)
-                .map_err(|e| Error::bad_file(&path, format!("cannot read the albedo image: {e}")))?
-                .to_rgb32f();
-            let (width, height) = (img.width() as usize, img.height() as usize);
-            // Image rows run top down; flip so that row 0 is y = 0 like every map here.
-            let mut texels = Vec::with_capacity(width * height);
-            for i in (0..height).rev() {
-                for j in 0..width {
-                    let p = img.get_pixel(j as u32, i as u32).0;
-                    texels.push(p.map(srgb_to_linear));
-                }
-            }
-            Albedo::Image {
-                width,
-                height,
-                texels,
-            }
-        }
+        Some(p) => read_albedo(&resolve(base, p))?,
     };
     if f.walls && terrain.is_some() {
         return Err(Error::field(
@@ -444,6 +425,7 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
     })
 }
 
+#[cfg(feature = "formats")]
 fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
         c / 12.92
@@ -538,4 +520,31 @@ fn validate_object(o: &ObjectSpec, base: &Path, k: usize, size: f64) -> Result<O
         }
     };
     Ok(Object { mesh, material })
+}
+
+/// The floor's albedo from an image file (sRGB, any format the `image` crate reads).
+#[cfg(feature = "formats")]
+fn read_albedo(path: &Path) -> Result<Albedo> {
+    let img = image::open(path)
+        .map_err(|e| Error::bad_file(path, format!("cannot read the albedo image: {e}")))?
+        .to_rgb32f();
+    let (width, height) = (img.width() as usize, img.height() as usize);
+    // Image rows run top down; flip so that row 0 is y = 0 like every map here.
+    let mut texels = Vec::with_capacity(width * height);
+    for i in (0..height).rev() {
+        for j in 0..width {
+            let p = img.get_pixel(j as u32, i as u32).0;
+            texels.push(p.map(srgb_to_linear));
+        }
+    }
+    Ok(Albedo::Image {
+        width,
+        height,
+        texels,
+    })
+}
+
+#[cfg(not(feature = "formats"))]
+fn read_albedo(path: &Path) -> Result<Albedo> {
+    Err(Error::feature_off(path, "an albedo image", "formats"))
 }

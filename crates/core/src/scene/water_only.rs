@@ -28,6 +28,8 @@ pub struct WaterOnly {
 }
 
 impl WaterOnly {
+    /// Water `depth` deep over a square of side `size` (both world units), the rest at their
+    /// defaults.
     pub fn new(size: f64, depth: f64) -> WaterOnly {
         WaterOnly {
             size,
@@ -40,10 +42,12 @@ impl WaterOnly {
         }
     }
 
+    /// With the water's index of refraction `ior` (at least 1).
     pub fn ior(self, ior: f64) -> WaterOnly {
         WaterOnly { ior, ..self }
     }
 
+    /// With Beer-Lambert absorption `K` per RGB channel, per world unit of path.
     pub fn absorption(self, absorption: [f64; 3]) -> WaterOnly {
         WaterOnly { absorption, ..self }
     }
@@ -56,10 +60,12 @@ impl WaterOnly {
         }
     }
 
+    /// With the direction sunlight travels, `sun` (pointing down, z < 0; need not be normalised).
     pub fn sun(self, sun: [f64; 3]) -> WaterOnly {
         WaterOnly { sun, ..self }
     }
 
+    /// With a caustics map of `map` × `map` texels.
     pub fn map(self, map: u32) -> WaterOnly {
         WaterOnly { map, ..self }
     }

@@ -41,6 +41,7 @@ pub struct Index {
 /// What a scene must have for a buffer to be offered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Needs {
+    /// Nothing beyond a scene the technique runs on.
     Anything,
     /// A scene without water (a glass generator's distance map: the water is traced as a height
     /// field).
@@ -62,7 +63,9 @@ pub const HEIGHTS: BufferDesc = BufferDesc {
 /// A buffer to show: one of a technique's kinds, and its index.
 #[derive(Clone, Copy, Debug)]
 pub struct Buffer {
+    /// Its kind.
     pub desc: &'static BufferDesc,
+    /// Which of several (`K` in `cascade:K`); 0 for a buffer that is not indexed.
     pub index: u32,
 }
 
@@ -75,10 +78,12 @@ impl PartialEq for Buffer {
 impl Eq for Buffer {}
 
 impl Buffer {
+    /// The first (index 0) buffer of kind `desc`.
     pub fn new(desc: &'static BufferDesc) -> Self {
         Buffer { desc, index: 0 }
     }
 
+    /// Its name in a view: the label with `{k}` replaced by its index (`yuksel pass 1: channel 2`).
     pub fn name(&self) -> String {
         self.desc.label.replace("{k}", &self.index.to_string())
     }
@@ -133,6 +138,7 @@ impl Buffer {
 /// What of a scene decides which buffers a technique has there.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SceneHas {
+    /// The scene has water (the water techniques' buffers).
     pub water: bool,
     /// A point or spot light (a light cube map).
     pub point_light: bool,
@@ -141,6 +147,7 @@ pub struct SceneHas {
 }
 
 impl SceneHas {
+    /// What `scene` has.
     pub fn of(scene: &Scene) -> Self {
         SceneHas {
             water: scene.water.is_some(),
@@ -158,7 +165,10 @@ pub struct BufferInput<'a> {
     pub scene: &'a Scene,
     /// The water as the technique sees it and its surface this frame, in a scene with water.
     pub water: Option<(&'a Water, &'a dyn Surface)>,
+    /// The frame's sun: the unit direction the sunlight travels, z < 0, world frame.
     pub light: DVec3,
+    /// Side of the square caustics map the buffers are drawn at, texels (the water's heights are
+    /// sampled on this lattice).
     pub map_size: usize,
 }
 

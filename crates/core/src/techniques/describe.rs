@@ -19,16 +19,23 @@ use crate::{Error, Result};
 pub enum Kind {
     /// An integer in `[min, max]`; `parity` 1 wants it odd, 0 even; `power_of_two` a power of two.
     Int {
+        /// The least value allowed (inclusive).
         min: i64,
+        /// The greatest value allowed (inclusive).
         max: i64,
+        /// The remainder modulo 2 the value must have (1: odd, 0: even); `None`: either.
         parity: Option<i64>,
+        /// The value must be a power of two.
         power_of_two: bool,
     },
     /// A finite number in `[min, max]`.
     Float {
+        /// The least value allowed (inclusive).
         min: f64,
+        /// The greatest value allowed (inclusive).
         max: f64,
     },
+    /// A flag: `true` or `false`.
     Bool,
     /// One of these words (the serde names of the technique's enum).
     Choice(&'static [&'static str]),
@@ -47,6 +54,7 @@ impl Kind {
         }
     }
 
+    /// A number in `[min, max]`, both inclusive.
     pub const fn float(min: f64, max: f64) -> Kind {
         Kind::Float { min, max }
     }
@@ -55,9 +63,13 @@ impl Kind {
 /// A parameter's value when it is not given (not `Default`: that name is the prelude's trait).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ParamDefault {
+    /// This integer.
     Int(i64),
+    /// This number, in the parameter's unit.
     Float(f64),
+    /// This flag.
     Bool(bool),
+    /// This word or path, as the table writes it (a [`Kind::Choice`]'s word, a [`Kind::Path`]).
     Text(&'static str),
     /// Chosen by the technique from the scene or another parameter, as this says.
     Auto(&'static str),
@@ -101,12 +113,15 @@ pub struct Param {
     pub key: &'static str,
     /// The panel's label (the paper's symbol where it has one).
     pub label: &'static str,
+    /// Its type and the values it may take.
     pub kind: Kind,
+    /// Its value when the table does not give it.
     pub default: ParamDefault,
     /// Unit of the value ("texels", "degrees"); empty for a count or a flag.
     pub unit: &'static str,
     /// One line on what it does (the paper's section where it has one).
     pub doc: &'static str,
+    /// What changing it costs a running GPU frame.
     pub change: Change,
     /// The settings `caustics bench --tradeoff` sweeps this knob over (empty: not swept); the
     /// first two make its quick run.
@@ -140,14 +155,18 @@ impl Param {
 /// What a technique lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Receiver {
+    /// The pool's floor, in the floor caustics map.
     Floor,
+    /// The pool's side walls, in maps of their own when the scene's walls are on.
     Walls,
+    /// Objects under the water (paper 3's receivers), in a map per object.
     Objects,
     /// The floor as the eye camera sees it (paper 5), not a map.
     EyeSpace,
 }
 
 impl Receiver {
+    /// Its name in the README's table of techniques (`floor`, `eye space`).
     pub fn name(self) -> &'static str {
         match self {
             Receiver::Floor => "floor",
@@ -171,6 +190,8 @@ pub enum Input {
 }
 
 impl Input {
+    /// Its `input -> output` column in `caustics techniques` and the README's table
+    /// (`water -> floor map`).
     pub fn describe(self) -> &'static str {
         match self {
             Input::Water => "water -> floor map",
@@ -204,15 +225,19 @@ pub type CpuRun = fn(&Job, &toml::Table, &(dyn Fn(usize, usize) + Sync)) -> Resu
 /// `procedural-texture`) is an entry of its own sharing its technique's parameter table.
 #[derive(Clone, Copy, Debug)]
 pub struct Descriptor {
+    /// As the command line and a scene's `technique` spell it (`yuksel-targets`).
     pub name: &'static str,
     /// The key of its parameter table (`yuksel` for `yuksel-targets`).
     pub table: &'static str,
     /// The paper in `shared/papers` (1 to 5), `-` for ours.
     pub paper: &'static str,
+    /// One line on what it does, for `caustics techniques` and the web page.
     pub summary: &'static str,
     /// Its documentation, relative to the repository's root.
     pub docs: &'static str,
+    /// What it reads and what it makes.
     pub input: Input,
+    /// What it lights.
     pub receivers: &'static [Receiver],
     /// Its parameters, in the panel's order: those a variant does not read are left out of its
     /// entry (the table accepts every key of its technique's entries).
@@ -252,6 +277,7 @@ impl Descriptor {
         !self.receivers.contains(&Receiver::Walls) && !self.receivers.contains(&Receiver::EyeSpace)
     }
 
+    /// It makes the eye camera's image of the caustics (paper 5), not a floor map.
     pub fn eye_space(&self) -> bool {
         self.receivers.contains(&Receiver::EyeSpace)
     }

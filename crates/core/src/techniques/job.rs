@@ -21,6 +21,8 @@ use crate::{Error, Result};
 /// surface, and the reference's quality.
 #[derive(Clone, Copy)]
 pub struct Job<'a> {
+    /// The scene as the technique should see it this time (water, sun, map size, camera,
+    /// objects).
     pub scene: &'a Scene,
     /// The water surface, `None` for the scene's water at the scene's time.
     pub surface: Option<&'a dyn Surface>,
@@ -29,6 +31,8 @@ pub struct Job<'a> {
 }
 
 impl<'a> Job<'a> {
+    /// A job on `scene`, with the water surface `surface` (`None`: the scene's water at its time)
+    /// and the reference's `cells_per_texel`.
     pub fn new(scene: &'a Scene, surface: Option<&'a dyn Surface>, cells_per_texel: u32) -> Self {
         Job {
             scene,
@@ -50,6 +54,7 @@ impl<'a> Job<'a> {
         self.scene.light.direction
     }
 
+    /// The scene's floor: its terrain (or the plane z = 0), albedo, walls and deck.
     pub fn floor(&self) -> &'a Floor {
         &self.scene.floor
     }
@@ -96,11 +101,14 @@ pub enum Caustics<'a> {
 /// (`crate::render::render_with`) through [`caustics`](Self::caustics).
 #[derive(Clone, Debug)]
 pub enum SceneCaustics {
+    /// A map of the floor square (every technique but `cascaded`).
     Floor(CausticsMap),
+    /// An image in the scene camera's screen space (`cascaded`, paper 5).
     EyeSpace(EyeSpaceCaustics),
 }
 
 impl SceneCaustics {
+    /// A borrowed view of it, as the final image reads it.
     pub fn caustics(&self) -> Caustics<'_> {
         match self {
             SceneCaustics::Floor(m) => Caustics::Floor(m),
@@ -108,6 +116,7 @@ impl SceneCaustics {
         }
     }
 
+    /// The floor map; `None` for an eye-space image.
     pub fn floor(&self) -> Option<&CausticsMap> {
         match self {
             SceneCaustics::Floor(m) => Some(m),
@@ -130,6 +139,7 @@ impl SceneCaustics {
 /// maps.
 #[derive(Clone, Debug)]
 pub struct JobOutput {
+    /// The floor map or the eye-space image.
     pub caustics: SceneCaustics,
     /// The pool's walls' maps, from a technique that lights them when the scene's walls are on;
     /// `None` from a floor-only technique.
@@ -137,6 +147,7 @@ pub struct JobOutput {
 }
 
 impl JobOutput {
+    /// The output of a floor technique: its floor map `map` and the walls' maps, if it made them.
     pub fn floor(map: CausticsMap, walls: Option<WallMaps>) -> Self {
         JobOutput {
             caustics: SceneCaustics::Floor(map),

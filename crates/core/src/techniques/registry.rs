@@ -104,6 +104,7 @@ pub fn names() -> Vec<&'static str> {
 // What an entry knows only from the other entries: the parameters its table accepts (its
 // variants' too) and the techniques that render a point light.
 impl Descriptor {
+    /// The parameter `key` of its table: its own, or one of the entries sharing the table.
     pub fn param(&self, key: &str) -> Option<&'static Param> {
         table_params(self.table).find(|p| p.key == key)
     }
@@ -189,6 +190,7 @@ fn tables_known() -> Vec<&'static str> {
 pub struct Spec {
     /// As given.
     pub label: String,
+    /// The registered entry the name picks.
     pub entry: &'static Descriptor,
     /// Its parameter tables keyed by table (`{ yuksel = { n = 15 } }`), as a scene's `[caustics]`.
     pub params: toml::Table,
@@ -452,6 +454,8 @@ impl Scene {
         }
     }
 
+    /// A scene from a file's `text` (relative paths in it relative to `base`; `name` names it and
+    /// its errors), its technique checked against the registry.
     pub fn from_toml(text: &str, base: &Path, name: &str) -> Result<Scene> {
         Scene::from_toml_with(text, base, name, check_scene_technique)
     }

@@ -21,7 +21,9 @@ use crate::grid::{Edge, Grid};
 /// A water surface frozen at one instant: the displacement from rest and its gradient at any point of
 /// the plane. Points outside the scene square follow the surface's edge rule (periodic or clamped).
 pub trait Surface: Send + Sync {
+    /// The displacement from the rest level at horizontal point `p`, world units (positive up).
     fn height(&self, p: DVec2) -> f64;
+    /// `(∂h/∂x, ∂h/∂y)` at `p`: the exact derivative of [`Surface::height`], dimensionless.
     fn gradient(&self, p: DVec2) -> DVec2;
     /// Both at once; override where they share work.
     fn height_gradient(&self, p: DVec2) -> (f64, DVec2) {
@@ -48,8 +50,11 @@ impl Surface for Flat {
 
 /// A sampled height field over `[0, size]²` read through the bicubic interpolant of [`Grid::sample`].
 pub struct GridSurface {
+    /// The displacements from rest, world units, sample `(i, j)` at the map-texel centre.
     pub grid: Grid,
+    /// Side of the square the grid covers, world units.
     pub size: f64,
+    /// Periodic (the water wraps) or clamped outside the square.
     pub edge: Edge,
 }
 

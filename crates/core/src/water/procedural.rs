@@ -50,8 +50,11 @@ impl Default for ProceduralParams {
     }
 }
 
+/// Paper 2's wave function frozen at one instant.
 pub struct Procedural {
+    /// The function's constants and where its origin sits.
     pub params: ProceduralParams,
+    /// The instant, seconds (the `t` of `S t`).
     pub t: f64,
 }
 

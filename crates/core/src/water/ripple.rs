@@ -34,7 +34,7 @@
 use std::f64::consts::{PI, SQRT_2};
 use std::fmt;
 
-use rayon::prelude::*;
+use crate::parallel::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::GridSurface;

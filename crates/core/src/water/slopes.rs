@@ -32,10 +32,13 @@ pub const MAX_TAPS: usize = 16;
 /// The first and second moments of the water's slope `∇h` over some area.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SlopeMoments {
+    /// `E[∇h] = (E[h_x], E[h_y])`: the mean slope, the normal to shade with.
     pub mean: DVec2,
-    /// `E[h_x²]`, `E[h_y²]`, `E[h_x h_y]`.
+    /// `E[h_x²]`.
     pub xx: f64,
+    /// `E[h_y²]`.
     pub yy: f64,
+    /// `E[h_x h_y]`.
     pub xy: f64,
 }
 
@@ -84,8 +87,11 @@ impl SlopeMoments {
 /// its grazing angle).
 #[derive(Clone, Copy, Debug)]
 pub struct Footprint {
+    /// The ellipse's extent across the ray's horizontal direction, world units.
     pub width: f64,
+    /// The ellipse's extent along `along`, world units (at least `width`).
     pub length: f64,
+    /// Unit horizontal direction of the ray (+x for a vertical ray).
     pub along: DVec2,
 }
 
@@ -129,6 +135,8 @@ pub struct SlopePyramid {
 }
 
 impl SlopePyramid {
+    /// The pyramid of `surface`'s slopes over the square of side `size` (world units), level 0 on
+    /// a `cols x rows` lattice (at least 1 x 1), read outside the square by `edge`.
     pub fn new(surface: &dyn Surface, cols: usize, rows: usize, size: f64, edge: Edge) -> Self {
         let (cols, rows) = (cols.max(1), rows.max(1));
         let (dx, dy) = (size / cols as f64, size / rows as f64);
@@ -164,6 +172,7 @@ impl SlopePyramid {
         SlopePyramid { size, edge, levels }
     }
 
+    /// How many levels, level 0 included.
     pub fn levels(&self) -> usize {
         self.levels.len()
     }

@@ -58,6 +58,7 @@ impl Wave {
     }
 }
 
+/// A sum of [`Wave`]s frozen at one instant over a square they tile.
 pub struct Waves {
     components: Vec<WaveTerm>,
 }
@@ -65,6 +66,7 @@ pub struct Waves {
 /// One wave frozen at a time: `amplitude · sin(k · p + phase)`.
 #[derive(Clone, Copy, Debug)]
 pub struct WaveTerm {
+    /// Crest height above rest, world units.
     pub amplitude: f64,
     /// Wave vector, snapped to the tile's lattice.
     pub k: DVec2,
@@ -93,6 +95,7 @@ impl Waves {
         Waves { components }
     }
 
+    /// The frozen waves, in the order given to [`Waves::new`].
     pub fn terms(&self) -> &[WaveTerm] {
         &self.components
     }

@@ -55,30 +55,65 @@ passes! {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CascadedUniform {
+    /// xyz: unit direction the sunlight travels (world, pointing down); w: the water's rest level
+    /// (z of the still surface), world units.
     pub light: [f32; 4],
+    /// xyz: the light view's u axis (horizontal, across the sun); w: side of the scene square,
+    /// world units.
     pub e_u: [f32; 4],
+    /// xyz: the light view's v axis (`light × e_u`); w: Fresnel transmittance `T(θ0)` of flat
+    /// water, which the physical brightness divides by.
     pub e_v: [f32; 4],
+    /// This cascade's sun view (`CascadeView`): u0, v0 (light-view origin of texel (0, 0)'s
+    /// corner) and du, dv (one texel's size), world units.
     pub view: [f32; 4],
+    /// This cascade: w0 (light-view depth its texels' sun rays start at), its far plane (eye
+    /// view depth), the flux one of its photons carries (`photon_flux`), 0.
     pub view2: [f32; 4],
+    /// xyz: the eye's position, world; w: `tan(fov_y / 2)`.
     pub eye_pos: [f32; 4],
+    /// xyz: the eye's unit forward axis; w: the image's aspect (width / height).
     pub eye_fwd: [f32; 4],
+    /// xyz: the eye's unit right axis; w: the eye's near plane (view depth, world units).
     pub eye_right: [f32; 4],
+    /// xyz: the eye's unit up axis; w: the fraction of a cascade's depth interval over which it
+    /// blends into the next (0: hard seams).
     pub eye_up: [f32; 4],
+    /// rgb: the water's refractive index per channel (all equal unless wavelength dispersion,
+    /// §3.6); w: the scene's single IOR.
     pub ior: [f32; 4],
+    /// rgb: Beer-Lambert absorption coefficient `K` per channel, per world unit; w: `C` of the
+    /// ramp brightness (§3.4.3).
     pub absorption: [f32; 4],
+    /// The ramp brightness (§3.4.3): MIN_DEPTH, MAX_DEPTH, width of the shallow ramp (world
+    /// units of water column), and the splat's fixed-point scale (`FIXED_SCALE`).
     pub ramps: [f32; 4],
+    /// Lowest and highest terrain height (padded, world units), 1 with the terrain pass and 0
+    /// for the plane z = 0, 0.
     pub terrain: [f32; 4],
+    /// Post-process dispersion: the floor shift per unit of water column of red (xy) and blue
+    /// (zw), relative to green.
     pub post: [f32; 4],
+    /// Far plane of each of the four cascades, eye view depth in world units.
     pub fars: [f32; 4],
+    /// Flux one photon carries in each of the four cascades (`photon_flux`).
     pub fluxes: [f32; 4],
+    /// Eye image width, pixels.
     pub width: u32,
+    /// Eye image height, pixels.
     pub height: u32,
+    /// Light-view G-buffer side, texels (the `resolution` parameter).
     pub res: u32,
+    /// Index of the cascade this block serves (0 for the eye, composition and dispersion passes).
     pub cascade: u32,
+    /// Bit 0: plane placement (else Eq. 3.3); bit 1: physical brightness (else the ramps); bit 2:
+    /// wavelength dispersion; bit 3: footprint splat (else points).
     pub flags: u32,
+    /// 1: the water tiles (its heights are sampled wrapped at the square's edges), 0: clamped.
     pub wrap: u32,
     /// 1: the pool's walls receive light (`CascadedSetup::walls`).
     pub walls: u32,
+    /// Padding to a multiple of 16 bytes.
     pub _pad: u32,
 }
 
@@ -87,6 +122,7 @@ fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
 }
 
 impl CascadedUniform {
+    /// The block cascade `k` of `s` reads.
     pub fn new(s: &CascadedSetup, k: usize) -> Self {
         let p = &s.params;
         let c = &s.cascades[k];
@@ -164,15 +200,26 @@ pub struct Cascaded {
 /// One frame's resources for a setup, bind groups included: built once, encoded every frame (the
 /// water texture bound at creation is read afresh by every encode).
 pub struct CascadedResources {
+    /// The setup the uniforms were written from.
     pub setup: CascadedSetup,
     /// Per cascade, the uniform block its passes read (cascade 0's also serves the eye,
     /// composition and dispersion passes).
     uniforms: Vec<wgpu::Buffer>,
+    /// The eye-depth pass's output, per pixel `[view depth, floor area seen, floor z, N_z]`
+    /// (`Rgba32Float`, zeros where no floor is seen).
     pub eye: wgpu::Texture,
+    /// Water G-buffer, `res²` texels of `[light-view depth, n.x, n.y, n.z]` (`Rgba32Float`),
+    /// rewritten by each cascade in turn.
     pub gwater: wgpu::Texture,
+    /// Terrain G-buffer, `res²` texels of the terrain's light-view depth (`R32Float`), rewritten
+    /// by each cascade in turn; 1 texel, never read, without the terrain pass.
     pub gterrain: wgpu::Texture,
+    /// Screen-space caustic maps of every cascade, fixed-point `u32` sums (`round(w · 2^14)`)
+    /// laid out `cascade × height × width × 3`.
     pub acc: wgpu::Buffer,
+    /// The composed image, per pixel `[r, g, b, cascade]` of relative irradiance (`Rgba32Float`).
     pub image: wgpu::Texture,
+    /// The image after post-process dispersion, only under [`Dispersion::Post`].
     pub dispersed: Option<wgpu::Texture>,
     eye_bind: wgpu::BindGroup,
     /// Per cascade: water, terrain, photon bind groups.
@@ -182,11 +229,14 @@ pub struct CascadedResources {
     _terrain: wgpu::Texture,
     /// Bytes of GPU memory: G-buffers (shared by the cascades), one cascade's screen map, the rest.
     pub gbuffer_bytes: u64,
+    /// Bytes of one cascade's screen-space caustic map (12 per pixel).
     pub cascade_map_bytes: u64,
+    /// Bytes of the eye, image and dispersed textures, the terrain heights and the uniforms.
     pub other_bytes: u64,
 }
 
 impl CascadedResources {
+    /// GPU memory the frame holds, bytes (the four cascades' screen maps included).
     pub fn bytes(&self) -> u64 {
         self.gbuffer_bytes + CASCADES as u64 * self.cascade_map_bytes + self.other_bytes
     }
@@ -225,11 +275,17 @@ impl CascadedResources {
 /// One pass of a frame, for [`Cascaded::encode_pass`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Pass {
+    /// Eye depth, once (clears the screen-space maps first).
     Eye,
+    /// Cascade `k`'s water G-buffer (§3.3).
     Water(usize),
+    /// Cascade `k`'s terrain G-buffer (§3.3), only with the terrain pass.
     Terrain(usize),
+    /// Cascade `k`'s photons, refracted, placed and splatted (§3.4).
     Photons(usize),
+    /// Composition of the cascades by eye depth (§3.5), once.
     Compose,
+    /// Post-process dispersion (§3.6), once, only under [`Dispersion::Post`].
     Disperse,
 }
 
@@ -249,12 +305,18 @@ impl Pass {
 
 /// What a frame read back: the eye pass, the fixed-point maps, the final image.
 pub struct GpuCascadedFrame {
+    /// Per pixel `[view depth, floor area seen, floor z, N_z]`, as the CPU twin's
+    /// `CascadedFrame::eye`.
     pub eye: Vec<[f32; 4]>,
+    /// Every cascade's fixed-point screen-space caustic map, `cascade × height × width × 3`.
     pub acc: Vec<u32>,
+    /// The final image, per pixel `[r, g, b, cascade]` of relative irradiance (dispersed under
+    /// [`Dispersion::Post`]).
     pub image: Vec<[f32; 4]>,
 }
 
 impl Cascaded {
+    /// Build the six compute pipelines.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let c = Cascaded {
             eye: compute_pipeline(ctx, &EYE),

@@ -23,23 +23,44 @@ use crate::{GpuContext, GpuError, GpuTimer};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CameraUniform {
+    /// xyz: the eye, world units; w: `tan(fov_y / 2)`.
     pub position: [f32; 4],
+    /// xyz: the eye's unit forward axis; w: the image's aspect (width / height).
     pub forward: [f32; 4],
+    /// xyz: the eye's unit right axis; w: ambient irradiance, floor units.
     pub right: [f32; 4],
+    /// xyz: the eye's unit up axis; w: relative bias of the shadow and caustic distance tests.
     pub up: [f32; 4],
+    /// xyz: the sky's radiance, linear RGB, for rays that leave the scene; w: 0 the sun, 1 a
+    /// point light.
     pub sky: [f32; 4],
+    /// xyz: the floor's albedo, linear RGB; w: the point light's radiant intensity, floor units
+    /// (0 under the sun).
     pub floor_albedo: [f32; 4],
+    /// xyz: the albedo of diffuse surfaces other than the floor, linear RGB; w: 0.
     pub wall_albedo: [f32; 4],
+    /// xyz: the light's colour times its intensity, linear RGB; w: 0.
     pub light_color: [f32; 4],
+    /// xyz: the sun's unit direction of travel, or the point light's position (world units);
+    /// w: cosine of the spot's half-angle, -2 for a bare point light or the sun.
     pub light: [f32; 4],
+    /// xyz: the spot's unit axis (zero under the sun); w: 0.
     pub spot_axis: [f32; 4],
+    /// xy: the floor map's origin (world units); z: its side; w: 0.
     pub floor: [f32; 4],
+    /// Image width, pixels.
     pub width: u32,
+    /// Image height, pixels.
     pub height: u32,
+    /// Number of generators (glass objects) in the generators' storage buffer.
     pub generators: u32,
+    /// Face side of the light cube map, texels (1, a stand-in, under the sun).
     pub cube: u32,
+    /// Floor map width, texels (1, a stand-in, under a point light).
     pub map_width: u32,
+    /// Floor map height, texels (1, a stand-in, under a point light).
     pub map_height: u32,
+    /// Padding to a multiple of 16 bytes.
     pub _pad: [u32; 2],
 }
 
@@ -50,12 +71,16 @@ pub struct CameraRenderer {
 
 /// What a camera-pass run returns: linear RGB per pixel, rows top to bottom.
 pub struct CameraImage {
+    /// Width, pixels.
     pub width: u32,
+    /// Height, pixels.
     pub height: u32,
+    /// `width × height` pixels, row-major.
     pub rgb: Vec<[f32; 3]>,
 }
 
 impl CameraRenderer {
+    /// Build the camera pass pipeline.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let pipeline = compute_pipeline(ctx, &CAMERA);
         ctx.check()?;

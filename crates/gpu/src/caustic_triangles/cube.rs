@@ -13,9 +13,15 @@ use crate::{GpuContext, GpuError, GpuTimer};
 /// Σ E d)` in red and green, and the shadow distances in a storage buffer. Every generator adds
 /// into the same target.
 pub struct LightCubeTarget {
+    /// Side `C` of one face, texels.
     pub resolution: u32,
+    /// The `C x 6C` render target: red `Σ E` (floor units), green `Σ E d` (`d` the light's
+    /// distance to the receiver point, world units).
     pub texture: wgpu::Texture,
+    /// View of `texture`, drawn into and sampled by the camera pass.
     pub view: wgpu::TextureView,
+    /// `6 C²` `f32` distances from the light to the first surface per texel (index
+    /// `(face C + row) C + col`), `FAR` where none: the shadow map of the direct light.
     pub shadow: wgpu::Buffer,
 }
 
@@ -26,6 +32,8 @@ pub struct CubeBinds {
 }
 
 impl CausticTriangles {
+    /// Allocate a light cube map of `resolution` texels a face side; reset it with
+    /// [`reset_cube`](Self::reset_cube) before the first generator draws into it.
     pub fn light_cube(
         &self,
         ctx: &GpuContext,
@@ -64,6 +72,8 @@ impl CausticTriangles {
         })
     }
 
+    /// Bind `frame`'s generator (its uniform, photon image, vertex irradiance, merge pyramid and
+    /// distance map) to `target` for [`encode_cube`](Self::encode_cube).
     pub fn cube_binds(
         &self,
         ctx: &GpuContext,

@@ -14,14 +14,25 @@ use crate::{GpuContext, GpuError, GpuTimer};
 /// Built once; encode it every frame the light or object moves (the uniform and distance map can be
 /// rewritten in place for the same sizes).
 pub struct GeneratorFrame {
+    /// The setup the uniform was written from.
     pub setup: CausticTrianglesSetup,
+    /// The generator's [`CausticTrianglesUniform`], which every pass reads.
     pub uniform: wgpu::Buffer,
+    /// The layered distance map's texels (§3), `[f32; 4]` each, as `DistanceMap::texels`.
     pub dm_buffer: wgpu::Buffer,
+    /// The photon hit location image (§4.1), `p²` `[x, y, power, signature]` row-major: the hit in
+    /// the receiver's plane (world units), power -1 where invalid, signature = refractions + 64 ×
+    /// total internal reflections.
     pub photons: wgpu::Buffer,
     /// Refracted path length per photon (a water generator's; zeros for glass).
     pub paths: wgpu::Buffer,
+    /// Irradiance per photon-image vertex, `p²` `f32` (power / adjacent area, floor units; -1
+    /// where invalid).
     pub irradiance: wgpu::Buffer,
+    /// The floor map the caustic triangles or splats add into: this frame's own, or a shared one
+    /// (or a layer of it) several generators draw into.
     pub map: wgpu::Texture,
+    /// The 2-D view of `map` (its layer) that the draws target.
     pub map_view: wgpu::TextureView,
     pub(crate) photon_bind: wgpu::BindGroup,
     pub(crate) irradiance_bind: wgpu::BindGroup,
@@ -46,6 +57,7 @@ impl GeneratorFrame {
 }
 
 impl CausticTriangles {
+    /// A generator's frame with its own floor map, for `setup` and its distance map `dm`.
     pub fn frame(
         &self,
         ctx: &GpuContext,

@@ -13,16 +13,25 @@ use crate::{GpuContext, GpuError, GpuTimer};
 
 /// What one GPU run reads back.
 pub struct GpuOutput {
+    /// The photon hit location image, `p²` `[x, y, power, signature]` (as
+    /// [`GeneratorFrame::photons`]).
     pub photons: Vec<[f32; 4]>,
+    /// Irradiance per photon-image vertex, floor units, -1 where invalid.
     pub irradiance: Vec<f32>,
+    /// The floor map the caustic triangles (or splats) drew.
     pub map: CausticsMap,
 }
 
 /// What one water run reads back.
 pub struct WaterGpuOutput {
+    /// The photon hit location image of the water's lattice, `[x, y, power, signature]` per
+    /// photon.
     pub photons: Vec<[f32; 4]>,
+    /// Refracted path length per photon under water, world units (for Beer-Lambert absorption).
     pub paths: Vec<f32>,
+    /// Irradiance per photon-image vertex, floor units, -1 where invalid.
     pub irradiance: Vec<f32>,
+    /// The floor map: the receivers' lookup where the setup has receivers, else the triangles'.
     pub map: CausticsMap,
     /// The wall maps when the setup has walls.
     pub walls: Option<WallMaps>,

@@ -36,8 +36,11 @@ pub type CausticTrianglesTechnique = crate::adapter::Resident<CausticTriangles>;
 
 /// A configured frame: the water surface as the generator, or the scene's glass objects.
 pub enum State {
+    /// The water surface as the one generator, lighting the floor (and walls).
     Water(Box<WaterFrame>),
+    /// The scene's glass objects, one generator each, drawing into one shared floor map.
     Glass {
+        /// One per glass object, in the scene's order.
         generators: Vec<Generator>,
         /// The floor map every generator draws into.
         map: wgpu::Texture,

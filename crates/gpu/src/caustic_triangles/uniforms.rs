@@ -9,32 +9,62 @@ use caustics_core::walls::Wall;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CausticTrianglesUniform {
+    /// xyz: the distance map's reference point (§3), world units; w: radius of the sphere around
+    /// it that holds the generator's surfaces.
     pub centre: [f32; 4],
+    /// xyz: the light frame's u axis (across the light); w: the generator's index of refraction.
     pub u: [f32; 4],
+    /// xyz: the light frame's v axis (`w × u`); w: power of one photon before the Fresnel factors,
+    /// floor-area units.
     pub v: [f32; 4],
+    /// xyz: the direction the light travels (a point light: from the light to the generator's
+    /// bounding-sphere centre); w: side of the baseline's square splats, map texels.
     pub w: [f32; 4],
+    /// xy: the photon image's lower corner in light space; zw: one texel's size (world units for
+    /// the sun, `tan` of the angle off `w` for a point light).
     pub rect: [f32; 4],
+    /// xy: the floor map's origin (world units); z: its side; w: one map texel's area.
     pub floor: [f32; 4],
+    /// Side of the photon hit location image, photons (§4.1; `P + 1` for a water lattice).
     pub p: u32,
+    /// Face side of the distance map, texels.
     pub cube: u32,
+    /// Layers of the distance map (§3).
     pub layers: u32,
+    /// Most refractions / total internal reflections along a photon path.
     pub depth: u32,
+    /// Linear search steps per ray segment of the distance-map search (§3).
     pub linear_steps: u32,
+    /// Secant search iterations per hit (§3).
     pub secant_iterations: u32,
+    /// 1: each refraction weights the photon by its Fresnel transmittance (§4.1); 0: it passes
+    /// all the power.
     pub fresnel: u32,
+    /// How a vertex's area is taken (§4.2): 0 the paper's (half the 4-neighbour triangles), 1 the
+    /// hat rule (a third of the drawn ones).
     pub area_rule: u32,
+    /// Floor map width, texels.
     pub width: u32,
+    /// Floor map height, texels.
     pub height: u32,
+    /// Face side of the light cube map, texels (used under a point light).
     pub light_cube: u32,
     /// Index of this generator's first texel in a buffer of several distance maps (the camera
     /// pass's); 0 in the generator's own.
     pub dm_base: u32,
+    /// xyz: the point light's position, world units; w: 0 the sun (xyz unused), 1 a point light.
     pub light: [f32; 4],
+    /// xyz: the spot's unit axis; w: cosine of its half-angle, -2 for a bare point light or the
+    /// sun.
     pub spot: [f32; 4],
+    /// Levels of the merge pyramid of small caustic triangles (§5; 0: no merging).
     pub merge_levels: u32,
+    /// A block of quads merges when its corner quad covers less floor than this (`merge_texels`
+    /// map texels' area), world units².
     pub merge_small: f32,
     /// A water generator's lattice `P` (0 for glass).
     pub lattice: u32,
+    /// 1: tiling water, every primitive drawn at nine offsets of ±size; 0 otherwise.
     pub wrap: u32,
     /// xyz: the water's absorption `K` (0 for glass).
     pub absorption: [f32; 4],
@@ -42,10 +72,12 @@ pub struct CausticTrianglesUniform {
     pub band: u32,
     /// 1: the photon image tiles in the receiver's plane (`WaterTransport::periodic`).
     pub periodic: u32,
+    /// Padding to a multiple of 16 bytes.
     pub _pad: [u32; 2],
 }
 
 impl CausticTrianglesUniform {
+    /// The block for generator `s` and its distance map `dm` (`dm_base` 0).
     pub fn new(s: &CausticTrianglesSetup, dm: &DistanceMap) -> Self {
         let v4 = |v: glam::DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
         CausticTrianglesUniform {
@@ -97,14 +129,21 @@ impl CausticTrianglesUniform {
     }
 }
 
-/// Mirrors `WaterPhoton` in `caustic_triangles/water_photon.wgsl` (CPU twin: [`WaterSetup`]).
+/// Mirrors `WaterPhoton` in `caustic_triangles/water_setup.wgsl` (CPU twin: [`WaterSetup`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct WaterPhotonUniform {
+    /// xyz: unit direction the sunlight travels (`z < 0`); w: the water's index of refraction.
     pub light: [f32; 4],
+    /// x: the rest level's height above the floor; y: side of the water square; z: lattice
+    /// spacing `size / P` (all world units); w: `T(θ0)`, flat water's Fresnel transmittance (1
+    /// without Fresnel).
     pub water: [f32; 4],
+    /// Quads per side of the lattice, `P` (`P + 1` photons a side).
     pub lattice: u32,
+    /// 1: the surface tiles, its heights sampled wrapped at the square's edges.
     pub wrap: u32,
+    /// 1: each photon's power is weighted by its Fresnel transmittance relative to flat water.
     pub fresnel: u32,
     /// 0: the floor; `1 + k`: wall `k` of `Wall::ALL` (its own photon image, `receiver_photon`).
     pub receiver: u32,
@@ -113,6 +152,7 @@ pub struct WaterPhotonUniform {
 }
 
 impl WaterPhotonUniform {
+    /// The uniform of the floor's photon pass.
     pub fn new(ws: &WaterSetup) -> Self {
         Self::for_receiver(ws, None)
     }
@@ -142,7 +182,10 @@ impl WaterPhotonUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CopyBandBuffer {
+    /// Quads from an edge the shifted copies are drawn for, as fitted; `u32::MAX` before the
+    /// first fit (the uniform's `band` then stands).
     pub band: u32,
+    /// Padding that puts `draw` at byte 16.
     pub _pad: [u32; 3],
     /// `wgpu::util::DrawIndirectArgs`: vertex count, instance count, first vertex, first instance.
     pub draw: [u32; 4],

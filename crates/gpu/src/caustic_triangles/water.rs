@@ -32,6 +32,7 @@ struct BandPasses {
 /// every encode reads the heights afresh (the caller's texture, [`CausticTriangles::water_frame_with_water`],
 /// or its own, rewritten by [`update_heights`](Self::update_heights)).
 pub struct WaterFrame {
+    /// The floor's generator frame: photon image, vertex irradiance, merge pyramid, floor map.
     pub frame: GeneratorFrame,
     /// The setup its uniforms hold; the band of `setup.setup.water` is the lattice's (every
     /// quad): the copy band pass narrows it on the GPU.
@@ -41,6 +42,7 @@ pub struct WaterFrame {
     pub heights: Option<wgpu::Texture>,
     /// The grid size of the heights it reads.
     pub grid: (u32, u32),
+    /// The floor's water photon pass uniform ([`WaterPhotonUniform`]).
     pub water_uniform: wgpu::Buffer,
     water_bind: wgpu::BindGroup,
     /// The copy band pass's bind group (tiling water only).
@@ -68,7 +70,9 @@ pub struct WallFrames {
 
 /// One wall's receiver: its frame and its photon pass's uniform and bind group.
 pub struct WallFrame {
+    /// The wall's generator frame, drawing into its layer of [`WallFrames::texture`].
     pub frame: GeneratorFrame,
+    /// The wall's water photon pass uniform ([`WaterPhotonUniform::for_receiver`]).
     pub water_uniform: wgpu::Buffer,
     water_bind: wgpu::BindGroup,
 }
@@ -180,6 +184,8 @@ impl WaterFrame {
         ]))
     }
 
+    /// GPU memory the frame holds, bytes: its generator frame, the heights it uploaded, the
+    /// photon uniforms, the receivers and the walls' frames and texture.
     pub fn bytes(&self) -> u64 {
         self.frame.bytes()
             + self

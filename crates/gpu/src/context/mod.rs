@@ -19,10 +19,15 @@ pub struct GpuOptions {
 
 /// A device and queue with what the techniques need to know about them.
 pub struct GpuContext {
+    /// The instance the adapter came from; a window's surface is made from it.
     pub instance: wgpu::Instance,
+    /// The chosen adapter (the physical GPU and its backend).
     pub adapter: wgpu::Adapter,
+    /// The device every technique builds its resources and pipelines on.
     pub device: wgpu::Device,
+    /// The device's queue: uploads, uniform writes and submissions.
     pub queue: wgpu::Queue,
+    /// The adapter's name, backend, type and driver, read once (see [`describe`](Self::describe)).
     pub info: wgpu::AdapterInfo,
     /// Whether per-pass timestamps can be written.
     pub timestamps: bool,
@@ -63,7 +68,7 @@ impl GpuContext {
     }
 
     /// Create the instance alone (the viewer needs it to make a window surface first). With
-    /// `CAUSTICS_VALIDATION=1`, under the Vulkan validation layer (see [`crate::validation`]).
+    /// `CAUSTICS_VALIDATION=1`, under the Vulkan validation layer (the `validation` module, with the `validation` feature).
     pub fn instance(options: &GpuOptions) -> Result<wgpu::Instance, GpuError> {
         #[cfg(not(target_arch = "wasm32"))]
         if crate::validation::requested() {
@@ -227,6 +232,8 @@ impl GpuContext {
         )
     }
 
+    /// The device's limits: the adapter's own for a device made here, the application's for a
+    /// wrapped one.
     pub fn limits(&self) -> wgpu::Limits {
         self.device.limits()
     }

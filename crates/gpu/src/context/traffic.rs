@@ -36,12 +36,20 @@ pub struct Traffic {
 /// did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TrafficCounts {
+    /// Textures this crate created.
     pub textures: u64,
+    /// Buffers this crate created (with or without contents).
     pub buffers: u64,
+    /// Bind groups this crate created.
     pub bind_groups: u64,
+    /// Compute and render pipelines this crate created.
     pub pipelines: u64,
+    /// Samplers this crate created.
     pub samplers: u64,
+    /// Query sets (timestamps) this crate created.
     pub query_sets: u64,
+    /// Bytes this crate sent to the GPU: buffer and texture writes and the contents of buffers and
+    /// textures created with data.
     pub uploaded_bytes: u64,
     /// Blocking reads of GPU data into the CPU (a map, a timer's [`read`](crate::GpuTimer::read)).
     pub readbacks: u64,
@@ -97,6 +105,7 @@ impl Traffic {
         counter.fetch_add(n, Ordering::Relaxed);
     }
 
+    /// The totals as they stand.
     pub fn snapshot(&self) -> TrafficCounts {
         let l = |c: &AtomicU64| c.load(Ordering::Relaxed);
         TrafficCounts {
@@ -139,6 +148,7 @@ impl GpuContext {
         Traffic::add(&self.traffic.app_uploaded_bytes, uploaded);
     }
 
+    /// `wgpu::Device::create_buffer`, counted.
     pub fn create_buffer(&self, desc: &wgpu::BufferDescriptor) -> wgpu::Buffer {
         Traffic::add(&self.traffic.buffers, 1);
         self.device.create_buffer(desc)
@@ -162,6 +172,7 @@ impl GpuContext {
         self.device.create_buffer_init(desc)
     }
 
+    /// `wgpu::Device::create_texture`, counted.
     pub fn create_texture(&self, desc: &wgpu::TextureDescriptor) -> wgpu::Texture {
         Traffic::add(&self.traffic.textures, 1);
         self.device.create_texture(desc)
@@ -180,11 +191,13 @@ impl GpuContext {
             .create_texture_with_data(&self.queue, desc, order, data)
     }
 
+    /// `wgpu::Device::create_bind_group`, counted.
     pub fn create_bind_group(&self, desc: &wgpu::BindGroupDescriptor) -> wgpu::BindGroup {
         Traffic::add(&self.traffic.bind_groups, 1);
         self.device.create_bind_group(desc)
     }
 
+    /// `wgpu::Device::create_compute_pipeline`, counted.
     pub fn create_compute_pipeline(
         &self,
         desc: &wgpu::ComputePipelineDescriptor,
@@ -193,6 +206,7 @@ impl GpuContext {
         self.device.create_compute_pipeline(desc)
     }
 
+    /// `wgpu::Device::create_render_pipeline`, counted.
     pub fn create_render_pipeline(
         &self,
         desc: &wgpu::RenderPipelineDescriptor,
@@ -201,21 +215,25 @@ impl GpuContext {
         self.device.create_render_pipeline(desc)
     }
 
+    /// `wgpu::Device::create_sampler`, counted.
     pub fn create_sampler(&self, desc: &wgpu::SamplerDescriptor) -> wgpu::Sampler {
         Traffic::add(&self.traffic.samplers, 1);
         self.device.create_sampler(desc)
     }
 
+    /// `wgpu::Device::create_query_set`, counted.
     pub fn create_query_set(&self, desc: &wgpu::QuerySetDescriptor) -> wgpu::QuerySet {
         Traffic::add(&self.traffic.query_sets, 1);
         self.device.create_query_set(desc)
     }
 
+    /// `wgpu::Queue::write_buffer`, its bytes counted as uploaded.
     pub fn write_buffer(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
         Traffic::add(&self.traffic.uploaded_bytes, data.len() as u64);
         self.queue.write_buffer(buffer, offset, data);
     }
 
+    /// `wgpu::Queue::write_texture`, its bytes counted as uploaded.
     pub fn write_texture(
         &self,
         texture: wgpu::TexelCopyTextureInfo,

@@ -156,6 +156,8 @@ pub struct FinalImageFrame {
 }
 
 impl FinalImage {
+    /// Build the pipelines and bind group layouts of the slab, the patches, the map's and slopes'
+    /// pyramids and the image, and the placeholder textures bound for what a scene lacks.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let device = &ctx.device;
         let scene_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

@@ -65,6 +65,7 @@ pub struct SlopePyramid {
 }
 
 impl SlopePipelines {
+    /// Build the base and halving pipelines.
     pub fn new(ctx: &GpuContext) -> Self {
         SlopePipelines {
             base: compute_pipeline(ctx, &WATER_SLOPES_BASE),

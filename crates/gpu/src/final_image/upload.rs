@@ -23,31 +23,55 @@ use crate::bvh::FlatBvhs;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FinalImageUniform {
+    /// The camera's eye, world coordinates.
     pub camera_position: [f32; 3],
+    /// What radiance is multiplied by before the tone curve (`RenderOptions::exposure`).
     pub exposure: f32,
+    /// The unit direction the camera looks along, world frame.
     pub camera_forward: [f32; 3],
     /// The sun's disk's radiance per unit of its irradiance (`Sky::sun_disk`).
     pub sun_disk: f32,
     /// The camera's right vector times `tan(fov_y / 2)` times the aspect ratio.
     pub camera_right: [f32; 3],
+    /// Side of the square `[0, size]²` the water covers, world units (the scene's square without
+    /// water).
     pub water_size: f32,
     /// The camera's up vector times `tan(fov_y / 2)`.
     pub camera_up: [f32; 3],
+    /// The water's rest level above z = 0 (`Water::level`), world units; 0 without water.
     pub water_level: f32,
+    /// The unit direction the sunlight travels (z < 0), world frame.
     pub sun: [f32; 3],
+    /// The light's intensity, the scale of its colour (`Light::intensity`).
     pub sun_intensity: f32,
+    /// The sun's direction after refraction into flat water (`sun` itself without water).
     pub sun_water: [f32; 3],
+    /// Flat water's Fresnel transmittance for the sun (1 without water).
     pub t_flat: f32,
+    /// The light's linear RGB colour.
     pub light_color: [f32; 3],
+    /// The water's index of refraction (1 without water).
     pub ior: f32,
+    /// The water's Beer-Lambert absorption `K` per RGB channel, per world unit of path (0 without
+    /// water).
     pub absorption: [f32; 3],
+    /// `Scene::size`: side of the terrain's square, and of the floor's without water, world units.
     pub scene_size: f32,
+    /// Side of the square `[0, size]²` the floor's caustics map covers, world units: the caller's
+    /// when it gives one, else the water's (the scene's without water); the scene's without a map.
     pub map_size: f32,
+    /// The image's width, pixels.
     pub width: u32,
+    /// The image's height, pixels.
     pub height: u32,
+    /// Samples per pixel along each axis (n² rays a pixel), at least 1.
     pub supersampling: u32,
+    /// How many entries the objects' buffer holds.
     pub object_count: u32,
+    /// Bits of [`flags`]: what the scene has and how the caustics are bound; the deck's code above
+    /// [`flags::DECK_SHIFT`].
     pub flags: u32,
+    /// The floor's albedo, one of [`albedo`].
     pub albedo: u32,
     /// `ToneMap::code` of the options' tone curve.
     pub tone_map: u32,
@@ -65,6 +89,7 @@ pub struct FinalImageUniform {
     pub sun_variance: f32,
     /// Level 0 of the water's slope moments' pyramid (`final_image::slopes`): the heights' lattice.
     pub slope_cols: u32,
+    /// Rows of that level; both are 1 when no pyramid is bound.
     pub slope_rows: u32,
 }
 
@@ -72,9 +97,13 @@ pub struct FinalImageUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct SlabUniform {
+    /// Side of the water's square, world units.
     pub size: f32,
+    /// The water's edge rule: 1 where the heights tile, 0 where they clamp.
     pub wrap: u32,
+    /// Samples along each side of the lattice the bound is taken on ([`SLAB_LATTICE`]).
     pub lattice: u32,
+    /// Padding to the uniform's 16 bytes.
     pub _pad: u32,
 }
 
@@ -83,12 +112,19 @@ pub const SLAB_LATTICE: u32 = caustics_core::render::SLAB_LATTICE as u32;
 
 /// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image_inputs.wgsl`.
 pub mod flags {
+    /// The scene has water.
     pub const WATER: u32 = 1;
+    /// A heights texture is bound; without it the water is flat.
     pub const SURFACE: u32 = 2;
+    /// A caustics map of the floor is bound, over the square of `map_size`.
     pub const CAUSTICS: u32 = 4;
+    /// The scene has a terrain, bound as its height texture.
     pub const TERRAIN: u32 = 8;
+    /// The water's heights tile at its edges (periodic) rather than clamp.
     pub const WRAP_SURFACE: u32 = 16;
+    /// The caustics map tiles too: tiling water with no terrain.
     pub const WRAP_CAUSTICS: u32 = 32;
+    /// No water, and a map of the light through the glass objects (`caustic_triangles`).
     pub const AIR_CAUSTICS: u32 = 64;
     /// The caustics are an eye-space image of this camera (`cascaded`), bound where the map is.
     pub const EYE_CAUSTICS: u32 = 128;
@@ -101,9 +137,13 @@ pub mod flags {
 
 /// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
 pub mod albedo {
+    /// The pool's tiles (`FloorPattern::Tiles`).
     pub const TILES: u32 = 0;
+    /// Sand (`FloorPattern::Sand`).
     pub const SAND: u32 = 1;
+    /// Uniform light grey (`FloorPattern::Plain`).
     pub const PLAIN: u32 = 2;
+    /// The floor's albedo image, bound as a texture (`Albedo::Image`).
     pub const IMAGE: u32 = 3;
 }
 
@@ -113,10 +153,13 @@ pub mod albedo {
 pub struct GpuObject {
     /// Diffuse colour, or glass tint.
     pub color: [f32; 3],
+    /// The glass's index of refraction (1 for a diffuse object).
     pub ior: f32,
     /// The object's root in the node buffer.
     pub root: u32,
+    /// 1 for glass, 0 for a diffuse object.
     pub glass: u32,
+    /// Padding to the WGSL struct's 32-byte stride.
     pub _pad: [u32; 2],
 }
 
@@ -260,7 +303,9 @@ pub(super) fn uniform(
 /// The scene's objects for the GPU: one entry each, and every object's tree appended to shared
 /// node and triangle-slot buffers with its indices made global.
 pub struct Meshes {
+    /// One entry per scene object, in the scene's order.
     pub objects: Vec<GpuObject>,
+    /// Every object's tree in the shared node and triangle-slot buffers.
     pub trees: FlatBvhs,
 }
 

@@ -41,22 +41,44 @@ passes! {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ProceduralUniform {
+    /// xyz: `e1`, the first axis of the sun frame's tangent plane, world frame; w: 0.
     pub sun_x: [f32; 4],
+    /// xyz: `e2`, the second tangent axis; w: 0.
     pub sun_y: [f32; 4],
+    /// xyz: the unit direction toward the sun (`+z` for the paper's overhead sun); w: 0.
     pub sun_z: [f32; 4],
+    /// xyz: the unit gathering ray from the floor up to the surface (`+z`, the paper's vertical
+    /// ray, unless the technique follows the sun); w: 0.
     pub up: [f32; 4],
+    /// rgb: the absorption `K` per channel along the gathering ray, per world unit (0 without the
+    /// option, or over receivers, whose lookup attenuates); w: `ground`, the share of the floor's
+    /// light the paper's additive blend leaves unmodulated.
     pub absorption: [f32; 4],
+    /// The paper's wave function, read when `source` is 1.
     pub wave: GpuProceduralWave,
+    /// Side of the floor's square `[0, size]²`, world units.
     pub size: f32,
+    /// The water's rest depth above the floor, world units.
     pub depth: f32,
+    /// Water to air, `η = n_water / n_air` (the paper's 1.33333 by default).
     pub ior: f32,
+    /// `E`: the light map spans `uv ∈ [−E, E]²` in the sun frame, the tangent of the half-angle it
+    /// covers.
     pub extent: f32,
+    /// The caustics map's width, texels.
     pub width: u32,
+    /// The caustics map's height, texels.
     pub height: u32,
+    /// Side of the texture variant's fixed-size target (mip level 0), texels.
     pub target_size: u32,
+    /// Quads per side of the vertex variant's ground mesh.
     pub mesh: u32,
+    /// Where the water comes from: 0, the bound height grid read bicubically; 1, the paper's wave
+    /// function evaluated in the shader.
     pub source: u32,
+    /// The heights' edge rule: 1 where they tile, 0 where they clamp.
     pub wrap: u32,
+    /// Padding to the uniform's 16-byte multiple.
     pub _pad: [u32; 2],
 }
 
@@ -65,6 +87,8 @@ fn v4(v: glam::DVec3) -> [f32; 4] {
 }
 
 impl ProceduralUniform {
+    /// The uniform for `s` over `water`: the wave function evaluated in the shader when the input
+    /// is the paper's wave, else the bound height grid.
     pub fn new(s: &ProceduralSetup, water: &SurfaceInput) -> Self {
         Self::with_wave(s, wave_of(water))
     }
@@ -179,6 +203,7 @@ impl ProceduralFrame {
         self.bytes
     }
 
+    /// The setup the frame was built for, or last took by [`set_setup`](Self::set_setup).
     pub fn setup(&self) -> &ProceduralSetup {
         &self.setup
     }
@@ -272,6 +297,8 @@ pub fn mesh_indices(n: u32) -> Vec<u32> {
 }
 
 impl ProceduralCaustics {
+    /// Build the five pipelines and the receivers' lookup; the texture variant's chain is
+    /// `Rgba16Float` where the adapter cannot filter 32-bit floats.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let chain_format = if ctx
             .device

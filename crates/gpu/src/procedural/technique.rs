@@ -18,10 +18,13 @@ use crate::{GpuContext, GpuError, GpuTimer};
 /// `procedural` in the registry: the variant its table names (screen by default).
 pub const REGISTERED: Registered =
     Registered::of::<ProceduralCaustics>(&procedural::DESCRIPTOR, super::PASSES, None);
+/// `procedural-vertex`: paper 2 per vertex of a fine ground mesh.
 pub const VERTEX: Registered =
     Registered::of::<ProceduralCaustics>(&procedural::VERTEX, super::PASSES, None);
+/// `procedural-screen`: paper 2 per pixel of the map.
 pub const SCREEN: Registered =
     Registered::of::<ProceduralCaustics>(&procedural::SCREEN, super::PASSES, None);
+/// `procedural-texture`: paper 2 into a fixed-size texture-space target, mipmapped.
 pub const TEXTURE: Registered =
     Registered::of::<ProceduralCaustics>(&procedural::TEXTURE, super::PASSES, None);
 
@@ -39,6 +42,7 @@ pub struct Params {
 /// A [`super::ProceduralFrame`] and the scene it was configured for, which `refit` compares a new
 /// scene against.
 pub struct ConfiguredProcedural {
+    /// The frame the passes record, with the scene's setup.
     pub frame: super::ProceduralFrame,
     key: SceneKey,
 }

@@ -32,6 +32,7 @@ pub(super) struct ObjectFrame {
 /// every bind group. Built once; encode it every frame (upload new heights with
 /// [`VolumesFrame::update_heights`]).
 pub struct VolumesFrame {
+    /// The setup the frame was built for: the sun, water, lattice and objects' views it uploads.
     pub setup: VolumesSetup,
     /// The heights it uploaded itself ([`Volumes::frame`]); `None` when it reads the caller's
     /// ([`Volumes::frame_with_water`]).
@@ -39,6 +40,9 @@ pub struct VolumesFrame {
     wrap: bool,
     /// The [`VolumesUniform`] every pass reads.
     uniform: wgpu::Buffer,
+    /// The water pass's output: one [`WaterVertex`](caustics_core::techniques::volumes::illumination::WaterVertex)
+    /// (eight floats) per lattice vertex, the refracted surface point, its Fresnel weight and the
+    /// refracted direction.
     pub water: wgpu::Buffer,
     /// The shadow map, its depth pass's bind group and [`PassUniform`].
     pub(super) shadow: Option<(wgpu::Texture, wgpu::BindGroup, wgpu::Buffer)>,
@@ -149,6 +153,7 @@ impl VolumesFrame {
 /// layer per wall of a 2-D array texture in `Wall::ALL`'s order, as wide as the widest wall map
 /// and as tall as the maps ([`crate::technique::Technique::walls`]'s layout), made once.
 pub struct WallsFrame {
+    /// The walls' maps, one `Rgba32Float` layer per wall in `Wall::ALL`'s order.
     pub texture: wgpu::Texture,
     /// Empty maps: the walls' sizes.
     pub layout: WallMaps,

@@ -11,11 +11,17 @@ use crate::{GpuContext, GpuError};
 
 /// What one GPU run reads back.
 pub struct GpuOutput {
+    /// Each object's depth texture, diffuse map, caustics map and final image (Eq. 4), in the
+    /// setup's order.
     pub objects: Vec<ObjectMaps>,
+    /// The floor's caustics map over the scene square, relative to flat water.
     pub floor: CausticsMap,
     /// The walls' maps, `None` without walls.
     pub walls: Option<WallMaps>,
+    /// The shadow map's texels, `[depth, nx, ny, nz]` as an object's depth texture (empty without
+    /// shadows).
     pub shadow: Vec<[f32; 4]>,
+    /// The water pass's refracted lattice vertices.
     pub water: Vec<WaterVertex>,
     /// The refracted view, row 0 at the top (empty without one).
     pub view: Vec<[f32; 3]>,

@@ -23,6 +23,7 @@ pub type VolumesTechnique = crate::adapter::Resident<Volumes>;
 /// A [`super::VolumesFrame`] and the scene it was configured for, which `refit` compares a new
 /// scene against.
 pub struct ConfiguredVolumes {
+    /// The frame the passes record, with the scene's setup.
     pub frame: super::VolumesFrame,
     /// The scene as configured, objects included: a new sun or camera goes into it and the setup
     /// is derived again, without the meshes being read from the scene again.

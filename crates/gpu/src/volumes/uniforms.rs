@@ -8,10 +8,18 @@ use caustics_core::techniques::volumes::{OrthoView, VolumesSetup};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ViewUniform {
+    /// xyz: `a`, the view frame's first axis (texel columns), world frame; w: `res`, texels per
+    /// side.
     pub a: [f32; 4],
+    /// xyz: `b`, the second axis (texel rows); w: how far before the box's front face the depth
+    /// rays start, world units (`ray_margin`).
     pub b: [f32; 4],
+    /// xyz: `v`, the unit direction of projection, depth growing along it; w: the reference
+    /// planes' spacing `Δ` (§3.1), 0 for the shadow map.
     pub v: [f32; 4],
+    /// xyz: the box's near corner in frame coordinates `(a · p, b · p, v · p)`; w: 0.
     pub lo: [f32; 4],
+    /// xy: a texel's size along `a` and `b`, world units; z: the box's depth along `v`; w: 0.
     pub texel: [f32; 4],
 }
 
@@ -50,16 +58,30 @@ impl ViewUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct VolumesUniform {
+    /// xyz: the unit direction the sunlight travels, world frame; w: `η = 1 / ior`, air to water.
     pub light: [f32; 4],
+    /// xyz: `K` per channel of Eq. 3's `exp(−K d)`, per world unit (0 without the absorption
+    /// option); w: `T(θ0)`, flat water's Fresnel transmittance for the sun (1 without the Fresnel
+    /// option).
     pub absorption: [f32; 4],
+    /// xy: the water lattice's origin on the surface, world units; z: its cell's side; w: the side
+    /// of the water's square, which the floor map covers.
     pub lattice: [f32; 4],
+    /// x: the water's rest depth; y: its index of refraction; z: the shadow test's depth tolerance,
+    /// world units; w: 1 with the Fresnel option, else 0.
     pub params: [f32; 4],
+    /// x, y: the water lattice's cells along x and y; z, w: the floor map's width and height,
+    /// texels.
     pub dims: [u32; 4],
+    /// x: 1 where the heights tile; y: 1 with the shadow map; z: 1 where the walls receive light;
+    /// w: the walls' maps' rows (0 without walls).
     pub flags: [u32; 4],
+    /// The shadow map's view along the refracted sun (zero without shadows).
     pub shadow: ViewUniform,
 }
 
 impl VolumesUniform {
+    /// The uniform for `s`; `wrap` is the water's edge rule (periodic heights).
     pub fn new(s: &VolumesSetup, wrap: bool) -> Self {
         VolumesUniform {
             light: [
@@ -110,12 +132,22 @@ impl VolumesUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct PassUniform {
+    /// The object's view-aligned box and textures' frame, or the shadow map's.
     pub view: ViewUniform,
+    /// `i0, i1, j0, j1`: the rectangle of water lattice cells whose illumination volumes can reach
+    /// the object, the cells the slice pass draws.
     pub cells: [u32; 4],
+    /// The object's reference planes (§3.1; the paper's Fig. 6 uses 5 and 50).
     pub planes: u32,
+    /// The first of the objects' trees the depth pass traces (the object's own index).
     pub root_first: u32,
+    /// How many trees from `root_first` it traces: 1 for an object, all of them for the shadow
+    /// map.
     pub root_count: u32,
+    /// Padding to align `albedo`.
     pub _pad: u32,
+    /// xyz: the object's diffuse albedo, linear RGB; w: the ambient `Ia` of Eq. 4, relative to the
+    /// sun through flat water.
     pub albedo: [f32; 4],
 }
 
@@ -155,21 +187,31 @@ impl PassUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CameraUniform {
+    /// xyz: the camera's eye, world coordinates; w: the ambient `Ia` of Eq. 4.
     pub position: [f32; 4],
+    /// xyz: the unit direction the camera looks along; w: the number of objects.
     pub forward: [f32; 4],
+    /// xyz: the camera's right vector times `tan(fov_y / 2)` times the aspect ratio; w: the image's
+    /// width, pixels.
     pub right: [f32; 4],
+    /// xyz: the camera's up vector times `tan(fov_y / 2)`; w: the image's height, pixels.
     pub up: [f32; 4],
+    /// xyz: the floor's albedo, linear RGB; w: 1, unread.
     pub floor_albedo: [f32; 4],
 }
 
 /// The refracted view (§3.3) to render with the caustics: the camera and the floor's albedo.
 #[derive(Clone, Copy, Debug)]
 pub struct ViewOptions {
+    /// The camera above the water, its right and up vectors scaled by the field of view.
     pub camera: ViewCamera,
+    /// The floor's albedo, linear RGB: one colour for the whole floor (the scene's view takes its
+    /// pattern's mean).
     pub floor_albedo: glam::DVec3,
 }
 
 impl CameraUniform {
+    /// The uniform for the view `v` of `setup`'s objects.
     pub fn new(v: &ViewOptions, setup: &VolumesSetup) -> Self {
         let c = &v.camera;
         let f = |a: glam::DVec3, w: f64| [a.x as f32, a.y as f32, a.z as f32, w as f32];

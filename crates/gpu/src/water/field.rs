@@ -51,10 +51,13 @@ pub struct FieldParams {
     pub size: f32,
     /// Side of the square a grid source covers.
     pub grid_size: f32,
+    /// Height factor, multiplying every height (the viewer's amplitude slider; 0: flat water).
     pub amplitude: f32,
+    /// Sine waves in use, read by the waves pass only.
     pub wave_count: u32,
     /// 1 for `Edge::Wrap`, 0 for `Edge::Clamp`.
     pub wrap: u32,
+    /// Pads the struct to 32 bytes, a multiple of 16 for the uniform layout; zero.
     pub _pad: [u32; 3],
 }
 

@@ -12,8 +12,11 @@ use caustics_core::water::waves::Waves;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuSineWave {
+    /// Wave vector, radians per world unit: the height is `amplitude · sin(k · p + phase)`.
     pub k: [f32; 2],
+    /// Crest height above rest, world units.
     pub amplitude: f32,
+    /// Phase at the frozen time (`φ − ω t`), radians.
     pub phase: f32,
 }
 
@@ -36,12 +39,20 @@ impl GpuSineWave {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuProceduralWave {
+    /// Where the function's origin sits on the water, world units: paper 2's `x`, `y` are
+    /// measured from it.
     pub origin: [f32; 2],
+    /// Paper 2's amplitude `A` (default 0.01, as in its listing).
     pub amplitude: f32,
+    /// Paper 2's spatial frequency `W` (default 10).
     pub frequency: f32,
+    /// Paper 2's base octave factor `F` (default 1): octave `i` uses `f_i = F / 2^i`.
     pub octave_base: f32,
+    /// Paper 2's speed `S` (default 2), radians per second.
     pub speed: f32,
+    /// The instant, seconds (the `t` of `S t`).
     pub time: f32,
+    /// Paper 2's octave count `O` (default 5).
     pub octaves: u32,
 }
 

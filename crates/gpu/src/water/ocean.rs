@@ -34,10 +34,13 @@ passes! {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct SpectrumParams {
+    /// The grid's side `N`: modes (and output texels) along each axis, a power of two.
     pub n: u32,
+    /// The instant `t` the spectrum is evaluated at, seconds.
     pub time: f32,
     /// `2π / size`.
     pub dk: f32,
+    /// Pads the struct to 16 bytes; zero.
     pub _pad: u32,
 }
 
@@ -45,11 +48,13 @@ pub struct SpectrumParams {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct FftStage {
+    /// The grid's side `N`: the length of each row's and column's transform.
     pub n: u32,
     /// Length of the transforms the stage merges: 1, 2, 4, …, N/2.
     pub p: u32,
     /// 0: rows, 1: columns.
     pub axis: u32,
+    /// Pads the struct to 16 bytes; zero.
     pub _pad: u32,
 }
 

@@ -38,6 +38,8 @@ pub struct WaterPatches {
 
 /// One heights texture's patches: an `Rgba32Float` texture of its size and the pass that fills it.
 pub struct Patches {
+    /// The `Rgba32Float` patches, one texel per height texel: the height, and its central
+    /// differences (per texel) along u, along v and across; what `grid_sample_hermite` reads.
     pub view: wgpu::TextureView,
     uniform: wgpu::Buffer,
     wrap: bool,
@@ -46,13 +48,14 @@ pub struct Patches {
 }
 
 impl WaterPatches {
+    /// Build the pass's pipeline for the device.
     pub fn new(ctx: &GpuContext) -> Self {
         WaterPatches {
             pipeline: compute_pipeline(ctx, &WATER_PATCHES),
         }
     }
 
-    /// The patches of `heights` (periodic where `wrap`), filled by each [`Patches::encode`].
+    /// The patches of `heights` (periodic where `wrap`), filled by each [`encode`](Self::encode).
     pub fn frame(&self, ctx: &GpuContext, heights: &wgpu::TextureView, wrap: bool) -> Patches {
         let size = heights.texture().size();
         let view = ctx

@@ -33,6 +33,7 @@ pub struct RippleStep {
     pub gamma: f32,
     /// 1 for [`Edge::Wrap`], 0 for [`Edge::Clamp`].
     pub wrap: u32,
+    /// Pads the struct to 16 bytes; zero.
     pub _pad: u32,
 }
 
@@ -40,17 +41,24 @@ pub struct RippleStep {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct RippleDrop {
+    /// The bump's centre on the water square, world units.
     pub centre: [f32; 2],
+    /// The bump's radius, world units.
     pub radius: f32,
+    /// Height added at the centre, world units; negative for a dent.
     pub strength: f32,
     /// First cell (column, row) of the box the bump can reach.
     pub first: [i32; 2],
     /// Cells of the box per axis.
     pub count: [u32; 2],
+    /// Side of a cell, world units (`size / resolution`).
     pub dx: f32,
+    /// Side of the water square, world units: the period a wrapping drop's offsets are taken
+    /// modulo.
     pub size: f32,
     /// 1 for [`Edge::Wrap`], 0 for [`Edge::Clamp`].
     pub wrap: u32,
+    /// Pads the struct to 48 bytes, a multiple of 16; zero.
     pub _pad: u32,
 }
 

@@ -33,8 +33,11 @@ pub struct Frame {
     /// The fill's indirect dispatch and the count of the pixels at k its tier pass lists.
     pub(super) fill_args: wgpu::Buffer,
     pub(super) heights_size: wgpu::Extent3d,
+    /// The map the passes write (`Rgba32Float`, relative irradiance in rgb): the floor map on the
+    /// plane `z = 0`, the light-space deposit over receivers ([`Frame::floor_map`]).
     pub map: wgpu::Texture,
     pub(super) setup: YukselSetup,
+    /// Which implementation the frame's passes run.
     pub variant: Variant,
     pub(super) passes: FramePasses,
     bytes: u64,
@@ -85,6 +88,7 @@ impl Frame {
         }
     }
 
+    /// The setup the frame was built for, or last took by [`set_setup`](Self::set_setup).
     pub fn setup(&self) -> &YukselSetup {
         &self.setup
     }

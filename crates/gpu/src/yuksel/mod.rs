@@ -98,27 +98,52 @@ pub enum Variant {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct YukselUniform {
+    /// xyz: the unit direction the light travels, world frame; w: `η = 1 / ior`, air to water.
     pub light: [f32; 4],
+    /// A map pixel's size along x and y, world units.
     pub pixel: [f32; 2],
+    /// `h L'` of Eq. 1: from a floor point to its illumination centre on the rest surface, world
+    /// units.
     pub centre_offset: [f32; 2],
+    /// rgb: `exp(−K d0)` per channel, the absorption along the flat-water path that pass 2 applies
+    /// (1 without the absorption option, or over receivers, whose lookup attenuates); w: `T(θ0)`,
+    /// flat water's Fresnel transmittance for the sun (1 without the Fresnel option).
     pub attenuation: [f32; 4],
+    /// Side of the floor's square `[0, size]²` the map covers, world units.
     pub size: f32,
+    /// The water's rest depth above the floor, world units.
     pub depth: f32,
+    /// The water's index of refraction.
     pub ior: f32,
+    /// 1 with the Fresnel option: each sample's light weighted by `T(θi) / T(θ0)`; 0 without.
     pub fresnel: u32,
+    /// The caustics map's width, texels.
     pub width: u32,
+    /// The caustics map's height, texels.
     pub height: u32,
+    /// `N`, the samples pass 1 takes along x (§4), given or the paper's 7; 0: the region pass
+    /// chooses it from the water.
     pub n: u32,
+    /// `M`, the neighbouring rows along y each sample's light reaches, in `M + 1` channels (§4),
+    /// given or the paper's 6; `u32::MAX`: the region pass chooses it.
     pub m: u32,
+    /// The heights' edge rule: 1 where they tile, 0 where they clamp.
     pub wrap: u32,
+    /// Pass 1: the first of the `M + 1` channels this draw writes (four per target); 0 elsewhere.
     pub channel_base: u32,
+    /// `k`, samples per map pixel along each axis.
     pub subsamples: u32,
+    /// 1: each sample's light lands on its footprint; 0: on a box of the sample's size, the
+    /// paper's pixel-sized square (§4).
     pub footprint: u32,
+    /// Passes 1 and 2: the map's rows this draw serves, those equal to it modulo `2^level` of the
+    /// frame's region (0 at level 0).
     pub phase: u32,
     /// [`YukselSetup::split`], or −1 where every pixel takes its `k × k` samples.
     pub split: f32,
     /// Tiles along x of the pre-pass texture's array ([`PrepassTiling`]); 0 where it is one.
     pub pre_tiles: u32,
+    /// Padding to align `receivers`.
     pub _pad: u32,
     /// What the samples' light meets (the plane `z = 0` where `t0[3]` is 0).
     pub receivers: ReceiversUniform,
@@ -128,11 +153,21 @@ pub struct YukselUniform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct YukselRegion {
+    /// `N`: samples along x gathered per pixel, at column offsets `shift.x + [−N/2, N/2]`, in
+    /// pixels of the level's map.
     pub n: u32,
+    /// `M`: rows along y, at offsets `shift.y + [−M/2, M/2]`, in pixels of the level's map.
     pub m: u32,
+    /// The region's shift along the refracted sun from a pixel's own sample (columns, rows), in
+    /// pixels of the level's map.
     pub shift: [i32; 2],
+    /// The samples are those of a map `2^level` times coarser; their light lands in the map's own
+    /// pixels.
     pub level: u32,
+    /// 1 where the bound asked for more than the largest `N` or `M` even at the coarsest level
+    /// (light is lost), else 0.
     pub clamped: u32,
+    /// Padding to the struct's 16-byte multiple.
     pub _pad: [u32; 2],
 }
 
@@ -223,6 +258,7 @@ impl PrepassTiling {
         }
     }
 
+    /// The array's layers, one per tile.
     pub fn layers(&self) -> u32 {
         self.tiles.0 * self.tiles.1
     }
@@ -261,6 +297,9 @@ fn render_pipeline(
 }
 
 impl Yuksel {
+    /// Build the compute and pass-2 pipelines, and take the render targets one pass-1 draw may
+    /// write from the device's limits (at most 8); pass 1's pipelines are built per target count
+    /// as they are first needed.
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let limits = ctx.limits();
         let by_bytes = limits.max_color_attachment_bytes_per_sample / 16;

@@ -9,8 +9,9 @@ use super::CascadedSetup;
 use crate::grid::{Edge, Grid};
 use crate::walls::Wall;
 
-/// Steps of the terrain march before bisection, and bisection steps.
+/// Even steps of the terrain march across the terrain's height range, before bisection.
 pub const MARCH_STEPS: u32 = 64;
+/// Bisection steps that refine the terrain hit the march brackets.
 pub const BISECTION_STEPS: u32 = 20;
 
 impl CascadedSetup {

@@ -118,7 +118,10 @@ pub const WATER_IOR_RGB: [f64; 3] = [1.3311, 1.3330, 1.3371];
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Placement {
+    /// Eq. 3.3 (the paper's): the point of the refracted ray closest to the straight ray's terrain
+    /// hit `P_t`.
     Eq33,
+    /// The refracted ray's hit on the horizontal plane through `P_t` (ours).
     Plane,
 }
 
@@ -359,6 +362,7 @@ pub enum Splat {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Dispersion {
+    /// No dispersion: one photon per texel, refracted with the scene's IOR, into all three channels.
     None,
     /// Ray-based: each texel sends one photon per RGB channel, refracted with that channel's IOR
     /// ([`WATER_IOR_RGB`], offsets from green added to the scene's IOR and scaled by
@@ -378,24 +382,37 @@ pub enum Dispersion {
 pub struct CascadedParams {
     /// Caustic-map (light-view G-buffer) resolution per cascade, texels per side.
     pub resolution: u32,
-    /// Eye near plane and far plane of the last cascade, world units (view depth).
+    /// Eye near plane, world units of view depth, shared by every cascade's sub-frustum; default 0.1.
     pub near: f64,
+    /// Far plane of the last cascade, world units of view depth; the cascades' far planes split
+    /// `[near, far]` evenly (§3.2.2). Default 48.
     pub far: f64,
     /// Fraction of each cascade's depth interval over which it blends into the next (0: hard seams).
     pub blend: f64,
+    /// Where a photon lands (§3.4.2): by Eq. 3.3 (default) or on the plane through the terrain hit.
     pub placement: Placement,
+    /// How a photon is weighted (§3.4.3): relative irradiance (default) or the paper's depth ramps.
     pub brightness: Brightness,
     /// `C` of §3.4.3 (ramp mode).
     pub c: f64,
+    /// `MIN_DEPTH` of §3.4.3 (ramp mode), world units of water column over the photon: the shallow
+    /// ramp starts here, photons in shallower water are dark (near the shore). Default 0.
     pub min_depth: f64,
+    /// `MAX_DEPTH` of §3.4.3 (ramp mode), world units of water column: the brightness falls
+    /// linearly from full at the surface to 0 at this depth. Positive; default 10.
     pub max_depth: f64,
+    /// Width of the shallow ramp of §3.4.3 (ramp mode), world units of water column: the brightness
+    /// rises from 0 at `min_depth` to full at `min_depth + shallow_ramp`. Positive; the paper's is 1.
     pub shallow_ramp: f64,
     /// Whether the terrain light-view depth pass runs; without it the floor is taken as the plane
     /// z = 0 (the paper's Fig. 4.3 times the technique without this pass).
     pub terrain_pass: bool,
+    /// Light dispersion (§3.6): none (default), one refraction per wavelength, or the post-process.
     pub dispersion: Dispersion,
     /// Exaggeration of the dispersion (1: water's measured dispersion).
     pub dispersion_scale: f64,
+    /// How photons are splatted into the eye's image: over their footprint (default, ours) or as
+    /// points (§3.4).
     pub splat: Splat,
 }
 
@@ -421,6 +438,8 @@ impl Default for CascadedParams {
 }
 
 impl CascadedParams {
+    /// The parameters from the `cascaded` entry of a scene's `[caustics]` table, defaults for what it
+    /// leaves out (all of them without the entry), validated.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
         let p: CascadedParams = match table.get("cascaded") {
             Some(v) => v
@@ -433,6 +452,8 @@ impl CascadedParams {
         Ok(p)
     }
 
+    /// Check the ranges the passes rely on: resolution 16 to 8192, `0 < near < far`, `blend` in
+    /// `[0, 1]`, positive `max_depth` and `shallow_ramp`.
     pub fn validate(&self) -> Result<()> {
         let bad = |f: &str, m: String| Err(Error::field(format!("caustics.cascaded.{f}"), m));
         if !(16..=8192).contains(&self.resolution) {
@@ -467,10 +488,18 @@ impl CascadedParams {
 /// `(u0 + (j + ½) du, v0 + (i + ½) dv)`, starting on the near plane `w = w0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CascadeView {
+    /// Light-view `u` (along [`CascadedSetup::e_u`]) of the rectangle's lower edge, world units, a
+    /// multiple of `du` (snapped to whole texels so the photons do not shimmer).
     pub u0: f64,
+    /// Light-view `v` (along [`CascadedSetup::e_v`]) of the rectangle's lower edge, world units, a
+    /// multiple of `dv`.
     pub v0: f64,
+    /// Texel side along `e_u`, world units.
     pub du: f64,
+    /// Texel side along `e_v`, world units.
     pub dv: f64,
+    /// Light-view depth (along the sunlight) of the plane the texels' rays start on, world units:
+    /// every ray starts at least 1 above the water's rest level and the terrain's top.
     pub w0: f64,
     /// Eye view depth of the sub-frustum's far plane.
     pub far: f64,
@@ -479,22 +508,33 @@ pub struct CascadeView {
 /// Everything the passes share (the GPU uploads the same numbers as its uniform block).
 #[derive(Clone, Debug)]
 pub struct CascadedSetup {
+    /// The parameters the setup was built from.
     pub params: CascadedParams,
+    /// Texels per side of every cascade's light-view grid (`params.resolution`).
     pub res: usize,
     /// Unit direction of the sunlight and the light-view axes: `(e_u, e_v, light)` orthonormal.
     pub light: DVec3,
+    /// Light-view `u` axis: horizontal, across the sun's horizontal direction (x when the sun is
+    /// straight overhead).
     pub e_u: DVec3,
+    /// Light-view `v` axis: `light × e_u`.
     pub e_v: DVec3,
+    /// The cascades' sun views, nearest sub-frustum first.
     pub cascades: [CascadeView; CASCADES],
+    /// The eye camera whose screen space the photons are splatted into and composed in.
     pub eye: EyeCamera,
-    /// The water's rest level (z of the still surface) and the scene square.
+    /// The water's rest level (z of the still surface), world units.
     pub level: f64,
+    /// Side of the scene square `[0, size]²` the water and terrain height fields cover, world units.
     pub size: f64,
+    /// Whether the water height field repeats beyond the square (else it is clamped at its edges).
     pub wrap: bool,
     /// Refractive index per channel (all equal unless [`Dispersion::Wavelength`]).
     pub ior: [f64; 3],
     /// The scene's IOR (green under dispersion).
     pub ior_mono: f64,
+    /// Beer-Lambert absorption `K` per RGB channel, per world unit of path under water (physical
+    /// brightness).
     pub absorption: DVec3,
     /// `T(θ0)` of flat water.
     pub t_flat: f64,
@@ -723,6 +763,8 @@ impl CascadedSetup {
 
 /// Everything one frame computes, kept for pictures and tests.
 pub struct CascadedFrame {
+    /// The eye-depth pass per pixel, row by row: `[view depth, floor area seen, floor z, N_z]`
+    /// ([`eye_pass`]).
     pub eye: Vec<[f32; 4]>,
     /// The fixed-point screen-space caustic map of every cascade.
     pub acc: Vec<u32>,

@@ -18,8 +18,13 @@ pub const FOOTPRINT_MAX: f64 = 4.0;
 
 /// One photon after refraction: where it lands, its incidence cosine and its path under water.
 pub struct Photon {
+    /// Where it lands, world coordinates: by the parameters' [`Placement`], or with the pool's walls
+    /// the refracted ray's exact end on the floor or a wall.
     pub position: DVec3,
+    /// Cosine of the sun's angle of incidence on the local water normal (for the Fresnel weight).
     pub cos_i: f64,
+    /// Length of its refracted path from the water surface to `position`, world units (for the
+    /// absorption).
     pub path: f64,
 }
 

@@ -28,8 +28,8 @@
 //! Albedos are one colour for the floor and one for the occluders (the glass scenes' floor is
 //! plain); the glass is clear (its tint is not applied). All in linear RGB; [`crate::render::to_rgb8`] tone maps.
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::CausticTrianglesSetup;
 use super::cube::{LightCube, sphere_span};
@@ -46,8 +46,11 @@ pub struct CameraParams {
     pub ambient: f64,
     /// Relative bias `b` of the shadow and caustic distance tests.
     pub bias: f64,
+    /// Radiance of the rays that meet nothing, linear RGB.
     pub sky: DVec3,
+    /// Diffuse albedo of the floor, linear RGB.
     pub floor_albedo: DVec3,
+    /// Diffuse albedo of the occluders (walls), linear RGB.
     pub wall_albedo: DVec3,
     /// Light colour times intensity.
     pub light_color: DVec3,
@@ -72,22 +75,32 @@ impl Default for CameraParams {
 pub enum CameraLight<'a> {
     /// The sun (unit travel direction) and the floor map of its caustics.
     Sun {
+        /// Unit direction the sunlight travels, `z < 0`.
         direction: DVec3,
+        /// The floor map of the sun's caustics, floor units (its first channel is read).
         map: &'a CausticsMap,
+        /// The floor square `map` covers and its resolution.
         floor: FloorWindow,
     },
     /// A point or spot light and its light cube map (caustics and shadow distances).
     Point {
+        /// The light, its position and a spot's cone.
         light: PointLight,
+        /// Its light cube map: the caustic's `(Σ E, Σ E d)` and the shadow distances per texel.
         cube: &'a LightCube,
     },
 }
 
 /// Everything the camera pass reads.
 pub struct CameraInput<'a> {
+    /// The scene camera whose pixels are traced.
     pub camera: &'a Camera,
+    /// Every generator's setup and distance map: besides the floor, the surfaces an eye ray can
+    /// meet (the maps hold the occluders too).
     pub generators: Vec<(&'a CausticTrianglesSetup, &'a DistanceMap)>,
+    /// The light and where its caustics and shadows are read from.
     pub light: CameraLight<'a>,
+    /// The shading constants.
     pub params: CameraParams,
 }
 
@@ -320,7 +333,9 @@ impl CameraParams {
 
 /// One generator of a scene, everything its passes need.
 pub struct Generator {
+    /// Its setup: photon image, light frame, search and reconstruction parameters.
     pub setup: CausticTrianglesSetup,
+    /// Its layered distance map, around the glass object, holding the scene's occluders too.
     pub dm: DistanceMap,
 }
 

@@ -27,8 +27,8 @@
 //! For the sun, the light cube map of a light at infinity degenerates (every texel of a face sees
 //! the same direction), so the technique keeps the floor map of [`super::triangles_pass`].
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::CausticTrianglesSetup;
 use super::distance_map::{Crossing, DistanceMap, face_st, texel_dir};
@@ -39,6 +39,7 @@ pub const FAR: f32 = f32::MAX;
 /// The light cube map (see the module docs).
 #[derive(Clone, Debug)]
 pub struct LightCube {
+    /// Texels per face side, `C` (the `light_cube` parameter).
     pub resolution: usize,
     /// The light, the cube map's centre.
     pub position: DVec3,
@@ -60,6 +61,8 @@ pub fn face_local(face: usize, d: DVec3) -> DVec3 {
 }
 
 impl LightCube {
+    /// An empty light cube map centred at the light `position`: no caustic, every shadow distance
+    /// [`FAR`].
     pub fn new(resolution: usize, position: DVec3) -> Self {
         let n = 6 * resolution * resolution;
         LightCube {

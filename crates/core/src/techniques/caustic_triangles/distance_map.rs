@@ -21,21 +21,27 @@
 //! depth-peeling order the paper names for the general case. It is built once on the CPU for a
 //! rigid generator and uploaded.
 
+use crate::parallel::prelude::*;
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::scene::GlassScene;
 
+/// A generator's layered distance map (see the module docs): per cube-map texel and layer, the
+/// distance, normal and material of a surface around the reference point.
 #[derive(Clone, Debug)]
 pub struct DistanceMap {
     /// Texels per cube-face side, `C`.
     pub resolution: usize,
+    /// Layers: a texel's ray keeps its first `layers` surfaces, nearest in layer 0 (at most
+    /// [`MAX_LAYERS`](super::MAX_LAYERS) are searched).
     pub layers: usize,
     /// The reference point.
     pub centre: DVec3,
     /// Radius of the sphere around the reference point holding every stored surface (the search
     /// range of a ray).
     pub radius: f64,
+    /// `(n.x, n.y, n.z, s)` per texel, indexed `((layer · 6 + face) · C + row) · C + col`: `s > 0`
+    /// glass at distance `s` from the reference point, `s < 0` an occluder at `−s`, 0 no surface.
     pub texels: Vec<[f32; 4]>,
 }
 
@@ -64,8 +70,11 @@ impl Crossing {
 /// A surface found in the map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {
+    /// Distance from the reference point to the surface, world units (not the ray parameter).
     pub distance: f64,
+    /// Unit surface normal, bilinear between texels like the distance (outward on the glass).
     pub normal: DVec3,
+    /// The generator's glass; `false` for a diffuse occluder.
     pub glass: bool,
 }
 

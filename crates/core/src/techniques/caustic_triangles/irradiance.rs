@@ -1,8 +1,8 @@
 //! The vertex irradiance pass (§5), CPU twin of `caustic_triangles/irradiance.wgsl`: each photon's
 //! `E = ΔΦ / ΔA` by the area rule ([`AreaRule`]).
 
+use crate::parallel::prelude::*;
 use glam::DVec2;
-use rayon::prelude::*;
 
 use super::photon::{pos, same_path, valid};
 use super::{AreaRule, CausticTrianglesSetup};
@@ -99,6 +99,7 @@ pub fn vertex_irradiance(
     }
 }
 
+/// The vertex irradiance pass (§5): [`vertex_irradiance`] of every photon-image texel, row major.
 pub fn irradiance_pass(setup: &CausticTrianglesSetup, photons: &[[f32; 4]]) -> Vec<f32> {
     let p = setup.p;
     (0..p * p)

@@ -339,6 +339,7 @@ pub enum AreaRule {
 }
 
 impl AreaRule {
+    /// The rule's code in the GPU's uniform block (`area_rule`): 0 paper, 1 hat.
     pub fn code(self) -> u32 {
         match self {
             AreaRule::Paper => 0,
@@ -366,7 +367,10 @@ pub struct CausticTrianglesParams {
     pub secant_iterations: u32,
     /// Most refractions / total internal reflections along a photon path.
     pub depth: u32,
+    /// Whether each photon carries the Fresnel transmittance of every refraction (§4.1: "the
+    /// complement of the Fresnel factor"); off, refractions pass all the power. Default on.
     pub fresnel: bool,
+    /// How a vertex's area `ΔA` is taken (§4.2): the paper's (default) or the flux-true hat rule.
     pub area_rule: AreaRule,
     /// Side of the baseline's square splats, in map texels.
     pub splat_size: f64,
@@ -395,10 +399,15 @@ impl Default for CausticTrianglesParams {
     }
 }
 
+/// Most layers of a distance map: the search keeps one bracket per layer in a fixed array (as
+/// `distance_map.wgsl` does).
 pub const MAX_LAYERS: u32 = 8;
+/// Most levels of the §5 merge pyramid: merged blocks of up to 64 x 64 photon-image quads.
 pub const MAX_MERGE_LEVELS: u32 = 6;
 
 impl CausticTrianglesParams {
+    /// The parameters from the `caustic-triangles` entry of a scene's `[caustics]` table, defaults
+    /// for what it leaves out (all of them without the entry), validated.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
         let p: CausticTrianglesParams = match table.get("caustic-triangles") {
             Some(v) => v
@@ -411,6 +420,8 @@ impl CausticTrianglesParams {
         Ok(p)
     }
 
+    /// Check every parameter against the range the descriptor gives it; the error names the
+    /// field.
     pub fn validate(&self) -> Result<()> {
         let f = |name: &str, msg: String| {
             Err(Error::field(
@@ -485,24 +496,43 @@ impl CausticTrianglesParams {
 /// Everything the passes share (the GPU side uploads the same numbers as its uniform block).
 #[derive(Clone, Debug)]
 pub struct CausticTrianglesSetup {
+    /// Photon image side in texels, `P` (`P + 1` for a water lattice of `P` quads).
     pub p: usize,
+    /// Light-space axis across the light (`w × y`, or x where the light travels along y).
     pub u: DVec3,
+    /// Light-space axis across the light, `w × u`.
     pub v: DVec3,
+    /// Unit direction the sunlight travels; for a point light, from the light to the generator's
+    /// bounding-sphere centre (the photon image's axis).
     pub w: DVec3,
     /// Light-space rectangle of the photon image: its lower corner and the size of one texel.
     pub rect_lo: DVec2,
+    /// Side of one photon-image texel along `u` and `v`: world units for the sun, tangents of the
+    /// angle off `w` for a point light.
     pub cell: DVec2,
     /// Power of one photon before the Fresnel factors, floor-area units.
     pub flux: f64,
+    /// The generator's index of refraction (glass, or the water's), in air.
     pub ior: f64,
+    /// Most refractions / total internal reflections along a photon path (1 for water).
     pub depth: u32,
+    /// Whether photons carry the Fresnel transmittance of each refraction.
     pub fresnel: bool,
+    /// Linear search steps per ray segment in the distance map (§3).
     pub linear_steps: u32,
+    /// Secant search iterations after the linear search (§3).
     pub secant_iterations: u32,
+    /// How a vertex's area `ΔA` is taken (§4.2).
     pub area_rule: AreaRule,
+    /// Side of the splatting baseline's square splats, floor-map texels.
     pub splat_size: f64,
+    /// Levels of the §5 merge pyramid (0: no merging).
     pub merge_levels: u32,
+    /// A block of quads is merged when its corner quad covers less than this many floor-map
+    /// texels (§5).
     pub merge_texels: f64,
+    /// The floor square the caustic triangles are drawn into and its resolution (for a water
+    /// wall, the wall's map stretched over the square).
     pub floor: FloorWindow,
     /// A point light: the photon image spans the tangent plane of the directions from the light
     /// to the generator's bounding sphere (`rect_lo`, `cell` in units of `tan`), `flux` is the
@@ -602,6 +632,9 @@ impl CausticTrianglesSetup {
 }
 
 impl CausticTrianglesSetup {
+    /// The setup of a glass generator: a `photon_image²` photon image over the generator's
+    /// light-space rectangle (sun) or over the cone of directions to its bounding sphere (point
+    /// light), and the power of one photon in floor-area units.
     pub fn new(params: &CausticTrianglesParams, scene: &GlassScene) -> Result<Self> {
         params.validate()?;
         let (u, v, w) = light_frame(scene.light);
@@ -680,8 +713,13 @@ impl CausticTrianglesSetup {
 
 /// Everything one run produces.
 pub struct Output {
+    /// The photon hit location image, `P x P` row major: `(x, y, Φ, σ)` of each photon's floor
+    /// hit, or [`INVALID`].
     pub photons: Vec<[f32; 4]>,
+    /// Each photon's vertex irradiance `E = ΔΦ / ΔA`, floor units (1: the unobstructed sun, or a
+    /// point light straight above), −1 where invalid.
     pub irradiance: Vec<f32>,
+    /// The floor map of the caustic triangles (relative irradiance).
     pub map: CausticsMap,
 }
 

@@ -1,8 +1,8 @@
 //! The photon tracing pass (§4.1), CPU twin of `caustic_triangles/photon.wgsl`: the photon hit
 //! location image, and how its texels are read.
 
+use crate::parallel::prelude::*;
 use glam::DVec2;
-use rayon::prelude::*;
 
 use super::{CausticTrianglesSetup, DistanceMap};
 use crate::optics::{fresnel_transmittance, reflect, refract};

@@ -26,13 +26,14 @@
 //! The tests and `docs/caustic-triangles.md` state the photon count and the difference between
 //! `N` and `2N` runs.
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::scene::{GlassScene, bounding_sphere, light_frame};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, reflect, refract};
 
+/// How the reference photon tracer runs.
 #[derive(Clone, Debug)]
 pub struct ReferenceOptions {
     /// Photons per side of the light-space rectangle: `N²` photons.
@@ -41,6 +42,7 @@ pub struct ReferenceOptions {
     pub depth: u32,
     /// Follow the reflected branches as well as the refracted ones.
     pub reflections: bool,
+    /// Seed of the photons' jitter within their grid cells: the same seed gives the same map.
     pub seed: u64,
 }
 
@@ -59,6 +61,7 @@ impl Default for ReferenceOptions {
 /// irradiance times area). `incident` equals the sum of all the others.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PowerBudget {
+    /// Struck the generator above the floor with no occluder in the way.
     pub incident: f64,
     /// Reached the floor inside the map window.
     pub on_map: f64,
@@ -101,9 +104,14 @@ impl PowerBudget {
     }
 }
 
+/// What [`reference()`] gives.
 pub struct ReferenceResult {
+    /// Relative irradiance on the floor of the light that went through the generator (1: the
+    /// unobstructed sun), the same in all three channels.
     pub map: CausticsMap,
+    /// Where the power of the photons that struck the generator went.
     pub budget: PowerBudget,
+    /// Photons on the grid, `N²`, those that missed the generator included.
     pub photons: u64,
 }
 

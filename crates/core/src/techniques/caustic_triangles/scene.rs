@@ -13,11 +13,24 @@ use crate::scene::{Material, Scene};
 /// The generator's geometry: exact where it can be.
 #[derive(Clone, Debug)]
 pub enum Shape {
-    Sphere { centre: DVec3, radius: f64 },
-    Mesh { mesh: TriangleMesh, bvh: MeshBvh },
+    /// An exact sphere.
+    Sphere {
+        /// Its centre, world coordinates.
+        centre: DVec3,
+        /// Its radius, world units.
+        radius: f64,
+    },
+    /// A closed triangle mesh.
+    Mesh {
+        /// The triangles, world coordinates.
+        mesh: TriangleMesh,
+        /// The mesh's bounding-volume hierarchy for ray hits.
+        bvh: MeshBvh,
+    },
 }
 
 impl Shape {
+    /// A mesh shape, its BVH built here.
     pub fn mesh(mesh: TriangleMesh) -> Shape {
         let bvh = mesh.bvh();
         Shape::Mesh { mesh, bvh }
@@ -50,6 +63,7 @@ impl Shape {
         }
     }
 
+    /// The axis-aligned bounding box `(min, max)`, world coordinates.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         match self {
             Shape::Sphere { centre, radius } => (*centre - *radius, *centre + *radius),
@@ -79,11 +93,14 @@ impl Shape {
 /// A diffuse object that stops light (a wall): a mesh and its BVH.
 #[derive(Clone, Debug)]
 pub struct Occluder {
+    /// The occluder's triangles, world coordinates.
     pub mesh: TriangleMesh,
+    /// The mesh's bounding-volume hierarchy for ray hits.
     pub bvh: MeshBvh,
 }
 
 impl Occluder {
+    /// An occluder of `mesh`, its BVH built here.
     pub fn new(mesh: TriangleMesh) -> Self {
         let bvh = mesh.bvh();
         Occluder { mesh, bvh }
@@ -100,13 +117,18 @@ impl Occluder {
 /// The floor square the map covers and its resolution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FloorWindow {
+    /// The square's corner of least x and y on the floor, world units.
     pub origin: DVec2,
+    /// Side of the square, world units.
     pub size: f64,
+    /// Map texels along x.
     pub width: usize,
+    /// Map texels along y.
     pub height: usize,
 }
 
 impl FloorWindow {
+    /// Floor area of one map texel, world units².
     pub fn texel_area(&self) -> f64 {
         (self.size / self.width as f64) * (self.size / self.height as f64)
     }
@@ -116,6 +138,7 @@ impl FloorWindow {
         (p - self.origin) / self.size * DVec2::new(self.width as f64, self.height as f64)
     }
 
+    /// A `width x height` map of the square, all zero.
     pub fn empty_map(&self) -> CausticsMap {
         CausticsMap::new(self.width, self.height, self.size)
     }
@@ -128,6 +151,7 @@ impl FloorWindow {
 /// and images of both lights read the same.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointLight {
+    /// Where the light is, world coordinates, above the floor (`z > 0`).
     pub position: DVec3,
     /// Unit axis of the spot's cone.
     pub axis: DVec3,
@@ -150,14 +174,18 @@ impl PointLight {
 /// Everything the technique and the reference need.
 #[derive(Clone, Debug)]
 pub struct GlassScene {
+    /// The caustic generator's geometry (one glass object).
     pub generator: Shape,
+    /// The generator's index of refraction, in air (> 1).
     pub ior: f64,
+    /// Diffuse objects (walls) that stop light.
     pub occluders: Vec<Occluder>,
     /// Unit direction the sunlight travels, `z < 0`; for a point light, the direction from the
     /// light to the generator's bounding-sphere centre (the axis of its photon image).
     pub light: DVec3,
     /// A point light instead of the sun.
     pub point: Option<PointLight>,
+    /// The floor square the caustics map covers and its resolution.
     pub floor: FloorWindow,
 }
 
@@ -187,6 +215,8 @@ pub fn light_frame(light: DVec3) -> (DVec3, DVec3, DVec3) {
 }
 
 impl GlassScene {
+    /// A scene lit by the sun travelling along `light` (normalised here; it must point down). Errors
+    /// where the IOR is not above 1 or the floor window is empty.
     pub fn new(
         generator: Shape,
         ior: f64,

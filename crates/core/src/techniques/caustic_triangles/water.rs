@@ -44,8 +44,8 @@
 
 use std::sync::Arc;
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::{
     CausticTrianglesParams, CausticTrianglesSetup, FloorWindow, INVALID, WaterTransport,
@@ -72,9 +72,13 @@ pub struct WaterSetup {
     pub spacing: f64,
     /// Unit direction the sunlight travels, `z < 0`.
     pub light: DVec3,
+    /// Side of the water square `[0, size]²`, world units.
     pub size: f64,
+    /// The water's rest level above the floor `z = 0`, world units: the surface is `z = depth + h`.
     pub depth: f64,
+    /// The water's index of refraction.
     pub ior: f64,
+    /// Whether each photon carries its Fresnel transmittance, relative to flat water's.
     pub fresnel: bool,
     /// `T(θ0)`, the Fresnel transmittance of flat water (1 without Fresnel).
     pub t_flat: f64,
@@ -237,10 +241,14 @@ impl WaterSetup {
         }
     }
 
+    /// Whether light is carried across the square's edges (tiling water without walls): every
+    /// triangle is drawn at the nine offsets of [`CausticTrianglesSetup::copies`].
     pub fn wrap(&self) -> bool {
         self.setup.water.is_some_and(|w| w.wrap)
     }
 
+    /// How the height grid is sampled past the square's edges: wrapped for a tiling surface, else
+    /// clamped.
     pub fn edge(&self) -> Edge {
         if self.surface_wrap {
             Edge::Wrap
@@ -379,9 +387,15 @@ pub fn wall_caustics(ws: &WaterSetup, heights: &Grid) -> Result<WallMaps> {
 
 /// Everything one run produces.
 pub struct WaterOutput {
+    /// The water photon image, `(P + 1)²` row major: `(x, y, Φ, σ)` of each photon's hit (light-space
+    /// coordinates over a terrain's receivers), or [`INVALID`].
     pub photons: Vec<[f32; 4]>,
+    /// Each photon's refracted path length from the surface to its hit, world units (0 where
+    /// invalid).
     pub paths: Vec<f32>,
+    /// Each photon's vertex irradiance `E = ΔΦ / ΔA`, −1 where invalid.
     pub irradiance: Vec<f32>,
+    /// The floor map, relative irradiance per RGB channel after absorption.
     pub map: CausticsMap,
 }
 

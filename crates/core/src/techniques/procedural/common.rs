@@ -17,7 +17,9 @@ use crate::water::procedural::Procedural;
 /// centred at `uv = (−E + (c + ½) 2E / width, −E + (r + ½) 2E / height)`, read bilinearly, 0 beyond.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightMap {
+    /// Texels along `u` (columns).
     pub width: usize,
+    /// Texels along `v` (rows).
     pub height: usize,
     /// `E`: the map spans `uv ∈ [−E, E]²`, the tangent of the half-angle it covers.
     pub extent: f64,
@@ -82,23 +84,29 @@ impl LightMap {
 
     /// A greyscale reading of a PNG (any colour type; luma in [0, 1], no sRGB decoding: a light map
     /// is data), normalised to 1 at its centre.
+    #[cfg_attr(not(feature = "formats"), allow(unused_variables))]
     pub fn load(path: &Path, extent: f64) -> Result<LightMap> {
-        let img = image::open(path).map_err(|e| Error::bad_file(path, e.to_string()))?;
-        let luma = img.to_luma32f();
-        let (width, height) = (luma.width() as usize, luma.height() as usize);
-        if width < 2 || height < 2 {
-            return Err(Error::bad_file(
-                path,
-                "a light map needs at least 2 x 2 texels",
-            ));
+        #[cfg(not(feature = "formats"))]
+        return Err(Error::feature_off(path, "a light map", "formats"));
+        #[cfg(feature = "formats")]
+        {
+            let img = image::open(path).map_err(|e| Error::bad_file(path, e.to_string()))?;
+            let luma = img.to_luma32f();
+            let (width, height) = (luma.width() as usize, luma.height() as usize);
+            if width < 2 || height < 2 {
+                return Err(Error::bad_file(
+                    path,
+                    "a light map needs at least 2 x 2 texels",
+                ));
+            }
+            LightMap {
+                width,
+                height,
+                extent,
+                texels: luma.into_raw(),
+            }
+            .normalised(path)
         }
-        LightMap {
-            width,
-            height,
-            extent,
-            texels: luma.into_raw(),
-        }
-        .normalised(path)
     }
 
     fn normalised(mut self, path: &Path) -> Result<LightMap> {
@@ -167,7 +175,9 @@ impl SurfaceInput<'_> {
 pub struct Trace {
     /// Where the ray meets the rest level (the point whose height and normal are read).
     pub surface_point: DVec2,
+    /// The water's height above its rest level there, world units.
     pub height: f64,
+    /// The water's upward unit normal there, from the height's gradient.
     pub normal: DVec3,
     /// The direction refracted into the air, `None` on total internal reflection.
     pub refracted: Option<DVec3>,

@@ -134,7 +134,9 @@ pub const SUN_DIAMETER_DEG: f64 = 0.53;
 pub const HALO_AREA: f64 = 10.0;
 /// The light map spans this much more than the halo's radius, so its border texels are dark.
 pub const LIGHT_MAP_MARGIN: f64 = 1.1;
+/// The most quads per side of the vertex variant's ground mesh (`mesh_resolution`).
 pub const MAX_MESH_RESOLUTION: u32 = 2048;
+/// The largest side of the texture variant's render target, texels (`target_resolution`).
 pub const MAX_TARGET_RESOLUTION: u32 = 8192;
 /// The sampler's anisotropy clamp, and the CPU twin's largest tap count.
 pub const MAX_ANISOTROPY: u32 = 16;
@@ -422,8 +424,11 @@ pub enum Variant {
 }
 
 impl Variant {
+    /// Every variant, in the order of the `variant` parameter's choices.
     pub const ALL: [Variant; 3] = [Variant::Vertex, Variant::Screen, Variant::Texture];
 
+    /// Its word in the table (`variant = "vertex"`) and in its entry's name
+    /// (`procedural-vertex`).
     pub fn name(self) -> &'static str {
         match self {
             Variant::Vertex => "vertex",
@@ -432,6 +437,7 @@ impl Variant {
         }
     }
 
+    /// The variant whose [`name`](Self::name) is `s`.
     pub fn parse(s: &str) -> Option<Variant> {
         Variant::ALL.into_iter().find(|v| v.name() == s)
     }
@@ -441,6 +447,7 @@ impl Variant {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ProceduralCausticsParams {
+    /// Which of the paper's three implementations runs (default: per pixel of the map).
     pub variant: Variant,
     /// Quads per side of the ground mesh of the vertex variant.
     pub mesh_resolution: u32,
@@ -500,6 +507,8 @@ fn field(name: &str, problem: String) -> Error {
 }
 
 impl ProceduralCausticsParams {
+    /// The `procedural` table of `table` (a scene's `[caustics]`), defaults where it is absent,
+    /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
         let p: ProceduralCausticsParams = match table.get("procedural") {
             Some(v) => v
@@ -512,6 +521,7 @@ impl ProceduralCausticsParams {
         Ok(p)
     }
 
+    /// Check every value's range; the error names the first field out of it.
     pub fn validate(&self) -> Result<()> {
         if !(0.0..=1.0).contains(&self.ground) {
             return Err(field(
@@ -605,16 +615,21 @@ impl ProceduralCausticsParams {
     }
 }
 
-/// The sun / light map over the tangent plane of the direction toward the sun: texel `(r, c)` is
 /// Everything the passes share, derived once from the scene (the GPU side uploads the same numbers
 /// as its uniform block).
 #[derive(Clone, Debug)]
 pub struct ProceduralSetup {
+    /// Which of the paper's three implementations runs.
     pub variant: Variant,
+    /// Texels of the caustics map along x.
     pub width: usize,
+    /// Texels of the caustics map along y.
     pub height: usize,
+    /// Side of the square `[0, size]²` the water and the map cover, world units.
     pub size: f64,
+    /// The water's rest level above the floor plane z = 0, world units.
     pub depth: f64,
+    /// The water's heights repeat across the square's edges (else they are clamped there).
     pub wrap: bool,
     /// Quads per side of the vertex variant's mesh.
     pub mesh: usize,
@@ -633,6 +648,7 @@ pub struct ProceduralSetup {
     pub absorption: DVec3,
     /// [`ProceduralCausticsParams::ground`].
     pub ground: f64,
+    /// The sun / light map the refracted gathering rays look up.
     pub light: LightMap,
     /// The terrain the gathering rays start from ([`ProceduralSetup::with_floor`]).
     pub receivers: Option<Shared>,

@@ -1,8 +1,8 @@
 //! The resample pass (`resample.wgsl`): the map reads the texture variant's mip chain at its
 //! pixels' centres, trilinearly with anisotropic taps ([`sampling_footprint`], Vulkan's LOD rule).
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::ProceduralSetup;
 use crate::map::CausticsMap;

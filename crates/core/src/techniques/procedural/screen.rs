@@ -2,8 +2,8 @@
 //! map pixel, at full resolution, no filtering. The texture variant's target pass evaluates the same
 //! lattice at the target's size ([`super::target_pass`]).
 
+use crate::parallel::prelude::*;
 use glam::DVec2;
-use rayon::prelude::*;
 
 use super::ProceduralSetup;
 use super::common::{SurfaceInput, caustic_at};

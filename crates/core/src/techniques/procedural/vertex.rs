@@ -2,8 +2,8 @@
 //! vertex of a fine ground mesh ([`vertex_values`], the vertex shader's work), interpolated linearly
 //! over its triangles into the map ([`rasterise`], the rasteriser's).
 
+use crate::parallel::prelude::*;
 use glam::DVec2;
-use rayon::prelude::*;
 
 use super::ProceduralSetup;
 use super::common::{SurfaceInput, caustic_at};

@@ -2,8 +2,8 @@
 //! of each triangle's volume by the reference planes drawn into an object's caustics map, the floor
 //! map, the walls' maps, and Eq. 4. GPU twins: `volumes/{water,slices,floor,walls,shade}.wgsl`.
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::representation::{OrthoView, covered};
 use super::{CellRect, ObjectView, VolumesSetup};
@@ -61,8 +61,12 @@ pub fn water_pass(setup: &VolumesSetup, heights: &Grid, wrap: bool) -> Vec<Water
 /// per channel) and their refracted directions.
 #[derive(Clone, Copy, Debug)]
 pub struct Slice {
+    /// Where each vertex's refracted ray meets the plane, world frame.
     pub points: [DVec3; 3],
+    /// `Ic` at each vertex, RGB relative irradiance across the rays (before the receiver's
+    /// cosine).
     pub intensity: [DVec3; 3],
+    /// Each vertex's unit refracted direction `t`, as the water pass gave it.
     pub dirs: [DVec3; 3],
 }
 
@@ -407,7 +411,7 @@ fn draw_floor(
 /// floor-wall edge is split along it, each part drawn with its own plane's Eq. 3 intensities.
 ///
 /// A slice is dropped where a vertex's ray runs parallel to or away from the wall (no point on the
-/// plane: [`slice`]), and where a vertex meets the wall plane more than `size` below the floor (a
+/// plane: [`slice()`]), and where a vertex meets the wall plane more than `size` below the floor (a
 /// near-vertical ray whose extension would put a far vertex into the rasteriser), as
 /// caustic-triangles drops such photons: the slice's share on the wall is then a sliver at its
 /// edge, and the flux lost is measured in the tests. Light meeting a wall above the rest water

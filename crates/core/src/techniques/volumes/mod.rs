@@ -225,7 +225,11 @@ pub struct VolumesParams {
     pub water_cells: u32,
     /// Side of the shadow map along the refracted sun, texels; 0 turns shadows off.
     pub shadow: u32,
+    /// Each volume carries its Fresnel transmittance relative to flat water, `T(θi) / T(θ0)`
+    /// (the `Ii` of Eq. 3 as the light that crosses the surface).
     pub fresnel: bool,
+    /// Each volume's light is attenuated by `exp(−K d)` along its path `d` in the water (Eq. 3),
+    /// with the scene's `K`.
     pub absorption: bool,
     /// `Ia` of Eq. 4, relative to the sun through flat water.
     pub ambient: f64,
@@ -251,6 +255,8 @@ pub const MAX_PLANES: u32 = 512;
 pub const MAX_TEXTURE: u32 = 4096;
 
 impl VolumesParams {
+    /// The `volumes` table of `table` (a scene's `[caustics]`), defaults where it is absent,
+    /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
         let p: VolumesParams = match table.get("volumes") {
             Some(v) => v
@@ -263,6 +269,7 @@ impl VolumesParams {
         Ok(p)
     }
 
+    /// Check every value's range; the error names the field out of it.
     pub fn validate(&self) -> Result<()> {
         if self.planes == 0 || self.planes > MAX_PLANES {
             return Err(Error::field(
@@ -295,6 +302,7 @@ impl VolumesParams {
 /// One underwater object as the technique sees it.
 #[derive(Clone, Debug)]
 pub struct VolumesObject {
+    /// Its surface, in the scene's frame (z up, the floor plane at z = 0), under the water.
     pub mesh: TriangleMesh,
     /// Linear RGB albedo: what the diffuse map holds where the object covers a texel.
     pub albedo: DVec3,
@@ -303,15 +311,24 @@ pub struct VolumesObject {
 /// What the technique needs from a scene.
 #[derive(Clone, Debug)]
 pub struct VolumesInput {
+    /// The scene's objects, all diffuse: the receivers of the caustics, in the scene's order.
     pub objects: Vec<VolumesObject>,
+    /// Side of the water square `[0, size]²`, world units.
     pub size: f64,
+    /// The water's rest level above the floor plane z = 0, world units.
     pub depth: f64,
+    /// Index of refraction of the water (air is 1).
     pub ior: f64,
+    /// Absorption coefficient `K` per RGB channel, per world unit of path in the water.
     pub absorption: DVec3,
+    /// The direction the sunlight travels, z < 0 (need not be normalised).
     pub light: DVec3,
+    /// The eye camera's position, world frame: it fixes each object's refracted viewing ray `v`
+    /// (§3.1).
     pub camera: DVec3,
-    /// Floor map resolution.
+    /// Floor map resolution: texels along x.
     pub width: usize,
+    /// Floor map resolution: texels along y.
     pub height: usize,
     /// The pool's walls receive light (`[floor] walls`): the water is the square alone
     /// and the wall pass draws the walls' maps ([`illumination::wall_pass`]).
@@ -319,6 +336,7 @@ pub struct VolumesInput {
 }
 
 impl VolumesInput {
+    /// The technique's view of `scene`: an error where it has no water or a glass object.
     pub fn from_scene(scene: &Scene) -> Result<Self> {
         let water = scene.water.as_ref().ok_or_else(|| {
             Error::InvalidParameter(format!(
@@ -361,17 +379,26 @@ impl VolumesInput {
 /// (as the reference's), so the lattice is its own mirror image.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lattice {
+    /// Vertex `(0, 0)`'s horizontal position `(x, y)`, world units: `(0, 0)` with walls; without
+    /// them shifted back up the refracted sun and widened, so that the light reaching the floor
+    /// square from beyond the water square is swept too.
     pub origin: DVec2,
+    /// Side of a square cell, world units.
     pub cell: f64,
+    /// Cells along x.
     pub nx: usize,
+    /// Cells along y.
     pub ny: usize,
 }
 
 impl Lattice {
+    /// Vertices, `(nx + 1)(ny + 1)`, indexed row-major `i (nx + 1) + j`.
     pub fn vertex_count(&self) -> usize {
         (self.nx + 1) * (self.ny + 1)
     }
 
+    /// Horizontal position `(x, y)` of vertex `(i, j)` (row `i` along y, column `j` along x), world
+    /// units.
     pub fn position(&self, i: usize, j: usize) -> DVec2 {
         self.origin + DVec2::new(j as f64, i as f64) * self.cell
     }
@@ -397,16 +424,22 @@ impl Lattice {
 /// A rectangle of lattice cells, `i0..i1` by `j0..j1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CellRect {
+    /// First row of cells (along y).
     pub i0: usize,
+    /// One past the last row.
     pub i1: usize,
+    /// First column of cells (along x).
     pub j0: usize,
+    /// One past the last column.
     pub j1: usize,
 }
 
 impl CellRect {
+    /// Columns of cells it spans.
     pub fn cols(&self) -> usize {
         self.j1 - self.j0
     }
+    /// Lattice triangles it holds, two per cell.
     pub fn triangles(&self) -> usize {
         2 * (self.i1 - self.i0) * self.cols()
     }
@@ -425,9 +458,14 @@ impl CellRect {
 /// planes, and the lattice cells whose illumination volumes can reach it.
 #[derive(Clone, Debug)]
 pub struct ObjectView {
+    /// The box around the object with its front face across the refracted viewing ray `v`, and
+    /// the frame of its depth texture, diffuse map and caustics map.
     pub view: OrthoView,
+    /// Reference planes slicing the box across `v` (§3.1).
     pub planes: usize,
+    /// Linear RGB albedo of the object.
     pub albedo: DVec3,
+    /// The lattice cells whose illumination volumes can reach the box.
     pub cells: CellRect,
 }
 
@@ -446,21 +484,31 @@ impl ObjectView {
 /// Everything the passes share, derived once (the GPU uploads the same numbers).
 #[derive(Clone, Debug)]
 pub struct VolumesSetup {
+    /// The technique's parameters, checked.
     pub params: VolumesParams,
+    /// Side of the water square `[0, size]²`, world units.
     pub size: f64,
+    /// The water's rest level above the floor plane z = 0, world units.
     pub depth: f64,
+    /// Index of refraction of the water.
     pub ior: f64,
+    /// Air to water, `η = 1 / ior`: the ratio Snell's law takes for the sunlight entering.
     pub eta: f64,
     /// `K` per channel, zero without the absorption option.
     pub absorption: DVec3,
+    /// Unit direction the sunlight travels, z < 0.
     pub light: DVec3,
     /// The flat-water refracted sun.
     pub t0: DVec3,
     /// `T(θ0)`, or 1 without the Fresnel option.
     pub t_flat: f64,
+    /// The water triangle lattice the illumination volumes are swept from.
     pub lattice: Lattice,
+    /// Floor map texels along x.
     pub width: usize,
+    /// Floor map texels along y.
     pub height: usize,
+    /// Each object's representation, in the input's order.
     pub objects: Vec<ObjectView>,
     /// The shadow map's frame (all objects along `t0`), `None` without shadows.
     pub shadow: Option<OrthoView>,
@@ -522,6 +570,8 @@ pub fn refracted_view(camera: DVec3, target: DVec3, depth: f64, ior: f64) -> DVe
 }
 
 impl VolumesSetup {
+    /// The setup for `input` with `params`: checks the parameters, the light and every object's
+    /// mesh ([`check_mesh`]), lays out the lattice and each object's box, planes and cells.
     pub fn new(params: &VolumesParams, input: &VolumesInput) -> Result<Self> {
         params.validate()?;
         let light = super::check_inputs(input.width, input.height, input.light)?;
@@ -688,7 +738,9 @@ pub struct ObjectMaps {
 /// The whole technique's output.
 #[derive(Clone, Debug)]
 pub struct VolumesOutput {
+    /// Each object's maps, in the input's order.
     pub objects: Vec<ObjectMaps>,
+    /// The floor's caustics map over the square `[0, size]²`, relative irradiance.
     pub floor: CausticsMap,
     /// The walls' maps ([`illumination::wall_pass`]), `None` without walls.
     pub walls: Option<WallMaps>,

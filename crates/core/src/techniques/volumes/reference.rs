@@ -32,8 +32,8 @@
 //! The grid is stratified, so the noise falls faster than `1/√photons` away from the caustics'
 //! singular curves; `docs/volumes.md` gives the difference between runs at `s` and `s/2`.
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::representation::covered;
 use super::{CellRect, VolumesInput, VolumesSetup};
@@ -43,12 +43,14 @@ use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
+/// How finely [`mesh_reference`] traces: photon spacings, the jitter's seed, the receivers.
 #[derive(Clone, Debug)]
 pub struct MeshReferenceOptions {
     /// Photon spacing on the water for the floor map, world units.
     pub floor_spacing: f64,
     /// Photon spacing on the water for the objects' maps, world units.
     pub object_spacing: f64,
+    /// Seed of the photons' jitter within their squares: the same seed traces the same photons.
     pub seed: u64,
     /// The pool's walls receive light and stop it (see the module's "Walls").
     pub walls: bool,
@@ -76,13 +78,16 @@ impl MeshReferenceOptions {
     }
 }
 
+/// What [`mesh_reference`] traced: the objects', floor's and walls' maps, relative irradiance.
 pub struct MeshReference {
     /// Per object, relative irradiance in the technique's texels (zero where the object is not
     /// seen); empty without [`MeshReferenceOptions::object_maps`].
     pub objects: Vec<Vec<[f32; 3]>>,
+    /// The floor's map over the square `[0, size]²`, at the technique's floor map resolution.
     pub floor: CausticsMap,
     /// The walls' maps ([`WallMaps::for_floor_map`] of the floor map) with `walls`.
     pub walls: Option<WallMaps>,
+    /// Photons traced in all, the floor's grid and the objects' together.
     pub photons: u64,
 }
 

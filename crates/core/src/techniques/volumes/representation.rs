@@ -11,11 +11,17 @@ use crate::mesh::{MeshBvh, TriangleMesh};
 /// `(u, w, depth) = (a · p, b · p, v · p) − lo`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OrthoView {
+    /// The texture's `u` axis, unit, world frame: horizontal, `v × z` (x where `v` is vertical).
     pub a: DVec3,
+    /// The texture's `w` axis, unit, world frame: `v × a`.
     pub b: DVec3,
+    /// The unit direction of projection, world frame; depth grows along it.
     pub v: DVec3,
+    /// The box's near corner as `(a · p, b · p, v · p)`, world units: the frame's origin.
     pub lo: DVec3,
+    /// The box's far corner as `(a · p, b · p, v · p)`, world units.
     pub hi: DVec3,
+    /// Texels per side of its square textures.
     pub res: usize,
 }
 
@@ -46,6 +52,7 @@ impl OrthoView {
         }
     }
 
+    /// The box's size along `(a, b, v)`, world units.
     pub fn extent(&self) -> DVec3 {
         self.hi - self.lo
     }

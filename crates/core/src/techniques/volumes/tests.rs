@@ -752,11 +752,7 @@ fn without_walls_nothing_changes() {
     let mut walled = VolumesSetup::new(&params(5, res as u32), &with_walls(light, res)).unwrap();
     assert_eq!(walled.lattice.origin, glam::DVec2::ZERO);
     walled.lattice = setup.lattice;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let (a, b) = pool.install(|| {
+    let (a, b) = crate::parallel::on_one_thread(|| {
         let water = water_pass(&setup, &waves(res, false), true);
         (
             floor_pass(&setup, &water, &[]),

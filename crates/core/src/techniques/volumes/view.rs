@@ -10,8 +10,8 @@
 //! the pool's walls the rays that leave the square through a wall see it lit by its map
 //! ([`view_pass_with_walls`]).
 
+use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::representation::covered;
 use super::{ObjectMaps, VolumesSetup};
@@ -31,15 +31,24 @@ pub const SURFACE_STEPS: usize = 4;
 /// `up` scaled by the field of view (as [`Camera::ray`]).
 #[derive(Clone, Copy, Debug)]
 pub struct ViewCamera {
+    /// The eye, world frame.
     pub position: DVec3,
+    /// Unit direction from the eye to the camera's target.
     pub forward: DVec3,
+    /// Horizontal, to the right of `forward`, scaled to `tan(fov_y / 2)` times the aspect ratio:
+    /// the offset to the image's right edge.
     pub right: DVec3,
+    /// Perpendicular to `forward` and `right`, upwards, scaled to `tan(fov_y / 2)`: the offset to
+    /// the image's top edge.
     pub up: DVec3,
+    /// Image width, pixels.
     pub width: usize,
+    /// Image height, pixels.
     pub height: usize,
 }
 
 impl ViewCamera {
+    /// The view pass's reading of the scene camera `c`.
     pub fn new(c: &Camera) -> Self {
         let forward = (c.target - c.position).normalize();
         let right = forward.cross(DVec3::Z).normalize_or(DVec3::X);
@@ -56,6 +65,7 @@ impl ViewCamera {
         }
     }
 
+    /// Unit direction of the ray through the centre of pixel `(x, y)` (y down).
     pub fn dir(&self, x: usize, y: usize) -> DVec3 {
         let sx = 2.0 * (x as f64 + 0.5) / self.width as f64 - 1.0;
         let sy = 1.0 - 2.0 * (y as f64 + 0.5) / self.height as f64;

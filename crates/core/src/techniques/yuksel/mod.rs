@@ -377,7 +377,11 @@ pub struct YukselParams {
     /// first whose footprints all misplace no more than this share of their width (or of a map
     /// pixel where narrower; [`prepass()`]). 0: every pixel's `k × k`. Default [`DEFAULT_SPLIT`].
     pub split: f64,
+    /// Each sample carries `T(θi) / T(θ0)`, its Fresnel transmittance relative to flat water
+    /// (beyond the paper).
     pub fresnel: bool,
+    /// `exp(−K d0)` per RGB channel in pass 2, `d0` the flat-water path from the surface to the
+    /// floor, with the scene's `K` (beyond the paper).
     pub absorption: bool,
     /// How the GPU makes the map. Default: the scatter with the region from the water, the
     /// paper's render targets with `preset = "paper"` ([`passes`](Self::passes)).
@@ -415,6 +419,8 @@ impl YukselParams {
         }
     }
 
+    /// The `yuksel` table of `table` (a scene's `[caustics]`), defaults where it is absent,
+    /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
         let p: YukselParams = match table.get("yuksel") {
             Some(v) => v
@@ -427,6 +433,8 @@ impl YukselParams {
         Ok(p)
     }
 
+    /// Check every value's range (`n` odd, `m` even, within their limits); the error names the
+    /// field out of it.
     pub fn validate(&self) -> Result<()> {
         if let Some(n) = self.n
             && (n == 0 || n.is_multiple_of(2) || n > MAX_N)
@@ -507,8 +515,12 @@ impl YukselParams {
 /// centre). Mirrors `YukselRegion` in `yuksel/common.wgsl`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Region {
+    /// `N`: samples gathered along x (odd), in the level's pixels (§4).
     pub n: usize,
+    /// `M`: rows beside the pixel along y (even), `M + 1` channels, in the level's pixels (§4).
     pub m: usize,
+    /// `[x, y]`: the region's centre offset from the pixel's own sample, in the level's pixels,
+    /// where the deflections lean one way (ours; `[0, 0]` for the paper's fixed region).
     pub shift: [i32; 2],
     /// The samples are those of a map `2^level` times coarser (N, M and the shift in its pixels),
     /// their light landing in the map's own pixels: where the deflection passes the largest
@@ -524,7 +536,9 @@ pub struct Region {
 /// as its uniform block).
 #[derive(Clone, Debug, PartialEq)]
 pub struct YukselSetup {
+    /// Map pixels along x.
     pub width: usize,
+    /// Map pixels along y.
     pub height: usize,
     /// The region the CPU passes gather: fixed, or the largest until [`fit_region`](Self::fit_region).
     pub region: Region,
@@ -541,14 +555,22 @@ pub struct YukselSetup {
     pub pixel: DVec2,
     /// `h L'` in world units: from a floor point to its illumination centre on the rest surface.
     pub centre_offset: DVec2,
+    /// Unit direction the sunlight travels, z < 0.
     pub light: DVec3,
+    /// Air to water, `η = 1 / ior`: the ratio Snell's law takes for the sunlight entering.
     pub eta: f64,
+    /// Index of refraction of the water.
     pub ior: f64,
+    /// The water's rest level above the floor plane z = 0 (the paper's `h`), world units.
     pub depth: f64,
+    /// Side of the square `[0, size]²` the water and the map cover, world units.
     pub size: f64,
+    /// The water's heights repeat across the square's edges (else they are clamped there).
     pub wrap: bool,
     /// `T(θ0)`, or 1 without the Fresnel option.
     pub t_flat: f64,
+    /// Each sample carries its Fresnel transmittance relative to flat water
+    /// ([`YukselParams::fresnel`]).
     pub fresnel: bool,
     /// `K` per channel, zero without the absorption option.
     pub absorption: DVec3,
@@ -559,6 +581,10 @@ pub struct YukselSetup {
 }
 
 impl YukselSetup {
+    /// The setup for a `width` x `height` map of the square of side `size`, water `depth` deep
+    /// with index `ior`, absorption `K` per channel, `wrap`ped or clamped edges, sunlight
+    /// travelling along `light` (z < 0); the region is fixed or the largest until
+    /// [`fit_region`](Self::fit_region).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         params: &YukselParams,
