@@ -32,11 +32,11 @@
 
 use std::sync::Arc;
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use crate::map::CausticsMap;
 use crate::optics::refract;
+use crate::parallel::prelude::*;
 use crate::scene::Floor;
 
 /// Light-space coordinate of `p`: where the line through it along `t0` meets the plane `z = 0`.

@@ -40,12 +40,12 @@
 //! (a wave crest's own edge) goes to its top row. A wall texel's value is its flux over its area
 //! in the floor's unit ([`crate::walls`]).
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use crate::error::{Error, Result};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::parallel::prelude::*;
 use crate::receivers::HeightMarch;
 use crate::scene::{Floor, Scene, Water};
 use crate::walls::{Wall, WallMaps};

@@ -39,13 +39,13 @@ mod trace;
 #[cfg(test)]
 mod tests;
 
-use crate::parallel::prelude::*;
 use glam::DVec3;
 
 use crate::eye::EyeCamera;
 use crate::map::{CausticsMap, MapPyramid};
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, refract};
+use crate::parallel::prelude::*;
 use crate::scene::Scene;
 use crate::sky::{SUN_RADIUS, Sky, TURBIDITY};
 use crate::walls::WallMaps;

@@ -34,12 +34,12 @@
 use std::f64::consts::{PI, SQRT_2};
 use std::fmt;
 
-use crate::parallel::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::GridSurface;
 use crate::error::{Error, Result};
 use crate::grid::{Edge, Grid};
+use crate::parallel::prelude::*;
 
 /// Parameters of the simulation as a scene file states them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -28,7 +28,6 @@
 //! Albedos are one colour for the floor and one for the occluders (the glass scenes' floor is
 //! plain); the glass is clear (its tint is not applied). All in linear RGB; [`crate::render::to_rgb8`] tone maps.
 
-use crate::parallel::prelude::*;
 use glam::DVec3;
 
 use super::CausticTrianglesSetup;
@@ -37,6 +36,7 @@ use super::distance_map::{Crossing, DistanceMap};
 use super::scene::{FloorWindow, PointLight};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, reflect, refract};
+use crate::parallel::prelude::*;
 use crate::scene::Camera;
 
 /// The camera pass's shading constants.

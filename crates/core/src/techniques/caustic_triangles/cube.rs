@@ -27,11 +27,12 @@
 //! For the sun, the light cube map of a light at infinity degenerates (every texel of a face sees
 //! the same direction), so the technique keeps the floor map of [`super::triangles_pass`].
 
-use crate::parallel::prelude::*;
 use glam::DVec3;
 
 use super::CausticTrianglesSetup;
 use super::distance_map::{Crossing, DistanceMap, face_st, texel_dir};
+
+use crate::parallel::prelude::*;
 
 /// Marks "no surface" in the shadow distances.
 pub const FAR: f32 = f32::MAX;

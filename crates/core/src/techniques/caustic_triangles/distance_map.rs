@@ -21,10 +21,11 @@
 //! depth-peeling order the paper names for the general case. It is built once on the CPU for a
 //! rigid generator and uploaded.
 
-use crate::parallel::prelude::*;
 use glam::DVec3;
 
 use super::scene::GlassScene;
+
+use crate::parallel::prelude::*;
 
 /// A generator's layered distance map (see the module docs): per cube-map texel and layer, the
 /// distance, normal and material of a surface around the reference point.

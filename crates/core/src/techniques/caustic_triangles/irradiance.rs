@@ -1,11 +1,12 @@
 //! The vertex irradiance pass (§5), CPU twin of `caustic_triangles/irradiance.wgsl`: each photon's
 //! `E = ΔΦ / ΔA` by the area rule ([`AreaRule`]).
 
-use crate::parallel::prelude::*;
 use glam::DVec2;
 
 use super::photon::{pos, same_path, valid};
 use super::{AreaRule, CausticTrianglesSetup};
+
+use crate::parallel::prelude::*;
 
 pub(super) fn tri_area(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     0.5 * (b - a).perp_dot(c - a).abs()

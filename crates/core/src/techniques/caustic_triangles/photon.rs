@@ -1,11 +1,11 @@
 //! The photon tracing pass (§4.1), CPU twin of `caustic_triangles/photon.wgsl`: the photon hit
 //! location image, and how its texels are read.
 
-use crate::parallel::prelude::*;
 use glam::DVec2;
 
 use super::{CausticTrianglesSetup, DistanceMap};
 use crate::optics::{fresnel_transmittance, reflect, refract};
+use crate::parallel::prelude::*;
 
 /// The marker of an invalid photon-image texel.
 pub const INVALID: [f32; 4] = [0.0, 0.0, -1.0, 0.0];

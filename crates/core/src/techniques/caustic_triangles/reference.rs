@@ -26,12 +26,12 @@
 //! The tests and `docs/caustic-triangles.md` state the photon count and the difference between
 //! `N` and `2N` runs.
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::scene::{GlassScene, bounding_sphere, light_frame};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, reflect, refract};
+use crate::parallel::prelude::*;
 
 /// How the reference photon tracer runs.
 #[derive(Clone, Debug)]

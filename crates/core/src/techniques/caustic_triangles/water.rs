@@ -44,7 +44,6 @@
 
 use std::sync::Arc;
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::{
@@ -55,6 +54,7 @@ use crate::error::{Error, Result};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::parallel::prelude::*;
 use crate::receivers::{ReceiverHeights, flat_refracted, light_space, lookup};
 use crate::scene::{Floor, Scene, Water, WaterSource};
 use crate::walls::{Wall, WallMaps};

@@ -1,11 +1,11 @@
 //! The resample pass (`resample.wgsl`): the map reads the texture variant's mip chain at its
 //! pixels' centres, trilinearly with anisotropic taps ([`sampling_footprint`], Vulkan's LOD rule).
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::ProceduralSetup;
 use crate::map::CausticsMap;
+use crate::parallel::prelude::*;
 
 /// The sampler's level of detail and anisotropic taps for reading a `target²` texture into a
 /// `width x height` map: `(λ, taps, major axis is x)`. The CPU twin's reading of Vulkan's rule for

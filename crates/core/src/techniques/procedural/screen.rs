@@ -2,11 +2,12 @@
 //! map pixel, at full resolution, no filtering. The texture variant's target pass evaluates the same
 //! lattice at the target's size ([`super::target_pass`]).
 
-use crate::parallel::prelude::*;
 use glam::DVec2;
 
 use super::ProceduralSetup;
 use super::common::{SurfaceInput, caustic_at};
+
+use crate::parallel::prelude::*;
 
 /// Per pixel: the caustic at the centre of every texel of a `width x height` lattice over the floor
 /// square, row 0 at y = 0 (the screen pass at the map's size, the target pass at the target's).

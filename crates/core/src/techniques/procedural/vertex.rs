@@ -2,12 +2,12 @@
 //! vertex of a fine ground mesh ([`vertex_values`], the vertex shader's work), interpolated linearly
 //! over its triangles into the map ([`rasterise`], the rasteriser's).
 
-use crate::parallel::prelude::*;
 use glam::DVec2;
 
 use super::ProceduralSetup;
 use super::common::{SurfaceInput, caustic_at};
 use crate::map::CausticsMap;
+use crate::parallel::prelude::*;
 
 /// Vertex variant, the vertex shader's work: the caustic at every vertex `(k, l)` of the mesh, at
 /// `(k, l) size / mesh`, row-major over `l` (`(mesh + 1)²` values).

@@ -2,7 +2,6 @@
 //! of each triangle's volume by the reference planes drawn into an object's caustics map, the floor
 //! map, the walls' maps, and Eq. 4. GPU twins: `volumes/{water,slices,floor,walls,shade}.wgsl`.
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::representation::{OrthoView, covered};
@@ -10,6 +9,7 @@ use super::{CellRect, ObjectView, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::parallel::prelude::*;
 use crate::receivers::{ReceiverHeights, light_space};
 use crate::walls::{Wall, WallMaps};
 

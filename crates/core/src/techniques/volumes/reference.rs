@@ -32,7 +32,6 @@
 //! The grid is stratified, so the noise falls faster than `1/√photons` away from the caustics'
 //! singular curves; `docs/volumes.md` gives the difference between runs at `s` and `s/2`.
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::representation::covered;
@@ -40,6 +39,7 @@ use super::{CellRect, VolumesInput, VolumesSetup};
 use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::parallel::prelude::*;
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 

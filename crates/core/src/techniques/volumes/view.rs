@@ -10,7 +10,6 @@
 //! the pool's walls the rays that leave the square through a wall see it lit by its map
 //! ([`view_pass_with_walls`]).
 
-use crate::parallel::prelude::*;
 use glam::{DVec2, DVec3};
 
 use super::representation::covered;
@@ -18,6 +17,7 @@ use super::{ObjectMaps, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::parallel::prelude::*;
 use crate::scene::Camera;
 use crate::walls::{Wall, WallMaps};
 
