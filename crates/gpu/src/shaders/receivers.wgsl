@@ -29,8 +29,8 @@ fn receiver_height(map: texture_2d<f32>, r: Receivers, q: vec2<f32>) -> f32 {
 
 // The length d along s + d t (t unit, going down) to where the ray first meets the receivers, or
 // -1 where it starts below them or never comes down: steps bounded by the map's slope times the
-// ray's drift from t0, then bisection (the CPU twin's `ReceiverHeights::meet`, in f32: steps no
-// shorter than 1e-4 texel).
+// ray's drift from t0, then regula falsi in its Illinois form on the sign change (the CPU twin's
+// `ReceiverHeights::meet` and `regula_falsi`, in f32: steps and tolerance 1e-4 texel).
 fn meet_receivers(map: texture_2d<f32>, r: Receivers, s: vec3<f32>, t: vec3<f32>) -> f32 {
     if t.z >= 0.0 {
         return -1.0;
@@ -50,17 +50,35 @@ fn meet_receivers(map: texture_2d<f32>, r: Receivers, s: vec3<f32>, t: vec3<f32>
         let g_next = p.z - receiver_height(map, r, light_space(p, t0));
         if g_next <= 0.0 {
             var a = d;
+            var ga = g;
             var b = d + step;
+            var gb = g_next;
+            var m = b;
+            var side = 0;
             for (var n = 0; n < 24; n++) {
-                let m = 0.5 * (a + b);
+                m = (a * gb - b * ga) / (gb - ga);
                 let pm = s + t * m;
-                if pm.z - receiver_height(map, r, light_space(pm, t0)) > 0.0 {
+                let gm = pm.z - receiver_height(map, r, light_space(pm, t0));
+                if gm > 0.0 {
                     a = m;
+                    ga = gm;
+                    if side == 1 {
+                        gb *= 0.5;
+                    }
+                    side = 1;
                 } else {
                     b = m;
+                    gb = gm;
+                    if side == -1 {
+                        ga *= 0.5;
+                    }
+                    side = -1;
+                }
+                if abs(gm) < tol || b - a < tol {
+                    break;
                 }
             }
-            return 0.5 * (a + b);
+            return m;
         }
         d += step;
         g = g_next;

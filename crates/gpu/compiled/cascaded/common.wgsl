@@ -1,0 +1,216 @@
+const BISECTION_STEPS: u32 = 20u;
+
+struct Cascaded {
+    light: vec4<f32>,
+    e_u: vec4<f32>,
+    e_v: vec4<f32>,
+    view: vec4<f32>,
+    view2: vec4<f32>,
+    eye_pos: vec4<f32>,
+    eye_fwd: vec4<f32>,
+    eye_right: vec4<f32>,
+    eye_up: vec4<f32>,
+    ior: vec4<f32>,
+    absorption: vec4<f32>,
+    ramps: vec4<f32>,
+    terrain: vec4<f32>,
+    post: vec4<f32>,
+    fars: vec4<f32>,
+    fluxes: vec4<f32>,
+    width: u32,
+    height: u32,
+    res: u32,
+    cascade: u32,
+    flags: u32,
+    wrap: u32,
+    walls: u32,
+    _pad1: u32
+}
+
+const MARCH_STEPS: u32 = 64u;
+
+const WATER_STEPS: u32 = 4u;
+
+fn box_hit(c: Cascaded, o: vec3<f32>, d: vec3<f32>) -> f32 {
+    if d.z >= 0.0 {
+        return -1.0;
+    }
+    var s0 = 0.0;
+    if o.z > c.light.w {
+        s0 = (c.light.w - o.z) / d.z;
+    }
+    let p = o + d * s0;
+    if !in_square(c, p) {
+        return -1.0;
+    }
+    let s_floor = -p.z / d.z;
+    if in_square(c, p + d * s_floor) {
+        return s0 + s_floor;
+    }
+    var sx = 3e38;
+    var sy = 3e38;
+    if d.x > 0.0 {
+        sx = (c.e_u.w - p.x) / d.x;
+    }
+    else if d.x < 0.0 {
+        sx = -p.x / d.x;
+    }
+    if d.y > 0.0 {
+        sy = (c.e_u.w - p.y) / d.y;
+    }
+    else if d.y < 0.0 {
+        sy = -p.y / d.y;
+    }
+    let s = min(sx, sy);
+    if s >= 3e38 {
+        return -1.0;
+    }
+    return s0 + s;
+}
+
+fn eye_project(c: Cascaded, p: vec3<f32>) -> vec3<f32> {
+    let v = p - c.eye_pos.xyz;
+    let z = dot(v, c.eye_fwd.xyz);
+    if z <= 0.0 {
+        return vec3<f32>(0.0, 0.0, -1.0);
+    }
+    let sx = dot(v, c.eye_right.xyz) / z / (c.eye_pos.w * c.eye_fwd.w);
+    let sy = dot(v, c.eye_up.xyz) / z / c.eye_pos.w;
+    return vec3<f32>((sx + 1.0) * 0.5 * f32(c.width), (1.0 - sy) * 0.5 * f32(c.height), z);
+}
+
+fn eye_ray(c: Cascaded, x: f32, y: f32) -> vec3<f32> {
+    let sx = (2.0 * x / f32(c.width) - 1.0) * c.eye_pos.w * c.eye_fwd.w;
+    let sy = (1.0 - 2.0 * y / f32(c.height)) * c.eye_pos.w;
+    return c.eye_fwd.xyz + c.eye_right.xyz * sx + c.eye_up.xyz * sy;
+}
+
+fn in_square(c: Cascaded, q: vec3<f32>) -> bool {
+    return q.x >= 0.0 && q.y >= 0.0 && q.x <= c.e_u.w && q.y <= c.e_u.w;
+}
+
+fn package_shaders_water__1catmull_rom(t: f32) -> array<vec4<f32>, 2> {
+    let t2 = t * t;
+    let t3 = t2 * t;
+    let w = 0.5 * vec4<f32>(-t3 + 2.0 * t2 - t, 3.0 * t3 - 5.0 * t2 + 2.0, -3.0 * t3 + 4.0 * t2 + t, t3 - t2);
+    let dw = 0.5 * vec4<f32>(-3.0 * t2 + 4.0 * t - 1.0, 9.0 * t2 - 10.0 * t, -9.0 * t2 + 8.0 * t + 1.0, 3.0 * t2 - 2.0 * t);
+    return array<vec4<f32>, 2>(w, dw);
+}
+
+fn package_shaders_water__1grid_index(first: i32, k: i32, n: i32, wrap: bool) -> i32 {
+    let c = first + k;
+    if wrap {
+        if n < 3 {
+            return c % n;
+        }
+        return select(c, c - n, c >= n);
+    }
+    return clamp(c, 0, n - 1);
+}
+
+fn package_shaders_water__1grid_sample(tex: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {
+    let dims = vec2<f32>(textureDimensions(tex));
+    let texel = size / dims;
+    let uv = p / texel - 0.5;
+    let base = floor(uv);
+    let f = uv - base;
+    let wu = package_shaders_water__1catmull_rom(f.x);
+    let wv = package_shaders_water__1catmull_rom(f.y);
+    let n = vec2<i32>(dims);
+    var first = vec2<i32>(base) - 1;
+    if wrap {
+        first = ((first % n) + n) % n;
+    }
+    var h = 0.0;
+    var hu = 0.0;
+    var hv = 0.0;
+    for (var a = 0; a < 4; a++) {
+        let row = package_shaders_water__1grid_index(first.y, a, n.y, wrap);
+        for (var b = 0; b < 4; b++) {
+            let s = textureLoad(tex, vec2<i32>(package_shaders_water__1grid_index(first.x, b, n.x, wrap), row), 0).r;
+            h += wu[0][b] * wv[0][a] * s;
+            hu += wu[1][b] * wv[0][a] * s;
+            hv += wu[0][b] * wv[1][a] * s;
+        }
+    }
+    return vec3<f32>(h, hu / texel.x, hv / texel.y);
+}
+
+fn ray_origin(c: Cascaded, i: u32, j: u32) -> vec3<f32> {
+    let u = c.view.x + (f32(j) + 0.5) * c.view.z;
+    let v = c.view.y + (f32(i) + 0.5) * c.view.w;
+    return c.e_u.xyz * u + c.e_v.xyz * v + c.light.xyz * c.view2.x;
+}
+
+fn receiver_normal(c: Cascaded, p: vec3<f32>) -> vec3<f32> {
+    if p.z <= 1e-6 * c.light.w {
+        return vec3<f32>(0.0, 0.0, 1.0);
+    }
+    let size = c.e_u.w;
+    var best = p.x;
+    var n = vec3<f32>(1.0, 0.0, 0.0);
+    if size - p.x < best {
+        best = size - p.x;
+        n = vec3<f32>(-1.0, 0.0, 0.0);
+    }
+    if p.y < best {
+        best = p.y;
+        n = vec3<f32>(0.0, 1.0, 0.0);
+    }
+    if size - p.y < best {
+        n = vec3<f32>(0.0, -1.0, 0.0);
+    }
+    return n;
+}
+
+fn terrain_gap(c: Cascaded, tex: texture_2d<f32>, o: vec3<f32>, d: vec3<f32>, s: f32) -> f32 {
+    let p = o + d * s;
+    return p.z - terrain_height(c, tex, p.xy).x;
+}
+
+fn terrain_height(c: Cascaded, tex: texture_2d<f32>, p: vec2<f32>) -> vec3<f32> {
+    if c.terrain.z == 0.0 {
+        return vec3<f32>(0.0);
+    }
+    return package_shaders_water__1grid_sample(tex, p, c.e_u.w, false);
+}
+
+fn terrain_hit(c: Cascaded, tex: texture_2d<f32>, o: vec3<f32>, d: vec3<f32>) -> f32 {
+    if c.walls != 0u && c.terrain.z == 0.0 {
+        return box_hit(c, o, d);
+    }
+    if d.z >= 0.0 {
+        return -1.0;
+    }
+    if c.terrain.z == 0.0 {
+        let s = -o.z / d.z;
+        return select(-1.0, s, s >= 0.0);
+    }
+    let s_a = max((c.terrain.y - o.z) / d.z, 0.0);
+    let s_b = (c.terrain.x - o.z) / d.z;
+    if s_b < 0.0 {
+        return -1.0;
+    }
+    if terrain_gap(c, tex, o, d, s_a) <= 0.0 {
+        return s_a;
+    }
+    let step = (s_b - s_a) / f32(MARCH_STEPS);
+    var a = s_a;
+    for (var n = 1u; n <= MARCH_STEPS; n++) {
+        var b = s_a + step * f32(n);
+        if terrain_gap(c, tex, o, d, b) <= 0.0 {
+            for (var m = 0u; m < BISECTION_STEPS; m++) {
+                let mid = 0.5 * (a + b);
+                if terrain_gap(c, tex, o, d, mid) > 0.0 {
+                    a = mid;
+                }
+                else {
+                    b = mid;
+                }
+            }
+            return 0.5 * (a + b);
+        }
+        a = b;
+    }
+    return s_b;
+}
