@@ -117,7 +117,12 @@ impl Plugin for CausticsPlugin {
 
 /// caustics-gpu's shared WGSL that `caustics.wesl` imports, the final image's own copies: each as
 /// the WESL module its path names (Bevy names an `embedded://` shader `caustics_gpu::<file>`).
-const SHARED_WGSL: [(Handle<Shader>, &str, &str); 2] = [
+const SHARED_WGSL: [(Handle<Shader>, &str, &str); 3] = [
+    (
+        uuid_handle!("3e9a5c71-2d4b-4f86-a0c3-7b1e9d2f6a58"),
+        shaders::CAUSTICS_LIGHT,
+        "embedded://caustics_gpu/caustics_light.wesl",
+    ),
     (
         uuid_handle!("6f0c1d52-8a3e-4b7f-9c21-3d5e7a9b1c40"),
         shaders::CAUSTICS_SAMPLING,

@@ -45,9 +45,56 @@ pub fn height_field_normal(gradient: glam::DVec2) -> DVec3 {
     DVec3::new(-gradient.x, -gradient.y, 1.0).normalize()
 }
 
+/// Unit direction towards the sun under flat water, from `to_sun` (unit, towards the sun in air,
+/// z > 0) and the water's index of refraction: Snell's law at a horizontal surface, the air's
+/// horizontal part over `ior` and z = cos θt. The twin of `sun_under_water` in the shading rule's
+/// WGSL module (`crates/gpu/src/shaders/caustics_light.wgsl`).
+pub fn sun_under_water(to_sun: DVec3, ior: f64) -> DVec3 {
+    let cos_i = to_sun.z.max(0.0);
+    let cos_t = (1.0 - (1.0 - cos_i * cos_i) / (ior * ior)).max(0.0).sqrt();
+    DVec3::new(to_sun.x / ior, to_sun.y / ior, cos_t)
+}
+
+/// Flat water's light on a surface of unit normal `n` at `depth` below the surface, relative to a
+/// horizontal surface just under clear water: Beer-Lambert extinction `absorption` (per metre)
+/// along the refracted path `depth / cos θt`, times the beam's cosine on the surface over its
+/// cosine on the horizontal (across itself the refracted beam is `1 / cos θt` times denser than
+/// over the horizontal). `toward_sun` is [`sun_under_water`]'s direction. What a technique's map
+/// reads where the water is flat, and what a surface no map holds receives; the twin of
+/// `flat_water_light` in `crates/gpu/src/shaders/caustics_light.wgsl`.
+pub fn flat_water_light(absorption: DVec3, depth: f64, toward_sun: DVec3, n: DVec3) -> DVec3 {
+    let cos_t = toward_sun.z.max(1e-3);
+    (-absorption * (depth / cos_t)).exp() * (n.dot(toward_sun).max(0.0) / cos_t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_sun_under_water_is_the_refracted_beam_and_flat_water_conserves_its_flux() {
+        for deg in [0.0f64, 20.0, 45.0, 70.0, 85.0] {
+            let th = deg.to_radians();
+            let to_sun = DVec3::new(th.sin() * 0.6, th.sin() * 0.8, th.cos());
+            let under = sun_under_water(to_sun, 1.333);
+            let refracted = refract(-to_sun, DVec3::Z, 1.0 / 1.333).unwrap();
+            assert!(
+                (under + refracted).length() < 1e-12,
+                "{deg}°: {under} vs {refracted}"
+            );
+            // Clear water: a horizontal receiver gets exactly flat water's light, and a surface
+            // facing the beam gets 1 / cos θt of it (the same flux over a narrower section).
+            let clear = DVec3::ZERO;
+            assert!((flat_water_light(clear, 2.0, under, DVec3::Z) - DVec3::ONE).length() < 1e-12);
+            let facing = flat_water_light(clear, 2.0, under, under);
+            assert!((facing.x * under.z - 1.0).abs() < 1e-12, "{deg}°: {facing}");
+            // Turned away from the sun: none; absorption along depth / cos θt.
+            assert_eq!(flat_water_light(clear, 1.0, under, -under), DVec3::ZERO);
+            let k = DVec3::new(0.45, 0.09, 0.05);
+            let absorbed = flat_water_light(k, 1.5, under, DVec3::Z);
+            assert!((absorbed - (-k * 1.5 / under.z).exp()).length() < 1e-12);
+        }
+    }
 
     #[test]
     fn snell_law_holds() {

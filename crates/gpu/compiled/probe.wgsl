@@ -1,3 +1,5 @@
+const PROBE_ABSORPTION: vec3<f32> = vec3<f32>(0.45, 0.09, 0.05);
+
 struct ProbeIn {
     incident: vec4<f32>,
     normal: vec4<f32>,
@@ -9,7 +11,9 @@ struct ProbeOut {
     fresnel_sine_procedural: vec4<f32>,
     procedural: vec4<f32>,
     grid: vec4<f32>,
-    hermite: vec4<f32>
+    hermite: vec4<f32>,
+    sun_under: vec4<f32>,
+    flat_light: vec4<f32>
 }
 
 struct ProbeParams {
@@ -43,11 +47,25 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     o.procedural = vec4<f32>(package_shaders_water__1procedural_wave(params.procedural, inp.point.xy), 0.0);
     o.grid = vec4<f32>(package_shaders_water__1grid_sample(height, inp.point.xy, params.size, params.wrap != 0u), 0.0);
     o.hermite = vec4<f32>(package_shaders_water__2grid_sample_hermite(patches, inp.point.xy, params.size, params.wrap != 0u), 0.0);
+    let toward_sun = package_shaders__1caustics_light__2sun_under_water(-inp.incident.xyz, inp.normal.w);
+    o.sun_under = vec4<f32>(toward_sun, 0.0);
+    o.flat_light = vec4<f32>(package_shaders__1caustics_light__2flat_water_light(PROBE_ABSORPTION, inp.point.z, toward_sun, inp.normal.xyz), 0.0);
     outputs[k] = o;
 }
 
 @group(0) @binding(1)
 var<storage, read_write> outputs: array<ProbeOut>;
+
+fn package_shaders__1caustics_light__2flat_water_light(absorption: vec3<f32>, depth: f32, toward_sun: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let cos_t = max(toward_sun.z, 0.001);
+    return exp(-absorption * (depth / cos_t)) * (max(dot(n, toward_sun), 0.0) / cos_t);
+}
+
+fn package_shaders__1caustics_light__2sun_under_water(to_sun: vec3<f32>, ior: f32) -> vec3<f32> {
+    let cos_i = max(to_sun.z, 0.0);
+    let cos_t = sqrt(max(1.0 - (1.0 - cos_i * cos_i) / (ior * ior), 0.0));
+    return vec3<f32>(to_sun.xy / ior, cos_t);
+}
 
 fn package_shaders_optics__1fresnel_transmittance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {
     let cos_i = min(abs(cos_i_in), 1.0);

@@ -1,4 +1,5 @@
-//! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`) on chosen inputs,
+//! A compute pass that evaluates the shared WGSL math (`optics.wgsl`, `water.wgsl`,
+//! `caustics_light.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
 use crate::shaders::passes;
@@ -18,7 +19,7 @@ pub struct ProbeIn {
     /// Normal, then `n2` for the Fresnel transmittance from `n1 = 1`.
     pub normal: [f32; 4],
     /// xy: the point on the water the surfaces are evaluated at, world units (`[0, size]²`);
-    /// zw unused.
+    /// z: the depth `flat_light` is evaluated at; w unused.
     pub point: [f32; 4],
 }
 
@@ -38,7 +39,16 @@ pub struct ProbeOut {
     pub grid: [f32; 4],
     /// The same surface from the heights' Hermite form ([`crate::water::patches`]).
     pub hermite: [f32; 4],
+    /// xyz: `sun_under_water` for the sun opposite `incident` (towards `-incident`) under water of
+    /// index `normal.w`; w 0.
+    pub sun_under: [f32; 4],
+    /// xyz: `flat_water_light` on a surface of normal `normal` at depth `point.z` under water of
+    /// absorption [`PROBE_ABSORPTION`], for that sun; w 0.
+    pub flat_light: [f32; 4],
 }
+
+/// The absorption (per metre) `ProbeOut::flat_light` is evaluated with: the pool scene's.
+pub const PROBE_ABSORPTION: [f64; 3] = [0.45, 0.09, 0.05];
 
 /// Mirrors `ProbeParams` in `probe.wgsl` (uniform layout, padded to 16 bytes).
 #[repr(C)]

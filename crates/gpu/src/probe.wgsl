@@ -1,5 +1,6 @@
 // Evaluates the shared WGSL math on a list of inputs, so tests can hold it against the CPU twins.
 
+import package::shaders::caustics_light::{flat_water_light, sun_under_water};
 import package::shaders::optics::{fresnel_transmittance, refract_dir};
 import package::shaders::water::{
     ProceduralWave, SineWave, grid_sample, grid_sample_hermite, procedural_wave, sine_wave,
@@ -8,7 +9,7 @@ import package::shaders::water::{
 struct ProbeIn {
     incident: vec4<f32>,   // xyz direction, w = eta
     normal: vec4<f32>,     // xyz normal, w = n2 for the Fresnel test (n1 = 1)
-    point: vec4<f32>,      // xy: a point on the water
+    point: vec4<f32>,      // xy: a point on the water, z: a depth under it
 }
 
 struct ProbeOut {
@@ -17,7 +18,12 @@ struct ProbeOut {
     procedural: vec4<f32>,              // xyz: paper 2's wave (h, grad)
     grid: vec4<f32>,                    // xyz: bicubic height texture (h, grad)
     hermite: vec4<f32>,                 // xyz: the same from its Hermite form (water_patches.wgsl)
+    sun_under: vec4<f32>,               // xyz: sun_under_water for the sun towards -incident
+    flat_light: vec4<f32>,              // xyz: flat_water_light on `normal` at depth point.z
 }
+
+// probe.rs `PROBE_ABSORPTION`.
+const PROBE_ABSORPTION: vec3<f32> = vec3<f32>(0.45, 0.09, 0.05);
 
 struct ProbeParams {
     procedural: ProceduralWave,
@@ -51,5 +57,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     o.procedural = vec4<f32>(procedural_wave(params.procedural, inp.point.xy), 0.0);
     o.grid = vec4<f32>(grid_sample(height, inp.point.xy, params.size, params.wrap != 0u), 0.0);
     o.hermite = vec4<f32>(grid_sample_hermite(patches, inp.point.xy, params.size, params.wrap != 0u), 0.0);
+    let toward_sun = sun_under_water(-inp.incident.xyz, inp.normal.w);
+    o.sun_under = vec4<f32>(toward_sun, 0.0);
+    o.flat_light = vec4<f32>(flat_water_light(PROBE_ABSORPTION, inp.point.z, toward_sun, inp.normal.xyz), 0.0);
     outputs[k] = o;
 }

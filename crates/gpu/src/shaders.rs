@@ -18,6 +18,14 @@ pub const OPTICS: &str = include_str!("shaders/optics.wgsl");
 /// `caustics_gpu::caustics_sampling`.
 pub const CAUSTICS_SAMPLING: &str = include_str!("shaders/caustics_sampling.wgsl");
 
+/// The shading rule: how a surface under the water turns a caustics map into the sun's light
+/// (flat water's refracted sun, its absorbed light on any surface, the transmitted irradiance, the
+/// pool's walls). The final image's and bevy_caustics' material's one copy, and an application's:
+/// functions of their arguments alone with no import, so the text can be pasted ahead of any WGSL
+/// (`format!("{CAUSTICS_LIGHT}{CAUSTICS_SAMPLING}{your_shader}")`) or imported as a WESL module
+/// (`package::shaders::caustics_light` here, `caustics_gpu::caustics_light` in Bevy).
+pub const CAUSTICS_LIGHT: &str = include_str!("shaders/caustics_light.wgsl");
+
 /// The passes a module declares: each `NAME = "label", "file";` (the file under
 /// `crates/gpu/src/`, the pass's WESL main module) becomes `pub const NAME: PassSource` holding
 /// the WGSL build.rs compiled from it, and all of them the module's `PASSES`, so a pass is listed

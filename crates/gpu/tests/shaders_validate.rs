@@ -19,6 +19,34 @@ fn every_pass_parses_and_validates() {
     }
 }
 
+/// The modules an application's material takes (the shading rule and the maps' sampling) work
+/// pasted ahead of its own WGSL, as `caustics_gpu::shaders` documents: no import, no binding, and
+/// their functions callable from a fragment shader of its own.
+#[test]
+fn the_shading_modules_paste_ahead_of_an_applications_shader() {
+    use caustics_gpu::shaders::{CAUSTICS_LIGHT, CAUSTICS_SAMPLING};
+    for module in [CAUSTICS_LIGHT, CAUSTICS_SAMPLING] {
+        assert!(
+            !module
+                .lines()
+                .any(|l| l.starts_with("import ") || l.starts_with("@group")),
+            "{module}"
+        );
+    }
+    let material = r#"
+@group(0) @binding(0) var map: texture_2d<f32>;
+@fragment fn fs(@location(0) p: vec3<f32>, @location(1) n: vec3<f32>) -> @location(0) vec4<f32> {
+    let toward_sun = sun_under_water(normalize(vec3<f32>(0.3, 0.2, 0.9)), 1.333);
+    let flat = flat_water_light(vec3<f32>(0.45, 0.09, 0.05), 1.0 - p.z, toward_sun, n);
+    let c = caustics_filtered(map, map, 0u, p.xy, dpdx(p.xy), dpdy(p.xy), 4.0, true, flat, true);
+    return vec4<f32>(sun_through_water(c, 0.9, 0.97, 1.0), 1.0);
+}"#;
+    validated_wgsl(
+        "an application's material",
+        &format!("{CAUSTICS_LIGHT}{CAUSTICS_SAMPLING}{material}"),
+    );
+}
+
 fn wgsl_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();

@@ -4,12 +4,12 @@
 mod common;
 
 use caustics_core::grid::{Edge, Grid};
-use caustics_core::optics::{fresnel_transmittance, refract};
+use caustics_core::optics::{flat_water_light, fresnel_transmittance, refract, sun_under_water};
 use caustics_core::water::Surface;
 use caustics_core::water::procedural::{Procedural, ProceduralParams};
 use caustics_core::water::waves::{Wave, Waves};
 use caustics_gpu::context::test_gpu;
-use caustics_gpu::probe::{self, ProbeIn, ProbeSetup};
+use caustics_gpu::probe::{self, PROBE_ABSORPTION, ProbeIn, ProbeSetup};
 use caustics_gpu::water::{GpuProceduralWave, GpuSineWave};
 use glam::{DVec2, DVec3};
 
@@ -20,6 +20,11 @@ fn close(gpu: f32, cpu: f64, tol: f64, what: &str) {
         (gpu as f64 - cpu).abs() <= tol * (1.0 + cpu.abs()),
         "{what}: GPU {gpu}, CPU {cpu}"
     );
+}
+
+/// The depth under the water probe `(a, b)` evaluates `flat_water_light` at: 0 to 3 m.
+fn depth(a: usize, b: usize) -> f64 {
+    (a * 8 + b) as f64 * 3.0 / 128.0
 }
 
 fn wgsl_optics_and_water_match_the_cpu() {
@@ -72,9 +77,9 @@ fn wgsl_optics_and_water_match_the_cpu() {
             inputs.push(ProbeIn {
                 incident: [d.x as f32, d.y as f32, d.z as f32, eta as f32],
                 normal: [n.x as f32, n.y as f32, n.z as f32, 1.333],
-                point: [p.x as f32, p.y as f32, 0.0, 0.0],
+                point: [p.x as f32, p.y as f32, depth(a, b) as f32, 0.0],
             });
-            expect.push((d, n, eta, p));
+            expect.push((d, n, eta, p, depth(a, b)));
         }
     }
     let out = probe::run(
@@ -95,7 +100,18 @@ fn wgsl_optics_and_water_match_the_cpu() {
         size,
         edge: Edge::Wrap,
     };
-    for (o, (d, n, eta, p)) in out.iter().zip(&expect) {
+    let absorption = DVec3::from(PROBE_ABSORPTION);
+    for (o, (d, n, eta, p, depth)) in out.iter().zip(&expect) {
+        // The shading rule (`caustics_light.wgsl`): the sun opposite `d` under water, and flat
+        // water's light on `n` at `depth`.
+        let toward_sun = sun_under_water(-*d, 1.333);
+        for c in 0..3 {
+            close(o.sun_under[c], toward_sun[c], 5e-7, "sun under water"); // Measured on lavapipe: 5.2e-8
+        }
+        let flat = flat_water_light(absorption, *depth, toward_sun, *n);
+        for c in 0..3 {
+            close(o.flat_light[c], flat[c], 1e-6, "flat water's light"); // Measured on lavapipe: 1.1e-7
+        }
         match refract(*d, *n, *eta) {
             Some(t) => {
                 assert_eq!(o.refracted[3], 1.0);

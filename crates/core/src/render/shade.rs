@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 use super::Tracer;
 use super::march::wall_at;
 use super::spread::Spread;
-use crate::optics::{fresnel_transmittance, reflect, refract};
+use crate::optics::{flat_water_light, fresnel_transmittance, reflect, refract};
 use crate::scene::Material;
 
 impl Tracer<'_> {
@@ -52,7 +52,14 @@ impl Tracer<'_> {
             .albedo
             .filtered(p.truncate(), size, extent(footprint));
         let e_h = scene.light.intensity * -self.sun.z;
-        let flat = || (-water.absorption * ((water.depth - p.z) / -self.sun_water.z)).exp();
+        let flat = || {
+            flat_water_light(
+                water.absorption,
+                water.depth - p.z,
+                -self.sun_water,
+                DVec3::Z,
+            )
+        };
         let wrap = water.wrap && scene.floor.terrain.is_none();
         let relative = match (&self.caustics, &self.eye_space) {
             // Beyond a map that does not tile (a terrain's, clamped at its edges) nothing says

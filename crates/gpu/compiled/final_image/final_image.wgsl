@@ -384,17 +384,6 @@ fn package__1final_image__2final_image_receivers__1nearest_object(o: vec3<f32>, 
     return best;
 }
 
-fn package__1final_image__2final_image_receivers__1wall_at(p: vec3<f32>, size: f32) -> u32 {
-    let d = array<f32, 4>(p.x, size - p.x, p.y, size - p.y);
-    var k = 0u;
-    for (var i = 1u; i < 4u; i++) {
-        if d[i] < d[k] {
-            k = i;
-        }
-    }
-    return k;
-}
-
 fn package__1final_image__2final_image_receivers__1wall_distance(o: vec3<f32>, d: vec3<f32>, size: f32) -> f32 {
     var t = package__1final_image__2final_image_inputs_FAR;
     for (var a = 0; a < 2; a++) {
@@ -409,7 +398,7 @@ fn package__1final_image__2final_image_receivers__1wall_distance(o: vec3<f32>, d
 }
 
 fn package__1final_image__2final_image_receivers__1wall_light(p: vec3<f32>, size: f32) -> vec3<f32> {
-    let k = package__1final_image__2final_image_receivers__1wall_at(p, size);
+    let k = package_shaders__1caustics_light__2pool_wall_at(p.xy, size);
     var eye = vec4<f32>(0.0);
     if package__1final_image__2final_image_inputs__1wall_cols[k] == 0u {
         if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_EYE_CAUSTICS) {
@@ -420,33 +409,16 @@ fn package__1final_image__2final_image_receivers__1wall_light(p: vec3<f32>, size
             return vec3<f32>(0.0);
         }
     }
-    var along = p.x;
-    var normal = vec3<f32>(0.0, 1.0, 0.0);
-    switch k {
-        case 0u {
-            along = p.y;
-            normal = vec3<f32>(1.0, 0.0, 0.0);
-        }
-        case 1u {
-            along = p.y;
-            normal = vec3<f32>(-1.0, 0.0, 0.0);
-        }
-        case 3u {
-            normal = vec3<f32>(0.0, -1.0, 0.0);
-        }
-        case default {
-        
-        }
-    }
     var c = eye.rgb;
     if package__1final_image__2final_image_inputs__1wall_cols[k] != 0u {
-        c = package_shaders__1caustics_sampling__1wall_sample(package__1final_image__2final_image_inputs__1wall_maps, package__1final_image__2final_image_inputs__1wall_cols[k], k, along, p.z, package__1final_image__2final_image_inputs_params.water_size, package__1final_image__2final_image_inputs_params.water_level);
+        c = package_shaders__1caustics_sampling__1wall_sample(package__1final_image__2final_image_inputs__1wall_maps, package__1final_image__2final_image_inputs__1wall_cols[k], k, package_shaders__1caustics_light__2pool_wall_along(k, p.xy), p.z, package__1final_image__2final_image_inputs_params.water_size, package__1final_image__2final_image_inputs_params.water_level);
     }
-    if package__1final_image__2final_image_receivers_occluded(p + normal * 0.0001, -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR) {
-        return vec3<f32>(0.0);
+    var normals = array<vec3<f32>, 4>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(-1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, -1.0, 0.0));
+    var shadow = 1.0;
+    if package__1final_image__2final_image_receivers_occluded(p + normals[k] * 0.0001, -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR) {
+        shadow = 0.0;
     }
-    let e_h = package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z;
-    return c * (e_h * package__1final_image__2final_image_inputs_params.t_flat) * package__1final_image__2final_image_inputs_params.light_color;
+    return package_shaders__1caustics_light__2sun_through_water(c, package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z, package__1final_image__2final_image_inputs_params.t_flat, shadow) * package__1final_image__2final_image_inputs_params.light_color;
 }
 
 fn package__1final_image__2final_image_receivers__2occluded_by_any(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
@@ -464,39 +436,10 @@ fn package__1final_image__2final_image_receivers__2sample_eye_space(p: vec3<f32>
     if z <= 0.0 {
         return vec4<f32>(0.0);
     }
-    let dims = vec2<i32>(textureDimensions(package__1final_image__2final_image_inputs__1caustics_map));
     let sx = dot(v, package__1final_image__2final_image_inputs_params.camera_right) / dot(package__1final_image__2final_image_inputs_params.camera_right, package__1final_image__2final_image_inputs_params.camera_right) / z;
     let sy = dot(v, package__1final_image__2final_image_inputs_params.camera_up) / dot(package__1final_image__2final_image_inputs_params.camera_up, package__1final_image__2final_image_inputs_params.camera_up) / z;
-    let u = (sx + 1.0) * 0.5 * f32(dims.x) - 0.5;
-    let w = (1.0 - sy) * 0.5 * f32(dims.y) - 0.5;
-    let x0 = floor(u);
-    let y0 = floor(w);
-    let f = vec2<f32>(u - x0, w - y0);
-    var sum = vec3<f32>(0.0);
-    var weight = 0.0;
-    for (var dy = 0; dy < 2; dy++) {
-        for (var dx = 0; dx < 2; dx++) {
-            let c = vec2<i32>(i32(x0) + dx, i32(y0) + dy);
-            if any(c < vec2<i32>(0)) || any(c >= dims) {
-                continue;
-            }
-            let t = textureLoad(package__1final_image__2final_image_inputs__1caustics_map, c, 0);
-            if t.w < 0.0 {
-                continue;
-            }
-            let wx = select(1.0 - f.x, f.x, dx == 1);
-            let wy = select(1.0 - f.y, f.y, dy == 1);
-            sum += t.rgb * (wx * wy);
-            weight += wx * wy;
-        }
-    }
-    if weight < package__1final_image__2final_image_receivers__3EYE_SPACE_MIN_WEIGHT {
-        return vec4<f32>(0.0);
-    }
-    return vec4<f32>(sum / weight, 1.0);
+    return package_shaders__1caustics_sampling__2eye_space_bilinear(package__1final_image__2final_image_inputs__1caustics_map, vec2<f32>(sx, sy));
 }
-
-const package__1final_image__2final_image_receivers__3EYE_SPACE_MIN_WEIGHT: f32 = 0.001;
 
 fn package__1final_image__2final_image_receivers_inside(p: vec2<f32>, size: f32) -> bool {
     return p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size;
@@ -534,7 +477,7 @@ fn package__1final_image__2final_image_shade__1shade_floor(p: vec3<f32>, fa: vec
     let size = package__1final_image__2final_image_inputs_params.water_size;
     let albedo = package__1final_image__2final_image_inputs__1albedo_at(p.xy, size, abs(fa) + abs(fb));
     let e_h = package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z;
-    let flat = package__1final_image__2final_image_inputs_absorbed((package__1final_image__2final_image_inputs_params.water_level - p.z) / -package__1final_image__2final_image_inputs_params.sun_water.z);
+    let flat = package_shaders__1caustics_light__2flat_water_light(package__1final_image__2final_image_inputs_params.absorption, package__1final_image__2final_image_inputs_params.water_level - p.z, -package__1final_image__2final_image_inputs_params.sun_water, vec3<f32>(0.0, 0.0, 1.0));
     var relative = flat;
     if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_CAUSTICS) {
         relative = package__1final_image__2final_image_inputs__2sample_caustics_filtered(p.xy, fa, fb, package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_WRAP_CAUSTICS), flat, true);
@@ -549,7 +492,7 @@ fn package__1final_image__2final_image_shade__1shade_floor(p: vec3<f32>, fa: vec
     if package__1final_image__2final_image_receivers_occluded(p + vec3<f32>(0.0, 0.0, 0.0001), -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR) {
         shadow = 0.0;
     }
-    let direct = relative * (e_h * package__1final_image__2final_image_inputs_params.t_flat * shadow);
+    let direct = package_shaders__1caustics_light__2sun_through_water(relative, e_h, package__1final_image__2final_image_inputs_params.t_flat, shadow);
     let ambient = package__1final_image__2final_image_inputs_params.ambient * package__1final_image__2final_image_inputs_absorbed(package__1final_image__2final_image_inputs_params.water_level);
     return albedo * (direct + ambient) * package__1final_image__2final_image_inputs_params.light_color;
 }
@@ -971,6 +914,30 @@ fn package__1final_image__3final_image_rough_water_glint(d: vec3<f32>, m: packag
     return package__1final_image__2final_image_inputs__1sun_radiance() * (3.14159265 * f * g);
 }
 
+fn package_shaders__1caustics_light__2flat_water_light(absorption: vec3<f32>, depth: f32, toward_sun: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let cos_t = max(toward_sun.z, 0.001);
+    return exp(-absorption * (depth / cos_t)) * (max(dot(n, toward_sun), 0.0) / cos_t);
+}
+
+fn package_shaders__1caustics_light__2pool_wall_along(k: u32, p: vec2<f32>) -> f32 {
+    return select(p.x, p.y, k < 2u);
+}
+
+fn package_shaders__1caustics_light__2pool_wall_at(p: vec2<f32>, size: f32) -> u32 {
+    let d = array<f32, 4>(p.x, size - p.x, p.y, size - p.y);
+    var k = 0u;
+    for (var i = 1u; i < 4u; i++) {
+        if d[i] < d[k] {
+            k = i;
+        }
+    }
+    return k;
+}
+
+fn package_shaders__1caustics_light__2sun_through_water(relative: vec3<f32>, horizontal: f32, transmittance: f32, shadow: f32) -> vec3<f32> {
+    return relative * (horizontal * transmittance * shadow);
+}
+
 fn package_shaders__1caustics_sampling__1caustics_bilinear(map: texture_2d<f32>, mips: texture_2d<f32>, mips_from: u32, level: u32, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {
     let dims = vec2<f32>(package_shaders__1caustics_sampling__1caustics_dims(map, level));
     let u = p.x / size * dims.x - 0.5;
@@ -1076,6 +1043,37 @@ fn package_shaders__1caustics_sampling__1wall_sample(walls: texture_2d_array<f32
 }
 
 const package_shaders__1caustics_sampling__2CAUSTICS_MAX_TAPS: f32 = 8.0;
+
+fn package_shaders__1caustics_sampling__2eye_space_bilinear(eye: texture_2d<f32>, s: vec2<f32>) -> vec4<f32> {
+    let dims = vec2<i32>(textureDimensions(eye));
+    let u = (s.x + 1.0) * 0.5 * f32(dims.x) - 0.5;
+    let w = (1.0 - s.y) * 0.5 * f32(dims.y) - 0.5;
+    let x0 = floor(u);
+    let y0 = floor(w);
+    let f = vec2<f32>(u - x0, w - y0);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var dy = 0; dy < 2; dy++) {
+        for (var dx = 0; dx < 2; dx++) {
+            let c = vec2<i32>(i32(x0) + dx, i32(y0) + dy);
+            if any(c < vec2<i32>(0)) || any(c >= dims) {
+                continue;
+            }
+            let t = textureLoad(eye, c, 0);
+            if t.w < 0.0 {
+                continue;
+            }
+            let wx = select(1.0 - f.x, f.x, dx == 1);
+            let wy = select(1.0 - f.y, f.y, dy == 1);
+            sum += t.rgb * (wx * wy);
+            weight += wx * wy;
+        }
+    }
+    if weight < 0.001 {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(sum / weight, 1.0);
+}
 
 struct package_shaders_bvh_BvhNode {
     min: vec3<f32>,
@@ -1675,7 +1673,7 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     else if package__1final_image__2final_image_inputs__1is_pool() && !package__1final_image__2final_image_receivers_inside(floor_hit.xy, size) {
         let t = package__1final_image__2final_image_receivers__1wall_distance(o, d, size);
         let p = o + d * t;
-        let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), package__1final_image__2final_image_receivers__1wall_at(p, size) < 2u);
+        let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), package_shaders__1caustics_light__2pool_wall_at(p.xy, size) < 2u);
         let fa = package__1final_image__2final_image_spread__1on_plane3(package__1final_image__2final_image_spread_spread.a, d, t, m);
         let fb = package__1final_image__2final_image_spread__1on_plane3(package__1final_image__2final_image_spread_spread.b, d, t, m);
         let extent = vec2<f32>(abs(fa.x + fa.y) + abs(fb.x + fb.y), abs(fa.z) + abs(fb.z));

@@ -11,7 +11,7 @@ import package::final_image::final_image_march::{
     camera_under_water, hit_floor, hit_water, hit_water_from_below, leave_water,
 };
 import package::final_image::final_image_receivers::{
-    inside, nearest_object, wall_at, wall_distance, wall_light,
+    inside, nearest_object, wall_distance, wall_light,
 };
 import package::final_image::final_image_rough_water::rough_water;
 import package::final_image::final_image_shade::{shade_above, shade_floor, shade_object, trace_air};
@@ -19,6 +19,7 @@ import package::final_image::final_image_spread::{
     NO_SLOT, Spread, bent_spread, camera_ray, camera_spread, no_spread, on_plane, on_plane3,
     pending_slot, pending_spread, push_ray_spread, spread,
 };
+import package::shaders::caustics_light::pool_wall_at;
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
 import package::shaders::shading::tone_map;
 import package::shaders::water::grid_sample;
@@ -87,7 +88,7 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         let t = wall_distance(o, d, size);
         let p = o + d * t;
         // The wall's tiles filtered over the sample's footprint on the wall's plane.
-        let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), wall_at(p, size) < 2u);
+        let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), pool_wall_at(p.xy, size) < 2u);
         let fa = on_plane3(spread.a, d, t, m);
         let fb = on_plane3(spread.b, d, t, m);
         let extent = vec2<f32>(abs(fa.x + fa.y) + abs(fb.x + fb.y), abs(fa.z) + abs(fb.z));

@@ -11,6 +11,7 @@ import package::final_image::final_image_receivers::{
     nearest_object, occluded, occluded_by_any, sample_eye_space,
 };
 import package::final_image::final_image_spread::{on_plane, spread};
+import package::shaders::caustics_light::{flat_water_light, sun_through_water};
 import package::shaders::optics::{fresnel_transmittance, refract_dir};
 import package::shaders::shading::deck_albedo;
 
@@ -19,7 +20,7 @@ fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
     let size = params.water_size;
     let albedo = albedo_at(p.xy, size, abs(fa) + abs(fb));
     let e_h = params.sun_intensity * -params.sun.z;
-    let flat = absorbed((params.water_level - p.z) / -params.sun_water.z);
+    let flat = flat_water_light(params.absorption, params.water_level - p.z, -params.sun_water, vec3<f32>(0.0, 0.0, 1.0));
     var relative = flat;
     // Beyond a map that does not tile, the flat water's light, tap by tap (render.rs
     // `shade_floor`).
@@ -35,7 +36,7 @@ fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
     if occluded(p + vec3<f32>(0.0, 0.0, 1e-4), -params.sun_water, FAR) {
         shadow = 0.0;
     }
-    let direct = relative * (e_h * params.t_flat * shadow);
+    let direct = sun_through_water(relative, e_h, params.t_flat, shadow);
     let ambient = params.ambient * absorbed(params.water_level);
     return albedo * (direct + ambient) * params.light_color;
 }

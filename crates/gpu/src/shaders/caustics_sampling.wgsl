@@ -127,3 +127,38 @@ fn wall_sample(walls: texture_2d_array<f32>, cols: u32, k: u32, along: f32, z: f
     let d = textureLoad(walls, vec2<u32>(j1, i1), layer, 0).rgb;
     return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
 }
+
+// `EyeSpaceCaustics::sample`: an eye-space image (cascaded's, paper 5: the floor each pixel of
+// the camera sees, w < 0 where it sees none) at `s`, the point's position on the image in
+// normalised device coordinates (x right, y up, ±1 at the edges). Bilinear over the valid texels
+// around it, renormalised; w = 0 where their weight is under 1e-3 (nothing valid near).
+fn eye_space_bilinear(eye: texture_2d<f32>, s: vec2<f32>) -> vec4<f32> {
+    let dims = vec2<i32>(textureDimensions(eye));
+    let u = (s.x + 1.0) * 0.5 * f32(dims.x) - 0.5;
+    let w = (1.0 - s.y) * 0.5 * f32(dims.y) - 0.5;
+    let x0 = floor(u);
+    let y0 = floor(w);
+    let f = vec2<f32>(u - x0, w - y0);
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var dy = 0; dy < 2; dy++) {
+        for (var dx = 0; dx < 2; dx++) {
+            let c = vec2<i32>(i32(x0) + dx, i32(y0) + dy);
+            if any(c < vec2<i32>(0)) || any(c >= dims) {
+                continue;
+            }
+            let t = textureLoad(eye, c, 0);
+            if t.w < 0.0 {
+                continue;
+            }
+            let wx = select(1.0 - f.x, f.x, dx == 1);
+            let wy = select(1.0 - f.y, f.y, dy == 1);
+            sum += t.rgb * (wx * wy);
+            weight += wx * wy;
+        }
+    }
+    if weight < 1e-3 {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(sum / weight, 1.0);
+}
