@@ -426,6 +426,62 @@ fn scene_from_local() -> Mat4 {
 
 #[cfg(test)]
 mod tests {
+    /// The plugin builds caustics-core without its `formats` feature (it reads no file; Bevy's
+    /// assets do): a height field, an albedo image or an OBJ mesh named in a scene is refused
+    /// with the feature to turn on, whatever the file holds.
+    #[test]
+    fn files_this_build_cannot_read_are_refused_naming_the_feature() {
+        use caustics_core::scene::Scene;
+        let dir =
+            std::env::temp_dir().join(format!("bevy-caustics-formats-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for file in [
+            "heights.npy",
+            "heights.exr",
+            "heights.png",
+            "sand.png",
+            "rock.obj",
+        ] {
+            std::fs::write(dir.join(file), b"never read").unwrap();
+        }
+        let water = "[light]\ndirection = [-0.3, 0.2, -1.0]\n[water]\nsize = 4.0\ndepth = 1.0\n";
+        let scenes = [
+            (
+                format!("{water}heightfield = \"heights.npy\"\n"),
+                "a .npy height field",
+            ),
+            (
+                format!("{water}heightfield = \"heights.exr\"\n"),
+                "an .exr height field",
+            ),
+            (
+                format!("{water}heightfield = \"heights.png\"\n"),
+                "a PNG height field",
+            ),
+            (
+                format!("{water}[floor]\nalbedo = \"sand.png\"\n"),
+                "an albedo image",
+            ),
+        ];
+        for (text, what) in scenes {
+            let err = Scene::from_toml_with(&text, &dir, "formats", |_| Ok(()))
+                .expect_err(what)
+                .to_string();
+            assert!(
+                err.contains(what) && err.contains("`formats` feature"),
+                "{what}: {err}"
+            );
+        }
+        let err = caustics_core::mesh::load_obj(&dir.join("rock.obj"))
+            .expect_err("an OBJ mesh")
+            .to_string();
+        assert!(
+            err.contains("an OBJ mesh") && err.contains("`formats` feature"),
+            "{err}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     /// docs/bevy.md's example is this crate's front-page example, which `cargo test` compiles.
     #[test]
     fn the_guide_shows_the_compiled_example() {
