@@ -121,11 +121,7 @@ impl Tracer<'_> {
         let n = if entering { n } else { -n };
         match &obj.material {
             Material::Diffuse { color } => {
-                let (sun_dir, t) = if under {
-                    (self.sun_water, self.t_flat)
-                } else {
-                    (self.sun, 1.0)
-                };
+                let sun_dir = if under { self.sun_water } else { self.sun };
                 let lambert = n.dot(-sun_dir).max(0.0);
                 let lit = if lambert > 0.0 && !self.occluded(p + n * 1e-4, -sun_dir, f64::INFINITY)
                 {
@@ -133,15 +129,19 @@ impl Tracer<'_> {
                 } else {
                     0.0
                 };
-                let water_path = match (&self.scene.water, under) {
+                // Under the water, the shading rule's light for a surface no map holds: flat
+                // water's refracted beam, absorbed along its path, on the surface's cosine over
+                // the horizontal's, times what flat water passes onto the horizontal (E cos θi T).
+                let direct = match (&self.scene.water, under) {
                     (Some(w), true) => {
-                        (-w.absorption * ((w.depth - p.z).max(0.0) / -sun_dir.z)).exp()
+                        let e_h = self.scene.light.intensity * -self.sun.z;
+                        let depth = (w.depth - p.z).max(0.0);
+                        flat_water_light(w.absorption, depth, -self.sun_water, n)
+                            * (e_h * self.t_flat * lit)
                     }
-                    _ => DVec3::ONE,
+                    _ => DVec3::splat(self.scene.light.intensity * lambert * lit),
                 };
-                *color
-                    * (water_path * (self.scene.light.intensity * lambert * lit * t) + self.ambient)
-                    * self.scene.light.color
+                *color * (direct + self.ambient) * self.scene.light.color
             }
             Material::Glass { ior, tint } => {
                 let outside_ior = if under {

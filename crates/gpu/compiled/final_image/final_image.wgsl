@@ -503,21 +503,21 @@ fn package__1final_image__2final_image_shade__1shade_object(p: vec3<f32>, n_out:
     let n = select(-n_out, n_out, entering);
     if obj.glass == 0u {
         var sun_dir = package__1final_image__2final_image_inputs_params.sun;
-        var t = 1.0;
         if under {
             sun_dir = package__1final_image__2final_image_inputs_params.sun_water;
-            t = package__1final_image__2final_image_inputs_params.t_flat;
         }
         let lambert = max(dot(n, -sun_dir), 0.0);
         var lit = 0.0;
         if lambert > 0.0 && !package__1final_image__2final_image_receivers_occluded(p + n * 0.0001, -sun_dir, package__1final_image__2final_image_inputs_FAR) {
             lit = 1.0;
         }
-        var water_path = vec3<f32>(1.0);
+        var direct = vec3<f32>(package__1final_image__2final_image_inputs_params.sun_intensity * lambert * lit);
         if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_WATER) && under {
-            water_path = package__1final_image__2final_image_inputs_absorbed(max(package__1final_image__2final_image_inputs_params.water_level - p.z, 0.0) / -sun_dir.z);
+            let e_h = package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z;
+            let flat = package_shaders__1caustics_light__2flat_water_light(package__1final_image__2final_image_inputs_params.absorption, max(package__1final_image__2final_image_inputs_params.water_level - p.z, 0.0), -package__1final_image__2final_image_inputs_params.sun_water, n);
+            direct = package_shaders__1caustics_light__2sun_through_water(flat, e_h, package__1final_image__2final_image_inputs_params.t_flat, lit);
         }
-        package__1final_image__2final_image_inputs_emit(w, obj.color * (water_path * (package__1final_image__2final_image_inputs_params.sun_intensity * lambert * lit * t) + package__1final_image__2final_image_inputs_params.ambient) * package__1final_image__2final_image_inputs_params.light_color);
+        package__1final_image__2final_image_inputs_emit(w, obj.color * (direct + package__1final_image__2final_image_inputs_params.ambient) * package__1final_image__2final_image_inputs_params.light_color);
         return;
     }
     var outside_ior = 1.0;

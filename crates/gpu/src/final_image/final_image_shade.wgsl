@@ -48,21 +48,22 @@ fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32
     let n = select(-n_out, n_out, entering);
     if obj.glass == 0u {
         var sun_dir = params.sun;
-        var t = 1.0;
         if under {
             sun_dir = params.sun_water;
-            t = params.t_flat;
         }
         let lambert = max(dot(n, -sun_dir), 0.0);
         var lit = 0.0;
         if lambert > 0.0 && !occluded(p + n * 1e-4, -sun_dir, FAR) {
             lit = 1.0;
         }
-        var water_path = vec3<f32>(1.0);
+        // Under the water, the shading rule's light for a surface no map holds (shade.rs).
+        var direct = vec3<f32>(params.sun_intensity * lambert * lit);
         if has(FLAG_WATER) && under {
-            water_path = absorbed(max(params.water_level - p.z, 0.0) / -sun_dir.z);
+            let e_h = params.sun_intensity * -params.sun.z;
+            let flat = flat_water_light(params.absorption, max(params.water_level - p.z, 0.0), -params.sun_water, n);
+            direct = sun_through_water(flat, e_h, params.t_flat, lit);
         }
-        emit(w, obj.color * (water_path * (params.sun_intensity * lambert * lit * t) + params.ambient) * params.light_color);
+        emit(w, obj.color * (direct + params.ambient) * params.light_color);
         return;
     }
     var outside_ior = 1.0;
