@@ -806,7 +806,7 @@ fn a_thousand_frames_of_every_technique_keep_memory_flat() {
         // pipelines 46 + 74, texture views 463, command encoders 7, ...) but texture bytes,
         // 34 006 784 -> 33 951 488: the window's size at the end differs from frame 100's.
         // Command encoders are wgpu's own pool, in flight with the frames the swap chain holds
-        // (6 or 7 in earlier runs): up to that latency, 2, more is allowed.
+        // (6 or 7): up to that latency, 2, more is allowed.
         let slack = if name == "command_encoders" { 2 } else { 0 };
         assert!(
             *b <= a + slack,

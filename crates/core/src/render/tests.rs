@@ -240,3 +240,58 @@ fn eye_space_caustics_read_where_the_floor_projects() {
     assert!(caustics > 0.5, "{caustics}");
     assert!(same < 0.2 * caustics, "{same} vs {caustics}");
 }
+
+/// A diffuse object under flat, clear water is lit as the floor is: the top of a grey box and the
+/// grey floor beside it, both horizontal and unshadowed, show the same pixel under a sun 60° from
+/// the zenith. The refracted beam lights a horizontal surface with E cos θi T whatever its
+/// depth; lighting the box by E T (n · r) instead makes its top cos θt / cos θi = 1.52 times
+/// brighter.
+#[test]
+fn an_object_under_the_water_is_lit_as_the_floor_at_its_side() {
+    let scene = Scene::from_toml(
+        r#"
+            [water]
+            size = 4.0
+            depth = 1.0
+            absorption = [0.0, 0.0, 0.0]
+            [floor]
+            pattern = "plain"
+            [light]
+            direction = [0.8660254, 0.0, -0.5]
+            [camera]
+            position = [2.0, 1.9, 3.0]
+            target = [2.0, 2.0, 0.0]
+            fov_y = 40.0
+            resolution = [64, 64]
+            [[objects]]
+            shape = { kind = "cuboid", half_extents = [0.4, 0.4, 0.3] }
+            position = [2.0, 2.0, 0.0]
+            material = { kind = "diffuse", color = [0.7, 0.7, 0.7] }
+        "#,
+        std::path::Path::new("."),
+        "box",
+    )
+    .unwrap();
+    let water = scene.water.as_ref().unwrap();
+    let surface = water.surface_at(scene.time).unwrap();
+    let options = RenderOptions {
+        supersampling: 1,
+        ..Default::default()
+    };
+    let image = render(&scene, Some(surface.as_ref()), None, &options, &|_, _| {});
+    let px = |x: usize, y: usize| -> [u8; 3] {
+        let i = (y * 64 + x) * 3;
+        [image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]]
+    };
+    // The box's top fills the middle; its shadow falls to the right (the sun shines towards +x).
+    let (top, floor, shadow) = (px(32, 32), px(6, 32), px(56, 32));
+    eprintln!("box top {top:?}, floor {floor:?}, the box's shadow {shadow:?}");
+    assert!(
+        shadow[0] as u16 + 40 < floor[0] as u16,
+        "no shadow: {shadow:?} {floor:?}"
+    );
+    // Measured: the same bytes.
+    for c in 0..3 {
+        assert!(top[c].abs_diff(floor[c]) <= 1, "{top:?} {floor:?}");
+    }
+}
