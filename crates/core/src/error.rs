@@ -41,9 +41,6 @@ pub enum Error {
     /// No built-in scene has this name.
     #[error("unknown built-in scene `{0}` (known: pool, shore, reef, objects, glass, underwater)")]
     UnknownScene(String),
-    /// No technique has this name.
-    #[error("unknown technique `{0}`; `caustics techniques` lists them")]
-    UnknownTechnique(String),
     /// A parameter given outside a scene's fields (a command-line option, a technique's setting, a
     /// function's argument) is malformed or out of range; the message names it.
     #[error("invalid parameter: {0}")]

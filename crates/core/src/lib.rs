@@ -52,6 +52,7 @@ pub mod optics;
 pub mod orbit;
 mod parallel;
 pub mod plot;
+mod random;
 pub mod receivers;
 pub mod reference;
 pub mod render;

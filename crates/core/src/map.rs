@@ -77,15 +77,6 @@ impl CausticsMap {
         sum * self.size * self.size / (self.width * self.height) as f64
     }
 
-    /// Channel `c` (0 red, 1 green, 2 blue) alone, as a grid of the map's size; panics past 2.
-    pub fn channel(&self, c: usize) -> Grid {
-        Grid {
-            cols: self.width,
-            rows: self.height,
-            data: self.texels.iter().map(|t| t[c]).collect(),
-        }
-    }
-
     /// Bilinear lookup at floor point `(x, y)`, clamped at the edges (or wrapped).
     pub fn sample(&self, x: f64, y: f64, wrap: bool) -> [f32; 3] {
         let u = x / self.size * self.width as f64 - 0.5;

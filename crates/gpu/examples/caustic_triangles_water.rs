@@ -10,7 +10,7 @@ use caustics_core::metrics::compare;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::Scene;
 use caustics_core::techniques::caustic_triangles::CausticTrianglesParams;
-use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
+use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_gpu::caustic_triangles::{CausticTriangles, Reconstruction};
 use caustics_gpu::timing::median_runs;
 use caustics_gpu::{GpuContext, GpuOptions};
@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "reference {res}² in {:.2} s (CPU)",
         t0.elapsed().as_secs_f64()
     );
-    let heights = water::heights(w, surface.as_ref(), res, res);
+    let heights = caustics_core::techniques::heights_for(w, surface.as_ref(), res, res);
     let sizes = [64u32, 128, 256, 512];
     println!("\n| photon image | triangles L1 | triangles flux | splats L1 | splats flux |");
     println!("|---|---|---|---|---|");

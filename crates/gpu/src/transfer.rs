@@ -122,6 +122,33 @@ impl GpuContext {
         })
     }
 
+    /// A technique's map texture ([`read_rgba_f32`](Self::read_rgba_f32)) as a caustics map over
+    /// a `size`-metre square.
+    pub fn read_map(
+        &self,
+        texture: &wgpu::Texture,
+        size: f64,
+    ) -> Result<caustics_core::map::CausticsMap, GpuError> {
+        Ok(caustics_core::map::CausticsMap {
+            width: texture.width() as usize,
+            height: texture.height() as usize,
+            size,
+            texels: self
+                .read_rgba_f32(texture)?
+                .into_iter()
+                .map(|t| [t[0], t[1], t[2]])
+                .collect(),
+        })
+    }
+
+    /// Submit `encoder`, the timestamps of its passes resolved into `timer` first.
+    pub fn submit_timed(&self, mut encoder: wgpu::CommandEncoder, timer: Option<&crate::GpuTimer>) {
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        self.queue.submit([encoder.finish()]);
+    }
+
     fn map_and_copy<R>(
         &self,
         staging: &wgpu::Buffer,

@@ -13,7 +13,7 @@
 //!
 //! A [`GpuContext`](crate::GpuContext) on such an instance reports the messages as a
 //! [`GpuError::Validation`] from `check()`; one made by the test helpers
-//! (`context::test_context`) panics when it is dropped with messages it never reported, so a GPU
+//! (`context::test_gpu`) panics when it is dropped with messages it never reported, so a GPU
 //! test fails on any; and [`all_messages`] lists every message of the process, for a program to
 //! refuse to exit cleanly after one (the `caustics` binary does).
 

@@ -714,13 +714,13 @@ fn water_twins(
 /// twin; and clamped water's single copy. Both area rules: the hat rule's edge vertices differ
 /// between tiling water (their rings reach across the edges) and clamped water (half shares).
 fn water_generator_matches_the_cpu_twin() {
-    use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
+    use caustics_core::techniques::caustic_triangles::water::WaterSetup;
     let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let scene = common::with_gentle_ripples("pool");
     let mut w = scene.water.clone().unwrap();
     let surface = w.surface_at(scene.time).unwrap();
-    let heights = water::heights(&w, surface.as_ref(), 256, 256);
+    let heights = caustics_core::techniques::heights_for(&w, surface.as_ref(), 256, 256);
     // The hat rule with wrap (edge rings across the edges) and without (edge photons' share).
     for (wrap, area_rule) in [
         (true, AreaRule::Paper),
@@ -774,7 +774,7 @@ fn water_generator_matches_the_cpu_twin() {
 /// the pool's ripples over the shore's beach scaled into the pool (its far side 80 % of the way
 /// up), photons, paths and the looked-up floor map against the CPU twin.
 fn water_over_a_terrain_matches_the_cpu_twin() {
-    use caustics_core::techniques::caustic_triangles::water::{self, WaterSetup};
+    use caustics_core::techniques::caustic_triangles::water::WaterSetup;
     let ctx = test_gpu();
     let ct_gpu = CausticTriangles::new(&ctx).expect("pipelines");
     let mut scene = common::with_gentle_ripples("pool");
@@ -782,7 +782,7 @@ fn water_over_a_terrain_matches_the_cpu_twin() {
     let w = scene.water.clone().unwrap();
     scene.floor.terrain = Some(common::beach_under(w.depth));
     let surface = w.surface_at(scene.time).unwrap();
-    let heights = water::heights(&w, surface.as_ref(), 256, 256);
+    let heights = caustics_core::techniques::heights_for(&w, surface.as_ref(), 256, 256);
     let params = CausticTrianglesParams {
         photon_image: 96,
         ..Default::default()

@@ -943,11 +943,6 @@ impl Scene {
     ) -> Result<Scene> {
         validate::validate(file, base, name, check_technique)
     }
-
-    /// Height of the floor under `p`, 0 for the plane.
-    pub fn floor_height(&self, p: DVec2) -> f64 {
-        self.floor.height_gradient(p, self.size).0
-    }
 }
 
 #[cfg(test)]

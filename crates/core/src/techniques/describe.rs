@@ -97,15 +97,6 @@ impl std::fmt::Display for ParamDefault {
     }
 }
 
-/// What a change of the parameter costs a running GPU frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Change {
-    /// A uniform write: the next frame takes it.
-    Uniform,
-    /// New resources or pipelines: the renderer configures the technique again.
-    Reconfigure,
-}
-
 /// One parameter of a technique's table.
 #[derive(Clone, Copy, Debug)]
 pub struct Param {
@@ -121,8 +112,6 @@ pub struct Param {
     pub unit: &'static str,
     /// One line on what it does (the paper's section where it has one).
     pub doc: &'static str,
-    /// What changing it costs a running GPU frame.
-    pub change: Change,
     /// The settings `caustics bench --tradeoff` sweeps this knob over (empty: not swept); the
     /// first two make its quick run.
     pub sweep: &'static [&'static str],
@@ -137,7 +126,6 @@ impl Param {
         default: ParamDefault,
         unit: &'static str,
         doc: &'static str,
-        change: Change,
     ) -> Param {
         Param {
             key,
@@ -146,7 +134,6 @@ impl Param {
             default,
             unit,
             doc,
-            change,
             sweep: &[],
         }
     }
@@ -399,6 +386,21 @@ fn quoted(words: &[&str]) -> String {
 /// [`Descriptor::own_defaults`] of a technique whose parameters are the serde struct `T`.
 pub fn serde_defaults<T: Default + serde::Serialize>() -> toml::Table {
     toml::Table::try_from(T::default()).expect("a technique's parameters serialize as a table")
+}
+
+/// A technique's parameters from the tables keyed by technique: the table under `key` where there
+/// is one (a malformed one refused naming `caustics.<key>`), else the defaults.
+pub fn params_or_default<T: Default + serde::de::DeserializeOwned>(
+    table: &toml::Table,
+    key: &str,
+) -> Result<T> {
+    match table.get(key) {
+        Some(v) => v
+            .clone()
+            .try_into()
+            .map_err(|e| Error::field(format!("caustics.{key}"), e.to_string())),
+        None => Ok(T::default()),
+    }
 }
 
 // What a job and a buffer know of the technique they are for: here, so that the job and the

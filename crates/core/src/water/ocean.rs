@@ -40,6 +40,7 @@
 //!   `k`, `−k` holds one travelling wave and, by Parseval, the rms height is the same at every
 //!   time.
 
+use crate::random::SplitMix64;
 use std::f64::consts::{PI, TAU};
 use std::fmt;
 
@@ -465,20 +466,6 @@ fn gaussian_pair(seed: u64, n: i64, m: i64) -> (f64, f64) {
     let r = (-2.0 * u1.ln()).sqrt();
     let (s, c) = (TAU * u2).sin_cos();
     (r * c, r * s)
-}
-
-/// Steele, Lea and Flood's splitmix64 generator (the seeding generator of Java's
-/// `SplittableRandom`): tiny, and good enough for a few million Gaussian draws.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
 }
 
 /// Each run of `n` values replaced by its unnormalised inverse DFT, `x_j = Σ_k X_k e^{2πi jk/n}`:

@@ -614,10 +614,7 @@ impl Cascaded {
     ) -> Result<GpuCascadedFrame, GpuError> {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let out = self.encode(frame, &mut encoder, timer.as_deref_mut());
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
+        ctx.submit_timed(encoder, timer.as_deref());
         Ok(GpuCascadedFrame {
             eye: ctx.read_texture(&frame.eye)?,
             acc: ctx.read_buffer(&frame.acc)?,

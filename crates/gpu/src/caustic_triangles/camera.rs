@@ -246,10 +246,7 @@ impl CameraRenderer {
             pass.set_bind_group(0, &bind, &[]);
             pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
         }
-        if let Some(t) = timer.as_deref() {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
+        ctx.submit_timed(encoder, timer.as_deref());
         let texels: Vec<[f32; 4]> = ctx.read_buffer(&image)?;
         ctx.check()?;
         Ok(CameraImage {

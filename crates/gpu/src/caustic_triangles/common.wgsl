@@ -57,11 +57,6 @@ fn copy_offset(c: CausticTriangles, k: u32) -> vec2<f32> {
     return vec2<f32>(f32(k % 3u) - 1.0, f32(k / 3u) - 1.0) * c.floor.z;
 }
 
-// Copies to draw of each primitive.
-fn copies(c: CausticTriangles) -> u32 {
-    return select(1u, 9u, c.wrap != 0u);
-}
-
 // Whether the floor box [lo, hi] meets the map's square.
 fn meets_square(c: CausticTriangles, lo: vec2<f32>, hi: vec2<f32>) -> bool {
     return all(hi >= c.floor.xy) && all(lo <= c.floor.xy + c.floor.z);

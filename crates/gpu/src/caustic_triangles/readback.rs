@@ -44,14 +44,7 @@ impl CausticTriangles {
         ctx: &GpuContext,
         frame: &GeneratorFrame,
     ) -> Result<CausticsMap, GpuError> {
-        let f = &frame.setup.floor;
-        let texels = ctx.read_rgba_f32(&frame.map)?;
-        Ok(CausticsMap {
-            width: f.width,
-            height: f.height,
-            size: f.size,
-            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
-        })
+        ctx.read_map(&frame.map, frame.setup.floor.size)
     }
 
     /// A water frame's floor map: the receivers' lookup where it has receivers, else the
@@ -61,14 +54,7 @@ impl CausticTriangles {
         ctx: &GpuContext,
         wf: &WaterFrame,
     ) -> Result<CausticsMap, GpuError> {
-        let f = &wf.frame.setup.floor;
-        let texels = ctx.read_rgba_f32(wf.floor_map())?;
-        Ok(CausticsMap {
-            width: f.width,
-            height: f.height,
-            size: f.size,
-            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
-        })
+        ctx.read_map(wf.floor_map(), wf.frame.setup.floor.size)
     }
 
     /// Run the technique once and read everything back.
@@ -129,18 +115,7 @@ impl CausticTriangles {
         Ok(Some(maps))
     }
 
-    /// The water generator once, its floor map read back (the Runner's frame).
-    pub fn water_caustics(
-        &self,
-        ctx: &GpuContext,
-        ws: &WaterSetup,
-        heights: &Grid,
-        timer: Option<&mut GpuTimer>,
-    ) -> Result<CausticsMap, GpuError> {
-        Ok(self.water_caustics_walls(ctx, ws, heights, timer)?.0)
-    }
-
-    /// [`water_caustics`](Self::water_caustics) with the wall maps when `ws` has walls.
+    /// The water generator once, its floor map and, when `ws` has walls, the wall maps read back.
     pub fn water_caustics_walls(
         &self,
         ctx: &GpuContext,
@@ -156,10 +131,7 @@ impl CausticTriangles {
             timer.as_deref_mut(),
             Reconstruction::Triangles,
         );
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
+        ctx.submit_timed(encoder, timer.as_deref());
         let map = self.read_water_map(ctx, &wf)?;
         let walls = self.read_walls(ctx, &wf)?;
         ctx.check()?;

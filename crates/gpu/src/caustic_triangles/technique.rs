@@ -402,10 +402,7 @@ impl Pipelines for CausticTriangles {
                 timer.as_deref_mut(),
                 Reconstruction::Triangles,
             );
-            if let Some(t) = &timer {
-                t.resolve(&mut encoder);
-            }
-            ctx.queue.submit([encoder.finish()]);
+            ctx.submit_timed(encoder, timer.as_deref());
             let map = gpu.read_map(ctx, &frame)?;
             total = Some(match total {
                 None => map,

@@ -30,7 +30,7 @@ struct BandPasses {
 /// pass writes from a height texture (no distance map), and whose shifted copies of tiling water
 /// the copy band pass fits from the same texture. Built once per lattice, map and height-grid size;
 /// every encode reads the heights afresh (the caller's texture, [`CausticTriangles::water_frame_with_water`],
-/// or its own, rewritten by [`update_heights`](Self::update_heights)).
+/// or its own).
 pub struct WaterFrame {
     /// The floor's generator frame: photon image, vertex irradiance, merge pyramid, floor map.
     pub frame: GeneratorFrame,
@@ -78,24 +78,6 @@ pub struct WallFrame {
 }
 
 impl WaterFrame {
-    /// Overwrite the heights with a grid of the same size, in a frame that uploaded its own (the
-    /// copy band pass refits the band on the GPU at the next encode).
-    pub fn update_heights(&mut self, ctx: &GpuContext, heights: &Grid) -> Result<(), GpuError> {
-        let Some(texture) = &self.heights else {
-            return Err(GpuError::BadOption(
-                "caustic-triangles water frame: it reads the caller's heights texture; write that instead".into(),
-            ));
-        };
-        if (heights.cols as u32, heights.rows as u32) != self.grid {
-            return Err(GpuError::Validation(format!(
-                "caustic-triangles water heights: a {} x {} grid for a {} x {} frame",
-                heights.cols, heights.rows, self.grid.0, self.grid.1
-            )));
-        }
-        ctx.write_grid(texture, heights);
-        Ok(())
-    }
-
     /// The floor map: the receivers' lookup where the frame has receivers, else the triangles'.
     pub fn floor_map(&self) -> &wgpu::Texture {
         self.receivers

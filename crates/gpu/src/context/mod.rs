@@ -330,28 +330,11 @@ fn gpu_required() -> bool {
 }
 
 #[cfg(not(target_arch = "wasm32"))]
-/// The device for GPU tests. Without an adapter the test is skipped with a message, unless
-/// `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), in which case it fails: CI must not pass by skipping.
-/// Tests whose harness marks them ignored without an adapter use [`gpu_test_skip`] and
-/// [`test_gpu`] instead, so that a skip shows in cargo's summary rather than as a pass. With
-/// `CAUSTICS_VALIDATION=1` (all three helpers) a test context panics when dropped with a message of
-/// the validation layer that no `check` reported, so a GPU test fails on any.
-pub fn test_context() -> Option<GpuContext> {
-    crate::validation::panic_on_drop();
-    match GpuContext::headless(&GpuOptions::default()) {
-        Ok(ctx) => Some(ctx),
-        Err(e) if gpu_required() => panic!("CAUSTICS_REQUIRE_GPU=1 but no GPU device: {e}"),
-        Err(e) => {
-            eprintln!("skipping GPU test: {e}");
-            None
-        }
-    }
-}
-
-#[cfg(not(target_arch = "wasm32"))]
 /// Why the GPU tests cannot run here, for a test harness to report them as ignored; `None` when a
 /// device can be created, and always `None` with `CAUSTICS_REQUIRE_GPU=1` (as `.ci/run` sets), so
-/// that there the tests run and fail in [`test_gpu`]: CI must not pass by skipping.
+/// that there the tests run and fail in [`test_gpu`]: CI must not pass by skipping. With
+/// `CAUSTICS_VALIDATION=1` (both helpers) a test context panics when dropped with a message of
+/// the validation layer that no `check` reported, so a GPU test fails on any.
 pub fn gpu_test_skip() -> Option<String> {
     crate::validation::panic_on_drop();
     if gpu_required() {

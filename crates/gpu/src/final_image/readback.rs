@@ -116,10 +116,7 @@ impl FinalImage {
                 label: Some("final image"),
             });
         frame.encode(&mut encoder, timer.as_deref_mut());
-        if let Some(t) = &timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
+        ctx.submit_timed(encoder, timer.as_deref());
         ctx.check()?;
         let texels: Vec<[u8; 4]> = ctx.read_texture(frame.output())?;
         Ok(Image {

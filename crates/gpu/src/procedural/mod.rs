@@ -159,7 +159,7 @@ fn render_pipeline(
 }
 
 /// One frame's resources for a given setup and water, bind groups included: a frame is built once
-/// and encoded every time the water moves ([`ProceduralFrame::update_water`]).
+/// and encoded every time the water moves.
 pub struct ProceduralFrame {
     uniform: wgpu::Buffer,
     /// The heights it uploaded itself ([`ProceduralCaustics::frame`]); `None` when it reads the
@@ -211,32 +211,6 @@ impl ProceduralFrame {
     /// The floor map: the receivers' lookup where the frame has receivers, else the map.
     pub fn floor_map(&self) -> &wgpu::Texture {
         self.receivers.as_ref().map_or(&self.map, |r| &r.floor)
-    }
-
-    /// Replace the water for the next encode: a height grid of the frame's grid size, or the wave
-    /// function at another time (the frame must have been made with the same kind of input).
-    pub fn update_water(&mut self, ctx: &GpuContext, water: &SurfaceInput) -> Result<(), GpuError> {
-        if let SurfaceInput::Grid(g) = water {
-            let Some(heights) = &self.heights else {
-                return Err(GpuError::BadOption(
-                    "procedural: this frame reads the caller's heights texture; write that instead"
-                        .into(),
-                ));
-            };
-            if (g.cols as u32, g.rows as u32) != (heights.width(), heights.height()) {
-                return Err(GpuError::BadOption(format!(
-                    "procedural: the frame holds a {} x {} height grid, not {} x {}",
-                    heights.width(),
-                    heights.height(),
-                    g.cols,
-                    g.rows
-                )));
-            }
-            ctx.write_grid(heights, g);
-        }
-        self.wave = wave_of(water);
-        self.write_uniform(ctx);
-        Ok(())
     }
 
     /// Whether `setup` fits this frame's textures, bind groups and sampler (the same variant, map,
@@ -601,17 +575,8 @@ impl ProceduralCaustics {
         let frame = self.frame(ctx, setup, water)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let texture = self.encode(&frame, &mut encoder, timer.as_deref_mut());
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
-        let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
-        Ok(CausticsMap {
-            width: setup.width,
-            height: setup.height,
-            size: setup.size,
-            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
-        })
+        ctx.submit_timed(encoder, timer.as_deref());
+        ctx.read_map(texture, setup.size)
     }
 }
 

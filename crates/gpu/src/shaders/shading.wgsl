@@ -10,14 +10,6 @@ const ALBEDO_IMAGE: u32 = 3u;
 const TILE_COLOUR: vec3<f32> = vec3<f32>(0.62, 0.78, 0.82);
 const GROUT_COLOUR: vec3<f32> = vec3<f32>(0.18, 0.2, 0.22);
 
-// x^y for x >= 0 with 0^y = 0 (y > 0): WGSL leaves pow(0, y) to the implementation.
-fn pow0(x: f32, y: f32) -> f32 {
-    if x <= 0.0 {
-        return 0.0;
-    }
-    return pow(x, y);
-}
-
 // Preetham et al. 1999's daylight along unit `d` (sky.rs `Sky::radiance`): the Perez function
 // `scale (1 + A e^(B / cos θ)) (1 + C e^(D γ) + E cos² γ)` of the view's zenith angle θ and its
 // angle γ to the sun (`to_sun`), for the luminance and both chromaticities at once, each

@@ -29,8 +29,7 @@ pub(super) struct ObjectFrame {
 }
 
 /// One scene's resources: the BVH buffers, textures per object, the water buffer, the floor map and
-/// every bind group. Built once; encode it every frame (upload new heights with
-/// [`VolumesFrame::update_heights`]).
+/// every bind group. Built once; encode it every frame (it reads the heights afresh).
 pub struct VolumesFrame {
     /// The setup the frame was built for: the sun, water, lattice and objects' views it uploads.
     pub setup: VolumesSetup,
@@ -86,13 +85,6 @@ impl VolumesFrame {
     /// GPU memory the frame's buffers and textures take, bytes.
     pub fn bytes(&self) -> u64 {
         self.bytes
-    }
-
-    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
-    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
-        if let Some(t) = &self.heights {
-            ctx.write_grid(t, heights);
-        }
     }
 
     /// Whether `setup` fits this frame's buffers, textures and bind groups (the same parameters,

@@ -12,8 +12,7 @@ use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
 
 /// One frame's resources for a given map and height-field size, bind groups included: a frame is
-/// built once and encoded every time the water moves (upload new heights with
-/// [`Frame::update_heights`]).
+/// built once and encoded every time the water moves.
 pub struct Frame {
     /// The heights it uploaded itself ([`Yuksel::frame`]); `None` when it reads the caller's
     /// ([`Yuksel::frame_with_water`]).
@@ -79,13 +78,6 @@ impl Frame {
     /// GPU memory this frame's textures and buffers take, bytes.
     pub fn bytes(&self) -> u64 {
         self.bytes
-    }
-
-    /// Replace the height field (same size) for the next encode, in a frame that uploaded its own.
-    pub fn update_heights(&self, ctx: &GpuContext, heights: &Grid) {
-        if let Some(t) = &self.heights {
-            ctx.write_grid(t, heights);
-        }
     }
 
     /// The setup the frame was built for, or last took by [`set_setup`](Self::set_setup).

@@ -40,16 +40,7 @@ impl Yuksel {
         let frame = self.frame(ctx, setup, heights, variant)?;
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         let texture = self.encode(&frame, &mut encoder, timer.as_deref_mut());
-        if let Some(t) = timer {
-            t.resolve(&mut encoder);
-        }
-        ctx.queue.submit([encoder.finish()]);
-        let texels: Vec<[f32; 4]> = ctx.read_texture(texture)?;
-        Ok(CausticsMap {
-            width: setup.width,
-            height: setup.height,
-            size: setup.size,
-            texels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
-        })
+        ctx.submit_timed(encoder, timer.as_deref());
+        ctx.read_map(texture, setup.size)
     }
 }

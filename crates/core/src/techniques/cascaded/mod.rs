@@ -127,7 +127,7 @@ pub enum Placement {
 
 use super::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, check_index};
 use super::describe::{
-    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
 };
 use super::{Input, Job, JobOutput, SceneCaustics};
 use crate::plot::{Picture, rgb_picture};
@@ -151,7 +151,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
                 D::Int(512),
                 "texels per side",
                 "caustic-map texels per side of each of the four cascades (§3.3)",
-                Change::Reconfigure,
             )
         },
         Param::new(
@@ -161,7 +160,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Text("eq33"),
             "",
             "eq33: the photon placed by Eq. 3.3; plane: on the horizontal plane through the terrain hit (ours)",
-            Change::Uniform,
         ),
         Param::new(
             "dispersion",
@@ -170,7 +168,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Text("none"),
             "",
             "none; wavelength: one IOR per channel (§3.6); post: a screen-space shift (ours)",
-            Change::Reconfigure,
         ),
         Param::new(
             "dispersion_scale",
@@ -179,7 +176,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(1.0),
             "",
             "exaggeration of the dispersion (1: water's measured dispersion)",
-            Change::Uniform,
         ),
         Param::new(
             "splat",
@@ -188,7 +184,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Text("footprint"),
             "",
             "footprint: a tent the size of the photon's floor area (ours); point: one pixel (§3.4)",
-            Change::Uniform,
         ),
         Param::new(
             "brightness",
@@ -197,7 +192,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Text("physical"),
             "",
             "physical: relative irradiance; ramps: the paper's depth ramps (§3.4.3)",
-            Change::Uniform,
         ),
         Param::new(
             "near",
@@ -206,7 +200,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(0.1),
             "world units",
             "the eye's near plane (view depth)",
-            Change::Uniform,
         ),
         Param::new(
             "far",
@@ -215,7 +208,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(48.0),
             "world units",
             "the far plane of the last cascade (view depth)",
-            Change::Uniform,
         ),
         Param::new(
             "blend",
@@ -224,7 +216,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(0.1),
             "",
             "fraction of each cascade's depth interval over which it blends into the next",
-            Change::Uniform,
         ),
         Param::new(
             "c",
@@ -233,7 +224,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(1.0),
             "",
             "C of §3.4.3 (ramps)",
-            Change::Uniform,
         ),
         Param::new(
             "min_depth",
@@ -242,7 +232,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(0.0),
             "world units",
             "MIN_DEPTH of §3.4.3 (ramps)",
-            Change::Uniform,
         ),
         Param::new(
             "max_depth",
@@ -251,7 +240,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(10.0),
             "world units",
             "MAX_DEPTH of §3.4.3 (ramps)",
-            Change::Uniform,
         ),
         Param::new(
             "shallow_ramp",
@@ -260,7 +248,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(1.0),
             "world units",
             "width of the shallow ramp of §3.4.3 (the paper: 1)",
-            Change::Uniform,
         ),
         Param::new(
             "terrain_pass",
@@ -269,7 +256,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Bool(true),
             "",
             "the terrain's light-view depth pass; off, the floor is the plane z = 0 (Fig. 4.3)",
-            Change::Uniform,
         ),
     ],
     fixed: &[],
@@ -441,13 +427,7 @@ impl CascadedParams {
     /// The parameters from the `cascaded` entry of a scene's `[caustics]` table, defaults for what it
     /// leaves out (all of them without the entry), validated.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: CascadedParams = match table.get("cascaded") {
-            Some(v) => v
-                .clone()
-                .try_into()
-                .map_err(|e| Error::field("caustics.cascaded", e.to_string()))?,
-            None => CascadedParams::default(),
-        };
+        let p: CascadedParams = params_or_default(table, "cascaded")?;
         p.validate()?;
         Ok(p)
     }

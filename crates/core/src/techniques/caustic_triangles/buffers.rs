@@ -77,7 +77,7 @@ fn generator_picture(buffer: Buffer, input: &BufferInput) -> Result<Picture> {
             }
             let n = input.map_size;
             let ws = water::WaterSetup::new(&params, w, input.light, n, n)?;
-            let heights = water::heights(w, surface, n, n);
+            let heights = crate::techniques::heights_for(w, surface, n, n);
             let (photons, _) = water::photon_pass(&ws, &heights);
             (ws.setup, photons)
         }

@@ -124,10 +124,10 @@ pub use scene::{
     FloorWindow, GlassScene, Occluder, PointLight, Shape, bounding_sphere, light_frame,
 };
 pub use splat::{splat_pass, splat_pass_with_paths};
-pub use triangles::{raster_triangle, triangles_pass, triangles_pass_with_paths};
+pub use triangles::{triangles_pass, triangles_pass_with_paths};
 
 use super::describe::{
-    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -151,7 +151,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
                 D::Int(128),
                 "texels per side",
                 "the photon hit location image, P (§4.1; the paper: 128)",
-                Change::Reconfigure,
             )
         },
         Param::new(
@@ -161,7 +160,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(256),
             "texels per face side",
             "the generator's layered distance map (§3; the paper: 512)",
-            Change::Reconfigure,
         ),
         Param::new(
             "light_cube",
@@ -170,7 +168,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(512),
             "texels per face side",
             "the light cube map a point light's caustic triangles are drawn into (§4)",
-            Change::Reconfigure,
         ),
         Param::new(
             "layers",
@@ -179,7 +176,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(4),
             "",
             "layers of the distance map (§3)",
-            Change::Reconfigure,
         ),
         Param::new(
             "linear_steps",
@@ -188,7 +184,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(64),
             "",
             "linear search steps per ray segment in the distance map (§3)",
-            Change::Uniform,
         ),
         Param::new(
             "secant_iterations",
@@ -197,7 +192,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(8),
             "",
             "secant search iterations after the linear search (§3)",
-            Change::Uniform,
         ),
         Param::new(
             "depth",
@@ -206,7 +200,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(6),
             "",
             "most refractions / reflections along a photon path (§4.1)",
-            Change::Uniform,
         ),
         Param::new(
             "fresnel",
@@ -215,7 +208,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Bool(true),
             "",
             "each photon carries its Fresnel transmittance",
-            Change::Uniform,
         ),
         Param::new(
             "area_rule",
@@ -224,7 +216,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Text("paper"),
             "",
             "paper: half the 4-neighbour triangles (§4.2); hat: a third of the drawn triangles, flux-true",
-            Change::Uniform,
         ),
         Param::new(
             "splat_size",
@@ -233,7 +224,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(2.0),
             "texels",
             "side of the baseline's square splats",
-            Change::Uniform,
         ),
         Param::new(
             "merge_levels",
@@ -242,7 +232,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Int(0),
             "",
             "levels of the §5 hierarchical merging of small caustic triangles (0: off)",
-            Change::Reconfigure,
         ),
         Param::new(
             "merge_texels",
@@ -251,7 +240,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             D::Float(2.0),
             "texels",
             "a block of quads is merged when its quad covers less than this (§5)",
-            Change::Uniform,
         ),
     ],
     fixed: &[],
@@ -409,13 +397,7 @@ impl CausticTrianglesParams {
     /// The parameters from the `caustic-triangles` entry of a scene's `[caustics]` table, defaults
     /// for what it leaves out (all of them without the entry), validated.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: CausticTrianglesParams = match table.get("caustic-triangles") {
-            Some(v) => v
-                .clone()
-                .try_into()
-                .map_err(|e| Error::field("caustics.caustic-triangles", e.to_string()))?,
-            None => CausticTrianglesParams::default(),
-        };
+        let p: CausticTrianglesParams = params_or_default(table, "caustic-triangles")?;
         p.validate()?;
         Ok(p)
     }

@@ -26,6 +26,7 @@
 //! The tests and `docs/caustic-triangles.md` state the photon count and the difference between
 //! `N` and `2N` runs.
 
+use crate::random::hash01;
 use glam::{DVec2, DVec3};
 
 use super::scene::{GlassScene, bounding_sphere, light_frame};
@@ -113,15 +114,6 @@ pub struct ReferenceResult {
     pub budget: PowerBudget,
     /// Photons on the grid, `N²`, those that missed the generator included.
     pub photons: u64,
-}
-
-/// A small deterministic hash to `[0, 1)` (SplitMix64).
-fn hash01(mut x: u64) -> f64 {
-    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    x ^= x >> 31;
-    (x >> 11) as f64 / (1u64 << 53) as f64
 }
 
 struct Tracer<'a> {

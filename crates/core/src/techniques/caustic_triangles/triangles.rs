@@ -6,14 +6,6 @@ use glam::{DVec2, DVec3};
 use super::{CausticTrianglesSetup, FloorWindow, merge};
 use crate::map::CausticsMap;
 
-/// Add the Gouraud-shaded triangle `v` (map pixel coordinates) with vertex values `e` at every texel
-/// centre inside it: what the rasteriser does.
-pub fn raster_triangle(acc: &mut [f32], width: usize, height: usize, v: [DVec2; 3], e: [f64; 3]) {
-    raster_barycentric(width, height, v, |k, b| {
-        acc[k] += (b[0] * e[0] + b[1] * e[1] + b[2] * e[2]) as f32;
-    });
-}
-
 /// Every texel centre inside triangle `v` (map pixel coordinates): its index and barycentric
 /// coordinates, what the rasteriser interpolates with.
 pub(super) fn raster_barycentric(

@@ -56,9 +56,9 @@ use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::parallel::prelude::*;
 use crate::receivers::{ReceiverHeights, flat_refracted, light_space, lookup};
-use crate::scene::{Floor, Scene, Water, WaterSource};
+use crate::scene::{Floor, Scene, Water};
+use crate::techniques::heights_for;
 use crate::walls::{Wall, WallMaps};
-use crate::water::{Surface, sample_grid};
 
 /// The water photon pass's inputs (the GPU uploads the same numbers, `WaterPhotonUniform`).
 #[derive(Clone, Debug)]
@@ -485,15 +485,6 @@ pub fn splats(ws: &WaterSetup, heights: &Grid) -> Result<CausticsMap> {
     ))
 }
 
-/// The height grid the water generator reads: a height-field file's own samples, or the surface
-/// sampled at the map's texel centres (what the other grid-based techniques read).
-pub fn heights(water: &Water, surface: &dyn Surface, width: usize, height: usize) -> Grid {
-    match &water.source {
-        WaterSource::HeightField(g) => g.clone(),
-        _ => sample_grid(surface, width, height, water.size),
-    }
-}
-
 /// The technique on a scene with water, the water as the generator, over the scene square at the
 /// scene's caustics resolution; with the scene's walls, nothing carried across the edges (the
 /// walls' own maps: [`render_with_walls`]).
@@ -528,7 +519,7 @@ pub fn render_with_walls(
         .with_walls(scene.floor.walls)
         .with_floor(&scene.floor, None);
     let surface = water.surface_at(scene.time)?;
-    let heights = heights(water, surface.as_ref(), w, h);
+    let heights = heights_for(water, surface.as_ref(), w, h);
     let map = caustics(&ws, &heights)?.map;
     let walls = match ws.walls {
         true => Some(wall_caustics(&ws, &heights)?),
@@ -543,6 +534,8 @@ mod tests {
     use crate::fixtures::{open_floor, slope, worst_off_the_attenuated_cosine};
     use crate::metrics::compare;
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
+    use crate::scene::WaterSource;
+    use crate::water::Surface;
 
     fn params(p: u32) -> CausticTrianglesParams {
         CausticTrianglesParams {
@@ -683,7 +676,7 @@ mod tests {
         let res = 256;
         let water = scene.water.clone().unwrap();
         let surface = water.surface_at(scene.time).unwrap();
-        let heights = heights(&water, surface.as_ref(), 512, 512);
+        let heights = heights_for(&water, surface.as_ref(), 512, 512);
         let bar = crate::fixtures::sand_bar(&water);
         let mut l1 = Vec::new();
         for terrain in [None, Some(bar)] {
@@ -718,7 +711,7 @@ mod tests {
         let surface = water.surface_at(scene.time).unwrap();
         let res = 256;
         let r = reference_at(&scene, surface.as_ref(), res);
-        let heights = heights(water, surface.as_ref(), 512, 512);
+        let heights = heights_for(water, surface.as_ref(), 512, 512);
         let mut l1 = Vec::new();
         for p in [128, 256] {
             let ws = WaterSetup::new(&params(p), water, scene.light.direction, res, res).unwrap();
@@ -762,7 +755,7 @@ mod tests {
         scene.light.direction = DVec3::new(0.8, 0.3, -0.5);
         let mut water = scene.water.clone().unwrap();
         let surface = water.surface_at(scene.time).unwrap();
-        let heights = heights(&water, surface.as_ref(), 256, 256);
+        let heights = heights_for(&water, surface.as_ref(), 256, 256);
         // Shallow enough that the sideways travel stays a fraction of the square.
         water.depth = 0.4;
         for merge_levels in [0, 2] {
@@ -943,7 +936,7 @@ mod tests {
         let scene = Scene::builtin("pool").unwrap();
         let mut water = scene.water.clone().unwrap();
         let surface = water.surface_at(scene.time).unwrap();
-        let heights = heights(&water, surface.as_ref(), 128, 128);
+        let heights = heights_for(&water, surface.as_ref(), 128, 128);
         // Flux in one unit on both sides: no absorption along the paths.
         water.absorption = DVec3::ZERO;
         for zenith in [0.0f64, 30.0, 60.0] {

@@ -142,7 +142,7 @@ pub const MAX_TARGET_RESOLUTION: u32 = 8192;
 pub const MAX_ANISOTROPY: u32 = 16;
 
 use super::describe::{
-    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -229,7 +229,6 @@ const VARIANT: Param = Param::new(
     D::Text("screen"),
     "",
     "vertex: a fine ground mesh; screen: per map pixel; texture: a mipmapped target",
-    Change::Reconfigure,
 );
 const MESH_RESOLUTION: Param = Param::new(
     "mesh_resolution",
@@ -238,7 +237,6 @@ const MESH_RESOLUTION: Param = Param::new(
     D::Int(128),
     "quads per side",
     "the vertex variant's ground mesh",
-    Change::Reconfigure,
 );
 const TARGET_RESOLUTION: Param = Param::new(
     "target_resolution",
@@ -252,7 +250,6 @@ const TARGET_RESOLUTION: Param = Param::new(
     D::Int(256),
     "texels per side",
     "the texture variant's square render target (each mip level halves it)",
-    Change::Reconfigure,
 );
 const ANISOTROPY: Param = Param::new(
     "anisotropy",
@@ -261,7 +258,6 @@ const ANISOTROPY: Param = Param::new(
     D::Int(MAX_ANISOTROPY as i64),
     "",
     "the texture variant's sampler clamp (1: plain trilinear)",
-    Change::Reconfigure,
 );
 const IOR: Param = Param::new(
     "ior",
@@ -270,7 +266,6 @@ const IOR: Param = Param::new(
     D::Float(PAPER_IOR),
     "",
     "index of refraction of the water (the paper's 1.33333, not the scene's)",
-    Change::Uniform,
 );
 const FOLLOW_SUN: Param = Param::new(
     "follow_sun",
@@ -279,7 +274,6 @@ const FOLLOW_SUN: Param = Param::new(
     D::Bool(false),
     "",
     "the scene's sun instead of the paper's overhead one",
-    Change::Uniform,
 );
 const ABSORPTION: Param = Param::new(
     "absorption",
@@ -288,7 +282,6 @@ const ABSORPTION: Param = Param::new(
     D::Bool(true),
     "",
     "exp(-K d) along the gathering ray, with the scene's K",
-    Change::Uniform,
 );
 const SUN_DIAMETER: Param = Param::new(
     "sun_diameter",
@@ -297,7 +290,6 @@ const SUN_DIAMETER: Param = Param::new(
     D::Float(SUN_DIAMETER_DEG),
     "degrees",
     "the sun disk of the generated light map",
-    Change::Reconfigure,
 );
 const HALO_AREA_PARAM: Param = Param::new(
     "halo_area",
@@ -306,7 +298,6 @@ const HALO_AREA_PARAM: Param = Param::new(
     D::Float(HALO_AREA),
     "",
     "the halo's area over the sun disk's",
-    Change::Reconfigure,
 );
 const HALO_LEVEL: Param = Param::new(
     "halo_level",
@@ -315,7 +306,6 @@ const HALO_LEVEL: Param = Param::new(
     D::Float(0.5),
     "",
     "halo brightness at the sun disk's edge, relative to the disk",
-    Change::Reconfigure,
 );
 const LIGHT_MAP_RESOLUTION: Param = Param::new(
     "light_map_resolution",
@@ -324,7 +314,6 @@ const LIGHT_MAP_RESOLUTION: Param = Param::new(
     D::Int(128),
     "texels per side",
     "the generated light map",
-    Change::Reconfigure,
 );
 const LIGHT_MAP: Param = Param::new(
     "light_map",
@@ -333,7 +322,6 @@ const LIGHT_MAP: Param = Param::new(
     D::Auto("generated from the sun and halo"),
     "",
     "a PNG light map instead of the generated one",
-    Change::Reconfigure,
 );
 const LIGHT_MAP_EXTENT: Param = Param::new(
     "light_map_extent",
@@ -342,7 +330,6 @@ const LIGHT_MAP_EXTENT: Param = Param::new(
     D::Auto("1.1 x the halo radius"),
     "degrees",
     "half-angle the PNG light map spans from its centre to its edges",
-    Change::Reconfigure,
 );
 const GROUND: Param = Param::new(
     "ground",
@@ -351,7 +338,6 @@ const GROUND: Param = Param::new(
     D::Float(0.5),
     "",
     "share of the floor's light the sun map does not modulate (Listing 2's additive blend)",
-    Change::Uniform,
 );
 
 /// The setup and heights a job gives paper 2 (both twins).
@@ -510,13 +496,7 @@ impl ProceduralCausticsParams {
     /// The `procedural` table of `table` (a scene's `[caustics]`), defaults where it is absent,
     /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: ProceduralCausticsParams = match table.get("procedural") {
-            Some(v) => v
-                .clone()
-                .try_into()
-                .map_err(|e| Error::field("caustics.procedural", e.to_string()))?,
-            None => ProceduralCausticsParams::default(),
-        };
+        let p: ProceduralCausticsParams = params_or_default(table, "procedural")?;
         p.validate()?;
         Ok(p)
     }

@@ -92,7 +92,7 @@ use crate::walls::WallMaps;
 pub use representation::OrthoView;
 
 use super::describe::{
-    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -113,7 +113,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Int(10),
             unit: "",
             doc: "reference planes per object (§3.1; the paper's Fig. 6: 5 and 50)",
-            change: Change::Reconfigure,
             sweep: &["5", "10", "25", "50"],
         },
         Param {
@@ -123,7 +122,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Int(256),
             unit: "texels per side",
             doc: "each object's depth, diffuse and caustics textures",
-            change: Change::Reconfigure,
             sweep: &[],
         },
         Param {
@@ -133,7 +131,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Int(512),
             unit: "texels per side",
             doc: "the shadow map along the refracted sun; 0 turns shadows off",
-            change: Change::Reconfigure,
             sweep: &[],
         },
         Param {
@@ -143,7 +140,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Int(0),
             unit: "per side",
             doc: "water lattice cells along each side of the square; 0: the map's width",
-            change: Change::Reconfigure,
             sweep: &[],
         },
         Param {
@@ -153,7 +149,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Bool(true),
             unit: "",
             doc: "each volume carries its Fresnel transmittance",
-            change: Change::Uniform,
             sweep: &[],
         },
         Param {
@@ -163,7 +158,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Bool(true),
             unit: "",
             doc: "exp(-K d) along each volume's path",
-            change: Change::Uniform,
             sweep: &[],
         },
         Param {
@@ -173,7 +167,6 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             default: D::Float(0.2),
             unit: "",
             doc: "Ia of Eq. 4, relative to the sun through flat water",
-            change: Change::Uniform,
             sweep: &[],
         },
     ],
@@ -258,13 +251,7 @@ impl VolumesParams {
     /// The `volumes` table of `table` (a scene's `[caustics]`), defaults where it is absent,
     /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: VolumesParams = match table.get("volumes") {
-            Some(v) => v
-                .clone()
-                .try_into()
-                .map_err(|e| Error::field("caustics.volumes", e.to_string()))?,
-            None => VolumesParams::default(),
-        };
+        let p: VolumesParams = params_or_default(table, "volumes")?;
         p.validate()?;
         Ok(p)
     }

@@ -32,6 +32,7 @@
 //! The grid is stratified, so the noise falls faster than `1/√photons` away from the caustics'
 //! singular curves; `docs/volumes.md` gives the difference between runs at `s` and `s/2`.
 
+use crate::random::hash01;
 use glam::{DVec2, DVec3};
 
 use super::representation::covered;
@@ -89,14 +90,6 @@ pub struct MeshReference {
     pub walls: Option<WallMaps>,
     /// Photons traced in all, the floor's grid and the objects' together.
     pub photons: u64,
-}
-
-fn hash01(mut x: u64) -> f64 {
-    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    x ^= x >> 31;
-    (x >> 11) as f64 / (1u64 << 53) as f64
 }
 
 struct Photon {

@@ -99,7 +99,7 @@ use crate::optics::{fresnel_transmittance, refract};
 use crate::receivers::Shared;
 
 use super::describe::{
-    Change, Descriptor, Kind, Param, ParamDefault as D, Receiver, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -165,7 +165,6 @@ const PRESET: Param = Param {
     default: D::Text("water"),
     unit: "",
     doc: "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
-    change: Change::Reconfigure,
     sweep: &["paper"],
 };
 const PASSES: Param = Param {
@@ -175,7 +174,6 @@ const PASSES: Param = Param {
     default: D::Auto("scatter, the paper's preset targets"),
     unit: "",
     doc: "targets: the paper's pre-pass texture, pass 1 into M+1 render-target channels and pass 2 (§4-5); scatter: each sample's light added into the map pixels its box covers, with integer atomics (ours: the same map, less time and memory)",
-    change: Change::Reconfigure,
     sweep: &[],
 };
 const N: Param = Param {
@@ -190,7 +188,6 @@ const N: Param = Param {
     default: D::Auto("from the preset"),
     unit: "pixels",
     doc: "samples along x per pixel (odd): region R is N pixels wide (§4)",
-    change: Change::Reconfigure,
     sweep: &[],
 };
 const M: Param = Param {
@@ -205,7 +202,6 @@ const M: Param = Param {
     default: D::Auto("from the preset"),
     unit: "pixels",
     doc: "neighbouring rows (even): M + 1 channels in pass 1 (§4)",
-    change: Change::Reconfigure,
     sweep: &[],
 };
 const SUBSAMPLES: Param = Param {
@@ -215,7 +211,6 @@ const SUBSAMPLES: Param = Param {
     default: D::Auto("4, the paper's preset 1"),
     unit: "",
     doc: "samples per map pixel along each axis, each carrying 1/k² of its light (ours)",
-    change: Change::Reconfigure,
     sweep: &["1", "2", "4"],
 };
 const SPLIT: Param = Param {
@@ -225,7 +220,6 @@ const SPLIT: Param = Param {
     default: D::Float(DEFAULT_SPLIT),
     unit: "",
     doc: "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
-    change: Change::Uniform,
     sweep: &["0", "0.3"],
 };
 const FOOTPRINT: Param = Param {
@@ -235,7 +229,6 @@ const FOOTPRINT: Param = Param {
     default: D::Auto("on, the paper's preset off"),
     unit: "",
     doc: "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
-    change: Change::Uniform,
     sweep: &[],
 };
 const FRESNEL: Param = Param {
@@ -245,7 +238,6 @@ const FRESNEL: Param = Param {
     default: D::Bool(true),
     unit: "",
     doc: "each sample carries its Fresnel transmittance",
-    change: Change::Uniform,
     sweep: &[],
 };
 const ABSORPTION: Param = Param {
@@ -255,7 +247,6 @@ const ABSORPTION: Param = Param {
     default: D::Bool(true),
     unit: "",
     doc: "exp(-K d) along the flat-water path",
-    change: Change::Uniform,
     sweep: &[],
 };
 
@@ -422,13 +413,7 @@ impl YukselParams {
     /// The `yuksel` table of `table` (a scene's `[caustics]`), defaults where it is absent,
     /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: YukselParams = match table.get("yuksel") {
-            Some(v) => v
-                .clone()
-                .try_into()
-                .map_err(|e| Error::field("caustics.yuksel", e.to_string()))?,
-            None => YukselParams::defaults(),
-        };
+        let p: YukselParams = params_or_default(table, "yuksel")?;
         p.validate()?;
         Ok(p)
     }
