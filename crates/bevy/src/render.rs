@@ -405,11 +405,7 @@ fn record(
                 stats.update(|s| s.error = Some(format!("caustics map: {e}")));
             } else if let (true, Some((_, mips))) = (floor, &state.floor_mips) {
                 // The floor map's mips, from the level just copied.
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("bevy_caustics floor mips"),
-                    timestamp_writes: None,
-                });
-                mips.encode(&mut pass);
+                mips.encode_pass(encoder, "bevy_caustics floor mips");
             }
         }
         if let (Some(walls), Some(image)) = (state.technique.walls(), images.get(&state.maps.walls))

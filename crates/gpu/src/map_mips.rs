@@ -25,6 +25,8 @@ const TILE: u32 = 8;
 pub struct MapMips {
     pipeline: wgpu::ComputePipeline,
     levels: Vec<(wgpu::BindGroup, (u32, u32))>,
+    /// The texture the levels are written into.
+    written: Option<wgpu::Texture>,
 }
 
 /// The compute pipeline every [`MapMips`] records: one per device is enough.
@@ -84,7 +86,7 @@ impl MapMips {
                 (fine, mip_view(mips, k), mips, k)
             })
             .collect::<Vec<_>>();
-        Self::from_views(ctx, pipeline, &levels)
+        Self::from_views(ctx, pipeline, &levels, Some(mips))
     }
 
     /// Mips 1 and above of `map` (`Rgba32Float`, `STORAGE_BINDING` and `TEXTURE_BINDING`, as
@@ -101,13 +103,14 @@ impl MapMips {
         let levels = (1..count)
             .map(|k| (mip_view(map, k - 1), mip_view(map, k), map, k))
             .collect::<Vec<_>>();
-        Self::from_views(ctx, pipeline, &levels)
+        Self::from_views(ctx, pipeline, &levels, (count > 1).then_some(map))
     }
 
     fn from_views(
         ctx: &GpuContext,
         pipeline: &wgpu::ComputePipeline,
         levels: &[(wgpu::TextureView, wgpu::TextureView, &wgpu::Texture, u32)],
+        written: Option<&wgpu::Texture>,
     ) -> MapMips {
         let levels = levels
             .iter()
@@ -130,6 +133,7 @@ impl MapMips {
         MapMips {
             pipeline: pipeline.clone(),
             levels,
+            written: written.cloned(),
         }
     }
 
@@ -142,6 +146,29 @@ impl MapMips {
     /// [`encode`](Self::encode) then records nothing.
     pub fn is_empty(&self) -> bool {
         self.levels.is_empty()
+    }
+
+    /// [`encode`](Self::encode) in a compute pass of its own, for a map whose level 0 was written
+    /// earlier in `encoder` (a copy of a technique's map). The written texture is declared a
+    /// storage target first: wgpu 30 records the first state of a subresource that a pass meets
+    /// for the first time in its command buffer as the pass's last use (gfx-rs/wgpu#10199), so a
+    /// level written and then read by the next dispatch would be left in the sampled layout.
+    pub fn encode_pass(&self, encoder: &mut wgpu::CommandEncoder, label: &str) {
+        if let Some(texture) = &self.written {
+            encoder.transition_resources(
+                std::iter::empty(),
+                std::iter::once(wgpu::TextureTransition {
+                    texture,
+                    selector: None,
+                    state: wgpu::TextureUses::STORAGE_WRITE_ONLY,
+                }),
+            );
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(label),
+            timestamp_writes: None,
+        });
+        self.encode(&mut pass);
     }
 
     /// The dispatches into `pass`, finest first: each reads the level the one before it wrote.

@@ -538,32 +538,39 @@ fn assert_is_the_pyramid(gpu: &[(u32, Vec<[f32; 4]>)], map: &CausticsMap) {
 }
 
 /// A map texture with its own mip chain (the Bevy plugin's floor image) filled in place from its
-/// mip 0: each mip the CPU's pyramid level.
+/// mip 0, copied in by the same encoder as the plugin copies a technique's map: each mip the CPU's
+/// pyramid level, twice over (under `CAUSTICS_VALIDATION=1` the layer sees each mip in the layout
+/// its pass needs, frame after frame).
 fn a_maps_own_mips_are_its_pyramid() {
     let ctx = test_gpu();
     let map = odd_map(1.0);
     let levels = caustics_core::map::pyramid_levels(map.width, map.height) as u32;
-    let texture = caustics_gpu::map_mips::mip_chain(
-        &ctx,
-        "map with mips",
-        (map.width as u32, map.height as u32),
-        levels,
-        wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::COPY_SRC,
-    );
-    caustics_gpu::final_image::write_map(&ctx, &texture, &map);
+    let size = (map.width as u32, map.height as u32);
+    let chain = |label, levels| {
+        caustics_gpu::map_mips::mip_chain(
+            &ctx,
+            label,
+            size,
+            levels,
+            wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::COPY_SRC,
+        )
+    };
+    let (source, texture) = (chain("technique's map", 1), chain("map with mips", levels));
+    caustics_gpu::final_image::write_map(&ctx, &source, &map);
     let pipeline = caustics_gpu::map_mips::mips_pipeline(&ctx);
     let mips = caustics_gpu::map_mips::MapMips::in_place(&ctx, &pipeline, &texture);
     assert_eq!(mips.len() as u32, levels - 1);
-    let mut encoder = ctx
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("mips"),
-        });
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        mips.encode(&mut pass);
+    for _ in 0..2 {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        encoder.copy_texture_to_texture(
+            source.as_image_copy(),
+            texture.as_image_copy(),
+            source.size(),
+        );
+        mips.encode_pass(&mut encoder, "mips");
+        ctx.queue.submit([encoder.finish()]);
+        ctx.check().expect("no validation message");
     }
-    ctx.queue.submit([encoder.finish()]);
     let gpu: Vec<(u32, Vec<[f32; 4]>)> = (1..levels)
         .map(|k| {
             let w = texture
