@@ -194,11 +194,13 @@ pub fn run(args: BakeArgs) -> Result<()> {
         eprintln!("note: {n}");
     }
     let range = args.range.unwrap_or((0, args.frames));
-    prepare_folder(&args.out, &record, range, args.raw, args.force)?;
-
     // A technique without a GPU implementation (the reference) bakes through its CPU twin: no
     // device then.
-    let ctx = caustics_gpu::registry::find(spec.name()).and_then(|_| args.gpu.context());
+    let ctx = match caustics_gpu::registry::find(spec.name()) {
+        Some(_) => args.gpu.context()?,
+        None => None,
+    };
+    prepare_folder(&args.out, &record, range, args.raw, args.force)?;
     let scenes = colour_scenes(&scene, args.dispersion);
     let mut gpu = match &ctx {
         Some(ctx) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),

@@ -158,9 +158,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
             .map(|s| parse_res(s))
             .collect::<Result<Vec<_>>>()?
     };
+    let gpu = args.gpu.context()?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let gpu = args.gpu.context();
     let adapter = gpu
         .as_ref()
         .map_or("none: CPU twins (wall time)".to_string(), |c| c.describe());

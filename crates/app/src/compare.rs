@@ -76,9 +76,9 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
             anyhow::bail!("--resolution {r}: must be between 1 and 8192");
         }
     }
+    let mut runner = Runner::new(args.gpu.context()?);
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    let mut runner = Runner::new(args.gpu.context());
     let adapter = runner
         .gpu
         .as_ref()

@@ -320,38 +320,67 @@ pub(crate) fn parse_size_within(
 /// How to choose the GPU, shared by the commands that use one.
 #[derive(Args, Clone, Debug)]
 pub(crate) struct GpuArgs {
-    /// Use the CPU twins even where a GPU adapter exists.
-    #[arg(long)]
-    cpu: bool,
-    /// GPU backend: vulkan, metal, dx12 or gl (default: WGPU_BACKEND, else all).
-    #[arg(long)]
+    /// Run the techniques' CPU twins and the CPU final image even where a GPU adapter exists.
+    #[arg(long, conflicts_with_all = ["backend", "adapter"])]
+    pub(crate) cpu: bool,
+    /// GPU backend: vulkan, metal, dx12 or gl (comma-separated list allowed; default:
+    /// WGPU_BACKEND, else any).
+    #[arg(long, value_parser = backend_arg)]
     backend: Option<String>,
-    /// A substring of the adapter's name (default: WGPU_ADAPTER_NAME, else the best adapter).
+    /// The GPU adapter whose name contains this (case-insensitive; default: WGPU_ADAPTER_NAME,
+    /// else the high-performance one).
     #[arg(long)]
     adapter: Option<String>,
 }
 
 impl GpuArgs {
-    /// The GPU, or `None` with one line saying why the CPU path is used.
-    pub(crate) fn context(&self) -> Option<caustics_gpu::GpuContext> {
+    /// The GPU device, or `None` with `--cpu` or (after one line on stderr saying why) where no
+    /// adapter can be had here: the techniques then run on their CPU twins.
+    pub(crate) fn context(&self) -> Result<Option<caustics_gpu::GpuContext>> {
+        use caustics_gpu::{GpuContext, GpuError, GpuOptions};
         if self.cpu {
-            return None;
+            return Ok(None);
         }
-        let options = caustics_gpu::GpuOptions {
+        let options = GpuOptions {
             backend: self.backend.clone(),
             adapter_name: self.adapter.clone(),
         };
-        match caustics_gpu::GpuContext::headless(&options) {
-            Ok(ctx) => {
-                eprintln!("GPU: {}", ctx.describe());
-                Some(ctx)
-            }
+        let ctx = match GpuContext::headless(&options) {
+            Ok(ctx) => ctx,
+            // A backend list `backend_arg` let through, or CAUSTICS_VALIDATION=1 without the
+            // layer: the user's to mend, not a reason to fall back.
+            Err(e @ GpuError::BadOption(_)) => return Err(e.into()),
             Err(e) => {
-                eprintln!("no GPU adapter ({e}): using the CPU path");
-                None
+                let reason = match e {
+                    GpuError::NoAdapter { wanted, seen } if seen.is_empty() => {
+                        format!("wanted {wanted}; none present")
+                    }
+                    GpuError::NoAdapter { wanted, seen } => {
+                        format!("wanted {wanted}; present: {}", seen.join(", "))
+                    }
+                    other => other.to_string(),
+                };
+                eprintln!("no GPU adapter ({reason}): using the CPU path");
+                return Ok(None);
             }
-        }
+        };
+        // A software adapter (lavapipe, WARP) runs the passes on the CPU's cores: say so.
+        let hint = if caustics_gpu::final_image::FinalImage::software_adapter(&ctx) {
+            " (a software adapter)"
+        } else {
+            ""
+        };
+        eprintln!("GPU: {}{hint}", ctx.describe());
+        Ok(Some(ctx))
     }
+}
+
+/// `--backend`'s value, checked as the device will read it, so that a misspelt backend is refused
+/// by the parser rather than found when (or whether) a command makes its device.
+pub(crate) fn backend_arg(s: &str) -> Result<String, String> {
+    caustics_gpu::parse_backends(s)
+        .map(|_| s.to_string())
+        .map_err(|e| e.to_string())
 }
 
 /// Where outputs go unless told otherwise.

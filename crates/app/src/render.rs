@@ -16,7 +16,7 @@ use caustics_core::techniques::describe::Receiver;
 use caustics_core::techniques::{self, Descriptor};
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
-use caustics_gpu::{GpuContext, GpuError, GpuOptions, GpuTimer};
+use caustics_gpu::{GpuContext, GpuError, GpuTimer};
 
 use crate::progress;
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
@@ -72,23 +72,14 @@ pub struct RenderArgs {
     /// default aces).
     #[arg(long)]
     tone_map: Option<caustics_core::render::ToneMap>,
-    /// Render the final image on the CPU even when a GPU is present.
-    #[arg(long, conflicts_with_all = ["backend", "adapter"])]
-    cpu: bool,
     /// Where the final image is traced: `gpu`, `cpu`, or `auto`: on the GPU, except on a software
     /// adapter (lavapipe, WARP), which runs the pass on the CPU's cores more slowly than the CPU
     /// renderer does and spends tens of seconds compiling it on a fresh machine. The technique
     /// runs on the GPU either way.
     #[arg(long, value_enum, default_value_t = ImageOn::Auto)]
     final_image: ImageOn,
-    /// GPU backend for the final image: vulkan, metal, dx12 or gl (comma-separated list allowed;
-    /// default: WGPU_BACKEND, else any).
-    #[arg(long)]
-    backend: Option<String>,
-    /// Render on the GPU adapter whose name contains this (case-insensitive; default:
-    /// WGPU_ADAPTER_NAME, else the high-performance one).
-    #[arg(long)]
-    adapter: Option<String>,
+    #[command(flatten)]
+    gpu: crate::GpuArgs,
 }
 
 fn parse_size(s: &str) -> Result<[u32; 2], String> {
@@ -245,11 +236,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
 
     // The device, set up before the caustics so that a bad --backend fails at once and the
     // adapter is named first; the technique and the final image share it.
-    let ctx = if args.cpu {
-        None
-    } else {
-        gpu_context(args.backend.clone(), args.adapter.clone())?
-    };
+    let ctx = args.gpu.context()?;
     let mut runner = Runner::new(ctx);
     // A technique that ends in its own final image (paper 4's camera pass, paper 3's refracted
     // view) makes it where the scene is one it has it for.
@@ -515,43 +502,6 @@ fn render_frame(
         );
     }
     Ok(())
-}
-
-/// The GPU device, or `None` (after one line on stderr saying why) when no adapter can be had
-/// here: the technique then runs on its CPU twin and the image on the CPU. A backend name that does
-/// not exist is the user's mistake and an error, not a reason to fall back.
-/// The device for `--backend` and `--adapter`, or `None` (said on stderr) where there is no
-/// adapter: the CPU path then.
-fn gpu_context(backend: Option<String>, adapter: Option<String>) -> Result<Option<GpuContext>> {
-    let options = GpuOptions {
-        backend,
-        adapter_name: adapter,
-    };
-    let ctx = match GpuContext::headless(&options) {
-        Ok(ctx) => ctx,
-        Err(e @ GpuError::BadOption(_)) => return Err(anyhow::Error::new(e).context("--backend")),
-        Err(e) => {
-            let reason = match e {
-                GpuError::NoAdapter { wanted, seen } if seen.is_empty() => {
-                    format!("wanted {wanted}; none present")
-                }
-                GpuError::NoAdapter { wanted, seen } => {
-                    format!("wanted {wanted}; present: {}", seen.join(", "))
-                }
-                other => other.to_string(),
-            };
-            eprintln!("no GPU adapter ({reason}): using the CPU path");
-            return Ok(None);
-        }
-    };
-    // A software adapter (lavapipe, WARP) runs the passes on the CPU's cores: say so.
-    let hint = if FinalImage::software_adapter(&ctx) {
-        " (a software adapter)"
-    } else {
-        ""
-    };
-    eprintln!("GPU: {}{hint}", ctx.describe());
-    Ok(Some(ctx))
 }
 
 /// The final image from the GPU twin of `caustics_core::render::render`, or `None` (after one line

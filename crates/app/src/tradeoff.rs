@@ -136,7 +136,7 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Resu
         }
     };
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    let Some(ctx) = gpu.context() else {
+    let Some(ctx) = gpu.context()? else {
         bail!("`caustics bench --tradeoff` times techniques on the GPU: no GPU adapter");
     };
     let adapter = ctx.describe();

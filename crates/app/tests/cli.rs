@@ -395,6 +395,27 @@ fn numbers_out_of_range_are_refused_by_name() {
 }
 
 #[test]
+/// Every command that takes a GPU refuses a backend that does not exist, naming `--backend`,
+/// before it writes anything (the CPU reference's bake included, which makes no device): a
+/// misspelt backend is not a reason to fall back to the CPU.
+fn a_backend_that_does_not_exist_is_refused_by_every_command() {
+    let d = tmpdir("backend");
+    for command in ["render", "compare", "bench", "bake", "view"] {
+        let o = caustics(&[command, "--backend", "vulcan"], &d);
+        assert!(!o.status.success(), "{command}");
+        let e = stderr(&o);
+        assert!(
+            e.contains("--backend") && e.contains("vulcan"),
+            "{command}: {e}"
+        );
+    }
+    assert!(
+        std::fs::read_dir(&d).unwrap().next().is_none(),
+        "nothing written"
+    );
+}
+
+#[test]
 fn inputs_are_never_overwritten() {
     let g = Grid::from_fn(8, 8, |i, j| 0.001 * (i + j) as f32);
     let d = contract_dir("overwrite", &g, CONTRACT);

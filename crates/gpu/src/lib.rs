@@ -75,7 +75,7 @@ pub mod water;
 pub mod yuksel;
 
 pub use context::traffic::{self, TrafficCounts};
-pub use context::{GpuContext, GpuOptions};
+pub use context::{GpuContext, GpuOptions, parse_backends};
 pub use technique::{Output, Technique, WallsOutput, WaterTextures};
 pub use timing::{GpuTimer, PassTime};
 

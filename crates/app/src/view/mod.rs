@@ -133,8 +133,9 @@ pub struct ViewArgs {
     /// pipelines and frames, left out).
     #[arg(long, requires = "frames")]
     pub report_traffic: bool,
-    /// GPU backend: vulkan, metal, dx12 (default: WGPU_BACKEND, else any).
-    #[arg(long)]
+    /// GPU backend: vulkan, metal, dx12 or gl (comma-separated list allowed; default:
+    /// WGPU_BACKEND, else any).
+    #[arg(long, value_parser = crate::backend_arg)]
     pub backend: Option<String>,
     /// A substring of the adapter's name (default: WGPU_ADAPTER_NAME, else the best one).
     #[arg(long)]

@@ -40,7 +40,11 @@ pub struct GpuContext {
     validation: Option<crate::validation::Guard>,
 }
 
-fn parse_backends(s: &str) -> Result<wgpu::Backends, GpuError> {
+/// The backends a comma-separated list names (`vulkan`, `metal`, `dx12`, `gl` and their common
+/// spellings, any case), as [`GpuOptions::backend`] and `WGPU_BACKEND` are read; an unknown name is
+/// a [`GpuError::BadOption`] naming it. A command line can check its option with it before any
+/// device is made.
+pub fn parse_backends(s: &str) -> Result<wgpu::Backends, GpuError> {
     let mut b = wgpu::Backends::empty();
     for part in s.split(',').map(|p| p.trim().to_ascii_lowercase()) {
         b |= match part.as_str() {
