@@ -197,8 +197,7 @@ fn no_distance_map() -> DistanceMap {
 }
 
 impl CausticTriangles {
-    /// A water frame that uploads `heights` itself (rewrite them with
-    /// [`WaterFrame::update_heights`]).
+    /// A water frame that uploads `heights` itself, for one run (the run-once form and the tests).
     pub fn water_frame(
         &self,
         ctx: &GpuContext,
