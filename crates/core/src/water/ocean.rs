@@ -302,7 +302,8 @@ impl Ocean {
 
     /// The series summed term by term at any point: `O(N²)` per point, the reference the FFT is
     /// tested against.
-    pub fn exact_height(&self, t: f64, p: DVec2) -> f64 {
+    #[cfg(test)]
+    fn exact_height(&self, t: f64, p: DVec2) -> f64 {
         let n = self.params.resolution;
         self.spectrum_at(t)
             .iter()

@@ -319,44 +319,44 @@ pub fn reference(scene: &GlassScene, opts: &ReferenceOptions) -> ReferenceResult
     }
 }
 
-/// Where a single ray leaves the generator along the refracted-only path (total internal
-/// reflection followed): the exit point and direction, or `None` if it misses or stays inside for
-/// `depth` events. Paraxial checks use it.
-pub fn exit_ray(
-    scene: &GlassScene,
-    origin: DVec3,
-    dir: DVec3,
-    depth: u32,
-) -> Option<(DVec3, DVec3)> {
-    let (mut x, mut d, mut inside) = (origin, dir.normalize(), false);
-    for _ in 0..depth {
-        let Some((t, normal)) = scene.generator.intersect(x, d, f64::INFINITY) else {
-            return (!inside).then_some((x, d));
-        };
-        x += d * t;
-        let (n, eta) = if inside {
-            (-normal, scene.ior)
-        } else {
-            (normal, 1.0 / scene.ior)
-        };
-        match refract(d, n, eta) {
-            Some(t) => {
-                d = t.normalize();
-                inside = !inside;
-                if !inside {
-                    return Some((x, d));
-                }
-            }
-            None => d = reflect(d, n),
-        }
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::scene::{FloorWindow, Occluder, Shape};
     use super::*;
+
+    /// Where a single ray leaves the generator along the refracted-only path (total internal
+    /// reflection followed): the exit point and direction, or `None` if it misses or stays inside for
+    /// `depth` events. Paraxial checks use it.
+    fn exit_ray(
+        scene: &GlassScene,
+        origin: DVec3,
+        dir: DVec3,
+        depth: u32,
+    ) -> Option<(DVec3, DVec3)> {
+        let (mut x, mut d, mut inside) = (origin, dir.normalize(), false);
+        for _ in 0..depth {
+            let Some((t, normal)) = scene.generator.intersect(x, d, f64::INFINITY) else {
+                return (!inside).then_some((x, d));
+            };
+            x += d * t;
+            let (n, eta) = if inside {
+                (-normal, scene.ior)
+            } else {
+                (normal, 1.0 / scene.ior)
+            };
+            match refract(d, n, eta) {
+                Some(t) => {
+                    d = t.normalize();
+                    inside = !inside;
+                    if !inside {
+                        return Some((x, d));
+                    }
+                }
+                None => d = reflect(d, n),
+            }
+        }
+        None
+    }
 
     fn ball(centre: DVec3, r: f64, n: f64, light: DVec3, window: f64, res: usize) -> GlassScene {
         GlassScene::new(
