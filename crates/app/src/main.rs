@@ -322,7 +322,7 @@ pub(crate) fn parse_size_within(
 pub(crate) struct GpuArgs {
     /// Run the techniques' CPU twins and the CPU final image even where a GPU adapter exists.
     #[arg(long, conflicts_with_all = ["backend", "adapter"])]
-    pub(crate) cpu: bool,
+    cpu: bool,
     /// GPU backend: vulkan, metal, dx12 or gl (comma-separated list allowed; default:
     /// WGPU_BACKEND, else any).
     #[arg(long, value_parser = backend_arg)]

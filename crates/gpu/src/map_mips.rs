@@ -25,7 +25,7 @@ const TILE: u32 = 8;
 pub struct MapMips {
     pipeline: wgpu::ComputePipeline,
     levels: Vec<(wgpu::BindGroup, (u32, u32))>,
-    /// The texture the levels are written into.
+    /// The texture the levels are written into (one for all of them).
     written: Option<wgpu::Texture>,
 }
 
@@ -86,7 +86,7 @@ impl MapMips {
                 (fine, mip_view(mips, k), mips, k)
             })
             .collect::<Vec<_>>();
-        Self::from_views(ctx, pipeline, &levels, Some(mips))
+        Self::from_views(ctx, pipeline, &levels)
     }
 
     /// Mips 1 and above of `map` (`Rgba32Float`, `STORAGE_BINDING` and `TEXTURE_BINDING`, as
@@ -103,15 +103,15 @@ impl MapMips {
         let levels = (1..count)
             .map(|k| (mip_view(map, k - 1), mip_view(map, k), map, k))
             .collect::<Vec<_>>();
-        Self::from_views(ctx, pipeline, &levels, (count > 1).then_some(map))
+        Self::from_views(ctx, pipeline, &levels)
     }
 
     fn from_views(
         ctx: &GpuContext,
         pipeline: &wgpu::ComputePipeline,
         levels: &[(wgpu::TextureView, wgpu::TextureView, &wgpu::Texture, u32)],
-        written: Option<&wgpu::Texture>,
     ) -> MapMips {
+        let written = levels.first().map(|&(_, _, texture, _)| texture.clone());
         let levels = levels
             .iter()
             .map(|(fine, coarse, texture, k)| {
@@ -133,7 +133,7 @@ impl MapMips {
         MapMips {
             pipeline: pipeline.clone(),
             levels,
-            written: written.cloned(),
+            written,
         }
     }
 
