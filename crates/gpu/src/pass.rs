@@ -1,6 +1,6 @@
 //! The few lines every pass repeats: a compute pipeline from a [`PassSource`] with the layout the
-//! shader implies, a bind group whose binding `k` is the `k`-th resource, a (timed) compute pass, and a
-//! 2-D texture.
+//! shader implies, a bind group whose binding `k` is the `k`-th resource, a (timed) compute or
+//! render pass, and a 2-D texture.
 
 use crate::shaders::PassSource;
 use crate::{GpuContext, GpuError, GpuTimer};
@@ -56,6 +56,43 @@ pub fn begin_compute<'e>(
     encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
         label: Some(label),
         timestamp_writes: timer.as_deref_mut().and_then(|t| t.compute_pass(label)),
+    })
+}
+
+/// A render pass named `label` into `views`, each cleared to zero first when `clear` (else added
+/// to), timed when there is a timer.
+pub fn begin_render<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    timer: &mut Option<&mut GpuTimer>,
+    label: &str,
+    views: &[&wgpu::TextureView],
+    clear: bool,
+) -> wgpu::RenderPass<'e> {
+    let load = match clear {
+        true => wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+        false => wgpu::LoadOp::Load,
+    };
+    let attachments: Vec<_> = views
+        .iter()
+        .map(|&view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load,
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        })
+        .collect();
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &attachments,
+        depth_stencil_attachment: None,
+        timestamp_writes: timer.as_deref_mut().and_then(|t| t.render_pass(label)),
+        occlusion_query_set: None,
+        multiview_mask: None,
     })
 }
 

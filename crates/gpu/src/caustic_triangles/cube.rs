@@ -4,7 +4,7 @@
 use caustics_core::techniques::caustic_triangles::cube::FAR;
 
 use super::{CausticTriangles, GeneratorFrame};
-use crate::pass::{begin_compute, bind_group};
+use crate::pass::{begin_compute, begin_render, bind_group};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// The light cube map of a point light on the GPU (paper 4, §4.2-4.3; CPU twin
@@ -128,26 +128,7 @@ impl CausticTriangles {
         self.encode_irradiance(frame, encoder, timer.as_deref_mut());
         {
             let label = "caustic-triangles light cube map";
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(label),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &target.view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: if clear {
-                            wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
-                        } else {
-                            wgpu::LoadOp::Load
-                        },
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = begin_render(encoder, &mut timer, label, &[&target.view], clear);
             pass.set_pipeline(&self.cube);
             pass.set_bind_group(0, &binds.cube, &[]);
             for face in 0..6 {

@@ -6,7 +6,7 @@
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 
 use super::{CausticTriangles, CausticTrianglesUniform, CopyBandBuffer, Reconstruction};
-use crate::pass::{begin_compute, bind_group};
+use crate::pass::{begin_compute, begin_render, bind_group};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// One generator's resources (a glass object's, or the water surface's for the floor or a wall):
@@ -354,26 +354,7 @@ impl CausticTriangles {
             Reconstruction::Triangles => "caustic-triangles triangles",
             Reconstruction::Splats => "caustic-triangles splats",
         };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: if clear {
-                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)
-                    } else {
-                        wgpu::LoadOp::Load
-                    },
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = begin_render(encoder, &mut timer, label, &[target], clear);
         // The map may fill only the first columns of its target (a wall map in its layer).
         let f = &frame.setup.floor;
         pass.set_viewport(0.0, 0.0, f.width as f32, f.height as f32, 0.0, 1.0);

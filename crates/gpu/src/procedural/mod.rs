@@ -20,7 +20,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
-use crate::pass::{bind_group, pulled_pipeline};
+use crate::pass::{begin_render, bind_group, pulled_pipeline};
 use crate::receivers::{ReceiverFrame, ReceiverLookup};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
@@ -510,14 +510,26 @@ impl ProceduralCaustics {
                 indices,
                 count,
             } => {
-                let mut pass = begin(encoder, &frame.map_view, &mut timer, "procedural vertex");
+                let mut pass = begin_render(
+                    encoder,
+                    &mut timer,
+                    "procedural vertex",
+                    &[&frame.map_view],
+                    true,
+                );
                 pass.set_pipeline(&self.vertex);
                 pass.set_bind_group(0, bind, &[]);
                 pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..*count, 0, 0..1);
             }
             FramePasses::Screen { bind } => {
-                let mut pass = begin(encoder, &frame.map_view, &mut timer, "procedural screen");
+                let mut pass = begin_render(
+                    encoder,
+                    &mut timer,
+                    "procedural screen",
+                    &[&frame.map_view],
+                    true,
+                );
                 pass.set_pipeline(&self.screen);
                 pass.set_bind_group(0, bind, &[]);
                 pass.draw(0..3, 0..1);
@@ -529,19 +541,36 @@ impl ProceduralCaustics {
                 resample,
             } => {
                 {
-                    let mut pass = begin(encoder, &levels[0], &mut timer, "procedural target");
+                    let mut pass = begin_render(
+                        encoder,
+                        &mut timer,
+                        "procedural target",
+                        &[&levels[0]],
+                        true,
+                    );
                     pass.set_pipeline(&self.target);
                     pass.set_bind_group(0, target, &[]);
                     pass.draw(0..3, 0..1);
                 }
                 for (k, bind) in downsample.iter().enumerate() {
-                    let mut pass =
-                        begin(encoder, &levels[k + 1], &mut timer, "procedural downsample");
+                    let mut pass = begin_render(
+                        encoder,
+                        &mut timer,
+                        "procedural downsample",
+                        &[&levels[k + 1]],
+                        true,
+                    );
                     pass.set_pipeline(&self.downsample);
                     pass.set_bind_group(0, bind, &[]);
                     pass.draw(0..3, 0..1);
                 }
-                let mut pass = begin(encoder, &frame.map_view, &mut timer, "procedural resample");
+                let mut pass = begin_render(
+                    encoder,
+                    &mut timer,
+                    "procedural resample",
+                    &[&frame.map_view],
+                    true,
+                );
                 pass.set_pipeline(&self.resample);
                 pass.set_bind_group(0, resample, &[]);
                 pass.draw(0..3, 0..1);
@@ -578,30 +607,6 @@ impl ProceduralCaustics {
         ctx.submit_timed(encoder, timer.as_deref());
         ctx.read_map(texture, setup.size)
     }
-}
-
-fn begin<'e>(
-    encoder: &'e mut wgpu::CommandEncoder,
-    view: &wgpu::TextureView,
-    timer: &mut Option<&mut GpuTimer>,
-    label: &str,
-) -> wgpu::RenderPass<'e> {
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some(label),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
-        occlusion_query_set: None,
-        multiview_mask: None,
-    })
 }
 
 fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {

@@ -5,7 +5,7 @@ use caustics_core::walls::Wall;
 
 use super::{Volumes, VolumesFrame};
 use crate::GpuTimer;
-use crate::pass::begin_compute;
+use crate::pass::{begin_compute, begin_render};
 
 impl Volumes {
     /// Record the technique's passes for `frame`.
@@ -44,28 +44,19 @@ impl Volumes {
         }
         for (k, o) in frame.objects.iter().enumerate() {
             let label = format!("volumes slices, object {k}");
-            let label = label.as_str();
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(label),
-                color_attachments: &[color_attachment(&o.caustics_view)],
-                depth_stencil_attachment: None,
-                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = begin_render(encoder, &mut timer, &label, &[&o.caustics_view], true);
             pass.set_pipeline(&self.slices);
             pass.set_bind_group(0, &o.slices_bind, &[]);
             pass.draw(0..o.vertices, 0..1);
         }
         {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("volumes floor"),
-                color_attachments: &[color_attachment(&frame.floor_view)],
-                depth_stencil_attachment: None,
-                timestamp_writes: timer.as_mut().and_then(|t| t.render_pass("volumes floor")),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = begin_render(
+                encoder,
+                &mut timer,
+                "volumes floor",
+                &[&frame.floor_view],
+                true,
+            );
             pass.set_pipeline(match frame.receivers {
                 None => &self.floor,
                 Some(_) => &self.floor_receivers,
@@ -81,15 +72,7 @@ impl Volumes {
             let triangles = 2 * frame.setup.lattice.nx * frame.setup.lattice.ny;
             for (k, (layer, map)) in walls.layers.iter().zip(&walls.layout.maps).enumerate() {
                 let label = format!("volumes wall {}", Wall::ALL[k].suffix());
-                let label = label.as_str();
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some(label),
-                    color_attachments: &[color_attachment(layer)],
-                    depth_stencil_attachment: None,
-                    timestamp_writes: timer.as_mut().and_then(|t| t.render_pass(label)),
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
+                let mut pass = begin_render(encoder, &mut timer, &label, &[layer], true);
                 pass.set_pipeline(&self.walls);
                 pass.set_bind_group(0, &walls.bind, &[]);
                 // The wall's own columns: the shader's clip space spans them, the rest of a
@@ -113,16 +96,4 @@ impl Volumes {
             pass.dispatch_workgroups(image.width().div_ceil(8), image.height().div_ceil(8), 1);
         }
     }
-}
-
-fn color_attachment(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-    Some(wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-            store: wgpu::StoreOp::Store,
-        },
-    })
 }

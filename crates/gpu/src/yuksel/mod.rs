@@ -30,7 +30,7 @@ use std::sync::Mutex;
 
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
-use crate::pass::{begin_compute, compute_pipeline, pulled_pipeline};
+use crate::pass::{begin_compute, begin_render, compute_pipeline, pulled_pipeline};
 use crate::receivers::ReceiversUniform;
 use crate::shaders::passes;
 use crate::water::patches::WaterPatches;
@@ -406,35 +406,16 @@ impl Yuksel {
                 }
                 for phase in phases {
                     for (pipeline, bind, views) in &phase.draws {
-                        let attachments: Vec<_> = views
-                            .iter()
-                            .map(|v| color_attachment(v, wgpu::LoadOp::Clear(Default::default())))
-                            .collect();
-                        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                            label: Some("yuksel pass 1"),
-                            color_attachments: &attachments,
-                            depth_stencil_attachment: None,
-                            timestamp_writes: timer
-                                .as_mut()
-                                .and_then(|t| t.render_pass("yuksel pass 1")),
-                            occlusion_query_set: None,
-                            multiview_mask: None,
-                        });
+                        let views: Vec<_> = views.iter().collect();
+                        let mut pass =
+                            begin_render(encoder, &mut timer, "yuksel pass 1", &views, true);
                         pass.set_pipeline(pipeline);
                         pass.set_bind_group(0, bind, &[]);
                         pass.draw(0..3, 0..1);
                     }
                     // Each phase writes its own rows and keeps the others'.
-                    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("yuksel pass 2"),
-                        color_attachments: &[color_attachment(target, wgpu::LoadOp::Load)],
-                        depth_stencil_attachment: None,
-                        timestamp_writes: timer
-                            .as_mut()
-                            .and_then(|t| t.render_pass("yuksel pass 2")),
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    });
+                    let mut pass =
+                        begin_render(encoder, &mut timer, "yuksel pass 2", &[target], false);
                     pass.set_pipeline(&self.pass2);
                     pass.set_bind_group(0, &phase.pass2, &[]);
                     pass.draw(0..3, 0..1);
@@ -446,19 +427,4 @@ impl Yuksel {
         }
         frame.floor_map()
     }
-}
-
-fn color_attachment(
-    view: &wgpu::TextureView,
-    load: wgpu::LoadOp<wgpu::Color>,
-) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-    Some(wgpu::RenderPassColorAttachment {
-        view,
-        depth_slice: None,
-        resolve_target: None,
-        ops: wgpu::Operations {
-            load,
-            store: wgpu::StoreOp::Store,
-        },
-    })
 }
