@@ -25,6 +25,9 @@ const package__1final_image__2final_image_inputs_BISECTIONS: u32 = 30u;
 
 const package__1final_image__2final_image_inputs_FAR: f32 = 3e38;
 
+@id(0)
+override package__1final_image__2final_image_inputs_FLAGS: u32;
+
 struct package__1final_image__2final_image_inputs_FinalImage {
     camera_position: vec3<f32>,
     exposure: f32,
@@ -111,7 +114,7 @@ var package__1final_image__2final_image_inputs__1caustics_map: texture_2d<f32>;
 var package__1final_image__2final_image_inputs__1caustics_mips: texture_2d<f32>;
 
 fn package__1final_image__2final_image_inputs__1deck_kind() -> u32 {
-    return (package__1final_image__2final_image_inputs_params.flags >> package__1final_image__2final_image_inputs__1DECK_SHIFT) & 255u;
+    return (package__1final_image__2final_image_inputs_FLAGS >> package__1final_image__2final_image_inputs__1DECK_SHIFT) & 255u;
 }
 
 fn package__1final_image__2final_image_inputs__1floor_height(p: vec2<f32>) -> f32 {
@@ -208,6 +211,8 @@ fn package__1final_image__2final_image_inputs__2water_height_gradient(p: vec2<f3
     return package_shaders_water__2grid_sample_hermite(package__1final_image__2final_image_inputs__1water_height, p, package__1final_image__2final_image_inputs_params.water_size, package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_WRAP_SURFACE));
 }
 
+const package__1final_image__2final_image_inputs__3SET_AT_RUN_TIME: u32 = package__1final_image__2final_image_inputs__1FLAG_WATER | package__1final_image__2final_image_inputs__1FLAG_SURFACE | package__1final_image__2final_image_inputs__2FLAG_WRAP_SURFACE | package__1final_image__2final_image_inputs__2FLAG_WRAP_CAUSTICS;
+
 fn package__1final_image__2final_image_inputs_absorbed(distance: f32) -> vec3<f32> {
     return exp(-package__1final_image__2final_image_inputs_params.absorption * distance);
 }
@@ -217,7 +222,10 @@ fn package__1final_image__2final_image_inputs_emit(weight: vec3<f32>, colour: ve
 }
 
 fn package__1final_image__2final_image_inputs_has(flag: u32) -> bool {
-    return (package__1final_image__2final_image_inputs_params.flags & flag) != 0u;
+    if (flag & package__1final_image__2final_image_inputs__3SET_AT_RUN_TIME) != 0u {
+        return (package__1final_image__2final_image_inputs_params.flags & flag) != 0u;
+    }
+    return (package__1final_image__2final_image_inputs_FLAGS & flag) != 0u;
 }
 
 @group(0) @binding(6)
@@ -255,6 +263,9 @@ fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: v
     var lo = a;
     for (var s = 0u; s < package__1final_image__2final_image_inputs_BISECTIONS; s++) {
         let m = 0.5 * (lo + hi);
+        if m <= lo || m >= hi {
+            break;
+        }
         if side * package__1final_image__2final_image_march__1water_gap(o, d, m) > 0.0 {
             lo = m;
         }
@@ -286,6 +297,9 @@ fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f
             var hi = b;
             for (var s = 0u; s < package__1final_image__2final_image_inputs_BISECTIONS; s++) {
                 let m = 0.5 * (lo + hi);
+                if m <= lo || m >= hi {
+                    break;
+                }
                 if package__1final_image__2final_image_march__1floor_gap(o, d, m) > 0.0 {
                     lo = m;
                 }

@@ -46,6 +46,14 @@ impl FinalImageFrame {
             self.size,
         );
         if self
+            .pipeline
+            .as_ref()
+            .is_none_or(|(f, _)| *f != params.flags & super::SPECIALISED)
+        {
+            let pipeline = self.pipelines.get(ctx, params.flags);
+            self.pipeline = Some((params.flags & super::SPECIALISED, pipeline));
+        }
+        if self
             .written
             .is_some_and(|w| bytemuck::bytes_of(&w) == bytemuck::bytes_of(&params))
         {
@@ -71,6 +79,9 @@ impl FinalImageFrame {
             let groups = SLAB_LATTICE.div_ceil(TILE);
             pass.dispatch_workgroups(groups, groups, 1);
         }
+        let Some((_, pipeline)) = &self.pipeline else {
+            return;
+        };
         let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE.name);
         // The floor map's pyramid, finest level first; the image's dispatch reads it all.
         if let Some(mips) = &self.mips_groups {
@@ -79,7 +90,7 @@ impl FinalImageFrame {
         if let Some(slopes) = self.slopes.as_ref().filter(|_| self.filters_water()) {
             slopes.encode(&mut pass);
         }
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &self.scene_group, &[]);
         pass.set_bind_group(1, &self.mesh_group, &[]);
         pass.set_bind_group(2, &self.slopes_group, &[]);

@@ -86,8 +86,18 @@ const DECK_SHIFT: u32 = 8u;
 // The waves' normals filtered by each sample's footprint (render.rs `rough_water`).
 const FLAG_FILTER_WATER: u32 = 65536u;
 
+// The frame's flags (`FinalImageUniform::flags`) but those of SET_AT_RUN_TIME, fixed per pipeline:
+// the frame specialises its pipeline by them (`final_image::SPECIALISED`), so the compiler drops
+// the code a scene does not run (the rough water, the deck kinds, the terrain's march, the other
+// kinds of caustics). A software rasteriser that runs both sides of every branch (SwiftShader)
+// otherwise runs all of it for every pixel.
+@id(0) override FLAGS: u32;
+// Read from the uniform: with the water's edge rule fixed, SwiftShader's compiler takes minutes
+// over the pipeline of a water that does not wrap; the water and its surface gate little code.
+const SET_AT_RUN_TIME: u32 = FLAG_WATER | FLAG_SURFACE | FLAG_WRAP_SURFACE | FLAG_WRAP_CAUSTICS;
+
 fn deck_kind() -> u32 {
-    return (params.flags >> DECK_SHIFT) & 255u;
+    return (FLAGS >> DECK_SHIFT) & 255u;
 }
 
 // One object: its material and the root of its tree in bvh_nodes. Mirrors `GpuObject`.
@@ -177,7 +187,10 @@ fn emit(weight: vec3<f32>, colour: vec3<f32>) {
 }
 
 fn has(flag: u32) -> bool {
-    return (params.flags & flag) != 0u;
+    if (flag & SET_AT_RUN_TIME) != 0u {
+        return (params.flags & flag) != 0u;
+    }
+    return (FLAGS & flag) != 0u;
 }
 
 // A pool (a flat floor) is sunk into a deck; a terrain is open water.

@@ -67,6 +67,10 @@ fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f3
     var lo = a;
     for (var s = 0u; s < BISECTIONS; s++) {
         let m = 0.5 * (lo + hi);
+        // Where the interval no longer halves in f32 the remaining bisections change nothing.
+        if m <= lo || m >= hi {
+            break;
+        }
         if side * water_gap(o, d, m) > 0.0 {
             lo = m;
         } else {
@@ -152,6 +156,9 @@ fn hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
             var hi = b;
             for (var s = 0u; s < BISECTIONS; s++) {
                 let m = 0.5 * (lo + hi);
+                if m <= lo || m >= hi {
+                    break;
+                }
                 if floor_gap(o, d, m) > 0.0 {
                     lo = m;
                 } else {

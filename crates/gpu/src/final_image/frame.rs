@@ -211,7 +211,8 @@ impl FinalImage {
         };
 
         let mut frame = FinalImageFrame {
-            pipeline: self.pipeline.clone(),
+            pipelines: self.pipelines.clone(),
+            pipeline: None,
             slab_pipeline: self.slab_pipeline.clone(),
             patches_pipeline: self.patches.clone(),
             patches,

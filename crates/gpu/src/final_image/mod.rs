@@ -65,6 +65,9 @@ pub use upload::{
     slab_bounds, water_grid, water_grid_resolution,
 };
 
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
 use crate::map_mips::{MapMips, mips_pipeline};
 use crate::pass::compute_pipeline;
 use crate::pass::float_texture;
@@ -88,9 +91,48 @@ passes! {
 /// Pixels per workgroup side (`@workgroup_size(8, 8)`, both passes).
 const TILE: u32 = 8;
 
-/// The final-image pipelines, built once per device.
+/// The `@id` of the image pass's `FLAGS` override: its name is the module's, mangled by the WESL
+/// linker.
+const FLAGS_ID: &str = "0";
+
+/// The flags a pipeline is specialised by (`FLAGS` in `final_image_inputs.wgsl`); the others are
+/// read from the uniform (its `SET_AT_RUN_TIME`).
+const SPECIALISED: u32 =
+    !(flags::WATER | flags::SURFACE | flags::WRAP_SURFACE | flags::WRAP_CAUSTICS);
+
+/// The image pass's pipelines, one per set of flags a frame has used: the shader's `FLAGS`
+/// override, so that each scene's pipeline holds only the code it runs.
+struct ImagePipelines {
+    layout: wgpu::PipelineLayout,
+    module: wgpu::ShaderModule,
+    by_flags: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
+}
+
+impl ImagePipelines {
+    /// The pipeline for `flags`, built the first time a frame asks for its specialised ones.
+    fn get(&self, ctx: &GpuContext, flags: u32) -> wgpu::ComputePipeline {
+        let flags = flags & SPECIALISED;
+        let mut built = self.by_flags.lock().unwrap_or_else(|e| e.into_inner());
+        let pipeline = built.entry(flags).or_insert_with(|| {
+            ctx.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(FINAL_IMAGE.name),
+                layout: Some(&self.layout),
+                module: &self.module,
+                entry_point: Some("main"),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &[(FLAGS_ID, flags as f64)],
+                    ..Default::default()
+                },
+                cache: None,
+            })
+        });
+        pipeline.clone()
+    }
+}
+
+/// The final-image pipelines, built once per device (the image pass's once per set of flags).
 pub struct FinalImage {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: Arc<ImagePipelines>,
     slab_pipeline: wgpu::ComputePipeline,
     /// The water's heights in Hermite form, which the search for the surface reads.
     patches: WaterPatches,
@@ -115,7 +157,9 @@ pub type PyramidLevel = (u32, Vec<[f32; 4]>);
 /// sun or options moved (and, the first time the options filter the water, the pyramid of its
 /// slope moments made).
 pub struct FinalImageFrame {
-    pipeline: wgpu::ComputePipeline,
+    pipelines: Arc<ImagePipelines>,
+    /// The image pass's pipeline for the flags of the uniform last written, and those flags.
+    pipeline: Option<(u32, wgpu::ComputePipeline)>,
     slab_pipeline: wgpu::ComputePipeline,
     patches_pipeline: WaterPatches,
     /// The water's heights in Hermite form, filled each frame (none without water).
@@ -222,13 +266,10 @@ impl FinalImage {
             ],
             immediate_size: 0,
         });
-        let pipeline = ctx.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(FINAL_IMAGE.name),
-            layout: Some(&layout),
-            module: &FINAL_IMAGE.module(device),
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
+        let pipelines = Arc::new(ImagePipelines {
+            layout,
+            module: FINAL_IMAGE.module(device),
+            by_flags: Mutex::new(HashMap::new()),
         });
         let slab_pipeline = compute_pipeline(ctx, &FINAL_IMAGE_SLAB);
         let mips_pipeline = mips_pipeline(ctx);
@@ -255,7 +296,7 @@ impl FinalImage {
         )?;
         ctx.check()?;
         Ok(FinalImage {
-            pipeline,
+            pipelines,
             slab_pipeline,
             patches: WaterPatches::new(ctx),
             mips_pipeline,
