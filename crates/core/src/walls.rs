@@ -145,6 +145,7 @@ impl WallMap {
     }
 
     /// The centre of texel `(row, col)`: `(along, z)`.
+    #[cfg(test)]
     pub fn texel_centre(&self, row: usize, col: usize) -> (f64, f64) {
         (
             (col as f64 + 0.5) * self.length / self.cols as f64,

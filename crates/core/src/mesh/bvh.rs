@@ -145,9 +145,9 @@ impl MeshBvh {
         (nodes, self.triangles.iter().map(|t| t.index).collect())
     }
 
-    /// Nearest hit of the ray `origin + t·dir` with `0 < t < t_max`, the same one
-    /// [`TriangleMesh::ray_intersect`] finds: `t` and the interpolated outward normal. `mesh` must
-    /// be the mesh this was built from.
+    /// Nearest hit of the ray `origin + t·dir` with `0 < t < t_max`, the same one every triangle
+    /// tried in turn finds: `t` and the interpolated outward normal. `mesh` must be the mesh this
+    /// was built from.
     pub fn intersect(
         &self,
         mesh: &TriangleMesh,

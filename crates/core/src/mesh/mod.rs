@@ -10,8 +10,8 @@
 //! - [`sphere`], [`cuboid`], [`teapot`]: shapes in their own units, placed with
 //!   [`TriangleMesh::transformed`].
 //! - [`load_obj`]: any OBJ file; missing normals are computed with [`smooth_normals`].
-//! - [`TriangleMesh::ray_intersect`] tests every triangle, which is fine for a few rays; a ray tracer
-//!   builds a [`MeshBvh`] once and asks it instead.
+//! - A ray tracer builds a [`MeshBvh`] once per mesh and asks it for each ray's nearest hit (its
+//!   tests hold it to every triangle tried in turn).
 
 mod bvh;
 mod obj;
@@ -176,6 +176,7 @@ impl TriangleMesh {
     /// unit vector) and the interpolated normal, which stays outward whichever side is hit. This
     /// tests every triangle; for many rays build [`TriangleMesh::bvh`] once and use
     /// [`MeshBvh::intersect`], which returns the same hits.
+    #[cfg(test)]
     pub fn ray_intersect(&self, origin: DVec3, dir: DVec3, t_max: f64) -> Option<(f64, DVec3)> {
         let mut best: Option<(f64, usize, f64, f64)> = None;
         let mut t_best = t_max;
