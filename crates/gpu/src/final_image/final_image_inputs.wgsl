@@ -93,8 +93,8 @@ const FLAG_FILTER_WATER: u32 = 65536u;
 // otherwise runs all of it for every pixel.
 @id(0) override FLAGS: u32;
 // Read from the uniform: with the water's edge rule fixed, SwiftShader's compiler takes minutes
-// over the pipeline of a water that does not wrap; the water and its surface gate little code.
-const SET_AT_RUN_TIME: u32 = FLAG_WATER | FLAG_SURFACE | FLAG_WRAP_SURFACE | FLAG_WRAP_CAUSTICS;
+// over the pipeline of a water that does not wrap.
+const SET_AT_RUN_TIME: u32 = FLAG_WRAP_SURFACE | FLAG_WRAP_CAUSTICS;
 
 fn deck_kind() -> u32 {
     return (FLAGS >> DECK_SHIFT) & 255u;

@@ -97,8 +97,7 @@ const FLAGS_ID: &str = "0";
 
 /// The flags a pipeline is specialised by (`FLAGS` in `final_image_inputs.wgsl`); the others are
 /// read from the uniform (its `SET_AT_RUN_TIME`).
-const SPECIALISED: u32 =
-    !(flags::WATER | flags::SURFACE | flags::WRAP_SURFACE | flags::WRAP_CAUSTICS);
+const SPECIALISED: u32 = !(flags::WRAP_SURFACE | flags::WRAP_CAUSTICS);
 
 /// The image pass's pipelines, one per set of flags a frame has used: the shader's `FLAGS`
 /// override, so that each scene's pipeline holds only the code it runs.
