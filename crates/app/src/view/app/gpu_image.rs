@@ -42,15 +42,7 @@ impl GpuImage {
         rgba: &[u8],
     ) {
         if !self.own || (self.texture.width(), self.texture.height()) != (width, height) {
-            self.texture = image_texture(ctx, width, height);
-            self.own = true;
-            ctx.count_app(1, 0);
-            renderer.update_egui_texture_from_wgpu_texture(
-                &ctx.device,
-                &self.texture.create_view(&Default::default()),
-                wgpu::FilterMode::Linear,
-                self.id,
-            );
+            self.replace(ctx, renderer, image_texture(ctx, width, height), true);
         }
         write_rgba(ctx, &self.texture, rgba);
     }
@@ -78,16 +70,27 @@ impl GpuImage {
         texture: &wgpu::Texture,
     ) {
         if self.texture != *texture {
-            self.texture = texture.clone();
-            self.own = false;
-            ctx.count_app(1, 0);
-            renderer.update_egui_texture_from_wgpu_texture(
-                &ctx.device,
-                &self.texture.create_view(&Default::default()),
-                wgpu::FilterMode::Linear,
-                self.id,
-            );
+            self.replace(ctx, renderer, texture.clone(), false);
         }
+    }
+
+    /// Draw `texture` under this image's id from now on (egui's bind group for it, counted).
+    fn replace(
+        &mut self,
+        ctx: &GpuContext,
+        renderer: &mut egui_wgpu::Renderer,
+        texture: wgpu::Texture,
+        own: bool,
+    ) {
+        self.texture = texture;
+        self.own = own;
+        ctx.count_app(1, 0);
+        renderer.update_egui_texture_from_wgpu_texture(
+            &ctx.device,
+            &self.texture.create_view(&Default::default()),
+            wgpu::FilterMode::Linear,
+            self.id,
+        );
     }
 }
 
