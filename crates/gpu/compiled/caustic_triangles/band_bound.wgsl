@@ -40,7 +40,8 @@ struct package__1caustic_triangles__1water_setup_WaterPhoton {
     wrap: u32,
     fresnel: u32,
     receiver: u32,
-    receivers: package_shaders_receivers_Receivers
+    receivers: package_shaders_receivers_Receivers,
+    origin: vec4<f32>
 }
 
 struct package_shaders_receivers_Receivers {

@@ -8,7 +8,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let k = id.y * p + id.x;
-    let s = vec2<f32>(f32(id.x), f32(id.y)) * w.water.z;
+    let s = w.origin.xy + vec2<f32>(f32(id.x), f32(id.y)) * w.water.z;
     let hg = package_shaders_water__1grid_sample(heights, s, w.water.y, w.wrap != 0u);
     let l = w.light.xyz;
     let n = package_shaders_optics__2height_field_normal(hg.yz);
@@ -69,7 +69,8 @@ struct package__1caustic_triangles__1water_setup_WaterPhoton {
     wrap: u32,
     fresnel: u32,
     receiver: u32,
-    receivers: package_shaders_receivers_Receivers
+    receivers: package_shaders_receivers_Receivers,
+    origin: vec4<f32>
 }
 
 fn package_shaders_optics__1fresnel_transmittance(cos_i_in: f32, n1: f32, n2: f32) -> f32 {

@@ -149,6 +149,8 @@ pub struct WaterPhotonUniform {
     pub receiver: u32,
     /// What the floor's photons meet (the plane `z = 0` where `t0[3]` is 0).
     pub receivers: ReceiversUniform,
+    /// xy: where photon `(0, 0)` lies ([`WaterSetup::origin`]); zw: unused.
+    pub origin: [f32; 4],
 }
 
 impl WaterPhotonUniform {
@@ -173,6 +175,7 @@ impl WaterPhotonUniform {
             fresnel: ws.fresnel as u32,
             receiver: wall.map_or(0, |w| 1 + w.index() as u32),
             receivers: ReceiversUniform::of(ws.receivers.as_deref()),
+            origin: [ws.origin.x as f32, ws.origin.y as f32, 0.0, 0.0],
         }
     }
 }

@@ -1,7 +1,8 @@
 // Technique `caustic-triangles` with the water surface as the caustic generator, the water photon
 // pass (paper §4.1, the photon image of a height field): photon (i, j) at the lattice corner
-// (j, i) * spacing of the water square, its surface point from the bicubic height interpolant, the
-// sun refracted by exact Snell through its true normal, the floor z = 0 met analytically, or, over
+// origin + (j, i) * spacing (over the square, or reaching upwind of it where the water does not
+// tile), its surface point from the bicubic height interpolant, the sun refracted by exact Snell
+// through its true normal, the floor z = 0 met analytically, or, over
 // a terrain, the receivers' map met by marching and the hit written at its light-space point
 // (docs/receivers.md). Writes (x, y, power, 1) of the floor hit (power -1 where the surface faces away from the sun) and the
 // refracted path length (Beer-Lambert in the triangles pass). Power: the cell's area projected
@@ -31,7 +32,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let k = id.y * p + id.x;
-    let s = vec2<f32>(f32(id.x), f32(id.y)) * w.water.z;
+    let s = w.origin.xy + vec2<f32>(f32(id.x), f32(id.y)) * w.water.z;
     let hg = grid_sample(heights, s, w.water.y, w.wrap != 0u);
     let l = w.light.xyz;
     let n = height_field_normal(hg.yz);

@@ -12,4 +12,5 @@ struct WaterPhoton {
     fresnel: u32,
     receiver: u32,      // 0: the floor; 1 + k: wall k of Wall::ALL (x = 0, x = size, y = 0, y = size)
     receivers: Receivers, // what the floor's photons meet (t0.w = 0: the plane z = 0)
+    origin: vec4<f32>,  // xy: where photon (0, 0) lies (upwind of the square for clamped water)
 }

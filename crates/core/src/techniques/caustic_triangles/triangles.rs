@@ -6,6 +6,25 @@ use glam::{DVec2, DVec3};
 use super::{CausticTrianglesSetup, FloorWindow, merge};
 use crate::map::CausticsMap;
 
+/// Edge `a → b`'s function at `c` (twice the signed area of `a, b, c`), the same number with the
+/// sign flipped for `b → a`: evaluated from the edge's lower endpoint either way, so two triangles
+/// sharing the edge agree on which side of it a texel centre lies, to the bit.
+fn edge_function(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    if (a.x, a.y) <= (b.x, b.y) {
+        (b - a).perp_dot(c - a)
+    } else {
+        -(a - b).perp_dot(c - b)
+    }
+}
+
+/// Whether a texel centre exactly on edge `a → b` belongs to the triangle on the edge's positive
+/// side (`inside` > 0 where that is its interior): one of the two triangles that share an edge
+/// takes it, as a GPU's fill rule does, so a texel is never drawn twice nor missed.
+fn owns_ties(a: DVec2, b: DVec2, inside: f64) -> bool {
+    let d = (b - a) * inside.signum();
+    d.y < 0.0 || (d.y == 0.0 && d.x > 0.0)
+}
+
 /// Every texel centre inside triangle `v` (map pixel coordinates): its index and barycentric
 /// coordinates, what the rasteriser interpolates with.
 pub(super) fn raster_barycentric(
@@ -27,11 +46,18 @@ pub(super) fn raster_barycentric(
     for i in i0..=i1 {
         for j in j0..=j1 {
             let c = DVec2::new(j as f64 + 0.5, i as f64 + 0.5);
-            let b0 = (v[2] - v[1]).perp_dot(c - v[1]) / area2;
-            let b1 = (v[0] - v[2]).perp_dot(c - v[2]) / area2;
-            let b2 = 1.0 - b0 - b1;
-            if b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0 {
-                texel(i as usize * width + j as usize, [b0, b1, b2]);
+            let e = [
+                edge_function(v[1], v[2], c),
+                edge_function(v[2], v[0], c),
+                edge_function(v[0], v[1], c),
+            ];
+            let inside = (0..3).all(|k| {
+                let side = e[k] * area2;
+                side > 0.0 || (side == 0.0 && owns_ties(v[(k + 1) % 3], v[(k + 2) % 3], area2))
+            });
+            if inside {
+                let (b0, b1) = (e[0] / area2, e[1] / area2);
+                texel(i as usize * width + j as usize, [b0, b1, 1.0 - b0 - b1]);
             }
         }
     }

@@ -32,15 +32,14 @@
 //! With `water.wrap` the refracted light that leaves the square re-enters it on the other side: every
 //! triangle is drawn at nine offsets `(±size | 0, ±size | 0)` ([`CausticTrianglesSetup::copies`];
 //! instanced draws on the GPU), and clipping keeps what falls in the square. Clamped water is drawn
-//! once.
+//! once, from a lattice that reaches upwind of the square as far as the light that lands on it
+//! comes from ([`clamped_lattice`]): the surface beyond the square, its heights clamped at the
+//! edges, as the reference traces it.
 //!
 //! # Departures
 //! - Power and path length are sampled at the lattice corners and interpolated; the reference
 //!   integrates each fine triangle's projected area exactly. Both converge to the same map as `P`
 //!   grows (docs/caustic-triangles.md measures how fast).
-//! - Clamped water: only the square's own surface sends photons. The reference also traces the
-//!   clamped surface upwind of the square, so near the upwind edges (a strip as wide as the
-//!   refracted light's horizontal travel, `depth · |t_xy / t_z|`) this map is darker.
 
 use std::sync::Arc;
 
@@ -70,6 +69,9 @@ pub struct WaterSetup {
     pub lattice: usize,
     /// Lattice spacing `Δ = size / P`.
     pub spacing: f64,
+    /// Where photon `(0, 0)` lies on the surface: the square's corner, or upwind of it where the
+    /// water does not tile ([`clamped_lattice`]).
+    pub origin: DVec2,
     /// Unit direction the sunlight travels, `z < 0`.
     pub light: DVec3,
     /// Side of the water square `[0, size]²`, world units.
@@ -158,10 +160,11 @@ impl WaterSetup {
         } else {
             1.0
         };
-        Ok(WaterSetup {
+        let mut ws = WaterSetup {
             setup,
             lattice,
             spacing,
+            origin: DVec2::ZERO,
             light,
             size: water.size,
             depth: water.depth,
@@ -171,7 +174,9 @@ impl WaterSetup {
             surface_wrap: water.wrap,
             walls: false,
             receivers: None,
-        })
+        };
+        ws.fit_lattice();
+        Ok(ws)
     }
 
     /// With `walls` the four walls of the square stop the light: nothing is carried
@@ -181,7 +186,27 @@ impl WaterSetup {
         if let Some(w) = self.setup.water.as_mut() {
             w.wrap = w.wrap && !walls;
         }
+        self.fit_lattice();
         self
+    }
+
+    /// The lattice over the square, or over [`clamped_lattice`]'s domain where the water neither
+    /// tiles nor stands between walls.
+    fn fit_lattice(&mut self) {
+        let quads = (self.size / self.spacing).round() as usize;
+        let (lattice, origin) = if self.surface_wrap || self.walls {
+            (quads, DVec2::ZERO)
+        } else {
+            let t0 = flat_refracted(self.light, self.ior);
+            clamped_lattice(quads, self.size, self.depth, t0)
+        };
+        self.lattice = lattice;
+        self.origin = origin;
+        self.setup.p = lattice + 1;
+        if let Some(w) = self.setup.water.as_mut() {
+            w.lattice = lattice;
+            w.band = lattice;
+        }
     }
 
     /// The photons meet `receivers` (the floor's terrain as the light sees it) and their light is
@@ -258,6 +283,27 @@ impl WaterSetup {
     }
 }
 
+/// The lattice of water that does not tile: quads per side and where photon `(0, 0)` lies.
+///
+/// The surface beyond the square sends light into it as well (its heights clamped at the square's
+/// edges, as the reference traces it): the light that lands on the square left the surface about
+/// `s = t₀_xy · depth / −t₀_z` upwind, at most that far over a floor at `z = 0` and less over
+/// anything higher, so the lattice, at the square's own spacing, covers the square and the square
+/// moved back by `s`, widened by a margin for the waves' deflection of the light from `t₀`
+/// (`0.15 · depth`, about 8.5°, and two quads). It stays square, as the photon image is, and
+/// keeps the square's lattice points.
+pub fn clamped_lattice(quads: usize, size: f64, depth: f64, t0: DVec3) -> (usize, DVec2) {
+    let spacing = size / quads as f64;
+    let shift = t0.truncate() * (depth.max(0.0) / -t0.z);
+    let margin = 0.15 * depth.max(0.0) + 2.0 * spacing;
+    // On the square's own lattice points, extended: the square's photons are where they would be
+    // without the extension.
+    let lo = (((-shift).min(DVec2::ZERO) - DVec2::splat(margin)) / spacing).floor() * spacing;
+    let hi = (DVec2::splat(size) - shift).max(DVec2::splat(size)) + DVec2::splat(margin);
+    let extent = (hi - lo).max_element();
+    ((extent / spacing).ceil() as usize, lo)
+}
+
 /// Photon `(i, j)` of the water photon pass: its texel `(x, y, Φ, σ)` (or [`INVALID`]) and its
 /// refracted path length (0 where invalid).
 pub fn photon(ws: &WaterSetup, heights: &Grid, i: usize, j: usize) -> ([f32; 4], f32) {
@@ -268,7 +314,7 @@ pub fn photon(ws: &WaterSetup, heights: &Grid, i: usize, j: usize) -> ([f32; 4],
 /// and the photon's power; `None` where the surface faces away from the sun.
 fn surface_ray(ws: &WaterSetup, heights: &Grid, i: usize, j: usize) -> Option<(DVec3, DVec3, f64)> {
     let l = ws.light;
-    let p = DVec2::new(j as f64, i as f64) * ws.spacing;
+    let p = ws.origin + DVec2::new(j as f64, i as f64) * ws.spacing;
     let (h, grad) = heights.sample(p, ws.size, ws.edge());
     let n = height_field_normal(grad);
     let cos_i = -l.dot(n);
@@ -610,26 +656,30 @@ mod tests {
         assert!(worst < 4.8e-5, "worst texel off by {worst}");
     }
 
-    /// Without wrap the light refracted past the far edges is gone and the upwind strip is dark:
-    /// one copy only, and the map's flux is the sun's flux through the square that lands in it.
+    /// Without wrap the surface beyond the square (its heights clamped) still sends light into
+    /// it: flat clamped water lights every texel with the flat water's 1, the upwind strip
+    /// included, from one copy of each triangle.
     #[test]
-    fn clamped_flat_water_draws_one_copy() {
+    fn clamped_flat_water_lights_the_whole_square() {
         let light = DVec3::new(0.3, 0.1, -1.0).normalize();
         let water = flat_water(false, DVec3::ZERO);
         let ws = WaterSetup::new(&params(48), &water, light, 96, 96).unwrap();
+        assert!(ws.lattice > 48 && !ws.wrap(), "lattice {}", ws.lattice);
         let out = caustics(&ws, &Grid::new(16, 16)).unwrap();
-        let t0 = refract(light, DVec3::Z, 1.0 / 1.333).unwrap();
-        let shift = t0.truncate() * (0.7 / -t0.z);
-        let inside = (2.0 - shift.x) * (2.0 - shift.y) / 4.0;
-        let mean = out.map.texels.iter().map(|t| t[0] as f64).sum::<f64>() / (96.0 * 96.0);
-        eprintln!(
-            "clamped: mean {mean} vs {inside}: {:.2e}",
-            mean / inside - 1.0
-        );
-        // measured 9.55e-3: the texels the copy's edge cuts are counted whole
-        assert!((mean / inside - 1.0).abs() < 0.02, "{mean} vs {inside}");
-        // Texel (0, 0) lies upwind: no light reaches it.
-        assert_eq!(out.map.texels[0], [0.0; 3]);
+        let worst = out
+            .map
+            .texels
+            .iter()
+            .map(|t| (t[0] as f64 - 1.0).abs())
+            .fold(0.0, f64::max);
+        eprintln!("clamped flat water: worst texel off 1 by {worst:.2e}");
+        // measured 1.5e-6
+        assert!(worst < 1.5e-5, "worst texel off by {worst}");
+        // With walls the square is closed: the lattice is the square's own.
+        let walled = WaterSetup::new(&params(48), &water, light, 96, 96)
+            .unwrap()
+            .with_walls(true);
+        assert_eq!((walled.lattice, walled.origin), (48, DVec2::ZERO));
     }
 
     /// A surface too steep for the sun (it faces away) gives invalid photons, as the reference
@@ -641,7 +691,9 @@ mod tests {
         let ws = WaterSetup::new(&params(8), &water, light, 16, 16).unwrap();
         // h = −2x: seen = 1 + 0.8 · (−2) / 0.6 < 0.
         let ramp = Grid::from_fn(16, 16, |_, j| (-2.0 * (j as f64 + 0.5) * 2.0 / 16.0) as f32);
-        let (photon, d) = photon(&ws, &ramp, 4, 4);
+        // The photon at (1, 1), inside the square.
+        let k = ((DVec2::ONE - ws.origin) / ws.spacing).round();
+        let (photon, d) = photon(&ws, &ramp, k.y as usize, k.x as usize);
         assert_eq!(photon[2], -1.0);
         assert_eq!(d, 0.0);
         let bad = Grid::from_fn(4, 4, |_, _| f32::NAN);
