@@ -103,6 +103,7 @@ triangles cube x1.01 @@ $S/caustic_triangles/cube.wgsl @@ vec4<f32>(in.e, in.e *
 triangles shadow x1.01 @@ $S/caustic_triangles/shadow.wgsl @@ shadow[k] = best; @@ shadow[k] = best * 1.01; @@ $CT
 triangles water photon x1.01 @@ $S/caustic_triangles/water_photon.wgsl @@ let power = w.water.z * w.water.z * seen * fresnel; @@ let power = w.water.z * w.water.z * seen * fresnel * 1.01; @@ $CT
 triangles water photon path x1.01 @@ $S/caustic_triangles/water_photon.wgsl @@ paths[k] = d; @@ paths[k] = d * 1.01; @@ $CT
+triangles water photons upwind lattice dropped @@ $S/caustic_triangles/water_photon.wgsl @@ let s = w.origin.xy + @@ let s = @@ $CT
 triangles band one quad fewer drawn @@ $S/caustic_triangles/band.wgsl @@ array<u32, 4>(min(6u * most, 6u * quads * quads), @@ array<u32, 4>(min(6u * most, 6u * quads * quads) - 6u, @@ $CT
 triangles band one column narrower @@ $S/caustic_triangles/band.wgsl @@ out.band = band; @@ out.band = band - 1u; @@ $CT
 triangles distance map last layer lost @@ $S/caustic_triangles/distance_map.wgsl @@ let layers = min(dmg.layers, MAX_LAYERS); @@ let layers = min(dmg.layers, MAX_LAYERS) - 1u; @@ $CT
