@@ -128,7 +128,8 @@ fn yuksel_through_the_interface_matches_its_cpu_twin() {
             w.wrap,
             scene.light.direction,
         )
-        .unwrap();
+        .unwrap()
+        .with_floor(&scene.floor, None);
         let cpu = yuksel::caustics(&setup, &grid);
         let worst = gpu
             .iter()
@@ -219,7 +220,8 @@ fn yuksel_follows_steeper_water_without_new_resources() {
             w.wrap,
             scene.light.direction,
         )
-        .unwrap();
+        .unwrap()
+        .with_floor(&scene.floor, None);
         let (calm, rough) = (setup.region_for(&grid), setup.region_for(&steep));
         assert!(rough.level > calm.level, "{calm:?} {rough:?}");
         t.update(&ctx, &scene).unwrap();
@@ -241,7 +243,7 @@ fn yuksel_follows_steeper_water_without_new_resources() {
             .flat_map(|(g, c)| (0..3).map(move |k| (g[k] - c[k]).abs()))
             .fold(0.0f32, f32::max)
             / mean;
-        // measured 2.36e-4 of the mean on lavapipe 25.0.7 (Mesa), both variants (5 x 5 at level 0
+        // measured 3.21e-4 of the mean on lavapipe 25.0.7 (Mesa), both variants (5 x 5 at level 0
         // -> 17 x 19, shifted, at level 1: the level's offsets count twice in map pixels)
         eprintln!("{name}: worst texel difference {worst:.2e} of the mean");
         assert!(worst < 2.0e-3, "{name}: worst texel difference {worst}");

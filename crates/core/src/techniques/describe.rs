@@ -258,8 +258,9 @@ impl PartialEq for Descriptor {
 }
 
 impl Descriptor {
-    /// A floor technique by design: with the scene's walls on it still maps the floor
-    /// alone, and the light that would meet a wall stays on the floor map.
+    /// A floor technique by design: with the scene's walls on it still maps the floor alone (the
+    /// light that meets a wall leaves its map, as in `yuksel`, or stays on the floor, as in
+    /// `procedural`'s gathering).
     pub fn floor_only(&self) -> bool {
         !self.receivers.contains(&Receiver::Walls) && !self.receivers.contains(&Receiver::EyeSpace)
     }
@@ -293,8 +294,7 @@ impl Descriptor {
 /// The line `caustics techniques` and the logs give a floor-only technique on a scene with walls.
 pub fn floor_only_note(name: &str) -> String {
     format!(
-        "technique `{name}` maps the floor only: the scene's walls stay lit by the ambient light, and \
-         the light that would meet them stays on the floor map"
+        "technique `{name}` maps the floor only: the scene's walls stay lit by the ambient light"
     )
 }
 

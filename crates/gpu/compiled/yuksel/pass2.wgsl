@@ -43,7 +43,7 @@ struct package_yuksel_common_Yuksel {
     phase: u32,
     split: f32,
     pre_tiles: u32,
-    _pad: u32,
+    walls: u32,
     receivers: package_shaders_receivers_Receivers
 }
 

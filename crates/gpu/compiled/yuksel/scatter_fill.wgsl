@@ -194,7 +194,7 @@ struct package_yuksel_common_Yuksel {
     phase: u32,
     split: f32,
     pre_tiles: u32,
-    _pad: u32,
+    walls: u32,
     receivers: package_shaders_receivers_Receivers
 }
 
@@ -269,7 +269,7 @@ const package_yuksel_fill__2MAX_FILL_EDGES: u32 = 9u;
 fn package_yuksel_fill__2yuksel_fill_row(q: vec2<i32>, b: u32, k: u32, pixel: vec2<f32>) {
     if package_yuksel_common_u.footprint == 0u {
         for (var a = 0u; a < k; a++) {
-            package_yuksel_fill__1fill_row[a] = package_yuksel_sample__1yuksel_record(package_yuksel_sample__1yuksel_part(q.x, q.y, a, b, k, pixel), q.x, q.y, k, k, pixel);
+            package_yuksel_fill__1fill_row[a] = package_yuksel_sample__1yuksel_record(package_yuksel_sample__1yuksel_part(q.x, q.y, a, b, k, pixel), q.x, q.y, a, b, k, k, pixel);
         }
         return;
     }
@@ -290,7 +290,7 @@ fn package_yuksel_fill__2yuksel_fill_row(q: vec2<i32>, b: u32, k: u32, pixel: ve
         if h.w != 0.0 {
             f = package_yuksel_sample__1yuksel_footprint(h, across[a], across[a + 1u], package_yuksel_fill__1fill_below[a], above, pixel);
         }
-        package_yuksel_fill__1fill_row[a] = package_yuksel_sample__1yuksel_record(f, q.x, q.y, k, k, pixel);
+        package_yuksel_fill__1fill_row[a] = package_yuksel_sample__1yuksel_record(f, q.x, q.y, a, b, k, k, pixel);
         package_yuksel_fill__1fill_below[a] = above;
     }
 }
@@ -383,9 +383,11 @@ fn package_yuksel_sample__1yuksel_part(c: i32, r: i32, a: u32, b: u32, t: u32, p
     return package_yuksel_sample__1yuksel_footprint(h, package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i - 1u, j, t, pixel)), package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i + 1u, j, t, pixel)), package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i, j - 1u, t, pixel)), package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i, j + 1u, t, pixel)), pixel);
 }
 
-fn package_yuksel_sample__1yuksel_record(f: package_yuksel_sample_YukselFootprint, c: i32, r: i32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
+fn package_yuksel_sample__1yuksel_record(f: package_yuksel_sample_YukselFootprint, c: i32, r: i32, a: u32, b: u32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
     let bits = package_yuksel_common__1tier_bits(t, k);
-    if f.rec.w == 0.0 {
+    let s = package_yuksel_sample__1yuksel_lattice(c, r, 2u * a + 1u, 2u * b + 1u, t, pixel);
+    let beyond = package_yuksel_common_u.walls != 0u && (any(s < vec2<f32>(0.0)) || any(s > vec2<f32>(package_yuksel_common_u.size)));
+    if f.rec.w == 0.0 || beyond {
         return vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5)) | bits), 0.0);
     }
     let d = (f.rec.xy - package_yuksel_sample__2yuksel_pixel_centre(c, r, pixel)) / pixel;

@@ -201,7 +201,7 @@ struct package_yuksel_common_Yuksel {
     phase: u32,
     split: f32,
     pre_tiles: u32,
-    _pad: u32,
+    walls: u32,
     receivers: package_shaders_receivers_Receivers
 }
 
@@ -358,9 +358,11 @@ fn package_yuksel_sample__1yuksel_part(c: i32, r: i32, a: u32, b: u32, t: u32, p
     return package_yuksel_sample__1yuksel_footprint(h, package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i - 1u, j, t, pixel)), package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i + 1u, j, t, pixel)), package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i, j - 1u, t, pixel)), package_yuksel_sample__1yuksel_hit(package_yuksel_sample__1yuksel_lattice(c, r, i, j + 1u, t, pixel)), pixel);
 }
 
-fn package_yuksel_sample__1yuksel_record(f: package_yuksel_sample_YukselFootprint, c: i32, r: i32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
+fn package_yuksel_sample__1yuksel_record(f: package_yuksel_sample_YukselFootprint, c: i32, r: i32, a: u32, b: u32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
     let bits = package_yuksel_common__1tier_bits(t, k);
-    if f.rec.w == 0.0 {
+    let s = package_yuksel_sample__1yuksel_lattice(c, r, 2u * a + 1u, 2u * b + 1u, t, pixel);
+    let beyond = package_yuksel_common_u.walls != 0u && (any(s < vec2<f32>(0.0)) || any(s > vec2<f32>(package_yuksel_common_u.size)));
+    if f.rec.w == 0.0 || beyond {
         return vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5)) | bits), 0.0);
     }
     let d = (f.rec.xy - package_yuksel_sample__2yuksel_pixel_centre(c, r, pixel)) / pixel;
@@ -373,7 +375,7 @@ fn package_yuksel_sample__1yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>,
         var misfits = false;
         for (var q = 0u; q < select(t * t, at_k, t >= k); q++) {
             let f = package_yuksel_sample__1yuksel_part(c, r, q % t, q / t, t, pixel);
-            package_yuksel_sample__1tier_records[q] = package_yuksel_sample__1yuksel_record(f, c, r, t, k, pixel);
+            package_yuksel_sample__1tier_records[q] = package_yuksel_sample__1yuksel_record(f, c, r, q % t, q / t, t, k, pixel);
             if t < k && (f.rec.w == 0.0 || f.misfit > package_yuksel_common_u.split) {
                 misfits = true;
                 break;

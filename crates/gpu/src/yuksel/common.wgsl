@@ -23,7 +23,7 @@ struct Yuksel {
     phase: u32,               // pass 1 and 2: the map's rows this draw serves, modulo 2^level
     split: f32,               // misfit above which a pixel takes its k x k samples; < 0: always
     pre_tiles: u32,           // tiles along x of the pre-pass texture's array; 0: one layer
-    _pad: u32,
+    walls: u32,               // 1: the pool's walls close the square (`yuksel_record`)
     receivers: Receivers,     // what the samples' light meets (t0.w = 0: the plane z = 0)
 }
 

@@ -41,7 +41,7 @@ var<private> fill_below: array<vec4<f32>, MAX_FILL>;
 fn yuksel_fill_row(q: vec2<i32>, b: u32, k: u32, pixel: vec2<f32>) {
     if u.footprint == 0u {
         for (var a = 0u; a < k; a++) {
-            fill_row[a] = yuksel_record(yuksel_part(q.x, q.y, a, b, k, pixel), q.x, q.y, k, k, pixel);
+            fill_row[a] = yuksel_record(yuksel_part(q.x, q.y, a, b, k, pixel), q.x, q.y, a, b, k, k, pixel);
         }
         return;
     }
@@ -62,7 +62,7 @@ fn yuksel_fill_row(q: vec2<i32>, b: u32, k: u32, pixel: vec2<f32>) {
         if h.w != 0.0 {
             f = yuksel_footprint(h, across[a], across[a + 1u], fill_below[a], above, pixel);
         }
-        fill_row[a] = yuksel_record(f, q.x, q.y, k, k, pixel);
+        fill_row[a] = yuksel_record(f, q.x, q.y, a, b, k, k, pixel);
         fill_below[a] = above;
     }
 }

@@ -143,8 +143,8 @@ pub struct YukselUniform {
     pub split: f32,
     /// Tiles along x of the pre-pass texture's array ([`PrepassTiling`]); 0 where it is one.
     pub pre_tiles: u32,
-    /// Padding to align `receivers`.
-    pub _pad: u32,
+    /// 1 where the pool's walls close the square ([`YukselSetup::walls`]).
+    pub walls: u32,
     /// What the samples' light meets (the plane `z = 0` where `t0[3]` is 0).
     pub receivers: ReceiversUniform,
 }
@@ -216,7 +216,7 @@ impl YukselUniform {
             phase,
             split: s.split.map_or(-1.0, |v| v as f32),
             pre_tiles: 0,
-            _pad: 0,
+            walls: s.walls as u32,
             receivers: ReceiversUniform::of(s.receivers.as_deref()),
         }
     }

@@ -144,12 +144,16 @@ fn yuksel_pixel_box(h: vec4<f32>, area: vec2<f32>, pixel: vec2<f32>) -> YukselFo
     return YukselFootprint(vec4<f32>(h.xy, bitcast<f32>(packed), h.z), 0.0);
 }
 
-// A footprint of pixel (c, r) as the pre-pass stores it, one of its t x t (of k x k at most): its
+// Footprint (a, b) of the t x t of pixel (c, r) as the pre-pass stores it (of k x k at most): its
 // centre relative to the pixel's centre (pixels), its packed half-widths with the pixel's tier in
-// their sign bits (`tier_bits`), its flux times its share 1/t².
-fn yuksel_record(f: YukselFootprint, c: i32, r: i32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
+// their sign bits (`tier_bits`), its flux times its share 1/t². Between the pool's walls a patch
+// beyond them carries no light, though its footprint still chose the pixel's tier (CPU twin:
+// `footprint` in prepass.rs).
+fn yuksel_record(f: YukselFootprint, c: i32, r: i32, a: u32, b: u32, t: u32, k: u32, pixel: vec2<f32>) -> vec4<f32> {
     let bits = tier_bits(t, k);
-    if f.rec.w == 0.0 {
+    let s = yuksel_lattice(c, r, 2u * a + 1u, 2u * b + 1u, t, pixel);
+    let beyond = u.walls != 0u && (any(s < vec2<f32>(0.0)) || any(s > vec2<f32>(u.size)));
+    if f.rec.w == 0.0 || beyond {
         return vec4<f32>(0.0, 0.0, bitcast<f32>(pack2x16float(vec2<f32>(0.5)) | bits), 0.0);
     }
     let d = (f.rec.xy - yuksel_pixel_centre(c, r, pixel)) / pixel;
@@ -171,7 +175,7 @@ fn yuksel_tier(c: i32, r: i32, k: u32, pixel: vec2<f32>, at_k: u32) -> u32 {
         var misfits = false;
         for (var q = 0u; q < select(t * t, at_k, t >= k); q++) {
             let f = yuksel_part(c, r, q % t, q / t, t, pixel);
-            tier_records[q] = yuksel_record(f, c, r, t, k, pixel);
+            tier_records[q] = yuksel_record(f, c, r, q % t, q / t, t, k, pixel);
             if t < k && (f.rec.w == 0.0 || f.misfit > u.split) {
                 misfits = true;
                 break;

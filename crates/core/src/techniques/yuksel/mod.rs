@@ -563,6 +563,9 @@ pub struct YukselSetup {
     pub attenuation: DVec3,
     /// What the samples' light meets instead of the plane `z = 0` ([`YukselSetup::with_floor`]).
     pub receivers: Option<Shared>,
+    /// The pool's walls close the square ([`YukselSetup::with_floor`]): the surface beyond them
+    /// sends no light, and light that leaves the square meets a wall, not the floor across it.
+    pub walls: bool,
 }
 
 impl YukselSetup {
@@ -629,6 +632,7 @@ impl YukselSetup {
                 DVec3::ONE
             },
             receivers: None,
+            walls: false,
         })
     }
 
@@ -636,8 +640,10 @@ impl YukselSetup {
     /// map's resolution (from `previous` where nothing it depends on changed), the light deposited
     /// in the light's space and looked up per floor pixel ([`crate::receivers`]). The
     /// absorption moves into the lookup, along the flat-water path to each receiver point, as the
-    /// paper takes the flat floor's.
+    /// paper takes the flat floor's. A pool's walls ([`crate::scene::Floor::walls`]) close the
+    /// square: a sample on the surface beyond them carries no light ([`Self::walls`]).
     pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
+        self.walls = floor.walls && floor.terrain.is_none();
         let t0 = crate::receivers::flat_refracted(self.light, self.ior);
         self.receivers = Shared::of_floor(previous, floor, self.size, self.depth, t0, self.width);
         if self.receivers.is_some() {

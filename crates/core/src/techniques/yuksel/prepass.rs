@@ -115,7 +115,19 @@ struct Footprint {
     misfit: f64,
 }
 
+/// The footprint of the patch of water centred on `s`, `area` wide; between the pool's walls a
+/// patch beyond them keeps its footprint (and so its pixel's tier) but carries no light
+/// (`yuksel_record` in `sample.wgsl`).
 fn footprint(setup: &YukselSetup, heights: &Grid, s: DVec2, area: DVec2) -> Option<Footprint> {
+    let mut f = open_footprint(setup, heights, s, area)?;
+    let beyond = s.cmplt(DVec2::ZERO).any() || s.cmpgt(DVec2::splat(setup.size)).any();
+    if setup.walls && beyond {
+        f.flux = 0.0;
+    }
+    Some(f)
+}
+
+fn open_footprint(setup: &YukselSetup, heights: &Grid, s: DVec2, area: DVec2) -> Option<Footprint> {
     let (own, flux) = hit(setup, heights, s)?;
     if !setup.footprint {
         return Some(Footprint {
@@ -245,13 +257,13 @@ pub fn prepass(setup: &YukselSetup, heights: &Grid) -> Vec<[f32; 4]> {
                 for a in 0..k {
                     let f = &fs[(b % t) * t + a % t];
                     out[(pr * k + b) * pw + pc * k + a] = match f {
-                        Some(f) => {
+                        Some(f) if f.flux > 0.0 => {
                             let d = (f.centre - pixel_centre) / setup.pixel;
                             let half = [f.half.x as f32, f.half.y as f32];
                             let packed = pack_half_widths(half, tier);
                             [d.x as f32, d.y as f32, packed, (f.flux * share) as f32]
                         }
-                        None => [0.0, 0.0, pack_half_widths([0.5, 0.5], tier), 0.0],
+                        _ => [0.0, 0.0, pack_half_widths([0.5, 0.5], tier), 0.0],
                     };
                 }
             }
