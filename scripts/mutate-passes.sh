@@ -52,6 +52,7 @@ yuksel prepass fill last listed pixel lost @@ $S/yuksel/prepass_fill.wgsl @@ ent
 yuksel scatter fill last listed pixel lost @@ $S/yuksel/scatter_fill.wgsl @@ entry < fill_args[3] @@ entry + 1u < fill_args[3] @@ $YU
 yuksel region one row fewer @@ $S/yuksel/region.wgsl @@ out.m = u32(y.x - 1); @@ out.m = u32(y.x - 2); @@ $YU
 yuksel region 1 % narrower bound @@ $S/yuksel/region.wgsl @@ let margin = (hi - lo) * 0.125; @@ let margin = (hi - lo) * 0.12; @@ $YU
+yuksel walls let light in from beyond the square @@ $S/yuksel/sample.wgsl @@ if f.rec.w == 0.0 || beyond { @@ if f.rec.w == 0.0 { @@ $YU
 yuksel footprint 1 % wider @@ $S/yuksel/sample.wgsl @@ yp.y - ym.y)) * 0.5 / pixel; @@ yp.y - ym.y)) * 0.505 / pixel; @@ $YU
 cascaded eye x1.01 @@ $S/cascaded/eye.wgsl @@ textureStore(eye_out, vec2<i32>(id.xy), out); @@ textureStore(eye_out, vec2<i32>(id.xy), out * 1.01); @@ $CA
 cascaded water x1.01 @@ $S/cascaded/water.wgsl @@ vec4<f32>(s, height_field_normal(grad)) @@ vec4<f32>(s, height_field_normal(grad)) * 1.01 @@ $CA
