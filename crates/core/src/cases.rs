@@ -119,6 +119,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
                     },
                     floor: Floor {
                         terrain: None,
+                        solids: None,
                         albedo: Albedo::Pattern(FloorPattern::Plain),
                         walls: false,
                         deck: Default::default(),

@@ -46,6 +46,7 @@ pub fn sand_bar(water: &Water) -> Grid {
 pub fn open_floor(terrain: Option<Grid>) -> crate::scene::Floor {
     crate::scene::Floor {
         terrain,
+        solids: None,
         albedo: crate::scene::Albedo::Pattern(Default::default()),
         walls: false,
         deck: Default::default(),

@@ -37,7 +37,7 @@ use glam::{DVec2, DVec3};
 use crate::map::CausticsMap;
 use crate::optics::refract;
 use crate::parallel::prelude::*;
-use crate::scene::Floor;
+use crate::scene::{Floor, Solids};
 
 /// Light-space coordinate of `p`: where the line through it along `t0` meets the plane `z = 0`.
 pub fn light_space(p: DVec3, t0: DVec3) -> DVec2 {
@@ -70,6 +70,12 @@ pub struct ReceiverHeights {
     /// The floor's terrain over the `size` square (`None`: the plane `z = 0`), for the receivers'
     /// points and normals in [`lookup`].
     pub terrain: Option<crate::grid::Grid>,
+    /// The opaque objects in the map: the first surface a line meets may be one of them, and the
+    /// floor under them is covered.
+    pub solids: Option<Arc<Solids>>,
+    /// The largest slope of the floor's own heights (as [`Self::max_slope`], objects left out):
+    /// the depth test's tolerance, which an object's sheer side must not widen.
+    pub floor_slope: f64,
     /// Side of the floor square, world units.
     pub size: f64,
     /// The water's depth it was made for: the rest level the lines along `t0` start from, and the
@@ -87,30 +93,38 @@ impl ReceiverHeights {
     pub fn of_floor(floor: &Floor, size: f64, depth: f64, t0: DVec3, resolution: usize) -> Self {
         let resolution = resolution.max(1);
         let texel = size / resolution as f64;
-        let top = floor
-            .terrain
-            .as_ref()
-            .map_or(0.0, |g| g.min_max().1 as f64)
-            .clamp(0.0, depth);
+        let terrain_top = floor.terrain.as_ref().map_or(0.0, |g| g.min_max().1 as f64);
+        let solids_top = floor.solids.as_ref().map_or(0.0, |s| s.bounds().1.z);
+        let top = terrain_top.max(solids_top).clamp(0.0, depth);
         let shift = t0.truncate().abs() * (top / -t0.z);
         let margin = ((shift.max_element() / texel).ceil() as usize) + 2;
         let n = resolution + 2 * margin;
         let origin = DVec2::splat(-(margin as f64) * texel);
         let march = floor.terrain.as_ref().map(|g| HeightMarch::new(g, size));
-        let heights = (0..n * n)
+        let lines: Vec<(f32, f32)> = (0..n * n)
             .into_par_iter()
             .map(|k| {
                 let q = origin + (DVec2::new((k % n) as f64, (k / n) as f64) + 0.5) * texel;
-                let Some(m) = &march else { return 0.0 };
                 // The line through q along t0, from the water's rest level down.
                 let s = q.extend(0.0) + t0 * (depth / t0.z);
                 let height = |p: DVec2| floor.height_gradient(p, size).0;
-                match m.intersect(s, t0, &height) {
-                    Some(d) => (s + t0 * d).z as f32,
-                    None => depth as f32,
-                }
+                // The floor plane z = 0 lies `depth / −t0_z` along the line.
+                let ground = match &march {
+                    None => Some(depth / -t0.z),
+                    Some(m) => m.intersect(s, t0, &height),
+                };
+                let first = match &floor.solids {
+                    None => ground,
+                    Some(solids) => {
+                        let limit = ground.unwrap_or(f64::INFINITY);
+                        solids.intersect(s, t0, limit).or(ground)
+                    }
+                };
+                let at = |d: Option<f64>| d.map_or(depth, |d| (s + t0 * d).z.min(depth)) as f32;
+                (at(ground), at(first))
             })
             .collect();
+        let (ground, heights): (Vec<f32>, Vec<f32>) = lines.into_iter().unzip();
         let mut map = ReceiverHeights {
             t0,
             origin,
@@ -120,11 +134,22 @@ impl ReceiverHeights {
             heights,
             max_slope: 0.0,
             terrain: floor.terrain.clone(),
+            solids: floor.solids.clone(),
+            floor_slope: 0.0,
             size,
             depth,
             resolution,
         };
         map.max_slope = map.steepest();
+        map.floor_slope = match &floor.solids {
+            None => map.max_slope,
+            Some(_) => {
+                let heights = std::mem::replace(&mut map.heights, ground);
+                let slope = map.steepest();
+                map.heights = heights;
+                slope
+            }
+        };
         map
     }
 
@@ -144,7 +169,8 @@ impl ReceiverHeights {
                     && p.size == size
                     && p.depth == depth
                     && p.resolution == resolution
-                    && p.terrain == floor.terrain =>
+                    && p.terrain == floor.terrain
+                    && same_solids(&p.solids, &floor.solids) =>
             {
                 p.clone()
             }
@@ -236,7 +262,9 @@ impl Shared {
         t0: DVec3,
         resolution: usize,
     ) -> Option<Shared> {
-        floor.terrain.as_ref()?;
+        if !floor.has_receivers() {
+            return None;
+        }
         let previous = previous.map(|p| &p.0);
         Some(Shared(ReceiverHeights::of_floor_reusing(
             previous, floor, size, depth, t0, resolution,
@@ -246,11 +274,49 @@ impl Shared {
     /// Whether `receivers` were made from `floor`'s terrain (both absent on the plane `z = 0`): a
     /// frame whose sun, water and map are unchanged keeps them without building a setup.
     pub fn fits(receivers: Option<&Shared>, floor: &Floor) -> bool {
-        match (receivers, &floor.terrain) {
-            (None, None) => true,
-            (Some(r), Some(t)) => r.terrain.as_ref() == Some(t),
-            _ => false,
+        match receivers {
+            None => !floor.has_receivers(),
+            Some(r) => {
+                floor.has_receivers()
+                    && r.terrain == floor.terrain
+                    && same_solids(&r.solids, &floor.solids)
+            }
         }
+    }
+}
+
+impl Shared {
+    /// [`Shared::of_floor`] for the floor's terrain alone, its objects left out: for a technique
+    /// that lights and shades the objects by its own means (paper 3's depth textures).
+    pub fn of_terrain(
+        previous: Option<&Shared>,
+        floor: &Floor,
+        size: f64,
+        depth: f64,
+        t0: DVec3,
+        resolution: usize,
+    ) -> Option<Shared> {
+        floor.terrain.as_ref()?;
+        let bare = Floor {
+            solids: None,
+            ..floor.clone()
+        };
+        Self::of_floor(previous, &bare, size, depth, t0, resolution)
+    }
+
+    /// [`Shared::fits`] for receivers made by [`Shared::of_terrain`].
+    pub fn fits_terrain(receivers: Option<&Shared>, floor: &Floor) -> bool {
+        match receivers {
+            None => floor.terrain.is_none(),
+            Some(r) => r.solids.is_none() && r.terrain.is_some() && r.terrain == floor.terrain,
+        }
+    }
+}
+
+fn same_solids(a: &Option<Arc<Solids>>, b: &Option<Arc<Solids>>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+        (a, b) => a.is_none() && b.is_none(),
     }
 }
 
@@ -404,7 +470,7 @@ pub fn floor_texels(receivers: &ReceiverHeights, width: usize, height: usize) ->
     let t0 = receivers.t0;
     let size = receivers.size;
     let texel = DVec2::new(size / width as f64, size / height as f64);
-    let bias = 0.5 * receivers.texel * receivers.max_slope.max(1.0);
+    let bias = 0.5 * receivers.texel * receivers.floor_slope.max(1.0);
     (0..width * height)
         .map(|k| {
             let c = (DVec2::new((k % width) as f64, (k / width) as f64) + 0.5) * texel;

@@ -24,6 +24,7 @@ fn water(size: f64, depth: f64, wrap: bool) -> Water {
 fn plane() -> Floor {
     Floor {
         terrain: None,
+        solids: None,
         albedo: Albedo::Pattern(FloorPattern::Plain),
         walls: false,
         deck: Default::default(),
@@ -338,6 +339,7 @@ fn terrain_receives_the_cosine_of_its_slope() {
     });
     let floor = Floor {
         terrain: Some(terrain),
+        solids: None,
         albedo: Albedo::Pattern(FloorPattern::Sand),
         walls: false,
         deck: Default::default(),

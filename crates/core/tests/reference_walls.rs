@@ -27,6 +27,7 @@ fn water(size: f64, depth: f64, absorption: DVec3) -> Water {
 fn pool() -> Floor {
     Floor {
         terrain: None,
+        solids: None,
         albedo: Albedo::Pattern(FloorPattern::Plain),
         walls: true,
         deck: Default::default(),

@@ -11,6 +11,7 @@ mod validate;
 mod water_only;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
@@ -643,11 +644,15 @@ pub struct CausticsSettings {
     pub params: toml::Table,
 }
 
-/// The scene's floor, checked: the plane z = 0 or a terrain, its albedo, walls and deck.
+/// The scene's floor, checked: the plane z = 0 or a terrain, its albedo, walls and deck, and the
+/// opaque objects that stand on it.
 #[derive(Clone, Debug)]
 pub struct Floor {
     /// Terrain heights above z = 0 on the scene square (clamped at its edges); `None` is the plane z = 0.
     pub terrain: Option<Grid>,
+    /// The scene's diffuse objects as receivers of the light under the water ([`Solids::of`]):
+    /// what the light meets besides the floor, and what shades the floor.
+    pub solids: Option<Arc<Solids>>,
     /// Its albedo: a built-in pattern or an image over the square.
     pub albedo: Albedo,
     /// The pool's walls are receivers ([`FloorSpec::walls`]); see [`crate::walls`].
@@ -656,7 +661,64 @@ pub struct Floor {
     pub deck: Deck,
 }
 
+/// Opaque objects as receivers: each diffuse object's triangles and their tree, so the receivers'
+/// height map ([`crate::receivers::ReceiverHeights`]) can take the first surface the light meets
+/// whether it is the floor or an object (docs/receivers.md).
+#[derive(Debug)]
+pub struct Solids {
+    meshes: Vec<(TriangleMesh, crate::mesh::MeshBvh)>,
+}
+
+impl Solids {
+    /// The diffuse objects of `objects` (glass lets light through: it is no receiver), `None`
+    /// where there are none.
+    pub fn of(objects: &[Object]) -> Option<Arc<Solids>> {
+        let meshes: Vec<_> = objects
+            .iter()
+            .filter(|o| matches!(o.material, Material::Diffuse { .. }))
+            .map(|o| (o.mesh.clone(), o.mesh.bvh()))
+            .collect();
+        (!meshes.is_empty()).then(|| Arc::new(Solids { meshes }))
+    }
+
+    /// Axis-aligned bounds `(min, max)` of every object.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        self.meshes.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), (m, _)| {
+                let (a, b) = m.bounds();
+                (lo.min(a), hi.max(b))
+            },
+        )
+    }
+
+    /// The nearest hit of the ray `origin + t·dir`, `0 < t < t_max`, with any of the objects.
+    pub fn intersect(&self, origin: DVec3, dir: DVec3, t_max: f64) -> Option<f64> {
+        self.meshes.iter().fold(None, |best, (mesh, bvh)| {
+            let limit = best.unwrap_or(t_max);
+            bvh.intersect(mesh, origin, dir, limit)
+                .map(|(t, _)| t)
+                .or(best)
+        })
+    }
+}
+
 impl Floor {
+    /// Whether anything under the water besides the plane `z = 0` receives the light: a terrain or
+    /// opaque objects. Then the techniques meet the receivers' map ([`crate::receivers`]).
+    pub fn has_receivers(&self) -> bool {
+        self.terrain.is_some() || self.solids.is_some()
+    }
+
+    /// Whether `other` holds the same receivers: the same terrain and the same objects.
+    pub fn same_receivers(&self, other: &Floor) -> bool {
+        let same_solids = match (&self.solids, &other.solids) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        same_solids && self.terrain == other.terrain
+    }
+
     /// Height of the floor and its gradient at `p`.
     pub fn height_gradient(&self, p: DVec2, size: f64) -> (f64, DVec2) {
         match &self.terrain {

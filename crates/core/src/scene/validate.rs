@@ -98,6 +98,10 @@ pub(super) fn validate(
         .enumerate()
         .map(|(k, o)| validate_object(o, base, k, size))
         .collect::<Result<Vec<_>>>()?;
+    let mut floor = floor;
+    if water.is_some() {
+        floor.solids = super::Solids::of(&objects);
+    }
 
     let look = match &file.camera {
         Some(c) => {
@@ -419,6 +423,7 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
     }
     Ok(Floor {
         terrain,
+        solids: None,
         albedo,
         walls: f.walls,
         deck: f.deck,

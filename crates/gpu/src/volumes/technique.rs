@@ -124,7 +124,7 @@ impl Pipelines for Volumes {
     ) -> Result<bool, GpuError> {
         let key = SceneKey::of(scene)?;
         let receivers = c.frame.setup.receivers.as_ref();
-        if c.key == key && Shared::fits(receivers, &scene.floor) {
+        if c.key == key && Shared::fits_terrain(receivers, &scene.floor) {
             return Ok(true);
         }
         if c.key.wrap == key.wrap {

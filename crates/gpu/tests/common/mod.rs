@@ -147,6 +147,7 @@ pub fn beach_under(depth: f64) -> caustics_core::grid::Grid {
 pub fn beach_floor(depth: f64) -> caustics_core::scene::Floor {
     caustics_core::scene::Floor {
         terrain: Some(beach_under(depth)),
+        solids: None,
         albedo: caustics_core::scene::Albedo::Pattern(Default::default()),
         walls: false,
         deck: Default::default(),

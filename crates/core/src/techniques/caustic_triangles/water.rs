@@ -221,11 +221,11 @@ impl WaterSetup {
         self
     }
 
-    /// The photons meet `floor`'s terrain where it has one ([`with_receivers`](Self::with_receivers)),
+    /// The photons meet `floor`'s terrain and objects where it has them ([`with_receivers`](Self::with_receivers)),
     /// through the receivers' map at the floor map's resolution, taken from `previous` where
     /// nothing it depends on changed.
     pub fn with_floor(self, floor: &Floor, previous: Option<&Arc<ReceiverHeights>>) -> Self {
-        if floor.terrain.is_none() {
+        if !floor.has_receivers() {
             return self;
         }
         let t0 = flat_refracted(self.light, self.ior);

@@ -662,7 +662,7 @@ impl VolumesSetup {
     /// ([`crate::receivers`]). The walls and the objects keep their own passes.
     pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
         self.receivers =
-            Shared::of_floor(previous, floor, self.size, self.depth, self.t0, self.width);
+            Shared::of_terrain(previous, floor, self.size, self.depth, self.t0, self.width);
         self
     }
 

@@ -453,6 +453,7 @@ fn reference_agrees_with_the_floor_reference() {
     };
     let floor = crate::scene::Floor {
         terrain: None,
+        solids: None,
         albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
         walls: false,
         deck: Default::default(),
@@ -521,6 +522,7 @@ fn the_floor_map_under_waves_agrees_with_the_reference() {
             },
             floor: &crate::scene::Floor {
                 terrain: None,
+                solids: None,
                 albedo: crate::scene::Albedo::Pattern(crate::scene::FloorPattern::Plain),
                 walls: false,
                 deck: Default::default(),
