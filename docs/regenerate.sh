@@ -17,11 +17,11 @@ $bin compare \
   --resolution 256,128,512 \
   --picture-cases waves-mid-deep,lens-low-deep,ocean-overhead-shallow,ripples-low-shallow \
   --out docs/compare
-# The receivers: each technique's defaults over a flat floor, a sand bar, rocks and the walls.
+# The receivers: each technique's defaults over a flat floor, a sand bar, rocks, the walls and objects.
 rm -rf docs/compare-receivers
 $bin compare --receivers \
   --technique yuksel --technique procedural --technique volumes --technique caustic-triangles \
-  --picture-cases receivers-sand-bar,receivers-rocks \
+  --picture-cases receivers-sand-bar,receivers-rocks,receivers-objects \
   --out docs/compare-receivers
 # Every registered technique and the whole frame (water, technique, final image) at 1280x720 and
 # 1920x1080; then error against cost (each technique's main knob; --small for lavapipe).

@@ -94,7 +94,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
     for case in &cases {
         let surface = case.water.surface_at(case.time)?;
         for (k, &res) in args.resolution.iter().enumerate() {
-            let scene = water_scene(
+            let mut scene = water_scene(
                 &case.name,
                 &case.water,
                 &case.floor,
@@ -102,6 +102,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                 (res, res),
                 case.time,
             );
+            scene.objects = case.objects.clone();
             let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);
             let truth = runner.run(&reference(), &job, &|_, _| {})?;
             let truth_walls = truth.walls.as_ref().map(stacked);

@@ -571,11 +571,14 @@ fn compare_receivers_writes_the_technique_by_receiver_table() {
         .take(4)
         .collect();
     assert!(
-        table[0].contains("sand-bar") && table[0].contains("rocks") && table[0].contains("walls"),
+        table[0].contains("sand-bar")
+            && table[0].contains("rocks")
+            && table[0].contains("walls")
+            && table[0].contains("objects"),
         "{md}"
     );
     assert_eq!(
-        table[2], "| reference | 0.00 % | 0.00 % | 0.00 % | 0.00 % | 0.00 % |",
+        table[2], "| reference | 0.00 % | 0.00 % | 0.00 % | 0.00 % | 0.00 % | 0.00 % |",
         "{md}"
     );
     // yuksel maps the floor only: no walls.

@@ -7,7 +7,7 @@ use std::f64::consts::TAU;
 use glam::{DVec2, DVec3};
 
 use crate::grid::Grid;
-use crate::scene::{Albedo, Floor, FloorPattern, Water, WaterSource};
+use crate::scene::{Albedo, Floor, FloorPattern, Material, Object, Solids, Water, WaterSource};
 use crate::water::ocean::OceanParams;
 use crate::water::ripple::{Drop, RippleParams};
 use crate::water::waves::Wave;
@@ -25,6 +25,9 @@ pub struct Case {
     pub light: DVec3,
     /// Simulation time at which the water is frozen, seconds.
     pub time: f64,
+    /// Opaque objects under the water (`receivers-objects`); their meshes are also the floor's
+    /// [`Floor::solids`].
+    pub objects: Vec<Object>,
 }
 
 /// The kinds of water the cases use.
@@ -126,6 +129,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
                     },
                     light,
                     time: 0.0,
+                    objects: Vec::new(),
                 });
             }
         }
@@ -134,7 +138,7 @@ pub fn cases(quick: bool) -> Vec<Case> {
 }
 
 /// The receivers `caustics compare --receivers` measures, as the cases' name suffixes.
-pub const RECEIVERS: &[&str] = &["flat", "sand-bar", "rocks", "walls"];
+pub const RECEIVERS: &[&str] = &["flat", "sand-bar", "rocks", "walls", "objects"];
 
 /// The receivers' terrains rise inside the square and lie flat at its edges: where the water
 /// wraps and a terrain does not tile, the light that crosses an edge meets a different floor on
@@ -178,6 +182,35 @@ pub fn rocks(depth: f64) -> Grid {
     })
 }
 
+/// Objects on the flat floor: a box standing on it, 30 % of the way up to the water, and a slab
+/// held 40 % of the way up (an overhang) that takes the light the floor under it would get. Both
+/// are diffuse: the light that meets them stays off the floor.
+pub fn crate_and_overhang(depth: f64) -> Vec<Object> {
+    let diffuse = Material::Diffuse {
+        color: DVec3::splat(0.8),
+    };
+    let placed = |half: DVec3, base: DVec3| {
+        crate::mesh::cuboid(half)
+            .transformed(glam::DAffine3::from_translation(base + DVec3::Z * half.z))
+    };
+    vec![
+        Object {
+            mesh: placed(
+                DVec3::new(0.08, 0.06, 0.15 * depth),
+                DVec3::new(0.35, 0.4, 0.0),
+            ),
+            material: diffuse.clone(),
+        },
+        Object {
+            mesh: placed(
+                DVec3::new(0.1, 0.07, 0.02),
+                DVec3::new(0.62, 0.58, 0.4 * depth),
+            ),
+            material: diffuse,
+        },
+    ]
+}
+
 /// The receivers' cases: the gentle waves under the mid sun over deep water (the surface cases'
 /// `waves-mid-deep`), over each of [`RECEIVERS`].
 pub fn receiver_cases() -> Vec<Case> {
@@ -195,6 +228,10 @@ pub fn receiver_cases() -> Vec<Case> {
                 "sand-bar" => c.floor.terrain = Some(sand_bar(depth)),
                 "rocks" => c.floor.terrain = Some(rocks(depth)),
                 "walls" => c.floor.walls = true,
+                "objects" => {
+                    c.objects = crate_and_overhang(depth);
+                    c.floor.solids = Solids::of(&c.objects);
+                }
                 _ => {}
             }
             c
