@@ -124,6 +124,7 @@ fn run_cpu(
             let options = volumes::reference::MeshReferenceOptions {
                 walls: scene.floor.walls,
                 object_maps: false,
+                terrain: scene.floor.terrain.clone(),
                 ..volumes::reference::MeshReferenceOptions::per_texel(
                     &setup,
                     (MESH_REFERENCE_PHOTONS * job.cells_per_texel.clamp(1, 8)) as f64,

@@ -37,10 +37,12 @@ use glam::{DVec2, DVec3};
 
 use super::representation::covered;
 use super::{CellRect, VolumesInput, VolumesSetup};
+use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::parallel::prelude::*;
+use crate::receivers::HeightMarch;
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
 
@@ -58,6 +60,10 @@ pub struct MeshReferenceOptions {
     /// Trace the objects' own maps; off where only the floor and walls are wanted (the objects
     /// still stop light), which at the default spacing is most of the work.
     pub object_maps: bool,
+    /// The floor's terrain (heights over the square, clamped beyond it) in place of the plane
+    /// `z = 0`: each photon marches to it, and the floor map is the irradiance on the tilted
+    /// surface, as [`crate::reference`]'s terrain maps are. Not with walls.
+    pub terrain: Option<Grid>,
 }
 
 impl MeshReferenceOptions {
@@ -75,6 +81,7 @@ impl MeshReferenceOptions {
             seed: 1,
             walls: false,
             object_maps: true,
+            terrain: None,
         }
     }
 }
@@ -133,7 +140,14 @@ enum End {
 /// The receiver a photon's ray meets first, objects aside, and its path to it: the floor, or with
 /// `walls` the wall its horizontal part leaves the square through when it gets there before the
 /// floor. A refracted ray always runs down, so it always ends somewhere.
-fn end_of(setup: &VolumesSetup, ph: &Photon, walls: bool) -> (End, f64) {
+fn end_of(setup: &VolumesSetup, ph: &Photon, walls: bool, terrain: Option<&Terrain>) -> (End, f64) {
+    if let Some(t) = terrain {
+        let height = |p: DVec2| t.grid.sample(p, setup.size, Edge::Clamp).0;
+        return match t.march.intersect(ph.start, ph.dir, &height) {
+            Some(d) => (End::Floor((ph.start + ph.dir * d).truncate()), d),
+            None => (End::Floor(DVec2::splat(f64::NAN)), f64::INFINITY),
+        };
+    }
     let d_floor = ph.start.z / -ph.dir.z;
     if walls
         && let Some((wall, u)) = Wall::exit(ph.start.truncate(), ph.dir.truncate(), setup.size)
@@ -146,6 +160,12 @@ fn end_of(setup: &VolumesSetup, ph: &Photon, walls: bool) -> (End, f64) {
         End::Floor((ph.start + ph.dir * d_floor).truncate()),
         d_floor,
     )
+}
+
+/// A terrain floor and the bound its march steps by.
+struct Terrain<'a> {
+    grid: &'a Grid,
+    march: HeightMarch,
 }
 
 /// Whether a photon starting over `p` enters through the pool's square (the only way in with walls).
@@ -263,6 +283,10 @@ pub fn mesh_reference_with_progress(
         })
         .collect();
     let done = std::sync::atomic::AtomicUsize::new(0);
+    let terrain = options.terrain.as_ref().map(|grid| Terrain {
+        grid,
+        march: HeightMarch::new(grid, setup.size),
+    });
 
     // The floor, and the walls with them.
     let (w, h) = (setup.width, setup.height);
@@ -305,7 +329,7 @@ pub fn mesh_reference_with_progress(
                     let Some(ph) = photon(setup, surface, p, area) else {
                         continue;
                     };
-                    let (end, d) = end_of(setup, &ph, options.walls);
+                    let (end, d) = end_of(setup, &ph, options.walls, terrain.as_ref());
                     if nearest(ph.start, ph.dir, d).is_some() {
                         continue;
                     }
@@ -339,8 +363,14 @@ pub fn mesh_reference_with_progress(
     let irradiance = |e: &DVec3, ta: f64| [(e.x / ta) as f32, (e.y / ta) as f32, (e.z / ta) as f32];
     let mut floor = CausticsMap::new(w, h, setup.size);
     let ta = texel.x * texel.y;
-    for (t, e) in floor.texels.iter_mut().zip(&acc) {
-        *t = irradiance(e, ta);
+    for (k, (t, e)) in floor.texels.iter_mut().zip(&acc).enumerate() {
+        // On a terrain the flux over a texel spreads over its tilted area.
+        let tilt = terrain.as_ref().map_or(1.0, |tr| {
+            let c = (DVec2::new((k % w) as f64, (k / w) as f64) + 0.5) * texel;
+            let g = tr.grid.sample(c, setup.size, Edge::Clamp).1;
+            (1.0 + g.length_squared()).sqrt()
+        });
+        *t = irradiance(e, ta * tilt);
     }
     if let Some(maps) = &mut wall_maps {
         for (k, m) in maps.maps.iter_mut().enumerate() {
@@ -374,7 +404,7 @@ pub fn mesh_reference_with_progress(
                         let Some(ph) = photon(setup, surface, p, area) else {
                             continue;
                         };
-                        let (_, limit) = end_of(setup, &ph, options.walls);
+                        let (_, limit) = end_of(setup, &ph, options.walls, terrain.as_ref());
                         let Some((hit, t, n)) = nearest(ph.start, ph.dir, limit) else {
                             continue;
                         };
