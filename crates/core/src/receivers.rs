@@ -65,7 +65,11 @@ pub struct ReceiverHeights {
     pub rows: usize,
     /// Row-major heights.
     pub heights: Vec<f32>,
-    /// The largest change of the bilinear map's height per unit light-space distance.
+    /// The largest change of the bilinear map's height per unit light-space distance over the
+    /// floor (the objects left out): the bound [`Self::meet`] steps by, and the depth test's
+    /// tolerance. An object's sides rise sheer from the floor; a step ends short of them or inside
+    /// them, where the sign change finds them, so a ray misses at most a corner narrower than its
+    /// sideways drift over one step (a few centimetres under waves).
     pub max_slope: f64,
     /// The floor's terrain over the `size` square (`None`: the plane `z = 0`), for the receivers'
     /// points and normals in [`lookup`].
@@ -73,9 +77,6 @@ pub struct ReceiverHeights {
     /// The opaque objects in the map: the first surface a line meets may be one of them, and the
     /// floor under them is covered.
     pub solids: Option<Arc<Solids>>,
-    /// The largest slope of the floor's own heights (as [`Self::max_slope`], objects left out):
-    /// the depth test's tolerance, which an object's sheer side must not widen.
-    pub floor_slope: f64,
     /// Side of the floor square, world units.
     pub size: f64,
     /// The water's depth it was made for: the rest level the lines along `t0` start from, and the
@@ -135,21 +136,14 @@ impl ReceiverHeights {
             max_slope: 0.0,
             terrain: floor.terrain.clone(),
             solids: floor.solids.clone(),
-            floor_slope: 0.0,
             size,
             depth,
             resolution,
         };
+        // The floor's slope: the heights without the objects.
+        let heights = std::mem::replace(&mut map.heights, ground);
         map.max_slope = map.steepest();
-        map.floor_slope = match &floor.solids {
-            None => map.max_slope,
-            Some(_) => {
-                let heights = std::mem::replace(&mut map.heights, ground);
-                let slope = map.steepest();
-                map.heights = heights;
-                slope
-            }
-        };
+        map.heights = heights;
         map
     }
 
@@ -470,7 +464,7 @@ pub fn floor_texels(receivers: &ReceiverHeights, width: usize, height: usize) ->
     let t0 = receivers.t0;
     let size = receivers.size;
     let texel = DVec2::new(size / width as f64, size / height as f64);
-    let bias = 0.5 * receivers.texel * receivers.floor_slope.max(1.0);
+    let bias = 0.5 * receivers.texel * receivers.max_slope.max(1.0);
     (0..width * height)
         .map(|k| {
             let c = (DVec2::new((k % width) as f64, (k / width) as f64) + 0.5) * texel;
