@@ -8,7 +8,9 @@
 //! `spacing² (1 + L_xy · ∇h / |L_z|)` (the same measure as [`crate::reference`]), times the Fresnel
 //! transmittance relative to flat water and `exp(−K d)` over its path `d` in the water. It is refracted
 //! with the exact Snell law through the true normal and followed to the nearest object (every mesh's
-//! BVH) or the floor `z = 0`.
+//! BVH) or the floor: the plane `z = 0`, or a terrain marched as [`crate::reference`] marches it
+//! (`MeshReferenceOptions::terrain`), whose map is then the irradiance on the tilted surface (each
+//! texel's flux over its true area).
 //!
 //! - The **floor map** is traced over the technique's whole lattice domain at `floor_spacing`: a photon
 //!   that reaches the floor adds `weight / A_texel`; one stopped by an object adds nothing (the shadow).
