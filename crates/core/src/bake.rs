@@ -132,7 +132,7 @@ pub fn bake_scene(
     }
     out.floor.walls = false;
     out.floor.terrain = None;
-    out.objects.clear();
+    out.clear_objects();
     let mut water = water;
     if water.absorption != DVec3::ZERO {
         // Flat water then reads 1 in every channel; the engine colours the light by its own water.
@@ -341,6 +341,18 @@ mod tests {
             !d.eye_space() && d.input != crate::techniques::Input::EyeSpace,
             "{}",
             d.name
+        );
+    }
+
+    /// The baked floor is an open plane: the objects leave the receivers with the scene.
+    #[test]
+    fn a_bake_leaves_the_objects_out_of_the_receivers() {
+        let scene = Scene::builtin("objects").unwrap();
+        assert!(scene.floor.solids.is_some());
+        let (out, notes) = bake_scene(&scene, 4.0, 32, 32).unwrap();
+        assert!(
+            out.objects.is_empty() && !out.floor.has_receivers(),
+            "{notes:?}"
         );
     }
 

@@ -87,15 +87,28 @@ pub struct ReceiverHeights {
 }
 
 impl ReceiverHeights {
-    /// The floor's receivers seen along `t0` from water `depth` deep over the `size` square, at
-    /// `resolution` texels across the square. The window is the square widened by how far along
-    /// `t0` the floor's highest point moves in light space, so every receiver point over the square
-    /// has its texel; lookups beyond it take the nearest edge texel.
+    /// The floor's receivers (its terrain and its objects) seen along `t0` from water `depth` deep
+    /// over the `size` square, at `resolution` texels across the square. The window is the square
+    /// widened by how far along `t0` the highest receiver point moves in light space, so every
+    /// receiver point over the square has its texel; lookups beyond it take the nearest edge
+    /// texel.
     pub fn of_floor(floor: &Floor, size: f64, depth: f64, t0: DVec3, resolution: usize) -> Self {
+        Self::of(floor, floor.solids.as_ref(), size, depth, t0, resolution)
+    }
+
+    /// [`of_floor`](Self::of_floor) with `solids` as the objects in place of the floor's own.
+    fn of(
+        floor: &Floor,
+        solids: Option<&Arc<Solids>>,
+        size: f64,
+        depth: f64,
+        t0: DVec3,
+        resolution: usize,
+    ) -> Self {
         let resolution = resolution.max(1);
         let texel = size / resolution as f64;
         let terrain_top = floor.terrain.as_ref().map_or(0.0, |g| g.min_max().1 as f64);
-        let solids_top = floor.solids.as_ref().map_or(0.0, |s| s.bounds().1.z);
+        let solids_top = solids.map_or(0.0, |s| s.bounds().1.z);
         let top = terrain_top.max(solids_top).clamp(0.0, depth);
         let shift = t0.truncate().abs() * (top / -t0.z);
         let margin = ((shift.max_element() / texel).ceil() as usize) + 2;
@@ -114,7 +127,7 @@ impl ReceiverHeights {
                     None => Some(depth / -t0.z),
                     Some(m) => m.intersect(s, t0, &height),
                 };
-                let first = match &floor.solids {
+                let first = match solids {
                     None => ground,
                     Some(solids) => {
                         let limit = ground.unwrap_or(f64::INFINITY);
@@ -135,7 +148,7 @@ impl ReceiverHeights {
             heights,
             max_slope: 0.0,
             terrain: floor.terrain.clone(),
-            solids: floor.solids.clone(),
+            solids: solids.cloned(),
             size,
             depth,
             resolution,
@@ -157,6 +170,26 @@ impl ReceiverHeights {
         t0: DVec3,
         resolution: usize,
     ) -> Arc<ReceiverHeights> {
+        Self::reusing(
+            previous,
+            floor,
+            floor.solids.as_ref(),
+            size,
+            depth,
+            t0,
+            resolution,
+        )
+    }
+
+    fn reusing(
+        previous: Option<&Arc<ReceiverHeights>>,
+        floor: &Floor,
+        solids: Option<&Arc<Solids>>,
+        size: f64,
+        depth: f64,
+        t0: DVec3,
+        resolution: usize,
+    ) -> Arc<ReceiverHeights> {
         match previous {
             Some(p)
                 if p.t0 == t0
@@ -164,11 +197,11 @@ impl ReceiverHeights {
                     && p.depth == depth
                     && p.resolution == resolution
                     && p.terrain == floor.terrain
-                    && same_solids(&p.solids, &floor.solids) =>
+                    && same_solids(p.solids.as_ref(), solids) =>
             {
                 p.clone()
             }
-            _ => Arc::new(Self::of_floor(floor, size, depth, t0, resolution)),
+            _ => Arc::new(Self::of(floor, solids, size, depth, t0, resolution)),
         }
     }
 
@@ -245,7 +278,7 @@ impl PartialEq for Shared {
 }
 
 impl Shared {
-    /// The receivers of `floor`'s terrain seen along `t0` at `resolution` texels a side
+    /// The receivers of `floor` (its terrain and objects) seen along `t0` at `resolution` texels a side
     /// ([`ReceiverHeights::of_floor_reusing`], `previous` where nothing it depends on changed);
     /// `None` on the plane `z = 0`, which every technique lights directly.
     pub fn of_floor(
@@ -260,20 +293,28 @@ impl Shared {
             return None;
         }
         let previous = previous.map(|p| &p.0);
-        Some(Shared(ReceiverHeights::of_floor_reusing(
-            previous, floor, size, depth, t0, resolution,
-        )))
+        let r = ReceiverHeights::reusing(
+            previous,
+            floor,
+            floor.solids.as_ref(),
+            size,
+            depth,
+            t0,
+            resolution,
+        );
+        Some(Shared(r))
     }
 
-    /// Whether `receivers` were made from `floor`'s terrain (both absent on the plane `z = 0`): a
-    /// frame whose sun, water and map are unchanged keeps them without building a setup.
+    /// Whether `receivers` were made from `floor`'s terrain and objects (both absent on the bare
+    /// plane `z = 0`): a frame whose sun, water and map are unchanged keeps them without building
+    /// a setup.
     pub fn fits(receivers: Option<&Shared>, floor: &Floor) -> bool {
         match receivers {
             None => !floor.has_receivers(),
             Some(r) => {
                 floor.has_receivers()
                     && r.terrain == floor.terrain
-                    && same_solids(&r.solids, &floor.solids)
+                    && same_solids(r.solids.as_ref(), floor.solids.as_ref())
             }
         }
     }
@@ -291,11 +332,9 @@ impl Shared {
         resolution: usize,
     ) -> Option<Shared> {
         floor.terrain.as_ref()?;
-        let bare = Floor {
-            solids: None,
-            ..floor.clone()
-        };
-        Self::of_floor(previous, &bare, size, depth, t0, resolution)
+        let previous = previous.map(|p| &p.0);
+        let r = ReceiverHeights::reusing(previous, floor, None, size, depth, t0, resolution);
+        Some(Shared(r))
     }
 
     /// [`Shared::fits`] for receivers made by [`Shared::of_terrain`].
@@ -307,7 +346,7 @@ impl Shared {
     }
 }
 
-fn same_solids(a: &Option<Arc<Solids>>, b: &Option<Arc<Solids>>) -> bool {
+fn same_solids(a: Option<&Arc<Solids>>, b: Option<&Arc<Solids>>) -> bool {
     match (a, b) {
         (Some(a), Some(b)) => Arc::ptr_eq(a, b),
         (a, b) => a.is_none() && b.is_none(),

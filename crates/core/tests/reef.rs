@@ -59,8 +59,7 @@ fn the_mesh_reference_follows_the_sea_bed() {
     use caustics_core::techniques::volumes::{self, reference as mesh};
     // The reef's sea bed alone: the reference is the flux tracer's.
     let mut scene = reef(128);
-    scene.objects.clear();
-    scene.floor.solids = None;
+    scene.clear_objects();
     let water = scene.water.as_ref().expect("water");
     let surface = water.surface_at(scene.time).expect("surface");
     let job = Job::new(&scene, Some(surface.as_ref()), 2);

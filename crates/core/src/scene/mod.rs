@@ -710,15 +710,6 @@ impl Floor {
         self.terrain.is_some() || self.solids.is_some()
     }
 
-    /// Whether `other` holds the same receivers: the same terrain and the same objects.
-    pub fn same_receivers(&self, other: &Floor) -> bool {
-        let same_solids = match (&self.solids, &other.solids) {
-            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-            (a, b) => a.is_none() && b.is_none(),
-        };
-        same_solids && self.terrain == other.terrain
-    }
-
     /// Height of the floor and its gradient at `p`.
     pub fn height_gradient(&self, p: DVec2, size: f64) -> (f64, DVec2) {
         match &self.terrain {
@@ -952,6 +943,13 @@ impl Camera {
 }
 
 impl Scene {
+    /// Take every object out of the scene, and with them the floor's receivers
+    /// ([`Floor::solids`], which mirror the diffuse objects).
+    pub fn clear_objects(&mut self) {
+        self.objects.clear();
+        self.floor.solids = None;
+    }
+
     /// Read and check a scene file, its technique by `check_technique`; relative paths inside it
     /// are relative to the file. [`Scene::load`] passes the registry's check.
     pub fn load_with(path: &Path, check_technique: TechniqueCheck) -> Result<Scene> {

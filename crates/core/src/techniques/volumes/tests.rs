@@ -807,7 +807,7 @@ fn a_sand_bar_agrees_with_the_reference() {
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
     let mut scene = crate::fixtures::gentle_pool();
     scene.floor.walls = false;
-    scene.objects.clear();
+    scene.clear_objects();
     let res = 256;
     scene.caustics.width = res as u32;
     scene.caustics.height = res as u32;
