@@ -91,3 +91,57 @@ impl Error {
 
 /// The library's result, failing with [`Error`] unless told otherwise.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+// The checks of a scene's numbers, with one wording; each names the field it refuses.
+
+pub(crate) fn finite(field: &str, v: &[f64]) -> Result<()> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::field(field, format!("must be finite, got {v:?}")))
+    }
+}
+
+pub(crate) fn positive(field: &str, v: f64) -> Result<()> {
+    finite(field, &[v])?;
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::field(field, format!("must be positive, got {v}")))
+    }
+}
+
+pub(crate) fn non_negative(field: &str, v: &[f64]) -> Result<()> {
+    finite(field, v)?;
+    if v.iter().all(|&x| x >= 0.0) {
+        Ok(())
+    } else {
+        Err(Error::field(
+            field,
+            format!("must not be negative, got {v:?}"),
+        ))
+    }
+}
+
+pub(crate) fn at_least(field: &str, v: f64, min: f64) -> Result<()> {
+    finite(field, &[v])?;
+    if v >= min {
+        Ok(())
+    } else {
+        Err(Error::field(
+            field,
+            format!("must be at least {min}, got {v}"),
+        ))
+    }
+}
+
+pub(crate) fn between(field: &str, v: f64, min: f64, max: f64) -> Result<()> {
+    if (min..=max).contains(&v) {
+        Ok(())
+    } else {
+        Err(Error::field(
+            field,
+            format!("must be between {min} and {max}, got {v}"),
+        ))
+    }
+}

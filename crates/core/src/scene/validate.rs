@@ -5,25 +5,9 @@ use std::path::Path;
 use glam::{DAffine3, DVec3};
 
 use super::*;
+use crate::error::{at_least, finite, non_negative, positive};
 use crate::grid::MAX_RESOLUTION;
 use crate::mesh;
-
-fn finite(field: &str, v: &[f64]) -> Result<()> {
-    if v.iter().all(|x| x.is_finite()) {
-        Ok(())
-    } else {
-        Err(Error::field(field, format!("must be finite, got {v:?}")))
-    }
-}
-
-fn positive(field: &str, v: f64) -> Result<()> {
-    finite(field, &[v])?;
-    if v > 0.0 {
-        Ok(())
-    } else {
-        Err(Error::field(field, format!("must be positive, got {v}")))
-    }
-}
 
 fn resolution(field: &str, r: [u32; 2]) -> Result<()> {
     if r[0] == 0 || r[1] == 0 {
@@ -105,12 +89,7 @@ pub(super) fn validate(
 
     let look = match &file.camera {
         Some(c) => {
-            if !(c.exposure.is_finite() && c.exposure > 0.0) {
-                return Err(Error::field(
-                    "camera.exposure",
-                    format!("must be positive and finite, got {}", c.exposure),
-                ));
-            }
+            positive("camera.exposure", c.exposure)?;
             Look {
                 exposure: c.exposure,
                 tone_map: c.tone_map,
@@ -249,14 +228,8 @@ fn validate_light(l: &LightSpec) -> Result<Light> {
             ),
         ));
     }
-    finite("light.color", &l.color)?;
-    if l.color.iter().any(|&c| c < 0.0) {
-        return Err(Error::field("light.color", "must not be negative"));
-    }
-    finite("light.intensity", &[l.intensity])?;
-    if l.intensity < 0.0 {
-        return Err(Error::field("light.intensity", "must not be negative"));
-    }
+    non_negative("light.color", &l.color)?;
+    non_negative("light.intensity", &[l.intensity])?;
     Ok(Light {
         direction: d,
         color: l.color.into(),
@@ -269,17 +242,8 @@ fn validate_light(l: &LightSpec) -> Result<Light> {
 fn validate_water(w: &WaterSpec, base: &Path) -> Result<Water> {
     positive("water.size", w.size)?;
     positive("water.depth", w.depth)?;
-    finite("water.ior", &[w.ior])?;
-    if w.ior < 1.0 {
-        return Err(Error::field(
-            "water.ior",
-            format!("must be at least 1 (vacuum), got {}", w.ior),
-        ));
-    }
-    finite("water.absorption", &w.absorption)?;
-    if w.absorption.iter().any(|&k| k < 0.0) {
-        return Err(Error::field("water.absorption", "must not be negative"));
-    }
+    at_least("water.ior", w.ior, 1.0)?;
+    non_negative("water.absorption", &w.absorption)?;
     let sources = [
         w.heightfield.is_some(),
         w.waves.is_some(),
@@ -394,12 +358,7 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
                     let f = format!("floor.terrain.beach.rocks[{k}]");
                     finite(&f, &[r.position[0], r.position[1], r.radius, r.height])?;
                     positive(&format!("{f}.radius"), r.radius)?;
-                    if r.height < 0.0 {
-                        return Err(Error::field(
-                            format!("{f}.height"),
-                            format!("must not be negative, got {}", r.height),
-                        ));
-                    }
+                    non_negative(&format!("{f}.height"), &[r.height])?;
                 }
                 beach(b, size)
             }
@@ -511,13 +470,7 @@ fn validate_object(o: &ObjectSpec, base: &Path, k: usize, size: f64) -> Result<O
             }
         }
         MaterialSpec::Glass { ior, tint } => {
-            finite(&format!("{f}.material.ior"), &[*ior])?;
-            if *ior < 1.0 {
-                return Err(Error::field(
-                    format!("{f}.material.ior"),
-                    format!("must be at least 1, got {ior}"),
-                ));
-            }
+            at_least(&format!("{f}.material.ior"), *ior, 1.0)?;
             Material::Glass {
                 ior: *ior,
                 tint: tint.map_or(DVec3::ONE, DVec3::from),

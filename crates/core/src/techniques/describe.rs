@@ -298,6 +298,20 @@ pub fn floor_only_note(name: &str) -> String {
     )
 }
 
+/// A technique's parameters checked against its entry's kinds and ranges, as a table read from a
+/// scene is: one rule for parameters built in code and for those read from a file.
+pub fn check_params<T: serde::Serialize>(entry: &Descriptor, params: &T) -> Result<()> {
+    let table = entry.table;
+    let values = toml::Table::try_from(params)
+        .map_err(|e| Error::field(format!("caustics.{table}"), e.to_string()))?;
+    for (key, value) in &values {
+        if let Some(param) = entry.params.iter().find(|p| p.key == key) {
+            check_value(param, value, &format!("caustics.{table}.{key}"))?;
+        }
+    }
+    Ok(())
+}
+
 /// `value` checked against `param`'s type and range; `at` names where it was given.
 pub fn check_value(param: &Param, value: &toml::Value, at: &str) -> Result<()> {
     let bad = |problem: String| Err(Error::field(at, problem));

@@ -50,7 +50,7 @@ use serde::{Deserialize, Serialize};
 
 use super::GridSurface;
 use super::waves::GRAVITY;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, between, non_negative, positive};
 use crate::grid::{Edge, Grid};
 
 /// The root-mean-square height, as a fraction of the tile size, used when
@@ -364,78 +364,36 @@ impl Ocean {
 }
 
 fn validate(p: &OceanParams, size: f64) -> Result<()> {
-    let field =
-        |name: &str, problem: String| Err(Error::field(format!("water.ocean.{name}"), problem));
-    if !(size > 0.0 && size.is_finite()) {
-        return Err(Error::field(
-            "water.size",
-            format!("must be positive and finite, got {size}"),
-        ));
-    }
+    let at = |name: &str| format!("water.ocean.{name}");
+    positive("water.size", size)?;
     if !(p.resolution.is_power_of_two() && (4..=4096).contains(&p.resolution)) {
-        return field(
-            "resolution",
+        return Err(Error::field(
+            at("resolution"),
             format!(
                 "must be a power of two between 4 and 4096, got {}",
                 p.resolution
             ),
-        );
+        ));
     }
-    if !(p.wind_speed > 0.0 && p.wind_speed.is_finite()) {
-        return field(
-            "wind_speed",
-            format!("must be positive and finite (m/s), got {}", p.wind_speed),
-        );
-    }
+    positive(&at("wind_speed"), p.wind_speed)?;
     let wind = DVec2::from(p.wind_direction);
     if !(wind.is_finite() && wind != DVec2::ZERO) {
-        return field(
-            "wind_direction",
+        return Err(Error::field(
+            at("wind_direction"),
             format!(
                 "must be a finite non-zero vector, got {:?}",
                 p.wind_direction
             ),
-        );
+        ));
     }
-    if let Some(rms) = p.rms_height
-        && !(rms > 0.0 && rms.is_finite())
-    {
-        return field(
-            "rms_height",
-            format!("must be positive and finite, got {rms}"),
-        );
+    if let Some(rms) = p.rms_height {
+        positive(&at("rms_height"), rms)?;
     }
-    if !(p.small_wave_cutoff >= 0.0 && p.small_wave_cutoff.is_finite()) {
-        return field(
-            "small_wave_cutoff",
-            format!(
-                "must be zero or positive and finite, got {}",
-                p.small_wave_cutoff
-            ),
-        );
-    }
-    if !(p.directional_exponent >= 0.0 && p.directional_exponent.is_finite()) {
-        return field(
-            "directional_exponent",
-            format!(
-                "must be zero or positive and finite, got {}",
-                p.directional_exponent
-            ),
-        );
-    }
-    if !(0.0..=1.0).contains(&p.against_wind) {
-        return field(
-            "against_wind",
-            format!("must be between 0 and 1, got {}", p.against_wind),
-        );
-    }
-    if let Some(period) = p.repeat_period
-        && !(period > 0.0 && period.is_finite())
-    {
-        return field(
-            "repeat_period",
-            format!("must be positive and finite (seconds), got {period}"),
-        );
+    non_negative(&at("small_wave_cutoff"), &[p.small_wave_cutoff])?;
+    non_negative(&at("directional_exponent"), &[p.directional_exponent])?;
+    between(&at("against_wind"), p.against_wind, 0.0, 1.0)?;
+    if let Some(period) = p.repeat_period {
+        positive(&at("repeat_period"), period)?;
     }
     Ok(())
 }

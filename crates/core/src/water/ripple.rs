@@ -37,7 +37,7 @@ use std::fmt;
 use serde::{Deserialize, Serialize};
 
 use super::GridSurface;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, finite, non_negative, positive};
 use crate::grid::{Edge, Grid};
 use crate::parallel::prelude::*;
 
@@ -347,37 +347,16 @@ fn neighbour(a: usize, d: isize, n: usize, edge: Edge) -> usize {
 fn validate(p: &RippleParams, size: f64) -> Result<()> {
     let field =
         |name: &str, problem: String| Err(Error::field(format!("water.ripple.{name}"), problem));
-    let positive = |v: f64| v > 0.0 && v.is_finite();
-    if !positive(size) {
-        return Err(Error::field(
-            "water.size",
-            format!("must be positive and finite, got {size}"),
-        ));
-    }
+    positive("water.size", size)?;
     if !(4..=4096).contains(&p.resolution) {
         return field(
             "resolution",
             format!("must be between 4 and 4096, got {}", p.resolution),
         );
     }
-    if !positive(p.wave_speed) {
-        return field(
-            "wave_speed",
-            format!("must be positive and finite, got {}", p.wave_speed),
-        );
-    }
-    if !(p.damping >= 0.0 && p.damping.is_finite()) {
-        return field(
-            "damping",
-            format!("must be zero or positive and finite, got {}", p.damping),
-        );
-    }
-    if !positive(p.time_step) {
-        return field(
-            "time_step",
-            format!("must be positive and finite, got {}", p.time_step),
-        );
-    }
+    positive("water.ripple.wave_speed", p.wave_speed)?;
+    non_negative("water.ripple.damping", &[p.damping])?;
+    positive("water.ripple.time_step", p.time_step)?;
     let dx = size / p.resolution as f64;
     let courant = p.wave_speed * p.time_step / dx;
     if courant >= 1.0 / SQRT_2 {
@@ -394,13 +373,10 @@ fn validate(p: &RippleParams, size: f64) -> Result<()> {
         );
     }
     for (k, d) in p.drops.iter().enumerate() {
-        if !(d.position[0].is_finite() && d.position[1].is_finite()) {
-            return field(
-                &format!("drops[{k}].position"),
-                format!("must be finite, got {:?}", d.position),
-            );
-        }
-        if !(positive(d.radius) && d.radius <= 0.5 * size) {
+        let at = |name: &str| format!("water.ripple.drops[{k}].{name}");
+        finite(&at("position"), &d.position)?;
+        finite(&at("strength"), &[d.strength])?;
+        if !(d.radius > 0.0 && d.radius <= 0.5 * size) {
             return field(
                 &format!("drops[{k}].radius"),
                 format!(
@@ -418,12 +394,6 @@ fn validate(p: &RippleParams, size: f64) -> Result<()> {
                      grid cannot resolve the drop",
                     d.radius, p.resolution
                 ),
-            );
-        }
-        if !d.strength.is_finite() {
-            return field(
-                &format!("drops[{k}].strength"),
-                format!("must be finite, got {}", d.strength),
             );
         }
     }

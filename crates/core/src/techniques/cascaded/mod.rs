@@ -127,7 +127,8 @@ pub enum Placement {
 
 use super::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, check_index};
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
+    serde_defaults,
 };
 use super::{Input, Job, JobOutput, SceneCaustics};
 use crate::plot::{Picture, rgb_picture};
@@ -432,16 +433,11 @@ impl CascadedParams {
         Ok(p)
     }
 
-    /// Check the ranges the passes rely on: resolution 16 to 8192, `0 < near < far`, `blend` in
-    /// `[0, 1]`, positive `max_depth` and `shallow_ramp`.
+    /// Check the ranges the passes rely on: the descriptor's, `0 < near < far`, positive
+    /// `max_depth` and `shallow_ramp`.
     pub fn validate(&self) -> Result<()> {
+        check_params(&DESCRIPTOR, self)?;
         let bad = |f: &str, m: String| Err(Error::field(format!("caustics.cascaded.{f}"), m));
-        if !(16..=8192).contains(&self.resolution) {
-            return bad(
-                "resolution",
-                format!("must be 16 to 8192, got {}", self.resolution),
-            );
-        }
         if !(self.near > 0.0 && self.far > self.near) {
             return bad(
                 "far",
@@ -450,9 +446,6 @@ impl CascadedParams {
                     self.near, self.far
                 ),
             );
-        }
-        if !(0.0..=1.0).contains(&self.blend) {
-            return bad("blend", format!("must be in [0, 1], got {}", self.blend));
         }
         if !(self.max_depth > 0.0 && self.shallow_ramp > 0.0) {
             return bad(

@@ -127,7 +127,8 @@ pub use splat::{splat_pass, splat_pass_with_paths};
 pub use triangles::{triangles_pass, triangles_pass_with_paths};
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
+    serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -402,74 +403,15 @@ impl CausticTrianglesParams {
         Ok(p)
     }
 
-    /// Check every parameter against the range the descriptor gives it; the error names the
-    /// field.
+    /// Check every parameter against the range the descriptor gives it (a splat has a size); the
+    /// error names the field.
     pub fn validate(&self) -> Result<()> {
-        let f = |name: &str, msg: String| {
-            Err(Error::field(
-                format!("caustics.caustic-triangles.{name}"),
-                msg,
-            ))
-        };
-        if !(2..=4096).contains(&self.photon_image) {
-            return f(
-                "photon_image",
-                format!("must be 2 to 4096, got {}", self.photon_image),
-            );
-        }
-        if !(2..=2048).contains(&self.cube_resolution) {
-            return f(
-                "cube_resolution",
-                format!("must be 2 to 2048, got {}", self.cube_resolution),
-            );
-        }
-        if !(2..=4096).contains(&self.light_cube) {
-            return f(
-                "light_cube",
-                format!("must be 2 to 4096, got {}", self.light_cube),
-            );
-        }
-        if !(1..=MAX_LAYERS).contains(&self.layers) {
-            return f(
-                "layers",
-                format!("must be 1 to {MAX_LAYERS}, got {}", self.layers),
-            );
-        }
-        if !(1..=4096).contains(&self.linear_steps) {
-            return f(
-                "linear_steps",
-                format!("must be 1 to 4096, got {}", self.linear_steps),
-            );
-        }
-        if self.secant_iterations > 64 {
-            return f(
-                "secant_iterations",
-                format!("must be at most 64, got {}", self.secant_iterations),
-            );
-        }
-        if !(1..=32).contains(&self.depth) {
-            return f("depth", format!("must be 1 to 32, got {}", self.depth));
-        }
-        if self.merge_levels > MAX_MERGE_LEVELS {
-            return f(
-                "merge_levels",
-                format!(
-                    "must be at most {MAX_MERGE_LEVELS}, got {}",
-                    self.merge_levels
-                ),
-            );
-        }
-        if !(self.merge_texels >= 0.0 && self.merge_texels <= 1e6) {
-            return f(
-                "merge_texels",
-                format!("must be in [0, 1e6] texels, got {}", self.merge_texels),
-            );
-        }
-        if !(self.splat_size > 0.0 && self.splat_size <= 64.0) {
-            return f(
-                "splat_size",
+        check_params(&DESCRIPTOR, self)?;
+        if self.splat_size <= 0.0 {
+            return Err(Error::field(
+                "caustics.caustic-triangles.splat_size",
                 format!("must be in (0, 64] texels, got {}", self.splat_size),
-            );
+            ));
         }
         Ok(())
     }

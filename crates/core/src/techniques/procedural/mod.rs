@@ -142,7 +142,8 @@ pub const MAX_TARGET_RESOLUTION: u32 = 8192;
 pub const MAX_ANISOTROPY: u32 = 16;
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
+    serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -501,50 +502,17 @@ impl ProceduralCausticsParams {
         Ok(p)
     }
 
-    /// Check every value's range; the error names the first field out of it.
+    /// Check every value against its parameter's range; the error names the first field out of
+    /// it. The refractive index and the sun's and the light map's angles exclude their bounds.
     pub fn validate(&self) -> Result<()> {
-        if !(0.0..=1.0).contains(&self.ground) {
-            return Err(field(
-                "ground",
-                format!("must be between 0 and 1, got {}", self.ground),
-            ));
-        }
-        if self.mesh_resolution == 0 || self.mesh_resolution > MAX_MESH_RESOLUTION {
-            return Err(field(
-                "mesh_resolution",
-                format!(
-                    "must be between 1 and {MAX_MESH_RESOLUTION} quads per side, got {}",
-                    self.mesh_resolution
-                ),
-            ));
-        }
-        if !self.target_resolution.is_power_of_two()
-            || self.target_resolution > MAX_TARGET_RESOLUTION
-        {
-            return Err(field(
-                "target_resolution",
-                format!(
-                    "must be a power of two up to {MAX_TARGET_RESOLUTION} (each mip level halves it), got {}",
-                    self.target_resolution
-                ),
-            ));
-        }
-        if !(1..=MAX_ANISOTROPY).contains(&self.anisotropy) {
-            return Err(field(
-                "anisotropy",
-                format!(
-                    "must be between 1 (trilinear) and {MAX_ANISOTROPY}, got {}",
-                    self.anisotropy
-                ),
-            ));
-        }
-        if !(self.ior.is_finite() && self.ior > 1.0 && self.ior < 3.0) {
+        check_params(&DESCRIPTOR, self)?;
+        if !(self.ior > 1.0 && self.ior < 3.0) {
             return Err(field(
                 "ior",
                 format!("must be between 1 and 3, got {}", self.ior),
             ));
         }
-        if !(self.sun_diameter.is_finite() && self.sun_diameter > 0.0 && self.sun_diameter < 30.0) {
+        if !(self.sun_diameter > 0.0 && self.sun_diameter < 30.0) {
             return Err(field(
                 "sun_diameter",
                 format!(
@@ -553,32 +521,8 @@ impl ProceduralCausticsParams {
                 ),
             ));
         }
-        if !(self.halo_area.is_finite() && self.halo_area >= 1.0 && self.halo_area <= 1000.0) {
-            return Err(field(
-                "halo_area",
-                format!(
-                    "must be between 1 (no halo) and 1000 times the sun disk's area, got {}",
-                    self.halo_area
-                ),
-            ));
-        }
-        if !(self.halo_level.is_finite() && (0.0..=1.0).contains(&self.halo_level)) {
-            return Err(field(
-                "halo_level",
-                format!("must be between 0 and 1, got {}", self.halo_level),
-            ));
-        }
-        if !(2..=4096).contains(&self.light_map_resolution) {
-            return Err(field(
-                "light_map_resolution",
-                format!(
-                    "must be between 2 and 4096, got {}",
-                    self.light_map_resolution
-                ),
-            ));
-        }
         if let Some(e) = self.light_map_extent
-            && !(e.is_finite() && e > 0.0 && e < 80.0)
+            && !(e > 0.0 && e < 80.0)
         {
             return Err(field(
                 "light_map_extent",

@@ -92,7 +92,8 @@ use crate::walls::WallMaps;
 pub use representation::OrthoView;
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
+    serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -258,31 +259,7 @@ impl VolumesParams {
 
     /// Check every value's range; the error names the field out of it.
     pub fn validate(&self) -> Result<()> {
-        if self.planes == 0 || self.planes > MAX_PLANES {
-            return Err(Error::field(
-                "caustics.volumes.planes",
-                format!("must be between 1 and {MAX_PLANES}, got {}", self.planes),
-            ));
-        }
-        if self.texture < 2 || self.texture > MAX_TEXTURE {
-            return Err(Error::field(
-                "caustics.volumes.texture",
-                format!("must be between 2 and {MAX_TEXTURE}, got {}", self.texture),
-            ));
-        }
-        if self.water_cells > MAX_TEXTURE || self.shadow > MAX_TEXTURE {
-            return Err(Error::field(
-                "caustics.volumes",
-                format!("water_cells and shadow must be at most {MAX_TEXTURE}"),
-            ));
-        }
-        if !(self.ambient.is_finite() && self.ambient >= 0.0) {
-            return Err(Error::field(
-                "caustics.volumes.ambient",
-                format!("must be a finite number >= 0, got {}", self.ambient),
-            ));
-        }
-        Ok(())
+        check_params(&DESCRIPTOR, self)
     }
 }
 

@@ -92,14 +92,15 @@
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, refract};
 use crate::receivers::Shared;
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, params_or_default, serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
+    serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -421,46 +422,7 @@ impl YukselParams {
     /// Check every value's range (`n` odd, `m` even, within their limits); the error names the
     /// field out of it.
     pub fn validate(&self) -> Result<()> {
-        if let Some(n) = self.n
-            && (n == 0 || n.is_multiple_of(2) || n > MAX_N)
-        {
-            return Err(Error::field(
-                "caustics.yuksel.n",
-                format!(
-                    "must be odd, between 1 and {MAX_N} (samples centred on the illumination centre), got {n}"
-                ),
-            ));
-        }
-        if let Some(m) = self.m
-            && (!m.is_multiple_of(2) || m > MAX_M)
-        {
-            return Err(Error::field(
-                "caustics.yuksel.m",
-                format!(
-                    "must be even and at most {MAX_M} (M + 1 channels, at most {MAX_CHANNELS}), got {m}"
-                ),
-            ));
-        }
-        if !(0.0..=1.0).contains(&self.split) {
-            return Err(Error::field(
-                "caustics.yuksel.split",
-                format!(
-                    "must be between 0 and 1 (a share of a footprint's width; 0 splits every pixel), got {}",
-                    self.split
-                ),
-            ));
-        }
-        if let Some(k) = self.subsamples
-            && !(1..=MAX_SUBSAMPLES).contains(&k)
-        {
-            return Err(Error::field(
-                "caustics.yuksel.subsamples",
-                format!(
-                    "must be between 1 and {MAX_SUBSAMPLES} (samples per pixel along each axis), got {k}"
-                ),
-            ));
-        }
-        Ok(())
+        check_params(&DESCRIPTOR, self)
     }
 
     /// Samples per pixel along each axis and whether they land on their footprints: given, or
