@@ -10,7 +10,7 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
-use caustics_core::render::{Caustics, RenderOptions, render_with_walls};
+use caustics_core::render::{Caustics, RenderOptions, render};
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::techniques::describe::Receiver;
 use caustics_core::techniques::{self, Descriptor};
@@ -398,7 +398,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             Some(image) => image,
             None => {
                 let bar = progress::bar("image");
-                let image = render_with_walls(
+                let image = render(
                     &scene,
                     surface.as_deref(),
                     caustics,

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use caustics_core::optics::fresnel_transmittance;
-use caustics_core::render::{Image, RenderOptions, camera_under_water, from_below, render_with};
+use caustics_core::render::{Image, RenderOptions, camera_under_water, from_below, render};
 use caustics_core::scene::{Albedo, BUILTIN_SCENES, Camera, Scene, WaterSource};
 use caustics_core::water::Surface;
 
@@ -119,7 +119,7 @@ fn draw(scene: &Scene, surface: Option<&dyn Surface>, exposure: f64) -> Image {
         tone_map: Default::default(),
         ..Default::default()
     };
-    render_with(scene, surface, None, &options, &|_, _| {})
+    render(scene, surface, None, None, &options, &|_, _| {})
 }
 
 fn pixel(image: &Image, x: u32, y: u32) -> [u8; 3] {

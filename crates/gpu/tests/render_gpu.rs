@@ -32,9 +32,7 @@ mod common;
 
 use caustics_core::map::CausticsMap;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
-use caustics_core::render::{
-    Caustics, EyeSpaceCaustics, Image, RenderOptions, render, render_with,
-};
+use caustics_core::render::{Caustics, EyeSpaceCaustics, Image, RenderOptions, render};
 use caustics_core::scene::{Albedo, Material, Scene};
 use caustics_core::water::{GridSurface, Surface};
 use caustics_gpu::context::test_gpu;
@@ -200,7 +198,7 @@ fn check_caustics(
         filter_water: what.contains("filtered"),
         ..Default::default()
     };
-    let cpu = render_with(scene, surface, caustics, &options, &|_, _| {});
+    let cpu = render(scene, surface, caustics, None, &options, &|_, _| {});
     let final_image = FinalImage::new(ctx).expect("pipeline");
     let mut timer = GpuTimer::new(ctx, 3);
     let gpu = final_image
@@ -319,7 +317,14 @@ fn pool_with_a_concrete_deck_matches_the_cpu() {
             ..Default::default()
         };
         let surface = surface.expect("water");
-        render(&s, Some(&surface), map.as_ref(), &options, &|_, _| {})
+        render(
+            &s,
+            Some(&surface),
+            map.as_ref().map(Caustics::Floor),
+            None,
+            &options,
+            &|_, _| {},
+        )
     };
     let shown = difference(
         &cpu(caustics_core::scene::Deck::Stone),
@@ -341,7 +346,6 @@ fn pool_with_a_concrete_deck_matches_the_cpu() {
 /// the far walls the camera looks at: `render_with_walls` on both sides.
 fn pool_walls_match_the_cpu() {
     use caustics_core::reference::reference_with_walls;
-    use caustics_core::render::render_with_walls;
     let ctx = test_gpu();
     let mut scene = small("pool");
     scene.light.direction = glam::DVec3::new(0.8, 0.6, -0.6).normalize();
@@ -360,7 +364,7 @@ fn pool_walls_match_the_cpu() {
         supersampling: 1,
         ..Default::default()
     };
-    let cpu = render_with_walls(
+    let cpu = caustics_core::render::render(
         &scene,
         Some(&grid),
         caustics,
@@ -368,7 +372,7 @@ fn pool_walls_match_the_cpu() {
         &options,
         &|_, _| {},
     );
-    let unlit = render_with(&scene, Some(&grid), caustics, &options, &|_, _| {});
+    let unlit = render(&scene, Some(&grid), caustics, None, &options, &|_, _| {});
     let lit = difference(&unlit, &cpu);
     eprintln!(
         "pool walls: the walls' maps change the CPU image by {:.2} steps on average",
@@ -810,10 +814,11 @@ fn pool_with_cascaded_lights_the_walls_as_the_cpu() {
         *t = [0.0, 0.0, 0.0, t[3]];
     }
     let render = |c: &EyeSpaceCaustics| {
-        render_with(
+        render(
             &scene,
             surface,
             Some(Caustics::EyeSpace(c)),
+            None,
             &options,
             &|_, _| {},
         )
@@ -877,14 +882,15 @@ fn shore_with_cascaded_eye_space_caustics_matches_the_cpu() {
         supersampling: 1,
         ..Default::default()
     };
-    let with = render_with(
+    let with = render(
         &scene,
         surface,
         Some(Caustics::EyeSpace(&eye)),
+        None,
         &options,
         &|_, _| {},
     );
-    let flat = render_with(&scene, surface, None, &options, &|_, _| {});
+    let flat = render(&scene, surface, None, None, &options, &|_, _| {});
     let changed = with
         .rgb
         .iter()
@@ -1083,10 +1089,11 @@ fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
     }
 
     let gpu = read_image(&ctx, frame.output());
-    let cpu = render_with(
+    let cpu = render(
         &scene,
         Some(&grid),
         Some(Caustics::Floor(&map)),
+        None,
         &options,
         &|_, _| {},
     );
@@ -1178,10 +1185,11 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
         lit.drift
     );
 
-    let cpu = render_with(
+    let cpu = render(
         &scene,
         surface,
         Some(Caustics::Floor(&map)),
+        None,
         &options,
         &|_, _| {},
     );
@@ -1236,7 +1244,14 @@ fn full_size_render_times() {
             );
         }
         let started = std::time::Instant::now();
-        render(&scene, surface, map.as_ref(), &options, &|_, _| {});
+        render(
+            &scene,
+            surface,
+            map.as_ref().map(Caustics::Floor),
+            None,
+            &options,
+            &|_, _| {},
+        );
         eprintln!("{name}: CPU {:.2} s", started.elapsed().as_secs_f64());
     }
 }

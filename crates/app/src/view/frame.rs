@@ -17,7 +17,7 @@ use anyhow::{Context, Result};
 use glam::DVec3;
 
 use caustics_core::map::CausticsMap;
-use caustics_core::render::{Caustics, Image, RenderOptions, render_with_walls};
+use caustics_core::render::{Caustics, Image, RenderOptions, render};
 use caustics_core::scene::Scene;
 use caustics_core::techniques::{self, Descriptor};
 use caustics_core::walls::WallMaps;
@@ -397,7 +397,7 @@ impl SceneRenderer {
             let caustics = slot.caustics.as_ref().map(SceneCaustics::caustics);
             let walls = slot.walls.as_ref().filter(|_| caustics.is_some());
             images.push(if quality.cpu_image {
-                render_with_walls(
+                render(
                     &self.scene,
                     surface.as_deref(),
                     caustics,
@@ -715,7 +715,7 @@ impl SceneRenderer {
                 }
             }
         }
-        Ok(render_with_walls(
+        Ok(render(
             &self.scene,
             surface,
             caustics,

@@ -180,39 +180,11 @@ struct Tracer<'a> {
     sun_variance: f64,
 }
 
-/// Render the scene from its camera. `caustics` is the map of the floor (none: the floor is lit as if
-/// the water were flat). `progress(rows_done, rows)` reports as rows finish.
+/// Render the scene from its camera. `caustics` lights the floor, from a floor map or an eye-space
+/// image (none: the floor is lit as if the water were flat); `walls` lights the pool's walls by
+/// the sun through their maps (from a technique that lights them) as well as by the ambient light
+/// (none: the ambient light alone). `progress(rows_done, rows)` reports as rows finish.
 pub fn render(
-    scene: &Scene,
-    surface: Option<&dyn Surface>,
-    caustics: Option<&CausticsMap>,
-    options: &RenderOptions,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Image {
-    render_with(
-        scene,
-        surface,
-        caustics.map(Caustics::Floor),
-        options,
-        progress,
-    )
-}
-
-/// [`render`] with the caustics from either source: a floor map or an eye-space image.
-pub fn render_with(
-    scene: &Scene,
-    surface: Option<&dyn Surface>,
-    caustics: Option<Caustics>,
-    options: &RenderOptions,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Image {
-    render_with_walls(scene, surface, caustics, None, options, progress)
-}
-
-/// [`render_with`], the pool's walls lit by the sun through their maps (`walls`, from a technique
-/// that lights them: the reference) as well as by the ambient light; `None` leaves the walls to
-/// the ambient light alone.
-pub fn render_with_walls(
     scene: &Scene,
     surface: Option<&dyn Surface>,
     caustics: Option<Caustics>,

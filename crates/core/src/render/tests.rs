@@ -48,8 +48,15 @@ fn beyond_a_terrain_map_the_floor_is_lit_as_under_flat_water() {
     };
     let s = Some(surface.as_ref());
     let none = |_: usize, _: usize| {};
-    let flat = render(&scene, s, None, &options, &none);
-    let mapped = render(&scene, s, Some(&dark), &options, &none);
+    let flat = render(&scene, s, None, None, &options, &none);
+    let mapped = render(
+        &scene,
+        s,
+        Some(Caustics::Floor(&dark)),
+        None,
+        &options,
+        &none,
+    );
     fn row(img: &Image, y: usize) -> &[u8] {
         &img.rgb[y * 160 * 3..(y + 1) * 160 * 3]
     }
@@ -92,8 +99,8 @@ fn walls_maps_light_the_walls() {
     };
     let s = Some(surface.as_ref());
     let none = |_: usize, _: usize| {};
-    let unlit = render_with(&scene, s, caustics, &options, &none);
-    let lit = render_with_walls(&scene, s, caustics, Some(walls), &options, &none);
+    let unlit = render(&scene, s, caustics, None, &options, &none);
+    let lit = render(&scene, s, caustics, Some(walls), &options, &none);
     let (mut brighter, mut darker, mut sum) = (0, 0, 0.0);
     for (a, b) in unlit.rgb.iter().zip(&lit.rgb) {
         brighter += (b > a) as usize;
@@ -108,10 +115,10 @@ fn walls_maps_light_the_walls() {
     assert!(mean > 0.5, "{mean}");
     assert_eq!(darker, 0);
     scene.floor.walls = false;
-    let off = render_with_walls(&scene, s, caustics, Some(walls), &options, &none);
+    let off = render(&scene, s, caustics, Some(walls), &options, &none);
     assert_eq!(
         off.rgb,
-        render_with(&scene, s, caustics, &options, &none).rgb
+        render(&scene, s, caustics, None, &options, &none).rgb
     );
 }
 
@@ -132,13 +139,13 @@ fn every_light_scales_with_the_suns_intensity() {
             ..Default::default()
         };
         let none = |_: usize, _: usize| {};
-        let once = render(&scene, Some(surface.as_ref()), None, &options, &none);
+        let once = render(&scene, Some(surface.as_ref()), None, None, &options, &none);
         scene.light.intensity *= 2.0;
         let halved = RenderOptions {
             exposure: options.exposure * 0.5,
             ..options
         };
-        let twice = render(&scene, Some(surface.as_ref()), None, &halved, &none);
+        let twice = render(&scene, Some(surface.as_ref()), None, None, &halved, &none);
         let off = once
             .rgb
             .iter()
@@ -210,15 +217,23 @@ fn eye_space_caustics_read_where_the_floor_projects() {
         ..Default::default()
     };
     let s = Some(surface.as_ref());
-    let a = render_with(&scene, s, Some(Caustics::Floor(&map)), &options, &|_, _| {});
-    let b = render_with(
+    let a = render(
         &scene,
         s,
-        Some(Caustics::EyeSpace(&image)),
+        Some(Caustics::Floor(&map)),
+        None,
         &options,
         &|_, _| {},
     );
-    let flat = render_with(&scene, s, None, &options, &|_, _| {});
+    let b = render(
+        &scene,
+        s,
+        Some(Caustics::EyeSpace(&image)),
+        None,
+        &options,
+        &|_, _| {},
+    );
+    let flat = render(&scene, s, None, None, &options, &|_, _| {});
     // The nearer half of the floor, where a pixel sees less than a map texel (in the distance
     // the two sample the map's detail at different points: aliasing, not a misplaced read),
     // without the last rows, whose refracted floor points project below the image.
@@ -278,7 +293,14 @@ fn an_object_under_the_water_is_lit_as_the_floor_at_its_side() {
         supersampling: 1,
         ..Default::default()
     };
-    let image = render(&scene, Some(surface.as_ref()), None, &options, &|_, _| {});
+    let image = render(
+        &scene,
+        Some(surface.as_ref()),
+        None,
+        None,
+        &options,
+        &|_, _| {},
+    );
     let px = |x: usize, y: usize| -> [u8; 3] {
         let i = (y * 64 + x) * 3;
         [image.rgb[i], image.rgb[i + 1], image.rgb[i + 2]]

@@ -87,7 +87,7 @@ impl<'a> Job<'a> {
 }
 
 /// Where the final image takes the floor's caustics from ([`SceneCaustics::caustics`]; the input
-/// of `crate::render::render_with`).
+/// of `crate::render::render`).
 #[derive(Clone, Copy)]
 pub enum Caustics<'a> {
     /// A map of the floor square (every technique but `cascaded`).
@@ -98,7 +98,7 @@ pub enum Caustics<'a> {
 
 /// What a technique made of a scene: a map of the floor square, or, for an eye-space technique
 /// (paper 5), an image in the scene camera's screen space. Both light the final image
-/// (`crate::render::render_with`) through [`caustics`](Self::caustics).
+/// (`crate::render::render`) through [`caustics`](Self::caustics).
 #[derive(Clone, Debug)]
 pub enum SceneCaustics {
     /// A map of the floor square (every technique but `cascaded`).

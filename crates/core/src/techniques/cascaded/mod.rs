@@ -575,15 +575,7 @@ impl CascadedSetup {
         let z_lo = z_lo.min(level - 1e-3);
         let z_top = level.max(terrain_range.map_or(0.0, |r| r.1)) + 1.0;
         let res = params.resolution as usize;
-        let mut cascades = [CascadeView {
-            u0: 0.0,
-            v0: 0.0,
-            du: 1.0,
-            dv: 1.0,
-            w0: 0.0,
-            far: 0.0,
-        }; CASCADES];
-        for (k, cascade) in cascades.iter_mut().enumerate() {
+        let cascades = std::array::from_fn(|k| {
             let far = params.near + (params.far - params.near) * (k + 1) as f64 / CASCADES as f64;
             let corner = |z: f64, c: usize| {
                 let x = if c & 1 == 0 { 0.0 } else { eye.width as f64 };
@@ -595,20 +587,10 @@ impl CascadedSetup {
                 .flat_map(|&z| (0..4).map(move |c| (z, c)))
                 .map(|(z, c)| corner(z, c))
                 .collect();
-            let edges = [
-                (0, 4),
-                (1, 5),
-                (2, 6),
-                (3, 7),
-                (0, 1),
-                (1, 3),
-                (3, 2),
-                (2, 0),
-                (4, 5),
-                (5, 7),
-                (7, 6),
-                (6, 4),
-            ];
+            // The frustum's edges: near to far, then round the near and the far rectangles.
+            let ring = [0, 1, 3, 2];
+            let around = (0..8).map(|k| (k / 4 * 4 + ring[k % 4], k / 4 * 4 + ring[(k + 1) % 4]));
+            let edges = (0..4).map(|c| (c, c + 4)).chain(around);
             let mut points = Vec::new();
             for p in &corners {
                 if p.z >= z_lo && p.z <= level {
@@ -658,15 +640,15 @@ impl CascadedSetup {
                 let a = u * e_u.z + v * e_v.z;
                 w0 = w0.min((z_top - a) / light.z);
             }
-            *cascade = CascadeView {
+            CascadeView {
                 u0,
                 v0,
                 du,
                 dv,
                 w0,
                 far,
-            };
-        }
+            }
+        });
         let scale = params.dispersion_scale;
         let ior_rgb = match params.dispersion {
             Dispersion::Wavelength => WATER_IOR_RGB.map(|n| ior + scale * (n - WATER_IOR_RGB[1])),

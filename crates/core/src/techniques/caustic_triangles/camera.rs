@@ -344,18 +344,7 @@ pub fn generators(
     scene: &crate::scene::Scene,
     params: &super::CausticTrianglesParams,
 ) -> crate::Result<Vec<Generator>> {
-    let count = scene
-        .objects
-        .iter()
-        .filter(|o| matches!(o.material, crate::scene::Material::Glass { .. }))
-        .count();
-    if count == 0 {
-        return Err(crate::Error::InvalidParameter(format!(
-            "scene `{}` has no glass object: caustic-triangles needs a glass caustic generator",
-            scene.name
-        )));
-    }
-    (0..count)
+    (0..super::glass_generators(scene)?)
         .map(|k| {
             let gs = super::GlassScene::from_scene(scene, k)?;
             let dm =
@@ -387,14 +376,7 @@ pub fn render_scene(
     };
     Ok(match gens[0].setup.point {
         None => {
-            let mut map = outputs[0].map.clone();
-            for o in &outputs[1..] {
-                for (a, b) in map.texels.iter_mut().zip(&o.map.texels) {
-                    a[0] += b[0];
-                    a[1] += b[1];
-                    a[2] += b[2];
-                }
-            }
+            let map = (outputs[1..].iter()).fold(outputs[0].map.clone(), |m, o| m.added(&o.map));
             image(CameraLight::Sun {
                 direction: gens[0].setup.w,
                 map: &map,

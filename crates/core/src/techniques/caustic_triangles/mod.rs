@@ -276,16 +276,23 @@ pub fn water_job_setup(
     job: &Job,
     table: &toml::Table,
 ) -> Result<(water::WaterSetup, crate::grid::Grid)> {
+    water_setup(job, &CausticTrianglesParams::from_table(table)?)
+}
+
+/// [`water_job_setup`] with its parameters read.
+pub fn water_setup(
+    job: &Job,
+    params: &CausticTrianglesParams,
+) -> Result<(water::WaterSetup, crate::grid::Grid)> {
     if !job.scene.light.is_sun() {
         return Err(Error::InvalidParameter(format!(
             "scene `{}`: caustic-triangles lights its water surface with the directional sun only (light.position is set)",
             job.scene.name
         )));
     }
-    let params = CausticTrianglesParams::from_table(table)?;
     let (width, height) = job.size();
     job.with_surface(DESCRIPTOR.name, |w, surface| {
-        let ws = water::WaterSetup::new(&params, w, job.light(), width, height)?
+        let ws = water::WaterSetup::new(params, w, job.light(), width, height)?
             .with_walls(job.floor().walls)
             .with_floor(job.floor(), None);
         Ok((ws, super::heights_for(w, surface, width, height)))
@@ -303,12 +310,7 @@ fn run_cpu(
         return Ok(JobOutput::floor(render(job.scene, &params)?, None));
     }
     let (ws, heights) = water_job_setup(job, table)?;
-    let walls = if ws.walls {
-        Some(water::wall_caustics(&ws, &heights)?)
-    } else {
-        None
-    };
-    let map = water::caustics(&ws, &heights)?.map;
+    let (map, walls) = water::maps(&ws, &heights)?;
     progress(1, 1);
     Ok(JobOutput::floor(map, walls))
 }
@@ -667,35 +669,11 @@ pub fn render(scene: &crate::scene::Scene, params: &CausticTrianglesParams) -> R
     if scene.water.is_some() {
         return water::render(scene, params);
     }
-    let count = scene
-        .objects
-        .iter()
-        .filter(|o| matches!(o.material, crate::scene::Material::Glass { .. }))
-        .count();
-    if count == 0 {
-        return Err(Error::InvalidParameter(format!(
-            "scene `{}` has no glass object: caustic-triangles needs a glass caustic generator",
-            scene.name
-        )));
-    }
-    let mut total: Option<CausticsMap> = None;
-    for k in 0..count {
-        let gs = GlassScene::from_scene(scene, k)?;
-        let dm = DistanceMap::build(&gs, params.cube_resolution as usize, params.layers as usize);
-        let setup = CausticTrianglesSetup::new(params, &gs)?;
-        let map = caustics(&setup, &dm).map;
-        total = Some(match total {
-            None => map,
-            Some(mut t) => {
-                t.texels
-                    .iter_mut()
-                    .zip(&map.texels)
-                    .for_each(|(a, b)| a.iter_mut().zip(b).for_each(|(x, y)| *x += y));
-                t
-            }
-        });
-    }
-    Ok(total.expect("at least one generator"))
+    let generators = camera::generators(scene, params)?;
+    let maps = generators.iter().map(|g| caustics(&g.setup, &g.dm).map);
+    Ok(maps
+        .reduce(|a, b| a.added(&b))
+        .expect("at least one generator"))
 }
 
 #[cfg(test)]

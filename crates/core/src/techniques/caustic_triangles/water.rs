@@ -56,7 +56,6 @@ use crate::optics::{fresnel_transmittance, height_field_normal, refract};
 use crate::parallel::prelude::*;
 use crate::receivers::{ReceiverHeights, flat_refracted, light_space, lookup};
 use crate::scene::{Floor, Scene, Water};
-use crate::techniques::heights_for;
 use crate::walls::{Wall, WallMaps};
 
 /// The water photon pass's inputs (the GPU uploads the same numbers, `WaterPhotonUniform`).
@@ -520,15 +519,13 @@ pub fn caustics(ws: &WaterSetup, heights: &Grid) -> Result<WaterOutput> {
     })
 }
 
-/// The splatting baseline from the same water photons.
-pub fn splats(ws: &WaterSetup, heights: &Grid) -> Result<CausticsMap> {
-    check_heights(heights)?;
-    let (photons, paths) = photon_pass(ws, heights);
-    Ok(super::splat_pass_with_paths(
-        &ws.setup,
-        &photons,
-        Some(&paths),
-    ))
+/// The floor's map and, with the scene's walls, the walls' maps ([`wall_caustics`]).
+pub fn maps(ws: &WaterSetup, heights: &Grid) -> Result<(CausticsMap, Option<WallMaps>)> {
+    let walls = match ws.walls {
+        true => Some(wall_caustics(ws, heights)?),
+        false => None,
+    };
+    Ok((caustics(ws, heights)?.map, walls))
 }
 
 /// The technique on a scene with water, the water as the generator, over the scene square at the
@@ -545,33 +542,8 @@ pub fn render_with_walls(
     scene: &Scene,
     params: &CausticTrianglesParams,
 ) -> Result<(CausticsMap, Option<WallMaps>)> {
-    let water = scene.water.as_ref().ok_or_else(|| {
-        Error::InvalidParameter(format!(
-            "scene `{}` has no water: no water surface to generate caustics",
-            scene.name
-        ))
-    })?;
-    if !scene.light.is_sun() {
-        return Err(Error::field(
-            "light.position",
-            "caustic-triangles lights a water surface with the directional sun only",
-        ));
-    }
-    let (w, h) = (
-        scene.caustics.width as usize,
-        scene.caustics.height as usize,
-    );
-    let ws = WaterSetup::new(params, water, scene.light.direction, w, h)?
-        .with_walls(scene.floor.walls)
-        .with_floor(&scene.floor, None);
-    let surface = water.surface_at(scene.time)?;
-    let heights = heights_for(water, surface.as_ref(), w, h);
-    let map = caustics(&ws, &heights)?.map;
-    let walls = match ws.walls {
-        true => Some(wall_caustics(&ws, &heights)?),
-        false => None,
-    };
-    Ok((map, walls))
+    let (ws, heights) = super::water_setup(&crate::techniques::Job::new(scene, None, 1), params)?;
+    maps(&ws, &heights)
 }
 
 #[cfg(test)]
@@ -581,6 +553,7 @@ mod tests {
     use crate::metrics::compare;
     use crate::reference::{ReferenceInput, ReferenceOptions, reference};
     use crate::scene::WaterSource;
+    use crate::techniques::heights_for;
     use crate::water::Surface;
 
     fn params(p: u32) -> CausticTrianglesParams {
