@@ -5,7 +5,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::grid::Grid;
 use crate::scene::Camera;
 
@@ -112,19 +112,7 @@ impl EyeSpaceCaustics {
                 (t[0] + t[1] + t[2]) / 3.0
             }
         });
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase())
-            .as_deref()
-        {
-            Some("npy") => grid.write_npy(path),
-            Some("exr") => grid.write_exr(path),
-            _ => Err(Error::bad_file(
-                path,
-                "the raw eye-space caustics are written as .npy or .exr; give one of those extensions",
-            )),
-        }
+        grid.write_raw(path, "the raw eye-space caustics")
     }
 
     /// Relative irradiance at floor point `p`: bilinear between the centres of the valid texels

@@ -191,6 +191,19 @@ impl Grid {
         Ok(grid)
     }
 
+    /// Write `what` (its name in the error) as `.npy` or `.exr`, by the path's extension.
+    pub fn write_raw(&self, path: &Path, what: &str) -> Result<()> {
+        let extension = path.extension().and_then(|e| e.to_str());
+        match extension.map(|e| e.to_ascii_lowercase()).as_deref() {
+            Some("npy") => self.write_npy(path),
+            Some("exr") => self.write_exr(path),
+            _ => Err(Error::bad_file(
+                path,
+                format!("{what} are written as .npy or .exr; give one of those extensions"),
+            )),
+        }
+    }
+
     /// Write as float32 `.npy` of shape (rows, cols), row 0 first.
     pub fn write_npy(&self, path: &Path) -> Result<()> {
         #[cfg(not(feature = "formats"))]

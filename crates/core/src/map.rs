@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::grid::Grid;
 
 /// Relative irradiance on the floor square `[0, size]²`, RGB per texel (see the module's doc).
@@ -111,20 +111,7 @@ impl CausticsMap {
 
     /// Write the raw map: `.npy` (float32, shape (height, width)) or `.exr`, by extension.
     pub fn write_raw(&self, path: &Path) -> Result<()> {
-        let g = self.mean_channel();
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase())
-            .as_deref()
-        {
-            Some("npy") => g.write_npy(path),
-            Some("exr") => g.write_exr(path),
-            _ => Err(Error::bad_file(
-                path,
-                "the raw caustics map is written as .npy or .exr; give one of those extensions",
-            )),
-        }
+        self.mean_channel().write_raw(path, "the raw caustics maps")
     }
 }
 

@@ -21,13 +21,34 @@ pub fn workers() -> usize {
     return 1;
 }
 
+/// `add(sums, i)` for every `i` in `range` into `len` sums: a partial sum per worker, then their
+/// total (the CPU twins' scatter of light into a map).
+pub fn par_sum(
+    range: std::ops::Range<usize>,
+    len: usize,
+    add: impl Fn(&mut [glam::DVec3], usize) + Sync + Send,
+) -> Vec<glam::DVec3> {
+    use prelude::*;
+    let zero = || vec![glam::DVec3::ZERO; len];
+    range
+        .into_par_iter()
+        .fold(zero, |mut sums, i| {
+            add(&mut sums, i);
+            sums
+        })
+        .reduce(zero, |mut a, b| {
+            a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
+            a
+        })
+}
+
 /// rayon's iterator methods that this crate uses, on the calling thread. Where rayon's signature
 /// differs from `Iterator`'s (`fold` takes an identity closure and yields partial results,
 /// `reduce` one too), these follow rayon's.
 #[cfg(any(test, not(feature = "parallel")))]
 mod serial {
     use std::iter::{Enumerate, FlatMap, Map, Once};
-    use std::slice::{Chunks, ChunksMut, Iter};
+    use std::slice::{ChunksMut, Iter};
 
     /// A sequential iterator that answers to rayon's method names.
     pub struct Serial<I>(I);
@@ -41,19 +62,14 @@ mod serial {
     }
     impl<I: IntoIterator> IntoParallelIterator for I {}
 
-    /// `par_iter` and `par_chunks` on slices.
+    /// `par_iter` on slices.
     pub trait ParallelSlice<T> {
         /// The slice's items, in order.
         fn par_iter(&self) -> Serial<Iter<'_, T>>;
-        /// The slice in runs of `n`, in order.
-        fn par_chunks(&self, n: usize) -> Serial<Chunks<'_, T>>;
     }
     impl<T> ParallelSlice<T> for [T] {
         fn par_iter(&self) -> Serial<Iter<'_, T>> {
             Serial(self.iter())
-        }
-        fn par_chunks(&self, n: usize) -> Serial<Chunks<'_, T>> {
-            Serial(self.chunks(n))
         }
     }
 
@@ -163,8 +179,8 @@ mod tests {
         let values: Vec<u32> = (0..10).collect();
         let doubled: Vec<u32> = values.par_iter().map(|v| 2 * v).collect();
         assert_eq!(doubled, (0..10).map(|v| 2 * v).collect::<Vec<_>>());
-        let sums: Vec<u32> = values.par_chunks(4).map(|c| c.iter().sum()).collect();
-        assert_eq!(sums, vec![6, 22, 17]);
+        let sums = super::par_sum(0..5, 2, |s, i| s[i % 2] += glam::DVec3::splat(i as f64));
+        assert_eq!(sums, vec![glam::DVec3::splat(6.0), glam::DVec3::splat(4.0)]);
         let pairs: Vec<u32> = (0..3u32)
             .into_par_iter()
             .flat_map_iter(|i| (0..2).map(move |j| 10 * i + j))

@@ -19,13 +19,13 @@ pub enum ToneMap {
     /// instead of shifting hue as a per-channel curve on sRGB does. It reaches 1 only at an input
     /// of about 26.
     #[default]
-    Aces,
+    Aces = 0,
     /// AgX (Troy Sobotka), in its widely used minimal form: an inset of the primaries, a log2
     /// encoding over [-12.47, +4.03] stops, a polynomial fit of the default sigmoid, the outset
     /// back. Softer contrast than ACES and the most even desaturation of highlights.
-    Agx,
+    Agx = 1,
     /// No curve: display light is the radiance clamped to [0, 1].
-    None,
+    None = 2,
 }
 
 impl ToneMap {
@@ -34,11 +34,7 @@ impl ToneMap {
 
     /// The value of `FinalImageUniform::tone_map` (`TONE_*` in `shading.wgsl`).
     pub fn code(self) -> u32 {
-        match self {
-            ToneMap::Aces => 0,
-            ToneMap::Agx => 1,
-            ToneMap::None => 2,
-        }
+        self as u32
     }
 }
 

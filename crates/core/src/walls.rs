@@ -80,20 +80,13 @@ impl Wall {
     /// through, and the distance to it along `d` (in `d`'s units); `None` for `d` = 0. A corner
     /// goes to the x-wall.
     pub fn exit(p: DVec2, d: DVec2, size: f64) -> Option<(Wall, f64)> {
-        let tx = if d.x > 0.0 {
-            Some((Wall::X1, (size - p.x) / d.x))
-        } else if d.x < 0.0 {
-            Some((Wall::X0, -p.x / d.x))
-        } else {
-            None
+        let axis = |p: f64, d: f64, near: Wall, far: Wall| match d {
+            d if d > 0.0 => Some((far, (size - p) / d)),
+            d if d < 0.0 => Some((near, -p / d)),
+            _ => None,
         };
-        let ty = if d.y > 0.0 {
-            Some((Wall::Y1, (size - p.y) / d.y))
-        } else if d.y < 0.0 {
-            Some((Wall::Y0, -p.y / d.y))
-        } else {
-            None
-        };
+        let tx = axis(p.x, d.x, Wall::X0, Wall::X1);
+        let ty = axis(p.y, d.y, Wall::Y0, Wall::Y1);
         match (tx, ty) {
             (Some(a), Some(b)) => Some(if a.1 <= b.1 { a } else { b }),
             (a, b) => a.or(b),

@@ -20,16 +20,8 @@ const MAX_DEPTH: usize = 60;
 /// Cost of visiting a node relative to testing one triangle.
 const TRAVERSAL_COST: f64 = 1.0;
 
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    min: DVec3,
-    max: DVec3,
-    /// A leaf's first triangle in [`MeshBvh::triangles`], or an interior node's left child (the
-    /// right child follows it).
-    start: u32,
-    /// The number of triangles in a leaf; 0 marks an interior node.
-    count: u32,
-}
+/// The traversal reads the nodes it hands out.
+type Node = FlatNode;
 
 #[derive(Clone, Copy, Debug)]
 struct Triangle {
@@ -132,17 +124,8 @@ impl MeshBvh {
     /// for each triangle slot a leaf refers to, the index of the mesh triangle in it. The slot's
     /// `p0, e1, e2` are that triangle's first vertex and its edges to the other two, as here.
     pub fn flatten(&self) -> (Vec<FlatNode>, Vec<u32>) {
-        let nodes = self
-            .nodes
-            .iter()
-            .map(|n| FlatNode {
-                min: n.min,
-                max: n.max,
-                start: n.start,
-                count: n.count,
-            })
-            .collect();
-        (nodes, self.triangles.iter().map(|t| t.index).collect())
+        let slots = self.triangles.iter().map(|t| t.index).collect();
+        (self.nodes.clone(), slots)
     }
 
     /// Nearest hit of the ray `origin + t·dir` with `0 < t < t_max`, the same one every triangle

@@ -199,29 +199,13 @@ fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> f64
         a = b;
         gap = next;
     }
-    let mut lo = a;
-    for _ in 0..30 {
-        let m = 0.5 * (lo + hi);
-        if f(m) > 0.0 {
-            lo = m;
-        } else {
-            hi = m;
-        }
-    }
-    0.5 * (lo + hi)
+    crate::receivers::bisect(f, a, hi, 30)
 }
 
 /// Distance along the ray to the wall of the pool square it leaves through.
 pub(super) fn wall_distance(o: DVec3, d: DVec3, size: f64) -> f64 {
-    let mut t = f64::INFINITY;
-    for (oc, dc) in [(o.x, d.x), (o.y, d.y)] {
-        if dc > 0.0 {
-            t = t.min((size - oc) / dc);
-        } else if dc < 0.0 {
-            t = t.min(-oc / dc);
-        }
-    }
-    t.max(0.0)
+    let exit = Wall::exit(o.truncate(), d.truncate(), size);
+    exit.map_or(f64::INFINITY, |(_, t)| t).max(0.0)
 }
 
 /// The wall of the pool square nearest to `p` (the one a view ray leaving the square met).

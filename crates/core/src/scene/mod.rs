@@ -192,9 +192,9 @@ pub struct FloorSpec {
 pub enum Deck {
     /// Sandstone pavers, 60 cm square in a running bond, each its own shade, with grout joints.
     #[default]
-    Stone,
+    Stone = 0,
     /// Poured concrete: one pale grey.
-    Concrete,
+    Concrete = 1,
 }
 
 /// Sides of the deck's pavers, world units.
@@ -264,10 +264,7 @@ impl Deck {
 
     /// The code the GPU's final image reads (`DECK_*` in shading.wgsl).
     pub fn code(self) -> u32 {
-        match self {
-            Deck::Stone => 0,
-            Deck::Concrete => 1,
-        }
+        self as u32
     }
 }
 

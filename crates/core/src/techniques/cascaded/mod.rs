@@ -20,7 +20,7 @@
 //! - **Cascades** (§3.2.2, "fit to scene"): the eye frustum is cut into [`CASCADES`] sub-frusta that
 //!   share the near plane and whose far planes grow linearly. Each gets an orthographic sun view
 //!   (§3.2.1) whose rectangle bounds where the sub-frustum's underwater part takes its light from
-//!   on the water plane (see [`CascadedSetup::new`]); the rectangle's sides change in steps and its
+//!   on the water plane (see [`CascadedSetup::from_scene`]); the rectangle's sides change in steps and its
 //!   origin snaps to whole texels, so the photons do not shimmer as the camera moves.
 //! - **Light-view G-buffers** (§3.3, §3.3.1), per cascade on a `resolution²` grid: the water's
 //!   light-view depth (the position is rebuilt from it, §3.3.1) and normal, written by one pass
@@ -85,7 +85,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::optics::{fresnel_transmittance, refract};
-use crate::scene::{Camera, Scene, WaterSource};
+use crate::scene::{Scene, WaterSource};
 
 // The eye camera's projection, which this technique's passes follow and the final image reads the
 // technique's image through: it lives below both, in `crate::eye`.
@@ -526,8 +526,8 @@ fn bad(m: String) -> Error {
 }
 
 impl CascadedSetup {
-    /// Fit the cascades. `terrain` is the floor's height field on the scene square (clamped at its
-    /// edges), `None` for the plane z = 0.
+    /// The setup for a scene's water, floor (its terrain clamped at the square's edges, or the
+    /// plane z = 0), sun and camera: the cascades fitted to the scene.
     ///
     /// Fit to scene: the sub-frustum `[near, far_k]` is clipped to the slab between the lowest floor
     /// and the water level (its 8 corners and 12 edges against the slab's two planes), every vertex of
@@ -536,18 +536,15 @@ impl CascadedSetup {
     /// coordinates, widened by a margin of a fifth of the water column for the waves' deflection. The
     /// rectangle's sides are then rounded up to a multiple of 1/8 of the next power of two (so they
     /// change in steps, not every frame) and its origin snapped to whole texels.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        params: &CascadedParams,
-        camera: &Camera,
-        light: DVec3,
-        level: f64,
-        size: f64,
-        wrap: bool,
-        ior: f64,
-        absorption: DVec3,
-        terrain: Option<&Grid>,
-    ) -> Result<Self> {
+    pub fn from_scene(scene: &Scene, params: &CascadedParams) -> Result<Self> {
+        let water = scene.water.as_ref().ok_or_else(|| {
+            bad(format!(
+                "scene `{}` has no water: cascaded caustics need one",
+                scene.name
+            ))
+        })?;
+        let (light, level, ior) = (scene.light.direction, water.level(), water.ior);
+        let terrain = scene.floor.terrain.as_ref();
         params.validate()?;
         if light.z >= 0.0 || !light.is_finite() {
             return Err(bad(format!("the light direction {light} must point down")));
@@ -562,7 +559,7 @@ impl CascadedSetup {
             lxy.normalize()
         };
         let e_v = light.cross(e_u);
-        let eye = EyeCamera::new(camera);
+        let eye = EyeCamera::new(&scene.camera);
         let terrain_range = match (terrain, params.terrain_pass) {
             (Some(g), true) => {
                 let (lo, hi) = g.min_max();
@@ -678,40 +675,15 @@ impl CascadedSetup {
             cascades,
             eye,
             level,
-            size,
-            wrap,
+            size: water.size,
+            wrap: water.wrap,
             ior: ior_rgb,
             ior_mono: ior,
-            absorption,
+            absorption: water.absorption,
             t_flat: fresnel_transmittance(-light.z, 1.0, ior),
             terrain_range,
             post_shift,
-            walls: false,
-        })
-    }
-
-    /// The setup for a scene's water, floor, sun and camera.
-    pub fn from_scene(scene: &Scene, params: &CascadedParams) -> Result<Self> {
-        let water = scene.water.as_ref().ok_or_else(|| {
-            bad(format!(
-                "scene `{}` has no water: cascaded caustics need one",
-                scene.name
-            ))
-        })?;
-        Self::new(
-            params,
-            &scene.camera,
-            scene.light.direction,
-            water.level(),
-            water.size,
-            water.wrap,
-            water.ior,
-            water.absorption,
-            scene.floor.terrain.as_ref(),
-        )
-        .map(|s| CascadedSetup {
             walls: scene.floor.walls,
-            ..s
         })
     }
 }

@@ -57,17 +57,6 @@ pub enum Crossing {
     DiffuseOnly,
 }
 
-impl Crossing {
-    /// The code the WGSL twin takes.
-    pub fn code(self) -> u32 {
-        match self {
-            Crossing::Entering => 0,
-            Crossing::Leaving => 1,
-            Crossing::DiffuseOnly => 2,
-        }
-    }
-}
-
 /// A surface found in the map.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {

@@ -323,19 +323,16 @@ pub enum AreaRule {
     /// default: as local as the hat rule is flux-true, and better in L1 on smooth water
     /// (docs/caustic-triangles.md, "The two area rules").
     #[default]
-    Paper,
+    Paper = 0,
     /// A third of the area of the drawn triangles around the vertex: the drawn flux is the
     /// photons' (a water lattice's edge photons: [`CausticTrianglesSetup::lattice_share`]).
-    Hat,
+    Hat = 1,
 }
 
 impl AreaRule {
     /// The rule's code in the GPU's uniform block (`area_rule`): 0 paper, 1 hat.
     pub fn code(self) -> u32 {
-        match self {
-            AreaRule::Paper => 0,
-            AreaRule::Hat => 1,
-        }
+        self as u32
     }
 }
 

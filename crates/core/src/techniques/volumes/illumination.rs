@@ -9,7 +9,7 @@ use super::{CellRect, ObjectView, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
-use crate::parallel::prelude::*;
+use crate::parallel::{par_sum, prelude::*};
 use crate::receivers::{ReceiverHeights, light_space};
 use crate::walls::{Wall, WallMaps};
 
@@ -218,51 +218,38 @@ pub fn slice_pass(
     let half = 0.5 * object.spacing();
     let cells = object.cells;
     let shadow_view = setup.shadow.as_ref();
-    (0..object.planes)
-        .into_par_iter()
-        .fold(
-            || vec![DVec3::ZERO; res * res],
-            |mut acc, k| {
-                let zk = object.plane_depth(k);
-                let c = view.lo.z + zk;
-                for m in 0..cells.triangles() {
-                    let idx = cells.triangle(&setup.lattice, m);
-                    let tri = idx.map(|i| &water[i]);
-                    let Some(s) = slice(setup, tri, view.v, c) else {
-                        continue;
-                    };
-                    let px = s.points.map(|p| view.to_pixel(view.to_frame(p)));
-                    raster(res, res, px, |i, j, b| {
-                        let t = &depth[i * res + j];
-                        if !covered(t) || (t[0] as f64 - zk).abs() > half {
-                            return;
-                        }
-                        let normal = DVec3::new(t[1] as f64, t[2] as f64, t[3] as f64);
-                        let dir = interpolate(&s.dirs, b).normalize();
-                        let cos = -dir.dot(normal);
-                        if cos <= 0.0 {
-                            return;
-                        }
-                        let p = view.texel_point(i, j, t[0] as f64);
-                        if !lit(shadow_view, shadow, p, setup.shadow_bias) {
-                            return;
-                        }
-                        acc[i * res + j] += interpolate(&s.intensity, b) * cos;
-                    });
+    par_sum(0..object.planes, res * res, |acc, k| {
+        let zk = object.plane_depth(k);
+        let c = view.lo.z + zk;
+        for m in 0..cells.triangles() {
+            let idx = cells.triangle(&setup.lattice, m);
+            let tri = idx.map(|i| &water[i]);
+            let Some(s) = slice(setup, tri, view.v, c) else {
+                continue;
+            };
+            let px = s.points.map(|p| view.to_pixel(view.to_frame(p)));
+            raster(res, res, px, |i, j, b| {
+                let t = &depth[i * res + j];
+                if !covered(t) || (t[0] as f64 - zk).abs() > half {
+                    return;
                 }
-                acc
-            },
-        )
-        .reduce(
-            || vec![DVec3::ZERO; res * res],
-            |mut a, b| {
-                a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
-                a
-            },
-        )
-        .into_iter()
-        .map(|e| [e.x as f32, e.y as f32, e.z as f32])
-        .collect()
+                let normal = DVec3::new(t[1] as f64, t[2] as f64, t[3] as f64);
+                let dir = interpolate(&s.dirs, b).normalize();
+                let cos = -dir.dot(normal);
+                if cos <= 0.0 {
+                    return;
+                }
+                let p = view.texel_point(i, j, t[0] as f64);
+                if !lit(shadow_view, shadow, p, setup.shadow_bias) {
+                    return;
+                }
+                acc[i * res + j] += interpolate(&s.intensity, b) * cos;
+            });
+        }
+    })
+    .into_iter()
+    .map(|e| e.as_vec3().to_array())
+    .collect()
 }
 
 /// The floor pass: every illumination volume of the water cut by the floor `z = 0` and drawn into the
@@ -363,32 +350,16 @@ fn draw_floor(
     let (w, h) = (setup.width, setup.height);
     let scale = DVec2::new(w as f64 / setup.size, h as f64 / setup.size);
     let cells: CellRect = setup.all_cells();
-    let rows: Vec<usize> = (cells.i0..cells.i1).collect();
-    let acc = rows
-        .par_chunks(8)
-        .fold(
-            || vec![DVec3::ZERO; w * h],
-            |mut acc, band| {
-                for &ci in band {
-                    for cj in cells.j0..cells.j1 {
-                        for which in 0..2 {
-                            draw(setup.lattice.triangle(ci, cj, which), scale, &mut acc);
-                        }
-                    }
-                }
-                acc
-            },
-        )
-        .reduce(
-            || vec![DVec3::ZERO; w * h],
-            |mut a, b| {
-                a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
-                a
-            },
-        );
+    let acc = par_sum(cells.i0..cells.i1, w * h, |acc, ci| {
+        for cj in cells.j0..cells.j1 {
+            for which in 0..2 {
+                draw(setup.lattice.triangle(ci, cj, which), scale, acc);
+            }
+        }
+    });
     let mut map = CausticsMap::new(w, h, setup.size);
     for (t, e) in map.texels.iter_mut().zip(acc) {
-        *t = [e.x as f32, e.y as f32, e.z as f32];
+        *t = e.as_vec3().to_array();
     }
     map
 }
@@ -422,57 +393,41 @@ pub fn wall_pass(setup: &VolumesSetup, water: &[WaterVertex], shadow: &[[f32; 4]
     let mut maps = WallMaps::for_floor_map(setup.width, setup.height, setup.size, setup.depth);
     let cells: CellRect = setup.all_cells();
     let shadow_view = setup.shadow.as_ref();
-    let rows: Vec<usize> = (cells.i0..cells.i1).collect();
     for wall in Wall::ALL {
         let map = maps.get_mut(wall);
         let (cols, height) = (map.cols, map.rows);
         let scale = DVec2::new(cols as f64 / setup.size, height as f64 / setup.depth);
         let n = -wall.normal();
         let c = n.dot(wall.point(0.0, 0.0, setup.size));
-        let acc = rows
-            .par_chunks(8)
-            .fold(
-                || vec![DVec3::ZERO; cols * height],
-                |mut acc, band| {
-                    for &ci in band {
-                        for cj in cells.j0..cells.j1 {
-                            for which in 0..2 {
-                                let idx = setup.lattice.triangle(ci, cj, which);
-                                let tri = idx.map(|i| &water[i]);
-                                let Some(s) = slice(setup, tri, n, c) else {
-                                    continue;
-                                };
-                                if s.points.iter().any(|p| p.z < -setup.size) {
-                                    continue;
-                                }
-                                let px = s.points.map(|p| DVec2::new(wall.along(p), p.z) * scale);
-                                raster(cols, height, px, |i, j, b| {
-                                    let dir = interpolate(&s.dirs, b).normalize();
-                                    let p = wall.point(
-                                        (j as f64 + 0.5) / scale.x,
-                                        (i as f64 + 0.5) / scale.y,
-                                        setup.size,
-                                    );
-                                    if !lit(shadow_view, shadow, p, setup.shadow_bias) {
-                                        return;
-                                    }
-                                    acc[i * cols + j] += interpolate(&s.intensity, b) * dir.dot(n);
-                                });
-                            }
-                        }
+        let acc = par_sum(cells.i0..cells.i1, cols * height, |acc, ci| {
+            for cj in cells.j0..cells.j1 {
+                for which in 0..2 {
+                    let idx = setup.lattice.triangle(ci, cj, which);
+                    let tri = idx.map(|i| &water[i]);
+                    let Some(s) = slice(setup, tri, n, c) else {
+                        continue;
+                    };
+                    if s.points.iter().any(|p| p.z < -setup.size) {
+                        continue;
                     }
-                    acc
-                },
-            )
-            .reduce(
-                || vec![DVec3::ZERO; cols * height],
-                |mut a, b| {
-                    a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
-                    a
-                },
-            );
+                    let px = s.points.map(|p| DVec2::new(wall.along(p), p.z) * scale);
+                    raster(cols, height, px, |i, j, b| {
+                        let dir = interpolate(&s.dirs, b).normalize();
+                        let p = wall.point(
+                            (j as f64 + 0.5) / scale.x,
+                            (i as f64 + 0.5) / scale.y,
+                            setup.size,
+                        );
+                        if !lit(shadow_view, shadow, p, setup.shadow_bias) {
+                            return;
+                        }
+                        acc[i * cols + j] += interpolate(&s.intensity, b) * dir.dot(n);
+                    });
+                }
+            }
+        });
         for (t, e) in map.texels.iter_mut().zip(acc) {
-            *t = [e.x as f32, e.y as f32, e.z as f32];
+            *t = e.as_vec3().to_array();
         }
     }
     maps

@@ -43,7 +43,7 @@ use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, height_field_normal, refract};
-use crate::parallel::prelude::*;
+use crate::parallel::par_sum;
 use crate::receivers::HeightMarch;
 use crate::walls::{Wall, WallMaps};
 use crate::water::Surface;
@@ -318,51 +318,38 @@ pub fn mesh_reference_with_progress(
         }
     }
     let total = offsets[4];
-    let acc = (0..strata.ny)
-        .into_par_iter()
-        .fold(
-            || vec![DVec3::ZERO; total],
-            |mut acc, i| {
-                for j in 0..strata.nx {
-                    let p = strata.point(i, j);
-                    if options.walls && !inside(p, setup.size) {
+    let acc = par_sum(0..strata.ny, total, |acc, i| {
+        for j in 0..strata.nx {
+            let p = strata.point(i, j);
+            if options.walls && !inside(p, setup.size) {
+                continue;
+            }
+            let Some(ph) = photon(setup, surface, p, area) else {
+                continue;
+            };
+            let (end, d) = end_of(setup, &ph, options.walls, terrain.as_ref());
+            if nearest(ph.start, ph.dir, d).is_some() {
+                continue;
+            }
+            let k = match end {
+                End::Floor(q) => {
+                    let q = q / texel;
+                    let (jj, ii) = (q.x.floor(), q.y.floor());
+                    if !(jj >= 0.0 && ii >= 0.0 && (jj as usize) < w && (ii as usize) < h) {
                         continue;
                     }
-                    let Some(ph) = photon(setup, surface, p, area) else {
-                        continue;
-                    };
-                    let (end, d) = end_of(setup, &ph, options.walls, terrain.as_ref());
-                    if nearest(ph.start, ph.dir, d).is_some() {
-                        continue;
-                    }
-                    let k = match end {
-                        End::Floor(q) => {
-                            let q = q / texel;
-                            let (jj, ii) = (q.x.floor(), q.y.floor());
-                            if !(jj >= 0.0 && ii >= 0.0 && (jj as usize) < w && (ii as usize) < h) {
-                                continue;
-                            }
-                            ii as usize * w + jj as usize
-                        }
-                        End::Wall(wall, along, z) => {
-                            let m = wall_maps.as_ref().expect("walls on").get(wall);
-                            offsets[wall.index()] + wall_texel(m, along, z)
-                        }
-                    };
-                    acc[k] += absorb(d) * ph.flux;
+                    ii as usize * w + jj as usize
                 }
-                row_done();
-                acc
-            },
-        )
-        .reduce(
-            || vec![DVec3::ZERO; total],
-            |mut a, b| {
-                a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
-                a
-            },
-        );
-    let irradiance = |e: &DVec3, ta: f64| [(e.x / ta) as f32, (e.y / ta) as f32, (e.z / ta) as f32];
+                End::Wall(wall, along, z) => {
+                    let m = wall_maps.as_ref().expect("walls on").get(wall);
+                    offsets[wall.index()] + wall_texel(m, along, z)
+                }
+            };
+            acc[k] += absorb(d) * ph.flux;
+        }
+        row_done();
+    });
+    let irradiance = |e: &DVec3, ta: f64| (*e / ta).as_vec3().to_array();
     let mut floor = CausticsMap::new(w, h, setup.size);
     let ta = texel.x * texel.y;
     for (k, (t, e)) in floor.texels.iter_mut().zip(&acc).enumerate() {
@@ -393,59 +380,42 @@ pub fn mesh_reference_with_progress(
         photons += (strata.nx * strata.ny) as u64;
         let mesh = &input.objects[k].mesh;
         let scale = (view.extent()).max_element();
-        let acc = (0..strata.ny)
-            .into_par_iter()
-            .fold(
-                || vec![DVec3::ZERO; res * res],
-                |mut acc, i| {
-                    for j in 0..strata.nx {
-                        let p = strata.point(i, j);
-                        if options.walls && !inside(p, setup.size) {
-                            continue;
-                        }
-                        let Some(ph) = photon(setup, surface, p, area) else {
-                            continue;
-                        };
-                        let (_, limit) = end_of(setup, &ph, options.walls, terrain.as_ref());
-                        let Some((hit, t, n)) = nearest(ph.start, ph.dir, limit) else {
-                            continue;
-                        };
-                        if hit != k {
-                            continue;
-                        }
-                        let p = ph.start + ph.dir * t;
-                        let back = p - view.v * (1e-7 * scale);
-                        if bvhs[k]
-                            .intersect(mesh, back, -view.v, f64::INFINITY)
-                            .is_some()
-                        {
-                            continue; // hidden from the view by the object itself
-                        }
-                        let px = view.to_pixel(view.to_frame(p));
-                        let (jj, ii) = (px.x.floor(), px.y.floor());
-                        if jj >= 0.0 && ii >= 0.0 && (jj as usize) < res && (ii as usize) < res {
-                            acc[ii as usize * res + jj as usize] +=
-                                absorb(t) * ph.flux * n.dot(view.v).abs();
-                        }
-                    }
-                    row_done();
-                    acc
-                },
-            )
-            .reduce(
-                || vec![DVec3::ZERO; res * res],
-                |mut a, b| {
-                    a.iter_mut().zip(&b).for_each(|(x, y)| *x += *y);
-                    a
-                },
-            );
+        let acc = par_sum(0..strata.ny, res * res, |acc, i| {
+            for j in 0..strata.nx {
+                let p = strata.point(i, j);
+                if options.walls && !inside(p, setup.size) {
+                    continue;
+                }
+                let Some(ph) = photon(setup, surface, p, area) else {
+                    continue;
+                };
+                let (_, limit) = end_of(setup, &ph, options.walls, terrain.as_ref());
+                let Some((hit, t, n)) = nearest(ph.start, ph.dir, limit) else {
+                    continue;
+                };
+                if hit != k {
+                    continue;
+                }
+                let p = ph.start + ph.dir * t;
+                let back = p - view.v * (1e-7 * scale);
+                if bvhs[k]
+                    .intersect(mesh, back, -view.v, f64::INFINITY)
+                    .is_some()
+                {
+                    continue; // hidden from the view by the object itself
+                }
+                let px = view.to_pixel(view.to_frame(p));
+                let (jj, ii) = (px.x.floor(), px.y.floor());
+                if jj >= 0.0 && ii >= 0.0 && (jj as usize) < res && (ii as usize) < res {
+                    acc[ii as usize * res + jj as usize] +=
+                        absorb(t) * ph.flux * n.dot(view.v).abs();
+                }
+            }
+            row_done();
+        });
         let tex = view.texel();
         let ta = tex.x * tex.y;
-        objects.push(
-            acc.into_iter()
-                .map(|e| [(e.x / ta) as f32, (e.y / ta) as f32, (e.z / ta) as f32])
-                .collect(),
-        );
+        objects.push(acc.iter().map(|e| (*e / ta).as_vec3().to_array()).collect());
     }
     MeshReference {
         objects,

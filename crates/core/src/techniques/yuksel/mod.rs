@@ -160,96 +160,96 @@ const TARGET_PARAMS: &[Param] = &[
 ];
 
 const PRESET: Param = Param {
-    key: "preset",
-    label: "region",
-    kind: Kind::Choice(&["water", "paper"]),
-    default: D::Text("water"),
-    unit: "",
-    doc: "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
     sweep: &["paper"],
+    ..Param::new(
+        "preset",
+        "region",
+        Kind::Choice(&["water", "paper"]),
+        D::Text("water"),
+        "",
+        "water: N and M from the water's largest deflection; paper: the paper's N = 7, M = 6 (§6)",
+    )
 };
-const PASSES: Param = Param {
-    key: "passes",
-    label: "passes",
-    kind: Kind::Choice(&["targets", "scatter"]),
-    default: D::Auto("scatter, the paper's preset targets"),
-    unit: "",
-    doc: "targets: the paper's pre-pass texture, pass 1 into M+1 render-target channels and pass 2 (§4-5); scatter: each sample's light added into the map pixels its box covers, with integer atomics (ours: the same map, less time and memory)",
-    sweep: &[],
-};
-const N: Param = Param {
-    key: "n",
-    label: "N",
-    kind: Kind::Int {
+const PASSES: Param = Param::new(
+    "passes",
+    "passes",
+    Kind::Choice(&["targets", "scatter"]),
+    D::Auto("scatter, the paper's preset targets"),
+    "",
+    "targets: the paper's pre-pass texture, pass 1 into M+1 render-target channels and pass 2 (§4-5); scatter: each sample's light added into the map pixels its box covers, with integer atomics (ours: the same map, less time and memory)",
+);
+const N: Param = Param::new(
+    "n",
+    "N",
+    Kind::Int {
         min: 1,
         max: MAX_N as i64,
         parity: Some(1),
         power_of_two: false,
     },
-    default: D::Auto("from the preset"),
-    unit: "pixels",
-    doc: "samples along x per pixel (odd): region R is N pixels wide (§4)",
-    sweep: &[],
-};
-const M: Param = Param {
-    key: "m",
-    label: "M",
-    kind: Kind::Int {
+    D::Auto("from the preset"),
+    "pixels",
+    "samples along x per pixel (odd): region R is N pixels wide (§4)",
+);
+const M: Param = Param::new(
+    "m",
+    "M",
+    Kind::Int {
         min: 0,
         max: MAX_M as i64,
         parity: Some(0),
         power_of_two: false,
     },
-    default: D::Auto("from the preset"),
-    unit: "pixels",
-    doc: "neighbouring rows (even): M + 1 channels in pass 1 (§4)",
-    sweep: &[],
-};
+    D::Auto("from the preset"),
+    "pixels",
+    "neighbouring rows (even): M + 1 channels in pass 1 (§4)",
+);
 const SUBSAMPLES: Param = Param {
-    key: "subsamples",
-    label: "samples per side",
-    kind: Kind::int(1, MAX_SUBSAMPLES as i64),
-    default: D::Auto("4, the paper's preset 1"),
-    unit: "",
-    doc: "samples per map pixel along each axis, each carrying 1/k² of its light (ours)",
     sweep: &["1", "2", "4"],
+    ..Param::new(
+        "subsamples",
+        "samples per side",
+        Kind::int(1, MAX_SUBSAMPLES as i64),
+        D::Auto("4, the paper's preset 1"),
+        "",
+        "samples per map pixel along each axis, each carrying 1/k² of its light (ours)",
+    )
 };
 const SPLIT: Param = Param {
-    key: "split",
-    label: "split above",
-    kind: Kind::float(0.0, 1.0),
-    default: D::Float(DEFAULT_SPLIT),
-    unit: "",
-    doc: "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
     sweep: &["0", "0.3"],
+    ..Param::new(
+        "split",
+        "split above",
+        Kind::float(0.0, 1.0),
+        D::Float(DEFAULT_SPLIT),
+        "",
+        "each pixel lands as 1, 2 x 2, 4 x 4 ... up to k x k footprints, the first whose footprints misplace no more than this share of their width (or of a map pixel where narrower); 0: every pixel k x k (ours)",
+    )
 };
-const FOOTPRINT: Param = Param {
-    key: "footprint",
-    label: "footprints",
-    kind: Kind::Bool,
-    default: D::Auto("on, the paper's preset off"),
-    unit: "",
-    doc: "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
-    sweep: &[],
-};
-const FRESNEL: Param = Param {
-    key: "fresnel",
-    label: "Fresnel",
-    kind: Kind::Bool,
-    default: D::Bool(true),
-    unit: "",
-    doc: "each sample carries its Fresnel transmittance",
-    sweep: &[],
-};
-const ABSORPTION: Param = Param {
-    key: "absorption",
-    label: "absorption",
-    kind: Kind::Bool,
-    default: D::Bool(true),
-    unit: "",
-    doc: "exp(-K d) along the flat-water path",
-    sweep: &[],
-};
+const FOOTPRINT: Param = Param::new(
+    "footprint",
+    "footprints",
+    Kind::Bool,
+    D::Auto("on, the paper's preset off"),
+    "",
+    "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
+);
+const FRESNEL: Param = Param::new(
+    "fresnel",
+    "Fresnel",
+    Kind::Bool,
+    D::Bool(true),
+    "",
+    "each sample carries its Fresnel transmittance",
+);
+const ABSORPTION: Param = Param::new(
+    "absorption",
+    "absorption",
+    Kind::Bool,
+    D::Bool(true),
+    "",
+    "exp(-K d) along the flat-water path",
+);
 
 /// The setup and the heights a job gives paper 1 (both twins): the flat floor it maps, the water's
 /// own lattice where the water is a grid ([`super::lattice_heights`]).
