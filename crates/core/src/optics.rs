@@ -35,6 +35,16 @@ pub fn fresnel_transmittance(cos_i: f64, n1: f64, n2: f64) -> f64 {
     1.0 - 0.5 * (rs * rs + rp * rp)
 }
 
+/// The Fresnel transmittance from air into a medium of index `ior`, or 1 where a technique leaves
+/// Fresnel out (`on` false): the weight of a sample's light.
+pub fn air_transmittance(on: bool, cos_i: f64, ior: f64) -> f64 {
+    if on {
+        fresnel_transmittance(cos_i, 1.0, ior)
+    } else {
+        1.0
+    }
+}
+
 /// Reflect `incident` about `normal`.
 pub fn reflect(incident: DVec3, normal: DVec3) -> DVec3 {
     incident - 2.0 * incident.dot(normal) * normal

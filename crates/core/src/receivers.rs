@@ -160,28 +160,10 @@ impl ReceiverHeights {
         map
     }
 
-    /// [`of_floor`](Self::of_floor), or `previous` where it was made from the same floor, water
-    /// and sun (a frame that refits every frame builds the map once).
-    pub fn of_floor_reusing(
-        previous: Option<&Arc<ReceiverHeights>>,
-        floor: &Floor,
-        size: f64,
-        depth: f64,
-        t0: DVec3,
-        resolution: usize,
-    ) -> Arc<ReceiverHeights> {
-        Self::reusing(
-            previous,
-            floor,
-            floor.solids.as_ref(),
-            size,
-            depth,
-            t0,
-            resolution,
-        )
-    }
-
-    fn reusing(
+    /// [`of_floor`](Self::of_floor) with `solids` as the objects, or `previous` where it was made
+    /// from the same floor, objects, water and sun (a frame that refits every frame builds the map
+    /// once).
+    pub(crate) fn reusing(
         previous: Option<&Arc<ReceiverHeights>>,
         floor: &Floor,
         solids: Option<&Arc<Solids>>,
@@ -266,7 +248,7 @@ impl ReceiverHeights {
 }
 
 /// One receivers' map shared between a technique's setups, equal only to itself: a setup compared
-/// every frame compares the map's identity, not its texels ([`ReceiverHeights::of_floor_reusing`]
+/// every frame compares the map's identity, not its texels ([`ReceiverHeights::reusing`]
 /// hands back the same map while nothing it depends on changed).
 #[derive(Clone, Debug)]
 pub struct Shared(pub Arc<ReceiverHeights>);
@@ -279,7 +261,7 @@ impl PartialEq for Shared {
 
 impl Shared {
     /// The receivers of `floor` (its terrain and objects) seen along `t0` at `resolution` texels a side
-    /// ([`ReceiverHeights::of_floor_reusing`], `previous` where nothing it depends on changed);
+    /// ([`ReceiverHeights::reusing`], `previous` where nothing it depends on changed);
     /// `None` on the plane `z = 0`, which every technique lights directly.
     pub fn of_floor(
         previous: Option<&Shared>,

@@ -44,7 +44,7 @@ use glam::{DVec2, DVec3};
 
 use crate::error::{Error, Result};
 use crate::map::CausticsMap;
-use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::optics::{air_transmittance, height_field_normal, refract};
 use crate::parallel::prelude::*;
 use crate::receivers::HeightMarch;
 use crate::scene::{Floor, Scene, Water};
@@ -288,11 +288,7 @@ pub fn reference_with_walls(
     // Walls close the pool: no light wraps round, whatever the water's heights do.
     let wrap = water.wrap && !walls;
     let eta = 1.0 / water.ior;
-    let t_flat = if options.fresnel {
-        fresnel_transmittance(-light.z, 1.0, water.ior)
-    } else {
-        1.0
-    };
+    let t_flat = air_transmittance(options.fresnel, -light.z, water.ior);
     let flat_dir = refract(light, DVec3::Z, eta).expect("air to water never reflects totally");
 
     // The traced domain: one period when the surface wraps; otherwise the square shifted back by the
@@ -359,11 +355,7 @@ pub fn reference_with_walls(
                 None => return unlit,
             },
         };
-        let fresnel = if options.fresnel {
-            fresnel_transmittance(cos_i, 1.0, water.ior) / t_flat
-        } else {
-            1.0
-        };
+        let fresnel = air_transmittance(options.fresnel, cos_i, water.ior) / t_flat;
         let absorb = if options.absorption {
             (-water.absorption * d).exp()
         } else {

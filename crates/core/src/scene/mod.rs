@@ -101,8 +101,7 @@ pub struct WaterSpec {
     #[serde(default = "yes")]
     pub wrap: bool,
     /// Absorption coefficient `K` per RGB channel, per world unit of path (Beer-Lambert `exp(-K d)`).
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::scene::exact::array")]
+    #[serde(default, deserialize_with = "crate::scene::exact::array")]
     pub absorption: [f64; 3],
 }
 
@@ -125,8 +124,7 @@ pub struct LightSpec {
     #[serde(default)]
     pub cone: Option<f64>,
     /// The light's linear-RGB colour, a factor on its intensity (default white).
-    #[serde(default = "white")]
-    #[serde(deserialize_with = "crate::scene::exact::array")]
+    #[serde(default = "white", deserialize_with = "crate::scene::exact::array")]
     pub color: [f64; 3],
     /// The irradiance the sun puts on a surface facing it, or a point light on the floor straight
     /// below it, in the renderer's relative units (default 1; not negative).
@@ -140,8 +138,10 @@ pub struct LightSpec {
 pub struct CausticsSpec {
     /// Texels of the caustics map along x and y over the water's square (default 256 × 256, at
     /// most [`MAX_RESOLUTION`]).
-    #[serde(default = "default_resolution")]
-    #[serde(deserialize_with = "crate::scene::exact::array")]
+    #[serde(
+        default = "default_resolution",
+        deserialize_with = "crate::scene::exact::array"
+    )]
     pub resolution: [u32; 2],
     /// The technique that computes the caustics map, by its registry name (`yuksel`,
     /// `procedural`, `volumes`, `caustic-triangles`, `cascaded`, ...; default `reference`, the
@@ -339,8 +339,7 @@ pub struct ObjectSpec {
     /// What it is: a built-in shape or a mesh file, at its native size.
     pub shape: ShapeSpec,
     /// Centre of the object's base (it rests at this point), world units.
-    #[serde(default)]
-    #[serde(deserialize_with = "crate::scene::exact::array")]
+    #[serde(default, deserialize_with = "crate::scene::exact::array")]
     pub position: [f64; 3],
     /// Uniform scale applied to the shape's native size.
     #[serde(default = "one")]
@@ -417,8 +416,10 @@ pub struct CameraSpec {
     #[serde(default = "default_fov")]
     pub fov_y: f64,
     /// The final image's width and height, pixels (default 960 × 540).
-    #[serde(default = "default_image")]
-    #[serde(deserialize_with = "crate::scene::exact::array")]
+    #[serde(
+        default = "default_image",
+        deserialize_with = "crate::scene::exact::array"
+    )]
     pub resolution: [u32; 2],
     /// The final image's exposure: radiance is multiplied by it before the tone curve.
     #[serde(default = "one")]

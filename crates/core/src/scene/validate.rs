@@ -87,18 +87,9 @@ pub(super) fn validate(
         floor.solids = super::Solids::of(&objects);
     }
 
-    let look = match &file.camera {
+    let (camera, look) = match &file.camera {
         Some(c) => {
             positive("camera.exposure", c.exposure)?;
-            Look {
-                exposure: c.exposure,
-                tone_map: c.tone_map,
-            }
-        }
-        None => Look::default(),
-    };
-    let camera = match &file.camera {
-        Some(c) => {
             finite("camera.position", &c.position)?;
             finite("camera.target", &c.target)?;
             if DVec3::from(c.position).distance(DVec3::from(c.target)) < 1e-9 {
@@ -124,15 +115,23 @@ pub(super) fn validate(
                     format!("{:?} is under the pool's floor (z = 0)", c.position),
                 ));
             }
-            Camera {
+            let camera = Camera {
                 position: c.position.into(),
                 target: c.target.into(),
                 fov_y: c.fov_y,
                 width: c.resolution[0],
                 height: c.resolution[1],
-            }
+            };
+            let look = Look {
+                exposure: c.exposure,
+                tone_map: c.tone_map,
+            };
+            (camera, look)
         }
-        None => default_camera(size, water.as_ref().map_or(0.0, |w| w.depth)),
+        None => {
+            let depth = water.as_ref().map_or(0.0, |w| w.depth);
+            (default_camera(size, depth), Look::default())
+        }
     };
 
     finite("time", &[file.time])?;

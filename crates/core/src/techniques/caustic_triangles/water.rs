@@ -52,7 +52,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
-use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::optics::{air_transmittance, height_field_normal, refract};
 use crate::parallel::prelude::*;
 use crate::receivers::{ReceiverHeights, flat_refracted, light_space, lookup};
 use crate::scene::{Floor, Scene, Water};
@@ -154,11 +154,7 @@ impl WaterSetup {
                 periodic: water.wrap,
             }),
         };
-        let t_flat = if params.fresnel {
-            fresnel_transmittance(-light.z, 1.0, water.ior)
-        } else {
-            1.0
-        };
+        let t_flat = air_transmittance(params.fresnel, -light.z, water.ior);
         let mut ws = WaterSetup {
             setup,
             lattice,
@@ -229,8 +225,8 @@ impl WaterSetup {
         }
         let t0 = flat_refracted(self.light, self.ior);
         let width = self.setup.floor.width;
-        let r =
-            ReceiverHeights::of_floor_reusing(previous, floor, self.size, self.depth, t0, width);
+        let (solids, size, depth) = (floor.solids.as_ref(), self.size, self.depth);
+        let r = ReceiverHeights::reusing(previous, floor, solids, size, depth, t0, width);
         self.with_receivers(r)
     }
 
@@ -320,11 +316,7 @@ fn surface_ray(ws: &WaterSetup, heights: &Grid, i: usize, j: usize) -> Option<(D
     // The cell's area as the sun sees it, over the flat cell's.
     let seen = 1.0 + l.truncate().dot(grad) / -l.z;
     let t = refract(l, n, 1.0 / ws.ior).filter(|t| cos_i > 0.0 && seen > 0.0 && t.z < 0.0)?;
-    let fresnel = if ws.fresnel {
-        fresnel_transmittance(cos_i, 1.0, ws.ior) / ws.t_flat
-    } else {
-        1.0
-    };
+    let fresnel = air_transmittance(ws.fresnel, cos_i, ws.ior) / ws.t_flat;
     Some((p.extend(ws.depth + h), t, ws.setup.flux * seen * fresnel))
 }
 

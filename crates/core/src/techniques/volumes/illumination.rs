@@ -8,7 +8,7 @@ use super::representation::{OrthoView, covered};
 use super::{CellRect, ObjectView, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
-use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::optics::{air_transmittance, height_field_normal, refract};
 use crate::parallel::{par_sum, prelude::*};
 use crate::receivers::{ReceiverHeights, light_space};
 use crate::walls::{Wall, WallMaps};
@@ -35,11 +35,7 @@ pub fn water_vertex(
     let z = setup.depth + h;
     match refract(l, n, setup.eta) {
         Some(t) if cos_i > 0.0 => {
-            let w = if setup.params.fresnel {
-                fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
-            } else {
-                1.0
-            };
+            let w = air_transmittance(setup.params.fresnel, cos_i, setup.ior) / setup.t_flat;
             [
                 p.x as f32, p.y as f32, z as f32, w as f32, t.x as f32, t.y as f32, t.z as f32, 0.0,
             ]

@@ -84,7 +84,7 @@ use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::mesh::{MeshBvh, TriangleMesh};
-use crate::optics::{fresnel_transmittance, refract};
+use crate::optics::{air_transmittance, refract};
 use crate::receivers::Shared;
 use crate::scene::{Material, Scene};
 use crate::walls::WallMaps;
@@ -613,11 +613,7 @@ impl VolumesSetup {
             },
             light,
             t0,
-            t_flat: if params.fresnel {
-                fresnel_transmittance(-light.z, 1.0, input.ior)
-            } else {
-                1.0
-            },
+            t_flat: air_transmittance(params.fresnel, -light.z, input.ior),
             lattice,
             width: input.width,
             height: input.height,

@@ -42,7 +42,7 @@ use super::{CellRect, VolumesInput, VolumesSetup};
 use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::mesh::MeshBvh;
-use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::optics::{air_transmittance, height_field_normal, refract};
 use crate::parallel::par_sum;
 use crate::receivers::HeightMarch;
 use crate::walls::{Wall, WallMaps};
@@ -119,11 +119,7 @@ fn photon(setup: &VolumesSetup, surface: &dyn Surface, p: DVec2, area: f64) -> O
         return None;
     }
     let t = refract(l, n, setup.eta)?;
-    let fresnel = if setup.params.fresnel {
-        fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
-    } else {
-        1.0
-    };
+    let fresnel = air_transmittance(setup.params.fresnel, cos_i, setup.ior) / setup.t_flat;
     Some(Photon {
         start: DVec3::new(p.x, p.y, setup.depth + h),
         dir: t,

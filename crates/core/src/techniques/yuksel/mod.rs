@@ -95,7 +95,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::map::CausticsMap;
-use crate::optics::{fresnel_transmittance, refract};
+use crate::optics::{air_transmittance, refract};
 use crate::receivers::Shared;
 
 use super::describe::{
@@ -577,11 +577,7 @@ impl YukselSetup {
             depth,
             size,
             wrap,
-            t_flat: if params.fresnel {
-                fresnel_transmittance(-light.z, 1.0, ior)
-            } else {
-                1.0
-            },
+            t_flat: air_transmittance(params.fresnel, -light.z, ior),
             fresnel: params.fresnel,
             absorption: if params.absorption {
                 absorption

@@ -8,7 +8,7 @@
 use glam::DVec2;
 
 use crate::grid::{Edge, Grid};
-use crate::optics::{fresnel_transmittance, height_field_normal, refract};
+use crate::optics::{air_transmittance, height_field_normal, refract};
 use crate::receivers::light_space;
 
 use super::YukselSetup;
@@ -36,11 +36,7 @@ fn hit(setup: &YukselSetup, heights: &Grid, s: DVec2) -> Option<(DVec2, f64)> {
             light_space(at, r.t0)
         }
     };
-    let fresnel = if setup.fresnel {
-        fresnel_transmittance(cos_i, 1.0, setup.ior) / setup.t_flat
-    } else {
-        1.0
-    };
+    let fresnel = air_transmittance(setup.fresnel, cos_i, setup.ior) / setup.t_flat;
     Some((hit, seen * fresnel))
 }
 
