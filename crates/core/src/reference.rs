@@ -554,17 +554,15 @@ impl PoolReceivers {
             }
             let image = tri.map(|v| self.on_plane(r, &v));
             let whole = polygon_area(&image);
-            let (bx, by) = if r == FLOOR {
-                ((Some(0.0), Some(self.size)), (Some(0.0), Some(self.size)))
-            } else {
-                // Rays from the surface meet a wall below where they started.
-                ((Some(0.0), Some(self.size)), (Some(0.0), Some(top)))
-            };
-            let mut poly = [DVec2::ZERO; 16];
-            let n = if whole > 0.0 {
-                clip_rect(&image, &mut poly, bx, by)
-            } else {
-                0
+            // Rays from the surface meet a wall below where they started.
+            let y_max = if r == FLOOR { self.size } else { top };
+            let (mut poly, mut xs, mut tmp) =
+                ([DVec2::ZERO; 16], [DVec2::ZERO; 16], [DVec2::ZERO; 16]);
+            let n = match clip_slab(&image, &mut xs, 0, 0.0, self.size, &mut tmp) {
+                m if whole > 0.0 && m >= 3 => {
+                    clip_slab(&xs[..m], &mut poly, 1, 0.0, y_max, &mut tmp)
+                }
+                _ => 0,
             };
             let share = if n >= 3 {
                 polygon_area(&poly[..n]) / whole
@@ -682,35 +680,6 @@ fn spread(q: &[DVec2], flux: DVec3, add: &mut dyn FnMut(i64, i64, DVec3)) {
             }
         }
     }
-}
-
-/// Clip a convex polygon to `x` within `bx` and `y` within `by` (`None`: unbounded that side).
-fn clip_rect(
-    poly: &[DVec2],
-    out: &mut [DVec2; 16],
-    bx: (Option<f64>, Option<f64>),
-    by: (Option<f64>, Option<f64>),
-) -> usize {
-    let mut cur = [DVec2::ZERO; 16];
-    let mut n = poly.len();
-    cur[..n].copy_from_slice(poly);
-    let planes: [(usize, Option<f64>, f64); 4] = [
-        (0, bx.0, 1.0),
-        (0, bx.1, -1.0),
-        (1, by.0, 1.0),
-        (1, by.1, -1.0),
-    ];
-    for (axis, bound, sign) in planes {
-        let Some(b) = bound else { continue };
-        let mut next = [DVec2::ZERO; 16];
-        n = clip_half(&cur[..n], &mut next, |v| sign * (v[axis] - b));
-        if n < 3 {
-            return 0;
-        }
-        cur = next;
-    }
-    out[..n].copy_from_slice(&cur[..n]);
-    n
 }
 
 /// Exact area deposit of floor triangles into the texel grid.

@@ -46,11 +46,7 @@ impl TriangleMesh {
     /// Axis-aligned bounds `(min, max)` of the vertices. An empty mesh gives the inverted box
     /// `(+∞, −∞)`, which is the identity of a union of boxes.
     pub fn bounds(&self) -> (DVec3, DVec3) {
-        self.positions
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-                (lo.min(p), hi.max(p))
-            })
+        bounds_of(&self.positions)
     }
 
     /// The mesh under an affine map. Normals go through the inverse transpose, which keeps them
@@ -251,16 +247,32 @@ fn smooth_normals_welded(positions: &[DVec3], indices: &[[u32; 3]]) -> Vec<DVec3
     weld_id.iter().map(|&w| normals[w as usize]).collect()
 }
 
+/// Axis-aligned bounds `(min, max)` of `points`; `(+∞, −∞)`, the identity of a union of boxes,
+/// for none.
+pub(crate) fn bounds_of<'a>(points: impl IntoIterator<Item = &'a DVec3>) -> (DVec3, DVec3) {
+    let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    (points.into_iter()).fold(empty, |(lo, hi), &p| (lo.min(p), hi.max(p)))
+}
+
+/// The zero normals of `normals` (where a file or a patch gave none) from the faces around the
+/// vertex ([`smooth_normals_welded`]).
+pub(crate) fn fill_zero_normals(normals: &mut [DVec3], positions: &[DVec3], indices: &[[u32; 3]]) {
+    if normals.contains(&DVec3::ZERO) {
+        let computed = smooth_normals_welded(positions, indices);
+        for (n, c) in normals.iter_mut().zip(computed) {
+            if *n == DVec3::ZERO {
+                *n = c;
+            }
+        }
+    }
+}
+
 /// Joins vertices within 1e-9 of the bounding-box diagonal of each other. Returns, for every vertex,
 /// the id of its group, and for every group the vertex that represents it. Points are hashed into
 /// cells of the tolerance's size and compared with the representatives of the 27 cells around
 /// them, so the cost is linear in the number of vertices.
 fn weld(positions: &[DVec3]) -> (Vec<u32>, Vec<u32>) {
-    let (lo, hi) = positions
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+    let (lo, hi) = bounds_of(positions);
     let tolerance = 1e-9 * (hi - lo).length();
     // A zero tolerance (a single point, or no points) still needs a finite cell size.
     let cell_size = if tolerance > 0.0 && tolerance.is_finite() {

@@ -27,8 +27,6 @@ fn load_obj_file(path: &Path) -> Result<TriangleMesh> {
 
     use glam::DVec3;
 
-    use super::smooth_normals_welded;
-
     let file = File::open(path).map_err(|e| Error::io(path, e))?;
     let (models, _materials) =
         tobj::load_obj_buf(&mut BufReader::new(file), &tobj::GPU_LOAD_OPTIONS, |_| {
@@ -74,14 +72,7 @@ fn load_obj_file(path: &Path) -> Result<TriangleMesh> {
             format!("OBJ file has a vertex with a non-finite coordinate: {p}"),
         ));
     }
-    if mesh.normals.contains(&DVec3::ZERO) {
-        let computed = smooth_normals_welded(&mesh.positions, &mesh.indices);
-        for (n, c) in mesh.normals.iter_mut().zip(computed) {
-            if *n == DVec3::ZERO {
-                *n = c;
-            }
-        }
-    }
+    super::fill_zero_normals(&mut mesh.normals, &mesh.positions, &mesh.indices);
     mesh.check()
         .map_err(|problem| Error::bad_file(path, format!("the mesh {problem}")))?;
     Ok(mesh)

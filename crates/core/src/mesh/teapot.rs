@@ -14,7 +14,7 @@
 
 use glam::DVec3;
 
-use super::{TriangleMesh, smooth_normals_welded};
+use super::TriangleMesh;
 
 /// The teapot with every patch cut into `subdivisions` × `subdivisions` quads (at least 1), two
 /// triangles each, less those that collapse at the poles of the lid and the bottom:
@@ -43,12 +43,7 @@ fn tessellate(patches: &[Patch], n: usize) -> TriangleMesh {
     for patch in patches {
         let base = positions.len() as u32;
         // A cross product of derivatives this small relative to the patch's size is rounding noise.
-        let (lo, hi) = patch
-            .iter()
-            .flatten()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &q| {
-                (lo.min(q), hi.max(q))
-            });
+        let (lo, hi) = super::bounds_of(patch.iter().flatten());
         let negligible = 1e-12 * (hi - lo).length_squared();
         for i in 0..=n {
             for j in 0..=n {
@@ -74,14 +69,7 @@ fn tessellate(patches: &[Patch], n: usize) -> TriangleMesh {
         }
     }
     // Where even the nudged derivatives fail, the faces around the vertex decide.
-    if normals.contains(&DVec3::ZERO) {
-        let fallback = smooth_normals_welded(&positions, &indices);
-        for (n, f) in normals.iter_mut().zip(fallback) {
-            if *n == DVec3::ZERO {
-                *n = f;
-            }
-        }
-    }
+    super::fill_zero_normals(&mut normals, &positions, &indices);
     without_unused_vertices(TriangleMesh {
         positions,
         normals,
