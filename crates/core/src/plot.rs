@@ -35,6 +35,16 @@ pub fn scalar_picture(g: &Grid, colour: impl Fn(f32) -> [u8; 3]) -> Picture {
     }
 }
 
+/// `g` on the heat ramp, black at 0 and white at its maximum (at least `floor`), with the legend
+/// `legend(white)`.
+pub fn heat_picture(g: &Grid, floor: f32, legend: impl FnOnce(f32) -> String) -> Picture {
+    let top = g.min_max().1.max(floor);
+    Picture {
+        legend: legend(top),
+        ..scalar_picture(g, |v| heat(v / top))
+    }
+}
+
 /// An RGB relative-irradiance image, row 0 at the top, on the heat ramp (0 black, the maximum,
 /// at least 2, white); `None` texels drawn in [`NO_VALUE`].
 pub fn rgb_picture(

@@ -260,30 +260,26 @@ impl PartialEq for Shared {
 }
 
 impl Shared {
-    /// The receivers of `floor` (its terrain and objects) seen along `t0` at `resolution` texels a side
-    /// ([`ReceiverHeights::reusing`], `previous` where nothing it depends on changed);
-    /// `None` on the plane `z = 0`, which every technique lights directly.
+    /// The receivers of `floor` seen along `t0` at `resolution` texels a side: its terrain, and
+    /// its objects unless `objects` is false (for a technique that lights and shades them by its
+    /// own means: paper 3's depth textures); `previous` where nothing it depends on changed
+    /// ([`ReceiverHeights::reusing`]); `None` on the plane `z = 0`, which every technique lights
+    /// directly.
     pub fn of_floor(
         previous: Option<&Shared>,
         floor: &Floor,
+        objects: bool,
         size: f64,
         depth: f64,
         t0: DVec3,
         resolution: usize,
     ) -> Option<Shared> {
-        if !floor.has_receivers() {
+        let solids = floor.solids.as_ref().filter(|_| objects);
+        if floor.terrain.is_none() && solids.is_none() {
             return None;
         }
         let previous = previous.map(|p| &p.0);
-        let r = ReceiverHeights::reusing(
-            previous,
-            floor,
-            floor.solids.as_ref(),
-            size,
-            depth,
-            t0,
-            resolution,
-        );
+        let r = ReceiverHeights::reusing(previous, floor, solids, size, depth, t0, resolution);
         Some(Shared(r))
     }
 
@@ -303,23 +299,7 @@ impl Shared {
 }
 
 impl Shared {
-    /// [`Shared::of_floor`] for the floor's terrain alone, its objects left out: for a technique
-    /// that lights and shades the objects by its own means (paper 3's depth textures).
-    pub fn of_terrain(
-        previous: Option<&Shared>,
-        floor: &Floor,
-        size: f64,
-        depth: f64,
-        t0: DVec3,
-        resolution: usize,
-    ) -> Option<Shared> {
-        floor.terrain.as_ref()?;
-        let previous = previous.map(|p| &p.0);
-        let r = ReceiverHeights::reusing(previous, floor, None, size, depth, t0, resolution);
-        Some(Shared(r))
-    }
-
-    /// [`Shared::fits`] for receivers made by [`Shared::of_terrain`].
+    /// [`Shared::fits`] for receivers made without the objects.
     pub fn fits_terrain(receivers: Option<&Shared>, floor: &Floor) -> bool {
         match receivers {
             None => floor.terrain.is_none(),

@@ -35,12 +35,7 @@ impl Wall {
 
     /// The suffix of its `--raw-walls` file: `PREFIX-x0.npy`, ...
     pub fn suffix(self) -> &'static str {
-        match self {
-            Wall::X0 => "x0",
-            Wall::X1 => "x1",
-            Wall::Y0 => "y0",
-            Wall::Y1 => "y1",
-        }
+        ["x0", "x1", "y0", "y1"][self.index()]
     }
 
     /// Its position in [`Wall::ALL`] (0 to 3): its map in [`WallMaps::maps`], its GPU layer.
@@ -50,12 +45,7 @@ impl Wall {
 
     /// The unit normal facing into the pool.
     pub fn normal(self) -> DVec3 {
-        match self {
-            Wall::X0 => DVec3::X,
-            Wall::X1 => -DVec3::X,
-            Wall::Y0 => DVec3::Y,
-            Wall::Y1 => -DVec3::Y,
-        }
+        [DVec3::X, -DVec3::X, DVec3::Y, -DVec3::Y][self.index()]
     }
 
     /// The coordinate along the wall of a point on it: y for the x-walls, x for the y-walls.

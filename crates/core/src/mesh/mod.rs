@@ -247,6 +247,23 @@ fn smooth_normals_welded(positions: &[DVec3], indices: &[[u32; 3]]) -> Vec<DVec3
     weld_id.iter().map(|&w| normals[w as usize]).collect()
 }
 
+/// The nearest hit before `t_max` of the ray `o + t d` with any of `meshes`: the mesh's index,
+/// `t` and the interpolated outward normal.
+pub fn nearest<'a>(
+    meshes: impl IntoIterator<Item = (&'a TriangleMesh, &'a MeshBvh)>,
+    o: DVec3,
+    d: DVec3,
+    t_max: f64,
+) -> Option<(usize, f64, DVec3)> {
+    let mut best: Option<(usize, f64, DVec3)> = None;
+    for (k, (mesh, bvh)) in meshes.into_iter().enumerate() {
+        if let Some((t, n)) = bvh.intersect(mesh, o, d, best.map_or(t_max, |b| b.1)) {
+            best = Some((k, t, n));
+        }
+    }
+    best
+}
+
 /// Axis-aligned bounds `(min, max)` of `points`; `(+∞, −∞)`, the identity of a union of boxes,
 /// for none.
 pub(crate) fn bounds_of<'a>(points: impl IntoIterator<Item = &'a DVec3>) -> (DVec3, DVec3) {

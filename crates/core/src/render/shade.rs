@@ -16,14 +16,8 @@ impl Tracer<'_> {
         d: DVec3,
         t_max: f64,
     ) -> Option<(f64, DVec3, usize)> {
-        let mut best: Option<(f64, DVec3, usize)> = None;
-        for (k, (obj, bvh)) in self.scene.objects.iter().zip(&self.bvhs).enumerate() {
-            let limit = best.map_or(t_max, |b| b.0);
-            if let Some((t, n)) = bvh.intersect(&obj.mesh, o, d, limit) {
-                best = Some((t, n, k));
-            }
-        }
-        best
+        let meshes = self.scene.objects.iter().map(|o| &o.mesh).zip(&self.bvhs);
+        crate::mesh::nearest(meshes, o, d, t_max).map(|(k, t, n)| (t, n, k))
     }
 
     pub(super) fn occluded(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {

@@ -692,12 +692,8 @@ impl Solids {
 
     /// The nearest hit of the ray `origin + t·dir`, `0 < t < t_max`, with any of the objects.
     pub fn intersect(&self, origin: DVec3, dir: DVec3, t_max: f64) -> Option<f64> {
-        self.meshes.iter().fold(None, |best, (mesh, bvh)| {
-            let limit = best.unwrap_or(t_max);
-            bvh.intersect(mesh, origin, dir, limit)
-                .map(|(t, _)| t)
-                .or(best)
-        })
+        let meshes = self.meshes.iter().map(|(mesh, bvh)| (mesh, bvh));
+        crate::mesh::nearest(meshes, origin, dir, t_max).map(|(_, t, _)| t)
     }
 }
 

@@ -155,12 +155,7 @@ pub enum Receiver {
 impl Receiver {
     /// Its name in the README's table of techniques (`floor`, `eye space`).
     pub fn name(self) -> &'static str {
-        match self {
-            Receiver::Floor => "floor",
-            Receiver::Walls => "walls",
-            Receiver::Objects => "objects",
-            Receiver::EyeSpace => "eye space",
-        }
+        ["floor", "walls", "objects", "eye space"][self as usize]
     }
 }
 
@@ -180,11 +175,12 @@ impl Input {
     /// Its `input -> output` column in `caustics techniques` and the README's table
     /// (`water -> floor map`).
     pub fn describe(self) -> &'static str {
-        match self {
-            Input::Water => "water -> floor map",
-            Input::GlassOrWater => "glass or water -> floor map",
-            Input::EyeSpace => "water -> eye space",
-        }
+        let names = [
+            "water -> floor map",
+            "glass or water -> floor map",
+            "water -> eye space",
+        ];
+        names[self as usize]
     }
 }
 

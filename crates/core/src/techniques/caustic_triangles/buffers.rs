@@ -3,7 +3,7 @@
 //! vertex (§5), and a point light's light cube map (§4.2).
 
 use crate::grid::Grid;
-use crate::plot::{Picture, flip_rows, heat, scalar_picture};
+use crate::plot::{Picture, flip_rows, heat, heat_picture};
 use crate::techniques::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, no_buffers};
 use crate::{Error, Result};
 
@@ -126,15 +126,12 @@ fn generator_picture(buffer: Buffer, input: &BufferInput) -> Result<Picture> {
                 rows: p,
                 data: photons.iter().map(|h| h[2].max(0.0)).collect(),
             };
-            let (_, max) = g.min_max();
-            let top = max.max(1e-12);
-            Ok(Picture {
-                legend: format!(
+            Ok(heat_picture(&g, 1e-12, |top| {
+                format!(
                     "photon power: black 0, white {top:.3e} floor-area units (total {:.4})",
                     photon_power(&photons)
-                ),
-                ..scalar_picture(&g, |v| heat(v / top))
-            })
+                )
+            }))
         }
         _ => {
             let e = irradiance_pass(&setup, &photons);
@@ -144,15 +141,12 @@ fn generator_picture(buffer: Buffer, input: &BufferInput) -> Result<Picture> {
                 rows: p,
                 data: e.iter().map(|v| (1.0 + v.max(0.0)).log10()).collect(),
             };
-            let (_, max) = g.min_max();
-            let top = max.max(1e-6);
-            Ok(Picture {
-                legend: format!(
+            Ok(heat_picture(&g, 1e-6, |top| {
+                format!(
                     "vertex irradiance, log scale: black 0, white {:.1} (relative to the unobstructed light)",
                     10f32.powf(top) - 1.0
-                ),
-                ..scalar_picture(&g, |v| heat(v / top))
-            })
+                )
+            }))
         }
     }
 }

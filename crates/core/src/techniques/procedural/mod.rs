@@ -417,16 +417,7 @@ impl Variant {
     /// Its word in the table (`variant = "vertex"`) and in its entry's name
     /// (`procedural-vertex`).
     pub fn name(self) -> &'static str {
-        match self {
-            Variant::Vertex => "vertex",
-            Variant::Screen => "screen",
-            Variant::Texture => "texture",
-        }
-    }
-
-    /// The variant whose [`name`](Self::name) is `s`.
-    pub fn parse(s: &str) -> Option<Variant> {
-        Variant::ALL.into_iter().find(|v| v.name() == s)
+        ["vertex", "screen", "texture"][self as usize]
     }
 }
 
@@ -634,8 +625,9 @@ impl ProceduralSetup {
     /// its own path (`(depth − z) / up_z`, the rest level's: the paper's `h` is left out there).
     /// The receivers' map is `previous` where nothing it depends on changed.
     pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
-        self.receivers =
-            Shared::of_floor(previous, floor, self.size, self.depth, -self.up, self.width);
+        self.receivers = Shared::of_floor(
+            previous, floor, true, self.size, self.depth, -self.up, self.width,
+        );
         self
     }
 

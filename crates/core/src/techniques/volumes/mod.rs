@@ -630,8 +630,9 @@ impl VolumesSetup {
     /// changed), the volumes are drawn in the light's space and looked up per floor texel
     /// ([`crate::receivers`]). The walls and the objects keep their own passes.
     pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
-        self.receivers =
-            Shared::of_terrain(previous, floor, self.size, self.depth, self.t0, self.width);
+        self.receivers = Shared::of_floor(
+            previous, floor, false, self.size, self.depth, self.t0, self.width,
+        );
         self
     }
 

@@ -254,14 +254,8 @@ pub fn mesh_reference_with_progress(
 ) -> MeshReference {
     let bvhs: Vec<MeshBvh> = input.objects.iter().map(|o| o.mesh.bvh()).collect();
     let nearest = |o: DVec3, d: DVec3, t_max: f64| {
-        let mut best: Option<(usize, f64, DVec3)> = None;
-        for (k, (obj, bvh)) in input.objects.iter().zip(&bvhs).enumerate() {
-            let limit = best.map_or(t_max, |b| b.1);
-            if let Some((t, n)) = bvh.intersect(&obj.mesh, o, d, limit) {
-                best = Some((k, t, n));
-            }
-        }
-        best
+        let meshes = input.objects.iter().map(|o| &o.mesh).zip(&bvhs);
+        crate::mesh::nearest(meshes, o, d, t_max)
     };
     let absorb = |d: f64| (-setup.absorption * d).exp();
     let mut photons = 0u64;

@@ -110,14 +110,8 @@ pub fn depth_pass(view: &OrthoView, meshes: &[(&TriangleMesh, &MeshBvh)]) -> Vec
     for i in 0..view.res {
         for j in 0..view.res {
             let o = view.texel_point(i, j, -m);
-            let mut best: Option<(f64, DVec3)> = None;
-            for (mesh, bvh) in meshes {
-                let limit = best.map_or(t_max, |b| b.0);
-                if let Some(hit) = bvh.intersect(mesh, o, view.v, limit) {
-                    best = Some(hit);
-                }
-            }
-            if let Some((t, n)) = best {
+            if let Some((_, t, n)) = crate::mesh::nearest(meshes.iter().copied(), o, view.v, t_max)
+            {
                 out[i * view.res + j] = [(t - m) as f32, n.x as f32, n.y as f32, n.z as f32];
             }
         }

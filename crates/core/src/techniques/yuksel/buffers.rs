@@ -4,7 +4,7 @@
 
 use crate::Result;
 use crate::grid::Grid;
-use crate::plot::{Picture, flip_rows, heat, scalar_picture};
+use crate::plot::{Picture, flip_rows, heat_picture};
 use crate::techniques::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, no_buffers};
 use crate::techniques::heights_for;
 
@@ -96,14 +96,11 @@ pub(super) fn draw_buffer(input: &BufferInput, buffer: Buffer) -> Result<Picture
                     })
                     .collect(),
             };
-            let (_, max) = g.min_max();
-            let top = max.max(1.5);
-            Ok(Picture {
-                legend: format!(
+            Ok(heat_picture(&g, 1.5, |top| {
+                format!(
                     "sample flux x t² (its t x t share of a pixel; 1: flat water): black 0, white {top:.2}"
-                ),
-                ..scalar_picture(&g, |v| heat(v / top))
-            })
+                )
+            }))
         }
         "yuksel-channel" => {
             let p1 = pass1(&setup, &pre, 0);
@@ -115,15 +112,12 @@ pub(super) fn draw_buffer(input: &BufferInput, buffer: Buffer) -> Result<Picture
                 rows: h1,
                 data: (0..w1 * h1).map(|t| p1[t * ch + k]).collect(),
             };
-            let (_, max) = g.min_max();
-            let top = max.max(1e-6);
-            Ok(Picture {
-                legend: format!(
+            Ok(heat_picture(&g, 1e-6, |top| {
+                format!(
                     "channel {k} of {ch} (row offset {}): black 0, white {top:.2}",
                     k as i64 - setup.region.m as i64 / 2 - setup.region.shift[1] as i64
-                ),
-                ..scalar_picture(&g, |v| heat(v / top))
-            })
+                )
+            }))
         }
         _ => no_buffers(input, buffer),
     }

@@ -603,7 +603,8 @@ impl YukselSetup {
     pub fn with_floor(mut self, floor: &crate::scene::Floor, previous: Option<&Shared>) -> Self {
         self.walls = floor.walls && floor.terrain.is_none();
         let t0 = crate::receivers::flat_refracted(self.light, self.ior);
-        self.receivers = Shared::of_floor(previous, floor, self.size, self.depth, t0, self.width);
+        self.receivers =
+            Shared::of_floor(previous, floor, true, self.size, self.depth, t0, self.width);
         if self.receivers.is_some() {
             self.attenuation = DVec3::ONE;
         }
