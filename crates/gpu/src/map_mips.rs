@@ -8,7 +8,7 @@
 use caustics_core::map::pyramid_levels;
 
 use crate::GpuContext;
-use crate::pass::{bind_group, compute_pipeline};
+use crate::pass::{Bind, compute_pipeline};
 use crate::shaders::passes;
 
 passes! {
@@ -115,15 +115,7 @@ impl MapMips {
         let levels = levels
             .iter()
             .map(|(fine, coarse, texture, k)| {
-                let group = bind_group(
-                    ctx,
-                    CAUSTICS_MIPS.name,
-                    &pipeline.get_bind_group_layout(0),
-                    &[
-                        wgpu::BindingResource::TextureView(fine),
-                        wgpu::BindingResource::TextureView(coarse),
-                    ],
-                );
+                let group = pipeline.bind(ctx, CAUSTICS_MIPS.name, &[fine, coarse]);
                 let size = texture
                     .size()
                     .mip_level_size(*k, wgpu::TextureDimension::D2);

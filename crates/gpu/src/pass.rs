@@ -18,33 +18,107 @@ pub fn compute_pipeline(ctx: &GpuContext, source: &PassSource) -> wgpu::ComputeP
     })
 }
 
+/// Something a bind group entry can hold: a whole buffer, a texture view, a sampler, or any
+/// [`wgpu::BindingResource`] (a buffer range).
+pub trait Binding {
+    /// The entry's resource.
+    fn resource(&self) -> wgpu::BindingResource<'_>;
+}
+
+impl<T: Binding + ?Sized> Binding for &T {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        (**self).resource()
+    }
+}
+
+impl Binding for wgpu::Buffer {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        self.as_entire_binding()
+    }
+}
+
+impl Binding for wgpu::TextureView {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        wgpu::BindingResource::TextureView(self)
+    }
+}
+
+impl Binding for wgpu::Sampler {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        wgpu::BindingResource::Sampler(self)
+    }
+}
+
+impl Binding for wgpu::BindingResource<'_> {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        self.clone()
+    }
+}
+
 /// A bind group for `layout`, binding `k` to `resources[k]`.
 pub fn bind_group(
     ctx: &GpuContext,
     label: &str,
     layout: &wgpu::BindGroupLayout,
-    resources: &[wgpu::BindingResource],
+    resources: &[&dyn Binding],
 ) -> wgpu::BindGroup {
-    let numbered = resources.iter().cloned().enumerate();
-    bind_group_at(ctx, label, layout, numbered.map(|(k, r)| (k as u32, r)))
+    let numbered = resources.iter().enumerate();
+    let entries: Vec<_> = numbered.map(|(k, &r)| (k as u32, r)).collect();
+    bind_group_at(ctx, label, layout, &entries)
 }
 
 /// A bind group for `layout` with each `(binding, resource)`.
-pub fn bind_group_at<'a>(
+pub fn bind_group_at(
     ctx: &GpuContext,
     label: &str,
     layout: &wgpu::BindGroupLayout,
-    entries: impl IntoIterator<Item = (u32, wgpu::BindingResource<'a>)>,
+    entries: &[(u32, &dyn Binding)],
 ) -> wgpu::BindGroup {
     let entries: Vec<wgpu::BindGroupEntry> = entries
-        .into_iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource })
+        .iter()
+        .map(|&(binding, r)| wgpu::BindGroupEntry {
+            binding,
+            resource: r.resource(),
+        })
         .collect();
     ctx.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
         entries: &entries,
     })
+}
+
+/// Bind groups for a pipeline's group 0, whose layout the shader implies.
+pub trait Bind {
+    /// Group 0's layout.
+    fn layout0(&self) -> wgpu::BindGroupLayout;
+
+    /// A bind group for group 0, binding `k` to `resources[k]`.
+    fn bind(&self, ctx: &GpuContext, label: &str, resources: &[&dyn Binding]) -> wgpu::BindGroup {
+        bind_group(ctx, label, &self.layout0(), resources)
+    }
+
+    /// A bind group for group 0 with each `(binding, resource)`.
+    fn bind_at(
+        &self,
+        ctx: &GpuContext,
+        label: &str,
+        entries: &[(u32, &dyn Binding)],
+    ) -> wgpu::BindGroup {
+        bind_group_at(ctx, label, &self.layout0(), entries)
+    }
+}
+
+impl Bind for wgpu::ComputePipeline {
+    fn layout0(&self) -> wgpu::BindGroupLayout {
+        self.get_bind_group_layout(0)
+    }
+}
+
+impl Bind for wgpu::RenderPipeline {
+    fn layout0(&self) -> wgpu::BindGroupLayout {
+        self.get_bind_group_layout(0)
+    }
 }
 
 /// A compute pass named `label`, timed when there is a timer.

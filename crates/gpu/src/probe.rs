@@ -2,6 +2,7 @@
 //! `caustics_light.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
+use crate::pass::Bind;
 use crate::shaders::passes;
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError};
@@ -131,36 +132,18 @@ pub fn run(
     let height_view = height.create_view(&Default::default());
     let water_patches = crate::water::patches::WaterPatches::new(ctx);
     let patches = water_patches.frame(ctx, &height_view, setup.wrap);
-    let bind = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("probe"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: waves.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: params.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 4,
-                resource: wgpu::BindingResource::TextureView(&height_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 5,
-                resource: wgpu::BindingResource::TextureView(&patches.view),
-            },
+    let bind = pipeline.bind(
+        ctx,
+        "probe",
+        &[
+            &input,
+            &output,
+            &waves,
+            &params,
+            &height_view,
+            &patches.view,
         ],
-    });
+    );
     let mut encoder = device.create_command_encoder(&Default::default());
     water_patches.encode(&patches, &mut encoder, &mut None);
     {

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use caustics_core::grid::Grid;
 use caustics_core::receivers::{ReceiverHeights, floor_texels};
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline, float_texture};
+use crate::pass::{Bind, begin_compute, compute_pipeline, float_texture};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -149,17 +149,9 @@ impl ReceiverLookup {
         });
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (d, tv, fv) = (view(deposit), view(&texels), view(&floor));
-        let bind = bind_group(
-            ctx,
-            LOOKUP.name,
-            &self.pipeline.get_bind_group_layout(0),
-            &[
-                buffer.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&d),
-                wgpu::BindingResource::TextureView(&tv),
-                wgpu::BindingResource::TextureView(&fv),
-            ],
-        );
+        let bind = self
+            .pipeline
+            .bind(ctx, LOOKUP.name, &[&buffer, &d, &tv, &fv]);
         Ok(ReceiverFrame {
             receivers: r.clone(),
             heights,

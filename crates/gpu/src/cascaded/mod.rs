@@ -36,7 +36,7 @@ use caustics_core::techniques::cascaded::{
     screen_buffer_len,
 };
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline};
 
 pub mod technique;
 use crate::shaders::passes;
@@ -340,7 +340,6 @@ impl Cascaded {
         water: &wgpu::TextureView,
         terrain: Option<&Grid>,
     ) -> Result<CascadedResources, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let res = setup.res as u32;
         let (w, h) = (setup.eye.width as u32, setup.eye.height as u32);
@@ -394,72 +393,42 @@ impl Cascaded {
         let gwater_view = gwater.create_view(&Default::default());
         let gterrain_view = gterrain.create_view(&Default::default());
         let image_view = image.create_view(&Default::default());
-        let eye_bind = bind_group(
-            ctx,
-            EYE.name,
-            &self.eye.get_bind_group_layout(0),
-            &[
-                uniforms[0].as_entire_binding(),
-                View(&terrain_view),
-                View(&eye_view),
-            ],
-        );
+        let eye_bind = self
+            .eye
+            .bind(ctx, EYE.name, &[&uniforms[0], &terrain_view, &eye_view]);
         let cascades = uniforms
             .iter()
             .map(|u| {
                 [
-                    bind_group(
-                        ctx,
-                        WATER_GBUFFER.name,
-                        &self.water.get_bind_group_layout(0),
-                        &[u.as_entire_binding(), View(water), View(&gwater_view)],
-                    ),
-                    bind_group(
+                    self.water
+                        .bind(ctx, WATER_GBUFFER.name, &[&u, water, &gwater_view]),
+                    self.terrain.bind(
                         ctx,
                         TERRAIN_GBUFFER.name,
-                        &self.terrain.get_bind_group_layout(0),
-                        &[
-                            u.as_entire_binding(),
-                            View(&terrain_view),
-                            View(&gterrain_view),
-                        ],
+                        &[&u, &terrain_view, &gterrain_view],
                     ),
-                    bind_group(
+                    self.photons.bind(
                         ctx,
                         PHOTONS.name,
-                        &self.photons.get_bind_group_layout(0),
-                        &[
-                            u.as_entire_binding(),
-                            View(&gwater_view),
-                            View(&gterrain_view),
-                            acc.as_entire_binding(),
-                            View(&eye_view),
-                        ],
+                        &[&u, &gwater_view, &gterrain_view, &acc, &eye_view],
                     ),
                 ]
             })
             .collect();
-        let compose_bind = bind_group(
+        let compose_bind = self.compose.bind(
             ctx,
             COMPOSE.name,
-            &self.compose.get_bind_group_layout(0),
-            &[
-                uniforms[0].as_entire_binding(),
-                View(&eye_view),
-                acc.as_entire_binding(),
-                View(&image_view),
-            ],
+            &[&uniforms[0], &eye_view, &acc, &image_view],
         );
         let disperse_bind = dispersed.as_ref().map(|d| {
-            bind_group(
+            self.disperse.bind(
                 ctx,
                 DISPERSE.name,
-                &self.disperse.get_bind_group_layout(0),
                 &[
-                    uniforms[0].as_entire_binding(),
-                    View(&eye_view),
-                    View(&image_view),
-                    View(&d.create_view(&Default::default())),
+                    &uniforms[0],
+                    &eye_view,
+                    &image_view,
+                    &d.create_view(&Default::default()),
                 ],
             )
         });

@@ -16,7 +16,7 @@ use super::CAMERA;
 use super::{
     CausticTriangles, CausticTrianglesUniform, GeneratorFrame, LightCubeTarget, Reconstruction,
 };
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// Mirrors `CameraPass` in `caustic_triangles/camera.wgsl`.
@@ -226,18 +226,17 @@ impl CameraRenderer {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let bind = bind_group(
+        let bind = self.pipeline.bind(
             ctx,
             "caustic-triangles camera pass",
-            &self.pipeline.get_bind_group_layout(0),
             &[
-                uniform.as_entire_binding(),
-                dm_buffer.as_entire_binding(),
-                gens_buffer.as_entire_binding(),
-                shadow.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&cube_view),
-                wgpu::BindingResource::TextureView(&floor_view),
-                image.as_entire_binding(),
+                &uniform,
+                &dm_buffer,
+                &gens_buffer,
+                &shadow,
+                &cube_view,
+                &floor_view,
+                &image,
             ],
         );
         {

@@ -4,7 +4,7 @@
 use caustics_core::techniques::caustic_triangles::cube::FAR;
 
 use super::{CausticTriangles, GeneratorFrame};
-use crate::pass::{begin_compute, begin_render, bind_group};
+use crate::pass::{Bind, begin_compute, begin_render};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// The light cube map of a point light on the GPU (paper 4, §4.2-4.3; CPU twin
@@ -80,26 +80,20 @@ impl CausticTriangles {
         frame: &GeneratorFrame,
         target: &LightCubeTarget,
     ) -> CubeBinds {
-        let cube = bind_group(
+        let cube = self.cube.bind(
             ctx,
             "caustic-triangles light cube map",
-            &self.cube.get_bind_group_layout(0),
             &[
-                frame.uniform.as_entire_binding(),
-                frame.photons.as_entire_binding(),
-                frame.irradiance.as_entire_binding(),
-                frame.pyramid.as_entire_binding(),
+                &frame.uniform,
+                &frame.photons,
+                &frame.irradiance,
+                &frame.pyramid,
             ],
         );
-        let shadow = bind_group(
+        let shadow = self.shadow.bind(
             ctx,
             "caustic-triangles light cube shadow distances",
-            &self.shadow.get_bind_group_layout(0),
-            &[
-                frame.uniform.as_entire_binding(),
-                frame.dm_buffer.as_entire_binding(),
-                target.shadow.as_entire_binding(),
-            ],
+            &[&frame.uniform, &frame.dm_buffer, &target.shadow],
         );
         CubeBinds { cube, shadow }
     }

@@ -6,7 +6,7 @@
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 
 use super::{CausticTriangles, CausticTrianglesUniform, CopyBandBuffer, Reconstruction};
-use crate::pass::{begin_compute, begin_render, bind_group};
+use crate::pass::{Bind, begin_compute, begin_render};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// One generator's resources (a glass object's, or the water surface's for the floor or a wall):
@@ -157,25 +157,15 @@ impl CausticTriangles {
             array_layer_count: Some(1),
             ..Default::default()
         });
-        let photon_bind = bind_group(
+        let photon_bind = self.photon.bind(
             ctx,
             "caustic-triangles photon tracing",
-            &self.photon.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                dm_buffer.as_entire_binding(),
-                photons.as_entire_binding(),
-            ],
+            &[&uniform, &dm_buffer, &photons],
         );
-        let irradiance_bind = bind_group(
+        let irradiance_bind = self.irradiance.bind(
             ctx,
             "caustic-triangles vertex irradiance",
-            &self.irradiance.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                photons.as_entire_binding(),
-                irradiance.as_entire_binding(),
-            ],
+            &[&uniform, &photons, &irradiance],
         );
         let (sides, offsets) = caustics_core::techniques::caustic_triangles::merge::layout(
             setup.p,
@@ -199,17 +189,10 @@ impl CausticTriangles {
                     contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
                     usage: B::UNIFORM,
                 });
-                bind_group(
+                self.pyramid.bind(
                     ctx,
                     "caustic-triangles merge pyramid",
-                    &self.pyramid.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        photons.as_entire_binding(),
-                        irradiance.as_entire_binding(),
-                        pyramid.as_entire_binding(),
-                        level.as_entire_binding(),
-                    ],
+                    &[&uniform, &photons, &irradiance, &pyramid, &level],
                 )
             })
             .collect();
@@ -218,28 +201,22 @@ impl CausticTriangles {
             contents: bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
             usage: B::STORAGE | B::INDIRECT | B::COPY_SRC,
         });
-        let triangles_bind = bind_group(
+        let triangles_bind = self.triangles.bind(
             ctx,
             "caustic-triangles triangles",
-            &self.triangles.get_bind_group_layout(0),
             &[
-                uniform.as_entire_binding(),
-                photons.as_entire_binding(),
-                irradiance.as_entire_binding(),
-                pyramid.as_entire_binding(),
-                paths.as_entire_binding(),
-                copy_band.as_entire_binding(),
+                &uniform,
+                &photons,
+                &irradiance,
+                &pyramid,
+                &paths,
+                &copy_band,
             ],
         );
-        let splat_bind = bind_group(
+        let splat_bind = self.splat.bind(
             ctx,
             "caustic-triangles splats",
-            &self.splat.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                photons.as_entire_binding(),
-                paths.as_entire_binding(),
-            ],
+            &[&uniform, &photons, &paths],
         );
         ctx.check()?;
         let texel = self.map_format.block_copy_size(None).unwrap_or(16) as u64;

@@ -13,7 +13,7 @@ use super::{
 };
 use std::sync::Arc;
 
-use crate::pass::{begin_compute, bind_group};
+use crate::pass::{Bind, begin_compute};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
@@ -225,7 +225,7 @@ impl CausticTriangles {
             contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let view = wgpu::BindingResource::TextureView(&water.heights);
+        let view = &water.heights;
         let receivers = match &ws.receivers {
             Some(r) => Some(
                 self.lookup
@@ -237,17 +237,15 @@ impl CausticTriangles {
             Some(r) => r.heights.create_view(&Default::default()),
             None => heights_texture(ctx, None)?.create_view(&Default::default()),
         };
-        let receiver_view = wgpu::BindingResource::TextureView(&heights_of_receivers);
-        let water_bind = bind_group(
+        let water_bind = self.water_photon.bind(
             ctx,
             "caustic-triangles water photons",
-            &self.water_photon.get_bind_group_layout(0),
             &[
-                water_uniform.as_entire_binding(),
-                view.clone(),
-                frame.photons.as_entire_binding(),
-                frame.paths.as_entire_binding(),
-                receiver_view.clone(),
+                &water_uniform,
+                view,
+                &frame.photons,
+                &frame.paths,
+                &heights_of_receivers,
             ],
         );
         let band_bind = ws.wrap().then(|| {
@@ -259,26 +257,13 @@ impl CausticTriangles {
                     | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
-            let bound_bind = bind_group(
-                ctx,
-                BAND_BOUND.name,
-                &self.band_bound.get_bind_group_layout(0),
-                &[
-                    water_uniform.as_entire_binding(),
-                    view.clone(),
-                    bound.as_entire_binding(),
-                ],
-            );
-            let band = bind_group(
+            let bound_bind =
+                self.band_bound
+                    .bind(ctx, BAND_BOUND.name, &[&water_uniform, view, &bound]);
+            let band = self.copy_band.bind(
                 ctx,
                 COPY_BAND.name,
-                &self.copy_band.get_bind_group_layout(0),
-                &[
-                    water_uniform.as_entire_binding(),
-                    frame.uniform.as_entire_binding(),
-                    bound.as_entire_binding(),
-                    frame.copy_band.as_entire_binding(),
-                ],
+                &[&water_uniform, &frame.uniform, &bound, &frame.copy_band],
             );
             BandPasses {
                 bound,
@@ -289,7 +274,7 @@ impl CausticTriangles {
         });
         frame.gpu_band = band_bind.is_some();
         let walls = if ws.walls {
-            Some(self.wall_frames(ctx, ws, &view, &receiver_view)?)
+            Some(self.wall_frames(ctx, ws, view, &heights_of_receivers)?)
         } else {
             None
         };
@@ -312,8 +297,8 @@ impl CausticTriangles {
         &self,
         ctx: &GpuContext,
         ws: &WaterSetup,
-        heights: &wgpu::BindingResource,
-        receiver_heights: &wgpu::BindingResource,
+        heights: &wgpu::TextureView,
+        receiver_heights: &wgpu::TextureView,
     ) -> Result<WallFrames, GpuError> {
         let f = &ws.setup.floor;
         let layout = WallMaps::for_floor_map(f.width, f.height, ws.size, ws.depth);
@@ -342,16 +327,15 @@ impl CausticTriangles {
                 contents: bytemuck::bytes_of(&WaterPhotonUniform::for_receiver(ws, Some(wall))),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
-            let water_bind = bind_group(
+            let water_bind = self.water_photon.bind(
                 ctx,
                 "caustic-triangles wall photons",
-                &self.water_photon.get_bind_group_layout(0),
                 &[
-                    water_uniform.as_entire_binding(),
-                    heights.clone(),
-                    frame.photons.as_entire_binding(),
-                    frame.paths.as_entire_binding(),
-                    receiver_heights.clone(),
+                    &water_uniform,
+                    heights,
+                    &frame.photons,
+                    &frame.paths,
+                    receiver_heights,
                 ],
             );
             walls.push(WallFrame {

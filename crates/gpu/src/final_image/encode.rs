@@ -117,7 +117,7 @@ impl FinalImageFrame {
                     ctx,
                     "water slope moments",
                     &self.slopes_layout,
-                    &[pyramid.moments.as_entire_binding()],
+                    &[&pyramid.moments],
                 );
                 self.slopes = Some(pyramid);
             }

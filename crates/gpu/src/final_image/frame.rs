@@ -5,7 +5,7 @@ use caustics_core::render::RenderOptions;
 use caustics_core::scene::{Albedo, Scene};
 
 use crate::map_mips::{MapMips, mip_chain};
-use crate::pass::bind_group;
+use crate::pass::{Bind, bind_group};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError};
 
@@ -145,7 +145,7 @@ impl FinalImage {
             ctx,
             "water slope moments",
             &self.slopes_layout,
-            &[no_slopes.as_entire_binding()],
+            &[&no_slopes],
         );
         let views = [
             view(terrain.as_ref(), &self.empty_r32),
@@ -160,24 +160,24 @@ impl FinalImage {
             "final image scene",
             &self.scene_layout,
             &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&water_view),
-                wgpu::BindingResource::TextureView(&views[0]),
-                wgpu::BindingResource::TextureView(&views[1]),
-                wgpu::BindingResource::TextureView(&views[2]),
-                objects.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[3]),
-                slab_max.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[4]),
-                wall_cols.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[5]),
+                &uniform,
+                &water_view,
+                &views[0],
+                &views[1],
+                &views[2],
+                &objects,
+                &views[3],
+                &slab_max,
+                &views[4],
+                &wall_cols,
+                &views[5],
             ],
         );
         let mesh_group = bind_group(
             ctx,
             "scene meshes",
             &self.mesh_layout,
-            &[nodes.as_entire_binding(), triangles.as_entire_binding()],
+            &[&nodes, &triangles],
         );
         let mut resources = vec![objects, nodes, triangles, wall_cols, no_slopes];
         let slab_group = match (water, &scene.water) {
@@ -194,15 +194,10 @@ impl FinalImage {
                     contents: bytemuck::bytes_of(&slab),
                     usage: wgpu::BufferUsages::UNIFORM,
                 });
-                let group = bind_group(
+                let group = self.slab_pipeline.bind(
                     ctx,
                     "final image slab",
-                    &self.slab_pipeline.get_bind_group_layout(0),
-                    &[
-                        slab_uniform.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&w.heights),
-                        slab_max.as_entire_binding(),
-                    ],
+                    &[&slab_uniform, &w.heights, &slab_max],
                 );
                 resources.push(slab_uniform);
                 Some(group)

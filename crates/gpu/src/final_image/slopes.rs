@@ -7,7 +7,7 @@
 //! floats a texel, level after level; the final image finds a level's place from the lattice
 //! alone (`slope_level` in `final_image_rough_water.wgsl`).
 
-use crate::pass::{bind_group, compute_pipeline};
+use crate::pass::{Bind, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError};
 
@@ -114,23 +114,11 @@ impl SlopePipelines {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             });
             let group = if k == 0 {
-                bind_group(
-                    ctx,
-                    WATER_SLOPES_BASE.name,
-                    &self.base.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(patches),
-                        moments.as_entire_binding(),
-                    ],
-                )
+                self.base
+                    .bind(ctx, WATER_SLOPES_BASE.name, &[&uniform, patches, &moments])
             } else {
-                bind_group(
-                    ctx,
-                    WATER_SLOPES_HALVE.name,
-                    &self.halve.get_bind_group_layout(0),
-                    &[uniform.as_entire_binding(), moments.as_entire_binding()],
-                )
+                self.halve
+                    .bind(ctx, WATER_SLOPES_HALVE.name, &[&uniform, &moments])
             };
             if k == 0 {
                 base = level;

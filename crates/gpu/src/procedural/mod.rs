@@ -20,7 +20,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
-use crate::pass::{begin_render, bind_group, pulled_pipeline};
+use crate::pass::{Bind, begin_render, pulled_pipeline};
 use crate::receivers::{ReceiverFrame, ReceiverLookup};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
@@ -341,7 +341,6 @@ impl ProceduralCaustics {
         wave: Option<GpuProceduralWave>,
         heights_view: &wgpu::TextureView,
     ) -> Result<ProceduralFrame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("procedural caustics map", w, h)?;
@@ -361,16 +360,7 @@ impl ProceduralCaustics {
         )?;
         let light_view = light.create_view(&Default::default());
         let water_bind = |pipeline: &wgpu::RenderPipeline, label: &str| {
-            bind_group(
-                ctx,
-                label,
-                &pipeline.get_bind_group_layout(0),
-                &[
-                    uniform.as_entire_binding(),
-                    View(heights_view),
-                    View(&light_view),
-                ],
-            )
+            pipeline.bind(ctx, label, &[&uniform, heights_view, &light_view])
         };
         let map = ctx.texture_2d(
             "procedural map",
@@ -431,12 +421,8 @@ impl ProceduralCaustics {
                     .collect();
                 let downsample = (1..mips as usize)
                     .map(|k| {
-                        bind_group(
-                            ctx,
-                            "procedural downsample",
-                            &self.downsample.get_bind_group_layout(0),
-                            &[View(&levels[k - 1])],
-                        )
+                        self.downsample
+                            .bind(ctx, "procedural downsample", &[&levels[k - 1]])
                     })
                     .collect();
                 let address = if setup.wrap {
@@ -457,15 +443,11 @@ impl ProceduralCaustics {
                     ..Default::default()
                 });
                 let all = target.create_view(&Default::default());
-                let resample = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("procedural resample"),
-                    layout: &self.resample.get_bind_group_layout(0),
-                    entries: &[
-                        entry(0, uniform.as_entire_binding()),
-                        entry(3, View(&all)),
-                        entry(4, wgpu::BindingResource::Sampler(&sampler)),
-                    ],
-                });
+                let resample = self.resample.bind_at(
+                    ctx,
+                    "procedural resample",
+                    &[(0, &uniform), (3, &all), (4, &sampler)],
+                );
                 FramePasses::Texture {
                     target: water_bind(&self.target, "procedural target"),
                     levels,
@@ -607,8 +589,4 @@ impl ProceduralCaustics {
         ctx.submit_timed(encoder, timer.as_deref());
         ctx.read_map(texture, setup.size)
     }
-}
-
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
 }

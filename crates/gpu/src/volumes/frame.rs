@@ -8,7 +8,7 @@ use glam::DVec3;
 
 use super::{CameraUniform, PassUniform, ViewOptions, Volumes, VolumesUniform};
 use crate::bvh::{FlatBvhs, GpuBvhNode, GpuBvhTriangle};
-use crate::pass::bind_group;
+use crate::pass::{Bind, bind_group};
 use crate::receivers::{ReceiverFrame, ReceiversUniform};
 use crate::technique::WallsOutput;
 use crate::{GpuContext, GpuError, WaterTextures};
@@ -198,7 +198,6 @@ impl Volumes {
         wrap: bool,
         view: Option<&ViewOptions>,
     ) -> Result<VolumesFrame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::BufferUsages as B;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
@@ -231,7 +230,7 @@ impl Volumes {
             ctx,
             "volumes BVH",
             &self.depth.get_bind_group_layout(1),
-            &[node_buf.as_entire_binding(), tri_buf.as_entire_binding()],
+            &[&node_buf, &tri_buf],
         );
         let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("volumes uniform"),
@@ -260,15 +259,10 @@ impl Volumes {
                 let res = view.res as u32;
                 let tex = depth_texture("volumes shadow map", res)?;
                 let u = pass_uniform(PassUniform::shadow(view, roots.len()));
-                let bind = bind_group(
+                let bind = self.depth.bind(
                     ctx,
                     "volumes shadow map",
-                    &self.depth.get_bind_group_layout(0),
-                    &[
-                        u.as_entire_binding(),
-                        root_buf.as_entire_binding(),
-                        View(&tex.create_view(&Default::default())),
-                    ],
+                    &[&u, &root_buf, &tex.create_view(&Default::default())],
                 );
                 bytes += (res * res) as u64 * 16;
                 (tex.clone(), Some((tex, bind, u)))
@@ -286,16 +280,9 @@ impl Volumes {
             mapped_at_creation: false,
         });
         bytes += water.size();
-        let water_bind = bind_group(
-            ctx,
-            "volumes water",
-            &self.water.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                View(&heights.heights),
-                water.as_entire_binding(),
-            ],
-        );
+        let water_bind =
+            self.water
+                .bind(ctx, "volumes water", &[&uniform, &heights.heights, &water]);
         let map_texture = |label: &str, w: u32, h: u32| {
             ctx.texture_2d(
                 label,
@@ -313,16 +300,8 @@ impl Volumes {
         bytes += (w * h) as u64 * texel_bytes;
         let (floor_bind, receivers) = match &setup.receivers {
             None => (
-                bind_group(
-                    ctx,
-                    "volumes floor",
-                    &self.floor.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&shadow_view),
-                    ],
-                ),
+                self.floor
+                    .bind(ctx, "volumes floor", &[&uniform, &water, &shadow_view]),
                 None,
             ),
             Some(r) => {
@@ -340,28 +319,21 @@ impl Volumes {
                 });
                 bytes += hits.size() + frame.bytes();
                 let heights_view = frame.heights.create_view(&Default::default());
-                let meet_bind = bind_group(
+                let meet_bind = self.meet.bind(
                     ctx,
                     "volumes meet",
-                    &self.meet.get_bind_group_layout(0),
-                    &[
-                        r_uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&heights_view),
-                        hits.as_entire_binding(),
-                    ],
+                    &[&r_uniform, &water, &heights_view, &hits],
                 );
-                let floor_bind = bind_group(
+                let floor_bind = self.floor_receivers.bind(
                     ctx,
                     "volumes floor over receivers",
-                    &self.floor_receivers.get_bind_group_layout(0),
                     &[
-                        uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&shadow_view),
-                        r_uniform.as_entire_binding(),
-                        View(&heights_view),
-                        hits.as_entire_binding(),
+                        &uniform,
+                        &water,
+                        &shadow_view,
+                        &r_uniform,
+                        &heights_view,
+                        &hits,
                     ],
                 );
                 let receivers = FrameReceivers {
@@ -397,16 +369,9 @@ impl Volumes {
                         })
                     })
                     .collect();
-                let bind = bind_group(
-                    ctx,
-                    "volumes walls",
-                    &self.walls.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&shadow_view),
-                    ],
-                );
+                let bind = self
+                    .walls
+                    .bind(ctx, "volumes walls", &[&uniform, &water, &shadow_view]);
                 Some(WallsFrame {
                     texture,
                     layout,
@@ -451,38 +416,23 @@ impl Volumes {
             let caustics_view = caustics.create_view(&Default::default());
             let diffuse = depth_texture("volumes diffuse map", res)?;
             bytes += (res * res) as u64 * (16 + texel_bytes);
-            let depth_bind = bind_group(
-                ctx,
-                "volumes depth",
-                &self.depth.get_bind_group_layout(0),
-                &[
-                    u.as_entire_binding(),
-                    root_buf.as_entire_binding(),
-                    View(&depth_view),
-                ],
-            );
-            let slices_bind = bind_group(
+            let depth_bind = self
+                .depth
+                .bind(ctx, "volumes depth", &[&u, &root_buf, &depth_view]);
+            let slices_bind = self.slices.bind(
                 ctx,
                 "volumes slices",
-                &self.slices.get_bind_group_layout(0),
-                &[
-                    uniform.as_entire_binding(),
-                    u.as_entire_binding(),
-                    water.as_entire_binding(),
-                    View(&depth_view),
-                    View(&shadow_view),
-                ],
+                &[&uniform, &u, &water, &depth_view, &shadow_view],
             );
-            let shade_bind = bind_group(
+            let shade_bind = self.shade.bind(
                 ctx,
                 "volumes shade",
-                &self.shade.get_bind_group_layout(0),
                 &[
-                    u.as_entire_binding(),
-                    View(&depth_view),
-                    View(&caustics_view),
-                    View(&diffuse.create_view(&Default::default())),
-                    View(&layer_view(&images, k as u32)),
+                    &u,
+                    &depth_view,
+                    &caustics_view,
+                    &diffuse.create_view(&Default::default()),
+                    &layer_view(&images, k as u32),
                 ],
             );
             let Some(vertices) = slice_vertices(o) else {
@@ -553,20 +503,19 @@ impl Volumes {
                         &stand_in
                     }
                 };
-                let bind = bind_group(
+                let bind = self.view.bind(
                     ctx,
                     "volumes view",
-                    &self.view.get_bind_group_layout(0),
                     &[
-                        uniform.as_entire_binding(),
-                        camera.as_entire_binding(),
-                        View(&heights.heights),
-                        object_buf.as_entire_binding(),
-                        View(&array_view(&depths)),
-                        View(&array_view(&images)),
-                        View(&floor_map.create_view(&Default::default())),
-                        View(&image.create_view(&Default::default())),
-                        View(&array_view(walls_texture)),
+                        &uniform,
+                        &camera,
+                        &heights.heights,
+                        &object_buf,
+                        &array_view(&depths),
+                        &array_view(&images),
+                        &floor_map.create_view(&Default::default()),
+                        &image.create_view(&Default::default()),
+                        &array_view(walls_texture),
                     ],
                 );
                 Some((image, bind, object_buf))

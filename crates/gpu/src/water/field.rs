@@ -32,7 +32,7 @@ use caustics_core::water::waves::{Wave, Waves};
 use super::ocean::GpuOcean;
 use super::ripple::GpuRipples;
 use super::{GpuProceduralWave, GpuSineWave};
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, Binding, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 
@@ -247,35 +247,31 @@ impl GpuWater {
         );
         let view = texture.create_view(&Default::default());
         let layout = self.pipeline.get_bind_group_layout(0);
-        let group = |input: wgpu::BindingResource| {
+        let group = |input: &dyn Binding| {
             bind_group(
                 ctx,
                 "water field",
                 &layout,
-                &[
-                    self.field_buffer.as_entire_binding(),
-                    input,
-                    wgpu::BindingResource::TextureView(&view),
-                ],
+                &[&self.field_buffer, input, &view],
             )
         };
         let texture_view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let groups = match &self.source {
-            Source::Waves { terms, .. } => vec![group(terms.as_entire_binding())],
-            Source::Procedural { wave, .. } => vec![group(wave.as_entire_binding())],
+            Source::Waves { terms, .. } => vec![group(terms)],
+            Source::Procedural { wave, .. } => vec![group(wave)],
             Source::Ocean { ocean, .. } => {
                 let v = texture_view(ocean.height_slopes_texture());
-                vec![group(wgpu::BindingResource::TextureView(&v))]
+                vec![group(&v)]
             }
             Source::Ripples(r) => r
                 .sim
                 .textures()
                 .iter()
-                .map(|t| group(wgpu::BindingResource::TextureView(&texture_view(t))))
+                .map(|t| group(&texture_view(t)))
                 .collect(),
             Source::HeightField { texture } => {
                 let v = texture_view(texture);
-                vec![group(wgpu::BindingResource::TextureView(&v))]
+                vec![group(&v)]
             }
         };
         ctx.check()?;
@@ -437,15 +433,7 @@ fn ripple_source(
         .textures()
         .each_ref()
         .map(|t| t.create_view(&Default::default()));
-    let clear_group = bind_group(
-        ctx,
-        "ripple clear",
-        &clear_pipeline.get_bind_group_layout(0),
-        &[
-            wgpu::BindingResource::TextureView(&views[0]),
-            wgpu::BindingResource::TextureView(&views[1]),
-        ],
-    );
+    let clear_group = clear_pipeline.bind(ctx, "ripple clear", &[&views[0], &views[1]]);
     let mut r = RippleSource {
         sim,
         params: params.clone(),

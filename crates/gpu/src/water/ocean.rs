@@ -19,7 +19,7 @@
 
 use caustics_core::water::ocean::Ocean;
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, Binding, begin_compute, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::timing::GpuTimer;
 use crate::{GpuContext, GpuError};
@@ -145,17 +145,7 @@ impl GpuOcean {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let spectrum = Pass::new(
-            ctx,
-            &OCEAN_SPECTRUM,
-            &[
-                params.as_entire_binding(),
-                h0.as_entire_binding(),
-                omega.as_entire_binding(),
-                roots.as_entire_binding(),
-                ping.as_entire_binding(),
-            ],
-        );
+        let spectrum = Pass::new(ctx, &OCEAN_SPECTRUM, &[&params, &h0, &omega, &roots, &ping]);
 
         // One uniform slot per stage, each at the device's uniform offset alignment; stage s reads
         // ping and writes pong when s is even, the other way round when odd. There are 2 log2 N
@@ -188,19 +178,18 @@ impl GpuOcean {
                 } else {
                     (&pong, &ping)
                 };
-                bind_group(
+                fft_pipeline.bind(
                     ctx,
                     "ocean FFT stage",
-                    &fft_pipeline.get_bind_group_layout(0),
                     &[
-                        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        &wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &table,
                             offset: s as u64 * stride,
                             size: wgpu::BufferSize::new(std::mem::size_of::<FftStage>() as u64),
                         }),
-                        roots.as_entire_binding(),
-                        src.as_entire_binding(),
-                        dst.as_entire_binding(),
+                        &roots,
+                        &src,
+                        &dst,
                     ],
                 )
             })
@@ -215,14 +204,7 @@ impl GpuOcean {
                 | wgpu::TextureUsages::COPY_SRC,
         );
         let view = texture.create_view(&Default::default());
-        let output = Pass::new(
-            ctx,
-            &OCEAN_OUTPUT,
-            &[
-                ping.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&view),
-            ],
-        );
+        let output = Pass::new(ctx, &OCEAN_OUTPUT, &[&ping, &view]);
         ctx.check()?;
         Ok(GpuOcean {
             n,
@@ -321,14 +303,9 @@ impl GpuOcean {
 }
 
 impl Pass {
-    fn new(ctx: &GpuContext, source: &PassSource, entries: &[wgpu::BindingResource]) -> Self {
+    fn new(ctx: &GpuContext, source: &PassSource, entries: &[&dyn Binding]) -> Self {
         let pipeline = compute_pipeline(ctx, source);
-        let bind = bind_group(
-            ctx,
-            source.name,
-            &pipeline.get_bind_group_layout(0),
-            entries,
-        );
+        let bind = pipeline.bind(ctx, source.name, entries);
         Pass { pipeline, bind }
     }
 

@@ -5,7 +5,7 @@
 //! spline on central differences, so the surface is the same (the CPU twins keep sampling their
 //! grids bicubically). What it saves the passes that sample the water: docs/benchmarks.md.
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuTimer};
 
@@ -73,16 +73,9 @@ impl WaterPatches {
             contents: bytemuck::bytes_of(&PatchesUniform::new(wrap)),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let bind = bind_group(
-            ctx,
-            "water patches",
-            &self.pipeline.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(heights),
-                wgpu::BindingResource::TextureView(&view),
-            ],
-        );
+        let bind = self
+            .pipeline
+            .bind(ctx, "water patches", &[&uniform, heights, &view]);
         Patches {
             view,
             uniform,

@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -129,15 +129,10 @@ impl GpuRipples {
         });
         let step_pipeline = compute_pipeline(ctx, &RIPPLE_STEP);
         let step_group = |c: usize| {
-            bind_group(
+            step_pipeline.bind(
                 ctx,
                 "ripple step",
-                &step_pipeline.get_bind_group_layout(0),
-                &[
-                    step_params.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(&views[c]),
-                    wgpu::BindingResource::TextureView(&views[1 - c]),
-                ],
+                &[&step_params, &views[c], &views[1 - c]],
             )
         };
         let step_groups = [step_group(0), step_group(1)];
@@ -149,16 +144,8 @@ impl GpuRipples {
             mapped_at_creation: false,
         });
         let drop_pipeline = compute_pipeline(ctx, &RIPPLE_DROP);
-        let drop_group = bind_group(
-            ctx,
-            "ripple drop",
-            &drop_pipeline.get_bind_group_layout(0),
-            &[
-                drop_params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[0]),
-                wgpu::BindingResource::TextureView(&views[1]),
-            ],
-        );
+        let drop_group =
+            drop_pipeline.bind(ctx, "ripple drop", &[&drop_params, &views[0], &views[1]]);
         let drop_bytes = std::mem::size_of::<RippleDrop>() as u64;
         let queued_stride =
             drop_bytes.next_multiple_of(ctx.limits().min_uniform_buffer_offset_alignment as u64);
@@ -170,18 +157,17 @@ impl GpuRipples {
         });
         let queued_groups = (0..DROPS_PER_ENCODE as u64)
             .map(|slot| {
-                bind_group(
+                drop_pipeline.bind(
                     ctx,
                     "ripple queued drop",
-                    &drop_pipeline.get_bind_group_layout(0),
                     &[
-                        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        &wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &queued_params,
                             offset: slot * queued_stride,
                             size: wgpu::BufferSize::new(drop_bytes),
                         }),
-                        wgpu::BindingResource::TextureView(&views[0]),
-                        wgpu::BindingResource::TextureView(&views[1]),
+                        &views[0],
+                        &views[1],
                     ],
                 )
             })

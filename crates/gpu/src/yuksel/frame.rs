@@ -6,7 +6,7 @@ use caustics_core::grid::Grid;
 use caustics_core::techniques::yuksel::YukselSetup;
 
 use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
-use crate::pass::{bind_group, bind_group_at};
+use crate::pass::{Bind, Binding};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
@@ -137,7 +137,6 @@ impl Yuksel {
         water: &WaterTextures,
         variant: Variant,
     ) -> Result<Frame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         // Sized for the largest region the region pass may choose.
@@ -203,26 +202,14 @@ impl Yuksel {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let bound_bind = bind_group(
+        let bound_bind = self.region_bound.bind(
             ctx,
             "yuksel region bound",
-            &self.region_bound.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                View(heights_view),
-                bound.as_entire_binding(),
-            ],
+            &[&uniform, heights_view, &bound],
         );
-        let region_bind = bind_group(
-            ctx,
-            "yuksel region",
-            &self.region.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                bound.as_entire_binding(),
-                region.as_entire_binding(),
-            ],
-        );
+        let region_bind = self
+            .region
+            .bind(ctx, "yuksel region", &[&uniform, &bound, &region]);
         let heights_size = heights_view.texture().size();
         let water_patches = self.patches.frame(ctx, heights_view, setup.wrap);
         let patches = &water_patches.view;
@@ -245,7 +232,7 @@ impl Yuksel {
             None => heights_texture(ctx, None)?.create_view(&Default::default()),
         };
         let with_receivers =
-            |label, pipeline: &wgpu::ComputePipeline, resources: &[wgpu::BindingResource]| {
+            |label, pipeline: &wgpu::ComputePipeline, resources: &[&dyn Binding]| {
                 bind_with_receivers(ctx, label, pipeline, resources, &receiver_heights)
             };
         let mut bytes =
@@ -281,29 +268,17 @@ impl Yuksel {
                     with_receivers(
                         label,
                         pipeline,
-                        &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            sums.as_entire_binding(),
-                            region.as_entire_binding(),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
-                        ],
+                        &[&uniform, patches, &sums, &region, &fill_args, &fill_list],
                     )
                 };
                 let binds = [
                     with("yuksel scatter tiers", tier),
                     with("yuksel scatter fill", fill),
                     // The resolve reads neither the heights (1) nor the region (3).
-                    bind_group_at(
+                    resolve.bind_at(
                         ctx,
                         "yuksel scatter resolve",
-                        &resolve.get_bind_group_layout(0),
-                        [
-                            (0, uniform.as_entire_binding()),
-                            (2, sums.as_entire_binding()),
-                            (4, View(&map_view)),
-                        ],
+                        &[(0, &uniform), (2, &sums), (4, &map_view)],
                     ),
                 ];
                 FramePasses::Scatter { sums, binds }
@@ -352,39 +327,27 @@ impl Yuksel {
                         "yuksel pre-pass",
                         &self.prepass,
                         &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            View(&extents_view),
-                            View(&tiers_view),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
+                            &uniform,
+                            patches,
+                            &pre_view,
+                            &region,
+                            &extents_view,
+                            &tiers_view,
+                            &fill_args,
+                            &fill_list,
                         ],
                     ),
                     with_receivers(
                         "yuksel pre-pass fill",
                         &self.prepass_fill,
                         &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
+                            &uniform, patches, &pre_view, &region, &fill_args, &fill_list,
                         ],
                     ),
-                    bind_group(
+                    self.prepass_span.bind(
                         ctx,
                         "yuksel pre-pass span",
-                        &self.prepass_span.get_bind_group_layout(0),
-                        &[
-                            uniform.as_entire_binding(),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            View(&tiers_view),
-                            View(&extents_view),
-                        ],
+                        &[&uniform, &pre_view, &region, &tiers_view, &extents_view],
                     ),
                 ];
                 let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
@@ -403,16 +366,10 @@ impl Yuksel {
                         let count = per_draw.min(layers - first);
                         let pipeline = self.pass1_pipeline(ctx, count);
                         let draw_uniform = uniform_for(4 * first, phase);
-                        let bind = bind_group(
+                        let bind = pipeline.bind(
                             ctx,
                             "yuksel pass 1",
-                            &pipeline.get_bind_group_layout(0),
-                            &[
-                                draw_uniform.as_entire_binding(),
-                                View(&pre_view),
-                                region.as_entire_binding(),
-                                View(&extents_view),
-                            ],
+                            &[&draw_uniform, &pre_view, &region, &extents_view],
                         );
                         let views = (first..first + count)
                             .map(|layer| {
@@ -428,15 +385,10 @@ impl Yuksel {
                         first += count;
                     }
                     let pass2_uniform = uniform_for(0, phase);
-                    let pass2 = bind_group(
+                    let pass2 = self.pass2.bind(
                         ctx,
                         "yuksel pass 2",
-                        &self.pass2.get_bind_group_layout(0),
-                        &[
-                            pass2_uniform.as_entire_binding(),
-                            View(&channels_view),
-                            region.as_entire_binding(),
-                        ],
+                        &[&pass2_uniform, &channels_view, &region],
                     );
                     phases.push(Phase { draws, pass2 });
                 }
@@ -475,14 +427,12 @@ fn bind_with_receivers(
     ctx: &GpuContext,
     label: &str,
     pipeline: &wgpu::ComputePipeline,
-    resources: &[wgpu::BindingResource],
+    resources: &[&dyn Binding],
     receivers: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
-    let numbered = resources.iter().cloned().enumerate();
-    let entries = numbered
-        .map(|(k, r)| (k as u32, r))
-        .chain([(8, wgpu::BindingResource::TextureView(receivers))]);
-    bind_group_at(ctx, label, &pipeline.get_bind_group_layout(0), entries)
+    let numbered = resources.iter().enumerate().map(|(k, &r)| (k as u32, r));
+    let entries: Vec<_> = numbered.chain([(8, receivers as &dyn Binding)]).collect();
+    pipeline.bind_at(ctx, label, &entries)
 }
 
 /// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has
