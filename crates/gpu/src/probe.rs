@@ -6,6 +6,7 @@ use crate::pass::Bind;
 use crate::shaders::passes;
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError};
+use wgpu::BufferUsages as B;
 
 passes! {
     PROBE = "probe", "probe.wgsl";
@@ -94,28 +95,19 @@ pub fn run(
         compilation_options: Default::default(),
         cache: None,
     });
-    let input = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe inputs"),
-        contents: bytemuck::cast_slice(inputs),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let output = ctx.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("probe outputs"),
-        size: (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
+    let input = ctx.buffer_init("probe inputs", bytemuck::cast_slice(inputs), B::STORAGE);
+    let output = ctx.buffer(
+        "probe outputs",
+        (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
+        B::STORAGE | B::COPY_SRC,
+    );
     // A storage binding may not be empty: keep one zero wave when there are none.
     let waves: Vec<GpuSineWave> = if setup.waves.is_empty() {
         vec![GpuSineWave::default()]
     } else {
         setup.waves.to_vec()
     };
-    let waves = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe waves"),
-        contents: bytemuck::cast_slice(&waves),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
+    let waves = ctx.buffer_init("probe waves", bytemuck::cast_slice(&waves), B::STORAGE);
     let params = ProbeParams {
         procedural: setup.procedural,
         wave_count: setup.waves.len() as u32,
@@ -123,11 +115,7 @@ pub fn run(
         wrap: setup.wrap as u32,
         _pad: 0,
     };
-    let params = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe params"),
-        contents: bytemuck::bytes_of(&params),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
+    let params = ctx.uniform("probe params", &params);
     let height = ctx.upload_grid("probe height field", setup.grid)?;
     let height_view = height.create_view(&Default::default());
     let water_patches = crate::water::patches::WaterPatches::new(ctx);

@@ -142,11 +142,7 @@ impl ReceiverLookup {
             floor: [r.size as f32, wrap as u32 as f32, 0.0, 0.0],
             absorption: absorption.as_vec3().extend(0.0).to_array(),
         };
-        let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(LOOKUP.name),
-            contents: bytemuck::bytes_of(&uniform),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let buffer = ctx.uniform(LOOKUP.name, &uniform);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (d, tv, fv) = (view(deposit), view(&texels), view(&floor));
         let bind = self

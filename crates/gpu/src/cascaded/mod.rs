@@ -41,6 +41,7 @@ use crate::pass::{Bind, begin_compute, compute_pipeline};
 pub mod technique;
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
+use wgpu::BufferUsages as B;
 
 passes! {
     EYE = "cascaded eye depth", "cascaded/eye.wgsl";
@@ -366,14 +367,11 @@ impl Cascaded {
         let image = ctx.texture_2d("cascaded image", (w, h, 1), f32x4, storage);
         let dispersed = (setup.params.dispersion == Dispersion::Post)
             .then(|| ctx.texture_2d("cascaded dispersed image", (w, h, 1), f32x4, storage));
-        let acc = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cascaded screen-space caustic maps"),
-            size: acc_bytes,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let acc = ctx.buffer(
+            "cascaded screen-space caustic maps",
+            acc_bytes,
+            B::STORAGE | B::COPY_SRC | B::COPY_DST,
+        );
         let terrain_grid = match (terrain, setup.terrain_range) {
             (Some(g), Some(_)) => g.clone(),
             _ => Grid::new(1, 1),
@@ -381,13 +379,7 @@ impl Cascaded {
         let terrain_tex = ctx.upload_grid("cascaded terrain heights", &terrain_grid)?;
         let terrain_view = terrain_tex.create_view(&Default::default());
         let uniforms: Vec<wgpu::Buffer> = (0..CASCADES)
-            .map(|k| {
-                ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("cascaded uniform"),
-                    contents: bytemuck::bytes_of(&CascadedUniform::new(setup, k)),
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                })
-            })
+            .map(|k| ctx.uniform("cascaded uniform", &CascadedUniform::new(setup, k)))
             .collect();
         let eye_view = eye.create_view(&Default::default());
         let gwater_view = gwater.create_view(&Default::default());

@@ -18,6 +18,7 @@ use super::{
 };
 use crate::pass::{Bind, begin_compute, compute_pipeline};
 use crate::{GpuContext, GpuError, GpuTimer};
+use wgpu::BufferUsages as B;
 
 /// Mirrors `CameraPass` in `caustic_triangles/camera.wgsl`.
 #[repr(C)]
@@ -123,16 +124,16 @@ impl CameraRenderer {
             "caustic-triangles distance maps",
             dm_texels.len() as u64 * 16,
         )?;
-        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles camera distance maps"),
-            contents: bytemuck::cast_slice(&dm_texels),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
-        let gens_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles camera generators"),
-            contents: bytemuck::cast_slice(&uniforms),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let dm_buffer = ctx.buffer_init(
+            "caustic-triangles camera distance maps",
+            bytemuck::cast_slice(&dm_texels),
+            B::STORAGE,
+        );
+        let gens_buffer = ctx.buffer_init(
+            "caustic-triangles camera generators",
+            bytemuck::cast_slice(&uniforms),
+            B::STORAGE,
+        );
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         for frame in &frames {
             let p = frame.setup.p as u32;
@@ -191,12 +192,7 @@ impl CameraRenderer {
                     );
                 }
                 stand_in_map = one_texel("caustic-triangles light cube stand-in");
-                let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("caustic-triangles shadow stand-in"),
-                    size: 16,
-                    usage: wgpu::BufferUsages::STORAGE,
-                    mapped_at_creation: false,
-                });
+                let shadow = ctx.buffer("caustic-triangles shadow stand-in", 16, B::STORAGE);
                 let f = &first.0.floor;
                 (
                     stand_in_map.create_view(&Default::default()),
@@ -215,17 +211,12 @@ impl CameraRenderer {
             cube_res,
             map_size,
         );
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles camera uniform"),
-            contents: bytemuck::bytes_of(&uniform),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let image = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles camera image"),
-            size: w as u64 * h as u64 * 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let uniform = ctx.uniform("caustic-triangles camera uniform", &uniform);
+        let image = ctx.buffer(
+            "caustic-triangles camera image",
+            w as u64 * h as u64 * 16,
+            B::STORAGE | B::COPY_SRC,
+        );
         let bind = self.pipeline.bind(
             ctx,
             "caustic-triangles camera pass",

@@ -6,6 +6,7 @@ use caustics_core::techniques::caustic_triangles::cube::FAR;
 use super::{CausticTriangles, GeneratorFrame};
 use crate::pass::{Bind, begin_compute, begin_render};
 use crate::{GpuContext, GpuError, GpuTimer};
+use wgpu::BufferUsages as B;
 
 /// The light cube map of a point light on the GPU (paper 4, §4.2-4.3; CPU twin
 /// `caustics_core::techniques::caustic_triangles::cube`): the six `C x C` faces stacked in one
@@ -55,14 +56,11 @@ impl CausticTriangles {
                 | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         let view = texture.create_view(&Default::default());
-        let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles light cube shadow distances"),
-            size: n * 4,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let shadow = ctx.buffer(
+            "caustic-triangles light cube shadow distances",
+            n * 4,
+            B::STORAGE | B::COPY_DST | B::COPY_SRC,
+        );
         ctx.check()?;
         Ok(LightCubeTarget {
             resolution,

@@ -96,34 +96,30 @@ impl CausticTriangles {
         let dm_bytes = dm.texels.len() as u64 * 16;
         ctx.check_buffer_size("caustic-triangles distance map", dm_bytes)?;
         ctx.check_buffer_size("caustic-triangles photon image", p * p * 16)?;
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles uniform"),
-            contents: bytemuck::bytes_of(&CausticTrianglesUniform::new(setup, dm)),
-            usage: B::UNIFORM | B::COPY_DST,
-        });
-        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles distance map"),
-            contents: bytemuck::cast_slice(&dm.texels),
-            usage: B::STORAGE | B::COPY_DST,
-        });
-        let photons = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles photon image"),
-            size: p * p * 16,
-            usage: B::STORAGE | B::COPY_SRC | B::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let paths = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles photon path lengths"),
-            size: p * p * 4,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let irradiance = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles vertex irradiance"),
-            size: p * p * 4,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let uniform = ctx.uniform(
+            "caustic-triangles uniform",
+            &CausticTrianglesUniform::new(setup, dm),
+        );
+        let dm_buffer = ctx.buffer_init(
+            "caustic-triangles distance map",
+            bytemuck::cast_slice(&dm.texels),
+            B::STORAGE | B::COPY_DST,
+        );
+        let photons = ctx.buffer(
+            "caustic-triangles photon image",
+            p * p * 16,
+            B::STORAGE | B::COPY_SRC | B::COPY_DST,
+        );
+        let paths = ctx.buffer(
+            "caustic-triangles photon path lengths",
+            p * p * 4,
+            B::STORAGE | B::COPY_SRC,
+        );
+        let irradiance = ctx.buffer(
+            "caustic-triangles vertex irradiance",
+            p * p * 4,
+            B::STORAGE | B::COPY_SRC,
+        );
         let own_map = map.is_none();
         let layer = map.map_or(0, |m| m.1);
         let map = match map.map(|m| m.0) {
@@ -176,19 +172,18 @@ impl CausticTriangles {
             "caustic-triangles merge pyramid",
             pyramid_texels.max(1) * 16,
         )?;
-        let pyramid = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles merge pyramid"),
-            size: pyramid_texels.max(1) * 16,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let pyramid = ctx.buffer(
+            "caustic-triangles merge pyramid",
+            pyramid_texels.max(1) * 16,
+            B::STORAGE | B::COPY_SRC,
+        );
         let pyramid_binds = (0..=setup.merge_levels)
             .map(|k| {
-                let level = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("caustic-triangles merge level"),
-                    contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
-                    usage: B::UNIFORM,
-                });
+                let level = ctx.buffer_init(
+                    "caustic-triangles merge level",
+                    bytemuck::cast_slice(&[k, 0u32, 0, 0]),
+                    B::UNIFORM,
+                );
                 self.pyramid.bind(
                     ctx,
                     "caustic-triangles merge pyramid",
@@ -196,11 +191,11 @@ impl CausticTriangles {
                 )
             })
             .collect();
-        let copy_band = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles copy band"),
-            contents: bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
-            usage: B::STORAGE | B::INDIRECT | B::COPY_SRC,
-        });
+        let copy_band = ctx.buffer_init(
+            "caustic-triangles copy band",
+            bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
+            B::STORAGE | B::INDIRECT | B::COPY_SRC,
+        );
         let triangles_bind = self.triangles.bind(
             ctx,
             "caustic-triangles triangles",

@@ -16,6 +16,7 @@ use std::sync::Arc;
 use crate::pass::{Bind, begin_compute};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+use wgpu::BufferUsages as B;
 
 /// Tiling water's copy band on the GPU: the bound pass's buffer and bind group, the band pass's, and
 /// the height grid the bound pass covers.
@@ -220,11 +221,10 @@ impl CausticTriangles {
         water: &WaterTextures,
     ) -> Result<WaterFrame, GpuError> {
         let mut frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
-        let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles water photons"),
-            contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let water_uniform = ctx.uniform(
+            "caustic-triangles water photons",
+            &WaterPhotonUniform::new(ws),
+        );
         let view = &water.heights;
         let receivers = match &ws.receivers {
             Some(r) => Some(
@@ -249,14 +249,7 @@ impl CausticTriangles {
             ],
         );
         let band_bind = ws.wrap().then(|| {
-            let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(BAND_BOUND.name),
-                size: 16,
-                usage: wgpu::BufferUsages::STORAGE
-                    | wgpu::BufferUsages::COPY_DST
-                    | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
+            let bound = ctx.buffer(BAND_BOUND.name, 16, B::STORAGE | B::COPY_DST | B::COPY_SRC);
             let bound_bind =
                 self.band_bound
                     .bind(ctx, BAND_BOUND.name, &[&water_uniform, view, &bound]);
@@ -322,11 +315,10 @@ impl CausticTriangles {
                 &no_distance_map(),
                 Some((&texture, wall.index() as u32)),
             )?;
-            let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles wall photons"),
-                contents: bytemuck::bytes_of(&WaterPhotonUniform::for_receiver(ws, Some(wall))),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+            let water_uniform = ctx.uniform(
+                "caustic-triangles wall photons",
+                &WaterPhotonUniform::for_receiver(ws, Some(wall)),
+            );
             let water_bind = self.water_photon.bind(
                 ctx,
                 "caustic-triangles wall photons",

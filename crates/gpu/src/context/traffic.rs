@@ -154,6 +154,42 @@ impl GpuContext {
         self.device.create_buffer(desc)
     }
 
+    /// A buffer of `size` bytes, not mapped, counted.
+    pub fn buffer(&self, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        self.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// A buffer holding `contents`, counted as [`create_buffer_init`](Self::create_buffer_init).
+    pub fn buffer_init(
+        &self,
+        label: &str,
+        contents: &[u8],
+        usage: wgpu::BufferUsages,
+    ) -> wgpu::Buffer {
+        self.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    }
+
+    /// A uniform buffer (also a copy destination, to be rewritten) holding `value`.
+    pub fn uniform<T: bytemuck::Pod>(&self, label: &str, value: &T) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        self.buffer_init(label, bytemuck::bytes_of(value), usage)
+    }
+
+    /// A uniform buffer (a copy destination) the size of one `T`, to be written before use.
+    pub fn uniform_buffer<T>(&self, label: &str) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        self.buffer(label, std::mem::size_of::<T>() as u64, usage)
+    }
+
     /// A buffer created with its contents (counted as uploaded bytes).
     pub fn create_buffer_init(&self, desc: &wgpu::util::BufferInitDescriptor) -> wgpu::Buffer {
         Traffic::add(&self.traffic.buffers, 1);

@@ -13,6 +13,7 @@ use super::resources::{rgba32, storage_buffer, walls_view};
 use super::upload::Lighting;
 use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUniform, meshes};
 use crate::pass::float_texture;
+use wgpu::BufferUsages as B;
 
 impl FinalImage {
     /// The final image of `scene` at its camera's size, every resource built here once: the
@@ -100,20 +101,12 @@ impl FinalImage {
         let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
         let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.trees.nodes)?;
         let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.trees.triangles)?;
-        let uniform = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image uniform"),
-            size: std::mem::size_of::<FinalImageUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let slab_max = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image slab bounds"),
-            size: 8,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let uniform = ctx.uniform_buffer::<FinalImageUniform>("final image uniform");
+        let slab_max = ctx.buffer(
+            "final image slab bounds",
+            8,
+            B::STORAGE | B::COPY_DST | B::COPY_SRC,
+        );
         let output = ctx.texture_2d(
             "final image",
             (width, height, 1),
@@ -189,11 +182,7 @@ impl FinalImage {
                     lattice: SLAB_LATTICE,
                     _pad: 0,
                 };
-                let slab_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("final image slab uniform"),
-                    contents: bytemuck::bytes_of(&slab),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
+                let slab_uniform = ctx.uniform("final image slab uniform", &slab);
                 let group = self.slab_pipeline.bind(
                     ctx,
                     "final image slab",

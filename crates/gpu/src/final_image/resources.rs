@@ -124,9 +124,5 @@ pub(super) fn storage_buffer<T: bytemuck::Pod + Default>(
     };
     let bytes: &[u8] = bytemuck::cast_slice(items);
     ctx.check_buffer_size(what, bytes.len() as u64)?;
-    Ok(ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(what),
-        contents: bytes,
-        usage: wgpu::BufferUsages::STORAGE,
-    }))
+    Ok(ctx.buffer_init(what, bytes, wgpu::BufferUsages::STORAGE))
 }

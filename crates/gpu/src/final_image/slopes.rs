@@ -10,6 +10,7 @@
 use crate::pass::{Bind, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError};
+use wgpu::BufferUsages as B;
 
 passes! {
     WATER_SLOPES_BASE = "water slopes base", "final_image/water_slopes_base.wgsl";
@@ -87,12 +88,7 @@ impl SlopePipelines {
         let texels: u64 = sizes.iter().map(|&(c, r)| c as u64 * r as u64).sum();
         let bytes = texels * (MOMENTS * 4) as u64;
         ctx.check_buffer_size("water slope moments", bytes)?;
-        let moments = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("water slope moments"),
-            size: bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let moments = ctx.buffer("water slope moments", bytes, B::STORAGE | B::COPY_SRC);
         let mut uniforms = Vec::with_capacity(sizes.len());
         let mut levels = Vec::with_capacity(sizes.len());
         let (mut offset, mut below) = (0u32, (0u32, 0u32, 0u32));
@@ -108,11 +104,7 @@ impl SlopePipelines {
                 below_cols: below.1,
                 below_rows: below.2,
             };
-            let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("water slope level"),
-                contents: bytemuck::bytes_of(&level),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+            let uniform = ctx.uniform("water slope level", &level);
             let group = if k == 0 {
                 self.base
                     .bind(ctx, WATER_SLOPES_BASE.name, &[&uniform, patches, &moments])

@@ -344,11 +344,10 @@ impl ProceduralCaustics {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("procedural caustics map", w, h)?;
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("procedural uniform"),
-            contents: bytemuck::bytes_of(&ProceduralUniform::with_wave(setup, wave)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let uniform = ctx.uniform(
+            "procedural uniform",
+            &ProceduralUniform::with_wave(setup, wave),
+        );
         let lm = &setup.light;
         let light = ctx.upload_grid(
             "procedural light map",
@@ -377,11 +376,11 @@ impl ProceduralCaustics {
                 bytes += indices.len() as u64 * 4;
                 FramePasses::Vertex {
                     bind: water_bind(&self.vertex, "procedural vertex"),
-                    indices: ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("procedural mesh indices"),
-                        contents: bytemuck::cast_slice(&indices),
-                        usage: wgpu::BufferUsages::INDEX,
-                    }),
+                    indices: ctx.buffer_init(
+                        "procedural mesh indices",
+                        bytemuck::cast_slice(&indices),
+                        wgpu::BufferUsages::INDEX,
+                    ),
                     count: indices.len() as u32,
                 }
             }

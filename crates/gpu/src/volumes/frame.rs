@@ -212,13 +212,7 @@ impl Volumes {
             nodes.push(GpuBvhNode::default());
             triangles.push(GpuBvhTriangle::default());
         }
-        let storage = |label: &str, bytes: &[u8]| {
-            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: B::STORAGE,
-            })
-        };
+        let storage = |label: &str, bytes: &[u8]| ctx.buffer_init(label, bytes, B::STORAGE);
         ctx.check_buffer_size("volumes BVH triangles", triangles.len() as u64 * 96)?;
         let node_buf = storage("volumes BVH nodes", bytemuck::cast_slice(&nodes));
         let tri_buf = storage("volumes BVH triangles", bytemuck::cast_slice(&triangles));
@@ -232,18 +226,8 @@ impl Volumes {
             &self.depth.get_bind_group_layout(1),
             &[&node_buf, &tri_buf],
         );
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("volumes uniform"),
-            contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
-            usage: B::UNIFORM | B::COPY_DST,
-        });
-        let pass_uniform = |p: PassUniform| {
-            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("volumes pass uniform"),
-                contents: bytemuck::bytes_of(&p),
-                usage: B::UNIFORM | B::COPY_DST,
-            })
-        };
+        let uniform = ctx.uniform("volumes uniform", &VolumesUniform::new(setup, wrap));
+        let pass_uniform = |p: PassUniform| ctx.uniform("volumes pass uniform", &p);
         let depth_texture = |label: &str, res: u32| -> Result<wgpu::Texture, GpuError> {
             ctx.check_texture_size(label, res, res)?;
             Ok(ctx.texture_2d(
@@ -273,12 +257,11 @@ impl Volumes {
 
         let lattice_vertices = setup.lattice.vertex_count() as u64;
         ctx.check_buffer_size("volumes water vertices", lattice_vertices * 32)?;
-        let water = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("volumes water"),
-            size: lattice_vertices * 32,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let water = ctx.buffer(
+            "volumes water",
+            lattice_vertices * 32,
+            B::STORAGE | B::COPY_SRC,
+        );
         bytes += water.size();
         let water_bind =
             self.water
@@ -306,17 +289,8 @@ impl Volumes {
             ),
             Some(r) => {
                 let frame = self.lookup.frame(ctx, &r.0, &floor, wrap, DVec3::ZERO)?;
-                let r_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes receivers"),
-                    contents: bytemuck::bytes_of(&ReceiversUniform::of(Some(&r.0))),
-                    usage: B::UNIFORM,
-                });
-                let hits = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("volumes hits"),
-                    size: lattice_vertices * 16,
-                    usage: B::STORAGE,
-                    mapped_at_creation: false,
-                });
+                let r_uniform = ctx.uniform("volumes receivers", &ReceiversUniform::of(Some(&r.0)));
+                let hits = ctx.buffer("volumes hits", lattice_vertices * 16, B::STORAGE);
                 bytes += hits.size() + frame.bytes();
                 let heights_view = frame.heights.create_view(&Default::default());
                 let meet_bind = self.meet.bind(
@@ -473,16 +447,12 @@ impl Volumes {
                 if pass_uniforms.is_empty() {
                     pass_uniforms.push(PassUniform::default());
                 }
-                let camera = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes camera"),
-                    contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
-                    usage: B::UNIFORM,
-                });
-                let object_buf = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes objects"),
-                    contents: bytemuck::cast_slice(&pass_uniforms),
-                    usage: B::STORAGE | B::COPY_DST,
-                });
+                let camera = ctx.uniform("volumes camera", &CameraUniform::new(v, setup));
+                let object_buf = ctx.buffer_init(
+                    "volumes objects",
+                    bytemuck::cast_slice(&pass_uniforms),
+                    B::STORAGE | B::COPY_DST,
+                );
                 let array_view = |t: &wgpu::Texture| {
                     t.create_view(&wgpu::TextureViewDescriptor {
                         dimension: Some(wgpu::TextureViewDimension::D2Array),

@@ -35,6 +35,7 @@ use super::{GpuProceduralWave, GpuSineWave};
 use crate::pass::{Bind, Binding, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+use wgpu::BufferUsages as B;
 
 passes! {
     WAVES = "water_field_waves", "water/water_field_waves.wgsl";
@@ -140,12 +141,7 @@ impl GpuWater {
             WaterSource::Flat => (waves_source(ctx, &[], water.size)?, &WAVES),
             WaterSource::Waves(w) => (waves_source(ctx, w, water.size)?, &WAVES),
             WaterSource::Procedural(p) => {
-                let wave = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("water field procedural wave"),
-                    size: std::mem::size_of::<GpuProceduralWave>() as u64,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
+                let wave = ctx.uniform_buffer::<GpuProceduralWave>("water field procedural wave");
                 let params = p.clone();
                 (Source::Procedural { params, wave }, &PROCEDURAL)
             }
@@ -200,12 +196,7 @@ impl GpuWater {
         field: FieldParams,
         pass: &PassSource,
     ) -> Result<Self, GpuError> {
-        let field_buffer = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("water field params"),
-            size: std::mem::size_of::<FieldParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let field_buffer = ctx.uniform_buffer::<FieldParams>("water field params");
         let pipeline = compute_pipeline(ctx, pass);
         let mut water = GpuWater {
             source,
@@ -407,12 +398,7 @@ impl GpuWater {
 fn waves_source(ctx: &GpuContext, waves: &[Wave], size: f64) -> Result<Source, GpuError> {
     let bytes = (waves.len().max(1) * std::mem::size_of::<GpuSineWave>()) as u64;
     ctx.check_buffer_size(&format!("water waves ({} waves)", waves.len()), bytes)?;
-    let terms = ctx.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("water field waves"),
-        size: bytes,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
+    let terms = ctx.buffer("water field waves", bytes, B::STORAGE | B::COPY_DST);
     Ok(Source::Waves {
         waves: waves.to_vec(),
         size,

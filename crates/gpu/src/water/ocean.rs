@@ -97,13 +97,7 @@ impl GpuOcean {
         let resolution = ocean.params().resolution;
         Self::check_size(ctx, resolution)?;
         let n = resolution as u32;
-        let buffer = |label: &str, contents: &[u8], usage| {
-            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
+        let buffer = |label: &str, contents: &[u8], usage| ctx.buffer_init(label, contents, usage);
 
         let h0: Vec<[f32; 4]> = ocean
             .h0()
@@ -127,24 +121,12 @@ impl GpuOcean {
             bytemuck::cast_slice(&roots),
             storage,
         );
-        let field = |label| {
-            ctx.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: n as u64 * n as u64 * ELEMENT_BYTES,
-                usage: storage,
-                mapped_at_creation: false,
-            })
-        };
+        let field = |label| ctx.buffer(label, n as u64 * n as u64 * ELEMENT_BYTES, storage);
         let ping = field("ocean FFT ping");
         let pong = field("ocean FFT pong");
 
         let dk = (std::f64::consts::TAU / ocean.size()) as f32;
-        let params = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ocean spectrum params"),
-            size: std::mem::size_of::<SpectrumParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let params = ctx.uniform_buffer::<SpectrumParams>("ocean spectrum params");
         let spectrum = Pass::new(ctx, &OCEAN_SPECTRUM, &[&params, &h0, &omega, &roots, &ping]);
 
         // One uniform slot per stage, each at the device's uniform offset alignment; stage s reads

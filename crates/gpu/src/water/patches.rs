@@ -68,11 +68,7 @@ impl WaterPatches {
                     | wgpu::TextureUsages::COPY_SRC,
             )
             .create_view(&Default::default());
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("water patches"),
-            contents: bytemuck::bytes_of(&PatchesUniform::new(wrap)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let uniform = ctx.uniform("water patches", &PatchesUniform::new(wrap));
         let bind = self
             .pipeline
             .bind(ctx, "water patches", &[&uniform, heights, &view]);

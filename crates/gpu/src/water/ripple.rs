@@ -122,11 +122,7 @@ impl GpuRipples {
             wrap: (edge == Edge::Wrap) as u32,
             _pad: 0,
         };
-        let step_params = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ripple step params"),
-            contents: bytemuck::bytes_of(&step),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let step_params = ctx.uniform("ripple step params", &step);
         let step_pipeline = compute_pipeline(ctx, &RIPPLE_STEP);
         let step_group = |c: usize| {
             step_pipeline.bind(
@@ -137,24 +133,18 @@ impl GpuRipples {
         };
         let step_groups = [step_group(0), step_group(1)];
 
-        let drop_params = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ripple drop params"),
-            size: std::mem::size_of::<RippleDrop>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let drop_params = ctx.uniform_buffer::<RippleDrop>("ripple drop params");
         let drop_pipeline = compute_pipeline(ctx, &RIPPLE_DROP);
         let drop_group =
             drop_pipeline.bind(ctx, "ripple drop", &[&drop_params, &views[0], &views[1]]);
         let drop_bytes = std::mem::size_of::<RippleDrop>() as u64;
         let queued_stride =
             drop_bytes.next_multiple_of(ctx.limits().min_uniform_buffer_offset_alignment as u64);
-        let queued_params = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ripple queued drops"),
-            size: queued_stride * DROPS_PER_ENCODE as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let queued_params = ctx.buffer(
+            "ripple queued drops",
+            queued_stride * DROPS_PER_ENCODE as u64,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
         let queued_groups = (0..DROPS_PER_ENCODE as u64)
             .map(|slot| {
                 drop_pipeline.bind(

@@ -10,6 +10,7 @@ use crate::pass::{Bind, Binding};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
+use wgpu::BufferUsages as B;
 
 /// One frame's resources for a given map and height-field size, bind groups included: a frame is
 /// built once and encoded every time the water moves.
@@ -175,33 +176,21 @@ impl Yuksel {
         ctx.check_buffer_size("yuksel fill list", (ew * eh) as u64 * 4)?;
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
-            let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("yuksel uniform"),
-                contents: bytemuck::bytes_of(&YukselUniform::tiled(
-                    setup,
-                    channel_base,
-                    phase,
-                    &tiling,
-                )),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+            let buffer = ctx.uniform(
+                "yuksel uniform",
+                &YukselUniform::tiled(setup, channel_base, phase, &tiling),
+            );
             uniforms.push((buffer.clone(), channel_base, phase));
             buffer
         };
         let uniform = uniform_for(0, 0);
         let heights_view = &water.heights;
-        let region = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel region"),
-            size: std::mem::size_of::<YukselRegion>() as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel region bound"),
-            size: 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let region = ctx.buffer(
+            "yuksel region",
+            std::mem::size_of::<YukselRegion>() as u64,
+            B::STORAGE | B::COPY_SRC,
+        );
+        let bound = ctx.buffer("yuksel region bound", 16, B::STORAGE | B::COPY_DST);
         let bound_bind = self.region_bound.bind(
             ctx,
             "yuksel region bound",
@@ -240,28 +229,20 @@ impl Yuksel {
         // The pixels at k, listed for the fill (at most every pixel of the largest region's
         // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
         let list_bytes = (ew * eh) as u64 * 4;
-        let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel fill list"),
-            size: list_bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("yuksel fill dispatch"),
-            contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::INDIRECT
-                | wgpu::BufferUsages::COPY_DST,
-        });
+        let fill_list = ctx.buffer("yuksel fill list", list_bytes, B::STORAGE);
+        let fill_args = ctx.buffer_init(
+            "yuksel fill dispatch",
+            bytemuck::cast_slice(&[0u32, 1, 1, 0]),
+            B::STORAGE | B::INDIRECT | B::COPY_DST,
+        );
         bytes += list_bytes + fill_args.size();
         let passes = match variant {
             Variant::Scatter => {
-                let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("yuksel scatter sums"),
-                    size: (w * h) as u64 * 4,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
+                let sums = ctx.buffer(
+                    "yuksel scatter sums",
+                    (w * h) as u64 * 4,
+                    B::STORAGE | B::COPY_DST,
+                );
                 bytes += sums.size();
                 let [tier, fill, resolve] = &self.scatter;
                 let with = |label, pipeline: &wgpu::ComputePipeline| {
