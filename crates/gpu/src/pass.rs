@@ -5,6 +5,21 @@
 use crate::shaders::PassSource;
 use crate::{GpuContext, GpuError, GpuTimer};
 
+/// `v` and `w` as a WGSL `vec4<f32>`.
+pub(crate) fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+/// `v` as a WGSL `vec3<f32>`.
+pub(crate) fn f3(v: glam::DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+/// Four values as a WGSL `vec4<f32>`.
+pub(crate) fn f4(v: [f64; 4]) -> [f32; 4] {
+    v.map(|x| x as f32)
+}
+
 /// A compute pipeline of a pass's `main`, its layout derived from the shader.
 pub fn compute_pipeline(ctx: &GpuContext, source: &PassSource) -> wgpu::ComputePipeline {
     let module = source.module(&ctx.device);

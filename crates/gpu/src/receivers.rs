@@ -8,7 +8,7 @@ use std::sync::Arc;
 use caustics_core::grid::Grid;
 use caustics_core::receivers::{ReceiverHeights, floor_texels};
 
-use crate::pass::{Bind, begin_compute, compute_pipeline, float_texture};
+use crate::pass::{Bind, begin_compute, compute_pipeline, f4, float_texture};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -34,12 +34,7 @@ impl ReceiversUniform {
         };
         let t = r.t0.as_vec3();
         ReceiversUniform {
-            view: [
-                r.origin.x as f32,
-                r.origin.y as f32,
-                r.texel as f32,
-                r.max_slope as f32,
-            ],
+            view: f4([r.origin.x, r.origin.y, r.texel, r.max_slope]),
             t0: [t.x, t.y, t.z, 1.0],
         }
     }

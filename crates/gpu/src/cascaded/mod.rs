@@ -36,7 +36,7 @@ use caustics_core::techniques::cascaded::{
     screen_buffer_len,
 };
 
-use crate::pass::{Bind, begin_compute, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline, f4, v4};
 
 pub mod technique;
 use crate::shaders::passes;
@@ -118,10 +118,6 @@ pub struct CascadedUniform {
     pub _pad: u32,
 }
 
-fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w as f32]
-}
-
 impl CascadedUniform {
     /// The block cascade `k` of `s` reads.
     pub fn new(s: &CascadedSetup, k: usize) -> Self {
@@ -154,26 +150,16 @@ impl CascadedUniform {
             eye_fwd: v4(e.forward, e.aspect),
             eye_right: v4(e.right, p.near),
             eye_up: v4(e.up, p.blend),
-            ior: [
-                s.ior[0] as f32,
-                s.ior[1] as f32,
-                s.ior[2] as f32,
-                s.ior_mono as f32,
-            ],
+            ior: f4([s.ior[0], s.ior[1], s.ior[2], s.ior_mono]),
             absorption: v4(s.absorption, p.c),
-            ramps: [
-                p.min_depth as f32,
-                p.max_depth as f32,
-                p.shallow_ramp as f32,
-                FIXED_SCALE as f32,
-            ],
+            ramps: f4([p.min_depth, p.max_depth, p.shallow_ramp, FIXED_SCALE]),
             terrain: [lo as f32, hi as f32, has as f32, 0.0],
-            post: [
-                s.post_shift[0].x as f32,
-                s.post_shift[0].y as f32,
-                s.post_shift[2].x as f32,
-                s.post_shift[2].y as f32,
-            ],
+            post: f4([
+                s.post_shift[0].x,
+                s.post_shift[0].y,
+                s.post_shift[2].x,
+                s.post_shift[2].y,
+            ]),
             fars: std::array::from_fn(|n| s.cascades[n].far as f32),
             fluxes: std::array::from_fn(|n| s.photon_flux(n) as f32),
             width: e.width as u32,

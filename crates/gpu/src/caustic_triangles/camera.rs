@@ -16,7 +16,7 @@ use super::CAMERA;
 use super::{
     CausticTriangles, CausticTrianglesUniform, GeneratorFrame, LightCubeTarget, Reconstruction,
 };
-use crate::pass::{Bind, begin_compute, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline, f4, v4};
 use crate::{GpuContext, GpuError, GpuTimer};
 use wgpu::BufferUsages as B;
 
@@ -255,7 +255,6 @@ fn camera_uniform(
     cube: u32,
     (map_width, map_height): (u32, u32),
 ) -> CameraUniform {
-    let v4 = |v: glam::DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
     // The frame of `Camera::ray`.
     let forward = (camera.target - camera.position).normalize();
     let right = forward.cross(glam::DVec3::Z).normalize_or(glam::DVec3::X);
@@ -280,12 +279,12 @@ fn camera_uniform(
         light_color: v4(params.light_color, 0.0),
         light,
         spot_axis,
-        floor: [
-            setup.floor.origin.x as f32,
-            setup.floor.origin.y as f32,
-            setup.floor.size as f32,
+        floor: f4([
+            setup.floor.origin.x,
+            setup.floor.origin.y,
+            setup.floor.size,
             0.0,
-        ],
+        ]),
         width: camera.width,
         height: camera.height,
         generators: generators as u32,

@@ -17,6 +17,7 @@ use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::DVec3;
 
 use crate::bvh::FlatBvhs;
+use crate::pass::f3;
 
 /// Mirrors `FinalImage` in `final_image/final_image_inputs.wgsl` (uniform layout: each `vec3` is padded by the
 /// scalar after it).
@@ -161,10 +162,6 @@ pub struct GpuObject {
     pub glass: u32,
     /// Padding to the WGSL struct's 32-byte stride.
     pub _pad: [u32; 2],
-}
-
-fn f3(v: DVec3) -> [f32; 3] {
-    v.as_vec3().to_array()
 }
 
 pub use caustics_core::render::water_grid_resolution;

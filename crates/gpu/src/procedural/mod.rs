@@ -20,7 +20,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
-use crate::pass::{Bind, begin_render, pulled_pipeline};
+use crate::pass::{Bind, begin_render, pulled_pipeline, v4};
 use crate::receivers::{ReceiverFrame, ReceiverLookup};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
@@ -82,10 +82,6 @@ pub struct ProceduralUniform {
     pub _pad: [u32; 2],
 }
 
-fn v4(v: glam::DVec3) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, 0.0]
-}
-
 impl ProceduralUniform {
     /// The uniform for `s` over `water`: the wave function evaluated in the shader when the input
     /// is the paper's wave, else the bound height grid.
@@ -101,12 +97,12 @@ impl ProceduralUniform {
             None => (0, GpuProceduralWave::default()),
         };
         ProceduralUniform {
-            sun_x: v4(s.sun_frame[0]),
-            sun_y: v4(s.sun_frame[1]),
-            sun_z: v4(s.sun_frame[2]),
-            up: v4(s.up),
+            sun_x: v4(s.sun_frame[0], 0.0),
+            sun_y: v4(s.sun_frame[1], 0.0),
+            sun_z: v4(s.sun_frame[2], 0.0),
+            up: v4(s.up, 0.0),
             absorption: {
-                let mut a = v4(s.gathered_absorption());
+                let mut a = v4(s.gathered_absorption(), 0.0);
                 a[3] = s.ground as f32;
                 a
             },
