@@ -393,7 +393,7 @@ impl Renderer {
                 image.update(ctx, scene, options);
             } else if side.image_failed.as_ref().is_none_or(|(_, k)| *k != key) {
                 // A size beyond the device fails this side alone; a lost device ends the frame.
-                match self.final_image.frame_with_walls(
+                match self.final_image.frame(
                     ctx,
                     scene,
                     image_water.as_ref(),

@@ -543,17 +543,9 @@ impl Cascaded {
         ))
     }
 
-    /// Run the technique once on `frame` and read everything back.
+    /// Run the technique once on `frame` and read everything back, each pass timed into `timer`
+    /// when there is one (the viewer's overlay).
     pub fn run(
-        &self,
-        ctx: &GpuContext,
-        frame: &CascadedResources,
-    ) -> Result<GpuCascadedFrame, GpuError> {
-        self.run_timed(ctx, frame, None)
-    }
-
-    /// As [`run`](Self::run), each pass timed into `timer` (the viewer's overlay).
-    pub fn run_timed(
         &self,
         ctx: &GpuContext,
         frame: &CascadedResources,
@@ -569,19 +561,9 @@ impl Cascaded {
         })
     }
 
-    /// The whole technique from height grids: upload the water, build a frame, run it.
+    /// The whole technique from height grids: upload the water, build a frame, run it, each pass
+    /// timed into `timer` when there is one.
     pub fn caustics(
-        &self,
-        ctx: &GpuContext,
-        setup: &CascadedSetup,
-        water: &Grid,
-        terrain: Option<&Grid>,
-    ) -> Result<GpuCascadedFrame, GpuError> {
-        self.caustics_timed(ctx, setup, water, terrain, None)
-    }
-
-    /// As [`caustics`](Self::caustics), each pass timed into `timer`.
-    pub fn caustics_timed(
         &self,
         ctx: &GpuContext,
         setup: &CascadedSetup,
@@ -592,6 +574,6 @@ impl Cascaded {
         let tex = ctx.upload_grid("cascaded water heights", water)?;
         let view = tex.create_view(&Default::default());
         let frame = self.frame(ctx, setup, &view, terrain)?;
-        self.run_timed(ctx, &frame, timer)
+        self.run(ctx, &frame, timer)
     }
 }

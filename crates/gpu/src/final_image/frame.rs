@@ -24,22 +24,10 @@ impl FinalImage {
     /// the texture every frame); `None` without water. `caustics`: the technique's output texture,
     /// bound as it is: a floor map over the water square (over the scene square without water), or
     /// an eye-space image of the scene's camera; `None` lights the floor as under flat water.
-    /// [`update`](FinalImageFrame::update) takes the first frame's camera and sun before
-    /// [`encode`](FinalImageFrame::encode).
+    /// `walls`: the walls' maps of a technique that lit the pool's walls (bound as they are;
+    /// ignored when the scene's walls are off). [`update`](FinalImageFrame::update) takes the first
+    /// frame's camera and sun before [`encode`](FinalImageFrame::encode).
     pub fn frame(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        options: &RenderOptions,
-    ) -> Result<FinalImageFrame, GpuError> {
-        self.build(ctx, scene, water, caustics, None, None, options)
-    }
-
-    /// [`frame`](Self::frame) with the walls' maps of a technique that lit the pool's walls (bound
-    /// as they are; ignored when the scene's walls are off).
-    pub fn frame_with_walls(
         &self,
         ctx: &GpuContext,
         scene: &Scene,
@@ -51,7 +39,7 @@ impl FinalImage {
         self.build(ctx, scene, water, caustics, walls, None, options)
     }
 
-    /// [`frame_with_walls`](Self::frame_with_walls), a floor map's square given (`map_size`) or
+    /// [`frame`](Self::frame), a floor map's square given (`map_size`) or
     /// the scene's.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn build(

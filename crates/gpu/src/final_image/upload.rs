@@ -166,11 +166,12 @@ pub struct GpuObject {
 
 pub use caustics_core::render::water_grid_resolution;
 
-/// The frozen water surface as [`FinalImage::render_with`](super::FinalImage::render_with) hands it
-/// to the GPU: `surface` sampled on the lattice of [`water_grid_resolution`] over the water's
-/// square (uploaded as is, the heights texture of [`crate::WaterTextures`]) and read back through
-/// the same bicubic interpolant, with the water's edge rule. `None` without water. Render on the
-/// CPU with this surface to get the image the GPU renders.
+/// The frozen water surface as
+/// [`FinalImage::render_with_walls`](super::FinalImage::render_with_walls) hands it to the GPU:
+/// `surface` sampled on the lattice of [`water_grid_resolution`] over the water's square (uploaded
+/// as is, the heights texture of [`crate::WaterTextures`]) and read back through the same bicubic
+/// interpolant, with the water's edge rule. `None` without water. Render on the CPU with this
+/// surface to get the image the GPU renders.
 pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
     let water = scene.water.as_ref()?;
     let n = water_grid_resolution(scene);

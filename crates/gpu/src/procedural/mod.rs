@@ -559,19 +559,9 @@ impl ProceduralCaustics {
         frame.floor_map()
     }
 
-    /// Run the technique once and read the map back.
+    /// Run the technique once and read the map back, writing each pass's timestamps into `timer`
+    /// when there is one (resolved in the same submission; read them with [`GpuTimer::read`]).
     pub fn caustics(
-        &self,
-        ctx: &GpuContext,
-        setup: &ProceduralSetup,
-        water: &SurfaceInput,
-    ) -> Result<CausticsMap, GpuError> {
-        self.caustics_timed(ctx, setup, water, None)
-    }
-
-    /// As [`caustics`](Self::caustics), writing each pass's timestamps into `timer` (resolved in
-    /// the same submission; read them with [`GpuTimer::read`]).
-    pub fn caustics_timed(
         &self,
         ctx: &GpuContext,
         setup: &ProceduralSetup,
