@@ -2,7 +2,7 @@
 //! `caustics_light.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
-use crate::pass::Bind;
+use crate::pass::{Bind, begin_compute, storage_buffer};
 use crate::shaders::passes;
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError};
@@ -101,13 +101,7 @@ pub fn run(
         (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
         B::STORAGE | B::COPY_SRC,
     );
-    // A storage binding may not be empty: keep one zero wave when there are none.
-    let waves: Vec<GpuSineWave> = if setup.waves.is_empty() {
-        vec![GpuSineWave::default()]
-    } else {
-        setup.waves.to_vec()
-    };
-    let waves = ctx.buffer_init("probe waves", bytemuck::cast_slice(&waves), B::STORAGE);
+    let waves = storage_buffer(ctx, "probe waves", setup.waves)?;
     let params = ProbeParams {
         procedural: setup.procedural,
         wave_count: setup.waves.len() as u32,
@@ -135,10 +129,7 @@ pub fn run(
     let mut encoder = device.create_command_encoder(&Default::default());
     water_patches.encode(&patches, &mut encoder, &mut None);
     {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("probe"),
-            timestamp_writes: None,
-        });
+        let mut pass = begin_compute(&mut encoder, &mut None, "probe");
         pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &bind, &[]);
         pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use caustics_core::grid::Grid;
 use caustics_core::receivers::{ReceiverHeights, floor_texels};
 
-use crate::pass::{Bind, begin_compute, compute_pipeline, f4, float_texture};
+use crate::pass::{Bind, STORAGE_OUT, begin_compute, compute_pipeline, f4, float_texture};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -129,9 +129,7 @@ impl ReceiverLookup {
             "floor map (receivers' lookup)",
             (w, h, 1),
             wgpu::TextureFormat::Rgba32Float,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            STORAGE_OUT,
         );
         let uniform = LookupUniform {
             floor: [r.size as f32, wrap as u32 as f32, 0.0, 0.0],

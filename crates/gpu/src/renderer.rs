@@ -417,11 +417,7 @@ impl Renderer {
             side.traffic += ctx.traffic().since(&before);
         }
 
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("caustics frame"),
-            });
+        let mut encoder = ctx.encoder("caustics frame");
         let mut timer = self.timer.as_mut();
         if let Some((w, _)) = &mut self.water {
             w.encode(&mut encoder, timer.as_deref_mut());
@@ -495,10 +491,7 @@ impl Renderer {
             return Ok(());
         };
         let before = ctx.traffic();
-        side.external_walls = match walls {
-            Some(w) => Some(upload_walls(ctx, w)?),
-            None => None,
-        };
+        side.external_walls = walls.map(|w| upload_walls(ctx, w)).transpose()?;
         side.traffic += ctx.traffic().since(&before);
         Ok(())
     }

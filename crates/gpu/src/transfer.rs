@@ -9,11 +9,7 @@ impl GpuContext {
     pub fn read_buffer<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Result<Vec<T>, GpuError> {
         let size = buffer.size();
         let staging = self.buffer("readback", size, B::COPY_DST | B::MAP_READ);
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("readback"),
-            });
+        let mut encoder = self.encoder("readback");
         encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
         self.queue.submit([encoder.finish()]);
         self.map_and_copy(&staging, |bytes| bytemuck::cast_slice(bytes).to_vec())
@@ -55,11 +51,7 @@ impl GpuContext {
             padded as u64 * h as u64,
             B::COPY_DST | B::MAP_READ,
         );
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("readback"),
-            });
+        let mut encoder = self.encoder("readback");
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 mip_level: mip,

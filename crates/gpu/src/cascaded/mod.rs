@@ -252,7 +252,7 @@ impl CascadedResources {
             let old = CascadedUniform::new(&self.setup, k);
             let new = CascadedUniform::new(setup, k);
             if bytemuck::bytes_of(&old) != bytemuck::bytes_of(&new) {
-                ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&new));
+                ctx.write_pod(buffer, &new);
             }
         }
         self.setup = setup.clone();

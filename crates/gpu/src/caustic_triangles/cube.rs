@@ -4,7 +4,7 @@
 use caustics_core::techniques::caustic_triangles::cube::FAR;
 
 use super::{CausticTriangles, GeneratorFrame};
-use crate::pass::{Bind, begin_compute, begin_render};
+use crate::pass::{Bind, MAP_TARGET, begin_compute, begin_render};
 use crate::{GpuContext, GpuError, GpuTimer};
 use wgpu::BufferUsages as B;
 
@@ -51,9 +51,7 @@ impl CausticTriangles {
             "caustic-triangles light cube map",
             (resolution, 6 * resolution, 1),
             self.map_format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
+            MAP_TARGET,
         );
         let view = texture.create_view(&Default::default());
         let shadow = ctx.buffer(

@@ -6,7 +6,7 @@
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 
 use super::{CausticTriangles, CausticTrianglesUniform, CopyBandBuffer, Reconstruction};
-use crate::pass::{Bind, begin_compute, begin_render};
+use crate::pass::{Bind, MAP_TARGET, begin_compute, begin_render, layer_view};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// One generator's resources (a glass object's, or the water surface's for the floor or a wall):
@@ -142,17 +142,10 @@ impl CausticTriangles {
                 "caustic-triangles floor map",
                 (w, h, 1),
                 self.map_format,
-                wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::COPY_SRC
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                MAP_TARGET,
             ),
         };
-        let map_view = map.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2),
-            base_array_layer: layer,
-            array_layer_count: Some(1),
-            ..Default::default()
-        });
+        let map_view = layer_view(&map, layer);
         let photon_bind = self.photon.bind(
             ctx,
             "caustic-triangles photon tracing",

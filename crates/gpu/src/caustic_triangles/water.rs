@@ -13,7 +13,7 @@ use super::{
 };
 use std::sync::Arc;
 
-use crate::pass::{Bind, begin_compute};
+use crate::pass::{Bind, begin_compute, wall_maps_texture};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 use wgpu::BufferUsages as B;
@@ -119,10 +119,10 @@ impl WaterFrame {
         let ct = CausticTrianglesUniform::new(&ws.setup, &no_distance_map());
         let w = WaterPhotonUniform::new(ws);
         if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
-            ctx.write_buffer(&self.frame.uniform, 0, bytemuck::bytes_of(&ct));
+            ctx.write_pod(&self.frame.uniform, &ct);
         }
         if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
-            ctx.write_buffer(&self.water_uniform, 0, bytemuck::bytes_of(&w));
+            ctx.write_pod(&self.water_uniform, &w);
         }
         if let Some(walls) = &mut self.walls {
             for (wall, wf) in Wall::ALL.into_iter().zip(&mut walls.walls) {
@@ -130,12 +130,12 @@ impl WaterFrame {
                 let old_ct = CausticTrianglesUniform::new(&wf.frame.setup, &no_distance_map());
                 let ct = CausticTrianglesUniform::new(&setup, &no_distance_map());
                 if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
-                    ctx.write_buffer(&wf.frame.uniform, 0, bytemuck::bytes_of(&ct));
+                    ctx.write_pod(&wf.frame.uniform, &ct);
                 }
                 let old_w = WaterPhotonUniform::for_receiver(&self.setup, Some(wall));
                 let w = WaterPhotonUniform::for_receiver(ws, Some(wall));
                 if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
-                    ctx.write_buffer(&wf.water_uniform, 0, bytemuck::bytes_of(&w));
+                    ctx.write_pod(&wf.water_uniform, &w);
                 }
                 wf.frame.setup = setup;
             }
@@ -295,17 +295,8 @@ impl CausticTriangles {
     ) -> Result<WallFrames, GpuError> {
         let f = &ws.setup.floor;
         let layout = WallMaps::for_floor_map(f.width, f.height, ws.size, ws.depth);
-        let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
-        let rows = layout.maps[0].rows as u32;
-        ctx.check_texture_size("caustic-triangles wall maps", cols, rows)?;
-        let texture = ctx.texture_2d(
-            "caustic-triangles wall maps",
-            (cols, rows, 4),
-            self.map_format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
+        let label = "caustic-triangles wall maps";
+        let texture = wall_maps_texture(ctx, label, &layout, self.map_format)?;
         let mut walls = Vec::with_capacity(4);
         for wall in Wall::ALL {
             let setup = ws.receiver_setup(Some(wall), &layout);

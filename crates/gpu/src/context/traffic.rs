@@ -269,6 +269,11 @@ impl GpuContext {
         self.queue.write_buffer(buffer, offset, data);
     }
 
+    /// Write `value`'s bytes at the start of `buffer`, counted as uploaded.
+    pub fn write_pod<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer, value: &T) {
+        self.write_buffer(buffer, 0, bytemuck::bytes_of(value));
+    }
+
     /// `wgpu::Queue::write_texture`, its bytes counted as uploaded.
     pub fn write_texture(
         &self,

@@ -5,14 +5,14 @@ use caustics_core::render::RenderOptions;
 use caustics_core::scene::{Albedo, Scene};
 
 use crate::map_mips::{MapMips, mip_chain};
-use crate::pass::{Bind, bind_group};
+use crate::pass::{Bind, STORAGE_OUT, bind_group};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError};
 
-use super::resources::{rgba32, storage_buffer, walls_view};
+use super::resources::rgba32;
 use super::upload::Lighting;
 use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUniform, meshes};
-use crate::pass::float_texture;
+use crate::pass::{array_view, float_texture, storage_buffer};
 use wgpu::BufferUsages as B;
 
 impl FinalImage {
@@ -99,9 +99,7 @@ impl FinalImage {
             "final image",
             (width, height, 1),
             wgpu::TextureFormat::Rgba8Unorm,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
+            STORAGE_OUT,
         );
 
         let (mips, mips_groups) = match caustics {
@@ -133,7 +131,7 @@ impl FinalImage {
             view(caustics.map(|c| c.texture()), &self.empty_rgba32),
             view(albedo_image.as_ref(), &self.empty_rgba32),
             output.create_view(&Default::default()),
-            walls_view(walls.map_or(&self.empty_walls, |w| w.texture)),
+            array_view(walls.map_or(&self.empty_walls, |w| w.texture)),
             view(mips.as_ref(), &self.empty_rgba32),
         ];
         let scene_group = bind_group(

@@ -58,10 +58,7 @@ impl FinalImage {
             (Some(Caustics::EyeSpace(_)), Some(t)) => (Some(Output::EyeSpace(t)), None),
             _ => (None, None),
         };
-        let walls = match walls {
-            Some(w) => Some(upload_walls(ctx, w)?),
-            None => None,
-        };
+        let walls = walls.map(|w| upload_walls(ctx, w)).transpose()?;
         let walls_output = walls.as_ref().map(|(texture, cols)| WallsOutput {
             texture,
             cols: *cols,
@@ -76,11 +73,7 @@ impl FinalImage {
             options,
         )?;
 
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("final image"),
-            });
+        let mut encoder = ctx.encoder("final image");
         frame.encode(&mut encoder, timer.as_deref_mut());
         ctx.submit_timed(encoder, timer.as_deref());
         ctx.check()?;

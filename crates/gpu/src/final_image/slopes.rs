@@ -149,7 +149,7 @@ impl SlopePyramid {
     pub fn set_wrap(&mut self, ctx: &GpuContext, wrap: bool) {
         if (self.base.wrap != 0) != wrap {
             self.base.wrap = wrap as u32;
-            ctx.write_buffer(&self.uniforms[0], 0, bytemuck::bytes_of(&self.base));
+            ctx.write_pod(&self.uniforms[0], &self.base);
         }
     }
 

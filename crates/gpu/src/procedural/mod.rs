@@ -20,7 +20,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
-use crate::pass::{Bind, begin_render, pulled_pipeline, v4};
+use crate::pass::{Bind, MAP_TARGET, begin_render, mip_view, pulled_pipeline, v4};
 use crate::receivers::{ReceiverFrame, ReceiverLookup};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
@@ -243,10 +243,9 @@ impl ProceduralFrame {
     }
 
     fn write_uniform(&self, ctx: &GpuContext) {
-        ctx.write_buffer(
+        ctx.write_pod(
             &self.uniform,
-            0,
-            bytemuck::bytes_of(&ProceduralUniform::with_wave(&self.setup, self.wave)),
+            &ProceduralUniform::with_wave(&self.setup, self.wave),
         );
     }
 }
@@ -357,12 +356,7 @@ impl ProceduralCaustics {
         let water_bind = |pipeline: &wgpu::RenderPipeline, label: &str| {
             pipeline.bind(ctx, label, &[&uniform, heights_view, &light_view])
         };
-        let map = ctx.texture_2d(
-            "procedural map",
-            (w, h, 1),
-            MAP_FORMAT,
-            U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
-        );
+        let map = ctx.texture_2d("procedural map", (w, h, 1), MAP_FORMAT, MAP_TARGET);
         let map_view = map.create_view(&Default::default());
         let mut bytes = (w * h) as u64 * 16 + (lm.width * lm.height) as u64 * 4 + uniform.size();
         let passes = match setup.variant {
@@ -387,33 +381,18 @@ impl ProceduralCaustics {
                 let t = setup.target as u32;
                 ctx.check_texture_size("procedural texture-space target", t, t)?;
                 let mips = setup.mip_levels() as u32;
-                let target = ctx.create_texture(&wgpu::TextureDescriptor {
-                    label: Some("procedural target"),
-                    size: wgpu::Extent3d {
-                        width: t,
-                        height: t,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: mips,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: self.chain_format,
-                    usage: U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-                    view_formats: &[],
-                });
+                let target = ctx.texture_mips(
+                    "procedural target",
+                    (t, t),
+                    mips,
+                    self.chain_format,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                );
                 let texel = self.chain_format.block_copy_size(None).unwrap_or(16) as u64;
                 bytes += (0..mips)
                     .map(|k| ((t >> k) as u64).pow(2) * texel)
                     .sum::<u64>();
-                let levels: Vec<wgpu::TextureView> = (0..mips)
-                    .map(|k| {
-                        target.create_view(&wgpu::TextureViewDescriptor {
-                            base_mip_level: k,
-                            mip_level_count: Some(1),
-                            ..Default::default()
-                        })
-                    })
-                    .collect();
+                let levels: Vec<_> = (0..mips).map(|k| mip_view(&target, k)).collect();
                 let downsample = (1..mips as usize)
                     .map(|k| {
                         self.downsample

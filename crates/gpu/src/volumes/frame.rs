@@ -7,8 +7,11 @@ use caustics_core::walls::WallMaps;
 use glam::DVec3;
 
 use super::{CameraUniform, PassUniform, ViewOptions, Volumes, VolumesUniform};
-use crate::bvh::{FlatBvhs, GpuBvhNode, GpuBvhTriangle};
-use crate::pass::{Bind, bind_group};
+use crate::bvh::FlatBvhs;
+use crate::pass::{
+    Bind, MAP_TARGET, STORAGE_OUT, array_view, bind_group, layer_view, storage_buffer,
+    wall_maps_texture,
+};
 use crate::receivers::{ReceiverFrame, ReceiversUniform};
 use crate::technique::WallsOutput;
 use crate::{GpuContext, GpuError, WaterTextures};
@@ -111,20 +114,16 @@ impl VolumesFrame {
     /// object's slice draw resized to its new cells.
     pub fn set_setup(&mut self, ctx: &GpuContext, setup: &VolumesSetup) {
         debug_assert!(self.fits(setup));
-        ctx.write_buffer(
-            &self.uniform,
-            0,
-            bytemuck::bytes_of(&VolumesUniform::new(setup, self.wrap)),
-        );
+        ctx.write_pod(&self.uniform, &VolumesUniform::new(setup, self.wrap));
         if let (Some((_, _, buffer)), Some(view)) = (&self.shadow, &setup.shadow) {
             let u = PassUniform::shadow(view, setup.objects.len());
-            ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&u));
+            ctx.write_pod(buffer, &u);
         }
         let uniforms: Vec<PassUniform> = (0..setup.objects.len())
             .map(|k| PassUniform::object(setup, k))
             .collect();
         for ((o, u), view) in self.objects.iter_mut().zip(&uniforms).zip(&setup.objects) {
-            ctx.write_buffer(&o.uniform, 0, bytemuck::bytes_of(u));
+            ctx.write_pod(&o.uniform, u);
             o.vertices = slice_vertices(view).expect("fits checked the count");
         }
         if let Some((_, _, buffer)) = &self.view
@@ -202,23 +201,14 @@ impl Volumes {
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("volumes floor map", w, h)?;
-        let FlatBvhs {
-            mut nodes,
-            mut triangles,
-            roots,
-        } = FlatBvhs::of(input.objects.iter().map(|o| &o.mesh));
-        // Bindings may not be empty: a scene without objects binds one unused node and slot.
-        if nodes.is_empty() {
-            nodes.push(GpuBvhNode::default());
-            triangles.push(GpuBvhTriangle::default());
-        }
-        let storage = |label: &str, bytes: &[u8]| ctx.buffer_init(label, bytes, B::STORAGE);
-        ctx.check_buffer_size("volumes BVH triangles", triangles.len() as u64 * 96)?;
-        let node_buf = storage("volumes BVH nodes", bytemuck::cast_slice(&nodes));
-        let tri_buf = storage("volumes BVH triangles", bytemuck::cast_slice(&triangles));
+        let bvhs = FlatBvhs::of(input.objects.iter().map(|o| &o.mesh));
+        // A scene without objects binds one unused node and slot.
+        let tri_buf = storage_buffer(ctx, "volumes BVH triangles", &bvhs.triangles)?;
+        let node_buf = storage_buffer(ctx, "volumes BVH nodes", &bvhs.nodes)?;
+        let roots = bvhs.roots;
         let mut root_list: Vec<u32> = roots.clone();
         root_list.push(0);
-        let root_buf = storage("volumes roots", bytemuck::cast_slice(&root_list));
+        let root_buf = storage_buffer(ctx, "volumes roots", &root_list)?;
         let mut bytes = node_buf.size() + tri_buf.size() + root_buf.size();
         let bvh_bind = bind_group(
             ctx,
@@ -234,7 +224,7 @@ impl Volumes {
                 label,
                 (res, res, 1),
                 wgpu::TextureFormat::Rgba32Float,
-                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                STORAGE_OUT,
             ))
         };
         // The shadow map, or a 1 x 1 stand-in the shaders never read (flags.y = 0).
@@ -267,12 +257,7 @@ impl Volumes {
             self.water
                 .bind(ctx, "volumes water", &[&uniform, &heights.heights, &water]);
         let map_texture = |label: &str, w: u32, h: u32| {
-            ctx.texture_2d(
-                label,
-                (w, h, 1),
-                self.map_format,
-                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
-            )
+            ctx.texture_2d(label, (w, h, 1), self.map_format, MAP_TARGET)
         };
         let texel_bytes = if self.map_format == wgpu::TextureFormat::Rgba16Float {
             8
@@ -323,26 +308,10 @@ impl Volumes {
         let walls = match setup.wall_layout() {
             None => None,
             Some(layout) => {
-                let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
-                let rows = layout.maps[0].rows as u32;
-                ctx.check_texture_size("volumes wall maps", cols, rows)?;
-                let texture = ctx.texture_2d(
-                    "volumes wall maps",
-                    (cols, rows, 4),
-                    self.map_format,
-                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
-                );
-                bytes += (cols * rows * 4) as u64 * texel_bytes;
-                let layers = (0..4)
-                    .map(|k| {
-                        texture.create_view(&wgpu::TextureViewDescriptor {
-                            dimension: Some(wgpu::TextureViewDimension::D2),
-                            base_array_layer: k,
-                            array_layer_count: Some(1),
-                            ..Default::default()
-                        })
-                    })
-                    .collect();
+                let texture =
+                    wall_maps_texture(ctx, "volumes wall maps", &layout, self.map_format)?;
+                bytes += (texture.width() * texture.height() * 4) as u64 * texel_bytes;
+                let layers = (0..4).map(|k| layer_view(&texture, k)).collect();
                 let bind = self
                     .walls
                     .bind(ctx, "volumes walls", &[&uniform, &water, &shadow_view]);
@@ -364,20 +333,12 @@ impl Volumes {
                 label,
                 (res_all, res_all, layers),
                 wgpu::TextureFormat::Rgba32Float,
-                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                STORAGE_OUT,
             )
         };
         let depths = array("volumes depth textures");
         let images = array("volumes images");
         bytes += (res_all * res_all * layers) as u64 * 32;
-        let layer_view = |t: &wgpu::Texture, k: u32| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_array_layer: k,
-                array_layer_count: Some(1),
-                ..Default::default()
-            })
-        };
         let mut pass_uniforms = Vec::new();
         let mut objects = Vec::new();
         for (k, o) in setup.objects.iter().enumerate() {
@@ -441,7 +402,7 @@ impl Volumes {
                     "volumes refracted view",
                     (w, h, 1),
                     wgpu::TextureFormat::Rgba32Float,
-                    U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                    STORAGE_OUT,
                 );
                 bytes += (w * h) as u64 * 16;
                 if pass_uniforms.is_empty() {
@@ -453,12 +414,6 @@ impl Volumes {
                     bytemuck::cast_slice(&pass_uniforms),
                     B::STORAGE | B::COPY_DST,
                 );
-                let array_view = |t: &wgpu::Texture| {
-                    t.create_view(&wgpu::TextureViewDescriptor {
-                        dimension: Some(wgpu::TextureViewDimension::D2Array),
-                        ..Default::default()
-                    })
-                };
                 // Without walls the view binds a one-texel stand-in it never reads (flags.z = 0).
                 let stand_in;
                 let walls_texture = match &walls {

@@ -32,7 +32,7 @@ use caustics_core::water::waves::{Wave, Waves};
 use super::ocean::GpuOcean;
 use super::ripple::GpuRipples;
 use super::{GpuProceduralWave, GpuSineWave};
-use crate::pass::{Bind, Binding, begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, Binding, STORAGE_OUT, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
 use wgpu::BufferUsages as B;
@@ -232,9 +232,7 @@ impl GpuWater {
             "water heights",
             (cols, rows, 1),
             wgpu::TextureFormat::R32Float,
-            wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            STORAGE_OUT,
         );
         let view = texture.create_view(&Default::default());
         let layout = self.pipeline.get_bind_group_layout(0);
@@ -317,7 +315,7 @@ impl GpuWater {
                     time: (params.speed * time).rem_euclid(TAU) as f32,
                     octaves: params.octaves,
                 };
-                ctx.write_buffer(wave, 0, bytemuck::bytes_of(&gpu));
+                ctx.write_pod(wave, &gpu);
             }
             Source::Ocean {
                 ocean,
@@ -345,7 +343,7 @@ impl GpuWater {
             }
             Source::HeightField { .. } => {}
         }
-        ctx.write_buffer(&self.field_buffer, 0, bytemuck::bytes_of(&self.field));
+        ctx.write_pod(&self.field_buffer, &self.field);
     }
 
     /// Ripple sources only (the scene's and [`ripples`](Self::ripples)): queue a drop for the next
@@ -441,27 +439,16 @@ impl RippleSource {
         for d in &self.params.drops {
             self.sim.drop(ctx, d);
         }
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ripple settling steps"),
-            });
+        let mut encoder = ctx.encoder("ripple settling steps");
         self.sim.step(ctx, &mut encoder, self.params.steps);
         ctx.queue.submit([encoder.finish()]);
     }
 
     /// The surface at rest again, then [`settle`](Self::settle).
     fn restart(&mut self, ctx: &GpuContext) {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ripple restart"),
-            });
+        let mut encoder = ctx.encoder("ripple restart");
         {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ripple clear"),
-                timestamp_writes: None,
-            });
+            let mut pass = begin_compute(&mut encoder, &mut None, "ripple clear");
             pass.set_pipeline(&self.clear_pipeline);
             pass.set_bind_group(0, &self.clear_group, &[]);
             let groups = self.sim.resolution().div_ceil(8);

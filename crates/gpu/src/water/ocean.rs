@@ -19,7 +19,7 @@
 
 use caustics_core::water::ocean::Ocean;
 
-use crate::pass::{Bind, Binding, begin_compute, compute_pipeline};
+use crate::pass::{Bind, Binding, STORAGE_OUT, begin_compute, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::timing::GpuTimer;
 use crate::{GpuContext, GpuError};
@@ -181,9 +181,7 @@ impl GpuOcean {
             "ocean height and slopes",
             (n, n, 1),
             wgpu::TextureFormat::Rgba32Float,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            STORAGE_OUT,
         );
         let view = texture.create_view(&Default::default());
         let output = Pass::new(ctx, &OCEAN_OUTPUT, &[&ping, &view]);
@@ -233,7 +231,7 @@ impl GpuOcean {
             dk: self.dk,
             _pad: 0,
         };
-        ctx.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        ctx.write_pod(&self.params, &params);
     }
 
     /// The second half of [`update`](Self::update): record the four passes, for a caller that
@@ -273,11 +271,7 @@ impl GpuOcean {
     /// Evaluate the surface at time `t` and read it back: `(h, ∂h/∂x, ∂h/∂y, 0)` per sample,
     /// row-major like [`caustics_core::grid::Grid`].
     pub fn compute(&self, ctx: &GpuContext, t: f32) -> Result<Vec<[f32; 4]>, GpuError> {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ocean"),
-            });
+        let mut encoder = ctx.encoder("ocean");
         self.update(ctx, &mut encoder, t, None);
         ctx.queue.submit([encoder.finish()]);
         ctx.read_texture(&self.texture)

@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
-use crate::pass::{Bind, begin_compute, compute_pipeline};
+use crate::pass::{Bind, STORAGE_OUT, begin_compute, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -100,16 +100,8 @@ impl GpuRipples {
         ctx.check_texture_size("ripple height texture", side, side)?;
         let cpu = Ripples::new(params, size, edge)?;
         let n = side;
-        let texture = |label| {
-            ctx.texture_2d(
-                label,
-                (n, n, 1),
-                wgpu::TextureFormat::R32Float,
-                wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-            )
-        };
+        let texture =
+            |label| ctx.texture_2d(label, (n, n, 1), wgpu::TextureFormat::R32Float, STORAGE_OUT);
         // Textures start zeroed: the surface at rest.
         let textures = [texture("ripple heights A"), texture("ripple heights B")];
         let views = textures
@@ -219,17 +211,10 @@ impl GpuRipples {
         let Some(params) = self.drop_params(d) else {
             return;
         };
-        ctx.write_buffer(&self.drop_params, 0, bytemuck::bytes_of(&params));
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ripple drop"),
-            });
+        ctx.write_pod(&self.drop_params, &params);
+        let mut encoder = ctx.encoder("ripple drop");
         {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ripple drop"),
-                timestamp_writes: None,
-            });
+            let mut pass = begin_compute(&mut encoder, &mut None, "ripple drop");
             pass.set_pipeline(&self.drop_pipeline);
             pass.set_bind_group(0, &self.drop_group, &[]);
             pass.dispatch_workgroups(params.count[0].div_ceil(8), params.count[1].div_ceil(8), 1);
@@ -244,10 +229,7 @@ impl GpuRipples {
         if steps == 0 {
             return;
         }
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ripple step"),
-            timestamp_writes: None,
-        });
+        let mut pass = begin_compute(encoder, &mut None, "ripple step");
         self.record_steps(&mut pass, steps);
     }
 

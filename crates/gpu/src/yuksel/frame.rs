@@ -6,7 +6,7 @@ use caustics_core::grid::Grid;
 use caustics_core::techniques::yuksel::YukselSetup;
 
 use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
-use crate::pass::{Bind, Binding};
+use crate::pass::{Bind, Binding, array_view, layer_view};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
@@ -103,10 +103,9 @@ impl Frame {
     pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
         debug_assert!(self.fits(setup));
         for (buffer, base, phase) in &self.uniforms {
-            ctx.write_buffer(
+            ctx.write_pod(
                 buffer,
-                0,
-                bytemuck::bytes_of(&YukselUniform::tiled(setup, *base, *phase, &self.tiling)),
+                &YukselUniform::tiled(setup, *base, *phase, &self.tiling),
             );
         }
         self.patches.set_wrap(ctx, setup.wrap);
@@ -299,10 +298,7 @@ impl Yuksel {
                     "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
                     bytes as f64 / (1u64 << 20) as f64
                 );
-                let pre_view = pre.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
+                let pre_view = array_view(&pre);
                 let prepass = [
                     with_receivers(
                         "yuksel pre-pass",
@@ -331,10 +327,7 @@ impl Yuksel {
                         &[&uniform, &pre_view, &region, &tiers_view, &extents_view],
                     ),
                 ];
-                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
+                let channels_view = array_view(&channels);
                 // Per row phase (one at level 0, up to 2^MAX_LEVEL where the water chooses the
                 // level; phases past this frame's level draw nothing): pass 1, as many layers per
                 // draw as the device allows, then pass 2 into the map's rows of that phase.
@@ -353,14 +346,7 @@ impl Yuksel {
                             &[&draw_uniform, &pre_view, &region, &extents_view],
                         );
                         let views = (first..first + count)
-                            .map(|layer| {
-                                channels.create_view(&wgpu::TextureViewDescriptor {
-                                    dimension: Some(wgpu::TextureViewDimension::D2),
-                                    base_array_layer: layer,
-                                    array_layer_count: Some(1),
-                                    ..Default::default()
-                                })
-                            })
+                            .map(|layer| layer_view(&channels, layer))
                             .collect();
                         draws.push((pipeline, bind, views));
                         first += count;
