@@ -1,6 +1,6 @@
 //! The few lines every pass repeats: a compute pipeline from a [`PassSource`] with the layout the
 //! shader implies, a bind group whose binding `k` is the `k`-th resource, a (timed) compute or
-//! render pass, and a 2-D texture.
+//! render pass, 2-D textures and their views, storage buffers, and uniform vectors packed as `f32`.
 
 use caustics_core::walls::WallMaps;
 
