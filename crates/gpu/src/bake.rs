@@ -66,11 +66,7 @@ impl BakeFrames {
         for (t, scene) in &mut self.techniques {
             t.update(ctx, scene)?;
         }
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("bake frame"),
-            });
+        let mut encoder = ctx.encoder("bake frame");
         self.water.encode(&mut encoder, None);
         for (layer, (t, _)) in self.techniques.iter().enumerate() {
             t.encode(&mut encoder, None);

@@ -2,6 +2,7 @@
 //! ([`caustics_core::mesh::MeshBvh`]), so that both sides visit the same nodes, flattened into the
 //! shared node and triangle-slot buffers that `shaders/bvh.wgsl` walks.
 
+use crate::pass::{f3, v4};
 use caustics_core::mesh::TriangleMesh;
 
 /// Mirrors `BvhNode` in `shaders/bvh.wgsl`; `start` is global (node or triangle-slot buffer).
@@ -50,8 +51,6 @@ pub struct FlatBvhs {
 impl FlatBvhs {
     /// Append `mesh`'s tree; returns its root.
     pub fn push(&mut self, mesh: &TriangleMesh) -> u32 {
-        let f3 = |v: glam::DVec3| v.as_vec3().to_array();
-        let f4 = |v: glam::DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
         let (flat, order) = mesh.bvh().flatten();
         let node_base = self.nodes.len() as u32;
         let slot_base = self.triangles.len() as u32;
@@ -66,12 +65,12 @@ impl FlatBvhs {
             let [a, b, c] = mesh.indices[t as usize].map(|i| i as usize);
             let p0 = mesh.positions[a];
             GpuBvhTriangle {
-                p0: f4(p0),
-                e1: f4(mesh.positions[b] - p0),
-                e2: f4(mesh.positions[c] - p0),
-                n0: f4(mesh.normals[a]),
-                n1: f4(mesh.normals[b]),
-                n2: f4(mesh.normals[c]),
+                p0: v4(p0, 0.0),
+                e1: v4(mesh.positions[b] - p0, 0.0),
+                e2: v4(mesh.positions[c] - p0, 0.0),
+                n0: v4(mesh.normals[a], 0.0),
+                n1: v4(mesh.normals[b], 0.0),
+                n2: v4(mesh.normals[c], 0.0),
             }
         }));
         node_base

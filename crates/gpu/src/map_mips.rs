@@ -8,7 +8,7 @@
 use caustics_core::map::pyramid_levels;
 
 use crate::GpuContext;
-use crate::pass::{bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline, mip_view};
 use crate::shaders::passes;
 
 passes! {
@@ -43,28 +43,9 @@ pub fn mip_chain(
     levels: u32,
     usage: wgpu::TextureUsages,
 ) -> wgpu::Texture {
-    ctx.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width,
-            height,
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: levels,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba32Float,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | usage,
-        view_formats: &[],
-    })
-}
-
-fn mip_view(t: &wgpu::Texture, level: u32) -> wgpu::TextureView {
-    t.create_view(&wgpu::TextureViewDescriptor {
-        base_mip_level: level,
-        mip_level_count: Some(1),
-        ..Default::default()
-    })
+    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | usage;
+    let format = wgpu::TextureFormat::Rgba32Float;
+    ctx.texture_mips(label, (width, height), levels, format, usage)
 }
 
 impl MapMips {
@@ -115,15 +96,7 @@ impl MapMips {
         let levels = levels
             .iter()
             .map(|(fine, coarse, texture, k)| {
-                let group = bind_group(
-                    ctx,
-                    CAUSTICS_MIPS.name,
-                    &pipeline.get_bind_group_layout(0),
-                    &[
-                        wgpu::BindingResource::TextureView(fine),
-                        wgpu::BindingResource::TextureView(coarse),
-                    ],
-                );
+                let group = pipeline.bind(ctx, CAUSTICS_MIPS.name, &[fine, coarse]);
                 let size = texture
                     .size()
                     .mip_level_size(*k, wgpu::TextureDimension::D2);
@@ -164,10 +137,7 @@ impl MapMips {
                 }),
             );
         }
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(label),
-            timestamp_writes: None,
-        });
+        let mut pass = begin_compute(encoder, &mut None, label);
         self.encode(&mut pass);
     }
 

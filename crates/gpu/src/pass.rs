@@ -1,9 +1,36 @@
 //! The few lines every pass repeats: a compute pipeline from a [`PassSource`] with the layout the
 //! shader implies, a bind group whose binding `k` is the `k`-th resource, a (timed) compute or
-//! render pass, and a 2-D texture.
+//! render pass, 2-D textures and their views, storage buffers, and uniform vectors packed as `f32`.
+
+use caustics_core::walls::WallMaps;
 
 use crate::shaders::PassSource;
 use crate::{GpuContext, GpuError, GpuTimer};
+
+/// `v` and `w` as a WGSL `vec4<f32>`.
+pub(crate) fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
+    [v.x as f32, v.y as f32, v.z as f32, w as f32]
+}
+
+/// `v` as a WGSL `vec3<f32>`.
+pub(crate) fn f3(v: glam::DVec3) -> [f32; 3] {
+    v.as_vec3().to_array()
+}
+
+/// Four values as a WGSL `vec4<f32>`.
+pub(crate) fn f4(v: [f64; 4]) -> [f32; 4] {
+    v.map(|x| x as f32)
+}
+
+/// The usage of a texture a compute pass writes and later passes read or copy out.
+pub const STORAGE_OUT: wgpu::TextureUsages = wgpu::TextureUsages::STORAGE_BINDING
+    .union(wgpu::TextureUsages::TEXTURE_BINDING)
+    .union(wgpu::TextureUsages::COPY_SRC);
+
+/// The usage of a texture a render pass draws into and later passes read or copy out.
+pub const MAP_TARGET: wgpu::TextureUsages = wgpu::TextureUsages::RENDER_ATTACHMENT
+    .union(wgpu::TextureUsages::TEXTURE_BINDING)
+    .union(wgpu::TextureUsages::COPY_SRC);
 
 /// A compute pipeline of a pass's `main`, its layout derived from the shader.
 pub fn compute_pipeline(ctx: &GpuContext, source: &PassSource) -> wgpu::ComputePipeline {
@@ -18,33 +45,107 @@ pub fn compute_pipeline(ctx: &GpuContext, source: &PassSource) -> wgpu::ComputeP
     })
 }
 
+/// Something a bind group entry can hold: a whole buffer, a texture view, a sampler, or any
+/// [`wgpu::BindingResource`] (a buffer range).
+pub trait Binding {
+    /// The entry's resource.
+    fn resource(&self) -> wgpu::BindingResource<'_>;
+}
+
+impl<T: Binding + ?Sized> Binding for &T {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        (**self).resource()
+    }
+}
+
+impl Binding for wgpu::Buffer {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        self.as_entire_binding()
+    }
+}
+
+impl Binding for wgpu::TextureView {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        wgpu::BindingResource::TextureView(self)
+    }
+}
+
+impl Binding for wgpu::Sampler {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        wgpu::BindingResource::Sampler(self)
+    }
+}
+
+impl Binding for wgpu::BindingResource<'_> {
+    fn resource(&self) -> wgpu::BindingResource<'_> {
+        self.clone()
+    }
+}
+
 /// A bind group for `layout`, binding `k` to `resources[k]`.
 pub fn bind_group(
     ctx: &GpuContext,
     label: &str,
     layout: &wgpu::BindGroupLayout,
-    resources: &[wgpu::BindingResource],
+    resources: &[&dyn Binding],
 ) -> wgpu::BindGroup {
-    let numbered = resources.iter().cloned().enumerate();
-    bind_group_at(ctx, label, layout, numbered.map(|(k, r)| (k as u32, r)))
+    let numbered = resources.iter().enumerate();
+    let entries: Vec<_> = numbered.map(|(k, &r)| (k as u32, r)).collect();
+    bind_group_at(ctx, label, layout, &entries)
 }
 
 /// A bind group for `layout` with each `(binding, resource)`.
-pub fn bind_group_at<'a>(
+pub fn bind_group_at(
     ctx: &GpuContext,
     label: &str,
     layout: &wgpu::BindGroupLayout,
-    entries: impl IntoIterator<Item = (u32, wgpu::BindingResource<'a>)>,
+    entries: &[(u32, &dyn Binding)],
 ) -> wgpu::BindGroup {
     let entries: Vec<wgpu::BindGroupEntry> = entries
-        .into_iter()
-        .map(|(binding, resource)| wgpu::BindGroupEntry { binding, resource })
+        .iter()
+        .map(|&(binding, r)| wgpu::BindGroupEntry {
+            binding,
+            resource: r.resource(),
+        })
         .collect();
     ctx.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
         entries: &entries,
     })
+}
+
+/// Bind groups for a pipeline's group 0, whose layout the shader implies.
+pub trait Bind {
+    /// Group 0's layout.
+    fn layout0(&self) -> wgpu::BindGroupLayout;
+
+    /// A bind group for group 0, binding `k` to `resources[k]`.
+    fn bind(&self, ctx: &GpuContext, label: &str, resources: &[&dyn Binding]) -> wgpu::BindGroup {
+        bind_group(ctx, label, &self.layout0(), resources)
+    }
+
+    /// A bind group for group 0 with each `(binding, resource)`.
+    fn bind_at(
+        &self,
+        ctx: &GpuContext,
+        label: &str,
+        entries: &[(u32, &dyn Binding)],
+    ) -> wgpu::BindGroup {
+        bind_group_at(ctx, label, &self.layout0(), entries)
+    }
+}
+
+impl Bind for wgpu::ComputePipeline {
+    fn layout0(&self) -> wgpu::BindGroupLayout {
+        self.get_bind_group_layout(0)
+    }
+}
+
+impl Bind for wgpu::RenderPipeline {
+    fn layout0(&self) -> wgpu::BindGroupLayout {
+        self.get_bind_group_layout(0)
+    }
 }
 
 /// A compute pass named `label`, timed when there is a timer.
@@ -131,6 +232,54 @@ impl GpuContext {
     ) -> wgpu::Texture {
         self.create_texture(&texture_2d_descriptor(label, size, format, usage))
     }
+
+    /// A 2-D texture of `levels` mip levels from `size` down.
+    pub fn texture_mips(
+        &self,
+        label: &str,
+        (width, height): (u32, u32),
+        levels: u32,
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> wgpu::Texture {
+        self.create_texture(&wgpu::TextureDescriptor {
+            mip_level_count: levels,
+            ..texture_2d_descriptor(label, (width, height, 1), format, usage)
+        })
+    }
+
+    /// A command encoder named `label`.
+    pub fn encoder(&self, label: &str) -> wgpu::CommandEncoder {
+        let desc = wgpu::CommandEncoderDescriptor { label: Some(label) };
+        self.device.create_command_encoder(&desc)
+    }
+}
+
+/// A 2-D view of layer `layer` of an array texture.
+pub fn layer_view(texture: &wgpu::Texture, layer: u32) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2),
+        base_array_layer: layer,
+        array_layer_count: Some(1),
+        ..Default::default()
+    })
+}
+
+/// A 2-D array view of all the layers of a texture.
+pub fn array_view(texture: &wgpu::Texture) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    })
+}
+
+/// A view of mip level `level` of a texture alone.
+pub fn mip_view(texture: &wgpu::Texture, level: u32) -> wgpu::TextureView {
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        base_mip_level: level,
+        mip_level_count: Some(1),
+        ..Default::default()
+    })
 }
 
 /// A sampled texture of one mip level, `layers` deep, holding `texels` (layer after layer), its size
@@ -153,6 +302,39 @@ pub fn float_texture(
         wgpu::util::TextureDataOrder::LayerMajor,
         texels,
     ))
+}
+
+/// The four layers of a pool's walls' maps laid out as `layout`, each as wide as the widest wall:
+/// the render target a technique draws the walls' light into, its size refused by name where the
+/// device cannot hold it.
+pub fn wall_maps_texture(
+    ctx: &GpuContext,
+    label: &str,
+    layout: &WallMaps,
+    format: wgpu::TextureFormat,
+) -> Result<wgpu::Texture, GpuError> {
+    let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
+    let rows = layout.maps[0].rows as u32;
+    ctx.check_texture_size(label, cols, rows)?;
+    Ok(ctx.texture_2d(label, (cols, rows, 4), format, MAP_TARGET))
+}
+
+/// A storage buffer holding `items`, its size refused by name where the device cannot hold it. A
+/// storage binding may not be empty: one default element stands for none.
+pub fn storage_buffer<T: bytemuck::Pod + Default>(
+    ctx: &GpuContext,
+    what: &str,
+    items: &[T],
+) -> Result<wgpu::Buffer, GpuError> {
+    let fallback = [T::default()];
+    let items = if items.is_empty() {
+        &fallback[..]
+    } else {
+        items
+    };
+    let bytes: &[u8] = bytemuck::cast_slice(items);
+    ctx.check_buffer_size(what, bytes.len() as u64)?;
+    Ok(ctx.buffer_init(what, bytes, wgpu::BufferUsages::STORAGE))
 }
 
 /// The best format this device can add light into with blending: `Rgba32Float` where it has

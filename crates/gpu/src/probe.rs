@@ -2,9 +2,11 @@
 //! `caustics_light.wgsl`) on chosen inputs,
 //! so that tests can hold every function against its CPU twin in `caustics-core`.
 
+use crate::pass::{Bind, begin_compute, storage_buffer};
 use crate::shaders::passes;
 use crate::water::{GpuProceduralWave, GpuSineWave};
 use crate::{GpuContext, GpuError};
+use wgpu::BufferUsages as B;
 
 passes! {
     PROBE = "probe", "probe.wgsl";
@@ -93,28 +95,13 @@ pub fn run(
         compilation_options: Default::default(),
         cache: None,
     });
-    let input = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe inputs"),
-        contents: bytemuck::cast_slice(inputs),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let output = ctx.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("probe outputs"),
-        size: (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    // A storage binding may not be empty: keep one zero wave when there are none.
-    let waves: Vec<GpuSineWave> = if setup.waves.is_empty() {
-        vec![GpuSineWave::default()]
-    } else {
-        setup.waves.to_vec()
-    };
-    let waves = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe waves"),
-        contents: bytemuck::cast_slice(&waves),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
+    let input = ctx.buffer_init("probe inputs", bytemuck::cast_slice(inputs), B::STORAGE);
+    let output = ctx.buffer(
+        "probe outputs",
+        (inputs.len() * std::mem::size_of::<ProbeOut>()) as u64,
+        B::STORAGE | B::COPY_SRC,
+    );
+    let waves = storage_buffer(ctx, "probe waves", setup.waves)?;
     let params = ProbeParams {
         procedural: setup.procedural,
         wave_count: setup.waves.len() as u32,
@@ -122,52 +109,27 @@ pub fn run(
         wrap: setup.wrap as u32,
         _pad: 0,
     };
-    let params = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("probe params"),
-        contents: bytemuck::bytes_of(&params),
-        usage: wgpu::BufferUsages::UNIFORM,
-    });
+    let params = ctx.uniform("probe params", &params);
     let height = ctx.upload_grid("probe height field", setup.grid)?;
     let height_view = height.create_view(&Default::default());
     let water_patches = crate::water::patches::WaterPatches::new(ctx);
     let patches = water_patches.frame(ctx, &height_view, setup.wrap);
-    let bind = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("probe"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: waves.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: params.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 4,
-                resource: wgpu::BindingResource::TextureView(&height_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 5,
-                resource: wgpu::BindingResource::TextureView(&patches.view),
-            },
+    let bind = pipeline.bind(
+        ctx,
+        "probe",
+        &[
+            &input,
+            &output,
+            &waves,
+            &params,
+            &height_view,
+            &patches.view,
         ],
-    });
+    );
     let mut encoder = device.create_command_encoder(&Default::default());
     water_patches.encode(&patches, &mut encoder, &mut None);
     {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("probe"),
-            timestamp_writes: None,
-        });
+        let mut pass = begin_compute(&mut encoder, &mut None, "probe");
         pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &bind, &[]);
         pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use caustics_core::grid::Grid;
 use caustics_core::receivers::{ReceiverHeights, floor_texels};
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline, float_texture};
+use crate::pass::{Bind, STORAGE_OUT, begin_compute, compute_pipeline, f4, float_texture};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -34,12 +34,7 @@ impl ReceiversUniform {
         };
         let t = r.t0.as_vec3();
         ReceiversUniform {
-            view: [
-                r.origin.x as f32,
-                r.origin.y as f32,
-                r.texel as f32,
-                r.max_slope as f32,
-            ],
+            view: f4([r.origin.x, r.origin.y, r.texel, r.max_slope]),
             t0: [t.x, t.y, t.z, 1.0],
         }
     }
@@ -134,32 +129,18 @@ impl ReceiverLookup {
             "floor map (receivers' lookup)",
             (w, h, 1),
             wgpu::TextureFormat::Rgba32Float,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            STORAGE_OUT,
         );
         let uniform = LookupUniform {
             floor: [r.size as f32, wrap as u32 as f32, 0.0, 0.0],
             absorption: absorption.as_vec3().extend(0.0).to_array(),
         };
-        let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some(LOOKUP.name),
-            contents: bytemuck::bytes_of(&uniform),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let buffer = ctx.uniform(LOOKUP.name, &uniform);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let (d, tv, fv) = (view(deposit), view(&texels), view(&floor));
-        let bind = bind_group(
-            ctx,
-            LOOKUP.name,
-            &self.pipeline.get_bind_group_layout(0),
-            &[
-                buffer.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&d),
-                wgpu::BindingResource::TextureView(&tv),
-                wgpu::BindingResource::TextureView(&fv),
-            ],
-        );
+        let bind = self
+            .pipeline
+            .bind(ctx, LOOKUP.name, &[&buffer, &d, &tv, &fv]);
         Ok(ReceiverFrame {
             receivers: r.clone(),
             heights,

@@ -393,7 +393,7 @@ impl Renderer {
                 image.update(ctx, scene, options);
             } else if side.image_failed.as_ref().is_none_or(|(_, k)| *k != key) {
                 // A size beyond the device fails this side alone; a lost device ends the frame.
-                match self.final_image.frame_with_walls(
+                match self.final_image.frame(
                     ctx,
                     scene,
                     image_water.as_ref(),
@@ -417,11 +417,7 @@ impl Renderer {
             side.traffic += ctx.traffic().since(&before);
         }
 
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("caustics frame"),
-            });
+        let mut encoder = ctx.encoder("caustics frame");
         let mut timer = self.timer.as_mut();
         if let Some((w, _)) = &mut self.water {
             w.encode(&mut encoder, timer.as_deref_mut());
@@ -495,10 +491,7 @@ impl Renderer {
             return Ok(());
         };
         let before = ctx.traffic();
-        side.external_walls = match walls {
-            Some(w) => Some(upload_walls(ctx, w)?),
-            None => None,
-        };
+        side.external_walls = walls.map(|w| upload_walls(ctx, w)).transpose()?;
         side.traffic += ctx.traffic().since(&before);
         Ok(())
     }

@@ -62,23 +62,21 @@ impl GpuTimer {
                     ty: wgpu::QueryType::Timestamp,
                     count: capacity,
                 })),
-                Some(ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("timestamp resolve"),
-                    size: capacity as u64 * 8,
-                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                })),
+                Some(ctx.buffer(
+                    "timestamp resolve",
+                    capacity as u64 * 8,
+                    wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                )),
             )
         } else {
             (None, None)
         };
         let staging = query_set.as_ref().map(|_| {
-            ctx.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("timestamp staging"),
-                size: capacity as u64 * 8,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            })
+            ctx.buffer(
+                "timestamp staging",
+                capacity as u64 * 8,
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            )
         });
         GpuTimer {
             query_set,

@@ -2,22 +2,14 @@
 //! and textures (with the row padding wgpu requires).
 
 use crate::{GpuContext, GpuError};
+use wgpu::BufferUsages as B;
 
 impl GpuContext {
     /// Read a whole buffer (which must have `COPY_SRC` usage) as plain data.
     pub fn read_buffer<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer) -> Result<Vec<T>, GpuError> {
         let size = buffer.size();
-        let staging = self.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("readback"),
-            });
+        let staging = self.buffer("readback", size, B::COPY_DST | B::MAP_READ);
+        let mut encoder = self.encoder("readback");
         encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
         self.queue.submit([encoder.finish()]);
         self.map_and_copy(&staging, |bytes| bytemuck::cast_slice(bytes).to_vec())
@@ -54,17 +46,12 @@ impl GpuContext {
         let row = w * texel;
         let padded =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let staging = self.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("texture readback"),
-            size: padded as u64 * h as u64,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("readback"),
-            });
+        let staging = self.buffer(
+            "texture readback",
+            padded as u64 * h as u64,
+            B::COPY_DST | B::MAP_READ,
+        );
+        let mut encoder = self.encoder("readback");
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {
                 mip_level: mip,
@@ -234,12 +221,11 @@ impl Readback {
         let texel = format.block_copy_size(None).unwrap_or(16);
         let padded = (width * texel).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
             * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let staging = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("frame readback"),
-            size: padded as u64 * height as u64 * layers as u64,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
+        let staging = ctx.buffer(
+            "frame readback",
+            padded as u64 * height as u64 * layers as u64,
+            B::COPY_DST | B::MAP_READ,
+        );
         Readback {
             staging,
             width,

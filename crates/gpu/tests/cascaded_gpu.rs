@@ -119,7 +119,9 @@ fn screen_caustics_match_the_cpu_twin() {
         };
         let setup = CascadedSetup::from_scene(&scene, &params).unwrap();
         let cpu = cascaded::caustics(&setup, &water, terrain);
-        let gpu = cascaded.caustics(&ctx, &setup, &water, terrain).unwrap();
+        let gpu = cascaded
+            .caustics(&ctx, &setup, &water, terrain, None)
+            .unwrap();
         let eye = cpu
             .eye
             .iter()

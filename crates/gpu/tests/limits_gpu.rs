@@ -176,7 +176,7 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     let map = |ctx: &GpuContext| {
         Yuksel::new(ctx)
             .unwrap()
-            .caustics(ctx, &setup, &heights, Variant::RenderTargets)
+            .caustics(ctx, &setup, &heights, Variant::RenderTargets, None)
             .unwrap()
     };
     let (tiled, whole) = (map(&small), map(&full));
@@ -188,7 +188,7 @@ fn yuksel_tiles_a_prepass_wider_than_the_device() {
     let wide = setup_of(240, 64);
     let refused = Yuksel::new(&small)
         .unwrap()
-        .caustics(&small, &wide, &heights, Variant::RenderTargets)
+        .caustics(&small, &wide, &heights, Variant::RenderTargets, None)
         .map(|_| ());
     assert_too_large(refused, "240 x 64 map", "pre-pass spans");
     small.check().expect("wgpu saw nothing");

@@ -119,7 +119,7 @@ fn screen_and_vertex_variants_match_the_cpu_twin() {
         ] {
             let s = setup(variant, size, follow_sun, wrap, light, mesh, (256, 16));
             let cpu = procedural::caustics(&s, &water);
-            let out = gpu.caustics(&ctx, &s, &water).expect("GPU map");
+            let out = gpu.caustics(&ctx, &s, &water, None).expect("GPU map");
             let (max, mean) = diff(&cpu, &out);
             let share = outliers(&cpu, &out, 1e-5);
             let what = format!("{variant:?} {size:?} follow_sun {follow_sun} wrap {wrap}");
@@ -188,7 +188,7 @@ fn texture_variant_matches_the_cpu_twin() {
                 (target, anisotropy),
             );
             let cpu = procedural::caustics(&s, &water);
-            let out = gpu.caustics(&ctx, &s, &water).expect("GPU map");
+            let out = gpu.caustics(&ctx, &s, &water, None).expect("GPU map");
             let (max, mean) = diff(&cpu, &out);
             let level = mean_of(&cpu);
             let r = correlation(&cpu, &out);
@@ -249,7 +249,7 @@ fn flat_water_gives_one_on_the_gpu() {
         )
         .unwrap();
         let m = gpu
-            .caustics(&ctx, &s, &SurfaceInput::Grid(&flat))
+            .caustics(&ctx, &s, &SurfaceInput::Grid(&flat), None)
             .expect("GPU map");
         for t in &m.texels {
             assert!(
@@ -360,7 +360,7 @@ fn the_mip_chain_aliases_less_than_point_sampling() {
             (256, anisotropy),
         )
     };
-    let run = |s: &ProceduralSetup| gpu.caustics(&ctx, s, &water).expect("GPU map");
+    let run = |s: &ProceduralSetup| gpu.caustics(&ctx, s, &water, None).expect("GPU map");
     let point = run(&make(Variant::Screen, n, 16));
     let trilinear = run(&make(Variant::Texture, n, 1));
     let anisotropic = run(&make(Variant::Texture, n, 16));
@@ -601,7 +601,7 @@ fn a_terrain_matches_the_cpu_twin() {
             assert!(s.receivers.is_some());
             let water = SurfaceInput::Grid(&grid);
             let cpu = s.received(procedural::caustics(&s, &water));
-            let out = gpu.caustics(&ctx, &s, &water).expect("GPU map");
+            let out = gpu.caustics(&ctx, &s, &water, None).expect("GPU map");
             let (max, mean) = diff(&cpu, &out);
             let what = format!("{variant:?} follow_sun {follow_sun}");
             eprintln!("terrain, {what}: max {max:.2e}, mean {mean:.2e}");

@@ -202,7 +202,15 @@ fn check_caustics(
     let final_image = FinalImage::new(ctx).expect("pipeline");
     let mut timer = GpuTimer::new(ctx, 3);
     let gpu = final_image
-        .render_with(ctx, scene, surface, caustics, &options, Some(&mut timer))
+        .render_with_walls(
+            ctx,
+            scene,
+            surface,
+            caustics,
+            None,
+            &options,
+            Some(&mut timer),
+        )
         .expect("GPU render");
     let times = timer.read(ctx).expect("timestamps");
     if ctx.timestamps {
@@ -499,6 +507,7 @@ fn the_frames_pyramid_is_the_cpus() {
             &scene,
             Some(&water),
             Some(Output::Floor(&texture)),
+            None,
             &options,
         )
         .expect("frame");
@@ -666,7 +675,15 @@ fn a_frame_takes_the_filter_through_update() {
     };
     let final_image = FinalImage::new(&ctx).expect("pipeline");
     let expected = final_image
-        .render(&ctx, &scene, Some(&grid), Some(&map), &filtered, None)
+        .render_with_walls(
+            &ctx,
+            &scene,
+            Some(&grid),
+            Some(Caustics::Floor(&map)),
+            None,
+            &filtered,
+            None,
+        )
         .expect("filtered render");
     let heights = heights_texture(&ctx, &grid);
     let water = WaterTextures::of(&heights);
@@ -677,6 +694,7 @@ fn a_frame_takes_the_filter_through_update() {
             &scene,
             Some(&water),
             Some(Output::Floor(&texture)),
+            None,
             &plain,
         )
         .expect("frame");
@@ -734,7 +752,7 @@ fn the_frames_slope_moments_are_the_cpus() {
     let heights = heights_texture(&ctx, &grid);
     let textures = WaterTextures::of(&heights);
     let frame = final_image
-        .frame(&ctx, &scene, Some(&textures), None, &options)
+        .frame(&ctx, &scene, Some(&textures), None, None, &options)
         .expect("frame");
     let mut encoder = ctx
         .device
@@ -987,8 +1005,8 @@ fn underwater_matches_the_cpu() {
     check(&ctx, "underwater", &small("underwater"), true, UNDERWATER);
 }
 
-/// The heights `surface` takes on the GPU (the grid [`FinalImage::render_with`] uploads), as a
-/// texture the techniques and the frame read.
+/// The heights `surface` takes on the GPU (the grid [`FinalImage::render_with_walls`] uploads), as
+/// a texture the techniques and the frame read.
 fn heights_texture(ctx: &GpuContext, grid: &GridSurface) -> wgpu::Texture {
     ctx.upload_grid("water heights", &grid.grid)
         .expect("heights")
@@ -1025,6 +1043,7 @@ fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
             &scene,
             Some(&water),
             Some(Output::Floor(&map_texture)),
+            None,
             &options,
         )
         .expect("frame");
@@ -1126,7 +1145,14 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
     };
     let final_image = FinalImage::new(&ctx).expect("pipeline");
     let mut frame = final_image
-        .frame(&ctx, &scene, Some(&water), technique.output(), &options)
+        .frame(
+            &ctx,
+            &scene,
+            Some(&water),
+            technique.output(),
+            None,
+            &options,
+        )
         .expect("frame");
     frame.update(&ctx, &scene, &options);
     let mut encoder = ctx
@@ -1151,11 +1177,12 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
     };
     let surface = Some(&grid as &dyn Surface);
     let from_map = final_image
-        .render_with(
+        .render_with_walls(
             &ctx,
             &scene,
             surface,
             Some(Caustics::Floor(&map)),
+            None,
             &options,
             None,
         )
@@ -1172,7 +1199,7 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
     );
 
     let flat = final_image
-        .render_with(&ctx, &scene, surface, None, &options, None)
+        .render_with_walls(&ctx, &scene, surface, None, None, &options, None)
         .expect("flat");
     let lit = difference(&flat, &from_texture);
     eprintln!(
@@ -1222,11 +1249,12 @@ fn full_size_render_times() {
             let started = std::time::Instant::now();
             let mut timer = GpuTimer::new(&ctx, 3);
             let gpu = final_image
-                .render(
+                .render_with_walls(
                     &ctx,
                     &scene,
                     surface,
-                    map.as_ref(),
+                    map.as_ref().map(Caustics::Floor),
+                    None,
                     &options,
                     Some(&mut timer),
                 )

@@ -164,10 +164,10 @@ fn gpu_variants_match_the_cpu_twin() {
         .unwrap();
         let cpu = yuksel::caustics(&setup, &heights);
         let mrt = yuksel
-            .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
+            .caustics(&ctx, &setup, &heights, Variant::RenderTargets, None)
             .expect("render targets");
         let scatter = yuksel
-            .caustics(&ctx, &setup, &heights, Variant::Scatter)
+            .caustics(&ctx, &setup, &heights, Variant::Scatter, None)
             .expect("scatter");
         eprintln!(
             "{params:?}: CPU vs render targets {:.2e}, render targets vs scatter {:.2e}",
@@ -248,7 +248,7 @@ fn receivers_match_the_cpu_twin() {
         );
         for variant in [Variant::RenderTargets, Variant::Scatter] {
             let gpu = yuksel
-                .caustics(&ctx, &setup, &heights, variant)
+                .caustics(&ctx, &setup, &heights, variant, None)
                 .expect("gpu");
             let (mean, share) = spread(&cpu, &gpu);
             eprintln!(
@@ -441,7 +441,7 @@ fn the_scatter_matches_its_cpu_twin() {
         levels.push(region.level);
         let cpu = yuksel::scatter(&setup, &heights);
         let gpu = yuksel
-            .caustics(&ctx, &setup, &heights, Variant::Scatter)
+            .caustics(&ctx, &setup, &heights, Variant::Scatter, None)
             .expect("scatter");
         let d = worst(&cpu, &gpu);
         let (mean, share) = spread(&cpu, &gpu);
@@ -499,11 +499,11 @@ fn fewer_render_targets_give_the_same_map() {
     .unwrap();
     let heights = surface(40);
     let all = yuksel
-        .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
+        .caustics(&ctx, &setup, &heights, Variant::RenderTargets, None)
         .unwrap();
     yuksel.targets_per_draw = 2;
     let split = yuksel
-        .caustics(&ctx, &setup, &heights, Variant::RenderTargets)
+        .caustics(&ctx, &setup, &heights, Variant::RenderTargets, None)
         .unwrap();
     assert_eq!(all, split);
 }
@@ -697,7 +697,9 @@ fn light_at_the_regions_edge_counts_in_every_channel() {
     }
     let cpu = yuksel::caustics(&setup, &heights);
     for variant in [Variant::RenderTargets, Variant::Scatter] {
-        let gpu = yuksel.caustics(&ctx, &setup, &heights, variant).unwrap();
+        let gpu = yuksel
+            .caustics(&ctx, &setup, &heights, variant, None)
+            .unwrap();
         // measured 2.17e-4 (render targets) and 2.16e-4 (scatter) on lavapipe 25.0.7 (Mesa)
         let d = worst(&cpu, &gpu);
         eprintln!("edge of the region, {variant:?}: {d:.2e}");

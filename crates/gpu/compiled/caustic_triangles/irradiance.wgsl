@@ -47,6 +47,12 @@ struct package__1caustic_triangles_common_CausticTriangles {
     periodic: u32
 }
 
+fn package__1caustic_triangles_common__1tri_area(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
+    let e = b - a;
+    let f = c - a;
+    return 0.5 * abs(e.x * f.y - e.y * f.x);
+}
+
 fn photon_at(i: i32, j: i32) -> vec4<f32> {
     let p = i32(u.p);
     if i < 0 || j < 0 || i >= p || j >= p {
@@ -70,12 +76,6 @@ fn quad_valid(qi: i32, qj: i32) -> bool {
     return a.z >= 0.0 && b.z >= 0.0 && c.z >= 0.0 && d.z >= 0.0 && b.w == a.w && c.w == a.w && d.w == a.w;
 }
 
-fn tri_area(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
-    let e = b - a;
-    let f = c - a;
-    return 0.5 * abs(e.x * f.y - e.y * f.x);
-}
-
 @group(0) @binding(0)
 var<uniform> u: package__1caustic_triangles_common_CausticTriangles;
 
@@ -93,7 +93,7 @@ fn vertex_irradiance(i: i32, j: i32) -> f32 {
             let a = ring[k];
             let b = ring[(k + 1u) % 4u];
             if a.z >= 0.0 && b.z >= 0.0 && a.w == me.w && b.w == me.w {
-                sum += tri_area(v, a.xy, b.xy);
+                sum += package__1caustic_triangles_common__1tri_area(v, a.xy, b.xy);
                 count += 1u;
             }
         }
@@ -120,11 +120,11 @@ fn vertex_irradiance(i: i32, j: i32) -> f32 {
         let c10 = photon_at(qi + 1, qj).xy;
         let c11 = photon_at(qi + 1, qj + 1).xy;
         if !(cc.x == 1 && cc.y == 0) {
-            sum += tri_area(c00, c01, c11);
+            sum += package__1caustic_triangles_common__1tri_area(c00, c01, c11);
             count += 1u;
         }
         if !(cc.x == 0 && cc.y == 1) {
-            sum += tri_area(c00, c11, c10);
+            sum += package__1caustic_triangles_common__1tri_area(c00, c11, c10);
             count += 1u;
         }
     }

@@ -429,19 +429,10 @@ fn package__1final_image__2final_image_receivers__1wall_light(p: vec3<f32>, size
     }
     var normals = array<vec3<f32>, 4>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(-1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, -1.0, 0.0));
     var shadow = 1.0;
-    if package__1final_image__2final_image_receivers_occluded(p + normals[k] * 0.0001, -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR) {
+    if package__1final_image__2final_image_receivers_occluded(p + normals[k] * 0.0001, -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR, false) {
         shadow = 0.0;
     }
     return package_shaders__1caustics_light__2sun_through_water(c, package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z, package__1final_image__2final_image_inputs_params.t_flat, shadow) * package__1final_image__2final_image_inputs_params.light_color;
-}
-
-fn package__1final_image__2final_image_receivers__2occluded_by_any(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
-    for (var k = 0u; k < package__1final_image__2final_image_inputs_params.object_count; k++) {
-        if package_shaders_bvh__1bvh_intersect(package__1final_image__2final_image_inputs_objects[k].root, o, d, t_max, true).found {
-            return true;
-        }
-    }
-    return false;
 }
 
 fn package__1final_image__2final_image_receivers__2sample_eye_space(p: vec3<f32>) -> vec4<f32> {
@@ -459,9 +450,10 @@ fn package__1final_image__2final_image_receivers_inside(p: vec2<f32>, size: f32)
     return p.x >= 0.0 && p.y >= 0.0 && p.x <= size && p.y <= size;
 }
 
-fn package__1final_image__2final_image_receivers_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
+fn package__1final_image__2final_image_receivers_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, with_glass: bool) -> bool {
     for (var k = 0u; k < package__1final_image__2final_image_inputs_params.object_count; k++) {
-        if package__1final_image__2final_image_inputs_objects[k].glass == 0u && package_shaders_bvh__1bvh_intersect(package__1final_image__2final_image_inputs_objects[k].root, o, d, t_max, true).found {
+        let casts = with_glass || package__1final_image__2final_image_inputs_objects[k].glass == 0u;
+        if casts && package_shaders_bvh__1bvh_intersect(package__1final_image__2final_image_inputs_objects[k].root, o, d, t_max, true).found {
             return true;
         }
     }
@@ -503,7 +495,7 @@ fn package__1final_image__2final_image_shade__1shade_floor(p: vec3<f32>, fa: vec
         }
     }
     var shadow = 1.0;
-    if package__1final_image__2final_image_receivers_occluded(p + vec3<f32>(0.0, 0.0, 0.0001), -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR) {
+    if package__1final_image__2final_image_receivers_occluded(p + vec3<f32>(0.0, 0.0, 0.0001), -package__1final_image__2final_image_inputs_params.sun_water, package__1final_image__2final_image_inputs_FAR, false) {
         shadow = 0.0;
     }
     let direct = package_shaders__1caustics_light__2sun_through_water(relative, e_h, package__1final_image__2final_image_inputs_params.t_flat, shadow);
@@ -522,7 +514,7 @@ fn package__1final_image__2final_image_shade__1shade_object(p: vec3<f32>, n_out:
         }
         let lambert = max(dot(n, -sun_dir), 0.0);
         var lit = 0.0;
-        if lambert > 0.0 && !package__1final_image__2final_image_receivers_occluded(p + n * 0.0001, -sun_dir, package__1final_image__2final_image_inputs_FAR) {
+        if lambert > 0.0 && !package__1final_image__2final_image_receivers_occluded(p + n * 0.0001, -sun_dir, package__1final_image__2final_image_inputs_FAR, false) {
             lit = 1.0;
         }
         var direct = vec3<f32>(package__1final_image__2final_image_inputs_params.sun_intensity * lambert * lit);
@@ -573,11 +565,11 @@ fn package__1final_image__2final_image_shade__1trace_air(o: vec3<f32>, d: vec3<f
         var caustic = vec3<f32>(0.0);
         if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_AIR_CAUSTICS) {
             caustic = package__1final_image__2final_image_inputs__2sample_caustics_filtered(p.xy, fa, fb, false, vec3<f32>(0.0), false);
-            if package__1final_image__2final_image_receivers__2occluded_by_any(start, -package__1final_image__2final_image_inputs_params.sun, package__1final_image__2final_image_inputs_FAR) {
+            if package__1final_image__2final_image_receivers_occluded(start, -package__1final_image__2final_image_inputs_params.sun, package__1final_image__2final_image_inputs_FAR, true) {
                 lit = 0.0;
             }
         }
-        else if package__1final_image__2final_image_receivers_occluded(start, -package__1final_image__2final_image_inputs_params.sun, package__1final_image__2final_image_inputs_FAR) {
+        else if package__1final_image__2final_image_receivers_occluded(start, -package__1final_image__2final_image_inputs_params.sun, package__1final_image__2final_image_inputs_FAR, false) {
             lit = 0.0;
         }
         let e = (vec3<f32>(lit) + caustic) * (package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z) + package__1final_image__2final_image_inputs_params.ambient;

@@ -56,6 +56,10 @@ struct package_volumes_common_WaterVertex {
 
 const package_volumes_common__1FLOOR_BIAS: f32 = -1e30;
 
+fn package_volumes_common__1culled_slice(plane: f32) -> package_volumes_common_SliceOut {
+    return package_volumes_common_SliceOut(package_volumes_common_CULLED, vec3<f32>(0.0), vec3<f32>(0.0), plane);
+}
+
 fn package_volumes_common__1cut_volume(c: package_volumes_common_Volumes, corners: array<package_volumes_common_WaterVertex, 3>, n: vec3<f32>, plane: f32) -> package_volumes_common_Slice {
     var tri = corners;
     var out: package_volumes_common_Slice;
@@ -152,11 +156,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> package_volumes_common_SliceOut {
     let cell = tri_index / 2u;
     let idx = package_volumes_common__1lattice_triangle(c, cell / cols, cell % cols, tri_index % 2u);
     let tri = array<package_volumes_common_WaterVertex, 3>(water[idx.x], water[idx.y], water[idx.z]);
-    var out: package_volumes_common_SliceOut;
-    out.position = package_volumes_common_CULLED;
-    out.intensity = vec3<f32>(0.0);
-    out.dir = vec3<f32>(0.0);
-    out.plane = 0.0;
+    var out = package_volumes_common__1culled_slice(0.0);
     let s = package_volumes_common__1cut_volume(c, tri, vec3<f32>(0.0, 0.0, -1.0), 0.0);
     if !s.ok {
         return out;

@@ -72,6 +72,10 @@ struct package_volumes_common_WaterVertex {
 
 const package_volumes_common__1FLOOR_BIAS: f32 = -1e30;
 
+fn package_volumes_common__1culled_slice(plane: f32) -> package_volumes_common_SliceOut {
+    return package_volumes_common_SliceOut(package_volumes_common_CULLED, vec3<f32>(0.0), vec3<f32>(0.0), plane);
+}
+
 fn package_volumes_common__1lattice_triangle(c: package_volumes_common_Volumes, i: u32, j: u32, which: u32) -> vec3<u32> {
     let w = c.dims.x + 1u;
     let v00 = i * w + j;
@@ -134,11 +138,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> package_volumes_common_SliceOut {
     let tri_index = vi / 3u;
     let cell = tri_index / 2u;
     let idx = package_volumes_common__1lattice_triangle(c, cell / cols, cell % cols, tri_index % 2u);
-    var out: package_volumes_common_SliceOut;
-    out.position = package_volumes_common_CULLED;
-    out.intensity = vec3<f32>(0.0);
-    out.dir = vec3<f32>(0.0);
-    out.plane = 0.0;
+    var out = package_volumes_common__1culled_slice(0.0);
     let h = array<vec4<f32>, 3>(hits[idx.x], hits[idx.y], hits[idx.z]);
     if h[0].w == 0.0 || h[1].w == 0.0 || h[2].w == 0.0 {
         return out;

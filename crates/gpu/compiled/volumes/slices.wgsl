@@ -78,6 +78,10 @@ struct package_volumes_common_WaterVertex {
     dir: vec4<f32>
 }
 
+fn package_volumes_common__1culled_slice(plane: f32) -> package_volumes_common_SliceOut {
+    return package_volumes_common_SliceOut(package_volumes_common_CULLED, vec3<f32>(0.0), vec3<f32>(0.0), plane);
+}
+
 fn package_volumes_common__1cut_volume(c: package_volumes_common_Volumes, corners: array<package_volumes_common_WaterVertex, 3>, n: vec3<f32>, plane: f32) -> package_volumes_common_Slice {
     var tri = corners;
     var out: package_volumes_common_Slice;
@@ -185,11 +189,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> package_volumes_common_SliceOut {
     let idx = package_volumes_common__1lattice_triangle(c, obj.cells.x + cell / cols, obj.cells.z + cell % cols, local % 2u);
     let tri = array<package_volumes_common_WaterVertex, 3>(water[idx.x], water[idx.y], water[idx.z]);
     let zk = (f32(plane) + 0.5) * view.v.w;
-    var out: package_volumes_common_SliceOut;
-    out.position = package_volumes_common_CULLED;
-    out.intensity = vec3<f32>(0.0);
-    out.dir = vec3<f32>(0.0);
-    out.plane = zk;
+    var out = package_volumes_common__1culled_slice(zk);
     let s = package_volumes_common__1cut_volume(c, tri, view.v.xyz, view.lo.z + zk);
     if !s.ok {
         return out;

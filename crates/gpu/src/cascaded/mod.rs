@@ -36,11 +36,12 @@ use caustics_core::techniques::cascaded::{
     screen_buffer_len,
 };
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline, f4, v4};
 
 pub mod technique;
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
+use wgpu::BufferUsages as B;
 
 passes! {
     EYE = "cascaded eye depth", "cascaded/eye.wgsl";
@@ -117,10 +118,6 @@ pub struct CascadedUniform {
     pub _pad: u32,
 }
 
-fn v4(v: glam::DVec3, w: f64) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, w as f32]
-}
-
 impl CascadedUniform {
     /// The block cascade `k` of `s` reads.
     pub fn new(s: &CascadedSetup, k: usize) -> Self {
@@ -153,26 +150,16 @@ impl CascadedUniform {
             eye_fwd: v4(e.forward, e.aspect),
             eye_right: v4(e.right, p.near),
             eye_up: v4(e.up, p.blend),
-            ior: [
-                s.ior[0] as f32,
-                s.ior[1] as f32,
-                s.ior[2] as f32,
-                s.ior_mono as f32,
-            ],
+            ior: f4([s.ior[0], s.ior[1], s.ior[2], s.ior_mono]),
             absorption: v4(s.absorption, p.c),
-            ramps: [
-                p.min_depth as f32,
-                p.max_depth as f32,
-                p.shallow_ramp as f32,
-                FIXED_SCALE as f32,
-            ],
+            ramps: f4([p.min_depth, p.max_depth, p.shallow_ramp, FIXED_SCALE]),
             terrain: [lo as f32, hi as f32, has as f32, 0.0],
-            post: [
-                s.post_shift[0].x as f32,
-                s.post_shift[0].y as f32,
-                s.post_shift[2].x as f32,
-                s.post_shift[2].y as f32,
-            ],
+            post: f4([
+                s.post_shift[0].x,
+                s.post_shift[0].y,
+                s.post_shift[2].x,
+                s.post_shift[2].y,
+            ]),
             fars: std::array::from_fn(|n| s.cascades[n].far as f32),
             fluxes: std::array::from_fn(|n| s.photon_flux(n) as f32),
             width: e.width as u32,
@@ -265,7 +252,7 @@ impl CascadedResources {
             let old = CascadedUniform::new(&self.setup, k);
             let new = CascadedUniform::new(setup, k);
             if bytemuck::bytes_of(&old) != bytemuck::bytes_of(&new) {
-                ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&new));
+                ctx.write_pod(buffer, &new);
             }
         }
         self.setup = setup.clone();
@@ -340,7 +327,6 @@ impl Cascaded {
         water: &wgpu::TextureView,
         terrain: Option<&Grid>,
     ) -> Result<CascadedResources, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let res = setup.res as u32;
         let (w, h) = (setup.eye.width as u32, setup.eye.height as u32);
@@ -367,14 +353,11 @@ impl Cascaded {
         let image = ctx.texture_2d("cascaded image", (w, h, 1), f32x4, storage);
         let dispersed = (setup.params.dispersion == Dispersion::Post)
             .then(|| ctx.texture_2d("cascaded dispersed image", (w, h, 1), f32x4, storage));
-        let acc = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("cascaded screen-space caustic maps"),
-            size: acc_bytes,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let acc = ctx.buffer(
+            "cascaded screen-space caustic maps",
+            acc_bytes,
+            B::STORAGE | B::COPY_SRC | B::COPY_DST,
+        );
         let terrain_grid = match (terrain, setup.terrain_range) {
             (Some(g), Some(_)) => g.clone(),
             _ => Grid::new(1, 1),
@@ -382,84 +365,48 @@ impl Cascaded {
         let terrain_tex = ctx.upload_grid("cascaded terrain heights", &terrain_grid)?;
         let terrain_view = terrain_tex.create_view(&Default::default());
         let uniforms: Vec<wgpu::Buffer> = (0..CASCADES)
-            .map(|k| {
-                ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("cascaded uniform"),
-                    contents: bytemuck::bytes_of(&CascadedUniform::new(setup, k)),
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                })
-            })
+            .map(|k| ctx.uniform("cascaded uniform", &CascadedUniform::new(setup, k)))
             .collect();
         let eye_view = eye.create_view(&Default::default());
         let gwater_view = gwater.create_view(&Default::default());
         let gterrain_view = gterrain.create_view(&Default::default());
         let image_view = image.create_view(&Default::default());
-        let eye_bind = bind_group(
-            ctx,
-            EYE.name,
-            &self.eye.get_bind_group_layout(0),
-            &[
-                uniforms[0].as_entire_binding(),
-                View(&terrain_view),
-                View(&eye_view),
-            ],
-        );
+        let eye_bind = self
+            .eye
+            .bind(ctx, EYE.name, &[&uniforms[0], &terrain_view, &eye_view]);
         let cascades = uniforms
             .iter()
             .map(|u| {
                 [
-                    bind_group(
-                        ctx,
-                        WATER_GBUFFER.name,
-                        &self.water.get_bind_group_layout(0),
-                        &[u.as_entire_binding(), View(water), View(&gwater_view)],
-                    ),
-                    bind_group(
+                    self.water
+                        .bind(ctx, WATER_GBUFFER.name, &[&u, water, &gwater_view]),
+                    self.terrain.bind(
                         ctx,
                         TERRAIN_GBUFFER.name,
-                        &self.terrain.get_bind_group_layout(0),
-                        &[
-                            u.as_entire_binding(),
-                            View(&terrain_view),
-                            View(&gterrain_view),
-                        ],
+                        &[&u, &terrain_view, &gterrain_view],
                     ),
-                    bind_group(
+                    self.photons.bind(
                         ctx,
                         PHOTONS.name,
-                        &self.photons.get_bind_group_layout(0),
-                        &[
-                            u.as_entire_binding(),
-                            View(&gwater_view),
-                            View(&gterrain_view),
-                            acc.as_entire_binding(),
-                            View(&eye_view),
-                        ],
+                        &[&u, &gwater_view, &gterrain_view, &acc, &eye_view],
                     ),
                 ]
             })
             .collect();
-        let compose_bind = bind_group(
+        let compose_bind = self.compose.bind(
             ctx,
             COMPOSE.name,
-            &self.compose.get_bind_group_layout(0),
-            &[
-                uniforms[0].as_entire_binding(),
-                View(&eye_view),
-                acc.as_entire_binding(),
-                View(&image_view),
-            ],
+            &[&uniforms[0], &eye_view, &acc, &image_view],
         );
         let disperse_bind = dispersed.as_ref().map(|d| {
-            bind_group(
+            self.disperse.bind(
                 ctx,
                 DISPERSE.name,
-                &self.disperse.get_bind_group_layout(0),
                 &[
-                    uniforms[0].as_entire_binding(),
-                    View(&eye_view),
-                    View(&image_view),
-                    View(&d.create_view(&Default::default())),
+                    &uniforms[0],
+                    &eye_view,
+                    &image_view,
+                    &d.create_view(&Default::default()),
                 ],
             )
         });
@@ -596,17 +543,9 @@ impl Cascaded {
         ))
     }
 
-    /// Run the technique once on `frame` and read everything back.
+    /// Run the technique once on `frame` and read everything back, each pass timed into `timer`
+    /// when there is one (the viewer's overlay).
     pub fn run(
-        &self,
-        ctx: &GpuContext,
-        frame: &CascadedResources,
-    ) -> Result<GpuCascadedFrame, GpuError> {
-        self.run_timed(ctx, frame, None)
-    }
-
-    /// As [`run`](Self::run), each pass timed into `timer` (the viewer's overlay).
-    pub fn run_timed(
         &self,
         ctx: &GpuContext,
         frame: &CascadedResources,
@@ -622,19 +561,9 @@ impl Cascaded {
         })
     }
 
-    /// The whole technique from height grids: upload the water, build a frame, run it.
+    /// The whole technique from height grids: upload the water, build a frame, run it, each pass
+    /// timed into `timer` when there is one.
     pub fn caustics(
-        &self,
-        ctx: &GpuContext,
-        setup: &CascadedSetup,
-        water: &Grid,
-        terrain: Option<&Grid>,
-    ) -> Result<GpuCascadedFrame, GpuError> {
-        self.caustics_timed(ctx, setup, water, terrain, None)
-    }
-
-    /// As [`caustics`](Self::caustics), each pass timed into `timer`.
-    pub fn caustics_timed(
         &self,
         ctx: &GpuContext,
         setup: &CascadedSetup,
@@ -645,6 +574,6 @@ impl Cascaded {
         let tex = ctx.upload_grid("cascaded water heights", water)?;
         let view = tex.create_view(&Default::default());
         let frame = self.frame(ctx, setup, &view, terrain)?;
-        self.run_timed(ctx, &frame, timer)
+        self.run(ctx, &frame, timer)
     }
 }

@@ -120,9 +120,7 @@ impl Pipelines for Cascaded {
     ) -> Result<JobOutput, GpuError> {
         let (setup, water) = cascaded::job_setup(job, params)?;
         let terrain = job.scene.floor.terrain.as_ref();
-        let image = self
-            .caustics_timed(ctx, &setup, &water, terrain, timer)?
-            .image;
+        let image = self.caustics(ctx, &setup, &water, terrain, timer)?.image;
         progress(1, 1);
         Ok(JobOutput {
             caustics: SceneCaustics::EyeSpace(caustics_core::render::EyeSpaceCaustics {

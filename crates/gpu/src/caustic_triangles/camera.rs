@@ -16,8 +16,9 @@ use super::CAMERA;
 use super::{
     CausticTriangles, CausticTrianglesUniform, GeneratorFrame, LightCubeTarget, Reconstruction,
 };
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, begin_compute, compute_pipeline, f4, v4};
 use crate::{GpuContext, GpuError, GpuTimer};
+use wgpu::BufferUsages as B;
 
 /// Mirrors `CameraPass` in `caustic_triangles/camera.wgsl`.
 #[repr(C)]
@@ -123,16 +124,16 @@ impl CameraRenderer {
             "caustic-triangles distance maps",
             dm_texels.len() as u64 * 16,
         )?;
-        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles camera distance maps"),
-            contents: bytemuck::cast_slice(&dm_texels),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
-        let gens_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles camera generators"),
-            contents: bytemuck::cast_slice(&uniforms),
-            usage: wgpu::BufferUsages::STORAGE,
-        });
+        let dm_buffer = ctx.buffer_init(
+            "caustic-triangles camera distance maps",
+            bytemuck::cast_slice(&dm_texels),
+            B::STORAGE,
+        );
+        let gens_buffer = ctx.buffer_init(
+            "caustic-triangles camera generators",
+            bytemuck::cast_slice(&uniforms),
+            B::STORAGE,
+        );
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         for frame in &frames {
             let p = frame.setup.p as u32;
@@ -191,12 +192,7 @@ impl CameraRenderer {
                     );
                 }
                 stand_in_map = one_texel("caustic-triangles light cube stand-in");
-                let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("caustic-triangles shadow stand-in"),
-                    size: 16,
-                    usage: wgpu::BufferUsages::STORAGE,
-                    mapped_at_creation: false,
-                });
+                let shadow = ctx.buffer("caustic-triangles shadow stand-in", 16, B::STORAGE);
                 let f = &first.0.floor;
                 (
                     stand_in_map.create_view(&Default::default()),
@@ -215,29 +211,23 @@ impl CameraRenderer {
             cube_res,
             map_size,
         );
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles camera uniform"),
-            contents: bytemuck::bytes_of(&uniform),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
-        let image = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles camera image"),
-            size: w as u64 * h as u64 * 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let bind = bind_group(
+        let uniform = ctx.uniform("caustic-triangles camera uniform", &uniform);
+        let image = ctx.buffer(
+            "caustic-triangles camera image",
+            w as u64 * h as u64 * 16,
+            B::STORAGE | B::COPY_SRC,
+        );
+        let bind = self.pipeline.bind(
             ctx,
             "caustic-triangles camera pass",
-            &self.pipeline.get_bind_group_layout(0),
             &[
-                uniform.as_entire_binding(),
-                dm_buffer.as_entire_binding(),
-                gens_buffer.as_entire_binding(),
-                shadow.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&cube_view),
-                wgpu::BindingResource::TextureView(&floor_view),
-                image.as_entire_binding(),
+                &uniform,
+                &dm_buffer,
+                &gens_buffer,
+                &shadow,
+                &cube_view,
+                &floor_view,
+                &image,
             ],
         );
         {
@@ -265,7 +255,6 @@ fn camera_uniform(
     cube: u32,
     (map_width, map_height): (u32, u32),
 ) -> CameraUniform {
-    let v4 = |v: glam::DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
     // The frame of `Camera::ray`.
     let forward = (camera.target - camera.position).normalize();
     let right = forward.cross(glam::DVec3::Z).normalize_or(glam::DVec3::X);
@@ -290,12 +279,12 @@ fn camera_uniform(
         light_color: v4(params.light_color, 0.0),
         light,
         spot_axis,
-        floor: [
-            setup.floor.origin.x as f32,
-            setup.floor.origin.y as f32,
-            setup.floor.size as f32,
+        floor: f4([
+            setup.floor.origin.x,
+            setup.floor.origin.y,
+            setup.floor.size,
             0.0,
-        ],
+        ]),
         width: camera.width,
         height: camera.height,
         generators: generators as u32,

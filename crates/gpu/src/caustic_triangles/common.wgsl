@@ -62,6 +62,13 @@ fn meets_square(c: CausticTriangles, lo: vec2<f32>, hi: vec2<f32>) -> bool {
     return all(hi >= c.floor.xy) && all(lo <= c.floor.xy + c.floor.z);
 }
 
+// The area of the triangle a b c.
+fn tri_area(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
+    let e = b - a;
+    let f = c - a;
+    return 0.5 * abs(e.x * f.y - e.y * f.x);
+}
+
 // Blocks per side of level k of the merge pyramid, and the level's offset (CPU twin: merge::layout).
 fn pyr_side(p: u32, k: u32) -> u32 {
     return (p - 1u) >> k;

@@ -4,8 +4,9 @@
 use caustics_core::techniques::caustic_triangles::cube::FAR;
 
 use super::{CausticTriangles, GeneratorFrame};
-use crate::pass::{begin_compute, begin_render, bind_group};
+use crate::pass::{Bind, MAP_TARGET, begin_compute, begin_render};
 use crate::{GpuContext, GpuError, GpuTimer};
+use wgpu::BufferUsages as B;
 
 /// The light cube map of a point light on the GPU (paper 4, §4.2-4.3; CPU twin
 /// `caustics_core::techniques::caustic_triangles::cube`): the six `C x C` faces stacked in one
@@ -50,19 +51,14 @@ impl CausticTriangles {
             "caustic-triangles light cube map",
             (resolution, 6 * resolution, 1),
             self.map_format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
+            MAP_TARGET,
         );
         let view = texture.create_view(&Default::default());
-        let shadow = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles light cube shadow distances"),
-            size: n * 4,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let shadow = ctx.buffer(
+            "caustic-triangles light cube shadow distances",
+            n * 4,
+            B::STORAGE | B::COPY_DST | B::COPY_SRC,
+        );
         ctx.check()?;
         Ok(LightCubeTarget {
             resolution,
@@ -80,26 +76,20 @@ impl CausticTriangles {
         frame: &GeneratorFrame,
         target: &LightCubeTarget,
     ) -> CubeBinds {
-        let cube = bind_group(
+        let cube = self.cube.bind(
             ctx,
             "caustic-triangles light cube map",
-            &self.cube.get_bind_group_layout(0),
             &[
-                frame.uniform.as_entire_binding(),
-                frame.photons.as_entire_binding(),
-                frame.irradiance.as_entire_binding(),
-                frame.pyramid.as_entire_binding(),
+                &frame.uniform,
+                &frame.photons,
+                &frame.irradiance,
+                &frame.pyramid,
             ],
         );
-        let shadow = bind_group(
+        let shadow = self.shadow.bind(
             ctx,
             "caustic-triangles light cube shadow distances",
-            &self.shadow.get_bind_group_layout(0),
-            &[
-                frame.uniform.as_entire_binding(),
-                frame.dm_buffer.as_entire_binding(),
-                target.shadow.as_entire_binding(),
-            ],
+            &[&frame.uniform, &frame.dm_buffer, &target.shadow],
         );
         CubeBinds { cube, shadow }
     }

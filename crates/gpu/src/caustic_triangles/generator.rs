@@ -6,7 +6,7 @@
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
 
 use super::{CausticTriangles, CausticTrianglesUniform, CopyBandBuffer, Reconstruction};
-use crate::pass::{begin_compute, begin_render, bind_group};
+use crate::pass::{Bind, MAP_TARGET, begin_compute, begin_render, layer_view};
 use crate::{GpuContext, GpuError, GpuTimer};
 
 /// One generator's resources (a glass object's, or the water surface's for the floor or a wall):
@@ -96,34 +96,30 @@ impl CausticTriangles {
         let dm_bytes = dm.texels.len() as u64 * 16;
         ctx.check_buffer_size("caustic-triangles distance map", dm_bytes)?;
         ctx.check_buffer_size("caustic-triangles photon image", p * p * 16)?;
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles uniform"),
-            contents: bytemuck::bytes_of(&CausticTrianglesUniform::new(setup, dm)),
-            usage: B::UNIFORM | B::COPY_DST,
-        });
-        let dm_buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles distance map"),
-            contents: bytemuck::cast_slice(&dm.texels),
-            usage: B::STORAGE | B::COPY_DST,
-        });
-        let photons = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles photon image"),
-            size: p * p * 16,
-            usage: B::STORAGE | B::COPY_SRC | B::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let paths = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles photon path lengths"),
-            size: p * p * 4,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let irradiance = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles vertex irradiance"),
-            size: p * p * 4,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let uniform = ctx.uniform(
+            "caustic-triangles uniform",
+            &CausticTrianglesUniform::new(setup, dm),
+        );
+        let dm_buffer = ctx.buffer_init(
+            "caustic-triangles distance map",
+            bytemuck::cast_slice(&dm.texels),
+            B::STORAGE | B::COPY_DST,
+        );
+        let photons = ctx.buffer(
+            "caustic-triangles photon image",
+            p * p * 16,
+            B::STORAGE | B::COPY_SRC | B::COPY_DST,
+        );
+        let paths = ctx.buffer(
+            "caustic-triangles photon path lengths",
+            p * p * 4,
+            B::STORAGE | B::COPY_SRC,
+        );
+        let irradiance = ctx.buffer(
+            "caustic-triangles vertex irradiance",
+            p * p * 4,
+            B::STORAGE | B::COPY_SRC,
+        );
         let own_map = map.is_none();
         let layer = map.map_or(0, |m| m.1);
         let map = match map.map(|m| m.0) {
@@ -146,36 +142,19 @@ impl CausticTriangles {
                 "caustic-triangles floor map",
                 (w, h, 1),
                 self.map_format,
-                wgpu::TextureUsages::RENDER_ATTACHMENT
-                    | wgpu::TextureUsages::COPY_SRC
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                MAP_TARGET,
             ),
         };
-        let map_view = map.create_view(&wgpu::TextureViewDescriptor {
-            dimension: Some(wgpu::TextureViewDimension::D2),
-            base_array_layer: layer,
-            array_layer_count: Some(1),
-            ..Default::default()
-        });
-        let photon_bind = bind_group(
+        let map_view = layer_view(&map, layer);
+        let photon_bind = self.photon.bind(
             ctx,
             "caustic-triangles photon tracing",
-            &self.photon.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                dm_buffer.as_entire_binding(),
-                photons.as_entire_binding(),
-            ],
+            &[&uniform, &dm_buffer, &photons],
         );
-        let irradiance_bind = bind_group(
+        let irradiance_bind = self.irradiance.bind(
             ctx,
             "caustic-triangles vertex irradiance",
-            &self.irradiance.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                photons.as_entire_binding(),
-                irradiance.as_entire_binding(),
-            ],
+            &[&uniform, &photons, &irradiance],
         );
         let (sides, offsets) = caustics_core::techniques::caustic_triangles::merge::layout(
             setup.p,
@@ -186,60 +165,46 @@ impl CausticTriangles {
             "caustic-triangles merge pyramid",
             pyramid_texels.max(1) * 16,
         )?;
-        let pyramid = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("caustic-triangles merge pyramid"),
-            size: pyramid_texels.max(1) * 16,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let pyramid = ctx.buffer(
+            "caustic-triangles merge pyramid",
+            pyramid_texels.max(1) * 16,
+            B::STORAGE | B::COPY_SRC,
+        );
         let pyramid_binds = (0..=setup.merge_levels)
             .map(|k| {
-                let level = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("caustic-triangles merge level"),
-                    contents: bytemuck::cast_slice(&[k, 0u32, 0, 0]),
-                    usage: B::UNIFORM,
-                });
-                bind_group(
+                let level = ctx.buffer_init(
+                    "caustic-triangles merge level",
+                    bytemuck::cast_slice(&[k, 0u32, 0, 0]),
+                    B::UNIFORM,
+                );
+                self.pyramid.bind(
                     ctx,
                     "caustic-triangles merge pyramid",
-                    &self.pyramid.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        photons.as_entire_binding(),
-                        irradiance.as_entire_binding(),
-                        pyramid.as_entire_binding(),
-                        level.as_entire_binding(),
-                    ],
+                    &[&uniform, &photons, &irradiance, &pyramid, &level],
                 )
             })
             .collect();
-        let copy_band = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles copy band"),
-            contents: bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
-            usage: B::STORAGE | B::INDIRECT | B::COPY_SRC,
-        });
-        let triangles_bind = bind_group(
+        let copy_band = ctx.buffer_init(
+            "caustic-triangles copy band",
+            bytemuck::bytes_of(&CopyBandBuffer::unfitted()),
+            B::STORAGE | B::INDIRECT | B::COPY_SRC,
+        );
+        let triangles_bind = self.triangles.bind(
             ctx,
             "caustic-triangles triangles",
-            &self.triangles.get_bind_group_layout(0),
             &[
-                uniform.as_entire_binding(),
-                photons.as_entire_binding(),
-                irradiance.as_entire_binding(),
-                pyramid.as_entire_binding(),
-                paths.as_entire_binding(),
-                copy_band.as_entire_binding(),
+                &uniform,
+                &photons,
+                &irradiance,
+                &pyramid,
+                &paths,
+                &copy_band,
             ],
         );
-        let splat_bind = bind_group(
+        let splat_bind = self.splat.bind(
             ctx,
             "caustic-triangles splats",
-            &self.splat.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                photons.as_entire_binding(),
-                paths.as_entire_binding(),
-            ],
+            &[&uniform, &photons, &paths],
         );
         ctx.check()?;
         let texel = self.map_format.block_copy_size(None).unwrap_or(16) as u64;

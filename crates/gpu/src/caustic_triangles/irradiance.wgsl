@@ -4,7 +4,7 @@
 // signature (w) count. CPU twin: `vertex_irradiance` in
 // caustics-core/src/techniques/caustic_triangles/mod.rs, where both area rules are derived.
 
-import package::caustic_triangles::common::CausticTriangles;
+import package::caustic_triangles::common::{CausticTriangles, tri_area};
 
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
@@ -16,12 +16,6 @@ fn photon_at(i: i32, j: i32) -> vec4<f32> {
         return vec4<f32>(0.0, 0.0, -1.0, 0.0);
     }
     return photons[u32(i * p + j)];
-}
-
-fn tri_area(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
-    let e = b - a;
-    let f = c - a;
-    return 0.5 * abs(e.x * f.y - e.y * f.x);
 }
 
 fn quad_valid(qi: i32, qj: i32) -> bool {

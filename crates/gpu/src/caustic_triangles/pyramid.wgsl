@@ -5,19 +5,13 @@
 // u.merge_small). One dispatch per level, lowest first. CPU twin: `merge::pyramid_pass` in
 // caustics-core/src/techniques/caustic_triangles/merge.rs.
 
-import package::caustic_triangles::common::{CausticTriangles, pyr_offset, pyr_side};
+import package::caustic_triangles::common::{CausticTriangles, pyr_offset, pyr_side, tri_area};
 
 @group(0) @binding(0) var<uniform> u: CausticTriangles;
 @group(0) @binding(1) var<storage, read> photons: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> irradiance: array<f32>;
 @group(0) @binding(3) var<storage, read_write> pyramid: array<vec4<f32>>;
 @group(0) @binding(4) var<uniform> level: vec4<u32>;
-
-fn tri_area2(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>) -> f32 {
-    let e = b - a;
-    let f = c - a;
-    return 0.5 * abs(e.x * f.y - e.y * f.x);
-}
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -34,7 +28,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let p01 = photons[k00 + s];
     let p11 = photons[k00 + s * u.p + s];
     let p10 = photons[k00 + s * u.p];
-    let area = tri_area2(p00.xy, p01.xy, p11.xy) + tri_area2(p00.xy, p11.xy, p10.xy);
+    let area = tri_area(p00.xy, p01.xy, p11.xy) + tri_area(p00.xy, p11.xy, p10.xy);
     if k == 0u {
         let ok = p00.z >= 0.0 && p01.z >= 0.0 && p10.z >= 0.0 && p11.z >= 0.0 && p01.w == p00.w
             && p10.w == p00.w && p11.w == p00.w;
@@ -46,8 +40,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let e01 = irradiance[k00 + 1u];
         let e11 = irradiance[k00 + u.p + 1u];
         let e10 = irradiance[k00 + u.p];
-        let a1 = tri_area2(p00.xy, p01.xy, p11.xy);
-        let a2 = tri_area2(p00.xy, p11.xy, p10.xy);
+        let a1 = tri_area(p00.xy, p01.xy, p11.xy);
+        let a2 = tri_area(p00.xy, p11.xy, p10.xy);
         let phi = a1 * (e00 + e01 + e11) / 3.0 + a2 * (e00 + e11 + e10) / 3.0;
         pyramid[a * n + b] = vec4<f32>(phi, a1 + a2, 1.0, p00.w);
         return;

@@ -57,6 +57,16 @@ impl CausticTriangles {
         ctx.read_map(wf.floor_map(), wf.frame.setup.floor.size)
     }
 
+    /// The frame's map, photon image and vertex irradiances, read back.
+    fn read_output(&self, ctx: &GpuContext, frame: &GeneratorFrame) -> Result<GpuOutput, GpuError> {
+        let map = self.read_map(ctx, frame)?;
+        Ok(GpuOutput {
+            photons: ctx.read_buffer(&frame.photons)?,
+            irradiance: ctx.read_buffer(&frame.irradiance)?,
+            map,
+        })
+    }
+
     /// Run the technique once and read everything back.
     pub fn run(
         &self,
@@ -69,12 +79,7 @@ impl CausticTriangles {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode(&frame, &mut encoder, None, reconstruction);
         ctx.queue.submit([encoder.finish()]);
-        let map = self.read_map(ctx, &frame)?;
-        Ok(GpuOutput {
-            photons: ctx.read_buffer(&frame.photons)?,
-            irradiance: ctx.read_buffer(&frame.irradiance)?,
-            map,
-        })
+        self.read_output(ctx, &frame)
     }
 
     /// The reconstruction alone from a given photon hit location image (`setup.p²` texels,
@@ -93,12 +98,7 @@ impl CausticTriangles {
         let mut encoder = ctx.device.create_command_encoder(&Default::default());
         self.encode_reconstruction(&frame, &mut encoder, None, reconstruction);
         ctx.queue.submit([encoder.finish()]);
-        let map = self.read_map(ctx, &frame)?;
-        Ok(GpuOutput {
-            photons: ctx.read_buffer(&frame.photons)?,
-            irradiance: ctx.read_buffer(&frame.irradiance)?,
-            map,
-        })
+        self.read_output(ctx, &frame)
     }
 
     /// Read a water frame's wall maps back (`None` without walls).

@@ -301,7 +301,7 @@ impl Pipelines for CausticTriangles {
                     let old = CausticTrianglesUniform::new(&g.frame.setup, &g.dm);
                     let new = CausticTrianglesUniform::new(&setup, &g.dm);
                     if bytemuck::bytes_of(&old) != bytemuck::bytes_of(&new) {
-                        ctx.write_buffer(&g.frame.uniform, 0, bytemuck::bytes_of(&new));
+                        ctx.write_pod(&g.frame.uniform, &new);
                     }
                     g.scene = gs;
                     g.frame.setup = setup;

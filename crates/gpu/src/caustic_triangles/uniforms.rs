@@ -1,5 +1,6 @@
 //! The uniform blocks and the copy band's buffer, as the WGSL files declare them.
 
+use crate::pass::{f4, v4};
 use crate::receivers::ReceiversUniform;
 use caustics_core::techniques::caustic_triangles::water::WaterSetup;
 use caustics_core::techniques::caustic_triangles::{CausticTrianglesSetup, DistanceMap};
@@ -79,24 +80,18 @@ pub struct CausticTrianglesUniform {
 impl CausticTrianglesUniform {
     /// The block for generator `s` and its distance map `dm` (`dm_base` 0).
     pub fn new(s: &CausticTrianglesSetup, dm: &DistanceMap) -> Self {
-        let v4 = |v: glam::DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
         CausticTrianglesUniform {
             centre: v4(dm.centre, dm.radius),
             u: v4(s.u, s.ior),
             v: v4(s.v, s.flux),
             w: v4(s.w, s.splat_size),
-            rect: [
-                s.rect_lo.x as f32,
-                s.rect_lo.y as f32,
-                s.cell.x as f32,
-                s.cell.y as f32,
-            ],
-            floor: [
-                s.floor.origin.x as f32,
-                s.floor.origin.y as f32,
-                s.floor.size as f32,
-                s.floor.texel_area() as f32,
-            ],
+            rect: f4([s.rect_lo.x, s.rect_lo.y, s.cell.x, s.cell.y]),
+            floor: f4([
+                s.floor.origin.x,
+                s.floor.origin.y,
+                s.floor.size,
+                s.floor.texel_area(),
+            ]),
             p: s.p as u32,
             cube: dm.resolution as u32,
             layers: dm.layers as u32,
@@ -163,13 +158,8 @@ impl WaterPhotonUniform {
     pub fn for_receiver(ws: &WaterSetup, wall: Option<Wall>) -> Self {
         let l = ws.light;
         WaterPhotonUniform {
-            light: [l.x as f32, l.y as f32, l.z as f32, ws.ior as f32],
-            water: [
-                ws.depth as f32,
-                ws.size as f32,
-                ws.spacing as f32,
-                ws.t_flat as f32,
-            ],
+            light: v4(l, ws.ior),
+            water: f4([ws.depth, ws.size, ws.spacing, ws.t_flat]),
             lattice: ws.lattice as u32,
             wrap: ws.surface_wrap as u32,
             fresnel: ws.fresnel as u32,

@@ -13,9 +13,10 @@ use super::{
 };
 use std::sync::Arc;
 
-use crate::pass::{begin_compute, bind_group};
+use crate::pass::{Bind, begin_compute, wall_maps_texture};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+use wgpu::BufferUsages as B;
 
 /// Tiling water's copy band on the GPU: the bound pass's buffer and bind group, the band pass's, and
 /// the height grid the bound pass covers.
@@ -118,10 +119,10 @@ impl WaterFrame {
         let ct = CausticTrianglesUniform::new(&ws.setup, &no_distance_map());
         let w = WaterPhotonUniform::new(ws);
         if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
-            ctx.write_buffer(&self.frame.uniform, 0, bytemuck::bytes_of(&ct));
+            ctx.write_pod(&self.frame.uniform, &ct);
         }
         if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
-            ctx.write_buffer(&self.water_uniform, 0, bytemuck::bytes_of(&w));
+            ctx.write_pod(&self.water_uniform, &w);
         }
         if let Some(walls) = &mut self.walls {
             for (wall, wf) in Wall::ALL.into_iter().zip(&mut walls.walls) {
@@ -129,12 +130,12 @@ impl WaterFrame {
                 let old_ct = CausticTrianglesUniform::new(&wf.frame.setup, &no_distance_map());
                 let ct = CausticTrianglesUniform::new(&setup, &no_distance_map());
                 if bytemuck::bytes_of(&ct) != bytemuck::bytes_of(&old_ct) {
-                    ctx.write_buffer(&wf.frame.uniform, 0, bytemuck::bytes_of(&ct));
+                    ctx.write_pod(&wf.frame.uniform, &ct);
                 }
                 let old_w = WaterPhotonUniform::for_receiver(&self.setup, Some(wall));
                 let w = WaterPhotonUniform::for_receiver(ws, Some(wall));
                 if bytemuck::bytes_of(&w) != bytemuck::bytes_of(&old_w) {
-                    ctx.write_buffer(&wf.water_uniform, 0, bytemuck::bytes_of(&w));
+                    ctx.write_pod(&wf.water_uniform, &w);
                 }
                 wf.frame.setup = setup;
             }
@@ -220,12 +221,11 @@ impl CausticTriangles {
         water: &WaterTextures,
     ) -> Result<WaterFrame, GpuError> {
         let mut frame = self.frame(ctx, &ws.setup, &no_distance_map())?;
-        let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("caustic-triangles water photons"),
-            contents: bytemuck::bytes_of(&WaterPhotonUniform::new(ws)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
-        let view = wgpu::BindingResource::TextureView(&water.heights);
+        let water_uniform = ctx.uniform(
+            "caustic-triangles water photons",
+            &WaterPhotonUniform::new(ws),
+        );
+        let view = &water.heights;
         let receivers = match &ws.receivers {
             Some(r) => Some(
                 self.lookup
@@ -237,48 +237,26 @@ impl CausticTriangles {
             Some(r) => r.heights.create_view(&Default::default()),
             None => heights_texture(ctx, None)?.create_view(&Default::default()),
         };
-        let receiver_view = wgpu::BindingResource::TextureView(&heights_of_receivers);
-        let water_bind = bind_group(
+        let water_bind = self.water_photon.bind(
             ctx,
             "caustic-triangles water photons",
-            &self.water_photon.get_bind_group_layout(0),
             &[
-                water_uniform.as_entire_binding(),
-                view.clone(),
-                frame.photons.as_entire_binding(),
-                frame.paths.as_entire_binding(),
-                receiver_view.clone(),
+                &water_uniform,
+                view,
+                &frame.photons,
+                &frame.paths,
+                &heights_of_receivers,
             ],
         );
         let band_bind = ws.wrap().then(|| {
-            let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(BAND_BOUND.name),
-                size: 16,
-                usage: wgpu::BufferUsages::STORAGE
-                    | wgpu::BufferUsages::COPY_DST
-                    | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let bound_bind = bind_group(
-                ctx,
-                BAND_BOUND.name,
-                &self.band_bound.get_bind_group_layout(0),
-                &[
-                    water_uniform.as_entire_binding(),
-                    view.clone(),
-                    bound.as_entire_binding(),
-                ],
-            );
-            let band = bind_group(
+            let bound = ctx.buffer(BAND_BOUND.name, 16, B::STORAGE | B::COPY_DST | B::COPY_SRC);
+            let bound_bind =
+                self.band_bound
+                    .bind(ctx, BAND_BOUND.name, &[&water_uniform, view, &bound]);
+            let band = self.copy_band.bind(
                 ctx,
                 COPY_BAND.name,
-                &self.copy_band.get_bind_group_layout(0),
-                &[
-                    water_uniform.as_entire_binding(),
-                    frame.uniform.as_entire_binding(),
-                    bound.as_entire_binding(),
-                    frame.copy_band.as_entire_binding(),
-                ],
+                &[&water_uniform, &frame.uniform, &bound, &frame.copy_band],
             );
             BandPasses {
                 bound,
@@ -289,7 +267,7 @@ impl CausticTriangles {
         });
         frame.gpu_band = band_bind.is_some();
         let walls = if ws.walls {
-            Some(self.wall_frames(ctx, ws, &view, &receiver_view)?)
+            Some(self.wall_frames(ctx, ws, view, &heights_of_receivers)?)
         } else {
             None
         };
@@ -312,22 +290,13 @@ impl CausticTriangles {
         &self,
         ctx: &GpuContext,
         ws: &WaterSetup,
-        heights: &wgpu::BindingResource,
-        receiver_heights: &wgpu::BindingResource,
+        heights: &wgpu::TextureView,
+        receiver_heights: &wgpu::TextureView,
     ) -> Result<WallFrames, GpuError> {
         let f = &ws.setup.floor;
         let layout = WallMaps::for_floor_map(f.width, f.height, ws.size, ws.depth);
-        let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
-        let rows = layout.maps[0].rows as u32;
-        ctx.check_texture_size("caustic-triangles wall maps", cols, rows)?;
-        let texture = ctx.texture_2d(
-            "caustic-triangles wall maps",
-            (cols, rows, 4),
-            self.map_format,
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
+        let label = "caustic-triangles wall maps";
+        let texture = wall_maps_texture(ctx, label, &layout, self.map_format)?;
         let mut walls = Vec::with_capacity(4);
         for wall in Wall::ALL {
             let setup = ws.receiver_setup(Some(wall), &layout);
@@ -337,21 +306,19 @@ impl CausticTriangles {
                 &no_distance_map(),
                 Some((&texture, wall.index() as u32)),
             )?;
-            let water_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("caustic-triangles wall photons"),
-                contents: bytemuck::bytes_of(&WaterPhotonUniform::for_receiver(ws, Some(wall))),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
-            let water_bind = bind_group(
+            let water_uniform = ctx.uniform(
+                "caustic-triangles wall photons",
+                &WaterPhotonUniform::for_receiver(ws, Some(wall)),
+            );
+            let water_bind = self.water_photon.bind(
                 ctx,
                 "caustic-triangles wall photons",
-                &self.water_photon.get_bind_group_layout(0),
                 &[
-                    water_uniform.as_entire_binding(),
-                    heights.clone(),
-                    frame.photons.as_entire_binding(),
-                    frame.paths.as_entire_binding(),
-                    receiver_heights.clone(),
+                    &water_uniform,
+                    heights,
+                    &frame.photons,
+                    &frame.paths,
+                    receiver_heights,
                 ],
             );
             walls.push(WallFrame {

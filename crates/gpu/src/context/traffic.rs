@@ -154,6 +154,42 @@ impl GpuContext {
         self.device.create_buffer(desc)
     }
 
+    /// A buffer of `size` bytes, not mapped, counted.
+    pub fn buffer(&self, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        self.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// A buffer holding `contents`, counted as [`create_buffer_init`](Self::create_buffer_init).
+    pub fn buffer_init(
+        &self,
+        label: &str,
+        contents: &[u8],
+        usage: wgpu::BufferUsages,
+    ) -> wgpu::Buffer {
+        self.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some(label),
+            contents,
+            usage,
+        })
+    }
+
+    /// A uniform buffer (also a copy destination, to be rewritten) holding `value`.
+    pub fn uniform<T: bytemuck::Pod>(&self, label: &str, value: &T) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        self.buffer_init(label, bytemuck::bytes_of(value), usage)
+    }
+
+    /// A uniform buffer (a copy destination) the size of one `T`, to be written before use.
+    pub fn uniform_buffer<T>(&self, label: &str) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST;
+        self.buffer(label, std::mem::size_of::<T>() as u64, usage)
+    }
+
     /// A buffer created with its contents (counted as uploaded bytes).
     pub fn create_buffer_init(&self, desc: &wgpu::util::BufferInitDescriptor) -> wgpu::Buffer {
         Traffic::add(&self.traffic.buffers, 1);
@@ -231,6 +267,11 @@ impl GpuContext {
     pub fn write_buffer(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
         Traffic::add(&self.traffic.uploaded_bytes, data.len() as u64);
         self.queue.write_buffer(buffer, offset, data);
+    }
+
+    /// Write `value`'s bytes at the start of `buffer`, counted as uploaded.
+    pub fn write_pod<T: bytemuck::Pod>(&self, buffer: &wgpu::Buffer, value: &T) {
+        self.write_buffer(buffer, 0, bytemuck::bytes_of(value));
     }
 
     /// `wgpu::Queue::write_texture`, its bytes counted as uploaded.

@@ -59,7 +59,7 @@ impl FinalImageFrame {
         {
             return;
         }
-        ctx.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&params));
+        ctx.write_pod(&self.uniform, &params);
         self.written = Some(params);
     }
 
@@ -117,7 +117,7 @@ impl FinalImageFrame {
                     ctx,
                     "water slope moments",
                     &self.slopes_layout,
-                    &[pyramid.moments.as_entire_binding()],
+                    &[&pyramid.moments],
                 );
                 self.slopes = Some(pyramid);
             }

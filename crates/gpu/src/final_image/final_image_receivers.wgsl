@@ -44,20 +44,11 @@ fn nearest_object(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> ObjectHit {
     return best;
 }
 
-// Only diffuse objects cast shadows.
-fn occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
+// Whether an object along the ray casts a shadow: a diffuse one, or any one `with_glass`.
+fn occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, with_glass: bool) -> bool {
     for (var k = 0u; k < params.object_count; k++) {
-        if objects[k].glass == 0u && bvh_intersect(objects[k].root, o, d, t_max, true).found {
-            return true;
-        }
-    }
-    return false;
-}
-
-// Any object, glass included.
-fn occluded_by_any(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
-    for (var k = 0u; k < params.object_count; k++) {
-        if bvh_intersect(objects[k].root, o, d, t_max, true).found {
+        let casts = with_glass || objects[k].glass == 0u;
+        if casts && bvh_intersect(objects[k].root, o, d, t_max, true).found {
             return true;
         }
     }
@@ -107,7 +98,7 @@ fn wall_light(p: vec3<f32>, size: f32) -> vec3<f32> {
         vec3<f32>(0.0, -1.0, 0.0),
     );
     var shadow = 1.0;
-    if occluded(p + normals[k] * 1e-4, -params.sun_water, FAR) {
+    if occluded(p + normals[k] * 1e-4, -params.sun_water, FAR, false) {
         shadow = 0.0;
     }
     return sun_through_water(c, params.sun_intensity * -params.sun.z, params.t_flat, shadow) * params.light_color;

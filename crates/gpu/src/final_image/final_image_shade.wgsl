@@ -7,9 +7,7 @@ import package::final_image::final_image_inputs::{
     absorbed, albedo_at, deck_kind, emit, h_max, has, is_pool, objects, params, push_ray,
     sample_caustics_filtered, sky_radiance,
 };
-import package::final_image::final_image_receivers::{
-    nearest_object, occluded, occluded_by_any, sample_eye_space,
-};
+import package::final_image::final_image_receivers::{nearest_object, occluded, sample_eye_space};
 import package::final_image::final_image_spread::{on_plane, spread};
 import package::shaders::caustics_light::{flat_water_light, sun_through_water};
 import package::shaders::optics::{fresnel_transmittance, refract_dir};
@@ -33,7 +31,7 @@ fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
         }
     }
     var shadow = 1.0;
-    if occluded(p + vec3<f32>(0.0, 0.0, 1e-4), -params.sun_water, FAR) {
+    if occluded(p + vec3<f32>(0.0, 0.0, 1e-4), -params.sun_water, FAR, false) {
         shadow = 0.0;
     }
     let direct = sun_through_water(relative, e_h, params.t_flat, shadow);
@@ -53,7 +51,7 @@ fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32
         }
         let lambert = max(dot(n, -sun_dir), 0.0);
         var lit = 0.0;
-        if lambert > 0.0 && !occluded(p + n * 1e-4, -sun_dir, FAR) {
+        if lambert > 0.0 && !occluded(p + n * 1e-4, -sun_dir, FAR, false) {
             lit = 1.0;
         }
         // Under the water, the shading rule's light for a surface no map holds (shade.rs).
@@ -130,10 +128,10 @@ fn trace_air(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
         var caustic = vec3<f32>(0.0);
         if has(FLAG_AIR_CAUSTICS) {
             caustic = sample_caustics_filtered(p.xy, fa, fb, false, vec3<f32>(0.0), false);
-            if occluded_by_any(start, -params.sun, FAR) {
+            if occluded(start, -params.sun, FAR, true) {
                 lit = 0.0;
             }
-        } else if occluded(start, -params.sun, FAR) {
+        } else if occluded(start, -params.sun, FAR, false) {
             lit = 0.0;
         }
         let e = (vec3<f32>(lit) + caustic) * (params.sun_intensity * -params.sun.z) + params.ambient;

@@ -5,14 +5,15 @@ use caustics_core::render::RenderOptions;
 use caustics_core::scene::{Albedo, Scene};
 
 use crate::map_mips::{MapMips, mip_chain};
-use crate::pass::bind_group;
+use crate::pass::{Bind, STORAGE_OUT, bind_group};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError};
 
-use super::resources::{rgba32, storage_buffer, walls_view};
+use super::resources::rgba32;
 use super::upload::Lighting;
 use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUniform, meshes};
-use crate::pass::float_texture;
+use crate::pass::{array_view, float_texture, storage_buffer};
+use wgpu::BufferUsages as B;
 
 impl FinalImage {
     /// The final image of `scene` at its camera's size, every resource built here once: the
@@ -23,22 +24,10 @@ impl FinalImage {
     /// the texture every frame); `None` without water. `caustics`: the technique's output texture,
     /// bound as it is: a floor map over the water square (over the scene square without water), or
     /// an eye-space image of the scene's camera; `None` lights the floor as under flat water.
-    /// [`update`](FinalImageFrame::update) takes the first frame's camera and sun before
-    /// [`encode`](FinalImageFrame::encode).
+    /// `walls`: the walls' maps of a technique that lit the pool's walls (bound as they are;
+    /// ignored when the scene's walls are off). [`update`](FinalImageFrame::update) takes the first
+    /// frame's camera and sun before [`encode`](FinalImageFrame::encode).
     pub fn frame(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        options: &RenderOptions,
-    ) -> Result<FinalImageFrame, GpuError> {
-        self.build(ctx, scene, water, caustics, None, None, options)
-    }
-
-    /// [`frame`](Self::frame) with the walls' maps of a technique that lit the pool's walls (bound
-    /// as they are; ignored when the scene's walls are off).
-    pub fn frame_with_walls(
         &self,
         ctx: &GpuContext,
         scene: &Scene,
@@ -50,7 +39,7 @@ impl FinalImage {
         self.build(ctx, scene, water, caustics, walls, None, options)
     }
 
-    /// [`frame_with_walls`](Self::frame_with_walls), a floor map's square given (`map_size`) or
+    /// [`frame`](Self::frame), a floor map's square given (`map_size`) or
     /// the scene's.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn build(
@@ -100,27 +89,17 @@ impl FinalImage {
         let objects = storage_buffer(ctx, "scene objects", &meshes.objects)?;
         let nodes = storage_buffer(ctx, "object BVH nodes", &meshes.trees.nodes)?;
         let triangles = storage_buffer(ctx, "object BVH triangles", &meshes.trees.triangles)?;
-        let uniform = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image uniform"),
-            size: std::mem::size_of::<FinalImageUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let slab_max = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("final image slab bounds"),
-            size: 8,
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_DST
-                | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let uniform = ctx.uniform_buffer::<FinalImageUniform>("final image uniform");
+        let slab_max = ctx.buffer(
+            "final image slab bounds",
+            8,
+            B::STORAGE | B::COPY_DST | B::COPY_SRC,
+        );
         let output = ctx.texture_2d(
             "final image",
             (width, height, 1),
             wgpu::TextureFormat::Rgba8Unorm,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::TEXTURE_BINDING,
+            STORAGE_OUT,
         );
 
         let (mips, mips_groups) = match caustics {
@@ -145,14 +124,14 @@ impl FinalImage {
             ctx,
             "water slope moments",
             &self.slopes_layout,
-            &[no_slopes.as_entire_binding()],
+            &[&no_slopes],
         );
         let views = [
             view(terrain.as_ref(), &self.empty_r32),
             view(caustics.map(|c| c.texture()), &self.empty_rgba32),
             view(albedo_image.as_ref(), &self.empty_rgba32),
             output.create_view(&Default::default()),
-            walls_view(walls.map_or(&self.empty_walls, |w| w.texture)),
+            array_view(walls.map_or(&self.empty_walls, |w| w.texture)),
             view(mips.as_ref(), &self.empty_rgba32),
         ];
         let scene_group = bind_group(
@@ -160,24 +139,24 @@ impl FinalImage {
             "final image scene",
             &self.scene_layout,
             &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&water_view),
-                wgpu::BindingResource::TextureView(&views[0]),
-                wgpu::BindingResource::TextureView(&views[1]),
-                wgpu::BindingResource::TextureView(&views[2]),
-                objects.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[3]),
-                slab_max.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[4]),
-                wall_cols.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[5]),
+                &uniform,
+                &water_view,
+                &views[0],
+                &views[1],
+                &views[2],
+                &objects,
+                &views[3],
+                &slab_max,
+                &views[4],
+                &wall_cols,
+                &views[5],
             ],
         );
         let mesh_group = bind_group(
             ctx,
             "scene meshes",
             &self.mesh_layout,
-            &[nodes.as_entire_binding(), triangles.as_entire_binding()],
+            &[&nodes, &triangles],
         );
         let mut resources = vec![objects, nodes, triangles, wall_cols, no_slopes];
         let slab_group = match (water, &scene.water) {
@@ -189,20 +168,11 @@ impl FinalImage {
                     lattice: SLAB_LATTICE,
                     _pad: 0,
                 };
-                let slab_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("final image slab uniform"),
-                    contents: bytemuck::bytes_of(&slab),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let group = bind_group(
+                let slab_uniform = ctx.uniform("final image slab uniform", &slab);
+                let group = self.slab_pipeline.bind(
                     ctx,
                     "final image slab",
-                    &self.slab_pipeline.get_bind_group_layout(0),
-                    &[
-                        slab_uniform.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(&w.heights),
-                        slab_max.as_entire_binding(),
-                    ],
+                    &[&slab_uniform, &w.heights, &slab_max],
                 );
                 resources.push(slab_uniform);
                 Some(group)

@@ -1,7 +1,6 @@
 //! One-off images from CPU inputs, read back (the GPU counterparts of `caustics_core::render`'s
 //! entry points), and the frame's readbacks for tests and tools.
 
-use caustics_core::map::CausticsMap;
 use caustics_core::render::{Caustics, Image, RenderOptions};
 use caustics_core::scene::Scene;
 use caustics_core::walls::WallMaps;
@@ -16,49 +15,16 @@ use super::{FinalImage, FinalImageFrame, PyramidLevel, Slab, water_grid};
 use crate::pass::float_texture;
 
 impl FinalImage {
-    /// Render `scene` from its camera: the GPU counterpart of `caustics_core::render::render`, with
-    /// the same arguments (no progress: the image is one dispatch). `surface` is sampled on
-    /// [`water_grid`]'s lattice; `caustics` is the floor's map (none: lit as if the water were
-    /// flat). With a `timer`, the passes are timed as [`encode`](FinalImageFrame::encode) says and
-    /// the timestamps resolved; read them with [`GpuTimer::read`].
-    pub fn render(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        surface: Option<&dyn Surface>,
-        caustics: Option<&CausticsMap>,
-        options: &RenderOptions,
-        timer: Option<&mut GpuTimer>,
-    ) -> Result<Image, GpuError> {
-        self.render_with(
-            ctx,
-            scene,
-            surface,
-            caustics.map(Caustics::Floor),
-            options,
-            timer,
-        )
-    }
-
-    /// [`render`](Self::render) with the caustics from either source, the GPU counterpart of
-    /// `caustics_core::render::render_with`: a floor map, or an eye-space image made for the
-    /// scene's camera (`cascaded`), read at the pixel each floor point projects to. A one-off
-    /// image from CPU inputs: the water grid and the map are uploaded into textures, a
-    /// [`FinalImageFrame`] is built on them, and the image is read back.
-    pub fn render_with(
-        &self,
-        ctx: &GpuContext,
-        scene: &Scene,
-        surface: Option<&dyn Surface>,
-        caustics: Option<Caustics>,
-        options: &RenderOptions,
-        timer: Option<&mut GpuTimer>,
-    ) -> Result<Image, GpuError> {
-        self.render_with_walls(ctx, scene, surface, caustics, None, options, timer)
-    }
-
-    /// [`render_with`](Self::render_with), the pool's walls lit through CPU-made walls' maps (the
-    /// reference's), the GPU counterpart of `caustics_core::render::render_with_walls`.
+    /// Render `scene` from its camera: the GPU counterpart of
+    /// `caustics_core::render::render_with_walls`, with the same arguments (no progress: the image
+    /// is one dispatch). `surface` is sampled on [`water_grid`]'s lattice; `caustics` comes from
+    /// either source: a floor map, or an eye-space image made for the scene's camera (`cascaded`),
+    /// read at the pixel each floor point projects to (none: lit as if the water were flat); the
+    /// pool's walls are lit through CPU-made walls' maps (the reference's) where there are some. A
+    /// one-off image from CPU inputs: the water grid, the map and the walls' maps are uploaded into
+    /// textures, a [`FinalImageFrame`] is built on them, and the image is read back. With a
+    /// `timer`, the passes are timed as [`encode`](FinalImageFrame::encode) says and the
+    /// timestamps resolved; read them with [`GpuTimer::read`].
     #[allow(clippy::too_many_arguments)]
     pub fn render_with_walls(
         &self,
@@ -92,10 +58,7 @@ impl FinalImage {
             (Some(Caustics::EyeSpace(_)), Some(t)) => (Some(Output::EyeSpace(t)), None),
             _ => (None, None),
         };
-        let walls = match walls {
-            Some(w) => Some(upload_walls(ctx, w)?),
-            None => None,
-        };
+        let walls = walls.map(|w| upload_walls(ctx, w)).transpose()?;
         let walls_output = walls.as_ref().map(|(texture, cols)| WallsOutput {
             texture,
             cols: *cols,
@@ -110,11 +73,7 @@ impl FinalImage {
             options,
         )?;
 
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("final image"),
-            });
+        let mut encoder = ctx.encoder("final image");
         frame.encode(&mut encoder, timer.as_deref_mut());
         ctx.submit_timed(encoder, timer.as_deref());
         ctx.check()?;

@@ -21,14 +21,6 @@ pub(super) fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// The final image's view of a walls texture: all its layers.
-pub(super) fn walls_view(texture: &wgpu::Texture) -> wgpu::TextureView {
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        dimension: Some(wgpu::TextureViewDimension::D2Array),
-        ..Default::default()
-    })
-}
-
 /// Upload CPU-made walls' maps (the reference's) as the final image reads them: an `Rgba32Float`
 /// 2D array texture of four layers, as wide as the widest wall
 /// ([`WallsOutput`](crate::technique::WallsOutput)'s layout), and each layer's column count. Once
@@ -75,7 +67,7 @@ pub(super) fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 /// A CPU caustics map as the `Rgba32Float` texture a technique's floor output is
 /// ([`Output::Floor`](crate::technique::Output::Floor)), for
 /// [`FinalImage::frame`](super::FinalImage::frame) or
-/// [`FinalImage::render_with`](super::FinalImage::render_with).
+/// [`FinalImage::render_with_walls`](super::FinalImage::render_with_walls).
 pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, GpuError> {
     float_texture(
         ctx,
@@ -108,25 +100,4 @@ pub fn write_map(ctx: &GpuContext, texture: &wgpu::Texture, map: &CausticsMap) {
 /// An RGB image as `Rgba32Float` texels (alpha 1).
 pub(super) fn rgba32(texels: &[[f32; 3]]) -> Vec<[f32; 4]> {
     texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect()
-}
-
-pub(super) fn storage_buffer<T: bytemuck::Pod + Default>(
-    ctx: &GpuContext,
-    what: &str,
-    items: &[T],
-) -> Result<wgpu::Buffer, GpuError> {
-    // A storage binding may not be empty: one zeroed element stands for none.
-    let fallback = [T::default()];
-    let items = if items.is_empty() {
-        &fallback[..]
-    } else {
-        items
-    };
-    let bytes: &[u8] = bytemuck::cast_slice(items);
-    ctx.check_buffer_size(what, bytes.len() as u64)?;
-    Ok(ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(what),
-        contents: bytes,
-        usage: wgpu::BufferUsages::STORAGE,
-    }))
 }

@@ -7,9 +7,10 @@
 //! floats a texel, level after level; the final image finds a level's place from the lattice
 //! alone (`slope_level` in `final_image_rough_water.wgsl`).
 
-use crate::pass::{bind_group, compute_pipeline};
+use crate::pass::{Bind, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError};
+use wgpu::BufferUsages as B;
 
 passes! {
     WATER_SLOPES_BASE = "water slopes base", "final_image/water_slopes_base.wgsl";
@@ -87,12 +88,7 @@ impl SlopePipelines {
         let texels: u64 = sizes.iter().map(|&(c, r)| c as u64 * r as u64).sum();
         let bytes = texels * (MOMENTS * 4) as u64;
         ctx.check_buffer_size("water slope moments", bytes)?;
-        let moments = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("water slope moments"),
-            size: bytes,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let moments = ctx.buffer("water slope moments", bytes, B::STORAGE | B::COPY_SRC);
         let mut uniforms = Vec::with_capacity(sizes.len());
         let mut levels = Vec::with_capacity(sizes.len());
         let (mut offset, mut below) = (0u32, (0u32, 0u32, 0u32));
@@ -108,29 +104,13 @@ impl SlopePipelines {
                 below_cols: below.1,
                 below_rows: below.2,
             };
-            let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("water slope level"),
-                contents: bytemuck::bytes_of(&level),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+            let uniform = ctx.uniform("water slope level", &level);
             let group = if k == 0 {
-                bind_group(
-                    ctx,
-                    WATER_SLOPES_BASE.name,
-                    &self.base.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        wgpu::BindingResource::TextureView(patches),
-                        moments.as_entire_binding(),
-                    ],
-                )
+                self.base
+                    .bind(ctx, WATER_SLOPES_BASE.name, &[&uniform, patches, &moments])
             } else {
-                bind_group(
-                    ctx,
-                    WATER_SLOPES_HALVE.name,
-                    &self.halve.get_bind_group_layout(0),
-                    &[uniform.as_entire_binding(), moments.as_entire_binding()],
-                )
+                self.halve
+                    .bind(ctx, WATER_SLOPES_HALVE.name, &[&uniform, &moments])
             };
             if k == 0 {
                 base = level;
@@ -169,7 +149,7 @@ impl SlopePyramid {
     pub fn set_wrap(&mut self, ctx: &GpuContext, wrap: bool) {
         if (self.base.wrap != 0) != wrap {
             self.base.wrap = wrap as u32;
-            ctx.write_buffer(&self.uniforms[0], 0, bytemuck::bytes_of(&self.base));
+            ctx.write_pod(&self.uniforms[0], &self.base);
         }
     }
 

@@ -17,6 +17,7 @@ use caustics_core::water::{GridSurface, Surface, sample_grid};
 use glam::DVec3;
 
 use crate::bvh::FlatBvhs;
+use crate::pass::f3;
 
 /// Mirrors `FinalImage` in `final_image/final_image_inputs.wgsl` (uniform layout: each `vec3` is padded by the
 /// scalar after it).
@@ -163,17 +164,14 @@ pub struct GpuObject {
     pub _pad: [u32; 2],
 }
 
-fn f3(v: DVec3) -> [f32; 3] {
-    v.as_vec3().to_array()
-}
-
 pub use caustics_core::render::water_grid_resolution;
 
-/// The frozen water surface as [`FinalImage::render_with`](super::FinalImage::render_with) hands it
-/// to the GPU: `surface` sampled on the lattice of [`water_grid_resolution`] over the water's
-/// square (uploaded as is, the heights texture of [`crate::WaterTextures`]) and read back through
-/// the same bicubic interpolant, with the water's edge rule. `None` without water. Render on the
-/// CPU with this surface to get the image the GPU renders.
+/// The frozen water surface as
+/// [`FinalImage::render_with_walls`](super::FinalImage::render_with_walls) hands it to the GPU:
+/// `surface` sampled on the lattice of [`water_grid_resolution`] over the water's square (uploaded
+/// as is, the heights texture of [`crate::WaterTextures`]) and read back through the same bicubic
+/// interpolant, with the water's edge rule. `None` without water. Render on the CPU with this
+/// surface to get the image the GPU renders.
 pub fn water_grid(scene: &Scene, surface: &dyn Surface) -> Option<GridSurface> {
     let water = scene.water.as_ref()?;
     let n = water_grid_resolution(scene);

@@ -20,7 +20,7 @@ use caustics_core::grid::Grid;
 use caustics_core::map::CausticsMap;
 use caustics_core::techniques::procedural::{ProceduralSetup, SurfaceInput, Variant};
 
-use crate::pass::{begin_render, bind_group, pulled_pipeline};
+use crate::pass::{Bind, MAP_TARGET, begin_render, mip_view, pulled_pipeline, v4};
 use crate::receivers::{ReceiverFrame, ReceiverLookup};
 use crate::shaders::{PassSource, passes};
 use crate::water::GpuProceduralWave;
@@ -82,10 +82,6 @@ pub struct ProceduralUniform {
     pub _pad: [u32; 2],
 }
 
-fn v4(v: glam::DVec3) -> [f32; 4] {
-    [v.x as f32, v.y as f32, v.z as f32, 0.0]
-}
-
 impl ProceduralUniform {
     /// The uniform for `s` over `water`: the wave function evaluated in the shader when the input
     /// is the paper's wave, else the bound height grid.
@@ -101,12 +97,12 @@ impl ProceduralUniform {
             None => (0, GpuProceduralWave::default()),
         };
         ProceduralUniform {
-            sun_x: v4(s.sun_frame[0]),
-            sun_y: v4(s.sun_frame[1]),
-            sun_z: v4(s.sun_frame[2]),
-            up: v4(s.up),
+            sun_x: v4(s.sun_frame[0], 0.0),
+            sun_y: v4(s.sun_frame[1], 0.0),
+            sun_z: v4(s.sun_frame[2], 0.0),
+            up: v4(s.up, 0.0),
             absorption: {
-                let mut a = v4(s.gathered_absorption());
+                let mut a = v4(s.gathered_absorption(), 0.0);
                 a[3] = s.ground as f32;
                 a
             },
@@ -247,10 +243,9 @@ impl ProceduralFrame {
     }
 
     fn write_uniform(&self, ctx: &GpuContext) {
-        ctx.write_buffer(
+        ctx.write_pod(
             &self.uniform,
-            0,
-            bytemuck::bytes_of(&ProceduralUniform::with_wave(&self.setup, self.wave)),
+            &ProceduralUniform::with_wave(&self.setup, self.wave),
         );
     }
 }
@@ -341,15 +336,13 @@ impl ProceduralCaustics {
         wave: Option<GpuProceduralWave>,
         heights_view: &wgpu::TextureView,
     ) -> Result<ProceduralFrame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("procedural caustics map", w, h)?;
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("procedural uniform"),
-            contents: bytemuck::bytes_of(&ProceduralUniform::with_wave(setup, wave)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+        let uniform = ctx.uniform(
+            "procedural uniform",
+            &ProceduralUniform::with_wave(setup, wave),
+        );
         let lm = &setup.light;
         let light = ctx.upload_grid(
             "procedural light map",
@@ -361,23 +354,9 @@ impl ProceduralCaustics {
         )?;
         let light_view = light.create_view(&Default::default());
         let water_bind = |pipeline: &wgpu::RenderPipeline, label: &str| {
-            bind_group(
-                ctx,
-                label,
-                &pipeline.get_bind_group_layout(0),
-                &[
-                    uniform.as_entire_binding(),
-                    View(heights_view),
-                    View(&light_view),
-                ],
-            )
+            pipeline.bind(ctx, label, &[&uniform, heights_view, &light_view])
         };
-        let map = ctx.texture_2d(
-            "procedural map",
-            (w, h, 1),
-            MAP_FORMAT,
-            U::RENDER_ATTACHMENT | U::COPY_SRC | U::TEXTURE_BINDING,
-        );
+        let map = ctx.texture_2d("procedural map", (w, h, 1), MAP_FORMAT, MAP_TARGET);
         let map_view = map.create_view(&Default::default());
         let mut bytes = (w * h) as u64 * 16 + (lm.width * lm.height) as u64 * 4 + uniform.size();
         let passes = match setup.variant {
@@ -387,11 +366,11 @@ impl ProceduralCaustics {
                 bytes += indices.len() as u64 * 4;
                 FramePasses::Vertex {
                     bind: water_bind(&self.vertex, "procedural vertex"),
-                    indices: ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some("procedural mesh indices"),
-                        contents: bytemuck::cast_slice(&indices),
-                        usage: wgpu::BufferUsages::INDEX,
-                    }),
+                    indices: ctx.buffer_init(
+                        "procedural mesh indices",
+                        bytemuck::cast_slice(&indices),
+                        wgpu::BufferUsages::INDEX,
+                    ),
                     count: indices.len() as u32,
                 }
             }
@@ -402,41 +381,22 @@ impl ProceduralCaustics {
                 let t = setup.target as u32;
                 ctx.check_texture_size("procedural texture-space target", t, t)?;
                 let mips = setup.mip_levels() as u32;
-                let target = ctx.create_texture(&wgpu::TextureDescriptor {
-                    label: Some("procedural target"),
-                    size: wgpu::Extent3d {
-                        width: t,
-                        height: t,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: mips,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: self.chain_format,
-                    usage: U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-                    view_formats: &[],
-                });
+                let target = ctx.texture_mips(
+                    "procedural target",
+                    (t, t),
+                    mips,
+                    self.chain_format,
+                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                );
                 let texel = self.chain_format.block_copy_size(None).unwrap_or(16) as u64;
                 bytes += (0..mips)
                     .map(|k| ((t >> k) as u64).pow(2) * texel)
                     .sum::<u64>();
-                let levels: Vec<wgpu::TextureView> = (0..mips)
-                    .map(|k| {
-                        target.create_view(&wgpu::TextureViewDescriptor {
-                            base_mip_level: k,
-                            mip_level_count: Some(1),
-                            ..Default::default()
-                        })
-                    })
-                    .collect();
+                let levels: Vec<_> = (0..mips).map(|k| mip_view(&target, k)).collect();
                 let downsample = (1..mips as usize)
                     .map(|k| {
-                        bind_group(
-                            ctx,
-                            "procedural downsample",
-                            &self.downsample.get_bind_group_layout(0),
-                            &[View(&levels[k - 1])],
-                        )
+                        self.downsample
+                            .bind(ctx, "procedural downsample", &[&levels[k - 1]])
                     })
                     .collect();
                 let address = if setup.wrap {
@@ -457,15 +417,11 @@ impl ProceduralCaustics {
                     ..Default::default()
                 });
                 let all = target.create_view(&Default::default());
-                let resample = ctx.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("procedural resample"),
-                    layout: &self.resample.get_bind_group_layout(0),
-                    entries: &[
-                        entry(0, uniform.as_entire_binding()),
-                        entry(3, View(&all)),
-                        entry(4, wgpu::BindingResource::Sampler(&sampler)),
-                    ],
-                });
+                let resample = self.resample.bind_at(
+                    ctx,
+                    "procedural resample",
+                    &[(0, &uniform), (3, &all), (4, &sampler)],
+                );
                 FramePasses::Texture {
                     target: water_bind(&self.target, "procedural target"),
                     levels,
@@ -582,19 +538,9 @@ impl ProceduralCaustics {
         frame.floor_map()
     }
 
-    /// Run the technique once and read the map back.
+    /// Run the technique once and read the map back, writing each pass's timestamps into `timer`
+    /// when there is one (resolved in the same submission; read them with [`GpuTimer::read`]).
     pub fn caustics(
-        &self,
-        ctx: &GpuContext,
-        setup: &ProceduralSetup,
-        water: &SurfaceInput,
-    ) -> Result<CausticsMap, GpuError> {
-        self.caustics_timed(ctx, setup, water, None)
-    }
-
-    /// As [`caustics`](Self::caustics), writing each pass's timestamps into `timer` (resolved in
-    /// the same submission; read them with [`GpuTimer::read`]).
-    pub fn caustics_timed(
         &self,
         ctx: &GpuContext,
         setup: &ProceduralSetup,
@@ -607,8 +553,4 @@ impl ProceduralCaustics {
         ctx.submit_timed(encoder, timer.as_deref());
         ctx.read_map(texture, setup.size)
     }
-}
-
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
 }

@@ -230,7 +230,7 @@ impl Pipelines for ProceduralCaustics {
         _progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<JobOutput, GpuError> {
         let (setup, heights) = procedural::job_setup(job, tables)?;
-        let map = self.caustics_timed(ctx, &setup, &SurfaceInput::Grid(&heights), timer)?;
+        let map = self.caustics(ctx, &setup, &SurfaceInput::Grid(&heights), timer)?;
         Ok(JobOutput::floor(map, None))
     }
 }

@@ -155,3 +155,8 @@ struct SliceOut {
     @location(1) dir: vec3<f32>,
     @location(2) @interpolate(flat) plane: f32,
 }
+
+// A slice vertex at `plane` that draws nothing until the caller fills it in.
+fn culled_slice(plane: f32) -> SliceOut {
+    return SliceOut(CULLED, vec3<f32>(0.0), vec3<f32>(0.0), plane);
+}

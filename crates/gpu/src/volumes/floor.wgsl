@@ -3,7 +3,7 @@
 // in caustics-core/src/techniques/volumes/illumination.rs.
 
 import package::volumes::common::{
-    CULLED, FLOOR_BIAS, SliceOut, Volumes, WaterVertex, cut_volume, lattice_triangle, lit,
+    FLOOR_BIAS, SliceOut, Volumes, WaterVertex, culled_slice, cut_volume, lattice_triangle, lit,
     pixel_to_clip,
 };
 
@@ -18,11 +18,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> SliceOut {
     let cell = tri_index / 2u;
     let idx = lattice_triangle(c, cell / cols, cell % cols, tri_index % 2u);
     let tri = array<WaterVertex, 3>(water[idx.x], water[idx.y], water[idx.z]);
-    var out: SliceOut;
-    out.position = CULLED;
-    out.intensity = vec3<f32>(0.0);
-    out.dir = vec3<f32>(0.0);
-    out.plane = 0.0;
+    var out = culled_slice(0.0);
     let s = cut_volume(c, tri, vec3<f32>(0.0, 0.0, -1.0), 0.0);
     if !s.ok {
         return out;

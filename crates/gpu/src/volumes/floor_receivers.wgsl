@@ -7,7 +7,7 @@
 
 import package::shaders::receivers::{Receivers, receiver_height};
 import package::volumes::common::{
-    CULLED, FLOOR_BIAS, SliceOut, Volumes, WaterVertex, lattice_triangle, lit, pixel_to_clip,
+    FLOOR_BIAS, SliceOut, Volumes, WaterVertex, culled_slice, lattice_triangle, lit, pixel_to_clip,
 };
 
 @group(0) @binding(0) var<uniform> c: Volumes;
@@ -23,11 +23,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> SliceOut {
     let tri_index = vi / 3u;
     let cell = tri_index / 2u;
     let idx = lattice_triangle(c, cell / cols, cell % cols, tri_index % 2u);
-    var out: SliceOut;
-    out.position = CULLED;
-    out.intensity = vec3<f32>(0.0);
-    out.dir = vec3<f32>(0.0);
-    out.plane = 0.0;
+    var out = culled_slice(0.0);
     let h = array<vec4<f32>, 3>(hits[idx.x], hits[idx.y], hits[idx.z]);
     if h[0].w == 0.0 || h[1].w == 0.0 || h[2].w == 0.0 {
         return out;

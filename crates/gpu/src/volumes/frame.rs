@@ -7,8 +7,11 @@ use caustics_core::walls::WallMaps;
 use glam::DVec3;
 
 use super::{CameraUniform, PassUniform, ViewOptions, Volumes, VolumesUniform};
-use crate::bvh::{FlatBvhs, GpuBvhNode, GpuBvhTriangle};
-use crate::pass::bind_group;
+use crate::bvh::FlatBvhs;
+use crate::pass::{
+    Bind, MAP_TARGET, STORAGE_OUT, array_view, bind_group, layer_view, storage_buffer,
+    wall_maps_texture,
+};
 use crate::receivers::{ReceiverFrame, ReceiversUniform};
 use crate::technique::WallsOutput;
 use crate::{GpuContext, GpuError, WaterTextures};
@@ -111,20 +114,16 @@ impl VolumesFrame {
     /// object's slice draw resized to its new cells.
     pub fn set_setup(&mut self, ctx: &GpuContext, setup: &VolumesSetup) {
         debug_assert!(self.fits(setup));
-        ctx.write_buffer(
-            &self.uniform,
-            0,
-            bytemuck::bytes_of(&VolumesUniform::new(setup, self.wrap)),
-        );
+        ctx.write_pod(&self.uniform, &VolumesUniform::new(setup, self.wrap));
         if let (Some((_, _, buffer)), Some(view)) = (&self.shadow, &setup.shadow) {
             let u = PassUniform::shadow(view, setup.objects.len());
-            ctx.write_buffer(buffer, 0, bytemuck::bytes_of(&u));
+            ctx.write_pod(buffer, &u);
         }
         let uniforms: Vec<PassUniform> = (0..setup.objects.len())
             .map(|k| PassUniform::object(setup, k))
             .collect();
         for ((o, u), view) in self.objects.iter_mut().zip(&uniforms).zip(&setup.objects) {
-            ctx.write_buffer(&o.uniform, 0, bytemuck::bytes_of(u));
+            ctx.write_pod(&o.uniform, u);
             o.vertices = slice_vertices(view).expect("fits checked the count");
         }
         if let Some((_, _, buffer)) = &self.view
@@ -198,60 +197,34 @@ impl Volumes {
         wrap: bool,
         view: Option<&ViewOptions>,
     ) -> Result<VolumesFrame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::BufferUsages as B;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         ctx.check_texture_size("volumes floor map", w, h)?;
-        let FlatBvhs {
-            mut nodes,
-            mut triangles,
-            roots,
-        } = FlatBvhs::of(input.objects.iter().map(|o| &o.mesh));
-        // Bindings may not be empty: a scene without objects binds one unused node and slot.
-        if nodes.is_empty() {
-            nodes.push(GpuBvhNode::default());
-            triangles.push(GpuBvhTriangle::default());
-        }
-        let storage = |label: &str, bytes: &[u8]| {
-            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: B::STORAGE,
-            })
-        };
-        ctx.check_buffer_size("volumes BVH triangles", triangles.len() as u64 * 96)?;
-        let node_buf = storage("volumes BVH nodes", bytemuck::cast_slice(&nodes));
-        let tri_buf = storage("volumes BVH triangles", bytemuck::cast_slice(&triangles));
+        let bvhs = FlatBvhs::of(input.objects.iter().map(|o| &o.mesh));
+        // A scene without objects binds one unused node and slot.
+        let tri_buf = storage_buffer(ctx, "volumes BVH triangles", &bvhs.triangles)?;
+        let node_buf = storage_buffer(ctx, "volumes BVH nodes", &bvhs.nodes)?;
+        let roots = bvhs.roots;
         let mut root_list: Vec<u32> = roots.clone();
         root_list.push(0);
-        let root_buf = storage("volumes roots", bytemuck::cast_slice(&root_list));
+        let root_buf = storage_buffer(ctx, "volumes roots", &root_list)?;
         let mut bytes = node_buf.size() + tri_buf.size() + root_buf.size();
         let bvh_bind = bind_group(
             ctx,
             "volumes BVH",
             &self.depth.get_bind_group_layout(1),
-            &[node_buf.as_entire_binding(), tri_buf.as_entire_binding()],
+            &[&node_buf, &tri_buf],
         );
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("volumes uniform"),
-            contents: bytemuck::bytes_of(&VolumesUniform::new(setup, wrap)),
-            usage: B::UNIFORM | B::COPY_DST,
-        });
-        let pass_uniform = |p: PassUniform| {
-            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("volumes pass uniform"),
-                contents: bytemuck::bytes_of(&p),
-                usage: B::UNIFORM | B::COPY_DST,
-            })
-        };
+        let uniform = ctx.uniform("volumes uniform", &VolumesUniform::new(setup, wrap));
+        let pass_uniform = |p: PassUniform| ctx.uniform("volumes pass uniform", &p);
         let depth_texture = |label: &str, res: u32| -> Result<wgpu::Texture, GpuError> {
             ctx.check_texture_size(label, res, res)?;
             Ok(ctx.texture_2d(
                 label,
                 (res, res, 1),
                 wgpu::TextureFormat::Rgba32Float,
-                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                STORAGE_OUT,
             ))
         };
         // The shadow map, or a 1 x 1 stand-in the shaders never read (flags.y = 0).
@@ -260,15 +233,10 @@ impl Volumes {
                 let res = view.res as u32;
                 let tex = depth_texture("volumes shadow map", res)?;
                 let u = pass_uniform(PassUniform::shadow(view, roots.len()));
-                let bind = bind_group(
+                let bind = self.depth.bind(
                     ctx,
                     "volumes shadow map",
-                    &self.depth.get_bind_group_layout(0),
-                    &[
-                        u.as_entire_binding(),
-                        root_buf.as_entire_binding(),
-                        View(&tex.create_view(&Default::default())),
-                    ],
+                    &[&u, &root_buf, &tex.create_view(&Default::default())],
                 );
                 bytes += (res * res) as u64 * 16;
                 (tex.clone(), Some((tex, bind, u)))
@@ -279,30 +247,17 @@ impl Volumes {
 
         let lattice_vertices = setup.lattice.vertex_count() as u64;
         ctx.check_buffer_size("volumes water vertices", lattice_vertices * 32)?;
-        let water = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("volumes water"),
-            size: lattice_vertices * 32,
-            usage: B::STORAGE | B::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        bytes += water.size();
-        let water_bind = bind_group(
-            ctx,
+        let water = ctx.buffer(
             "volumes water",
-            &self.water.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                View(&heights.heights),
-                water.as_entire_binding(),
-            ],
+            lattice_vertices * 32,
+            B::STORAGE | B::COPY_SRC,
         );
+        bytes += water.size();
+        let water_bind =
+            self.water
+                .bind(ctx, "volumes water", &[&uniform, &heights.heights, &water]);
         let map_texture = |label: &str, w: u32, h: u32| {
-            ctx.texture_2d(
-                label,
-                (w, h, 1),
-                self.map_format,
-                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
-            )
+            ctx.texture_2d(label, (w, h, 1), self.map_format, MAP_TARGET)
         };
         let texel_bytes = if self.map_format == wgpu::TextureFormat::Rgba16Float {
             8
@@ -313,55 +268,31 @@ impl Volumes {
         bytes += (w * h) as u64 * texel_bytes;
         let (floor_bind, receivers) = match &setup.receivers {
             None => (
-                bind_group(
-                    ctx,
-                    "volumes floor",
-                    &self.floor.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&shadow_view),
-                    ],
-                ),
+                self.floor
+                    .bind(ctx, "volumes floor", &[&uniform, &water, &shadow_view]),
                 None,
             ),
             Some(r) => {
                 let frame = self.lookup.frame(ctx, &r.0, &floor, wrap, DVec3::ZERO)?;
-                let r_uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes receivers"),
-                    contents: bytemuck::bytes_of(&ReceiversUniform::of(Some(&r.0))),
-                    usage: B::UNIFORM,
-                });
-                let hits = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("volumes hits"),
-                    size: lattice_vertices * 16,
-                    usage: B::STORAGE,
-                    mapped_at_creation: false,
-                });
+                let r_uniform = ctx.uniform("volumes receivers", &ReceiversUniform::of(Some(&r.0)));
+                let hits = ctx.buffer("volumes hits", lattice_vertices * 16, B::STORAGE);
                 bytes += hits.size() + frame.bytes();
                 let heights_view = frame.heights.create_view(&Default::default());
-                let meet_bind = bind_group(
+                let meet_bind = self.meet.bind(
                     ctx,
                     "volumes meet",
-                    &self.meet.get_bind_group_layout(0),
-                    &[
-                        r_uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&heights_view),
-                        hits.as_entire_binding(),
-                    ],
+                    &[&r_uniform, &water, &heights_view, &hits],
                 );
-                let floor_bind = bind_group(
+                let floor_bind = self.floor_receivers.bind(
                     ctx,
                     "volumes floor over receivers",
-                    &self.floor_receivers.get_bind_group_layout(0),
                     &[
-                        uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&shadow_view),
-                        r_uniform.as_entire_binding(),
-                        View(&heights_view),
-                        hits.as_entire_binding(),
+                        &uniform,
+                        &water,
+                        &shadow_view,
+                        &r_uniform,
+                        &heights_view,
+                        &hits,
                     ],
                 );
                 let receivers = FrameReceivers {
@@ -377,36 +308,13 @@ impl Volumes {
         let walls = match setup.wall_layout() {
             None => None,
             Some(layout) => {
-                let cols = layout.maps.iter().map(|m| m.cols).max().unwrap_or(1) as u32;
-                let rows = layout.maps[0].rows as u32;
-                ctx.check_texture_size("volumes wall maps", cols, rows)?;
-                let texture = ctx.texture_2d(
-                    "volumes wall maps",
-                    (cols, rows, 4),
-                    self.map_format,
-                    U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
-                );
-                bytes += (cols * rows * 4) as u64 * texel_bytes;
-                let layers = (0..4)
-                    .map(|k| {
-                        texture.create_view(&wgpu::TextureViewDescriptor {
-                            dimension: Some(wgpu::TextureViewDimension::D2),
-                            base_array_layer: k,
-                            array_layer_count: Some(1),
-                            ..Default::default()
-                        })
-                    })
-                    .collect();
-                let bind = bind_group(
-                    ctx,
-                    "volumes walls",
-                    &self.walls.get_bind_group_layout(0),
-                    &[
-                        uniform.as_entire_binding(),
-                        water.as_entire_binding(),
-                        View(&shadow_view),
-                    ],
-                );
+                let texture =
+                    wall_maps_texture(ctx, "volumes wall maps", &layout, self.map_format)?;
+                bytes += (texture.width() * texture.height() * 4) as u64 * texel_bytes;
+                let layers = (0..4).map(|k| layer_view(&texture, k)).collect();
+                let bind = self
+                    .walls
+                    .bind(ctx, "volumes walls", &[&uniform, &water, &shadow_view]);
                 Some(WallsFrame {
                     texture,
                     layout,
@@ -425,20 +333,12 @@ impl Volumes {
                 label,
                 (res_all, res_all, layers),
                 wgpu::TextureFormat::Rgba32Float,
-                U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                STORAGE_OUT,
             )
         };
         let depths = array("volumes depth textures");
         let images = array("volumes images");
         bytes += (res_all * res_all * layers) as u64 * 32;
-        let layer_view = |t: &wgpu::Texture, k: u32| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2),
-                base_array_layer: k,
-                array_layer_count: Some(1),
-                ..Default::default()
-            })
-        };
         let mut pass_uniforms = Vec::new();
         let mut objects = Vec::new();
         for (k, o) in setup.objects.iter().enumerate() {
@@ -451,38 +351,23 @@ impl Volumes {
             let caustics_view = caustics.create_view(&Default::default());
             let diffuse = depth_texture("volumes diffuse map", res)?;
             bytes += (res * res) as u64 * (16 + texel_bytes);
-            let depth_bind = bind_group(
-                ctx,
-                "volumes depth",
-                &self.depth.get_bind_group_layout(0),
-                &[
-                    u.as_entire_binding(),
-                    root_buf.as_entire_binding(),
-                    View(&depth_view),
-                ],
-            );
-            let slices_bind = bind_group(
+            let depth_bind = self
+                .depth
+                .bind(ctx, "volumes depth", &[&u, &root_buf, &depth_view]);
+            let slices_bind = self.slices.bind(
                 ctx,
                 "volumes slices",
-                &self.slices.get_bind_group_layout(0),
-                &[
-                    uniform.as_entire_binding(),
-                    u.as_entire_binding(),
-                    water.as_entire_binding(),
-                    View(&depth_view),
-                    View(&shadow_view),
-                ],
+                &[&uniform, &u, &water, &depth_view, &shadow_view],
             );
-            let shade_bind = bind_group(
+            let shade_bind = self.shade.bind(
                 ctx,
                 "volumes shade",
-                &self.shade.get_bind_group_layout(0),
                 &[
-                    u.as_entire_binding(),
-                    View(&depth_view),
-                    View(&caustics_view),
-                    View(&diffuse.create_view(&Default::default())),
-                    View(&layer_view(&images, k as u32)),
+                    &u,
+                    &depth_view,
+                    &caustics_view,
+                    &diffuse.create_view(&Default::default()),
+                    &layer_view(&images, k as u32),
                 ],
             );
             let Some(vertices) = slice_vertices(o) else {
@@ -517,28 +402,18 @@ impl Volumes {
                     "volumes refracted view",
                     (w, h, 1),
                     wgpu::TextureFormat::Rgba32Float,
-                    U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+                    STORAGE_OUT,
                 );
                 bytes += (w * h) as u64 * 16;
                 if pass_uniforms.is_empty() {
                     pass_uniforms.push(PassUniform::default());
                 }
-                let camera = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes camera"),
-                    contents: bytemuck::bytes_of(&CameraUniform::new(v, setup)),
-                    usage: B::UNIFORM,
-                });
-                let object_buf = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("volumes objects"),
-                    contents: bytemuck::cast_slice(&pass_uniforms),
-                    usage: B::STORAGE | B::COPY_DST,
-                });
-                let array_view = |t: &wgpu::Texture| {
-                    t.create_view(&wgpu::TextureViewDescriptor {
-                        dimension: Some(wgpu::TextureViewDimension::D2Array),
-                        ..Default::default()
-                    })
-                };
+                let camera = ctx.uniform("volumes camera", &CameraUniform::new(v, setup));
+                let object_buf = ctx.buffer_init(
+                    "volumes objects",
+                    bytemuck::cast_slice(&pass_uniforms),
+                    B::STORAGE | B::COPY_DST,
+                );
                 // Without walls the view binds a one-texel stand-in it never reads (flags.z = 0).
                 let stand_in;
                 let walls_texture = match &walls {
@@ -553,20 +428,19 @@ impl Volumes {
                         &stand_in
                     }
                 };
-                let bind = bind_group(
+                let bind = self.view.bind(
                     ctx,
                     "volumes view",
-                    &self.view.get_bind_group_layout(0),
                     &[
-                        uniform.as_entire_binding(),
-                        camera.as_entire_binding(),
-                        View(&heights.heights),
-                        object_buf.as_entire_binding(),
-                        View(&array_view(&depths)),
-                        View(&array_view(&images)),
-                        View(&floor_map.create_view(&Default::default())),
-                        View(&image.create_view(&Default::default())),
-                        View(&array_view(walls_texture)),
+                        &uniform,
+                        &camera,
+                        &heights.heights,
+                        &object_buf,
+                        &array_view(&depths),
+                        &array_view(&images),
+                        &floor_map.create_view(&Default::default()),
+                        &image.create_view(&Default::default()),
+                        &array_view(walls_texture),
                     ],
                 );
                 Some((image, bind, object_buf))

@@ -6,7 +6,7 @@
 // caustics-core/src/techniques/volumes/illumination.rs.
 
 import package::volumes::common::{
-    CULLED, Pass, SliceOut, Volumes, WaterVertex, covered, cut_volume, lattice_triangle, lit,
+    Pass, SliceOut, Volumes, WaterVertex, covered, culled_slice, cut_volume, lattice_triangle, lit,
     pixel_to_clip, texel_point, to_frame,
 };
 
@@ -28,11 +28,7 @@ fn vs_main(@builtin(vertex_index) vi: u32) -> SliceOut {
     let idx = lattice_triangle(c, obj.cells.x + cell / cols, obj.cells.z + cell % cols, local % 2u);
     let tri = array<WaterVertex, 3>(water[idx.x], water[idx.y], water[idx.z]);
     let zk = (f32(plane) + 0.5) * view.v.w;
-    var out: SliceOut;
-    out.position = CULLED;
-    out.intensity = vec3<f32>(0.0);
-    out.dir = vec3<f32>(0.0);
-    out.plane = zk;
+    var out = culled_slice(zk);
     let s = cut_volume(c, tri, view.v.xyz, view.lo.z + zk);
     if !s.ok {
         return out;

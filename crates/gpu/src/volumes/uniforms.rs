@@ -1,6 +1,7 @@
 //! The uniform blocks, as `volumes/common.wgsl` and `volumes/view.wgsl` declare them, and the
 //! refracted view's options.
 
+use crate::pass::{f4, v4};
 use caustics_core::techniques::volumes::view::ViewCamera;
 use caustics_core::techniques::volumes::{OrthoView, VolumesSetup};
 
@@ -30,25 +31,10 @@ impl ViewUniform {
         let t = view.texel();
         let margin = caustics_core::techniques::volumes::representation::ray_margin(view);
         ViewUniform {
-            a: [
-                view.a.x as f32,
-                view.a.y as f32,
-                view.a.z as f32,
-                view.res as f32,
-            ],
-            b: [
-                view.b.x as f32,
-                view.b.y as f32,
-                view.b.z as f32,
-                margin as f32,
-            ],
-            v: [
-                view.v.x as f32,
-                view.v.y as f32,
-                view.v.z as f32,
-                spacing as f32,
-            ],
-            lo: [view.lo.x as f32, view.lo.y as f32, view.lo.z as f32, 0.0],
+            a: v4(view.a, view.res as f64),
+            b: v4(view.b, margin),
+            v: v4(view.v, spacing),
+            lo: v4(view.lo, 0.0),
             texel: [t.x as f32, t.y as f32, e.z as f32, 0.0],
         }
     }
@@ -84,30 +70,20 @@ impl VolumesUniform {
     /// The uniform for `s`; `wrap` is the water's edge rule (periodic heights).
     pub fn new(s: &VolumesSetup, wrap: bool) -> Self {
         VolumesUniform {
-            light: [
-                s.light.x as f32,
-                s.light.y as f32,
-                s.light.z as f32,
-                s.eta as f32,
-            ],
-            absorption: [
-                s.absorption.x as f32,
-                s.absorption.y as f32,
-                s.absorption.z as f32,
-                s.t_flat as f32,
-            ],
-            lattice: [
-                s.lattice.origin.x as f32,
-                s.lattice.origin.y as f32,
-                s.lattice.cell as f32,
-                s.size as f32,
-            ],
-            params: [
-                s.depth as f32,
-                s.ior as f32,
-                s.shadow_bias as f32,
+            light: v4(s.light, s.eta),
+            absorption: v4(s.absorption, s.t_flat),
+            lattice: f4([
+                s.lattice.origin.x,
+                s.lattice.origin.y,
+                s.lattice.cell,
+                s.size,
+            ]),
+            params: f4([
+                s.depth,
+                s.ior,
+                s.shadow_bias,
                 if s.params.fresnel { 1.0 } else { 0.0 },
-            ],
+            ]),
             dims: [
                 s.lattice.nx as u32,
                 s.lattice.ny as u32,
@@ -163,12 +139,7 @@ impl PassUniform {
             root_first: k as u32,
             root_count: 1,
             _pad: 0,
-            albedo: [
-                o.albedo.x as f32,
-                o.albedo.y as f32,
-                o.albedo.z as f32,
-                setup.params.ambient as f32,
-            ],
+            albedo: v4(o.albedo, setup.params.ambient),
         }
     }
 
@@ -214,13 +185,12 @@ impl CameraUniform {
     /// The uniform for the view `v` of `setup`'s objects.
     pub fn new(v: &ViewOptions, setup: &VolumesSetup) -> Self {
         let c = &v.camera;
-        let f = |a: glam::DVec3, w: f64| [a.x as f32, a.y as f32, a.z as f32, w as f32];
         CameraUniform {
-            position: f(c.position, setup.params.ambient),
-            forward: f(c.forward, setup.objects.len() as f64),
-            right: f(c.right, c.width as f64),
-            up: f(c.up, c.height as f64),
-            floor_albedo: f(v.floor_albedo, 1.0),
+            position: v4(c.position, setup.params.ambient),
+            forward: v4(c.forward, setup.objects.len() as f64),
+            right: v4(c.right, c.width as f64),
+            up: v4(c.up, c.height as f64),
+            floor_albedo: v4(v.floor_albedo, 1.0),
         }
     }
 }

@@ -32,9 +32,10 @@ use caustics_core::water::waves::{Wave, Waves};
 use super::ocean::GpuOcean;
 use super::ripple::GpuRipples;
 use super::{GpuProceduralWave, GpuSineWave};
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, Binding, STORAGE_OUT, begin_compute, bind_group, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::{GpuContext, GpuError, GpuTimer, WaterTextures};
+use wgpu::BufferUsages as B;
 
 passes! {
     WAVES = "water_field_waves", "water/water_field_waves.wgsl";
@@ -140,12 +141,7 @@ impl GpuWater {
             WaterSource::Flat => (waves_source(ctx, &[], water.size)?, &WAVES),
             WaterSource::Waves(w) => (waves_source(ctx, w, water.size)?, &WAVES),
             WaterSource::Procedural(p) => {
-                let wave = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("water field procedural wave"),
-                    size: std::mem::size_of::<GpuProceduralWave>() as u64,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
+                let wave = ctx.uniform_buffer::<GpuProceduralWave>("water field procedural wave");
                 let params = p.clone();
                 (Source::Procedural { params, wave }, &PROCEDURAL)
             }
@@ -200,12 +196,7 @@ impl GpuWater {
         field: FieldParams,
         pass: &PassSource,
     ) -> Result<Self, GpuError> {
-        let field_buffer = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("water field params"),
-            size: std::mem::size_of::<FieldParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let field_buffer = ctx.uniform_buffer::<FieldParams>("water field params");
         let pipeline = compute_pipeline(ctx, pass);
         let mut water = GpuWater {
             source,
@@ -241,41 +232,35 @@ impl GpuWater {
             "water heights",
             (cols, rows, 1),
             wgpu::TextureFormat::R32Float,
-            wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            STORAGE_OUT,
         );
         let view = texture.create_view(&Default::default());
         let layout = self.pipeline.get_bind_group_layout(0);
-        let group = |input: wgpu::BindingResource| {
+        let group = |input: &dyn Binding| {
             bind_group(
                 ctx,
                 "water field",
                 &layout,
-                &[
-                    self.field_buffer.as_entire_binding(),
-                    input,
-                    wgpu::BindingResource::TextureView(&view),
-                ],
+                &[&self.field_buffer, input, &view],
             )
         };
         let texture_view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let groups = match &self.source {
-            Source::Waves { terms, .. } => vec![group(terms.as_entire_binding())],
-            Source::Procedural { wave, .. } => vec![group(wave.as_entire_binding())],
+            Source::Waves { terms, .. } => vec![group(terms)],
+            Source::Procedural { wave, .. } => vec![group(wave)],
             Source::Ocean { ocean, .. } => {
                 let v = texture_view(ocean.height_slopes_texture());
-                vec![group(wgpu::BindingResource::TextureView(&v))]
+                vec![group(&v)]
             }
             Source::Ripples(r) => r
                 .sim
                 .textures()
                 .iter()
-                .map(|t| group(wgpu::BindingResource::TextureView(&texture_view(t))))
+                .map(|t| group(&texture_view(t)))
                 .collect(),
             Source::HeightField { texture } => {
                 let v = texture_view(texture);
-                vec![group(wgpu::BindingResource::TextureView(&v))]
+                vec![group(&v)]
             }
         };
         ctx.check()?;
@@ -330,7 +315,7 @@ impl GpuWater {
                     time: (params.speed * time).rem_euclid(TAU) as f32,
                     octaves: params.octaves,
                 };
-                ctx.write_buffer(wave, 0, bytemuck::bytes_of(&gpu));
+                ctx.write_pod(wave, &gpu);
             }
             Source::Ocean {
                 ocean,
@@ -358,7 +343,7 @@ impl GpuWater {
             }
             Source::HeightField { .. } => {}
         }
-        ctx.write_buffer(&self.field_buffer, 0, bytemuck::bytes_of(&self.field));
+        ctx.write_pod(&self.field_buffer, &self.field);
     }
 
     /// Ripple sources only (the scene's and [`ripples`](Self::ripples)): queue a drop for the next
@@ -411,12 +396,7 @@ impl GpuWater {
 fn waves_source(ctx: &GpuContext, waves: &[Wave], size: f64) -> Result<Source, GpuError> {
     let bytes = (waves.len().max(1) * std::mem::size_of::<GpuSineWave>()) as u64;
     ctx.check_buffer_size(&format!("water waves ({} waves)", waves.len()), bytes)?;
-    let terms = ctx.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("water field waves"),
-        size: bytes,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
+    let terms = ctx.buffer("water field waves", bytes, B::STORAGE | B::COPY_DST);
     Ok(Source::Waves {
         waves: waves.to_vec(),
         size,
@@ -437,15 +417,7 @@ fn ripple_source(
         .textures()
         .each_ref()
         .map(|t| t.create_view(&Default::default()));
-    let clear_group = bind_group(
-        ctx,
-        "ripple clear",
-        &clear_pipeline.get_bind_group_layout(0),
-        &[
-            wgpu::BindingResource::TextureView(&views[0]),
-            wgpu::BindingResource::TextureView(&views[1]),
-        ],
-    );
+    let clear_group = clear_pipeline.bind(ctx, "ripple clear", &[&views[0], &views[1]]);
     let mut r = RippleSource {
         sim,
         params: params.clone(),
@@ -467,27 +439,16 @@ impl RippleSource {
         for d in &self.params.drops {
             self.sim.drop(ctx, d);
         }
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ripple settling steps"),
-            });
+        let mut encoder = ctx.encoder("ripple settling steps");
         self.sim.step(ctx, &mut encoder, self.params.steps);
         ctx.queue.submit([encoder.finish()]);
     }
 
     /// The surface at rest again, then [`settle`](Self::settle).
     fn restart(&mut self, ctx: &GpuContext) {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ripple restart"),
-            });
+        let mut encoder = ctx.encoder("ripple restart");
         {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ripple clear"),
-                timestamp_writes: None,
-            });
+            let mut pass = begin_compute(&mut encoder, &mut None, "ripple clear");
             pass.set_pipeline(&self.clear_pipeline);
             pass.set_bind_group(0, &self.clear_group, &[]);
             let groups = self.sim.resolution().div_ceil(8);

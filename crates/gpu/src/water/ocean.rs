@@ -19,7 +19,7 @@
 
 use caustics_core::water::ocean::Ocean;
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, Binding, STORAGE_OUT, begin_compute, compute_pipeline};
 use crate::shaders::{PassSource, passes};
 use crate::timing::GpuTimer;
 use crate::{GpuContext, GpuError};
@@ -97,13 +97,7 @@ impl GpuOcean {
         let resolution = ocean.params().resolution;
         Self::check_size(ctx, resolution)?;
         let n = resolution as u32;
-        let buffer = |label: &str, contents: &[u8], usage| {
-            ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
+        let buffer = |label: &str, contents: &[u8], usage| ctx.buffer_init(label, contents, usage);
 
         let h0: Vec<[f32; 4]> = ocean
             .h0()
@@ -127,35 +121,13 @@ impl GpuOcean {
             bytemuck::cast_slice(&roots),
             storage,
         );
-        let field = |label| {
-            ctx.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: n as u64 * n as u64 * ELEMENT_BYTES,
-                usage: storage,
-                mapped_at_creation: false,
-            })
-        };
+        let field = |label| ctx.buffer(label, n as u64 * n as u64 * ELEMENT_BYTES, storage);
         let ping = field("ocean FFT ping");
         let pong = field("ocean FFT pong");
 
         let dk = (std::f64::consts::TAU / ocean.size()) as f32;
-        let params = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ocean spectrum params"),
-            size: std::mem::size_of::<SpectrumParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let spectrum = Pass::new(
-            ctx,
-            &OCEAN_SPECTRUM,
-            &[
-                params.as_entire_binding(),
-                h0.as_entire_binding(),
-                omega.as_entire_binding(),
-                roots.as_entire_binding(),
-                ping.as_entire_binding(),
-            ],
-        );
+        let params = ctx.uniform_buffer::<SpectrumParams>("ocean spectrum params");
+        let spectrum = Pass::new(ctx, &OCEAN_SPECTRUM, &[&params, &h0, &omega, &roots, &ping]);
 
         // One uniform slot per stage, each at the device's uniform offset alignment; stage s reads
         // ping and writes pong when s is even, the other way round when odd. There are 2 log2 N
@@ -188,19 +160,18 @@ impl GpuOcean {
                 } else {
                     (&pong, &ping)
                 };
-                bind_group(
+                fft_pipeline.bind(
                     ctx,
                     "ocean FFT stage",
-                    &fft_pipeline.get_bind_group_layout(0),
                     &[
-                        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        &wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &table,
                             offset: s as u64 * stride,
                             size: wgpu::BufferSize::new(std::mem::size_of::<FftStage>() as u64),
                         }),
-                        roots.as_entire_binding(),
-                        src.as_entire_binding(),
-                        dst.as_entire_binding(),
+                        &roots,
+                        &src,
+                        &dst,
                     ],
                 )
             })
@@ -210,19 +181,10 @@ impl GpuOcean {
             "ocean height and slopes",
             (n, n, 1),
             wgpu::TextureFormat::Rgba32Float,
-            wgpu::TextureUsages::STORAGE_BINDING
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+            STORAGE_OUT,
         );
         let view = texture.create_view(&Default::default());
-        let output = Pass::new(
-            ctx,
-            &OCEAN_OUTPUT,
-            &[
-                ping.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&view),
-            ],
-        );
+        let output = Pass::new(ctx, &OCEAN_OUTPUT, &[&ping, &view]);
         ctx.check()?;
         Ok(GpuOcean {
             n,
@@ -269,7 +231,7 @@ impl GpuOcean {
             dk: self.dk,
             _pad: 0,
         };
-        ctx.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        ctx.write_pod(&self.params, &params);
     }
 
     /// The second half of [`update`](Self::update): record the four passes, for a caller that
@@ -309,11 +271,7 @@ impl GpuOcean {
     /// Evaluate the surface at time `t` and read it back: `(h, ∂h/∂x, ∂h/∂y, 0)` per sample,
     /// row-major like [`caustics_core::grid::Grid`].
     pub fn compute(&self, ctx: &GpuContext, t: f32) -> Result<Vec<[f32; 4]>, GpuError> {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ocean"),
-            });
+        let mut encoder = ctx.encoder("ocean");
         self.update(ctx, &mut encoder, t, None);
         ctx.queue.submit([encoder.finish()]);
         ctx.read_texture(&self.texture)
@@ -321,14 +279,9 @@ impl GpuOcean {
 }
 
 impl Pass {
-    fn new(ctx: &GpuContext, source: &PassSource, entries: &[wgpu::BindingResource]) -> Self {
+    fn new(ctx: &GpuContext, source: &PassSource, entries: &[&dyn Binding]) -> Self {
         let pipeline = compute_pipeline(ctx, source);
-        let bind = bind_group(
-            ctx,
-            source.name,
-            &pipeline.get_bind_group_layout(0),
-            entries,
-        );
+        let bind = pipeline.bind(ctx, source.name, entries);
         Pass { pipeline, bind }
     }
 

@@ -5,7 +5,7 @@
 //! spline on central differences, so the surface is the same (the CPU twins keep sampling their
 //! grids bicubically). What it saves the passes that sample the water: docs/benchmarks.md.
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, STORAGE_OUT, begin_compute, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuTimer};
 
@@ -63,26 +63,13 @@ impl WaterPatches {
                 "water patches",
                 (size.width, size.height, 1),
                 wgpu::TextureFormat::Rgba32Float,
-                wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
+                STORAGE_OUT,
             )
             .create_view(&Default::default());
-        let uniform = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("water patches"),
-            contents: bytemuck::bytes_of(&PatchesUniform::new(wrap)),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
-        let bind = bind_group(
-            ctx,
-            "water patches",
-            &self.pipeline.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                wgpu::BindingResource::TextureView(heights),
-                wgpu::BindingResource::TextureView(&view),
-            ],
-        );
+        let uniform = ctx.uniform("water patches", &PatchesUniform::new(wrap));
+        let bind = self
+            .pipeline
+            .bind(ctx, "water patches", &[&uniform, heights, &view]);
         Patches {
             view,
             uniform,
@@ -120,11 +107,7 @@ impl Patches {
     /// Take a new edge rule (a uniform write, only when it changes).
     pub fn set_wrap(&mut self, ctx: &GpuContext, wrap: bool) {
         if wrap != self.wrap {
-            ctx.write_buffer(
-                &self.uniform,
-                0,
-                bytemuck::bytes_of(&PatchesUniform::new(wrap)),
-            );
+            ctx.write_pod(&self.uniform, &PatchesUniform::new(wrap));
             self.wrap = wrap;
         }
     }

@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 use caustics_core::grid::{Edge, Grid};
 use caustics_core::water::ripple::{Drop, RippleParams, Ripples};
 
-use crate::pass::{begin_compute, bind_group, compute_pipeline};
+use crate::pass::{Bind, STORAGE_OUT, begin_compute, compute_pipeline};
 use crate::shaders::passes;
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -100,16 +100,8 @@ impl GpuRipples {
         ctx.check_texture_size("ripple height texture", side, side)?;
         let cpu = Ripples::new(params, size, edge)?;
         let n = side;
-        let texture = |label| {
-            ctx.texture_2d(
-                label,
-                (n, n, 1),
-                wgpu::TextureFormat::R32Float,
-                wgpu::TextureUsages::STORAGE_BINDING
-                    | wgpu::TextureUsages::TEXTURE_BINDING
-                    | wgpu::TextureUsages::COPY_SRC,
-            )
-        };
+        let texture =
+            |label| ctx.texture_2d(label, (n, n, 1), wgpu::TextureFormat::R32Float, STORAGE_OUT);
         // Textures start zeroed: the surface at rest.
         let textures = [texture("ripple heights A"), texture("ripple heights B")];
         let views = textures
@@ -122,66 +114,42 @@ impl GpuRipples {
             wrap: (edge == Edge::Wrap) as u32,
             _pad: 0,
         };
-        let step_params = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ripple step params"),
-            contents: bytemuck::bytes_of(&step),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
+        let step_params = ctx.uniform("ripple step params", &step);
         let step_pipeline = compute_pipeline(ctx, &RIPPLE_STEP);
         let step_group = |c: usize| {
-            bind_group(
+            step_pipeline.bind(
                 ctx,
                 "ripple step",
-                &step_pipeline.get_bind_group_layout(0),
-                &[
-                    step_params.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(&views[c]),
-                    wgpu::BindingResource::TextureView(&views[1 - c]),
-                ],
+                &[&step_params, &views[c], &views[1 - c]],
             )
         };
         let step_groups = [step_group(0), step_group(1)];
 
-        let drop_params = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ripple drop params"),
-            size: std::mem::size_of::<RippleDrop>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let drop_params = ctx.uniform_buffer::<RippleDrop>("ripple drop params");
         let drop_pipeline = compute_pipeline(ctx, &RIPPLE_DROP);
-        let drop_group = bind_group(
-            ctx,
-            "ripple drop",
-            &drop_pipeline.get_bind_group_layout(0),
-            &[
-                drop_params.as_entire_binding(),
-                wgpu::BindingResource::TextureView(&views[0]),
-                wgpu::BindingResource::TextureView(&views[1]),
-            ],
-        );
+        let drop_group =
+            drop_pipeline.bind(ctx, "ripple drop", &[&drop_params, &views[0], &views[1]]);
         let drop_bytes = std::mem::size_of::<RippleDrop>() as u64;
         let queued_stride =
             drop_bytes.next_multiple_of(ctx.limits().min_uniform_buffer_offset_alignment as u64);
-        let queued_params = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ripple queued drops"),
-            size: queued_stride * DROPS_PER_ENCODE as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let queued_params = ctx.buffer(
+            "ripple queued drops",
+            queued_stride * DROPS_PER_ENCODE as u64,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
         let queued_groups = (0..DROPS_PER_ENCODE as u64)
             .map(|slot| {
-                bind_group(
+                drop_pipeline.bind(
                     ctx,
                     "ripple queued drop",
-                    &drop_pipeline.get_bind_group_layout(0),
                     &[
-                        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        &wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &queued_params,
                             offset: slot * queued_stride,
                             size: wgpu::BufferSize::new(drop_bytes),
                         }),
-                        wgpu::BindingResource::TextureView(&views[0]),
-                        wgpu::BindingResource::TextureView(&views[1]),
+                        &views[0],
+                        &views[1],
                     ],
                 )
             })
@@ -243,17 +211,10 @@ impl GpuRipples {
         let Some(params) = self.drop_params(d) else {
             return;
         };
-        ctx.write_buffer(&self.drop_params, 0, bytemuck::bytes_of(&params));
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ripple drop"),
-            });
+        ctx.write_pod(&self.drop_params, &params);
+        let mut encoder = ctx.encoder("ripple drop");
         {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ripple drop"),
-                timestamp_writes: None,
-            });
+            let mut pass = begin_compute(&mut encoder, &mut None, "ripple drop");
             pass.set_pipeline(&self.drop_pipeline);
             pass.set_bind_group(0, &self.drop_group, &[]);
             pass.dispatch_workgroups(params.count[0].div_ceil(8), params.count[1].div_ceil(8), 1);
@@ -268,10 +229,7 @@ impl GpuRipples {
         if steps == 0 {
             return;
         }
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ripple step"),
-            timestamp_writes: None,
-        });
+        let mut pass = begin_compute(encoder, &mut None, "ripple step");
         self.record_steps(&mut pass, steps);
     }
 

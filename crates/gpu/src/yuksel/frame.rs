@@ -6,10 +6,11 @@ use caustics_core::grid::Grid;
 use caustics_core::techniques::yuksel::YukselSetup;
 
 use super::{MAP_FORMAT, PrepassTiling, Variant, Yuksel, YukselRegion, YukselUniform};
-use crate::pass::{bind_group, bind_group_at};
+use crate::pass::{Bind, Binding, array_view, layer_view};
 use crate::receivers::{ReceiverFrame, heights_texture};
 use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError, WaterTextures};
+use wgpu::BufferUsages as B;
 
 /// One frame's resources for a given map and height-field size, bind groups included: a frame is
 /// built once and encoded every time the water moves.
@@ -102,10 +103,9 @@ impl Frame {
     pub fn set_setup(&mut self, ctx: &GpuContext, setup: &YukselSetup) {
         debug_assert!(self.fits(setup));
         for (buffer, base, phase) in &self.uniforms {
-            ctx.write_buffer(
+            ctx.write_pod(
                 buffer,
-                0,
-                bytemuck::bytes_of(&YukselUniform::tiled(setup, *base, *phase, &self.tiling)),
+                &YukselUniform::tiled(setup, *base, *phase, &self.tiling),
             );
         }
         self.patches.set_wrap(ctx, setup.wrap);
@@ -137,7 +137,6 @@ impl Yuksel {
         water: &WaterTextures,
         variant: Variant,
     ) -> Result<Frame, GpuError> {
-        use wgpu::BindingResource::TextureView as View;
         use wgpu::TextureUsages as U;
         let (w, h) = (setup.width as u32, setup.height as u32);
         // Sized for the largest region the region pass may choose.
@@ -176,53 +175,29 @@ impl Yuksel {
         ctx.check_buffer_size("yuksel fill list", (ew * eh) as u64 * 4)?;
         let mut uniforms = Vec::new();
         let mut uniform_for = |channel_base: u32, phase: u32| {
-            let buffer = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("yuksel uniform"),
-                contents: bytemuck::bytes_of(&YukselUniform::tiled(
-                    setup,
-                    channel_base,
-                    phase,
-                    &tiling,
-                )),
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            });
+            let buffer = ctx.uniform(
+                "yuksel uniform",
+                &YukselUniform::tiled(setup, channel_base, phase, &tiling),
+            );
             uniforms.push((buffer.clone(), channel_base, phase));
             buffer
         };
         let uniform = uniform_for(0, 0);
         let heights_view = &water.heights;
-        let region = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel region"),
-            size: std::mem::size_of::<YukselRegion>() as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
-        let bound = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel region bound"),
-            size: 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let bound_bind = bind_group(
+        let region = ctx.buffer(
+            "yuksel region",
+            std::mem::size_of::<YukselRegion>() as u64,
+            B::STORAGE | B::COPY_SRC,
+        );
+        let bound = ctx.buffer("yuksel region bound", 16, B::STORAGE | B::COPY_DST);
+        let bound_bind = self.region_bound.bind(
             ctx,
             "yuksel region bound",
-            &self.region_bound.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                View(heights_view),
-                bound.as_entire_binding(),
-            ],
+            &[&uniform, heights_view, &bound],
         );
-        let region_bind = bind_group(
-            ctx,
-            "yuksel region",
-            &self.region.get_bind_group_layout(0),
-            &[
-                uniform.as_entire_binding(),
-                bound.as_entire_binding(),
-                region.as_entire_binding(),
-            ],
-        );
+        let region_bind = self
+            .region
+            .bind(ctx, "yuksel region", &[&uniform, &bound, &region]);
         let heights_size = heights_view.texture().size();
         let water_patches = self.patches.frame(ctx, heights_view, setup.wrap);
         let patches = &water_patches.view;
@@ -245,7 +220,7 @@ impl Yuksel {
             None => heights_texture(ctx, None)?.create_view(&Default::default()),
         };
         let with_receivers =
-            |label, pipeline: &wgpu::ComputePipeline, resources: &[wgpu::BindingResource]| {
+            |label, pipeline: &wgpu::ComputePipeline, resources: &[&dyn Binding]| {
                 bind_with_receivers(ctx, label, pipeline, resources, &receiver_heights)
             };
         let mut bytes =
@@ -253,57 +228,37 @@ impl Yuksel {
         // The pixels at k, listed for the fill (at most every pixel of the largest region's
         // area), and the fill's indirect dispatch: x and the count cleared every frame, y and z 1.
         let list_bytes = (ew * eh) as u64 * 4;
-        let fill_list = ctx.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("yuksel fill list"),
-            size: list_bytes,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        let fill_args = ctx.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("yuksel fill dispatch"),
-            contents: bytemuck::cast_slice(&[0u32, 1, 1, 0]),
-            usage: wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::INDIRECT
-                | wgpu::BufferUsages::COPY_DST,
-        });
+        let fill_list = ctx.buffer("yuksel fill list", list_bytes, B::STORAGE);
+        let fill_args = ctx.buffer_init(
+            "yuksel fill dispatch",
+            bytemuck::cast_slice(&[0u32, 1, 1, 0]),
+            B::STORAGE | B::INDIRECT | B::COPY_DST,
+        );
         bytes += list_bytes + fill_args.size();
         let passes = match variant {
             Variant::Scatter => {
-                let sums = ctx.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("yuksel scatter sums"),
-                    size: (w * h) as u64 * 4,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
+                let sums = ctx.buffer(
+                    "yuksel scatter sums",
+                    (w * h) as u64 * 4,
+                    B::STORAGE | B::COPY_DST,
+                );
                 bytes += sums.size();
                 let [tier, fill, resolve] = &self.scatter;
                 let with = |label, pipeline: &wgpu::ComputePipeline| {
                     with_receivers(
                         label,
                         pipeline,
-                        &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            sums.as_entire_binding(),
-                            region.as_entire_binding(),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
-                        ],
+                        &[&uniform, patches, &sums, &region, &fill_args, &fill_list],
                     )
                 };
                 let binds = [
                     with("yuksel scatter tiers", tier),
                     with("yuksel scatter fill", fill),
                     // The resolve reads neither the heights (1) nor the region (3).
-                    bind_group_at(
+                    resolve.bind_at(
                         ctx,
                         "yuksel scatter resolve",
-                        &resolve.get_bind_group_layout(0),
-                        [
-                            (0, uniform.as_entire_binding()),
-                            (2, sums.as_entire_binding()),
-                            (4, View(&map_view)),
-                        ],
+                        &[(0, &uniform), (2, &sums), (4, &map_view)],
                     ),
                 ];
                 FramePasses::Scatter { sums, binds }
@@ -343,54 +298,36 @@ impl Yuksel {
                     "yuksel frame {w}x{h}: pre-pass {pw}x{ph}, pass-1 channels {p1w}x{p1h}x{layers}, {:.1} MiB",
                     bytes as f64 / (1u64 << 20) as f64
                 );
-                let pre_view = pre.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
+                let pre_view = array_view(&pre);
                 let prepass = [
                     with_receivers(
                         "yuksel pre-pass",
                         &self.prepass,
                         &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            View(&extents_view),
-                            View(&tiers_view),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
+                            &uniform,
+                            patches,
+                            &pre_view,
+                            &region,
+                            &extents_view,
+                            &tiers_view,
+                            &fill_args,
+                            &fill_list,
                         ],
                     ),
                     with_receivers(
                         "yuksel pre-pass fill",
                         &self.prepass_fill,
                         &[
-                            uniform.as_entire_binding(),
-                            View(patches),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            fill_args.as_entire_binding(),
-                            fill_list.as_entire_binding(),
+                            &uniform, patches, &pre_view, &region, &fill_args, &fill_list,
                         ],
                     ),
-                    bind_group(
+                    self.prepass_span.bind(
                         ctx,
                         "yuksel pre-pass span",
-                        &self.prepass_span.get_bind_group_layout(0),
-                        &[
-                            uniform.as_entire_binding(),
-                            View(&pre_view),
-                            region.as_entire_binding(),
-                            View(&tiers_view),
-                            View(&extents_view),
-                        ],
+                        &[&uniform, &pre_view, &region, &tiers_view, &extents_view],
                     ),
                 ];
-                let channels_view = channels.create_view(&wgpu::TextureViewDescriptor {
-                    dimension: Some(wgpu::TextureViewDimension::D2Array),
-                    ..Default::default()
-                });
+                let channels_view = array_view(&channels);
                 // Per row phase (one at level 0, up to 2^MAX_LEVEL where the water chooses the
                 // level; phases past this frame's level draw nothing): pass 1, as many layers per
                 // draw as the device allows, then pass 2 into the map's rows of that phase.
@@ -403,40 +340,22 @@ impl Yuksel {
                         let count = per_draw.min(layers - first);
                         let pipeline = self.pass1_pipeline(ctx, count);
                         let draw_uniform = uniform_for(4 * first, phase);
-                        let bind = bind_group(
+                        let bind = pipeline.bind(
                             ctx,
                             "yuksel pass 1",
-                            &pipeline.get_bind_group_layout(0),
-                            &[
-                                draw_uniform.as_entire_binding(),
-                                View(&pre_view),
-                                region.as_entire_binding(),
-                                View(&extents_view),
-                            ],
+                            &[&draw_uniform, &pre_view, &region, &extents_view],
                         );
                         let views = (first..first + count)
-                            .map(|layer| {
-                                channels.create_view(&wgpu::TextureViewDescriptor {
-                                    dimension: Some(wgpu::TextureViewDimension::D2),
-                                    base_array_layer: layer,
-                                    array_layer_count: Some(1),
-                                    ..Default::default()
-                                })
-                            })
+                            .map(|layer| layer_view(&channels, layer))
                             .collect();
                         draws.push((pipeline, bind, views));
                         first += count;
                     }
                     let pass2_uniform = uniform_for(0, phase);
-                    let pass2 = bind_group(
+                    let pass2 = self.pass2.bind(
                         ctx,
                         "yuksel pass 2",
-                        &self.pass2.get_bind_group_layout(0),
-                        &[
-                            pass2_uniform.as_entire_binding(),
-                            View(&channels_view),
-                            region.as_entire_binding(),
-                        ],
+                        &[&pass2_uniform, &channels_view, &region],
                     );
                     phases.push(Phase { draws, pass2 });
                 }
@@ -475,14 +394,12 @@ fn bind_with_receivers(
     ctx: &GpuContext,
     label: &str,
     pipeline: &wgpu::ComputePipeline,
-    resources: &[wgpu::BindingResource],
+    resources: &[&dyn Binding],
     receivers: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
-    let numbered = resources.iter().cloned().enumerate();
-    let entries = numbered
-        .map(|(k, r)| (k as u32, r))
-        .chain([(8, wgpu::BindingResource::TextureView(receivers))]);
-    bind_group_at(ctx, label, &pipeline.get_bind_group_layout(0), entries)
+    let numbered = resources.iter().enumerate().map(|(k, &r)| (k as u32, r));
+    let entries: Vec<_> = numbered.chain([(8, receivers as &dyn Binding)]).collect();
+    pipeline.bind_at(ctx, label, &entries)
 }
 
 /// The pre-pass's pixels for the largest region at any level the setup may choose (level 0 has

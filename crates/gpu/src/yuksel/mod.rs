@@ -30,7 +30,7 @@ use std::sync::Mutex;
 
 use caustics_core::techniques::yuksel::{Region, YukselSetup};
 
-use crate::pass::{begin_compute, begin_render, compute_pipeline, pulled_pipeline};
+use crate::pass::{begin_compute, begin_render, compute_pipeline, pulled_pipeline, v4};
 use crate::receivers::ReceiversUniform;
 use crate::shaders::passes;
 use crate::water::patches::WaterPatches;
@@ -187,20 +187,10 @@ impl YukselUniform {
     /// `n` = 0 and `m` = `u32::MAX` ask the region pass to choose them from the water.
     pub fn new(s: &YukselSetup, channel_base: u32, phase: u32) -> Self {
         YukselUniform {
-            light: [
-                s.light.x as f32,
-                s.light.y as f32,
-                s.light.z as f32,
-                s.eta as f32,
-            ],
+            light: v4(s.light, s.eta),
             pixel: [s.pixel.x as f32, s.pixel.y as f32],
             centre_offset: [s.centre_offset.x as f32, s.centre_offset.y as f32],
-            attenuation: [
-                s.attenuation.x as f32,
-                s.attenuation.y as f32,
-                s.attenuation.z as f32,
-                s.t_flat as f32,
-            ],
+            attenuation: v4(s.attenuation, s.t_flat),
             size: s.size as f32,
             depth: s.depth as f32,
             ior: s.ior as f32,

@@ -16,20 +16,9 @@ impl Yuksel {
         Ok(r[0].into())
     }
 
-    /// Run the technique once and read the map back.
+    /// Run the technique once and read the map back, writing each pass's timestamps into `timer`
+    /// when there is one (resolved in the same submission; read them with [`GpuTimer::read`]).
     pub fn caustics(
-        &self,
-        ctx: &GpuContext,
-        setup: &YukselSetup,
-        heights: &Grid,
-        variant: Variant,
-    ) -> Result<CausticsMap, GpuError> {
-        self.caustics_timed(ctx, setup, heights, variant, None)
-    }
-
-    /// As [`caustics`](Self::caustics), writing each pass's timestamps into `timer` (resolved in
-    /// the same submission; read them with [`GpuTimer::read`]).
-    pub fn caustics_timed(
         &self,
         ctx: &GpuContext,
         setup: &YukselSetup,

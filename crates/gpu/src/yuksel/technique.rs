@@ -143,7 +143,7 @@ impl Pipelines for Yuksel {
     ) -> Result<JobOutput, GpuError> {
         let (setup, heights) = yuksel::job_setup(job, tables)?;
         let (_, variant) = Self::params(entry, tables)?;
-        let map = self.caustics_timed(ctx, &setup, &heights, variant, timer)?;
+        let map = self.caustics(ctx, &setup, &heights, variant, timer)?;
         Ok(JobOutput::floor(map, None))
     }
 }
