@@ -383,6 +383,12 @@ pub(crate) fn backend_arg(s: &str) -> Result<String, String> {
         .map_err(|e| e.to_string())
 }
 
+/// Write 8-bit RGB pixels as the image file `path` names (PNG).
+pub(crate) fn save_rgb(path: &std::path::Path, rgb: &[u8], width: u32, height: u32) -> Result<()> {
+    image::save_buffer(path, rgb, width, height, image::ExtendedColorType::Rgb8)
+        .with_context(|| format!("cannot write {}", path.display()))
+}
+
 /// Where outputs go unless told otherwise.
 pub(crate) fn default_output(scene: &str) -> PathBuf {
     let stem = std::path::Path::new(scene)

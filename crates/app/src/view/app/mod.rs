@@ -316,14 +316,10 @@ impl Viewer {
         );
         let mut egui_renderer =
             egui_wgpu::Renderer::new(&ctx.device, format, egui_wgpu::RendererOptions::default());
-        let images = [
-            GpuImage::new(&ctx, &mut egui_renderer),
-            GpuImage::new(&ctx, &mut egui_renderer),
-        ];
-        let map_images = [
-            GpuImage::new(&ctx, &mut egui_renderer),
-            GpuImage::new(&ctx, &mut egui_renderer),
-        ];
+        let images: [GpuImage; 2] =
+            std::array::from_fn(|_| GpuImage::new(&ctx, &mut egui_renderer));
+        let map_images: [GpuImage; 2] =
+            std::array::from_fn(|_| GpuImage::new(&ctx, &mut egui_renderer));
         let difference_image = GpuImage::new(&ctx, &mut egui_renderer);
         let buffer_image = GpuImage::new(&ctx, &mut egui_renderer);
         let textures = TextureIds {
@@ -696,14 +692,7 @@ impl Viewer {
                     }
                 })
                 .collect();
-            image::save_buffer(
-                path,
-                &rgb,
-                texture.width(),
-                texture.height(),
-                image::ExtendedColorType::Rgb8,
-            )
-            .with_context(|| format!("cannot write {}", path.display()))?;
+            crate::save_rgb(path, &rgb, texture.width(), texture.height())?;
             let views: Vec<String> = self
                 .model
                 .view_rects
