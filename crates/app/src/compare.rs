@@ -94,14 +94,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
     for case in &cases {
         let surface = case.water.surface_at(case.time)?;
         for (k, &res) in args.resolution.iter().enumerate() {
-            let mut scene = water_scene(
-                &case.name,
-                &case.water,
-                &case.floor,
-                case.light,
-                (res, res),
-                case.time,
-            );
+            let mut scene = case_scene(case, res);
             scene.objects = case.objects.clone();
             let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);
             let truth = runner.run(&reference(), &job, &|_, _| {})?;
@@ -159,6 +152,19 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
         rows.len()
     );
     Ok(())
+}
+
+/// A case as a scene of water alone with a square map of side `res`.
+pub(crate) fn case_scene(case: &Case, res: u32) -> caustics_core::scene::Scene {
+    let water = &case.water;
+    water_scene(
+        &case.name,
+        water,
+        &case.floor,
+        case.light,
+        (res, res),
+        case.time,
+    )
 }
 
 /// Every registered GPU technique that makes a floor map from the water, in the registry's order
@@ -317,7 +323,6 @@ fn markdown(rows: &[Row], cases: &[Case], adapter: &str, args: &CompareArgs) -> 
         .iter()
         .map(|r| (r.technique.clone(), r.resolution))
         .collect();
-    keys.dedup();
     keys.sort();
     keys.dedup();
     for (t, res) in keys {

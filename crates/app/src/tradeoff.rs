@@ -24,9 +24,10 @@ use caustics_core::metrics::compare;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::Scene;
 
-use caustics_core::techniques::{reference as reference_spec, water_scene};
+use caustics_core::techniques::reference as reference_spec;
 
 use crate::bench::{Timing, time_technique};
+use crate::compare::case_scene;
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
 /// One setting of one technique.
@@ -148,7 +149,7 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Resu
     let mut truths = Vec::new();
     for case in cases {
         let surface = case.water.surface_at(case.time)?;
-        let scene = case_scene(case, &s);
+        let scene = case_scene(case, s.map);
         let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
         truths.push(
             runner
@@ -205,18 +206,6 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Resu
     Ok(())
 }
 
-/// A case as a scene of water alone at the sweep's map size.
-fn case_scene(case: &caustics_core::cases::Case, s: &Sizes) -> Scene {
-    water_scene(
-        &case.name,
-        &case.water,
-        &case.floor,
-        case.light,
-        (s.map, s.map),
-        case.time,
-    )
-}
-
 /// The pool with the eye-space sizes of the sweep and no parameters of its own.
 fn pool_scene(s: &Sizes) -> Scene {
     let mut pool = Scene::builtin("pool").expect("the built-in pool parses");
@@ -239,14 +228,14 @@ fn floor_point(
     let mut error = 0.0;
     for (case, truth) in cases.iter().zip(truths) {
         let surface = case.water.surface_at(case.time)?;
-        let scene = case_scene(case, s);
+        let scene = case_scene(case, s.map);
         let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
         let map = runner.run(spec, &job, &|_, _| {})?.map(spec.name())?;
         error += compare(&map, truth).relative_l1;
     }
     error /= cases.len() as f64;
     // The first case's scene: its water, floor and sun.
-    let scene = case_scene(&cases[0], s);
+    let scene = case_scene(&cases[0], s.map);
     let ctx = runner.gpu.as_ref().expect("a GPU runner");
     let m = time_technique(ctx, &scene, spec, &s.timing)?;
     Ok(point(

@@ -37,7 +37,7 @@ mod picture_windows;
 mod script;
 mod traffic;
 
-use gpu_image::{GpuImage, rgba_of};
+use gpu_image::{GpuImage, app_texture, rgba_of};
 use model::initial_model;
 use script::Script;
 use traffic::EguiTraffic;
@@ -518,14 +518,7 @@ impl Viewer {
         m.stats = Stats {
             frame_ms: m.stats.frame_ms,
             water_ms: stats.water_ms,
-            technique_ms: [
-                m.slots[0].technique_ms,
-                if sides > 1 {
-                    m.slots[1].technique_ms
-                } else {
-                    None
-                },
-            ],
+            technique_ms: std::array::from_fn(|k| m.slots[k].technique_ms.filter(|_| k < sides)),
             image_ms: stats.image_ms,
             rendered: true,
             gpu: stats.gpu,
@@ -601,21 +594,9 @@ impl Viewer {
             &screen,
         );
         let offscreen = capture.map(|_| {
-            ctx.count_app(1, 0);
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("viewer screenshot"),
-                size: wgpu::Extent3d {
-                    width: self.config.width,
-                    height: self.config.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: self.config.format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+            let size = (self.config.width, self.config.height);
+            app_texture(ctx, "viewer screenshot", size, self.config.format, usage)
         });
         let mut targets: Vec<wgpu::TextureView> = Vec::new();
         if let Some(f) = &frame {
