@@ -202,10 +202,9 @@ pub fn run(args: BakeArgs) -> Result<()> {
     };
     prepare_folder(&args.out, &record, range, args.raw, args.force)?;
     let scenes = colour_scenes(&scene, args.dispersion);
-    let mut gpu = match &ctx {
-        Some(ctx) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),
-        None => None,
-    };
+    let mut gpu = (ctx.as_ref())
+        .map(|ctx| BakeFrames::new(ctx, spec.name(), &spec.params, &scenes))
+        .transpose()?;
     let bar = progress::bar("baking");
     bar.set_length((range.1 - range.0) as u64);
     let started = Instant::now();
@@ -421,13 +420,6 @@ fn save_png16(path: &Path, w: u32, h: u32, colours: usize, data: Vec<u16>) -> Re
     result.with_context(|| format!("{}", path.display()))
 }
 
-/// Read a frame back from its PNG (16-bit grey or RGB), as written.
-fn read_png16(path: &Path) -> Result<image::ImageBuffer<image::Rgb<u16>, Vec<u16>>> {
-    Ok(image::open(path)
-        .with_context(|| format!("{}", path.display()))?
-        .to_rgb16())
-}
-
 /// The atlas (every frame in a grid, row by row from the top left) and the preview (the loop
 /// tiled 2 x 2, an animated PNG) of the bake in `dir`, from its frames and `bake.toml`.
 fn assemble(dir: &Path, force: bool) -> Result<()> {
@@ -465,7 +457,13 @@ fn assemble(dir: &Path, force: bool) -> Result<()> {
     let mut preview: Vec<Vec<u8>> = Vec::new();
     for k in 0..record.frames {
         let frame: image::ImageBuffer<image::Rgb<u16>, Vec<u16>> = match record.format {
-            Format::Png => read_png16(&frame_path(dir, k, "png"))?,
+            // The PNG (16-bit grey or RGB) as written.
+            Format::Png => {
+                let path = frame_path(dir, k, "png");
+                image::open(&path)
+                    .with_context(|| format!("{}", path.display()))?
+                    .to_rgb16()
+            }
             Format::Exr => exr_as_png16(&frame_path(dir, k, "exr"), w, h)?,
         };
         if frame.dimensions() != (w, h) {

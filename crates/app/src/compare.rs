@@ -105,16 +105,18 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                     .run(spec, &job, &|_, _| {})
                     .with_context(|| format!("{} on {}", spec.label, case.name))?;
                 let backend = out.backend;
+                let row = |case: String, metrics, picture, diff_range| Row {
+                    case,
+                    technique: spec.label.clone(),
+                    resolution: res,
+                    backend,
+                    metrics,
+                    picture,
+                    diff_range,
+                };
                 if let (Some(walls), Some(truth)) = (&out.walls, &truth_walls) {
-                    rows.push(Row {
-                        case: format!("{}:walls", case.name),
-                        technique: spec.label.clone(),
-                        resolution: res,
-                        backend,
-                        metrics: compare_grids(&stacked(walls), truth),
-                        picture: None,
-                        diff_range: 0.0,
-                    });
+                    let metrics = compare_grids(&stacked(walls), truth);
+                    rows.push(row(format!("{}:walls", case.name), metrics, None, 0.0));
                 }
                 let map = out.map(spec.name())?;
                 let metrics = compare(&map, &truth);
@@ -127,15 +129,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                 } else {
                     (None, 0.0)
                 };
-                rows.push(Row {
-                    case: case.name.clone(),
-                    technique: spec.label.clone(),
-                    resolution: res,
-                    backend,
-                    metrics,
-                    picture,
-                    diff_range,
-                });
+                rows.push(row(case.name.clone(), metrics, picture, diff_range));
             }
             bar.inc(1);
         }

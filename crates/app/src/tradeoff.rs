@@ -236,15 +236,7 @@ fn floor_point(
     error /= cases.len() as f64;
     // The first case's scene: its water, floor and sun.
     let scene = case_scene(&cases[0], s.map);
-    let ctx = runner.gpu.as_ref().expect("a GPU runner");
-    let m = time_technique(ctx, &scene, spec, &s.timing)?;
-    Ok(point(
-        spec,
-        format!("{0}²", s.map),
-        error,
-        m.total_ms,
-        m.wall_ms,
-    ))
+    point(runner, spec, &scene, s, format!("{0}²", s.map), error)
 }
 
 /// An eye-space technique on the pool through its camera against the reference map read where
@@ -287,15 +279,8 @@ fn eye_space_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) ->
             image.height
         );
     }
-    let ctx = runner.gpu.as_ref().expect("a GPU runner");
-    let m = time_technique(ctx, pool, spec, &s.timing)?;
-    Ok(point(
-        spec,
-        format!("{} x {}", pool.camera.width, pool.camera.height),
-        diff / total,
-        m.total_ms,
-        m.wall_ms,
-    ))
+    let size = format!("{} x {}", pool.camera.width, pool.camera.height);
+    point(runner, spec, pool, s, size, diff / total)
 }
 
 /// The cost of a frame: its GPU time, unless the wall time of the same submission is more than
@@ -311,22 +296,31 @@ pub fn cost(gpu_ms: f64, wall_ms: f64) -> f64 {
     }
 }
 
-fn point(spec: &Spec, size: String, error: f64, gpu_ms: f64, wall_ms: f64) -> Point {
-    let name = spec.name().to_string();
+/// The point of `spec` at `error`, its cost timed on `scene`.
+fn point(
+    runner: &Runner,
+    spec: &Spec,
+    scene: &Scene,
+    s: &Sizes,
+    size: String,
+    error: f64,
+) -> Result<Point> {
+    let ctx = runner.gpu.as_ref().expect("a GPU runner");
+    let m = time_technique(ctx, scene, spec, &s.timing)?;
     let setting = spec
         .label
         .split_once(':')
         .map_or("default".to_string(), |(_, p)| p.to_string());
-    Point {
-        technique: name,
+    Ok(Point {
+        technique: spec.name().to_string(),
         setting,
         size,
         error,
-        cost_ms: cost(gpu_ms, wall_ms),
-        gpu_ms,
-        wall_ms,
+        cost_ms: cost(m.total_ms, m.wall_ms),
+        gpu_ms: m.total_ms,
+        wall_ms: m.wall_ms,
         pareto: false,
-    }
+    })
 }
 
 /// Mark every point that no other point beats on both cost and error (at least as good on both,
