@@ -198,11 +198,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         check_walls(&scene, spec.entry)?;
     }
     let inputs = inputs_of(&args.scene);
-    for o in out
-        .iter()
-        .chain(args.raw.iter())
-        .chain(wall_paths.iter().flatten())
-    {
+    let outputs: Vec<(&str, &PathBuf)> = (out.iter().map(|o| ("--out", o)))
+        .chain(args.raw.iter().map(|r| ("--raw", r)))
+        .chain(wall_paths.iter().flatten().map(|p| ("--raw-walls", p)))
+        .collect();
+    for (_, o) in &outputs {
         if let Some(i) = inputs.iter().find(|i| same_file(i, o)) {
             bail!(
                 "refusing to overwrite {}: the scene reads it as an input",
@@ -221,14 +221,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
     {
         bail!("--out {}: expected a .png file name", o.display());
     }
-    if let Some(o) = &out {
-        check_writable("--out", o)?;
-    }
-    if let Some(raw) = &args.raw {
-        check_writable("--raw", raw)?;
-    }
-    for path in wall_paths.iter().flatten() {
-        check_writable("--raw-walls", path)?;
+    for (flag, path) in &outputs {
+        check_writable(flag, path)?;
     }
 
     // The device, set up before the caustics so that a bad --backend fails at once and the

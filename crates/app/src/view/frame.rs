@@ -254,14 +254,10 @@ impl SceneRenderer {
         // Two sides, three final-image passes each (the water's patches and slab bound, the
         // image).
         let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 6));
-        let gpu_frame = match ctx.map(Renderer::new) {
-            Some(Ok(f)) => Some(f),
-            Some(Err(e)) => {
-                eprintln!("no GPU frame, the viewer runs the techniques one by one: {e}");
-                None
-            }
-            None => None,
-        };
+        let gpu_frame = ctx.map(Renderer::new).transpose().unwrap_or_else(|e| {
+            eprintln!("no GPU frame, the viewer runs the techniques one by one: {e}");
+            None
+        });
         let mut runner = runner;
         runner.time_passes();
         SceneRenderer {
