@@ -391,11 +391,10 @@ fn write_frame(dir: &Path, k: u32, frame: &Frame, format: Format, raw: bool) -> 
         use npyz::WriterBuilder;
         let path = frame_path(dir, k, "npy");
         let file = std::fs::File::create(&path).with_context(|| format!("{}", path.display()))?;
-        let shape: Vec<u64> = if colours == 3 {
-            vec![h as u64, w as u64, 3]
-        } else {
-            vec![h as u64, w as u64]
-        };
+        let mut shape = vec![h as u64, w as u64];
+        if colours == 3 {
+            shape.push(3);
+        }
         let mut writer = npyz::WriteOptions::new()
             .default_dtype()
             .shape(&shape)

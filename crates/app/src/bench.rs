@@ -473,12 +473,8 @@ fn summarise(series: Vec<(String, Vec<f64>)>) -> Vec<(String, f64, f64, f64)> {
         .into_iter()
         .map(|(l, mut v)| {
             v.sort_by(f64::total_cmp);
-            let (median, lo, hi) = (
-                percentile(&v, 0.5),
-                percentile(&v, 0.1),
-                percentile(&v, 0.9),
-            );
-            (l, median, lo, hi)
+            let at = |p| percentile(&v, p);
+            (l, at(0.5), at(0.1), at(0.9))
         })
         .collect()
 }

@@ -197,16 +197,11 @@ fn receivers_table(rows: &[Row]) -> String {
     let mut columns: Vec<String> = RECEIVERS.iter().map(|r| format!("receivers-{r}")).collect();
     columns.push("receivers-walls:walls".into());
     for c in &columns {
-        let label = c.trim_start_matches("receivers-");
-        let _ = write!(
-            s,
-            " {} |",
-            if label == "walls" {
-                "floor (walls on)"
-            } else {
-                label
-            }
-        );
+        let label = match c.trim_start_matches("receivers-") {
+            "walls" => "floor (walls on)",
+            label => label,
+        };
+        let _ = write!(s, " {label} |");
     }
     s += "\n|---|";
     s += &"---|".repeat(columns.len());
@@ -235,15 +230,7 @@ fn receivers_table(rows: &[Row]) -> String {
 }
 
 fn file_safe(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    s.replace(|c: char| !(c.is_ascii_alphanumeric() || c == '-'), "_")
 }
 
 pub fn csv(rows: &[Row]) -> String {

@@ -184,10 +184,7 @@ impl Slot {
 
     /// The floor map, for a technique that makes one.
     pub fn floor_map(&self) -> Option<&CausticsMap> {
-        match &self.caustics {
-            Some(SceneCaustics::Floor(m)) => Some(m),
-            _ => None,
-        }
+        self.caustics.as_ref()?.floor()
     }
 }
 
@@ -528,14 +525,7 @@ impl SceneRenderer {
         frame.set_techniques(ctx, &specs);
         for (k, slot) in slots.iter().enumerate() {
             if specs[k].is_none() && slot.map_changed {
-                frame.set_caustics(
-                    ctx,
-                    k,
-                    slot.caustics.as_ref().and_then(|c| match c {
-                        SceneCaustics::Floor(m) => Some(m),
-                        SceneCaustics::EyeSpace(_) => None,
-                    }),
-                )?;
+                frame.set_caustics(ctx, k, slot.floor_map())?;
                 frame.set_walls(ctx, k, slot.walls.as_ref())?;
             }
         }

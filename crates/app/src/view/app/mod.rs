@@ -598,13 +598,10 @@ impl Viewer {
             let size = (self.config.width, self.config.height);
             app_texture(ctx, "viewer screenshot", size, self.config.format, usage)
         });
-        let mut targets: Vec<wgpu::TextureView> = Vec::new();
-        if let Some(f) = &frame {
-            targets.push(f.texture.create_view(&Default::default()));
-        }
-        if let Some(t) = &offscreen {
-            targets.push(t.create_view(&Default::default()));
-        }
+        let targets: Vec<wgpu::TextureView> = (frame.iter().map(|f| &f.texture))
+            .chain(&offscreen)
+            .map(|t| t.create_view(&Default::default()))
+            .collect();
         let mut timer = self.ui_timer.as_mut();
         for (k, view) in targets.iter().enumerate() {
             let timestamp_writes = if k == 0 {
@@ -663,16 +660,8 @@ impl Viewer {
                 self.config.format,
                 wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
             );
-            let rgb: Vec<u8> = texels
-                .iter()
-                .flat_map(|t| {
-                    if bgra {
-                        [t[2], t[1], t[0]]
-                    } else {
-                        [t[0], t[1], t[2]]
-                    }
-                })
-                .collect();
+            let (r, b) = if bgra { (2, 0) } else { (0, 2) };
+            let rgb: Vec<u8> = texels.iter().flat_map(|t| [t[r], t[1], t[b]]).collect();
             crate::save_rgb(path, &rgb, texture.width(), texture.height())?;
             let views: Vec<String> = self
                 .model
