@@ -24,8 +24,6 @@ use caustics_core::metrics::compare;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::Scene;
 
-use caustics_core::techniques::reference as reference_spec;
-
 use crate::bench::{Timing, time_technique};
 use crate::compare::case_scene;
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
@@ -147,14 +145,15 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Resu
     let cases = &all[..s.cases.min(all.len())];
     // The references, once per case.
     let mut truths = Vec::new();
+    let truth_spec = caustics_core::techniques::reference();
     for case in cases {
         let surface = case.water.surface_at(case.time)?;
         let scene = case_scene(case, s.map);
         let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
         truths.push(
             runner
-                .run(&reference_spec(), &job, &|_, _| {})?
-                .map(reference_spec().name())?,
+                .run(&truth_spec, &job, &|_, _| {})?
+                .map(truth_spec.name())?,
         );
     }
     let pool = pool_scene(&s);
