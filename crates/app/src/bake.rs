@@ -202,10 +202,9 @@ pub fn run(args: BakeArgs) -> Result<()> {
     };
     prepare_folder(&args.out, &record, range, args.raw, args.force)?;
     let scenes = colour_scenes(&scene, args.dispersion);
-    let mut gpu = match &ctx {
-        Some(ctx) => Some(BakeFrames::new(ctx, spec.name(), &spec.params, &scenes)?),
-        None => None,
-    };
+    let mut gpu = (ctx.as_ref())
+        .map(|ctx| BakeFrames::new(ctx, spec.name(), &spec.params, &scenes))
+        .transpose()?;
     let bar = progress::bar("baking");
     bar.set_length((range.1 - range.0) as u64);
     let started = Instant::now();
@@ -392,11 +391,10 @@ fn write_frame(dir: &Path, k: u32, frame: &Frame, format: Format, raw: bool) -> 
         use npyz::WriterBuilder;
         let path = frame_path(dir, k, "npy");
         let file = std::fs::File::create(&path).with_context(|| format!("{}", path.display()))?;
-        let shape: Vec<u64> = if colours == 3 {
-            vec![h as u64, w as u64, 3]
-        } else {
-            vec![h as u64, w as u64]
-        };
+        let mut shape = vec![h as u64, w as u64];
+        if colours == 3 {
+            shape.push(3);
+        }
         let mut writer = npyz::WriteOptions::new()
             .default_dtype()
             .shape(&shape)
@@ -419,13 +417,6 @@ fn save_png16(path: &Path, w: u32, h: u32, colours: usize, data: Vec<u16>) -> Re
             .save(path)
     };
     result.with_context(|| format!("{}", path.display()))
-}
-
-/// Read a frame back from its PNG (16-bit grey or RGB), as written.
-fn read_png16(path: &Path) -> Result<image::ImageBuffer<image::Rgb<u16>, Vec<u16>>> {
-    Ok(image::open(path)
-        .with_context(|| format!("{}", path.display()))?
-        .to_rgb16())
 }
 
 /// The atlas (every frame in a grid, row by row from the top left) and the preview (the loop
@@ -465,7 +456,13 @@ fn assemble(dir: &Path, force: bool) -> Result<()> {
     let mut preview: Vec<Vec<u8>> = Vec::new();
     for k in 0..record.frames {
         let frame: image::ImageBuffer<image::Rgb<u16>, Vec<u16>> = match record.format {
-            Format::Png => read_png16(&frame_path(dir, k, "png"))?,
+            // The PNG (16-bit grey or RGB) as written.
+            Format::Png => {
+                let path = frame_path(dir, k, "png");
+                image::open(&path)
+                    .with_context(|| format!("{}", path.display()))?
+                    .to_rgb16()
+            }
             Format::Exr => exr_as_png16(&frame_path(dir, k, "exr"), w, h)?,
         };
         if frame.dimensions() != (w, h) {

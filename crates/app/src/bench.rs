@@ -207,11 +207,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 }
             };
             for mut m in rows {
-                if m.technique.is_empty() {
-                    m.technique = name.clone();
-                } else {
-                    m.technique = format!("{}{name}", m.technique);
-                }
+                m.technique = format!("{}{name}", m.technique);
                 report(&m);
                 results.push(m);
             }
@@ -364,10 +360,7 @@ fn time_frame(
                 bail!("{e}");
             }
         }
-        let passes = match renderer.timer.as_mut() {
-            Some(t) => t.latest(ctx).to_vec(),
-            None => Vec::new(),
-        };
+        let passes = (renderer.timer.as_mut()).map_or_else(Vec::new, |t| t.latest(ctx).to_vec());
         Ok((wall, passes))
     })?;
     m.width = scene.camera.width;
@@ -480,12 +473,8 @@ fn summarise(series: Vec<(String, Vec<f64>)>) -> Vec<(String, f64, f64, f64)> {
         .into_iter()
         .map(|(l, mut v)| {
             v.sort_by(f64::total_cmp);
-            let (median, lo, hi) = (
-                percentile(&v, 0.5),
-                percentile(&v, 0.1),
-                percentile(&v, 0.9),
-            );
-            (l, median, lo, hi)
+            let at = |p| percentile(&v, p);
+            (l, at(0.5), at(0.1), at(0.9))
         })
         .collect()
 }

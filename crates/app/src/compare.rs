@@ -94,14 +94,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
     for case in &cases {
         let surface = case.water.surface_at(case.time)?;
         for (k, &res) in args.resolution.iter().enumerate() {
-            let mut scene = water_scene(
-                &case.name,
-                &case.water,
-                &case.floor,
-                case.light,
-                (res, res),
-                case.time,
-            );
+            let mut scene = case_scene(case, res);
             scene.objects = case.objects.clone();
             let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);
             let truth = runner.run(&reference(), &job, &|_, _| {})?;
@@ -112,16 +105,18 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                     .run(spec, &job, &|_, _| {})
                     .with_context(|| format!("{} on {}", spec.label, case.name))?;
                 let backend = out.backend;
+                let row = |case: String, metrics, picture, diff_range| Row {
+                    case,
+                    technique: spec.label.clone(),
+                    resolution: res,
+                    backend,
+                    metrics,
+                    picture,
+                    diff_range,
+                };
                 if let (Some(walls), Some(truth)) = (&out.walls, &truth_walls) {
-                    rows.push(Row {
-                        case: format!("{}:walls", case.name),
-                        technique: spec.label.clone(),
-                        resolution: res,
-                        backend,
-                        metrics: compare_grids(&stacked(walls), truth),
-                        picture: None,
-                        diff_range: 0.0,
-                    });
+                    let metrics = compare_grids(&stacked(walls), truth);
+                    rows.push(row(format!("{}:walls", case.name), metrics, None, 0.0));
                 }
                 let map = out.map(spec.name())?;
                 let metrics = compare(&map, &truth);
@@ -134,15 +129,7 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
                 } else {
                     (None, 0.0)
                 };
-                rows.push(Row {
-                    case: case.name.clone(),
-                    technique: spec.label.clone(),
-                    resolution: res,
-                    backend,
-                    metrics,
-                    picture,
-                    diff_range,
-                });
+                rows.push(row(case.name.clone(), metrics, picture, diff_range));
             }
             bar.inc(1);
         }
@@ -159,6 +146,19 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
         rows.len()
     );
     Ok(())
+}
+
+/// A case as a scene of water alone with a square map of side `res`.
+pub(crate) fn case_scene(case: &Case, res: u32) -> caustics_core::scene::Scene {
+    let water = &case.water;
+    water_scene(
+        &case.name,
+        water,
+        &case.floor,
+        case.light,
+        (res, res),
+        case.time,
+    )
 }
 
 /// Every registered GPU technique that makes a floor map from the water, in the registry's order
@@ -197,16 +197,11 @@ fn receivers_table(rows: &[Row]) -> String {
     let mut columns: Vec<String> = RECEIVERS.iter().map(|r| format!("receivers-{r}")).collect();
     columns.push("receivers-walls:walls".into());
     for c in &columns {
-        let label = c.trim_start_matches("receivers-");
-        let _ = write!(
-            s,
-            " {} |",
-            if label == "walls" {
-                "floor (walls on)"
-            } else {
-                label
-            }
-        );
+        let label = match c.trim_start_matches("receivers-") {
+            "walls" => "floor (walls on)",
+            label => label,
+        };
+        let _ = write!(s, " {label} |");
     }
     s += "\n|---|";
     s += &"---|".repeat(columns.len());
@@ -235,15 +230,7 @@ fn receivers_table(rows: &[Row]) -> String {
 }
 
 fn file_safe(s: &str) -> String {
-    s.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
+    s.replace(|c: char| !(c.is_ascii_alphanumeric() || c == '-'), "_")
 }
 
 pub fn csv(rows: &[Row]) -> String {
@@ -317,7 +304,6 @@ fn markdown(rows: &[Row], cases: &[Case], adapter: &str, args: &CompareArgs) -> 
         .iter()
         .map(|r| (r.technique.clone(), r.resolution))
         .collect();
-    keys.dedup();
     keys.sort();
     keys.dedup();
     for (t, res) in keys {

@@ -239,19 +239,14 @@ fn summary(scene: &Scene) -> String {
     let mut s = format!("scene `{}`\n", scene.name);
     match &scene.water {
         Some(w) => {
+            use caustics_core::scene::WaterSource as W;
             let source = match &w.source {
-                caustics_core::scene::WaterSource::Flat => "flat".to_string(),
-                caustics_core::scene::WaterSource::Waves(v) => format!("{} sine waves", v.len()),
-                caustics_core::scene::WaterSource::Procedural(p) => {
-                    format!("paper 2 wave function, {} octaves", p.octaves)
-                }
-                caustics_core::scene::WaterSource::Ocean(_) => "FFT ocean".to_string(),
-                caustics_core::scene::WaterSource::Ripple(r) => {
-                    format!("ripple simulation {0} x {0}", r.resolution)
-                }
-                caustics_core::scene::WaterSource::HeightField(g) => {
-                    format!("height field {} x {}", g.cols, g.rows)
-                }
+                W::Flat => "flat".to_string(),
+                W::Waves(v) => format!("{} sine waves", v.len()),
+                W::Procedural(p) => format!("paper 2 wave function, {} octaves", p.octaves),
+                W::Ocean(_) => "FFT ocean".to_string(),
+                W::Ripple(r) => format!("ripple simulation {0} x {0}", r.resolution),
+                W::HeightField(g) => format!("height field {} x {}", g.cols, g.rows),
             };
             s += &format!(
                 "  water: {source}; square {} x {}, depth {}, ior {}, {}, absorption {:?}\n",
@@ -381,6 +376,12 @@ pub(crate) fn backend_arg(s: &str) -> Result<String, String> {
     caustics_gpu::parse_backends(s)
         .map(|_| s.to_string())
         .map_err(|e| e.to_string())
+}
+
+/// Write 8-bit RGB pixels as the image file `path` names (PNG).
+pub(crate) fn save_rgb(path: &std::path::Path, rgb: &[u8], width: u32, height: u32) -> Result<()> {
+    image::save_buffer(path, rgb, width, height, image::ExtendedColorType::Rgb8)
+        .with_context(|| format!("cannot write {}", path.display()))
 }
 
 /// Where outputs go unless told otherwise.

@@ -151,10 +151,7 @@ fn collect_paths(v: &toml::Value, base: &Path, out: &mut Vec<PathBuf>) {
 }
 
 fn same_file(a: &Path, b: &Path) -> bool {
-    match (a.canonicalize(), b.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
-    }
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
 }
 
 pub fn run(args: RenderArgs) -> Result<()> {
@@ -201,11 +198,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
         check_walls(&scene, spec.entry)?;
     }
     let inputs = inputs_of(&args.scene);
-    for o in out
-        .iter()
-        .chain(args.raw.iter())
-        .chain(wall_paths.iter().flatten())
-    {
+    let outputs: Vec<(&str, &PathBuf)> = (out.iter().map(|o| ("--out", o)))
+        .chain(args.raw.iter().map(|r| ("--raw", r)))
+        .chain(wall_paths.iter().flatten().map(|p| ("--raw-walls", p)))
+        .collect();
+    for (_, o) in &outputs {
         if let Some(i) = inputs.iter().find(|i| same_file(i, o)) {
             bail!(
                 "refusing to overwrite {}: the scene reads it as an input",
@@ -224,14 +221,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
     {
         bail!("--out {}: expected a .png file name", o.display());
     }
-    if let Some(o) = &out {
-        check_writable("--out", o)?;
-    }
-    if let Some(raw) = &args.raw {
-        check_writable("--raw", raw)?;
-    }
-    for path in wall_paths.iter().flatten() {
-        check_writable("--raw-walls", path)?;
+    for (flag, path) in &outputs {
+        check_writable(flag, path)?;
     }
 
     // The device, set up before the caustics so that a bad --backend fails at once and the
@@ -253,15 +244,13 @@ pub fn run(args: RenderArgs) -> Result<()> {
                 scene.look.exposure,
                 scene.look.tone_map,
             )?;
-            eprintln!(
-                "wrote {} ({} x {}, {} {}, {:.2} s on the {})",
-                out.display(),
-                image.width,
-                image.height,
-                spec.name(),
-                image.what,
-                started.elapsed().as_secs_f64(),
-                image.backend
+            let what = format!("{} {}, ", spec.name(), image.what);
+            say_wrote(
+                out,
+                (image.width, image.height),
+                &what,
+                started,
+                image.backend,
             );
             return Ok(());
         }
@@ -277,15 +266,16 @@ pub fn run(args: RenderArgs) -> Result<()> {
         return render_frame(ctx, &scene, &spec, &args, out.as_deref());
     }
 
-    let surface = match &scene.water {
-        Some(w) => {
+    let surface = scene
+        .water
+        .as_ref()
+        .map(|w| {
             if matches!(w.source, WaterSource::Ripple(_)) {
                 tracing::info!("running the ripple simulation");
             }
-            Some(w.surface_at(scene.time)?)
-        }
-        None => None,
-    };
+            w.surface_at(scene.time)
+        })
+        .transpose()?;
     // A map when the scene has a caustic generator the technique handles: water, or glass objects
     // (a technique that reads glass, and the reference there: paper 4's photon tracer against the
     // exact geometry, so that the glass scene's own technique draws its foci and shadows).
@@ -329,11 +319,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         None
     };
     if let (Some(raw), Some(caustics)) = (&args.raw, &caustics) {
-        match caustics {
-            SceneCaustics::Floor(m) => m.write_raw(raw)?,
-            SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
-        }
-        eprintln!("wrote {}", raw.display());
+        write_raw(raw, caustics)?;
     }
     if let Some(prefix) = &args.raw_walls {
         let Some(maps) = &walls else {
@@ -350,10 +336,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let caustics = caustics.as_ref().map(SceneCaustics::caustics);
     if let Some(out) = &out {
         let started = Instant::now();
-        let options = RenderOptions {
-            filter_water: args.filter_water,
-            ..RenderOptions::for_scene(&scene, args.supersampling.max(1))
-        };
+        let options = args.options(&scene);
         let image_gpu = runner.gpu.as_ref().filter(|ctx| match args.final_image {
             ImageOn::Gpu => true,
             ImageOn::Cpu => false,
@@ -394,37 +377,21 @@ pub fn run(args: RenderArgs) -> Result<()> {
             None => None,
         };
         let on = if from_gpu.is_some() { "GPU" } else { "CPU" };
-        let image = match from_gpu {
-            Some(image) => image,
-            None => {
-                let bar = progress::bar("image");
-                let image = render(
-                    &scene,
-                    surface.as_deref(),
-                    caustics,
-                    walls.as_ref(),
-                    &options,
-                    &progress::callback(&bar),
-                );
-                bar.finish_and_clear();
-                image
-            }
-        };
-        image::save_buffer(
-            out,
-            &image.rgb,
-            image.width,
-            image.height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .with_context(|| format!("cannot write {}", out.display()))?;
-        eprintln!(
-            "wrote {} ({} x {}, {:.2} s on the {on})",
-            out.display(),
-            image.width,
-            image.height,
-            started.elapsed().as_secs_f64()
-        );
+        let image = from_gpu.unwrap_or_else(|| {
+            let bar = progress::bar("image");
+            let image = render(
+                &scene,
+                surface.as_deref(),
+                caustics,
+                walls.as_ref(),
+                &options,
+                &progress::callback(&bar),
+            );
+            bar.finish_and_clear();
+            image
+        });
+        crate::save_rgb(out, &image.rgb, image.width, image.height)?;
+        say_wrote(out, (image.width, image.height), "", started, on);
     }
     Ok(())
 }
@@ -444,10 +411,7 @@ fn render_frame(
     let mut renderer = Renderer::new(ctx)?;
     renderer.set_water(ctx, scene.water.as_ref(), &FrameWater::Scene)?;
     renderer.set_techniques(ctx, &[Some(TechniqueSpec::from(spec))]);
-    let options = RenderOptions {
-        filter_water: args.filter_water,
-        ..RenderOptions::for_scene(scene, args.supersampling.max(1))
-    };
+    let options = args.options(scene);
     let clock = WaterClock {
         time: scene.time,
         amplitude: 1.0,
@@ -475,33 +439,46 @@ fn render_frame(
     );
     if let Some(raw) = &args.raw {
         let size = scene.water.as_ref().map_or(1.0, |w| w.size);
-        match crate::techniques::read_output(ctx, output, size)? {
-            SceneCaustics::Floor(m) => m.write_raw(raw)?,
-            SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
-        }
-        eprintln!("wrote {}", raw.display());
+        write_raw(raw, &crate::techniques::read_output(ctx, output, size)?)?;
     }
     if let Some(out) = out {
         let image = renderer.image(0).context("no final image")?;
         let texels: Vec<[u8; 4]> = ctx.read_texture(image)?;
         let rgb: Vec<u8> = texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
-        image::save_buffer(
-            out,
-            &rgb,
-            image.width(),
-            image.height(),
-            image::ExtendedColorType::Rgb8,
-        )
-        .with_context(|| format!("cannot write {}", out.display()))?;
-        eprintln!(
-            "wrote {} ({} x {}, {:.2} s on the GPU)",
-            out.display(),
-            image.width(),
-            image.height(),
-            started.elapsed().as_secs_f64()
-        );
+        crate::save_rgb(out, &rgb, image.width(), image.height())?;
+        say_wrote(out, (image.width(), image.height()), "", started, "GPU");
     }
     Ok(())
+}
+
+impl RenderArgs {
+    /// The final image's options: the scene's, with the flags' supersampling and water filter.
+    fn options(&self, scene: &Scene) -> RenderOptions {
+        RenderOptions {
+            filter_water: self.filter_water,
+            ..RenderOptions::for_scene(scene, self.supersampling.max(1))
+        }
+    }
+}
+
+/// The raw caustics, written to `raw` (.npy or .exr) and said so.
+fn write_raw(raw: &Path, caustics: &SceneCaustics) -> Result<()> {
+    match caustics {
+        SceneCaustics::Floor(m) => m.write_raw(raw)?,
+        SceneCaustics::EyeSpace(e) => e.write_raw(raw)?,
+    }
+    eprintln!("wrote {}", raw.display());
+    Ok(())
+}
+
+/// The line that says the final image `out` of `size` is written: `what` made it (empty, or
+/// ending in ", ") in the time since `started` on the `on` device.
+fn say_wrote(out: &Path, (width, height): (u32, u32), what: &str, started: Instant, on: &str) {
+    let secs = started.elapsed().as_secs_f64();
+    eprintln!(
+        "wrote {} ({width} x {height}, {what}{secs:.2} s on the {on})",
+        out.display()
+    );
 }
 
 /// The final image from the GPU twin of `caustics_core::render::render`, or `None` (after one line

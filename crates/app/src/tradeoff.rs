@@ -24,9 +24,8 @@ use caustics_core::metrics::compare;
 use caustics_core::reference::{ReferenceInput, ReferenceOptions, reference};
 use caustics_core::scene::Scene;
 
-use caustics_core::techniques::{reference as reference_spec, water_scene};
-
 use crate::bench::{Timing, time_technique};
+use crate::compare::case_scene;
 use crate::techniques::{Job, Runner, SceneCaustics, Spec};
 
 /// One setting of one technique.
@@ -146,14 +145,15 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Resu
     let cases = &all[..s.cases.min(all.len())];
     // The references, once per case.
     let mut truths = Vec::new();
+    let truth_spec = caustics_core::techniques::reference();
     for case in cases {
         let surface = case.water.surface_at(case.time)?;
-        let scene = case_scene(case, &s);
+        let scene = case_scene(case, s.map);
         let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
         truths.push(
             runner
-                .run(&reference_spec(), &job, &|_, _| {})?
-                .map(reference_spec().name())?,
+                .run(&truth_spec, &job, &|_, _| {})?
+                .map(truth_spec.name())?,
         );
     }
     let pool = pool_scene(&s);
@@ -205,18 +205,6 @@ pub fn run(gpu: &crate::GpuArgs, small: bool, only: &[Spec], out: &Path) -> Resu
     Ok(())
 }
 
-/// A case as a scene of water alone at the sweep's map size.
-fn case_scene(case: &caustics_core::cases::Case, s: &Sizes) -> Scene {
-    water_scene(
-        &case.name,
-        &case.water,
-        &case.floor,
-        case.light,
-        (s.map, s.map),
-        case.time,
-    )
-}
-
 /// The pool with the eye-space sizes of the sweep and no parameters of its own.
 fn pool_scene(s: &Sizes) -> Scene {
     let mut pool = Scene::builtin("pool").expect("the built-in pool parses");
@@ -239,23 +227,15 @@ fn floor_point(
     let mut error = 0.0;
     for (case, truth) in cases.iter().zip(truths) {
         let surface = case.water.surface_at(case.time)?;
-        let scene = case_scene(case, s);
+        let scene = case_scene(case, s.map);
         let job = Job::new(&scene, Some(surface.as_ref()), s.cells_per_texel);
         let map = runner.run(spec, &job, &|_, _| {})?.map(spec.name())?;
         error += compare(&map, truth).relative_l1;
     }
     error /= cases.len() as f64;
     // The first case's scene: its water, floor and sun.
-    let scene = case_scene(&cases[0], s);
-    let ctx = runner.gpu.as_ref().expect("a GPU runner");
-    let m = time_technique(ctx, &scene, spec, &s.timing)?;
-    Ok(point(
-        spec,
-        format!("{0}²", s.map),
-        error,
-        m.total_ms,
-        m.wall_ms,
-    ))
+    let scene = case_scene(&cases[0], s.map);
+    point(runner, spec, &scene, s, format!("{0}²", s.map), error)
 }
 
 /// An eye-space technique on the pool through its camera against the reference map read where
@@ -298,15 +278,8 @@ fn eye_space_point(runner: &mut Runner, spec: &Spec, pool: &Scene, s: &Sizes) ->
             image.height
         );
     }
-    let ctx = runner.gpu.as_ref().expect("a GPU runner");
-    let m = time_technique(ctx, pool, spec, &s.timing)?;
-    Ok(point(
-        spec,
-        format!("{} x {}", pool.camera.width, pool.camera.height),
-        diff / total,
-        m.total_ms,
-        m.wall_ms,
-    ))
+    let size = format!("{} x {}", pool.camera.width, pool.camera.height);
+    point(runner, spec, pool, s, size, diff / total)
 }
 
 /// The cost of a frame: its GPU time, unless the wall time of the same submission is more than
@@ -322,22 +295,31 @@ pub fn cost(gpu_ms: f64, wall_ms: f64) -> f64 {
     }
 }
 
-fn point(spec: &Spec, size: String, error: f64, gpu_ms: f64, wall_ms: f64) -> Point {
-    let name = spec.name().to_string();
+/// The point of `spec` at `error`, its cost timed on `scene`.
+fn point(
+    runner: &Runner,
+    spec: &Spec,
+    scene: &Scene,
+    s: &Sizes,
+    size: String,
+    error: f64,
+) -> Result<Point> {
+    let ctx = runner.gpu.as_ref().expect("a GPU runner");
+    let m = time_technique(ctx, scene, spec, &s.timing)?;
     let setting = spec
         .label
         .split_once(':')
         .map_or("default".to_string(), |(_, p)| p.to_string());
-    Point {
-        technique: name,
+    Ok(Point {
+        technique: spec.name().to_string(),
         setting,
         size,
         error,
-        cost_ms: cost(gpu_ms, wall_ms),
-        gpu_ms,
-        wall_ms,
+        cost_ms: cost(m.total_ms, m.wall_ms),
+        gpu_ms: m.total_ms,
+        wall_ms: m.wall_ms,
         pareto: false,
-    }
+    })
 }
 
 /// Mark every point that no other point beats on both cost and error (at least as good on both,

@@ -23,6 +23,7 @@ use caustics_core::techniques::{self, Descriptor};
 use caustics_core::walls::WallMaps;
 use caustics_core::water::Surface;
 use caustics_gpu::final_image::FinalImage;
+use caustics_gpu::renderer::{FrameWater, Renderer, WaterClock};
 use caustics_gpu::{GpuContext, GpuTimer, PassTime};
 
 use super::water::{SurfaceKey, WaterState};
@@ -116,17 +117,13 @@ struct MapKey {
     view: Option<String>,
 }
 
+/// What a technique run made: its caustics, where it ran ("GPU" or "CPU"), the walls' maps.
+type Made = (SceneCaustics, &'static str, Option<WallMaps>);
+
 /// Maps kept for reuse: switching back to a technique, or showing the same one on both sides,
 /// while the water stands still costs no run (and the memory is bounded: 8 maps of 1024² are
 /// 100 MB).
 const MAP_CACHE: usize = 8;
-
-struct CachedMap {
-    key: MapKey,
-    caustics: SceneCaustics,
-    backend: &'static str,
-    walls: Option<WallMaps>,
-}
 
 /// One side of the view: a technique, its latest caustics (a floor map, or `cascaded`'s eye-space
 /// image), and what running it said.
@@ -170,12 +167,24 @@ impl Slot {
         }
     }
 
+    /// Show what a run made.
+    fn set(&mut self, (caustics, backend, walls): Made) {
+        self.caustics = Some(caustics);
+        self.walls = walls;
+        self.backend = backend;
+        self.error = None;
+    }
+
+    /// No caustics to show: `error` says why, where something failed.
+    fn clear(&mut self, error: Option<String>) {
+        self.caustics = None;
+        self.walls = None;
+        self.error = error;
+    }
+
     /// The floor map, for a technique that makes one.
     pub fn floor_map(&self) -> Option<&CausticsMap> {
-        match &self.caustics {
-            Some(SceneCaustics::Floor(m)) => Some(m),
-            _ => None,
-        }
+        self.caustics.as_ref()?.floor()
     }
 }
 
@@ -217,7 +226,7 @@ pub struct SceneRenderer {
     /// The GPU-resident frame: water, techniques and final images on the GPU, nothing read back
     /// (`caustics_gpu::renderer`). Used whenever the final image is on the GPU; the CPU twins
     /// and [`Runner`] serve the rest (the CPU final image, the reference, the buffer views).
-    pub gpu_frame: Option<GpuFrame>,
+    pub gpu_frame: Option<Renderer>,
     pub runner: Runner,
     final_image: Option<FinalImage>,
     /// Why the final image is traced on the CPU, when it is.
@@ -228,7 +237,7 @@ pub struct SceneRenderer {
     /// The latest frame's surface, for the buffer views.
     pub surface: Option<Box<dyn Surface>>,
     /// Recent maps, oldest first.
-    maps: Vec<CachedMap>,
+    maps: Vec<(MapKey, Made)>,
 }
 
 impl SceneRenderer {
@@ -242,14 +251,10 @@ impl SceneRenderer {
         // Two sides, three final-image passes each (the water's patches and slab bound, the
         // image).
         let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 6));
-        let gpu_frame = match ctx.map(GpuFrame::new) {
-            Some(Ok(f)) => Some(f),
-            Some(Err(e)) => {
-                eprintln!("no GPU frame, the viewer runs the techniques one by one: {e}");
-                None
-            }
-            None => None,
-        };
+        let gpu_frame = ctx.map(Renderer::new).transpose().unwrap_or_else(|e| {
+            eprintln!("no GPU frame, the viewer runs the techniques one by one: {e}");
+            None
+        });
         let mut runner = runner;
         runner.time_passes();
         SceneRenderer {
@@ -294,21 +299,14 @@ impl SceneRenderer {
         };
         stats.water_ms = ms(started);
 
-        // The techniques of a scene without water read the scene itself: its sun and map size.
-        self.scene.light.direction = sun;
-        self.scene.caustics.width = quality.map_size;
-        self.scene.caustics.height = quality.map_size;
-        // The camera the final images are traced from, which eye-space techniques are made for.
-        self.scene.camera = camera.camera(size.0, size.1);
+        let options = self.frame_scene(camera, sun, size, quality);
         for slot in slots.iter_mut() {
             slot.map_changed = false;
             let water_input = match (surface.as_deref(), water.as_deref()) {
                 (Some(surface), Some(water)) => Some((surface, water)),
                 _ if self.scene.water.is_none() => None,
                 _ => {
-                    slot.caustics = None;
-                    slot.walls = None;
-                    slot.error = None;
+                    slot.clear(None);
                     continue;
                 }
             };
@@ -326,13 +324,10 @@ impl SceneRenderer {
                 continue;
             }
             slot.map_changed = true;
-            if let Some(k) = self.maps.iter().position(|c| c.key == key) {
+            if let Some(k) = self.maps.iter().position(|c| c.0 == key) {
                 // Seen a moment ago (the other side, or before a switch): most recent last.
                 let cached = self.maps.remove(k);
-                slot.caustics = Some(cached.caustics.clone());
-                slot.walls = cached.walls.clone();
-                slot.backend = cached.backend;
-                slot.error = None;
+                slot.set(cached.1.clone());
                 slot.technique_ms = None;
                 slot.key = Some(key);
                 self.maps.push(cached);
@@ -351,25 +346,17 @@ impl SceneRenderer {
             slot.technique_ms = Some(ms(started));
             slot.key = Some(key.clone());
             match outcome {
-                Ok((caustics, backend, walls)) => {
+                Ok(made) => {
                     // An eye-space image made for another view of the same input is stale (the
                     // camera rarely comes back to the same spot): replace it rather than push a
                     // floor map that would be reused out of the cache.
                     self.maps
-                        .retain(|c| !(c.key.view.is_some() && c.key.label == key.label));
+                        .retain(|c| !(c.0.view.is_some() && c.0.label == key.label));
                     if self.maps.len() >= MAP_CACHE {
                         self.maps.remove(0);
                     }
-                    self.maps.push(CachedMap {
-                        key,
-                        caustics: caustics.clone(),
-                        backend,
-                        walls: walls.clone(),
-                    });
-                    slot.caustics = Some(caustics);
-                    slot.walls = walls;
-                    slot.backend = backend;
-                    slot.error = None;
+                    self.maps.push((key, made.clone()));
+                    slot.set(made);
                 }
                 Err(e) => {
                     let e = format!("{e:#}");
@@ -377,21 +364,13 @@ impl SceneRenderer {
                         // Once per new error: the panel shows it, a scripted run's log too.
                         eprintln!("technique `{}`: {e}", slot.choice.label());
                     }
-                    slot.caustics = None;
-                    slot.walls = None;
-                    slot.error = Some(e);
+                    slot.clear(Some(e));
                 }
             }
         }
 
         stats.gpu = self.runner.take_gpu_times()?;
         let started = Instant::now();
-        let options = RenderOptions {
-            supersampling: quality.supersampling.max(1),
-            exposure: quality.exposure,
-            tone_map: self.scene.look.tone_map,
-            filter_water: quality.filter_water,
-        };
         let mut images = Vec::with_capacity(slots.len());
         for slot in slots.iter() {
             let caustics = slot.caustics.as_ref().map(SceneCaustics::caustics);
@@ -419,6 +398,28 @@ impl SceneRenderer {
         Ok((Rendered::Cpu(images), stats))
     }
 
+    /// The scene set to the frame's sun, map size and camera, and the final images' options. The
+    /// techniques of a scene without water read the scene itself: its sun and map size; the camera
+    /// is the one the final images are traced from, which eye-space techniques are made for.
+    fn frame_scene(
+        &mut self,
+        camera: &OrbitCamera,
+        sun: DVec3,
+        size: (u32, u32),
+        quality: Quality,
+    ) -> RenderOptions {
+        self.scene.light.direction = sun;
+        self.scene.caustics.width = quality.map_size;
+        self.scene.caustics.height = quality.map_size;
+        self.scene.camera = camera.camera(size.0, size.1);
+        RenderOptions {
+            supersampling: quality.supersampling.max(1),
+            exposure: quality.exposure,
+            tone_map: self.scene.look.tone_map,
+            filter_water: quality.filter_water,
+        }
+    }
+
     /// The frame on the GPU: the water source, each side's technique and final image recorded into
     /// one submission (`caustics_gpu::renderer::Renderer`). A side whose technique has no GPU
     /// implementation (the CPU reference) has its map made by the [`Runner`] when its inputs
@@ -434,21 +435,12 @@ impl SceneRenderer {
     ) -> Result<(Rendered, FrameStats)> {
         let mut stats = FrameStats::default();
         let started = Instant::now();
-        self.scene.light.direction = sun;
-        self.scene.caustics.width = quality.map_size;
-        self.scene.caustics.height = quality.map_size;
-        self.scene.camera = camera.camera(size.0, size.1);
-        let options = RenderOptions {
-            supersampling: quality.supersampling.max(1),
-            exposure: quality.exposure,
-            tone_map: self.scene.look.tone_map,
-            filter_water: quality.filter_water,
-        };
+        let options = self.frame_scene(camera, sun, size, quality);
         let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
         let frame = self.gpu_frame.as_mut().expect("checked by render");
 
         // The water: the scene's source at the viewer's clock, or the resident ripple simulation.
-        let mut clock = caustics_gpu::renderer::WaterClock {
+        let mut clock = WaterClock {
             time: 0.0,
             amplitude: 1.0,
             steps: 0,
@@ -458,32 +450,29 @@ impl SceneRenderer {
             w.set_resident(true);
             let (steps, d) = w.take_pending();
             drops = d;
-            clock = caustics_gpu::renderer::WaterClock {
+            clock = WaterClock {
                 time: w.time,
                 amplitude: w.amplitude,
                 steps,
             };
             let spec = match w.mode {
-                super::water::Mode::Scene => caustics_gpu::renderer::FrameWater::Scene,
+                super::water::Mode::Scene => FrameWater::Scene,
                 super::water::Mode::Ripple => {
                     let (params, generation) = w.ripple_spec();
-                    caustics_gpu::renderer::FrameWater::Ripples {
+                    FrameWater::Ripples {
                         params: params.clone(),
                         generation,
                     }
                 }
             };
             frame
-                .renderer
                 .set_water(ctx, Some(w.water()), &spec)
                 .context("the water on the GPU")?;
         } else {
-            frame
-                .renderer
-                .set_water(ctx, None, &caustics_gpu::renderer::FrameWater::Scene)?;
+            frame.set_water(ctx, None, &FrameWater::Scene)?;
         }
         for d in &drops {
-            frame.renderer.drop_ripple(ctx, d);
+            frame.drop_ripple(ctx, d);
         }
         stats.water_ms = ms(started);
 
@@ -512,11 +501,11 @@ impl SceneRenderer {
                 continue;
             }
             let t0 = Instant::now();
-            let outcome = (|| -> Result<(SceneCaustics, &'static str, Option<WallMaps>)> {
-                let surface = match water.as_deref_mut() {
-                    Some(w) => Some(self.cpu_surface(w)?),
-                    None => None,
-                };
+            let outcome = (|| -> Result<Made> {
+                let surface = water
+                    .as_deref_mut()
+                    .map(|w| self.cpu_surface(w))
+                    .transpose()?;
                 let input = match (surface.as_deref(), water.as_deref()) {
                     (Some(s), Some(w)) => Some((s, w)),
                     _ => None,
@@ -527,52 +516,33 @@ impl SceneRenderer {
             slot.key = Some(key);
             slot.map_changed = true;
             match outcome {
-                Ok((caustics, backend, walls)) => {
-                    slot.backend = backend;
-                    slot.error = None;
-                    slot.caustics = Some(caustics);
-                    slot.walls = walls;
-                }
-                Err(e) => {
-                    slot.error = Some(format!("{e:#}"));
-                    slot.caustics = None;
-                    slot.walls = None;
-                }
+                Ok(made) => slot.set(made),
+                Err(e) => slot.clear(Some(format!("{e:#}"))),
             }
         }
         let ctx = self.runner.gpu.as_ref().expect("a GPU frame has a GPU");
         let frame = self.gpu_frame.as_mut().expect("checked by render");
-        frame.renderer.set_techniques(ctx, &specs);
+        frame.set_techniques(ctx, &specs);
         for (k, slot) in slots.iter().enumerate() {
             if specs[k].is_none() && slot.map_changed {
-                frame.renderer.set_caustics(
-                    ctx,
-                    k,
-                    slot.caustics.as_ref().and_then(|c| match c {
-                        SceneCaustics::Floor(m) => Some(m),
-                        SceneCaustics::EyeSpace(_) => None,
-                    }),
-                )?;
-                frame.renderer.set_walls(ctx, k, slot.walls.as_ref())?;
+                frame.set_caustics(ctx, k, slot.floor_map())?;
+                frame.set_walls(ctx, k, slot.walls.as_ref())?;
             }
         }
         let t0 = Instant::now();
         frame
-            .renderer
             .render(ctx, &self.scene, clock, &options)
             .context("the GPU frame")?;
         stats.image_ms = ms(t0);
         for (k, slot) in slots.iter_mut().enumerate() {
             if specs[k].is_some() {
-                slot.error = frame.renderer.error(k).map(str::to_string);
                 // The map window reads the GPU's map back only while it is open (`read_maps`).
-                slot.caustics = None;
-                slot.walls = None;
+                slot.clear(frame.error(k).map(str::to_string));
                 slot.key = None;
                 slot.map_changed = true;
             }
         }
-        if let Some(t) = frame.renderer.timer.as_mut() {
+        if let Some(t) = frame.timer.as_mut() {
             stats.gpu = t.latest(ctx).to_vec();
         }
         stats.gpu.extend(self.runner.take_gpu_times()?);
@@ -588,7 +558,7 @@ impl SceneRenderer {
             .map(|k| {
                 self.gpu_frame
                     .as_ref()
-                    .and_then(|f| f.renderer.side_traffic(k))
+                    .and_then(|f| f.side_traffic(k))
                     .unwrap_or_default()
             })
             .collect();
@@ -597,12 +567,12 @@ impl SceneRenderer {
 
     /// The GPU technique on side `k` as the registry names it (its variant included).
     pub fn gpu_technique_name(&self, k: usize) -> Option<&str> {
-        self.gpu_frame.as_ref()?.renderer.technique_name(k)
+        self.gpu_frame.as_ref()?.technique_name(k)
     }
 
     /// Side `k`'s final image on the GPU, after a [`Rendered::Gpu`] frame.
     pub fn gpu_image(&self, k: usize) -> Option<&wgpu::Texture> {
-        self.gpu_frame.as_ref()?.renderer.image(k)
+        self.gpu_frame.as_ref()?.image(k)
     }
 
     /// Read the GPU techniques' maps back into the slots, for the map window (while it is open: a
@@ -616,12 +586,12 @@ impl SceneRenderer {
             if !slot.needs_read(rendered) {
                 continue;
             }
-            let Some(output) = frame.renderer.caustics(k) else {
+            let Some(output) = frame.caustics(k) else {
                 continue;
             };
             let size = self.scene.water.as_ref().map_or(1.0, |w| w.size);
             let caustics = crate::techniques::read_output(ctx, output, size)?;
-            slot.walls = match (frame.renderer.walls(k), &caustics, &self.scene.water) {
+            slot.walls = match (frame.walls(k), &caustics, &self.scene.water) {
                 (Some(out), SceneCaustics::Floor(m), Some(water)) => {
                     let mut maps = WallMaps::for_floor_map(m.width, m.height, size, water.depth);
                     out.read(ctx, &mut maps)?;
@@ -640,7 +610,7 @@ impl SceneRenderer {
     pub fn cpu_surface(&mut self, water: &mut WaterState) -> Result<Box<dyn Surface>> {
         if water.mode == super::water::Mode::Ripple
             && let (Some(frame), Some(ctx)) = (self.gpu_frame.as_mut(), self.runner.gpu.as_ref())
-            && let Some(w) = frame.renderer.water_texture(ctx, &self.scene)
+            && let Some(w) = frame.water_texture(ctx, &self.scene)
         {
             let texture = w.heights.texture();
             let data: Vec<f32> = ctx.read_texture(texture)?;
@@ -669,7 +639,7 @@ impl SceneRenderer {
         water_input: Option<(&dyn Surface, &WaterState)>,
         sun: DVec3,
         quality: Quality,
-    ) -> Result<(SceneCaustics, &'static str, Option<WallMaps>)> {
+    ) -> Result<Made> {
         let cells = cells_per_texel.max(1);
         let Some((surface, water)) = water_input else {
             let o = self
@@ -723,19 +693,6 @@ impl SceneRenderer {
             options,
             &|_, _| {},
         ))
-    }
-}
-
-/// The GPU-resident frame and what the viewer keeps beside it.
-pub struct GpuFrame {
-    pub renderer: caustics_gpu::renderer::Renderer,
-}
-
-impl GpuFrame {
-    fn new(ctx: &GpuContext) -> Result<Self> {
-        Ok(GpuFrame {
-            renderer: caustics_gpu::renderer::Renderer::new(ctx)?,
-        })
     }
 }
 

@@ -36,6 +36,16 @@ pub struct Shown {
     pub error: Option<String>,
 }
 
+impl Shown {
+    /// No picture, and why.
+    pub fn error(why: impl Into<String>) -> Self {
+        Shown {
+            error: Some(why.into()),
+            ..Shown::default()
+        }
+    }
+}
+
 /// Timings for the overlay.
 #[derive(Clone, Debug, Default)]
 pub struct Stats {

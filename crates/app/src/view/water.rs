@@ -220,9 +220,7 @@ impl WaterState {
         match self.mode {
             Mode::Scene => self.time += dt,
             Mode::Ripple if self.resident => {
-                self.step_debt += dt / self.params.time_step;
-                let steps = (self.step_debt.floor().max(0.0) as u32).min(MAX_STEPS_PER_FRAME);
-                self.step_debt = (self.step_debt - steps as f64).clamp(0.0, 1.0);
+                let steps = self.steps_for(dt);
                 if steps > 0 {
                     self.pending_steps += steps;
                     self.sim_steps += steps as u64;
@@ -231,15 +229,22 @@ impl WaterState {
             }
             Mode::Ripple => {
                 self.ensure_sim(gpu)?;
-                self.step_debt += dt / self.params.time_step;
-                let steps = (self.step_debt.floor().max(0.0) as u32).min(MAX_STEPS_PER_FRAME);
-                self.step_debt = (self.step_debt - steps as f64).clamp(0.0, 1.0);
+                let steps = self.steps_for(dt);
                 if steps > 0 {
                     self.step(gpu, steps)?;
                 }
             }
         }
         Ok(())
+    }
+
+    /// The whole simulation steps `dt` simulated seconds make, with the fraction left over
+    /// carried to the next frame (at most [`MAX_STEPS_PER_FRAME`]).
+    fn steps_for(&mut self, dt: f64) -> u32 {
+        self.step_debt += dt / self.params.time_step;
+        let steps = (self.step_debt.floor().max(0.0) as u32).min(MAX_STEPS_PER_FRAME);
+        self.step_debt = (self.step_debt - steps as f64).clamp(0.0, 1.0);
+        steps
     }
 
     /// Drop a ripple at water point `p` (switching to the simulation if need be).

@@ -97,9 +97,22 @@ impl GpuImage {
 /// egui-wgpu reads a native texture as gamma-encoded `Rgba8Unorm`, which is what the final
 /// image's sRGB bytes are.
 fn image_texture(ctx: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
+    let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+    let format = wgpu::TextureFormat::Rgba8Unorm;
+    app_texture(ctx, "viewer image", (width, height), format, usage)
+}
+
+/// A 2D texture of the viewer's own, counted as the app's.
+pub(super) fn app_texture(
+    ctx: &GpuContext,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
     ctx.count_app(1, 0);
     ctx.device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("viewer image"),
+        label: Some(label),
         size: wgpu::Extent3d {
             width,
             height,
@@ -108,8 +121,8 @@ fn image_texture(ctx: &GpuContext, width: u32, height: u32) -> wgpu::Texture {
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8Unorm,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        format,
+        usage,
         view_formats: &[],
     })
 }

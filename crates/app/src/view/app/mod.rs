@@ -37,7 +37,7 @@ mod picture_windows;
 mod script;
 mod traffic;
 
-use gpu_image::{GpuImage, rgba_of};
+use gpu_image::{GpuImage, app_texture, rgba_of};
 use model::initial_model;
 use script::Script;
 use traffic::EguiTraffic;
@@ -316,14 +316,10 @@ impl Viewer {
         );
         let mut egui_renderer =
             egui_wgpu::Renderer::new(&ctx.device, format, egui_wgpu::RendererOptions::default());
-        let images = [
-            GpuImage::new(&ctx, &mut egui_renderer),
-            GpuImage::new(&ctx, &mut egui_renderer),
-        ];
-        let map_images = [
-            GpuImage::new(&ctx, &mut egui_renderer),
-            GpuImage::new(&ctx, &mut egui_renderer),
-        ];
+        let images: [GpuImage; 2] =
+            std::array::from_fn(|_| GpuImage::new(&ctx, &mut egui_renderer));
+        let map_images: [GpuImage; 2] =
+            std::array::from_fn(|_| GpuImage::new(&ctx, &mut egui_renderer));
         let difference_image = GpuImage::new(&ctx, &mut egui_renderer);
         let buffer_image = GpuImage::new(&ctx, &mut egui_renderer);
         let textures = TextureIds {
@@ -522,14 +518,7 @@ impl Viewer {
         m.stats = Stats {
             frame_ms: m.stats.frame_ms,
             water_ms: stats.water_ms,
-            technique_ms: [
-                m.slots[0].technique_ms,
-                if sides > 1 {
-                    m.slots[1].technique_ms
-                } else {
-                    None
-                },
-            ],
+            technique_ms: std::array::from_fn(|k| m.slots[k].technique_ms.filter(|_| k < sides)),
             image_ms: stats.image_ms,
             rendered: true,
             gpu: stats.gpu,
@@ -605,29 +594,14 @@ impl Viewer {
             &screen,
         );
         let offscreen = capture.map(|_| {
-            ctx.count_app(1, 0);
-            ctx.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("viewer screenshot"),
-                size: wgpu::Extent3d {
-                    width: self.config.width,
-                    height: self.config.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: self.config.format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
+            let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+            let size = (self.config.width, self.config.height);
+            app_texture(ctx, "viewer screenshot", size, self.config.format, usage)
         });
-        let mut targets: Vec<wgpu::TextureView> = Vec::new();
-        if let Some(f) = &frame {
-            targets.push(f.texture.create_view(&Default::default()));
-        }
-        if let Some(t) = &offscreen {
-            targets.push(t.create_view(&Default::default()));
-        }
+        let targets: Vec<wgpu::TextureView> = (frame.iter().map(|f| &f.texture))
+            .chain(&offscreen)
+            .map(|t| t.create_view(&Default::default()))
+            .collect();
         let mut timer = self.ui_timer.as_mut();
         for (k, view) in targets.iter().enumerate() {
             let timestamp_writes = if k == 0 {
@@ -686,24 +660,9 @@ impl Viewer {
                 self.config.format,
                 wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
             );
-            let rgb: Vec<u8> = texels
-                .iter()
-                .flat_map(|t| {
-                    if bgra {
-                        [t[2], t[1], t[0]]
-                    } else {
-                        [t[0], t[1], t[2]]
-                    }
-                })
-                .collect();
-            image::save_buffer(
-                path,
-                &rgb,
-                texture.width(),
-                texture.height(),
-                image::ExtendedColorType::Rgb8,
-            )
-            .with_context(|| format!("cannot write {}", path.display()))?;
+            let (r, b) = if bgra { (2, 0) } else { (0, 2) };
+            let rgb: Vec<u8> = texels.iter().flat_map(|t| [t[r], t[1], t[b]]).collect();
+            crate::save_rgb(path, &rgb, texture.width(), texture.height())?;
             let views: Vec<String> = self
                 .model
                 .view_rects

@@ -32,16 +32,13 @@ pub(super) fn initial_model(
     let reference = caustics_core::techniques::reference();
     let second = TechniqueChoice::parse(args.compare.as_deref().unwrap_or(reference.name()), cells)
         .context("--compare")?;
-    let water = match &scene.water {
-        Some(w) => {
-            let mut state = WaterState::new(w, scene.time, args.ripple);
-            state.amplitude = args.amplitude.max(0.0);
-            state.time_scale = args.time_scale.max(0.0);
-            state.paused = args.paused;
-            Some(state)
-        }
-        None => None,
-    };
+    let water = scene.water.as_ref().map(|w| {
+        let mut state = WaterState::new(w, scene.time, args.ripple);
+        state.amplitude = args.amplitude.max(0.0);
+        state.time_scale = args.time_scale.max(0.0);
+        state.paused = args.paused;
+        state
+    });
     let camera = OrbitCamera::from_scene(&scene.camera, scene.size);
     // Defaults that keep a frame well under a second on a software adapter, full quality on a
     // GPU. The map's side follows the scene's (its larger side) on a GPU.
@@ -50,8 +47,7 @@ pub(super) fn initial_model(
     } else {
         (1.0, scene.caustics.width.max(scene.caustics.height), 2)
     };
-    let first_choice = first.clone();
-    let available = Buffer::available(first_choice.entry, SceneHas::of(scene));
+    let available = Buffer::available(first.entry, SceneHas::of(scene));
     let buffer = match &args.buffer {
         Some(name) => Buffer::parse(name, &available).context("--buffer")?,
         None => available

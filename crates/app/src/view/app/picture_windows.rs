@@ -33,14 +33,8 @@ impl Viewer {
                         &mut self.egui_renderer,
                         pictures::caustics_picture(caustics, slot.walls.as_ref()),
                     ),
-                    (None, Some(e)) => Shown {
-                        error: Some(e.clone()),
-                        ..Shown::default()
-                    },
-                    (None, None) => Shown {
-                        error: Some("no water, no map".into()),
-                        ..Shown::default()
-                    },
+                    (None, Some(e)) => Shown::error(e.clone()),
+                    (None, None) => Shown::error("no water, no map"),
                 };
             }
             if m.split
@@ -51,15 +45,9 @@ impl Viewer {
                         Some(p) => self
                             .difference_image
                             .picture(ctx, &mut self.egui_renderer, p),
-                        None => Shown {
-                            error: Some("the maps differ in size".into()),
-                            ..Shown::default()
-                        },
+                        None => Shown::error("the maps differ in size"),
                     },
-                    _ => Shown {
-                        error: Some("needs two floor maps".into()),
-                        ..Shown::default()
-                    },
+                    _ => Shown::error("needs two floor maps"),
                 };
             }
             // Shown: a redraw without a new map (a still frame) builds and uploads nothing.
@@ -105,10 +93,7 @@ impl Viewer {
                     &input,
                 ) {
                     Ok(p) => self.buffer_image.picture(ctx, &mut self.egui_renderer, p),
-                    Err(e) => Shown {
-                        error: Some(format!("{e:#}")),
-                        ..Shown::default()
-                    },
+                    Err(e) => Shown::error(format!("{e:#}")),
                 };
                 self.last_buffer = Some(key);
             }
