@@ -494,7 +494,7 @@ fn render_on_gpu(
     options: &RenderOptions,
 ) -> Result<Option<caustics_core::render::Image>, GpuError> {
     let mut timer = GpuTimer::new(ctx, 3);
-    let image = final_image.render_with_walls(
+    let image = final_image.render(
         ctx,
         scene,
         surface,

@@ -202,7 +202,7 @@ fn check_caustics(
     let final_image = FinalImage::new(ctx).expect("pipeline");
     let mut timer = GpuTimer::new(ctx, 3);
     let gpu = final_image
-        .render_with_walls(
+        .render(
             ctx,
             scene,
             surface,
@@ -351,7 +351,7 @@ fn pool_with_a_concrete_deck_matches_the_cpu() {
 }
 
 /// The pool's walls lit through the reference's walls' maps under a low sun that lights
-/// the far walls the camera looks at: `render_with_walls` on both sides.
+/// the far walls the camera looks at: `render` on both sides.
 fn pool_walls_match_the_cpu() {
     use caustics_core::reference::reference_with_walls;
     let ctx = test_gpu();
@@ -389,7 +389,7 @@ fn pool_walls_match_the_cpu() {
     assert!(lit.mean > 1.0, "the walls' light shows: {}", lit.mean);
     let gpu = FinalImage::new(&ctx)
         .expect("pipeline")
-        .render_with_walls(
+        .render(
             &ctx,
             &scene,
             Some(&grid),
@@ -405,7 +405,7 @@ fn pool_walls_match_the_cpu() {
 }
 
 /// The renderer's side for a CPU technique (the reference): its walls' maps, uploaded once with
-/// `set_walls`, light the walls of the frame's image as `render_with_walls` does, and later frames
+/// `set_walls`, light the walls of the frame's image as `FinalImage::render` does, and later frames
 /// create nothing.
 fn the_renderer_lights_the_walls_with_uploaded_maps() {
     use caustics_core::reference::reference_with_walls;
@@ -675,7 +675,7 @@ fn a_frame_takes_the_filter_through_update() {
     };
     let final_image = FinalImage::new(&ctx).expect("pipeline");
     let expected = final_image
-        .render_with_walls(
+        .render(
             &ctx,
             &scene,
             Some(&grid),
@@ -1005,7 +1005,7 @@ fn underwater_matches_the_cpu() {
     check(&ctx, "underwater", &small("underwater"), true, UNDERWATER);
 }
 
-/// The heights `surface` takes on the GPU (the grid [`FinalImage::render_with_walls`] uploads), as
+/// The heights `surface` takes on the GPU (the grid [`FinalImage::render`] uploads), as
 /// a texture the techniques and the frame read.
 fn heights_texture(ctx: &GpuContext, grid: &GridSurface) -> wgpu::Texture {
     ctx.upload_grid("water heights", &grid.grid)
@@ -1125,7 +1125,7 @@ fn a_frame_moves_its_camera_and_sun_through_uniforms_alone() {
 }
 
 /// The frame on a technique's own output texture (yuksel's floor map, never on the CPU) gives
-/// the image `render_with` gives from the same map read back, and the map shows in it.
+/// the image `FinalImage::render` gives from the same map read back, and the map shows in it.
 fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
     let ctx = test_gpu();
     let scene = small("pool");
@@ -1177,7 +1177,7 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
     };
     let surface = Some(&grid as &dyn Surface);
     let from_map = final_image
-        .render_with_walls(
+        .render(
             &ctx,
             &scene,
             surface,
@@ -1186,20 +1186,20 @@ fn a_frame_reads_a_techniques_texture_as_render_with_reads_its_map() {
             &options,
             None,
         )
-        .expect("render_with");
+        .expect("FinalImage::render");
     let d = difference(&from_map, &from_texture);
     eprintln!(
-        "technique texture: mean |frame - render_with| {:.6} steps, largest {}",
+        "technique texture: mean |frame - render| {:.6} steps, largest {}",
         d.mean, d.max
     );
     // The same map, water and shader: the same codes, bit for bit.
     assert_eq!(
         d.max, 0,
-        "the frame on the texture departs from render_with on its map"
+        "the frame on the texture departs from FinalImage::render on its map"
     );
 
     let flat = final_image
-        .render_with_walls(&ctx, &scene, surface, None, None, &options, None)
+        .render(&ctx, &scene, surface, None, None, &options, None)
         .expect("flat");
     let lit = difference(&flat, &from_texture);
     eprintln!(
@@ -1249,7 +1249,7 @@ fn full_size_render_times() {
             let started = std::time::Instant::now();
             let mut timer = GpuTimer::new(&ctx, 3);
             let gpu = final_image
-                .render_with_walls(
+                .render(
                     &ctx,
                     &scene,
                     surface,

@@ -668,7 +668,7 @@ impl SceneRenderer {
         options: &RenderOptions,
     ) -> Result<Image> {
         if let (Some(f), Some(ctx)) = (&self.final_image, self.runner.gpu.as_ref()) {
-            match f.render_with_walls(
+            match f.render(
                 ctx,
                 &self.scene,
                 surface,

@@ -13,7 +13,7 @@
 //! The default scale keeps a frame well under a second there and is 1 on a hardware GPU.
 //!
 //! The final image comes back to the CPU and goes up again into the texture egui draws
-//! (`FinalImage::render_with_walls` returns an image): a copy per frame that a real GPU does not
+//! (`FinalImage::render` returns an image): a copy per frame that a real GPU does not
 //! notice and that keeps the viewer on the public API of the GPU crate.
 //!
 //! Module map: [`app`] the window, egui and the frame loop (and the scripted smoke mode);

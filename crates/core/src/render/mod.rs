@@ -134,7 +134,7 @@ pub struct Image {
 }
 
 /// Side of the square grid a GPU front end samples an analytic surface on for the final image
-/// (`FinalImage::render_with` in caustics-gpu), and the lattice the CPU's filtered water normals
+/// (`FinalImage::render` in caustics-gpu), and the lattice the CPU's filtered water normals
 /// start from for a surface that is not a grid: the caustics map's resolution (the detail the
 /// scene asks the caustics to resolve), at least 256 so that small maps still give the view rays a
 /// smooth surface, and at most 4096 (a 64 MiB texture, within every adapter's limits).

@@ -27,7 +27,7 @@
 //!   frame), which reads 4 texels where `grid_sample` reads 16 for the same surface (the time it
 //!   saves: docs/benchmarks.md). A procedural surface is therefore the grid's interpolant here;
 //!   render on the CPU with the grid's surface ([`water_grid`] is the one
-//!   [`FinalImage::render_with_walls`] uploads) for an exact comparison. The slab the surface lies
+//!   [`FinalImage::render`] uploads) for an exact comparison. The slab the surface lies
 //!   in is found from that texture on the GPU each frame, as the CPU finds it from its surface.
 //! - The terrain is an `R32Float` texture through the same `grid_sample`, clamped; the caustics
 //!   are the technique's output texture, bound as it is: a floor map read by hand over each
@@ -43,7 +43,7 @@
 //! - Each object's `MeshBvh` (the very tree the CPU traverses) is flattened into two storage
 //!   buffers shared by all objects (bind group 1, `bvh.wgsl`).
 //! - The image is written tone-mapped and sRGB-encoded into an `Rgba8Unorm` storage texture with
-//!   the CPU's rounding; [`FinalImage::render_with_walls`] reads it back as
+//!   the CPU's rounding; [`FinalImage::render`] reads it back as
 //!   [`caustics_core::render::Image`].
 //!
 //! WGSL has no recursion: the CPU's recursive trace (water surface, glass reflection and

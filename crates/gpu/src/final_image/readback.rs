@@ -16,7 +16,7 @@ use crate::pass::float_texture;
 
 impl FinalImage {
     /// Render `scene` from its camera: the GPU counterpart of
-    /// `caustics_core::render::render_with_walls`, with the same arguments (no progress: the image
+    /// `caustics_core::render::render`, with the same arguments (no progress: the image
     /// is one dispatch). `surface` is sampled on [`water_grid`]'s lattice; `caustics` comes from
     /// either source: a floor map, or an eye-space image made for the scene's camera (`cascaded`),
     /// read at the pixel each floor point projects to (none: lit as if the water were flat); the
@@ -26,7 +26,7 @@ impl FinalImage {
     /// `timer`, the passes are timed as [`encode`](FinalImageFrame::encode) says and the
     /// timestamps resolved; read them with [`GpuTimer::read`].
     #[allow(clippy::too_many_arguments)]
-    pub fn render_with_walls(
+    pub fn render(
         &self,
         ctx: &GpuContext,
         scene: &Scene,

@@ -67,7 +67,7 @@ pub(super) fn storage_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
 /// A CPU caustics map as the `Rgba32Float` texture a technique's floor output is
 /// ([`Output::Floor`](crate::technique::Output::Floor)), for
 /// [`FinalImage::frame`](super::FinalImage::frame) or
-/// [`FinalImage::render_with_walls`](super::FinalImage::render_with_walls).
+/// [`FinalImage::render`](super::FinalImage::render).
 pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, GpuError> {
     float_texture(
         ctx,

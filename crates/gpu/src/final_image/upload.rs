@@ -108,7 +108,7 @@ pub struct SlabUniform {
     pub _pad: u32,
 }
 
-/// Samples along each side of the lattice the slab bound is taken on (render/mod.rs `render_with`).
+/// Samples along each side of the lattice the slab bound is taken on (render/mod.rs `render`).
 pub const SLAB_LATTICE: u32 = caustics_core::render::SLAB_LATTICE as u32;
 
 /// `FinalImageUniform::flags`, the `FLAG_*` constants of `final_image_inputs.wgsl`.
@@ -167,7 +167,7 @@ pub struct GpuObject {
 pub use caustics_core::render::water_grid_resolution;
 
 /// The frozen water surface as
-/// [`FinalImage::render_with_walls`](super::FinalImage::render_with_walls) hands it to the GPU:
+/// [`FinalImage::render`](super::FinalImage::render) hands it to the GPU:
 /// `surface` sampled on the lattice of [`water_grid_resolution`] over the water's square (uploaded
 /// as is, the heights texture of [`crate::WaterTextures`]) and read back through the same bicubic
 /// interpolant, with the water's edge rule. `None` without water. Render on the CPU with this
