@@ -242,6 +242,7 @@ fn main() {
             water.wrap,
             &result.objects,
             &result.floor,
+            None,
             FLOOR_ALBEDO,
         );
         let (l1, flux) = errors(&view, &ref_view, |_| true);

@@ -186,28 +186,22 @@ pub fn rocks(depth: f64) -> Grid {
 /// held 40 % of the way up (an overhang) that takes the light the floor under it would get. Both
 /// are diffuse: the light that meets them stays off the floor.
 pub fn crate_and_overhang(depth: f64) -> Vec<Object> {
-    let diffuse = Material::Diffuse {
-        color: DVec3::splat(0.8),
-    };
-    let placed = |half: DVec3, base: DVec3| {
-        crate::mesh::cuboid(half)
-            .transformed(glam::DAffine3::from_translation(base + DVec3::Z * half.z))
+    let placed = |half: DVec3, base: DVec3| Object {
+        mesh: crate::mesh::cuboid(half)
+            .transformed(glam::DAffine3::from_translation(base + DVec3::Z * half.z)),
+        material: Material::Diffuse {
+            color: DVec3::splat(0.8),
+        },
     };
     vec![
-        Object {
-            mesh: placed(
-                DVec3::new(0.08, 0.06, 0.15 * depth),
-                DVec3::new(0.35, 0.4, 0.0),
-            ),
-            material: diffuse.clone(),
-        },
-        Object {
-            mesh: placed(
-                DVec3::new(0.1, 0.07, 0.02),
-                DVec3::new(0.62, 0.58, 0.4 * depth),
-            ),
-            material: diffuse,
-        },
+        placed(
+            DVec3::new(0.08, 0.06, 0.15 * depth),
+            DVec3::new(0.35, 0.4, 0.0),
+        ),
+        placed(
+            DVec3::new(0.1, 0.07, 0.02),
+            DVec3::new(0.62, 0.58, 0.4 * depth),
+        ),
     ]
 }
 

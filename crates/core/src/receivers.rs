@@ -87,17 +87,12 @@ pub struct ReceiverHeights {
 }
 
 impl ReceiverHeights {
-    /// The floor's receivers (its terrain and its objects) seen along `t0` from water `depth` deep
-    /// over the `size` square, at `resolution` texels across the square. The window is the square
-    /// widened by how far along `t0` the highest receiver point moves in light space, so every
-    /// receiver point over the square has its texel; lookups beyond it take the nearest edge
-    /// texel.
-    pub fn of_floor(floor: &Floor, size: f64, depth: f64, t0: DVec3, resolution: usize) -> Self {
-        Self::of(floor, floor.solids.as_ref(), size, depth, t0, resolution)
-    }
-
-    /// [`of_floor`](Self::of_floor) with `solids` as the objects in place of the floor's own.
-    fn of(
+    /// The floor's receivers (its terrain and `solids`, the objects) seen along `t0` from water
+    /// `depth` deep over the `size` square, at `resolution` texels across the square. The window
+    /// is the square widened by how far along `t0` the highest receiver point moves in light
+    /// space, so every receiver point over the square has its texel; lookups beyond it take the
+    /// nearest edge texel.
+    pub fn of_floor(
         floor: &Floor,
         solids: Option<&Arc<Solids>>,
         size: f64,
@@ -160,7 +155,7 @@ impl ReceiverHeights {
         map
     }
 
-    /// [`of_floor`](Self::of_floor) with `solids` as the objects, or `previous` where it was made
+    /// [`of_floor`](Self::of_floor), or `previous` where it was made
     /// from the same floor, objects, water and sun (a frame that refits every frame builds the map
     /// once).
     pub(crate) fn reusing(
@@ -183,7 +178,7 @@ impl ReceiverHeights {
             {
                 p.clone()
             }
-            _ => Arc::new(Self::of(floor, solids, size, depth, t0, resolution)),
+            _ => Arc::new(Self::of_floor(floor, solids, size, depth, t0, resolution)),
         }
     }
 
@@ -522,7 +517,7 @@ mod tests {
     #[test]
     fn a_flat_floor_is_its_own_light_space() {
         let t0 = flat_refracted(DVec3::new(-0.35, 0.2, -1.0).normalize(), 1.333);
-        let r = ReceiverHeights::of_floor(&floor(None), 4.0, 1.0, t0, 16);
+        let r = ReceiverHeights::of_floor(&floor(None), None, 4.0, 1.0, t0, 16);
         assert!(r.heights.iter().all(|&h| h == 0.0));
         let s = DVec3::new(1.3, 2.1, 1.02);
         let t = DVec3::new(0.1, -0.05, -1.0).normalize();
@@ -538,7 +533,7 @@ mod tests {
         let (size, depth) = (4.0, 1.5);
         let f = floor(Some(slope(64, size, 0.2)));
         let t0 = flat_refracted(DVec3::new(0.4, -0.3, -1.0).normalize(), 1.333);
-        let r = ReceiverHeights::of_floor(&f, size, depth, t0, 64);
+        let r = ReceiverHeights::of_floor(&f, f.solids.as_ref(), size, depth, t0, 64);
         for (x, y, tx) in [(1.0, 1.0, 0.0), (2.5, 3.0, 0.15), (0.5, 2.0, -0.2)] {
             let s = DVec3::new(x, y, depth + 0.03);
             let t = (t0 + DVec3::new(tx, 0.05, 0.0)).normalize();

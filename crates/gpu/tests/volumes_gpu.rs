@@ -13,7 +13,7 @@ use caustics_core::techniques::volumes::illumination::{
     floor_pass, shade_pass, slice_pass, wall_pass,
 };
 use caustics_core::techniques::volumes::representation::covered;
-use caustics_core::techniques::volumes::view::{ViewCamera, view_pass, view_pass_with_walls};
+use caustics_core::techniques::volumes::view::{ViewCamera, view_pass};
 use caustics_core::techniques::volumes::{
     self, VolumesInput, VolumesObject, VolumesParams, VolumesSetup,
 };
@@ -181,6 +181,7 @@ fn gpu_passes_match_the_cpu_twin() {
             true,
             &gpu.objects,
             &gpu.floor,
+            None,
             view.floor_albedo,
         );
         let e = relative_l1(&gpu.view, &same);
@@ -314,6 +315,7 @@ fn without_shadows_or_objects_gpu_matches_cpu() {
             true,
             &gpu.objects,
             &gpu.floor,
+            None,
             view.floor_albedo,
         );
         let e = relative_l1(&gpu.view, &same);
@@ -387,7 +389,7 @@ fn the_walls_match_the_cpu_twin() {
         // from the GPU's own maps; the same with the wall maps dark (the walls are in view).
         let (cam, albedo) = (&view.camera, view.floor_albedo);
         let with = |walls: Option<&WallMaps>| {
-            view_pass_with_walls(
+            view_pass(
                 &setup,
                 cam,
                 &h,

@@ -20,20 +20,13 @@ impl Tracer<'_> {
         crate::mesh::nearest(meshes, o, d, t_max).map(|(k, t, n)| (t, n, k))
     }
 
-    pub(super) fn occluded(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
+    /// Whether an object lies between `o` and `o + t_max d`: a diffuse one, or any (glass included)
+    /// `with_glass`.
+    pub(super) fn occluded(&self, o: DVec3, d: DVec3, t_max: f64, with_glass: bool) -> bool {
         self.scene.objects.iter().zip(&self.bvhs).any(|(obj, bvh)| {
-            matches!(obj.material, Material::Diffuse { .. })
+            (with_glass || matches!(obj.material, Material::Diffuse { .. }))
                 && bvh.intersect(&obj.mesh, o, d, t_max).is_some()
         })
-    }
-
-    /// Any object, glass included, between `o` and the sun.
-    pub(super) fn occluded_by_any(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
-        self.scene
-            .objects
-            .iter()
-            .zip(&self.bvhs)
-            .any(|(obj, bvh)| bvh.intersect(&obj.mesh, o, d, t_max).is_some())
     }
 
     /// The floor at `p`, its caustics and albedo filtered over the sample's `footprint` there.
@@ -68,7 +61,7 @@ impl Tracer<'_> {
             (None, Some((image, eye))) => image.sample(eye, p).unwrap_or_else(flat),
             (None, None) => flat(),
         };
-        let shadow = if self.occluded(p + DVec3::Z * 1e-4, -self.sun_water, f64::INFINITY) {
+        let shadow = if self.occluded(p + DVec3::Z * 1e-4, -self.sun_water, f64::INFINITY, false) {
             0.0
         } else {
             1.0
@@ -91,7 +84,12 @@ impl Tracer<'_> {
             },
             (None, None) => return DVec3::ZERO,
         };
-        if self.occluded(p + wall.normal() * 1e-4, -self.sun_water, f64::INFINITY) {
+        if self.occluded(
+            p + wall.normal() * 1e-4,
+            -self.sun_water,
+            f64::INFINITY,
+            false,
+        ) {
             return DVec3::ZERO;
         }
         let e_h = self.scene.light.intensity * -self.sun.z;
@@ -117,7 +115,8 @@ impl Tracer<'_> {
             Material::Diffuse { color } => {
                 let sun_dir = if under { self.sun_water } else { self.sun };
                 let lambert = n.dot(-sun_dir).max(0.0);
-                let lit = if lambert > 0.0 && !self.occluded(p + n * 1e-4, -sun_dir, f64::INFINITY)
+                let lit = if lambert > 0.0
+                    && !self.occluded(p + n * 1e-4, -sun_dir, f64::INFINITY, false)
                 {
                     1.0
                 } else {

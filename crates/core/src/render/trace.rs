@@ -181,14 +181,14 @@ impl Tracer<'_> {
             let (lit, caustic) = match &self.caustics {
                 Some((_, pyramid)) => {
                     let c = pyramid.filtered(p.truncate(), footprint, false, None);
-                    let blocked = self.occluded_by_any(from, -self.sun, f64::INFINITY);
+                    let blocked = self.occluded(from, -self.sun, f64::INFINITY, true);
                     (
                         if blocked { 0.0 } else { 1.0 },
                         DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64),
                     )
                 }
                 None => {
-                    let blocked = self.occluded(from, -self.sun, f64::INFINITY);
+                    let blocked = self.occluded(from, -self.sun, f64::INFINITY, false);
                     (if blocked { 0.0 } else { 1.0 }, DVec3::ZERO)
                 }
             };

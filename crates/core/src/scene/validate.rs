@@ -337,13 +337,9 @@ fn validate_floor(f: &FloorSpec, base: &Path, size: f64) -> Result<Floor> {
                 g
             }
             (None, Some(b)) => {
-                finite("floor.terrain.beach", &[b.deep, b.shallow, b.dunes])?;
-                if b.deep < 0.0 || b.shallow < 0.0 {
-                    return Err(Error::field(
-                        "floor.terrain.beach",
-                        "heights must not go below z = 0",
-                    ));
-                }
+                finite("floor.terrain.beach", &[b.dunes])?;
+                // Heights above z = 0, as every terrain's.
+                non_negative("floor.terrain.beach", &[b.deep, b.shallow])?;
                 if b.resolution < 2 || b.resolution > MAX_RESOLUTION as usize {
                     return Err(Error::field(
                         "floor.terrain.beach.resolution",

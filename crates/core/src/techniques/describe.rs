@@ -139,6 +139,13 @@ impl Param {
     }
 }
 
+impl Param {
+    /// An option on by default (a technique's Fresnel weight, its absorption).
+    pub const fn on(key: &'static str, label: &'static str, doc: &'static str) -> Param {
+        Param::new(key, label, Kind::Bool, ParamDefault::Bool(true), "", doc)
+    }
+}
+
 /// What a technique lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Receiver {
@@ -279,12 +286,6 @@ impl Descriptor {
         }
         t
     }
-
-    /// The line `caustics techniques` and the logs give a floor-only technique on a scene with
-    /// walls.
-    pub fn floor_only_note(&self) -> String {
-        floor_only_note(self.name)
-    }
 }
 
 /// The line `caustics techniques` and the logs give a floor-only technique on a scene with walls.
@@ -398,19 +399,22 @@ pub fn serde_defaults<T: Default + serde::Serialize>() -> toml::Table {
     toml::Table::try_from(T::default()).expect("a technique's parameters serialize as a table")
 }
 
-/// A technique's parameters from the tables keyed by technique: the table under `key` where there
-/// is one (a malformed one refused naming `caustics.<key>`), else the defaults.
-pub fn params_or_default<T: Default + serde::de::DeserializeOwned>(
-    table: &toml::Table,
-    key: &str,
+/// A technique's parameters from the tables keyed by technique: its entry's table where there is
+/// one (a malformed one refused naming `caustics.<table>`), else the defaults; checked by
+/// `validate`.
+pub fn read_params<T: Default + serde::de::DeserializeOwned>(
+    tables: &toml::Table,
+    entry: &Descriptor,
+    validate: impl Fn(&T) -> Result<()>,
 ) -> Result<T> {
-    match table.get(key) {
-        Some(v) => v
-            .clone()
-            .try_into()
-            .map_err(|e| Error::field(format!("caustics.{key}"), e.to_string())),
-        None => Ok(T::default()),
-    }
+    let key = entry.table;
+    let params = match tables.get(key) {
+        Some(v) => (v.clone().try_into())
+            .map_err(|e| Error::field(format!("caustics.{key}"), e.to_string()))?,
+        None => T::default(),
+    };
+    validate(&params)?;
+    Ok(params)
 }
 
 // What a job and a buffer know of the technique they are for: here, so that the job and the
@@ -420,7 +424,7 @@ impl Job<'_> {
     /// Says once in the log that a floor technique leaves the scene's walls unlit.
     pub fn note_floor_only(&self, technique: &Descriptor) {
         if self.scene.floor.walls && technique.floor_only() {
-            tracing::warn!("{}", technique.floor_only_note());
+            tracing::warn!("{}", floor_only_note(technique.name));
         }
     }
 }

@@ -285,22 +285,18 @@ impl std::str::FromStr for Spec {
             }
             table.insert((*k).into(), toml::Value::String((*pinned).into()));
         }
-        check_table(entry.table, &table).map_err(|e| match e {
+        // A field's error names the key as the spec spells it.
+        let named = |e: Error| match e {
             Error::InvalidField { field, problem } => Error::InvalidParameter(format!(
                 "`{s}`: `{}` {problem}",
                 field.rsplit('.').next().unwrap_or(&field)
             )),
             other => other,
-        })?;
+        };
+        check_table(entry.table, &table).map_err(named)?;
         let mut params = toml::Table::new();
         params.insert(entry.table.to_string(), toml::Value::Table(table));
-        (entry.validate)(&params).map_err(|e| match e {
-            Error::InvalidField { field, problem } => Error::InvalidParameter(format!(
-                "`{s}`: `{}` {problem}",
-                field.rsplit('.').next().unwrap_or(&field)
-            )),
-            other => other,
-        })?;
+        (entry.validate)(&params).map_err(named)?;
         Ok(Spec {
             label: s.to_string(),
             entry,

@@ -224,7 +224,7 @@ fn own_image(
         }
         None => {
             let o = volumes::caustics(&setup, &input, &heights, water.wrap);
-            let rgb = view::view_pass_with_walls(
+            let rgb = view::view_pass(
                 &setup,
                 &camera,
                 &heights,

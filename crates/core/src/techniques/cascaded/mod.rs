@@ -127,8 +127,7 @@ pub enum Placement {
 
 use super::buffers::{Buffer, BufferDesc, BufferInput, Index, Needs, check_index};
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
-    serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, read_params, serde_defaults,
 };
 use super::{Input, Job, JobOutput, SceneCaustics};
 use crate::plot::{Picture, rgb_picture};
@@ -250,12 +249,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "world units",
             "width of the shallow ramp of §3.4.3 (the paper: 1)",
         ),
-        Param::new(
+        Param::on(
             "terrain_pass",
             "terrain pass",
-            Kind::Bool,
-            D::Bool(true),
-            "",
             "the terrain's light-view depth pass; off, the floor is the plane z = 0 (Fig. 4.3)",
         ),
     ],
@@ -428,9 +424,7 @@ impl CascadedParams {
     /// The parameters from the `cascaded` entry of a scene's `[caustics]` table, defaults for what it
     /// leaves out (all of them without the entry), validated.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: CascadedParams = params_or_default(table, "cascaded")?;
-        p.validate()?;
-        Ok(p)
+        read_params(table, &DESCRIPTOR, Self::validate)
     }
 
     /// Check the ranges the passes rely on: the descriptor's, `0 < near < far`, positive

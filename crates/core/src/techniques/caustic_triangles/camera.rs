@@ -137,7 +137,7 @@ impl CameraInput<'_> {
             if t0 >= limit {
                 continue;
             }
-            if let Some((t, surf)) = dm.trace_mode(
+            if let Some((t, surf)) = dm.trace(
                 o + d * t0,
                 d,
                 0.0,
@@ -163,7 +163,7 @@ impl CameraInput<'_> {
     fn occluded(&self, o: DVec3, d: DVec3) -> bool {
         self.generators.iter().any(|(s, dm)| {
             sphere_span(dm, o, d).is_some_and(|(t0, t1)| {
-                dm.trace_mode(
+                dm.trace(
                     o + d * t0,
                     d,
                     0.0,
@@ -273,7 +273,7 @@ impl CameraInput<'_> {
             let Some((_, t1)) = sphere_span(dm, x, r) else {
                 break;
             };
-            let Some((dd, s)) = dm.trace_mode(
+            let Some((dd, s)) = dm.trace(
                 x,
                 r,
                 eps,

@@ -189,7 +189,7 @@ pub fn first_surface(
     let mut best = best.min(floor);
     if let Some((t0, t1)) = sphere_span(dm, light, d)
         && t0 < best
-        && let Some((t, _)) = dm.trace_mode(
+        && let Some((t, _)) = dm.trace(
             light + d * t0,
             d,
             0.0,

@@ -220,30 +220,10 @@ impl DistanceMap {
     /// Trace `x + R d`, `d ∈ [d0, d1]` (unit `R`) against every layer: a linear search of
     /// `linear_steps` steps for the first step where `|l| − |l'|` changes sign in some layer, then
     /// `secant_iterations` secant steps in that bracket. A glass hit counts only if the ray crosses
-    /// it the way `inside` says (leaving when inside, entering when outside); the search then goes
-    /// on. Returns the ray parameter and the surface there.
+    /// it the way `mode` says; the search then goes on. Returns the ray parameter and the surface
+    /// there.
     #[allow(clippy::too_many_arguments)]
     pub fn trace(
-        &self,
-        x: DVec3,
-        r: DVec3,
-        d0: f64,
-        d1: f64,
-        inside: bool,
-        linear_steps: u32,
-        secant_iterations: u32,
-    ) -> Option<(f64, Surface)> {
-        let mode = if inside {
-            Crossing::Leaving
-        } else {
-            Crossing::Entering
-        };
-        self.trace_mode(x, r, d0, d1, mode, linear_steps, secant_iterations)
-    }
-
-    /// [`trace`](Self::trace) with the glass crossings that count given by `mode`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn trace_mode(
         &self,
         x: DVec3,
         r: DVec3,
@@ -376,7 +356,9 @@ mod tests {
         assert!(dm.texels[6 * 32 * 32..].iter().all(|t| t[3] == 0.0));
         // A ray from outside, off-centre, and back out from inside.
         let x = DVec3::new(0.2, 0.25, 1.5);
-        let (d, surf) = dm.trace(x, DVec3::NEG_Z, 0.0, 2.0, false, 64, 8).unwrap();
+        let (d, surf) = dm
+            .trace(x, DVec3::NEG_Z, 0.0, 2.0, Crossing::Entering, 64, 8)
+            .unwrap();
         let exact = Shape::Sphere {
             centre: dm.centre,
             radius: 0.3,
@@ -386,7 +368,9 @@ mod tests {
         assert!((d - exact.0).abs() < 1e-4, "{d} vs {}", exact.0);
         assert!(surf.glass && (surf.normal - exact.1).length() < 1e-2);
         let p = x + DVec3::NEG_Z * d;
-        let (d2, s2) = dm.trace(p, DVec3::NEG_Z, 1e-4, 1.0, true, 64, 8).unwrap();
+        let (d2, s2) = dm
+            .trace(p, DVec3::NEG_Z, 1e-4, 1.0, Crossing::Leaving, 64, 8)
+            .unwrap();
         assert!(
             s2.normal.z < 0.0
                 && (d2 - 2.0 * (0.3f64.powi(2) - 0.1f64.powi(2) - 0.05f64.powi(2)).sqrt()).abs()
@@ -394,6 +378,9 @@ mod tests {
             "{d2}"
         );
         // Entering is ignored from inside: no hit going up from the bottom.
-        assert!(dm.trace(p, DVec3::Z, 1e-3, 0.01, true, 8, 8).is_none());
+        assert!(
+            dm.trace(p, DVec3::Z, 1e-3, 0.01, Crossing::Leaving, 8, 8)
+                .is_none()
+        );
     }
 }

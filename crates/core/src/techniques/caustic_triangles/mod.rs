@@ -117,7 +117,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 use crate::map::CausticsMap;
-pub use distance_map::DistanceMap;
+pub use distance_map::{Crossing, DistanceMap};
 pub use irradiance::{irradiance_pass, vertex_irradiance};
 pub use photon::{INVALID, photon, photon_pass, photon_power, same_path, signature};
 pub use scene::{
@@ -127,8 +127,7 @@ pub use splat::{splat_pass, splat_pass_with_paths};
 pub use triangles::{triangles_pass, triangles_pass_with_paths};
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
-    serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, read_params, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -202,12 +201,9 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "",
             "most refractions / reflections along a photon path (§4.1)",
         ),
-        Param::new(
+        Param::on(
             "fresnel",
             "Fresnel",
-            Kind::Bool,
-            D::Bool(true),
-            "",
             "each photon carries its Fresnel transmittance",
         ),
         Param::new(
@@ -397,9 +393,7 @@ impl CausticTrianglesParams {
     /// The parameters from the `caustic-triangles` entry of a scene's `[caustics]` table, defaults
     /// for what it leaves out (all of them without the entry), validated.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: CausticTrianglesParams = params_or_default(table, "caustic-triangles")?;
-        p.validate()?;
-        Ok(p)
+        read_params(table, &DESCRIPTOR, Self::validate)
     }
 
     /// Check every parameter against the range the descriptor gives it (a splat has a size); the
@@ -562,15 +556,7 @@ impl CausticTrianglesSetup {
         params.validate()?;
         let (u, v, w) = light_frame(scene.light);
         let p = params.photon_image as usize;
-        let (lo, hi) = match scene.point {
-            None => scene.generator.light_rect(u, v),
-            Some(pl) => {
-                let (c, r) = bounding_sphere(&scene.generator);
-                let d2 = (c - pl.position).length_squared();
-                let tan = r / (d2 - r * r).max(1e-30).sqrt();
-                (DVec2::splat(-tan), DVec2::splat(tan))
-            }
-        };
+        let (lo, hi) = scene.light_rect(u, v);
         let cell = (hi - lo) / p as f64;
         // The sun puts `a⊥ / |L_z|` floor-area units through a texel of area `a⊥`; a point light
         // of intensity I puts `I dω` through a solid angle dω, and a tangent-plane cell of area a at

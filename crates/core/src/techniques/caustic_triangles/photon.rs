@@ -3,7 +3,7 @@
 
 use glam::DVec2;
 
-use super::{CausticTrianglesSetup, DistanceMap};
+use super::{CausticTrianglesSetup, Crossing, DistanceMap};
 use crate::optics::{fresnel_transmittance, reflect, refract};
 use crate::parallel::prelude::*;
 
@@ -35,12 +35,17 @@ pub fn photon(setup: &CausticTrianglesSetup, dm: &DistanceMap, i: usize, j: usiz
         let disc = b * b - (oc.length_squared() - dm.radius * dm.radius);
         let d_out = if disc > 0.0 { -b + disc.sqrt() } else { 0.0 };
         let d1 = d_out.min(d_floor);
+        let crossing = if inside {
+            Crossing::Leaving
+        } else {
+            Crossing::Entering
+        };
         match dm.trace(
             x,
             r,
             d0,
             d1,
-            inside,
+            crossing,
             setup.linear_steps,
             setup.secant_iterations,
         ) {

@@ -29,7 +29,7 @@
 use crate::random::hash01;
 use glam::{DVec2, DVec3};
 
-use super::scene::{GlassScene, bounding_sphere, light_frame};
+use super::scene::{GlassScene, light_frame};
 use crate::map::CausticsMap;
 use crate::optics::{fresnel_transmittance, reflect, refract};
 use crate::parallel::prelude::*;
@@ -224,15 +224,7 @@ pub fn reference(scene: &GlassScene, opts: &ReferenceOptions) -> ReferenceResult
     // of directions from the light to the generator's bounding sphere, a photon at q carrying
     // `I a / (1 + q²)^{3/2}` (the solid angle of its cell); directions outside a spot's cone
     // carry nothing.
-    let (lo, hi) = match scene.point {
-        None => scene.generator.light_rect(u, v),
-        Some(pl) => {
-            let (c, r) = bounding_sphere(&scene.generator);
-            let d2 = (c - pl.position).length_squared();
-            let tan = r / (d2 - r * r).max(1e-30).sqrt();
-            (DVec2::splat(-tan), DVec2::splat(tan))
-        }
-    };
+    let (lo, hi) = scene.light_rect(u, v);
     let n = opts.photons.max(1) as usize;
     let cell = (hi - lo) / n as f64;
     // Start every photon outside everything: behind the farthest point of the scene along L.

@@ -215,6 +215,21 @@ pub fn light_frame(light: DVec3) -> (DVec3, DVec3, DVec3) {
 }
 
 impl GlassScene {
+    /// The light-space rectangle the photons start over: the generator's under the sun; under a
+    /// point light, the tangent plane (at distance 1 along `w`) of the cone of directions from the
+    /// light to the generator's bounding sphere.
+    pub fn light_rect(&self, u: DVec3, v: DVec3) -> (DVec2, DVec2) {
+        let Some(pl) = self.point else {
+            return self.generator.light_rect(u, v);
+        };
+        let (c, r) = bounding_sphere(&self.generator);
+        let tan = r
+            / ((c - pl.position).length_squared() - r * r)
+                .max(1e-30)
+                .sqrt();
+        (DVec2::splat(-tan), DVec2::splat(tan))
+    }
+
     /// A scene lit by the sun travelling along `light` (normalised here; it must point down). Errors
     /// where the IOR is not above 1 or the floor window is empty.
     pub fn new(

@@ -610,7 +610,14 @@ mod tests {
         let (a, b) = (0.12, 0.1);
         let floor = open_floor(Some(slope(a, b, water.size, 64)));
         let t0 = crate::receivers::flat_refracted(light, water.ior);
-        let r = ReceiverHeights::of_floor(&floor, water.size, water.depth, t0, 96);
+        let r = ReceiverHeights::of_floor(
+            &floor,
+            floor.solids.as_ref(),
+            water.size,
+            water.depth,
+            t0,
+            96,
+        );
         let ws = WaterSetup::new(&params(96), &water, light, 96, 96)
             .unwrap()
             .with_receivers(Arc::new(r));
@@ -700,8 +707,14 @@ mod tests {
             scene.floor.terrain = terrain;
             let truth = reference_at(&scene, surface.as_ref(), res);
             let t0 = crate::receivers::flat_refracted(scene.light.direction, water.ior);
-            let receivers =
-                ReceiverHeights::of_floor(&scene.floor, water.size, water.depth, t0, res);
+            let receivers = ReceiverHeights::of_floor(
+                &scene.floor,
+                scene.floor.solids.as_ref(),
+                water.size,
+                water.depth,
+                t0,
+                res,
+            );
             let ws = WaterSetup::new(&params(256), &water, scene.light.direction, res, res)
                 .unwrap()
                 .with_receivers(Arc::new(receivers));

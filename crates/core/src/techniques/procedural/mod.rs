@@ -142,8 +142,7 @@ pub const MAX_TARGET_RESOLUTION: u32 = 8192;
 pub const MAX_ANISOTROPY: u32 = 16;
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
-    serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, read_params, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -276,12 +275,9 @@ const FOLLOW_SUN: Param = Param::new(
     "",
     "the scene's sun instead of the paper's overhead one",
 );
-const ABSORPTION: Param = Param::new(
+const ABSORPTION: Param = Param::on(
     "absorption",
     "absorption",
-    Kind::Bool,
-    D::Bool(true),
-    "",
     "exp(-K d) along the gathering ray, with the scene's K",
 );
 const SUN_DIAMETER: Param = Param::new(
@@ -488,9 +484,7 @@ impl ProceduralCausticsParams {
     /// The `procedural` table of `table` (a scene's `[caustics]`), defaults where it is absent,
     /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: ProceduralCausticsParams = params_or_default(table, "procedural")?;
-        p.validate()?;
-        Ok(p)
+        read_params(table, &DESCRIPTOR, Self::validate)
     }
 
     /// Check every value against its parameter's range; the error names the first field out of

@@ -92,8 +92,7 @@ use crate::walls::WallMaps;
 pub use representation::OrthoView;
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
-    serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, read_params, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -142,20 +141,14 @@ pub const DESCRIPTOR: Descriptor = Descriptor {
             "per side",
             "water lattice cells along each side of the square; 0: the map's width",
         ),
-        Param::new(
+        Param::on(
             "fresnel",
             "Fresnel",
-            Kind::Bool,
-            D::Bool(true),
-            "",
             "each volume carries its Fresnel transmittance",
         ),
-        Param::new(
+        Param::on(
             "absorption",
             "absorption",
-            Kind::Bool,
-            D::Bool(true),
-            "",
             "exp(-K d) along each volume's path",
         ),
         Param::new(
@@ -248,9 +241,7 @@ impl VolumesParams {
     /// The `volumes` table of `table` (a scene's `[caustics]`), defaults where it is absent,
     /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: VolumesParams = params_or_default(table, "volumes")?;
-        p.validate()?;
-        Ok(p)
+        read_params(table, &DESCRIPTOR, Self::validate)
     }
 
     /// Check every value's range; the error names the field out of it.

@@ -582,7 +582,7 @@ fn the_view_through_flat_water_sees_the_lit_floor() {
     let mut floor = CausticsMap::new(16, 16, 1.0);
     floor.texels.iter_mut().for_each(|t| *t = [1.0; 3]);
     let albedo = DVec3::new(0.6, 0.7, 0.8);
-    let img = view_pass(&setup, &cam, &flat(16), true, &[], &floor, albedo);
+    let img = view_pass(&setup, &cam, &flat(16), true, &[], &floor, None, albedo);
     for (k, c) in img.iter().enumerate() {
         let d = cam.dir(k % 24, k / 24);
         let t = crate::optics::fresnel_transmittance(-d.z, 1.0, 1.333);
@@ -612,6 +612,7 @@ fn the_view_sees_the_ball_below_it() {
         true,
         &out.objects,
         &out.floor,
+        None,
         grey,
     );
     let centre = img[(res / 2) * res + res / 2];

@@ -132,36 +132,13 @@ pub fn surface_hit(
     (o + d * t, hg.1)
 }
 
-/// The view pass: one RGB per camera pixel, row 0 at the top.
-#[allow(clippy::too_many_arguments)]
-pub fn view_pass(
-    setup: &VolumesSetup,
-    camera: &ViewCamera,
-    heights: &Grid,
-    wrap: bool,
-    objects: &[ObjectMaps],
-    floor: &CausticsMap,
-    floor_albedo: DVec3,
-) -> Vec<[f32; 3]> {
-    view_pass_with_walls(
-        setup,
-        camera,
-        heights,
-        wrap,
-        objects,
-        floor,
-        None,
-        floor_albedo,
-    )
-}
-
-/// [`view_pass`] seeing the pool's walls when `walls` holds their maps: a refracted ray
-/// from the pool's surface that leaves the square through a wall before it reaches the floor sees
-/// that wall, lit by its map's nearest texel (`albedo (E + Ia)`, the floor's albedo: the pool is
+/// The view pass: one RGB per camera pixel, row 0 at the top, seeing the pool's walls when `walls`
+/// holds their maps: a refracted ray from the pool's surface that leaves the square through a
+/// wall before it reaches the floor sees that wall, lit by its map's nearest texel (`albedo (E + Ia)`, the floor's albedo: the pool is
 /// one material). The pool is sunk into a deck, as in the project's final image: a ray that meets
 /// the deck's plane beyond the square, or the water's beyond it, sees the deck ([`deck`]).
 #[allow(clippy::too_many_arguments)]
-pub fn view_pass_with_walls(
+pub fn view_pass(
     setup: &VolumesSetup,
     camera: &ViewCamera,
     heights: &Grid,

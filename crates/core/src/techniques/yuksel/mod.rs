@@ -99,8 +99,7 @@ use crate::optics::{air_transmittance, refract};
 use crate::receivers::Shared;
 
 use super::describe::{
-    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, params_or_default,
-    serde_defaults,
+    Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, read_params, serde_defaults,
 };
 use super::{Input, Job, JobOutput};
 
@@ -234,20 +233,14 @@ const FOOTPRINT: Param = Param::new(
     "",
     "each sample's light lands on the box its patch of water maps to, not a pixel box (ours)",
 );
-const FRESNEL: Param = Param::new(
+const FRESNEL: Param = Param::on(
     "fresnel",
     "Fresnel",
-    Kind::Bool,
-    D::Bool(true),
-    "",
     "each sample carries its Fresnel transmittance",
 );
-const ABSORPTION: Param = Param::new(
+const ABSORPTION: Param = Param::on(
     "absorption",
     "absorption",
-    Kind::Bool,
-    D::Bool(true),
-    "",
     "exp(-K d) along the flat-water path",
 );
 
@@ -414,9 +407,7 @@ impl YukselParams {
     /// The `yuksel` table of `table` (a scene's `[caustics]`), defaults where it is absent,
     /// checked as [`validate`](Self::validate) does.
     pub fn from_table(table: &toml::Table) -> Result<Self> {
-        let p: YukselParams = params_or_default(table, "yuksel")?;
-        p.validate()?;
-        Ok(p)
+        read_params(table, &DESCRIPTOR, Self::validate)
     }
 
     /// Check every value's range (`n` odd, `m` even, within their limits); the error names the
