@@ -15,7 +15,8 @@ use caustics_core::metrics::{Metrics, compare, compare_grids};
 use caustics_core::walls::WallMaps;
 
 use crate::progress;
-use caustics_core::techniques::{reference, water_scene};
+use caustics_core::glam::DVec3;
+use caustics_core::scene::{Camera, CausticsSettings, Light, Look, Scene};
 
 use crate::techniques::{Job, Runner, Spec};
 
@@ -97,9 +98,9 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
             let mut scene = case_scene(case, res);
             scene.objects = case.objects.clone();
             let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);
-            let truth = runner.run(&reference(), &job, &|_, _| {})?;
+            let truth = runner.run(&caustics_core::techniques::reference(), &job, &|_, _| {})?;
             let truth_walls = truth.walls.as_ref().map(stacked);
-            let truth = truth.map(reference().name())?;
+            let truth = truth.map(caustics_core::techniques::reference().name())?;
             for spec in &specs {
                 let out = runner
                     .run(spec, &job, &|_, _| {})
@@ -148,17 +149,39 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// A case as a scene of water alone with a square map of side `res`.
-pub(crate) fn case_scene(case: &Case, res: u32) -> caustics_core::scene::Scene {
-    let water = &case.water;
-    water_scene(
-        &case.name,
-        water,
-        &case.floor,
-        case.light,
-        (res, res),
-        case.time,
-    )
+/// A case as a scene of water alone over its floor under its sun, with a square map of side
+/// `res`: no objects, a camera looking down at the square.
+pub(crate) fn case_scene(case: &Case, res: u32) -> Scene {
+    let size = case.water.size;
+    Scene {
+        name: case.name.clone(),
+        water: Some(case.water.clone()),
+        light: Light {
+            direction: case.light.normalize(),
+            color: DVec3::ONE,
+            intensity: 1.0,
+            position: None,
+            cone: None,
+        },
+        caustics: CausticsSettings {
+            width: res,
+            height: res,
+            technique: caustics_core::techniques::reference().name().to_string(),
+            params: toml::Table::new(),
+        },
+        floor: case.floor.clone(),
+        objects: Vec::new(),
+        camera: Camera {
+            position: DVec3::new(0.5 * size, -0.6 * size, case.water.depth + 1.2 * size),
+            target: DVec3::new(0.5 * size, 0.5 * size, 0.0),
+            fov_y: 45.0,
+            width: 640,
+            height: 360,
+        },
+        look: Look::default(),
+        time: case.time,
+        size,
+    }
 }
 
 /// Every registered GPU technique that makes a floor map from the water, in the registry's order

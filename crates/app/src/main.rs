@@ -11,6 +11,7 @@ mod techniques;
 mod tradeoff;
 mod view;
 
+use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -19,6 +20,7 @@ use clap::{Args, Parser, Subcommand};
 
 use caustics_core::scene::{BUILTIN_SCENES, Scene};
 use caustics_core::techniques::REGISTRY;
+use caustics_core::techniques::describe::ParamDefault;
 
 #[derive(Parser)]
 #[command(
@@ -173,7 +175,7 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Techniques { markdown: true, .. } => {
-            print!("{}", caustics_core::techniques::markdown_table());
+            print!("{}", markdown_table());
             Ok(())
         }
         Command::Techniques { .. } => {
@@ -391,6 +393,44 @@ pub(crate) fn default_output(scene: &str) -> PathBuf {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
     PathBuf::from(format!("{stem}.png"))
+}
+
+/// The README's table of techniques, made from the registry (`caustics techniques --markdown`; a
+/// test keeps the README's copy current).
+fn markdown_table() -> String {
+    let mut s = String::from(
+        "| technique | paper | reads -> makes | lights | parameters (default) | documentation |\n|---|---|---|---|---|---|\n",
+    );
+    for d in REGISTRY {
+        let params: Vec<String> = d
+            .params
+            .iter()
+            .map(|p| match p.default {
+                ParamDefault::Auto(_) => format!("`{}` (auto)", p.key),
+                other => format!("`{}` ({other})", p.key),
+            })
+            .collect();
+        let _ = writeln!(
+            s,
+            "| `{}` | {} | {} | {} | {} | [{}]({}) |",
+            d.name,
+            d.paper,
+            d.input.describe(),
+            d.receivers
+                .iter()
+                .map(|r| r.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+            if params.is_empty() {
+                "-".to_string()
+            } else {
+                params.join(", ")
+            },
+            d.docs,
+            d.docs
+        );
+    }
+    s
 }
 
 #[cfg(test)]

@@ -460,12 +460,27 @@ fn scene_check_and_techniques() {
             );
         }
     }
-    // The README's table, as the registry makes it.
+    // The README's table is the one the registry makes.
     let o = caustics(&["techniques", "--markdown"], &d);
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let begin = "<!-- techniques: made by `caustics techniques --markdown` -->\n";
+    let a = readme.find(begin).expect("the README marks its table") + begin.len();
+    let b = a + readme[a..]
+        .find("<!-- techniques end -->")
+        .expect("the table's end marker");
     assert_eq!(
+        &readme[a..b],
         String::from_utf8_lossy(&o.stdout),
-        caustics_core::techniques::markdown_table()
+        "README.md's table of techniques is stale: paste `caustics techniques --markdown` between its markers"
     );
+    for t in caustics_core::techniques::REGISTRY {
+        assert!(
+            readme[a..b].contains(&format!("| `{}` |", t.name)),
+            "{} missing",
+            t.name
+        );
+    }
     // The GPU registry's names, one a line, each one `render --technique` accepts (CI's
     // validation pass renders every one of them).
     let o = caustics(&["techniques", "--gpu-names"], &d);

@@ -4,7 +4,7 @@
 //! registry's.
 
 use caustics_core::techniques::describe::{Kind, ParamDefault, check_value};
-use caustics_core::techniques::{REGISTRY, Spec, find, markdown_table};
+use caustics_core::techniques::{REGISTRY, Spec, find};
 
 /// Every name once; every parameter key once within its entry; every entry found by name.
 #[test]
@@ -230,22 +230,6 @@ fn variants_and_scene_tables_use_the_same_parser() {
     );
     let e = scene("[caustics.no-such]\nx = 1").unwrap_err().to_string();
     assert!(e.contains("caustics.no-such"), "{e}");
-}
-
-/// The README's table of techniques is the registry's (`caustics techniques --markdown`).
-#[test]
-fn the_readme_table_is_current() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-    let begin = "<!-- techniques: made by `caustics techniques --markdown` -->\n";
-    let end = "<!-- techniques end -->";
-    let a = readme.find(begin).expect("the README marks its table") + begin.len();
-    let b = a + readme[a..].find(end).expect("the table's end marker");
-    assert_eq!(
-        &readme[a..b],
-        markdown_table(),
-        "README.md's table of techniques is stale: paste `caustics techniques --markdown` between its markers"
-    );
 }
 
 /// A fixed-length array of a scene file with another length is refused, naming the length: every

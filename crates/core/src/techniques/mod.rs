@@ -20,7 +20,4 @@ pub mod yuksel;
 
 pub use describe::{Descriptor, Input, check_inputs, floor_only_note};
 pub use job::{Caustics, Job, JobOutput, SceneCaustics, heights_for, lattice_heights};
-pub use registry::{
-    ALIASES, REGISTRY, Spec, canonical, find, for_scene, markdown_table, names, reference,
-    water_scene,
-};
+pub use registry::{ALIASES, REGISTRY, Spec, canonical, find, for_scene, names, reference};

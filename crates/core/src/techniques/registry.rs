@@ -6,17 +6,12 @@
 //! description ([`super::describe`]) they are written against; the renderer and the front ends
 //! above it find them here.
 
-use std::fmt::Write as _;
 use std::path::Path;
 
-use glam::DVec3;
-
-use super::describe::{Descriptor, Input, Param, ParamDefault, check_value};
+use super::describe::{Descriptor, Input, Param, check_value};
 use super::job::{Job, JobOutput};
 use super::{cascaded, caustic_triangles, procedural, volumes, yuksel};
-use crate::scene::{
-    Camera, CausticsSettings, CausticsSpec, Floor, Light, Look, Material, Scene, Water, WaterOnly,
-};
+use crate::scene::{CausticsSettings, CausticsSpec, Light, Material, Scene, WaterOnly};
 use crate::{Error, Result};
 
 /// Former names still read, each with the entry it now names: `yuksel-gather` is `yuksel`, whose
@@ -305,44 +300,6 @@ impl std::str::FromStr for Spec {
     }
 }
 
-/// The README's table of techniques, made from the registry (`caustics techniques --markdown`; a
-/// test keeps the README's copy current).
-pub fn markdown_table() -> String {
-    let mut s = String::from(
-        "| technique | paper | reads -> makes | lights | parameters (default) | documentation |\n|---|---|---|---|---|---|\n",
-    );
-    for d in REGISTRY {
-        let params: Vec<String> = d
-            .params
-            .iter()
-            .map(|p| match p.default {
-                ParamDefault::Auto(_) => format!("`{}` (auto)", p.key),
-                other => format!("`{}` ({other})", p.key),
-            })
-            .collect();
-        let _ = writeln!(
-            s,
-            "| `{}` | {} | {} | {} | {} | [{}]({}) |",
-            d.name,
-            d.paper,
-            d.input.describe(),
-            d.receivers
-                .iter()
-                .map(|r| r.name())
-                .collect::<Vec<_>>()
-                .join(", "),
-            if params.is_empty() {
-                "-".to_string()
-            } else {
-                params.join(", ")
-            },
-            d.docs,
-            d.docs
-        );
-    }
-    s
-}
-
 /// The ground truth's spec, at its defaults: what `caustics compare` and the sweep measure
 /// against.
 pub fn reference() -> Spec {
@@ -352,49 +309,6 @@ pub fn reference() -> Spec {
         .find(|d| d.reference)
         .expect("the registry has a reference");
     entry.name.parse().expect("a bare name parses")
-}
-
-/// A scene of water alone over a floor under the sun, for the tools that measure techniques on
-/// generated cases (`caustics compare`, the error-against-cost sweep): no objects, a camera
-/// looking down at the square.
-pub fn water_scene(
-    name: &str,
-    water: &Water,
-    floor: &Floor,
-    light: DVec3,
-    (width, height): (u32, u32),
-    time: f64,
-) -> Scene {
-    let size = water.size;
-    Scene {
-        name: name.to_string(),
-        water: Some(water.clone()),
-        light: Light {
-            direction: light.normalize(),
-            color: DVec3::ONE,
-            intensity: 1.0,
-            position: None,
-            cone: None,
-        },
-        caustics: CausticsSettings {
-            width,
-            height,
-            technique: REGISTRY[0].name.to_string(),
-            params: toml::Table::new(),
-        },
-        floor: floor.clone(),
-        objects: Vec::new(),
-        camera: Camera {
-            position: DVec3::new(0.5 * size, -0.6 * size, water.depth + 1.2 * size),
-            target: DVec3::new(0.5 * size, 0.5 * size, 0.0),
-            fov_y: 45.0,
-            width: 640,
-            height: 360,
-        },
-        look: Look::default(),
-        time,
-        size,
-    }
 }
 
 /// Checks a scene file's `technique` (`name` or `name:key=value,...`, as `--technique` takes it)
