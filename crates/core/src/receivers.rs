@@ -158,7 +158,7 @@ impl ReceiverHeights {
     /// [`of_floor`](Self::of_floor), or `previous` where it was made
     /// from the same floor, objects, water and sun (a frame that refits every frame builds the map
     /// once).
-    pub(crate) fn reusing(
+    pub fn reusing(
         previous: Option<&Arc<ReceiverHeights>>,
         floor: &Floor,
         solids: Option<&Arc<Solids>>,

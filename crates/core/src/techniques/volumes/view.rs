@@ -8,7 +8,7 @@
 //! path is attenuated by `exp(−K d)`, and the floor is seen with one uniform albedo lit by its caustics
 //! map (`albedo (E + Ia)`; flat-water light beyond the map's square), so the picture is whole; with
 //! the pool's walls the rays that leave the square through a wall see it lit by its map
-//! ([`view_pass_with_walls`]).
+//! ([`view_pass`]).
 
 use glam::{DVec2, DVec3};
 
