@@ -180,6 +180,7 @@ fn wall_texel(m: &crate::walls::WallMap, along: f64, z: f64) -> usize {
 }
 
 /// The jittered photon positions over a rectangle of lattice cells, by rows of squares.
+#[derive(Clone, Copy)]
 struct Strata {
     origin: DVec2,
     spacing: f64,
@@ -308,16 +309,22 @@ pub fn mesh_reference_with_progress(
         }
     }
     let total = offsets[4];
-    let acc = par_sum(0..strata.ny, total, |acc, i| {
-        for j in 0..strata.nx {
+    let marched = terrain.as_ref();
+    // The photons of row `i` of `strata` that enter the water over the traced square, each with
+    // where it ends and how far it travels before it does.
+    let row = move |strata: Strata, i: usize, area: f64| {
+        (0..strata.nx).filter_map(move |j| {
             let p = strata.point(i, j);
             if options.walls && !inside(p, setup.size) {
-                continue;
+                return None;
             }
-            let Some(ph) = photon(setup, surface, p, area) else {
-                continue;
-            };
-            let (end, d) = end_of(setup, &ph, options.walls, terrain.as_ref());
+            let ph = photon(setup, surface, p, area)?;
+            let (end, d) = end_of(setup, &ph, options.walls, marched);
+            Some((ph, end, d))
+        })
+    };
+    let acc = par_sum(0..strata.ny, total, |acc, i| {
+        for (ph, end, d) in row(strata, i, area) {
             if nearest(ph.start, ph.dir, d).is_some() {
                 continue;
             }
@@ -371,15 +378,7 @@ pub fn mesh_reference_with_progress(
         let mesh = &input.objects[k].mesh;
         let scale = (view.extent()).max_element();
         let acc = par_sum(0..strata.ny, res * res, |acc, i| {
-            for j in 0..strata.nx {
-                let p = strata.point(i, j);
-                if options.walls && !inside(p, setup.size) {
-                    continue;
-                }
-                let Some(ph) = photon(setup, surface, p, area) else {
-                    continue;
-                };
-                let (_, limit) = end_of(setup, &ph, options.walls, terrain.as_ref());
+            for (ph, _, limit) in row(*strata, i, area) {
                 let Some((hit, t, n)) = nearest(ph.start, ph.dir, limit) else {
                     continue;
                 };
