@@ -7,10 +7,9 @@
 
 mod common;
 
-use bevy::asset::RenderAssetUsages;
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::light::NotShadowCaster;
-use bevy::mesh::{Indices, PrimitiveTopology};
+
 use bevy::prelude::*;
 use bevy_caustics::{
     CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, Receiver,
@@ -90,17 +89,17 @@ fn setup(
         &water,
         &maps,
         &GlobalTransform::from(at),
-        Receiver::Floor,
+        Receiver::Mesh,
     ));
     let sea_bed = caustic.add(CausticsExtension::material(
         sand_color,
         &water,
         &maps,
         &GlobalTransform::from(at),
-        Receiver::Floor,
+        Receiver::Mesh,
     ));
     commands.spawn((
-        Mesh3d(meshes.add(terrain_mesh(&water.scene, 192))),
+        Mesh3d(meshes.add(common::terrain_mesh(&water.scene, 192))),
         MeshMaterial3d(sand),
     ));
     let c = size / 2.0;
@@ -142,40 +141,6 @@ fn setup(
             pitch: d.y.asin(),
         },
     ));
-}
-
-/// The scene's terrain (the beach) as a mesh of `n` x `n` cells over the water square, heights and
-/// normals from the same grid the techniques read.
-fn terrain_mesh(scene: &Scene, n: usize) -> Mesh {
-    let size = scene.size;
-    let mut positions = Vec::new();
-    let mut normals = Vec::new();
-    for i in 0..=n {
-        for j in 0..=n {
-            let (x, y) = (size * j as f64 / n as f64, size * i as f64 / n as f64);
-            let (h, g) = scene.floor.height_gradient([x, y].into(), size);
-            positions
-                .push(common::scene_to_world(Vec3::new(x as f32, y as f32, h as f32)).to_array());
-            let normal = Vec3::new(-g.x as f32, -g.y as f32, 1.0).normalize();
-            normals.push(common::scene_to_world(normal).to_array());
-        }
-    }
-    let mut indices = Vec::new();
-    let k = |i: usize, j: usize| (i * (n + 1) + j) as u32;
-    for i in 0..n {
-        for j in 0..n {
-            // Counter-clockwise seen from above (Bevy's front faces).
-            indices.extend_from_slice(&[k(i, j), k(i, j + 1), k(i + 1, j)]);
-            indices.extend_from_slice(&[k(i, j + 1), k(i + 1, j + 1), k(i + 1, j)]);
-        }
-    }
-    Mesh::new(
-        PrimitiveTopology::TriangleList,
-        RenderAssetUsages::RENDER_WORLD,
-    )
-    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
-    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
-    .with_inserted_indices(Indices::U32(indices))
 }
 
 /// Right-drag turns the view, the wheel moves along it.

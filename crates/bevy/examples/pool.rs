@@ -59,7 +59,13 @@ fn main() -> AppExit {
         .add_systems(Startup, setup)
         .add_systems(
             Update,
-            (orbit, click_drops, rain, switch_technique, common::frames),
+            (
+                orbit,
+                click_drops,
+                rain,
+                common::switch_technique,
+                common::frames,
+            ),
         )
         .run()
 }
@@ -201,7 +207,7 @@ fn setup(
             &water,
             &maps,
             &here,
-            Receiver::Object,
+            Receiver::Mesh,
         ))),
         Transform::from_translation(local(2.9, 1.1, depth)),
     ));
@@ -379,19 +385,4 @@ fn rain(
         radius: 0.08,
         strength: 0.015,
     });
-}
-
-fn switch_technique(keys: Res<ButtonInput<KeyCode>>, mut water: Query<&mut CausticWater>) {
-    if !keys.just_pressed(KeyCode::KeyT) {
-        return;
-    }
-    let names = CausticWater::techniques();
-    for mut w in &mut water {
-        let next = names
-            .iter()
-            .position(|n| *n == w.technique)
-            .map_or(0, |i| (i + 1) % names.len());
-        w.technique = names[next].to_string();
-        info!("technique: {}", w.technique);
-    }
 }

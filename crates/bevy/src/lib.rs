@@ -56,6 +56,7 @@
 //! ```
 
 mod material;
+mod receivers;
 mod render;
 
 use bevy::asset::{RenderAssetUsages, embedded_asset, uuid_handle};
@@ -102,6 +103,7 @@ impl Plugin for CausticsPlugin {
                 (
                     queue_drops,
                     material::follow_water.after(TransformSystems::Propagate),
+                    receivers::gather.after(TransformSystems::Propagate),
                 ),
             );
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
@@ -117,7 +119,7 @@ impl Plugin for CausticsPlugin {
 
 /// caustics-gpu's shared WGSL that `caustics.wesl` imports, the final image's own copies: each as
 /// the WESL module its path names (Bevy names an `embedded://` shader `caustics_gpu::<file>`).
-const SHARED_WGSL: [(Handle<Shader>, &str, &str); 3] = [
+const SHARED_WGSL: [(Handle<Shader>, &str, &str); 4] = [
     (
         uuid_handle!("3e9a5c71-2d4b-4f86-a0c3-7b1e9d2f6a58"),
         shaders::CAUSTICS_LIGHT,
@@ -132,6 +134,11 @@ const SHARED_WGSL: [(Handle<Shader>, &str, &str); 3] = [
         uuid_handle!("0b7d4e21-5c9a-4f3e-8d62-1a4f6c8e2b95"),
         shaders::OPTICS,
         "embedded://caustics_gpu/optics.wesl",
+    ),
+    (
+        uuid_handle!("9d2e6b14-7f3a-4c85-b1e0-5a8c2f7d3e61"),
+        shaders::RECEIVERS,
+        "embedded://caustics_gpu/receivers.wesl",
     ),
 ];
 
@@ -270,6 +277,18 @@ pub struct CausticMaps {
     /// Bevy's first 3D camera's view (its pose and vertical field of view, this image's aspect),
     /// row 0 at the top; `w` is −1 where a pixel has no value.
     pub eye: Handle<Image>,
+    /// The technique's light-space deposit where its light meets receivers (docs/receivers.md):
+    /// flux per unit area of the plane z = 0 along the flat-water refracted sun, the floor map's
+    /// size and window; what [`Receiver::Mesh`] surfaces look their light up in.
+    pub light: Handle<Image>,
+    /// The receivers' heights the technique's light met, seen from the sun through flat water
+    /// (`R32Float`, scene units; their texels in the first columns and rows, the rest far
+    /// below any receiver).
+    pub heights: Handle<Image>,
+    /// Where `light` and `heights` lie, three `Rgba32Float` texels: the heights' light-space corner,
+    /// texel side and 1 (0: no light-space deposit this frame); the refracted sun and the heights'
+    /// steepest slope; the absorption along a receiver's flat-water path.
+    pub light_view: Handle<Image>,
 }
 
 impl CausticMaps {
@@ -309,11 +328,29 @@ impl CausticMaps {
             1,
             -1.0,
         );
+        let light = map_image(width, height, 1, 1.0);
+        let side = receivers::heights_side(water);
+        let heights = Image::new_fill(
+            Extent3d {
+                width: side,
+                height: side,
+                depth_or_array_layers: 1,
+            },
+            TextureDimension::D2,
+            &receivers::BELOW_ALL.to_le_bytes(),
+            TextureFormat::R32Float,
+            RenderAssetUsages::RENDER_WORLD,
+        );
+        let mut light_view = map_image(3, 1, 1, 0.0);
+        light_view.data = Some(vec![0; 3 * 16]);
         CausticMaps {
             floor,
             walls: images.add(walls),
             wall_cols,
             eye: images.add(eye),
+            light: images.add(light),
+            heights: images.add(heights),
+            light_view: images.add(light_view),
         }
     }
 }

@@ -32,18 +32,23 @@ pub struct CausticsUniform {
     pub flags: UVec4,
 }
 
-/// Which map lights a surface under the water.
+/// How a surface under the water finds its light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Reflect)]
 pub enum Receiver {
-    /// A pool: the floor map on the floor (z = 0), the walls' maps on the square's sides, the
-    /// flat water's light on anything else.
+    /// The pool the scene describes: the floor map on its floor (z = 0), the walls' maps on the
+    /// square's sides, the flat water's light on anything else. The surface is the scene's own,
+    /// not one of the water's receivers.
     #[default]
     Pool,
-    /// A sea bed or a beach: the floor map on every upward-facing surface (the map was made on
-    /// the scene's terrain, which the surface should follow).
-    Floor,
-    /// An object: lit as under flat water (its absorbed, refracted sun), no caustics.
-    Object,
+    /// Any mesh: a sea bed, a rock, a crate, a hull. The plugin puts every mesh with this
+    /// material into its water's receivers (positions read on the CPU, so the mesh keeps
+    /// `RenderAssetUsages::MAIN_WORLD`), the technique's light meets them, and each fragment takes
+    /// the light deposited at its light-space point times its cosine to the refracted sun, none
+    /// where another receiver lies nearer the light: a shadow map's lookup (docs/receivers.md).
+    /// Where the technique makes no light-space deposit (`volumes`, which shades objects by its
+    /// own depth textures, or no receivers yet) it is lit as a [`Receiver::Pool`] surface; under
+    /// an eye-space technique its upward faces take the eye-space image.
+    Mesh,
 }
 
 /// The extension: the maps of one [`CausticWater`] and where the water is.
@@ -57,6 +62,12 @@ pub struct CausticsExtension {
     pub walls: Handle<Image>,
     #[texture(103, sample_type = "float", filterable = false)]
     pub eye: Handle<Image>,
+    #[texture(104, sample_type = "float", filterable = false)]
+    pub light: Handle<Image>,
+    #[texture(105, sample_type = "float", filterable = false)]
+    pub heights: Handle<Image>,
+    #[texture(106, sample_type = "float", filterable = false)]
+    pub light_view: Handle<Image>,
 }
 
 impl CausticsExtension {
@@ -90,6 +101,9 @@ impl CausticsExtension {
             floor: maps.floor.clone(),
             walls: maps.walls.clone(),
             eye: maps.eye.clone(),
+            light: maps.light.clone(),
+            heights: maps.heights.clone(),
+            light_view: maps.light_view.clone(),
         }
     }
 

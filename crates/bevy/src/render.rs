@@ -26,6 +26,9 @@ use caustics_gpu::map_mips::{MapMips, mips_pipeline};
 use caustics_gpu::water::field::GpuWater;
 use caustics_gpu::{GpuContext, Output, Technique, TrafficCounts, WaterTextures};
 
+use caustics_core::scene::Solids;
+
+use crate::receivers::{self, ReceiverMeshes};
 use crate::{CausticMaps, CausticWater, Heights, PendingDrops, scene_from_world};
 
 /// What the plugin did, shared by the main and the render world: frames recorded, and what the
@@ -66,6 +69,8 @@ impl CausticsStats {
 struct Extracted {
     entity: Entity,
     water: Option<CausticWater>,
+    /// The receivers its meshes make, when they changed.
+    receivers: Option<Option<Arc<Solids>>>,
     maps: CausticMaps,
     scene_from_world: Mat4,
     drops: Vec<Drop>,
@@ -88,6 +93,7 @@ type WaterItems = (
     Ref<'static, CausticWater>,
     Ref<'static, CausticMaps>,
     &'static GlobalTransform,
+    Option<Ref<'static, ReceiverMeshes>>,
 );
 
 /// What an eye-space technique takes from Bevy's 3D cameras.
@@ -115,13 +121,17 @@ pub(crate) fn extract(
         });
     let waters = waters
         .iter()
-        .map(|(entity, water, maps, at)| {
+        .map(|(entity, water, maps, at, receivers)| {
             let m = scene_from_world(at);
+            let renewed = water.is_changed() || maps.is_changed();
             Extracted {
                 entity,
+                receivers: receivers
+                    .filter(|r| r.is_changed() || renewed)
+                    .map(|r| r.solids.clone()),
                 // Also when the maps are new: a water that got them after its component (or got
                 // new ones) enters the query then, and the render world must learn it anew.
-                water: (water.is_changed() || maps.is_changed()).then(|| water.as_ref().clone()),
+                water: renewed.then(|| water.as_ref().clone()),
                 maps: maps.as_ref().clone(),
                 scene_from_world: m,
                 drops: drops
@@ -166,6 +176,9 @@ struct WaterState {
     maps: CausticMaps,
     /// The floor image's mips from its first level, for the texture Bevy holds for it now.
     floor_mips: Option<(TextureId, MapMips)>,
+    /// The receivers whose heights and view the light images hold, by identity (`Some(None)`:
+    /// none, the view says so), and the textures Bevy holds for those images.
+    light_written: Option<(Option<usize>, TextureId, TextureId)>,
 }
 
 /// Where the heights of a built state come from.
@@ -184,6 +197,8 @@ pub(crate) struct Waters {
     states: HashMap<Entity, WaterState>,
     /// Each water's component as last extracted.
     known: HashMap<Entity, CausticWater>,
+    /// Each water's receivers from its meshes as last extracted.
+    solids: HashMap<Entity, Option<Arc<Solids>>>,
     /// Waters whose build failed, with the key it failed for: not tried again until it changes.
     failed: HashMap<Entity, Key>,
     /// The traffic counts when the last frame's `prepare` began, and whether that frame built
@@ -207,6 +222,7 @@ fn prepare(
         mips,
         states,
         known,
+        solids,
         failed,
         last,
     } = &mut *waters;
@@ -234,14 +250,30 @@ fn prepare(
         if let Some(water) = w.water.take() {
             known.insert(w.entity, water);
         }
+        if let Some(r) = w.receivers.take() {
+            solids.insert(w.entity, r);
+        }
     }
     let alive = |e: &Entity| extracted.waters.iter().any(|w| w.entity == *e);
     states.retain(|e, _| alive(e));
     failed.retain(|e, _| alive(e));
     known.retain(|e, _| alive(e));
+    solids.retain(|e, _| alive(e));
     for w in &extracted.waters {
-        let Some(water) = known.get(&w.entity) else {
+        let Some(known) = known.get(&w.entity) else {
             continue;
+        };
+        // The meshes' receivers in place of the scene's own objects, where there are any.
+        let meshes = solids.get(&w.entity).cloned().flatten();
+        let with_meshes;
+        let water = match &meshes {
+            None => known,
+            Some(s) => {
+                let mut water = known.clone();
+                water.scene.floor.solids = Some(s.clone());
+                with_meshes = water;
+                &with_meshes
+            }
         };
         let heights = match &water.heights {
             Heights::Scene => HeightsKey::Scene,
@@ -284,6 +316,7 @@ fn prepare(
         }
         let state = states.get_mut(&w.entity).expect("built above");
         state.maps = w.maps.clone();
+        state.scene.floor.solids = water.scene.floor.solids.clone();
         if let Some(floor) = images.get(&state.maps.floor) {
             let id = floor.texture.id();
             if state.floor_mips.as_ref().is_none_or(|(t, _)| *t != id) {
@@ -326,6 +359,7 @@ fn prepare(
             stats.update(|s| s.error = Some(e));
         }
         built |= ctx.traffic().created() != had;
+        write_light_view(ctx, state, &images, &stats);
     }
     *last = Some((before, built));
     let names = states.values().map(|s| s.key.technique.clone()).collect();
@@ -375,7 +409,67 @@ fn build_state(
         scene,
         maps: maps.clone(),
         floor_mips: None,
+        light_written: None,
     })
+}
+
+/// The receivers' heights and view into the water's light images, when the technique's receivers
+/// (or Bevy's textures for the images) changed: an upload then, nothing in a steady frame.
+fn write_light_view(
+    ctx: &GpuContext,
+    state: &mut WaterState,
+    images: &RenderAssets<GpuImage>,
+    stats: &CausticsStats,
+) {
+    let (Some(heights), Some(view)) = (
+        images.get(&state.maps.heights),
+        images.get(&state.maps.light_view),
+    ) else {
+        return;
+    };
+    let frame = state.technique.receivers();
+    let id = frame.map(|f| Arc::as_ptr(&f.receivers) as usize);
+    let key = (id, heights.texture.id(), view.texture.id());
+    if state.light_written == Some(key) {
+        return;
+    }
+    state.light_written = Some(key);
+    let side = heights.texture.width();
+    let r = frame.and_then(|f| {
+        let texels = receivers::heights_image(&f.receivers, side);
+        if texels.is_none() {
+            let e = format!(
+                "bevy_caustics: the receivers' {} x {} heights exceed their {side}² image",
+                f.receivers.cols, f.receivers.rows
+            );
+            error!("{e}");
+            stats.update(|s| s.error = Some(e));
+        }
+        Some((f, texels?))
+    });
+    if let Some((_, texels)) = &r {
+        write(ctx, &heights.texture, bytemuck_f32(texels), side * 4);
+    }
+    let texels = receivers::light_view(r.map(|(f, _)| (&*f.receivers, f.absorption)));
+    let bytes: Vec<f32> = texels.iter().flatten().copied().collect();
+    write(ctx, &view.texture, bytemuck_f32(&bytes), 3 * 16);
+}
+
+fn bytemuck_f32(v: &[f32]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+fn write(ctx: &GpuContext, texture: &wgpu::Texture, bytes: Vec<u8>, row: u32) {
+    ctx.write_texture(
+        texture.as_image_copy(),
+        &bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(row),
+            rows_per_image: None,
+        },
+        texture.size(),
+    );
 }
 
 /// Records each water's passes into Bevy's encoder, then copies the maps into the images the
@@ -407,6 +501,11 @@ fn record(
                 // The floor map's mips, from the level just copied.
                 mips.encode_pass(encoder, "bevy_caustics floor mips");
             }
+        }
+        if let (Some(r), Some(image)) = (state.technique.receivers(), images.get(&state.maps.light))
+            && let Err(e) = copy(encoder, &r.deposit, &image.texture)
+        {
+            stats.update(|s| s.error = Some(format!("light-space deposit: {e}")));
         }
         if let (Some(walls), Some(image)) = (state.technique.walls(), images.get(&state.maps.walls))
             && let Err(e) = copy(encoder, walls.texture, &image.texture)

@@ -453,31 +453,72 @@ impl HeightMarch {
 }
 
 /// Where each texel of a `width x height` floor map looks the light up, made once per terrain
-/// and sun: its centre `P` on the floor, as `[q_x, q_y, share, d]` with `q` its light-space point,
-/// `share = n · (−t₀) / −t₀_z` (0 where another receiver covers it, a shadow map's depth test)
-/// and `d = (depth − P_z) / −t₀_z` its flat-water path. The GPU uploads the same numbers.
+/// and sun: [`ReceiverHeights::point`] at its centre on the floor. The GPU uploads the same
+/// numbers.
 pub fn floor_texels(receivers: &ReceiverHeights, width: usize, height: usize) -> Vec<[f32; 4]> {
-    let t0 = receivers.t0;
     let size = receivers.size;
     let texel = DVec2::new(size / width as f64, size / height as f64);
-    let bias = 0.5 * receivers.texel * receivers.max_slope.max(1.0);
     (0..width * height)
         .map(|k| {
             let c = (DVec2::new((k % width) as f64, (k / width) as f64) + 0.5) * texel;
             let (z, grad) = receivers.terrain.as_ref().map_or((0.0, DVec2::ZERO), |g| {
                 g.sample(c, size, crate::grid::Edge::Clamp)
             });
-            let p = c.extend(z);
-            let n = crate::optics::height_field_normal(grad);
-            let share = match receivers.lit(p, bias) {
-                true => (n.dot(-t0) / -t0.z).max(0.0),
-                false => 0.0,
-            };
-            let q = light_space(p, t0);
-            let path = (receivers.depth - p.z) / -t0.z;
-            [q.x as f32, q.y as f32, share as f32, path as f32]
+            receivers.point(c.extend(z), crate::optics::height_field_normal(grad))
         })
         .collect()
+}
+
+impl ReceiverHeights {
+    /// How far below the map's height a receiver point may lie and still be lit: half a texel's
+    /// rise at the map's steepest slope (at least 45°), what bilinear reading loses.
+    pub fn bias(&self) -> f64 {
+        0.5 * self.texel * self.max_slope.max(1.0)
+    }
+
+    /// The share of the light deposited at its light-space point that receiver point `p` with
+    /// unit normal `n` takes: `n · (−t₀) / −t₀_z`, its area as the light sees it over its
+    /// horizontal area; 0 where another receiver nearer the light covers it (a shadow map's
+    /// depth test, [`lit`](Self::lit)). `shaders/receivers.wgsl`'s `receiver_share` is its twin.
+    pub fn share(&self, p: DVec3, n: DVec3) -> f64 {
+        match self.lit(p, self.bias()) {
+            true => (n.dot(-self.t0) / -self.t0.z).max(0.0),
+            false => 0.0,
+        }
+    }
+
+    /// Where receiver point `p` with unit normal `n` looks the light up, as `[q_x, q_y, share,
+    /// d]`: `q` its light-space point, its [`share`](Self::share), and `d = (depth − P_z) / −t₀_z`
+    /// its flat-water path.
+    pub fn point(&self, p: DVec3, n: DVec3) -> [f32; 4] {
+        let q = light_space(p, self.t0);
+        let path = (self.depth - p.z) / -self.t0.z;
+        [q.x as f32, q.y as f32, self.share(p, n) as f32, path as f32]
+    }
+}
+
+/// The light receiver point `p` with unit normal `n` takes from a technique's light-space
+/// deposit `light` (on the floor map's window), relative to what flat, clear water gives a
+/// horizontal surface: the deposit at its light-space point times its share, attenuated by
+/// `absorption` along its flat-water path ([`ReceiverHeights::point`]). Any receiver, on the
+/// floor or not (an object, an engine's own mesh), looks its light up this way; [`lookup`] is it
+/// at every floor texel.
+pub fn light_at(
+    light: &CausticsMap,
+    receivers: &ReceiverHeights,
+    p: DVec3,
+    n: DVec3,
+    wrap: bool,
+    absorption: DVec3,
+) -> [f32; 3] {
+    deposited(light, receivers.point(p, n), wrap, absorption)
+}
+
+fn deposited(light: &CausticsMap, point: [f32; 4], wrap: bool, absorption: DVec3) -> [f32; 3] {
+    let [qx, qy, share, path] = point;
+    let a = (-absorption * path as f64).exp().as_vec3();
+    let e = light.sample(qx as f64, qy as f64, wrap);
+    std::array::from_fn(|c| e[c] * share * a[c])
 }
 
 /// A floor map (the floor's `(x, y)` texels) from a light-space deposit `light` (flux per unit
@@ -493,10 +534,8 @@ pub fn lookup(
 ) -> CausticsMap {
     let mut out = CausticsMap::new(light.width, light.height, light.size);
     let texels = floor_texels(receivers, light.width, light.height);
-    for (t, &[qx, qy, share, path]) in out.texels.iter_mut().zip(&texels) {
-        let a = (-absorption * path as f64).exp().as_vec3();
-        let e = light.sample(qx as f64, qy as f64, wrap);
-        *t = std::array::from_fn(|c| e[c] * share * a[c]);
+    for (t, &point) in out.texels.iter_mut().zip(&texels) {
+        *t = deposited(light, point, wrap, absorption);
     }
     out
 }
@@ -505,6 +544,7 @@ pub fn lookup(
 mod tests {
     use super::*;
     use crate::grid::Grid;
+    use crate::scene::Solids;
 
     use crate::fixtures::open_floor as floor;
 
@@ -540,5 +580,49 @@ mod tests {
             let (hit, _) = r.meet(s, t).unwrap();
             assert!((hit.z - 0.2 * hit.x).abs() < 1e-6, "{hit}");
         }
+    }
+
+    /// Any receiver point looks its light up as a shadow map is read (the light a mesh of an
+    /// engine's takes): a slab held over a flat floor under a uniform deposit gives its top the
+    /// deposit, a face tilted toward the refracted sun its cosine over the horizontal's, the
+    /// floor in its shade nothing and the floor beyond it the deposit attenuated along its
+    /// flat-water path; at a floor texel's centre it is the floor map's texel.
+    #[test]
+    fn any_receiver_point_looks_its_light_up_as_a_shadow_map() {
+        let (size, depth) = (4.0, 2.0);
+        let t0 = flat_refracted(DVec3::new(-0.3, 0.25, -1.0).normalize(), 1.333);
+        let slab = crate::mesh::cuboid(DVec3::new(0.5, 0.5, 0.05))
+            .transformed(glam::DAffine3::from_translation(DVec3::new(2.0, 2.0, 1.0)));
+        let solids = Solids::of_meshes(vec![slab]);
+        let r = ReceiverHeights::of_floor(&floor(None), solids.as_ref(), size, depth, t0, 64);
+        let mut deposit = CausticsMap::new(64, 64, size);
+        deposit.texels.iter_mut().for_each(|t| *t = [1.0; 3]);
+        let k = DVec3::new(0.3, 0.05, 0.0);
+        let light = |p: DVec3, n: DVec3| light_at(&deposit, &r, p, n, false, k);
+        let path = |z: f64| (-k * (depth - z) / -t0.z).exp();
+        let top = light(DVec3::new(2.0, 2.0, 1.05), DVec3::Z);
+        let expect = path(1.05);
+        for c in 0..3 {
+            assert!((top[c] as f64 - expect[c]).abs() < 1e-6, "{top:?} {expect}");
+        }
+        // The floor in the slab's shade: where the light through its middle would land.
+        let under = light_space(DVec3::new(2.0, 2.0, 1.0), t0).extend(0.0);
+        assert_eq!(light(under, DVec3::Z), [0.0; 3]);
+        // A face turned 30° toward the sun beyond the slab's shade.
+        let toward = (-t0.truncate()).normalize().extend(0.0);
+        let n =
+            (DVec3::Z * 30f64.to_radians().cos() + toward * 30f64.to_radians().sin()).normalize();
+        let p = DVec3::new(0.5, 0.5, 0.3);
+        let tilted = light(p, n)[0] as f64;
+        let cosine = n.dot(-t0) / -t0.z;
+        assert!(
+            (tilted - cosine * path(0.3).x).abs() < 1e-6,
+            "{tilted} {cosine}"
+        );
+        assert!(cosine > 1.0, "{cosine}");
+        // At a floor texel's centre, the lookup's texel.
+        let map = lookup(&deposit, &r, false, k);
+        let c = DVec3::new((10.0 + 0.5) * size / 64.0, (20.0 + 0.5) * size / 64.0, 0.0);
+        assert_eq!(light(c, DVec3::Z), map.texels[20 * 64 + 10]);
     }
 }

@@ -6,6 +6,7 @@
 use caustics_core::scene::Scene;
 use caustics_core::techniques::{Descriptor, Job, JobOutput};
 
+use crate::receivers::ReceiverFrame;
 use crate::shaders::PassSource;
 use crate::technique::{
     MakeOwnImage, Output, Registered, RunOnce, Technique, WallsOutput, WaterTextures,
@@ -77,6 +78,13 @@ pub trait Pipelines: Sized + wgpu::WasmNotSendSync + 'static {
 
     /// The walls' maps, where the technique lights them.
     fn walls(frame: &Self::Frame) -> Option<WallsOutput<'_>> {
+        let _ = frame;
+        None
+    }
+
+    /// The receivers the frame's light meets and its light-space deposit, where it has them
+    /// ([`Technique::receivers`]).
+    fn receivers(frame: &Self::Frame) -> Option<&ReceiverFrame> {
         let _ = frame;
         None
     }
@@ -193,6 +201,10 @@ impl<P: Pipelines> Technique for Resident<P> {
 
     fn walls(&self) -> Option<WallsOutput<'_>> {
         P::walls(&self.frame.as_ref()?.0)
+    }
+
+    fn receivers(&self) -> Option<&ReceiverFrame> {
+        P::receivers(&self.frame.as_ref()?.0)
     }
 
     fn bytes(&self) -> u64 {

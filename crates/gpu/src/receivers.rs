@@ -82,6 +82,13 @@ pub struct ReceiverFrame {
     pub heights: wgpu::Texture,
     /// The floor map: `Rgba32Float`, the floor's texels.
     pub floor: wgpu::Texture,
+    /// The technique's light-space deposit the lookup reads: flux per unit area of the plane
+    /// `z = 0` along `t0`, over the floor map's window and size. A receiver anywhere (an engine's
+    /// own meshes) looks its light up here as [`ReceiverLookup`] does for the floor's texels.
+    pub deposit: wgpu::Texture,
+    /// `K` per channel along each receiver point's flat-water path, zero where the deposit
+    /// carries its own paths' absorption.
+    pub absorption: glam::DVec3,
     bind: wgpu::BindGroup,
     /// Per floor texel: light-space point, share, flat-water path
     /// (`caustics_core::receivers::floor_texels`).
@@ -145,6 +152,8 @@ impl ReceiverLookup {
             receivers: r.clone(),
             heights,
             floor,
+            deposit: deposit.clone(),
+            absorption,
             bind,
             texels,
         })

@@ -18,6 +18,12 @@ pub const OPTICS: &str = include_str!("shaders/optics.wgsl");
 /// `caustics_gpu::caustics_sampling`.
 pub const CAUSTICS_SAMPLING: &str = include_str!("shaders/caustics_sampling.wgsl");
 
+/// The receivers' heights in the light's space (docs/receivers.md): the light-space point, the
+/// map's bilinear height, a ray's meeting with it and a receiver point's share of the light there
+/// (`receiver_share`, a shadow map's depth test). Functions of their arguments alone with no import:
+/// `package::shaders::receivers` here, `caustics_gpu::receivers` in bevy_caustics' material.
+pub const RECEIVERS: &str = include_str!("shaders/receivers.wgsl");
+
 /// The shading rule: how a surface under the water turns a caustics map into the sun's light
 /// (flat water's refracted sun, its absorbed light on any surface, the transmitted irradiance, the
 /// pool's walls). The final image's and bevy_caustics' material's one copy, and an application's:

@@ -184,6 +184,15 @@ pub trait Technique: wgpu::WasmNotSendSync {
         None
     }
 
+    /// Where the scene has receivers (a terrain, diffuse objects): the light-space heights its
+    /// rays meet and the deposit its light lands in (docs/receivers.md), for a receiver the
+    /// technique's floor map does not cover (an engine's own meshes) to look its light up as a
+    /// shadow map is looked up; `None` on the plane `z = 0` and for techniques that do not work
+    /// in the light's space.
+    fn receivers(&self) -> Option<&crate::receivers::ReceiverFrame> {
+        None
+    }
+
     /// GPU memory of the configured frame, bytes.
     fn bytes(&self) -> u64;
 

@@ -1,16 +1,23 @@
 //! What the examples share: their command line and the counted run that saves a screenshot.
 
+// Each example uses its part of it.
+#![allow(dead_code)]
+
 use std::path::PathBuf;
 
+use bevy::asset::RenderAssetUsages;
 use bevy::camera::Exposure;
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::light::light_consts::lux;
+use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use bevy::render::RenderPlugin;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::WindowResolution;
 use bevy_caustics::{CausticWater, CausticsStats};
+use caustics_core::glam::DVec2;
+use caustics_core::scene::Scene;
 
 /// The water, waiting for the startup system.
 #[derive(Resource)]
@@ -63,6 +70,11 @@ pub struct Args {
 
 /// `[--technique NAME] [--flat] [--frames N --screenshot PATH]`, `technique` the default.
 pub fn parse_args(technique: &str) -> Result<Args, String> {
+    parse_args_with(technique, &mut |_| false)
+}
+
+/// [`parse_args`], and the example's own flags: `own` takes an argument it knows and says so.
+pub fn parse_args_with(technique: &str, own: &mut dyn FnMut(&str) -> bool) -> Result<Args, String> {
     let mut args = Args {
         technique: technique.into(),
         flat: false,
@@ -85,6 +97,7 @@ pub fn parse_args(technique: &str) -> Result<Args, String> {
                 args.frames = Some(n);
             }
             "--screenshot" => args.screenshot = Some(PathBuf::from(value("--screenshot")?)),
+            other if own(other) => {}
             other => return Err(format!("unknown argument `{other}`")),
         }
     }
@@ -205,4 +218,78 @@ pub fn frames(
             exit.write(AppExit::from_code(1));
         }
     }
+}
+
+/// The scene's terrain as a mesh of `n` x `n` cells over the water square, heights and normals
+/// from the same grid the techniques read.
+pub fn terrain_mesh(scene: &Scene, n: usize) -> Mesh {
+    let size = scene.size;
+    height_mesh(size, n, |p| scene.floor.height_gradient(p, size))
+}
+
+/// A height field over the `size` square as a mesh of `n` x `n` cells: `height` gives each
+/// vertex's height and gradient, scene coordinates. Kept on the CPU too: the plugin reads a
+/// receiver's positions.
+pub fn height_mesh(size: f64, n: usize, height: impl Fn(DVec2) -> (f64, DVec2)) -> Mesh {
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            let (x, y) = (size * j as f64 / n as f64, size * i as f64 / n as f64);
+            let (h, g) = height(DVec2::new(x, y));
+            positions.push(scene_to_world(Vec3::new(x as f32, y as f32, h as f32)).to_array());
+            let normal = Vec3::new(-g.x as f32, -g.y as f32, 1.0).normalize();
+            normals.push(scene_to_world(normal).to_array());
+        }
+    }
+    let mut indices = Vec::new();
+    let k = |i: usize, j: usize| (i * (n + 1) + j) as u32;
+    for i in 0..n {
+        for j in 0..n {
+            // Counter-clockwise seen from above (Bevy's front faces).
+            indices.extend_from_slice(&[k(i, j), k(i, j + 1), k(i + 1, j)]);
+            indices.extend_from_slice(&[k(i, j + 1), k(i + 1, j + 1), k(i + 1, j)]);
+        }
+    }
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+    .with_inserted_indices(Indices::U32(indices))
+}
+
+/// T switches every water to the next registered technique.
+pub fn switch_technique(keys: Res<ButtonInput<KeyCode>>, mut water: Query<&mut CausticWater>) {
+    if !keys.just_pressed(KeyCode::KeyT) {
+        return;
+    }
+    let names = CausticWater::techniques();
+    for mut w in &mut water {
+        let next = names
+            .iter()
+            .position(|n| *n == w.technique)
+            .map_or(0, |i| (i + 1) % names.len());
+        w.technique = names[next].to_string();
+        info!("technique: {}", w.technique);
+    }
+}
+
+/// A mesh of `caustics_core`'s (scene coordinates, z up) in Bevy's, for a water entity at the
+/// origin.
+pub fn scene_mesh(mesh: &caustics_core::mesh::TriangleMesh) -> Mesh {
+    let to_world = |p: caustics_core::glam::DVec3| {
+        scene_to_world(Vec3::new(p.x as f32, p.y as f32, p.z as f32)).to_array()
+    };
+    let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| to_world(*p)).collect();
+    let normals: Vec<[f32; 3]> = mesh.normals.iter().map(|n| to_world(*n)).collect();
+    let indices = mesh.indices.iter().flatten().copied().collect();
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
+    .with_inserted_indices(Indices::U32(indices))
 }

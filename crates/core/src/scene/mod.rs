@@ -679,6 +679,20 @@ impl Solids {
         (!meshes.is_empty()).then(|| Arc::new(Solids { meshes }))
     }
 
+    /// Opaque receivers from meshes in scene coordinates (an engine's own: a sea bed, rocks, a
+    /// hull), `None` where there are none.
+    pub fn of_meshes(meshes: Vec<TriangleMesh>) -> Option<Arc<Solids>> {
+        let meshes: Vec<_> = meshes
+            .into_iter()
+            .filter(|m| !m.indices.is_empty())
+            .map(|m| {
+                let bvh = m.bvh();
+                (m, bvh)
+            })
+            .collect();
+        (!meshes.is_empty()).then(|| Arc::new(Solids { meshes }))
+    }
+
     /// Axis-aligned bounds `(min, max)` of every object.
     pub fn bounds(&self) -> (DVec3, DVec3) {
         self.meshes.iter().fold(

@@ -24,6 +24,7 @@ use super::{
     CausticTriangles, CausticTrianglesUniform, GeneratorFrame, Reconstruction, WaterFrame,
 };
 use crate::adapter::Pipelines;
+use crate::receivers::ReceiverFrame;
 use crate::technique::{Output, OwnImage, Registered, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -356,6 +357,13 @@ impl Pipelines for CausticTriangles {
                 .walls
                 .as_ref()
                 .map(|w| WallsOutput::of(&w.texture, &w.layout)),
+            State::Glass { .. } => None,
+        }
+    }
+
+    fn receivers(state: &State) -> Option<&ReceiverFrame> {
+        match state {
+            State::Water(frame) => frame.receivers.as_ref(),
             State::Glass { .. } => None,
         }
     }

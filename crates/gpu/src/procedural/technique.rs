@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use super::ProceduralCaustics;
 use crate::adapter::Pipelines;
+use crate::receivers::ReceiverFrame;
 use crate::technique::{Output, Registered, WaterTextures, scene_water};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -213,6 +214,10 @@ impl Pipelines for ProceduralCaustics {
 
     fn output<'a>(&'a self, frame: &'a ConfiguredProcedural) -> Output<'a> {
         Output::Floor(frame.frame.floor_map())
+    }
+
+    fn receivers(frame: &ConfiguredProcedural) -> Option<&ReceiverFrame> {
+        frame.frame.receivers.as_ref()
     }
 
     fn bytes(frame: &ConfiguredProcedural) -> u64 {

@@ -88,3 +88,17 @@ fn meet_receivers(map: texture_2d<f32>, r: Receivers, s: vec3<f32>, t: vec3<f32>
     }
     return d;
 }
+
+// The share of the light deposited at its light-space point that receiver point p with unit normal
+// n takes (caustics-core's `ReceiverHeights::share`): n · (−t0) / −t0_z, its area as the light sees
+// it over its horizontal area; 0 where the map's height there lies above it by more than half a
+// texel's rise at the map's steepest slope (something nearer the light covers it: a shadow map's
+// depth test).
+fn receiver_share(map: texture_2d<f32>, r: Receivers, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let t0 = r.t0.xyz;
+    let bias = 0.5 * r.view.z * max(r.view.w, 1.0);
+    if p.z < receiver_height(map, r, light_space(p, t0)) - bias {
+        return 0.0;
+    }
+    return max(dot(n, -t0), 0.0) / -t0.z;
+}

@@ -10,6 +10,7 @@ use glam::DVec3;
 
 use super::Volumes;
 use crate::adapter::Pipelines;
+use crate::receivers::ReceiverFrame;
 use crate::technique::{Output, OwnImage, Registered, WallsOutput, WaterTextures, scene_water};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -156,6 +157,10 @@ impl Pipelines for Volumes {
     /// device cannot blend 32-bit floats).
     fn walls(c: &ConfiguredVolumes) -> Option<WallsOutput<'_>> {
         c.frame.walls.as_ref().map(|w| w.output())
+    }
+
+    fn receivers(c: &ConfiguredVolumes) -> Option<&ReceiverFrame> {
+        c.frame.receivers.as_ref().map(|r| &r.frame)
     }
 
     fn bytes(c: &ConfiguredVolumes) -> u64 {

@@ -7,6 +7,7 @@ use caustics_core::techniques::{Descriptor, Job, JobOutput};
 
 use super::{Frame, Variant, Yuksel};
 use crate::adapter::Pipelines;
+use crate::receivers::ReceiverFrame;
 use crate::technique::{Output, Registered, WaterTextures, scene_water};
 use crate::{GpuContext, GpuError, GpuTimer};
 
@@ -126,6 +127,10 @@ impl Pipelines for Yuksel {
 
     fn output<'a>(&'a self, frame: &'a Frame) -> Output<'a> {
         Output::Floor(frame.floor_map())
+    }
+
+    fn receivers(frame: &Frame) -> Option<&ReceiverFrame> {
+        frame.receivers.as_ref()
     }
 
     fn bytes(frame: &Frame) -> u64 {
