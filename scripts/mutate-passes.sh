@@ -122,6 +122,8 @@ volumes view wall light x1.01 @@ $S/volumes/view.wgsl @@ i32(k), 0).xyz; @@ i32(
 receivers lookup x1.01 @@ $S/receivers_lookup.wgsl @@ vec4<f32>(rgb, 1.0) @@ vec4<f32>(rgb * 1.01, 1.0) @@ $CT yuksel_gpu $PR $VO
 receivers meet 1 % short @@ $S/shaders/receivers.wgsl @@ return m; @@ return 0.99 * m; @@ $CT yuksel_gpu $VO
 receivers heights half a texel off @@ $S/shaders/receivers.wgsl @@ let u = (q - r.view.xy) / r.view.z - 0.5; @@ let u = (q - r.view.xy) / r.view.z; @@ $CT yuksel_gpu $VO
+receivers share without its depth test @@ $S/shaders/receivers.wgsl @@ if p.z < receiver_height(map, r, light_space(p, t0)) - bias { @@ if p.z < receiver_height(map, r, light_space(p, t0)) - bias - 1.0 { @@ render_gpu
+final image objects' deposit 10 % further along the path @@ $S/final_image/final_image_shade.wgsl @@ let path = (params.water_level - p.z) / -t0.z; @@ let path = 1.1 * (params.water_level - p.z) / -t0.z; @@ render_gpu
 volumes meets the receivers 1 % further along the ray @@ $S/volumes/meet.wgsl @@ light_space(v.pos.xyz + v.dir.xyz * d, r.t0.xyz) @@ light_space(v.pos.xyz + v.dir.xyz * d * 1.01, r.t0.xyz) @@ $VO
 volumes floor over receivers x1.01 @@ $S/volumes/floor_receivers.wgsl @@ return vec4<f32>(in.intensity, 0.0); @@ return vec4<f32>(in.intensity * 1.01, 0.0); @@ $VO
 EOF

@@ -287,6 +287,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
         || spec.entry.input == caustics_core::techniques::Input::GlassOrWater
         || (spec.entry.reference && glass);
     let mut walls = None;
+    let mut light = None;
     let caustics = if has_generator {
         let started = Instant::now();
         let bar = progress::bar("caustics");
@@ -307,6 +308,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
             outcome.backend
         );
         walls = outcome.walls;
+        light = outcome.light;
         Some(outcome.caustics)
     } else {
         if args.raw.is_some() {
@@ -333,7 +335,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
             eprintln!("wrote {}", path.display());
         }
     }
-    let caustics = caustics.as_ref().map(SceneCaustics::caustics);
+    // The objects among the receivers take their light from the deposit beside the floor map.
+    let caustics = caustics.as_ref().map(|c| c.with_light(light.as_ref()));
     if let Some(out) = &out {
         let started = Instant::now();
         let options = args.options(&scene);

@@ -19,6 +19,9 @@ pub struct Outcome {
     /// The pool's walls' maps, from a technique that lights them when the scene's walls are on
     /// (`render --raw-walls`, the final image); `None` from a floor-only technique.
     pub walls: Option<caustics_core::walls::WallMaps>,
+    /// The light-space deposit the floor map was looked up from, where objects are among the
+    /// technique's receivers (their light in the final image); from the CPU twins.
+    pub light: Option<caustics_core::receivers::LightSpace>,
 }
 
 impl Outcome {
@@ -120,6 +123,7 @@ impl Runner {
             caustics: made.caustics,
             backend,
             walls: made.walls,
+            light: made.light,
         })
     }
 }

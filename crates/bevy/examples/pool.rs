@@ -11,14 +11,13 @@ mod common;
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
-use bevy::light::NotShadowCaster;
 use bevy::math::Affine2;
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
 use bevy::window::PrimaryWindow;
 use bevy_caustics::{
     CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, DropRipple,
-    Receiver,
+    Receiver, WaterSurfaceMaterial,
 };
 use caustics_core::scene::{Scene, WaterSource};
 use caustics_core::water::ripple::{Drop, RippleParams};
@@ -127,6 +126,7 @@ fn setup(
     mut images: ResMut<Assets<Image>>,
     mut standard: ResMut<Assets<StandardMaterial>>,
     mut caustic: ResMut<Assets<CausticsMaterial>>,
+    mut surfaces: ResMut<Assets<WaterSurfaceMaterial>>,
 ) {
     let water = setup.0.take().expect("set up once");
     let size = water.size();
@@ -211,19 +211,12 @@ fn setup(
         ))),
         Transform::from_translation(local(2.9, 1.1, depth)),
     ));
-    // The water's surface: glassy, mostly see-through; the sun's light through it is the
-    // technique's, so it casts no shadow map.
-    commands.spawn((
-        NotShadowCaster,
-        Mesh3d(meshes.add(Plane3d::new(Vec3::Y, Vec2::splat(c)))),
-        MeshMaterial3d(standard.add(StandardMaterial {
-            base_color: Color::srgba(0.25, 0.55, 0.65, 0.18),
-            alpha_mode: AlphaMode::Blend,
-            perceptual_roughness: 0.05,
-            reflectance: 0.3,
-            ..default()
-        })),
-        Transform::from_translation(local(c, c, depth)),
+    commands.spawn(common::water_surface(
+        &water,
+        &maps,
+        at,
+        &mut meshes,
+        &mut surfaces,
     ));
     commands.spawn((water, maps, at, Water));
     // The pool scene's sun, (0.3, 0.1, −1) in its z-up frame.

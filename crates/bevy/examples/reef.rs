@@ -2,7 +2,7 @@
 //! whose end juts out over the sand, all the application's own meshes, lit by the caustics of a
 //! moving swell: the meshes are the water's receivers, so the light lands on the sand, on the
 //! rocks' flanks and on the crate where it reaches them, and none under the overhang. The water's
-//! surface is drawn from the same waves. Right-drag orbits, the wheel zooms, T switches technique.
+//! surface is a mesh the plugin displaces on the GPU by the heights the technique reads. Right-drag orbits, the wheel zooms, T switches technique.
 //!
 //! `cargo run --example reef -- [--technique NAME] [--flat] [--no-surface] [--frames N
 //! --screenshot PATH]`: `--flat` keeps the water still (the picture caustics are measured
@@ -11,11 +11,10 @@
 mod common;
 
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
-use bevy::light::NotShadowCaster;
-use bevy::mesh::VertexAttributeValues;
 use bevy::prelude::*;
 use bevy_caustics::{
     CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, Receiver,
+    WaterSurfaceMaterial,
 };
 use caustics_core::scene::{Material, Scene, WaterSource};
 
@@ -50,15 +49,7 @@ fn main() -> AppExit {
         .insert_resource(ClearColor(Color::srgb(0.55, 0.72, 0.92)))
         .insert_resource(common::sky_light())
         .add_systems(Startup, setup)
-        .add_systems(
-            Update,
-            (
-                orbit,
-                move_surface,
-                common::switch_technique,
-                common::frames,
-            ),
-        )
+        .add_systems(Update, (orbit, common::switch_technique, common::frames))
         .run()
 }
 
@@ -88,10 +79,6 @@ fn reef_scene(args: &common::Args) -> Result<(CausticWater, Scene), String> {
     Ok((water, reef))
 }
 
-/// The water's surface, displaced by the reef's waves every frame.
-#[derive(Component)]
-struct Surface(Handle<Mesh>);
-
 #[derive(Component)]
 struct Orbit {
     yaw: f32,
@@ -99,17 +86,14 @@ struct Orbit {
     distance: f32,
 }
 
-/// Cells along a side of the surface's grid.
-const SURFACE_CELLS: usize = 96;
-
 fn setup(
     mut commands: Commands,
     mut setup: ResMut<common::Setup>,
     reef: Res<Reef>,
     mut meshes: ResMut<Assets<Mesh>>,
     mut images: ResMut<Assets<Image>>,
-    mut standard: ResMut<Assets<StandardMaterial>>,
     mut caustic: ResMut<Assets<CausticsMaterial>>,
+    mut surfaces: ResMut<Assets<WaterSurfaceMaterial>>,
 ) {
     let water = setup.0.take().expect("set up once");
     let at = Transform::default();
@@ -147,18 +131,12 @@ fn setup(
         ));
     }
     if reef.surface {
-        let mesh = meshes.add(surface_mesh(&reef.scene, 0.0));
-        commands.spawn((
-            NotShadowCaster,
-            Surface(mesh.clone()),
-            Mesh3d(mesh),
-            MeshMaterial3d(standard.add(StandardMaterial {
-                base_color: Color::srgba(0.10, 0.35, 0.45, 0.22),
-                alpha_mode: AlphaMode::Blend,
-                perceptual_roughness: 0.06,
-                reflectance: 0.5,
-                ..default()
-            })),
+        commands.spawn(common::water_surface(
+            &water,
+            &maps,
+            at,
+            &mut meshes,
+            &mut surfaces,
         ));
     }
     let sun = reef.scene.light.direction.as_vec3();
@@ -171,38 +149,6 @@ fn setup(
         distance: 8.0,
     };
     commands.spawn((common::camera(orbit_transform(&orbit)), orbit));
-}
-
-/// The reef's water surface at time `t` over its square: a grid displaced by the same waves the
-/// technique reads, its normals from their gradient.
-fn surface_mesh(scene: &Scene, t: f64) -> Mesh {
-    let water = scene.water.as_ref().expect("the reef has water");
-    let surface = water.surface_at(t).expect("the reef's waves evaluate");
-    common::height_mesh(scene.size, SURFACE_CELLS, |p| {
-        let (h, g) = surface.height_gradient(p);
-        (water.depth + h, g)
-    })
-}
-
-/// The surface follows the waves: its vertices' heights and normals rewritten each frame.
-fn move_surface(
-    reef: Res<Reef>,
-    time: Res<Time>,
-    surfaces: Query<&Surface>,
-    mut meshes: ResMut<Assets<Mesh>>,
-) {
-    let Ok(surface) = surfaces.single() else {
-        return;
-    };
-    let fresh = surface_mesh(&reef.scene, reef.scene.time + time.elapsed_secs_f64());
-    let Some(mut mesh) = meshes.get_mut(&surface.0) else {
-        return;
-    };
-    for attribute in [Mesh::ATTRIBUTE_POSITION, Mesh::ATTRIBUTE_NORMAL] {
-        if let Some(VertexAttributeValues::Float32x3(v)) = fresh.attribute(attribute) {
-            mesh.insert_attribute(attribute, v.clone());
-        }
-    }
 }
 
 fn orbit_transform(o: &Orbit) -> Transform {

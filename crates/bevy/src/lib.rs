@@ -58,6 +58,7 @@
 mod material;
 mod receivers;
 mod render;
+mod surface;
 
 use bevy::asset::{RenderAssetUsages, embedded_asset, uuid_handle};
 use bevy::prelude::*;
@@ -77,6 +78,7 @@ use caustics_gpu::shaders;
 
 pub use material::{CausticsExtension, CausticsMaterial, CausticsUniform, Receiver};
 pub use render::CausticsStats;
+pub use surface::{WaterSurfaceExtension, WaterSurfaceMaterial, water_surface_mesh};
 
 /// The plugin: the technique of every [`CausticWater`] recorded into Bevy's render world each
 /// frame, before the cameras draw, and the material that shows its light.
@@ -85,6 +87,7 @@ pub struct CausticsPlugin;
 impl Plugin for CausticsPlugin {
     fn build(&self, app: &mut App) {
         embedded_asset!(app, "caustics.wesl");
+        embedded_asset!(app, "water_surface.wesl");
         if let Some(mut assets) = app.world_mut().get_resource_mut::<Assets<Shader>>() {
             for (handle, source, path) in SHARED_WGSL {
                 if let Err(e) = assets.insert(handle.id(), Shader::from_wesl(source, path)) {
@@ -93,19 +96,22 @@ impl Plugin for CausticsPlugin {
             }
         }
         let stats = CausticsStats::default();
-        app.add_plugins(MaterialPlugin::<CausticsMaterial>::default())
-            .add_message::<DropRipple>()
-            .init_resource::<PendingDrops>()
-            .insert_resource(stats.clone())
-            .add_systems(First, clear_drops)
-            .add_systems(
-                PostUpdate,
-                (
-                    queue_drops,
-                    material::follow_water.after(TransformSystems::Propagate),
-                    receivers::gather.after(TransformSystems::Propagate),
-                ),
-            );
+        app.add_plugins((
+            MaterialPlugin::<CausticsMaterial>::default(),
+            MaterialPlugin::<WaterSurfaceMaterial>::default(),
+        ))
+        .add_message::<DropRipple>()
+        .init_resource::<PendingDrops>()
+        .insert_resource(stats.clone())
+        .add_systems(First, clear_drops)
+        .add_systems(
+            PostUpdate,
+            (
+                queue_drops,
+                material::follow_water.after(TransformSystems::Propagate),
+                receivers::gather.after(TransformSystems::Propagate),
+            ),
+        );
         let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
             warn!("bevy_caustics: no render app (headless without rendering): no caustics");
             return;
@@ -284,12 +290,20 @@ pub struct CausticMaps {
     /// The receivers' heights the technique's light met, seen from the sun through flat water
     /// (`R32Float`, scene units; their texels in the first columns and rows, the rest far
     /// below any receiver).
-    pub heights: Handle<Image>,
-    /// Where `light` and `heights` lie, three `Rgba32Float` texels: the heights' light-space corner,
+    pub receivers: Handle<Image>,
+    /// Where `light` and `receivers` lie, three `Rgba32Float` texels: the heights' light-space corner,
     /// texel side and 1 (0: no light-space deposit this frame); the refracted sun and the heights'
     /// steepest slope; the absorption along a receiver's flat-water path.
     pub light_view: Handle<Image>,
+    /// The water's heights above the rest level over the square, `R32Float`,
+    /// [`SURFACE_TEXELS`]² texels (texel `(j, i)` at `((j + ½), (i + ½)) size / SURFACE_TEXELS`),
+    /// written on the GPU each frame from the scene's source: what [`WaterSurfaceMaterial`]
+    /// displaces its mesh by.
+    pub surface: Handle<Image>,
 }
+
+/// Texels along a side of [`CausticMaps::surface`].
+pub const SURFACE_TEXELS: u32 = 128;
 
 impl CausticMaps {
     /// The images for `water`, added to `images`.
@@ -330,7 +344,7 @@ impl CausticMaps {
         );
         let light = map_image(width, height, 1, 1.0);
         let side = receivers::heights_side(water);
-        let heights = Image::new_fill(
+        let receivers = Image::new_fill(
             Extent3d {
                 width: side,
                 height: side,
@@ -338,6 +352,17 @@ impl CausticMaps {
             },
             TextureDimension::D2,
             &receivers::BELOW_ALL.to_le_bytes(),
+            TextureFormat::R32Float,
+            RenderAssetUsages::RENDER_WORLD,
+        );
+        let surface = Image::new_fill(
+            Extent3d {
+                width: SURFACE_TEXELS,
+                height: SURFACE_TEXELS,
+                depth_or_array_layers: 1,
+            },
+            TextureDimension::D2,
+            &0f32.to_le_bytes(),
             TextureFormat::R32Float,
             RenderAssetUsages::RENDER_WORLD,
         );
@@ -349,8 +374,9 @@ impl CausticMaps {
             wall_cols,
             eye: images.add(eye),
             light: images.add(light),
-            heights: images.add(heights),
+            receivers: images.add(receivers),
             light_view: images.add(light_view),
+            surface: images.add(surface),
         }
     }
 }

@@ -65,7 +65,7 @@ pub struct CausticsExtension {
     #[texture(104, sample_type = "float", filterable = false)]
     pub light: Handle<Image>,
     #[texture(105, sample_type = "float", filterable = false)]
-    pub heights: Handle<Image>,
+    pub receivers: Handle<Image>,
     #[texture(106, sample_type = "float", filterable = false)]
     pub light_view: Handle<Image>,
 }
@@ -102,7 +102,7 @@ impl CausticsExtension {
             walls: maps.walls.clone(),
             eye: maps.eye.clone(),
             light: maps.light.clone(),
-            heights: maps.heights.clone(),
+            receivers: maps.receivers.clone(),
             light_view: maps.light_view.clone(),
         }
     }

@@ -139,7 +139,7 @@ fn triangle_mesh(mesh: &Mesh, m: Mat4) -> Option<TriangleMesh> {
     })
 }
 
-/// Texels along a side of [`CausticMaps::heights`](crate::CausticMaps::heights): the floor map's
+/// Texels along a side of [`CausticMaps::receivers`](crate::CausticMaps::receivers): the floor map's
 /// width plus the widest margin a sun can need (`ReceiverHeights::of_floor`'s, for receivers up
 /// to the rest level under the most oblique refracted sun, `tan θt = 1 / √(n² − 1)`).
 pub(crate) fn heights_side(water: &CausticWater) -> u32 {

@@ -179,6 +179,8 @@ struct WaterState {
     /// The receivers whose heights and view the light images hold, by identity (`Some(None)`:
     /// none, the view says so), and the textures Bevy holds for those images.
     light_written: Option<(Option<usize>, TextureId, TextureId)>,
+    /// The scene's source sampled for the water's surface ([`crate::SURFACE_TEXELS`]²).
+    surface: Option<wgpu::Texture>,
 }
 
 /// Where the heights of a built state come from.
@@ -377,12 +379,16 @@ fn build_state(
     scene.caustics.technique = water.technique.clone();
     let mut technique = caustics_gpu::registry::create(ctx, &water.technique, &water.params)
         .map_err(|e| e.to_string())?;
+    let mut surface = None;
     let (source, textures) = match &water.heights {
         Heights::Scene => {
             let spec = scene.water.as_ref().ok_or("the scene has no water")?;
             let mut source = GpuWater::new(ctx, spec).map_err(|e| e.to_string())?;
             let (cols, rows) = technique.water_resolution(&scene);
             let textures = source.output(ctx, cols, rows).map_err(|e| e.to_string())?;
+            let n = crate::SURFACE_TEXELS;
+            let sampled = source.output(ctx, n, n).map_err(|e| e.to_string())?;
+            surface = Some(sampled.heights.texture().clone());
             (Some(source), textures)
         }
         Heights::Image(h) => {
@@ -410,6 +416,7 @@ fn build_state(
         maps: maps.clone(),
         floor_mips: None,
         light_written: None,
+        surface,
     })
 }
 
@@ -422,7 +429,7 @@ fn write_light_view(
     stats: &CausticsStats,
 ) {
     let (Some(heights), Some(view)) = (
-        images.get(&state.maps.heights),
+        images.get(&state.maps.receivers),
         images.get(&state.maps.light_view),
     ) else {
         return;
@@ -501,6 +508,11 @@ fn record(
                 // The floor map's mips, from the level just copied.
                 mips.encode_pass(encoder, "bevy_caustics floor mips");
             }
+        }
+        if let (Some(heights), Some(image)) = (&state.surface, images.get(&state.maps.surface))
+            && let Err(e) = copy(encoder, heights, &image.texture)
+        {
+            stats.update(|s| s.error = Some(format!("water surface: {e}")));
         }
         if let (Some(r), Some(image)) = (state.technique.receivers(), images.get(&state.maps.light))
             && let Err(e) = copy(encoder, &r.deposit, &image.texture)

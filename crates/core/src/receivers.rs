@@ -310,6 +310,56 @@ fn same_solids(a: Option<&Arc<Solids>>, b: Option<&Arc<Solids>>) -> bool {
     }
 }
 
+/// A technique's light as it left it in the light's space, for the receivers its floor map does
+/// not hold (the objects among them) to look up as a shadow map is read ([`light_at`]).
+#[derive(Clone, Debug)]
+pub struct LightSpace {
+    /// The deposit, on the floor map's window.
+    pub deposit: CausticsMap,
+    /// The receivers its light met, objects included.
+    pub receivers: Arc<ReceiverHeights>,
+    /// Whether the deposit tiles (as the floor map does).
+    pub wrap: bool,
+    /// `K` per channel along a receiver's flat-water path; zero where the deposit carries its
+    /// own paths' absorption.
+    pub absorption: DVec3,
+}
+
+impl LightSpace {
+    /// The light at receiver point `p` with unit normal `n` ([`light_at`]).
+    pub fn light_at(&self, p: DVec3, n: DVec3) -> [f32; 3] {
+        light_at(
+            &self.deposit,
+            &self.receivers,
+            p,
+            n,
+            self.wrap,
+            self.absorption,
+        )
+    }
+}
+
+/// [`received`], and the deposit itself where objects are among the receivers (the light they
+/// take: [`LightSpace`]).
+pub fn received_with_light(
+    map: CausticsMap,
+    receivers: Option<&Arc<ReceiverHeights>>,
+    wrap: bool,
+    absorption: DVec3,
+) -> (CausticsMap, Option<LightSpace>) {
+    let Some(r) = receivers else {
+        return (map, None);
+    };
+    let floor = lookup(&map, r, wrap, absorption);
+    let light = r.solids.is_some().then(|| LightSpace {
+        deposit: map,
+        receivers: r.clone(),
+        wrap,
+        absorption,
+    });
+    (floor, light)
+}
+
 /// `map` (a technique's deposit) as the floor receives it: itself on the plane `z = 0`, else
 /// looked up per floor texel through `receivers` ([`lookup`]).
 pub fn received(

@@ -89,13 +89,59 @@ pub struct ReceiverFrame {
     /// `K` per channel along each receiver point's flat-water path, zero where the deposit
     /// carries its own paths' absorption.
     pub absorption: glam::DVec3,
+    /// Whether the deposit tiles.
+    pub wrap: bool,
     bind: wgpu::BindGroup,
     /// Per floor texel: light-space point, share, flat-water path
     /// (`caustics_core::receivers::floor_texels`).
     texels: wgpu::Texture,
 }
 
+/// Mirrors `LightSpace` in `final_image/final_image_inputs.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LightSpaceUniform {
+    /// The receivers' window and the refracted sun.
+    pub receivers: ReceiversUniform,
+    /// xyz: `K` along a receiver's flat-water path; w: 1 where the deposit tiles.
+    pub absorption: [f32; 4],
+}
+
+/// A technique's light-space deposit and the receivers it met, objects among them: what the
+/// final image's objects look their light up in (caustics-core's `LightSpace`).
+#[derive(Clone, Copy, Debug)]
+pub struct LightSpaceOutput<'a> {
+    /// The deposit, on the floor map's window and size.
+    pub deposit: &'a wgpu::Texture,
+    /// The receivers' heights ([`heights_texture`]).
+    pub heights: &'a wgpu::Texture,
+    /// Where the heights lie, the absorption along a receiver's path, whether the deposit tiles.
+    pub uniform: LightSpaceUniform,
+}
+
+impl LightSpaceUniform {
+    /// For receivers `r` whose deposit attenuates by `absorption` along a receiver's path and
+    /// tiles where `wrap`.
+    pub fn of(r: &ReceiverHeights, absorption: glam::DVec3, wrap: bool) -> Self {
+        LightSpaceUniform {
+            receivers: ReceiversUniform::of(Some(r)),
+            absorption: absorption.as_vec3().extend(wrap as u32 as f32).to_array(),
+        }
+    }
+}
+
 impl ReceiverFrame {
+    /// The deposit for the objects among the receivers to look their light up in; `None` where
+    /// there are no objects among them (the floor map holds all the light).
+    pub fn light_space(&self) -> Option<LightSpaceOutput<'_>> {
+        self.receivers.solids.as_ref()?;
+        Some(LightSpaceOutput {
+            deposit: &self.deposit,
+            heights: &self.heights,
+            uniform: LightSpaceUniform::of(&self.receivers, self.absorption, self.wrap),
+        })
+    }
+
     /// GPU memory of the frame's textures, bytes.
     pub fn bytes(&self) -> u64 {
         let texels = |t: &wgpu::Texture| (t.width() * t.height()) as u64;
@@ -154,6 +200,7 @@ impl ReceiverLookup {
             floor,
             deposit: deposit.clone(),
             absorption,
+            wrap,
             bind,
             texels,
         })

@@ -13,7 +13,9 @@ use caustics_core::render::RenderOptions;
 use caustics_core::scene::{Scene, Water};
 use caustics_core::water::ripple::{Drop, RippleParams};
 
-use crate::final_image::{FinalImage, FinalImageFrame, upload_walls, water_grid_resolution};
+use crate::final_image::{
+    FinalImage, FinalImageFrame, ImageInputs, upload_walls, water_grid_resolution,
+};
 use crate::registry;
 use crate::technique::{Output, Technique, WallsOutput, WaterTextures};
 use crate::water::field::GpuWater;
@@ -105,6 +107,9 @@ struct FailKey {
 #[derive(Clone, PartialEq)]
 struct ImageKey {
     caustics: Option<wgpu::Texture>,
+    /// The light-space deposit and the receivers' heights, where the objects take their light
+    /// from them.
+    light: Option<(wgpu::Texture, wgpu::Texture)>,
     walls: Option<wgpu::Texture>,
     water: Option<wgpu::TextureView>,
     size: (u32, u32),
@@ -380,8 +385,13 @@ impl Renderer {
                         cols: *cols,
                     }),
             };
+            let light = match &side.technique {
+                Ok(t) if side.configured.is_some() => t.receivers().and_then(|r| r.light_space()),
+                _ => None,
+            };
             let key = ImageKey {
                 caustics: caustics.map(|o| o.texture().clone()),
+                light: light.map(|l| (l.deposit.clone(), l.heights.clone())),
                 walls: walls.map(|w| w.texture.clone()),
                 water: image_water.as_ref().map(|w| w.heights.clone()),
                 size: (scene.camera.width, scene.camera.height),
@@ -393,14 +403,14 @@ impl Renderer {
                 image.update(ctx, scene, options);
             } else if side.image_failed.as_ref().is_none_or(|(_, k)| *k != key) {
                 // A size beyond the device fails this side alone; a lost device ends the frame.
-                match self.final_image.frame(
-                    ctx,
-                    scene,
-                    image_water.as_ref(),
+                let inputs = ImageInputs {
+                    water: image_water.as_ref(),
                     caustics,
                     walls,
-                    options,
-                ) {
+                    light,
+                    map_size: None,
+                };
+                match self.final_image.frame(ctx, scene, inputs, options) {
                     Ok(image) => {
                         side.image = Some(image);
                         side.image_key = Some(key);

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Exposure;
 use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::light::NotShadowCaster;
 use bevy::light::light_consts::lux;
 use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
@@ -15,7 +16,10 @@ use bevy::render::RenderPlugin;
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::time::TimeUpdateStrategy;
 use bevy::window::WindowResolution;
-use bevy_caustics::{CausticWater, CausticsStats};
+use bevy_caustics::{
+    CausticMaps, CausticWater, CausticsStats, WaterSurfaceExtension, WaterSurfaceMaterial,
+    water_surface_mesh,
+};
 use caustics_core::glam::DVec2;
 use caustics_core::scene::Scene;
 
@@ -292,4 +296,29 @@ pub fn scene_mesh(mesh: &caustics_core::mesh::TriangleMesh) -> Mesh {
     .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
     .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, normals)
     .with_inserted_indices(Indices::U32(indices))
+}
+
+/// The water's surface over its square, displaced on the GPU by the technique's heights: glassy,
+/// mostly see-through, reflecting the sun; the sun's light through it is the technique's, so it
+/// casts no shadow map. `at` is the water entity's transform.
+pub fn water_surface(
+    water: &CausticWater,
+    maps: &CausticMaps,
+    at: Transform,
+    meshes: &mut Assets<Mesh>,
+    materials: &mut Assets<WaterSurfaceMaterial>,
+) -> impl Bundle {
+    let base = StandardMaterial {
+        base_color: Color::srgba(0.15, 0.42, 0.52, 0.22),
+        alpha_mode: AlphaMode::Blend,
+        perceptual_roughness: 0.05,
+        reflectance: 0.5,
+        ..default()
+    };
+    (
+        NotShadowCaster,
+        Mesh3d(meshes.add(water_surface_mesh(water, 128))),
+        MeshMaterial3d(materials.add(WaterSurfaceExtension::material(base, water, maps))),
+        at,
+    )
 }

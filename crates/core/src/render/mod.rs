@@ -46,6 +46,7 @@ use crate::map::{CausticsMap, MapPyramid};
 use crate::mesh::MeshBvh;
 use crate::optics::{fresnel_transmittance, refract};
 use crate::parallel::prelude::*;
+use crate::receivers::LightSpace;
 use crate::scene::Scene;
 use crate::sky::{SUN_RADIUS, Sky, TURBIDITY};
 use crate::walls::WallMaps;
@@ -151,6 +152,8 @@ struct Tracer<'a> {
     surface: Option<&'a dyn Surface>,
     /// The floor's map and its pyramid, read over each sample's footprint on the floor.
     caustics: Option<(&'a CausticsMap, MapPyramid)>,
+    /// The technique's light-space deposit, where objects are among its receivers: their light.
+    light: Option<&'a LightSpace>,
     eye_space: Option<(&'a EyeSpaceCaustics, EyeCamera)>,
     /// The walls' maps, when the technique lit the pool's walls.
     walls: Option<&'a WallMaps>,
@@ -203,7 +206,11 @@ pub fn render(
         scene,
         surface,
         caustics: match caustics {
-            Some(Caustics::Floor(m)) => Some((m, m.pyramid())),
+            Some(Caustics::Floor(m) | Caustics::Received(m, _)) => Some((m, m.pyramid())),
+            _ => None,
+        },
+        light: match caustics {
+            Some(Caustics::Received(_, l)) => Some(l),
             _ => None,
         },
         eye_space: match caustics {

@@ -115,24 +115,30 @@ impl Tracer<'_> {
             Material::Diffuse { color } => {
                 let sun_dir = if under { self.sun_water } else { self.sun };
                 let lambert = n.dot(-sun_dir).max(0.0);
-                let lit = if lambert > 0.0
-                    && !self.occluded(p + n * 1e-4, -sun_dir, f64::INFINITY, false)
-                {
-                    1.0
-                } else {
-                    0.0
-                };
-                // Under the water, the shading rule's light for a surface no map holds: flat
-                // water's refracted beam, absorbed along its path, on the surface's cosine over
-                // the horizontal's, times what flat water passes onto the horizontal (E cos θi T).
-                let direct = match (&self.scene.water, under) {
-                    (Some(w), true) => {
-                        let e_h = self.scene.light.intensity * -self.sun.z;
-                        let depth = (w.depth - p.z).max(0.0);
-                        flat_water_light(w.absorption, depth, -self.sun_water, n)
-                            * (e_h * self.t_flat * lit)
+                let lit = || {
+                    if lambert > 0.0 && !self.occluded(p + n * 1e-4, -sun_dir, f64::INFINITY, false)
+                    {
+                        1.0
+                    } else {
+                        0.0
                     }
-                    _ => DVec3::splat(self.scene.light.intensity * lambert * lit),
+                };
+                // Under the water, the shading rule's light relative to flat, clear water, times
+                // what flat water passes onto the horizontal (E cos θi T): the technique's
+                // light-space deposit where the object is among its receivers (shaded by them,
+                // as a shadow map shades), else flat water's refracted beam, absorbed along its
+                // path, on the surface's cosine over the horizontal's.
+                let e_h = self.scene.light.intensity * -self.sun.z * self.t_flat;
+                let direct = match (&self.scene.water, under, self.light) {
+                    (Some(_), true, Some(light)) => {
+                        let [r, g, b] = light.light_at(p, n);
+                        DVec3::new(r as f64, g as f64, b as f64) * e_h
+                    }
+                    (Some(w), true, None) => {
+                        let depth = (w.depth - p.z).max(0.0);
+                        flat_water_light(w.absorption, depth, -self.sun_water, n) * (e_h * lit())
+                    }
+                    _ => DVec3::splat(self.scene.light.intensity * lambert * lit()),
                 };
                 *color * (direct + self.ambient) * self.scene.light.color
             }

@@ -10,6 +10,7 @@ use glam::DVec3;
 use crate::eye::EyeSpaceCaustics;
 use crate::grid::Grid;
 use crate::map::CausticsMap;
+use crate::receivers::LightSpace;
 use crate::scene::{Floor, Scene, Water, WaterSource};
 use crate::walls::WallMaps;
 use crate::water::{Surface, sample_grid};
@@ -92,6 +93,9 @@ impl<'a> Job<'a> {
 pub enum Caustics<'a> {
     /// A map of the floor square (every technique but `cascaded`).
     Floor(&'a CausticsMap),
+    /// A floor map looked up from a light-space deposit, with the deposit, from which the objects
+    /// among its receivers take their light.
+    Received(&'a CausticsMap, &'a LightSpace),
     /// An image in the camera's screen space (`cascaded`).
     EyeSpace(&'a EyeSpaceCaustics),
 }
@@ -113,6 +117,15 @@ impl SceneCaustics {
         match self {
             SceneCaustics::Floor(m) => Caustics::Floor(m),
             SceneCaustics::EyeSpace(e) => Caustics::EyeSpace(e),
+        }
+    }
+
+    /// [`caustics`](Self::caustics), a floor map with `light`, the light-space deposit it was
+    /// looked up from, where there is one.
+    pub fn with_light<'a>(&'a self, light: Option<&'a LightSpace>) -> Caustics<'a> {
+        match (self, light) {
+            (SceneCaustics::Floor(m), Some(l)) => Caustics::Received(m, l),
+            (c, _) => c.caustics(),
         }
     }
 
@@ -141,6 +154,9 @@ impl SceneCaustics {
 pub struct JobOutput {
     /// The floor map or the eye-space image.
     pub caustics: SceneCaustics,
+    /// The light-space deposit the floor map was looked up from, where objects are among the
+    /// technique's receivers: their light.
+    pub light: Option<LightSpace>,
     /// The pool's walls' maps, from a technique that lights them when the scene's walls are on;
     /// `None` from a floor-only technique.
     pub walls: Option<WallMaps>,
@@ -151,8 +167,26 @@ impl JobOutput {
     pub fn floor(map: CausticsMap, walls: Option<WallMaps>) -> Self {
         JobOutput {
             caustics: SceneCaustics::Floor(map),
+            light: None,
             walls,
         }
+    }
+
+    /// The output of a floor technique whose light met receivers: its floor map and the deposit
+    /// it was looked up from ([`crate::receivers::received_with_light`]).
+    pub fn received(
+        (map, light): (CausticsMap, Option<LightSpace>),
+        walls: Option<WallMaps>,
+    ) -> Self {
+        JobOutput {
+            light,
+            ..Self::floor(map, walls)
+        }
+    }
+
+    /// What lights the final image: the floor map with its deposit where there is one.
+    pub fn lighting(&self) -> Caustics<'_> {
+        self.caustics.with_light(self.light.as_ref())
     }
 }
 

@@ -62,6 +62,11 @@ struct package__1final_image__2final_image_inputs_FinalImage {
     slope_rows: u32
 }
 
+struct package__1final_image__2final_image_inputs_LightSpace {
+    receivers: package_shaders_receivers_Receivers,
+    absorption: vec4<f32>
+}
+
 struct package__1final_image__2final_image_inputs_Object {
     color: vec3<f32>,
     ior: f32,
@@ -130,6 +135,15 @@ fn package__1final_image__2final_image_inputs__1is_pool() -> bool {
     return !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_TERRAIN);
 }
 
+@group(0) @binding(12)
+var package__1final_image__2final_image_inputs__1light_deposit: texture_2d<f32>;
+
+@group(0) @binding(13)
+var package__1final_image__2final_image_inputs__1light_heights: texture_2d<f32>;
+
+@group(0) @binding(11)
+var<uniform> package__1final_image__2final_image_inputs__1light_space: package__1final_image__2final_image_inputs_LightSpace;
+
 var<private> package__1final_image__2final_image_inputs__1pixel_radiance: vec3<f32>;
 
 fn package__1final_image__2final_image_inputs__1push_ray(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, under: bool) {
@@ -185,6 +199,8 @@ const package__1final_image__2final_image_inputs__2FLAG_AIR_CAUSTICS: u32 = 64u;
 const package__1final_image__2final_image_inputs__2FLAG_EYE_CAUSTICS: u32 = 128u;
 
 const package__1final_image__2final_image_inputs__2FLAG_FILTER_WATER: u32 = 65536u;
+
+const package__1final_image__2final_image_inputs__2FLAG_LIGHT_SPACE: u32 = 131072u;
 
 const package__1final_image__2final_image_inputs__2FLAG_WRAP_CAUSTICS: u32 = 32u;
 
@@ -460,6 +476,20 @@ fn package__1final_image__2final_image_receivers_occluded(o: vec3<f32>, d: vec3<
     return false;
 }
 
+fn package__1final_image__2final_image_shade__1deposited_light(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let r = package__1final_image__2final_image_inputs__1light_space.receivers;
+    let share = package_shaders_receivers__1receiver_share(package__1final_image__2final_image_inputs__1light_heights, r, p, n);
+    if share <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let t0 = r.t0.xyz;
+    let q = package_shaders_receivers__1light_space(p, t0);
+    let wrap = package__1final_image__2final_image_inputs__1light_space.absorption.w != 0.0;
+    let e = package_shaders__1caustics_sampling__1caustics_bilinear(package__1final_image__2final_image_inputs__1light_deposit, package__1final_image__2final_image_inputs__1light_deposit, 0u, 0u, q, package__1final_image__2final_image_inputs_params.map_size, wrap);
+    let path = (package__1final_image__2final_image_inputs_params.water_level - p.z) / -t0.z;
+    return e * share * exp(-package__1final_image__2final_image_inputs__1light_space.absorption.xyz * path);
+}
+
 fn package__1final_image__2final_image_shade__1shade_above(o: vec3<f32>, d: vec3<f32>) -> vec3<f32> {
     if package__1final_image__2final_image_inputs__1is_pool() && d.z < 0.0 {
         let deck = package__1final_image__2final_image_inputs_params.water_level + 0.1 * min(package__1final_image__2final_image_inputs_params.water_size, 1.0) + package__1final_image__2final_image_inputs__1h_max;
@@ -520,8 +550,13 @@ fn package__1final_image__2final_image_shade__1shade_object(p: vec3<f32>, n_out:
         var direct = vec3<f32>(package__1final_image__2final_image_inputs_params.sun_intensity * lambert * lit);
         if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_WATER) && under {
             let e_h = package__1final_image__2final_image_inputs_params.sun_intensity * -package__1final_image__2final_image_inputs_params.sun.z;
-            let flat = package_shaders__1caustics_light__2flat_water_light(package__1final_image__2final_image_inputs_params.absorption, max(package__1final_image__2final_image_inputs_params.water_level - p.z, 0.0), -package__1final_image__2final_image_inputs_params.sun_water, n);
-            direct = package_shaders__1caustics_light__2sun_through_water(flat, e_h, package__1final_image__2final_image_inputs_params.t_flat, lit);
+            if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_LIGHT_SPACE) {
+                direct = package_shaders__1caustics_light__2sun_through_water(package__1final_image__2final_image_shade__1deposited_light(p, n), e_h, package__1final_image__2final_image_inputs_params.t_flat, 1.0);
+            }
+            else {
+                let flat = package_shaders__1caustics_light__2flat_water_light(package__1final_image__2final_image_inputs_params.absorption, max(package__1final_image__2final_image_inputs_params.water_level - p.z, 0.0), -package__1final_image__2final_image_inputs_params.sun_water, n);
+                direct = package_shaders__1caustics_light__2sun_through_water(flat, e_h, package__1final_image__2final_image_inputs_params.t_flat, lit);
+            }
         }
         package__1final_image__2final_image_inputs_emit(w, obj.color * (direct + package__1final_image__2final_image_inputs_params.ambient) * package__1final_image__2final_image_inputs_params.light_color);
         return;
@@ -1281,6 +1316,37 @@ fn package_shaders_optics__1refract_dir(incident: vec3<f32>, normal: vec3<f32>, 
 
 fn package_shaders_optics__2height_field_normal(gradient: vec2<f32>) -> vec3<f32> {
     return normalize(vec3<f32>(-gradient.x, -gradient.y, 1.0));
+}
+
+struct package_shaders_receivers_Receivers {
+    view: vec4<f32>,
+    t0: vec4<f32>
+}
+
+fn package_shaders_receivers__1light_space(p: vec3<f32>, t0: vec3<f32>) -> vec2<f32> {
+    return p.xy + t0.xy * (p.z / -t0.z);
+}
+
+fn package_shaders_receivers__1receiver_height(map: texture_2d<f32>, r: package_shaders_receivers_Receivers, q: vec2<f32>) -> f32 {
+    let dims = vec2<i32>(textureDimensions(map));
+    let u = (q - r.view.xy) / r.view.z - 0.5;
+    let c = floor(u);
+    let f = u - c;
+    let i = vec2<i32>(c);
+    let a = textureLoad(map, clamp(i, vec2<i32>(0), dims - 1), 0).x;
+    let b = textureLoad(map, clamp(i + vec2<i32>(1, 0), vec2<i32>(0), dims - 1), 0).x;
+    let d = textureLoad(map, clamp(i + vec2<i32>(0, 1), vec2<i32>(0), dims - 1), 0).x;
+    let e = textureLoad(map, clamp(i + vec2<i32>(1, 1), vec2<i32>(0), dims - 1), 0).x;
+    return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
+}
+
+fn package_shaders_receivers__1receiver_share(map: texture_2d<f32>, r: package_shaders_receivers_Receivers, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let t0 = r.t0.xyz;
+    let bias = 0.5 * r.view.z * max(r.view.w, 1.0);
+    if p.z < package_shaders_receivers__1receiver_height(map, r, package_shaders_receivers__1light_space(p, t0)) - bias {
+        return 0.0;
+    }
+    return max(dot(n, -t0), 0.0) / -t0.z;
 }
 
 const package_shaders_shading_COPING: f32 = 0.3;

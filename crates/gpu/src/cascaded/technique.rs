@@ -128,6 +128,7 @@ impl Pipelines for Cascaded {
                 height: setup.eye.height,
                 texels: image,
             }),
+            light: None,
             walls: None,
         })
     }

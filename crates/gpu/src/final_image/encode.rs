@@ -29,10 +29,11 @@ impl FinalImageFrame {
         let lighting = match self.lighting {
             // A floor map covers the water square (the scene's without water), as the techniques
             // lay their maps out, unless the caller said otherwise.
-            Lighting::Floor { .. } => Lighting::Floor {
+            Lighting::Floor { light_space, .. } => Lighting::Floor {
                 size: self
                     .map_size
                     .unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
+                light_space,
             },
             other => other,
         };

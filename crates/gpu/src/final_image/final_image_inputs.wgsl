@@ -14,6 +14,7 @@
 // the CPU's up to the order of the additions.
 
 import package::shaders::caustics_sampling::caustics_filtered;
+import package::shaders::receivers::Receivers;
 import package::shaders::shading::{floor_albedo, perez_sky, xyy_to_rgb};
 import package::shaders::water::{grid_sample, grid_sample_hermite};
 
@@ -85,6 +86,9 @@ const FLAG_EYE_CAUSTICS: u32 = 128u;
 const DECK_SHIFT: u32 = 8u;
 // The waves' normals filtered by each sample's footprint (render.rs `rough_water`).
 const FLAG_FILTER_WATER: u32 = 65536u;
+// The objects under the water take their light from the technique's light-space deposit
+// (light_deposit, light_heights, light_space), as a shadow map is read.
+const FLAG_LIGHT_SPACE: u32 = 131072u;
 
 // The frame's flags (`FinalImageUniform::flags`) but those of SET_AT_RUN_TIME, fixed per pipeline:
 // the frame specialises its pipeline by them (`final_image::SPECIALISED`), so the compiler drops
@@ -136,6 +140,17 @@ struct Object {
 // The floor map's pyramid below level 0 (caustics_mips.wgsl): its mip k is the pyramid's level
 // k + 1 (`CausticsMap::pyramid`).
 @group(0) @binding(10) var caustics_mips: texture_2d<f32>;
+// Where the light-space deposit and the receivers' heights lie (receivers.rs `LightSpaceUniform`).
+struct LightSpace {
+    receivers: Receivers,
+    absorption: vec4<f32>, // xyz: K along a receiver's flat-water path; w: 1 where the deposit tiles
+}
+@group(0) @binding(11) var<uniform> light_space: LightSpace;
+// The technique's light-space deposit (on the floor map's window and size) and the heights of the
+// receivers it met, objects included (caustics-core's `LightSpace`).
+@group(0) @binding(12) var light_deposit: texture_2d<f32>;
+@group(0) @binding(13) var light_heights: texture_2d<f32>;
+
 // The pyramid of the water's slope moments (final_image/slopes.rs), five floats a texel, level
 // after level from the heights' lattice up to one texel; read only with FLAG_FILTER_WATER.
 @group(2) @binding(0) var<storage, read> slope_moments: array<f32>;

@@ -3,14 +3,16 @@
 // the final image pass.
 
 import package::final_image::final_image_inputs::{
-    FAR, FLAG_AIR_CAUSTICS, FLAG_CAUSTICS, FLAG_EYE_CAUSTICS, FLAG_WATER, FLAG_WRAP_CAUSTICS,
-    absorbed, albedo_at, deck_kind, emit, h_max, has, is_pool, objects, params, push_ray,
-    sample_caustics_filtered, sky_radiance,
+    FAR, FLAG_AIR_CAUSTICS, FLAG_CAUSTICS, FLAG_EYE_CAUSTICS, FLAG_LIGHT_SPACE, FLAG_WATER,
+    FLAG_WRAP_CAUSTICS, absorbed, albedo_at, deck_kind, emit, h_max, has, is_pool, light_deposit,
+    light_heights, light_space, objects, params, push_ray, sample_caustics_filtered, sky_radiance,
 };
 import package::final_image::final_image_receivers::{nearest_object, occluded, sample_eye_space};
 import package::final_image::final_image_spread::{on_plane, spread};
 import package::shaders::caustics_light::{flat_water_light, sun_through_water};
+import package::shaders::caustics_sampling::caustics_bilinear;
 import package::shaders::optics::{fresnel_transmittance, refract_dir};
+import package::shaders::receivers::{light_space as to_light_space, receiver_share};
 import package::shaders::shading::deck_albedo;
 
 // The floor at `p`, its caustics and albedo filtered over the sample's footprint `fa`, `fb`.
@@ -39,6 +41,23 @@ fn shade_floor(p: vec3<f32>, fa: vec2<f32>, fb: vec2<f32>) -> vec3<f32> {
     return albedo * (direct + ambient) * params.light_color;
 }
 
+// The light receiver point p with unit normal n takes from the technique's light-space deposit
+// (caustics-core's `receivers::light_at`): the deposit at its light-space point times its share
+// (none under another receiver nearer the light), attenuated along its flat-water path.
+fn deposited_light(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let r = light_space.receivers;
+    let share = receiver_share(light_heights, r, p, n);
+    if share <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let t0 = r.t0.xyz;
+    let q = to_light_space(p, t0);
+    let wrap = light_space.absorption.w != 0.0;
+    let e = caustics_bilinear(light_deposit, light_deposit, 0u, 0u, q, params.map_size, wrap);
+    let path = (params.water_level - p.z) / -t0.z;
+    return e * share * exp(-light_space.absorption.xyz * path);
+}
+
 fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32, under: bool, w: vec3<f32>) {
     let obj = objects[k];
     // Closed meshes with outward normals: the ray enters where it meets the outside.
@@ -54,12 +73,17 @@ fn shade_object(p: vec3<f32>, n_out: vec3<f32>, d: vec3<f32>, k: u32, depth: u32
         if lambert > 0.0 && !occluded(p + n * 1e-4, -sun_dir, FAR, false) {
             lit = 1.0;
         }
-        // Under the water, the shading rule's light for a surface no map holds (shade.rs).
+        // Under the water, the shading rule's light (shade.rs): the technique's light-space
+        // deposit where the object is among its receivers, else flat water's.
         var direct = vec3<f32>(params.sun_intensity * lambert * lit);
         if has(FLAG_WATER) && under {
             let e_h = params.sun_intensity * -params.sun.z;
-            let flat = flat_water_light(params.absorption, max(params.water_level - p.z, 0.0), -params.sun_water, n);
-            direct = sun_through_water(flat, e_h, params.t_flat, lit);
+            if has(FLAG_LIGHT_SPACE) {
+                direct = sun_through_water(deposited_light(p, n), e_h, params.t_flat, 1.0);
+            } else {
+                let flat = flat_water_light(params.absorption, max(params.water_level - p.z, 0.0), -params.sun_water, n);
+                direct = sun_through_water(flat, e_h, params.t_flat, lit);
+            }
         }
         emit(w, obj.color * (direct + params.ambient) * params.light_color);
         return;

@@ -6,6 +6,7 @@ use caustics_core::scene::{Albedo, Scene};
 
 use crate::map_mips::{MapMips, mip_chain};
 use crate::pass::{Bind, STORAGE_OUT, bind_group};
+use crate::receivers::{LightSpaceOutput, LightSpaceUniform};
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError};
 
@@ -15,43 +16,63 @@ use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUn
 use crate::pass::{array_view, float_texture, storage_buffer};
 use wgpu::BufferUsages as B;
 
+/// What a final image is made from besides the scene; `Default` is none of it (flat, still
+/// water's light).
+#[derive(Clone, Copy, Default)]
+pub struct ImageInputs<'a> {
+    /// The heights as the techniques read them, bound as they are (the caller may rewrite the
+    /// texture every frame); `None` without water.
+    pub water: Option<&'a WaterTextures>,
+    /// The technique's output texture, bound as it is: a floor map over the water square (over
+    /// the scene square without water), or an eye-space image of the scene's camera; `None`
+    /// lights the floor as under flat water.
+    pub caustics: Option<Output<'a>>,
+    /// The walls' maps of a technique that lit the pool's walls (bound as they are; ignored when
+    /// the scene's walls are off).
+    pub walls: Option<WallsOutput<'a>>,
+    /// Its light-space deposit beside a floor map, where objects are among its receivers: their
+    /// light ([`crate::receivers::ReceiverFrame::light_space`]); `None` lights the objects as
+    /// under flat water.
+    pub light: Option<LightSpaceOutput<'a>>,
+    /// The square a floor map covers, where it is not the water's.
+    pub map_size: Option<f64>,
+}
+
 impl FinalImage {
     /// The final image of `scene` at its camera's size, every resource built here once: the
     /// objects' trees (a scene whose objects change needs a new frame), the terrain and albedo
     /// textures, the `Rgba8Unorm` output, the uniform and the bind groups.
-    ///
-    /// `water`: the heights as the techniques read them, bound as they are (the caller may rewrite
-    /// the texture every frame); `None` without water. `caustics`: the technique's output texture,
-    /// bound as it is: a floor map over the water square (over the scene square without water), or
-    /// an eye-space image of the scene's camera; `None` lights the floor as under flat water.
-    /// `walls`: the walls' maps of a technique that lit the pool's walls (bound as they are;
-    /// ignored when the scene's walls are off). [`update`](FinalImageFrame::update) takes the first
-    /// frame's camera and sun before [`encode`](FinalImageFrame::encode).
+    /// What lights it is in `inputs` ([`ImageInputs`]). [`update`](FinalImageFrame::update) takes
+    /// the first frame's camera and sun before [`encode`](FinalImageFrame::encode).
     pub fn frame(
         &self,
         ctx: &GpuContext,
         scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        walls: Option<WallsOutput>,
+        inputs: ImageInputs,
         options: &RenderOptions,
     ) -> Result<FinalImageFrame, GpuError> {
-        self.build(ctx, scene, water, caustics, walls, None, options)
+        self.build(ctx, scene, inputs, options)
     }
 
     /// [`frame`](Self::frame), a floor map's square given (`map_size`) or
     /// the scene's.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn build(
+    fn build(
         &self,
         ctx: &GpuContext,
         scene: &Scene,
-        water: Option<&WaterTextures>,
-        caustics: Option<Output>,
-        walls: Option<WallsOutput>,
-        map_size: Option<f64>,
+        inputs: ImageInputs,
         options: &RenderOptions,
     ) -> Result<FinalImageFrame, GpuError> {
+        let ImageInputs {
+            water,
+            caustics,
+            walls,
+            light,
+            map_size,
+        } = inputs;
+        // The deposit lights objects under water, beside a floor map.
+        let light = light.filter(|_| matches!(caustics, Some(Output::Floor(_))));
         let (width, height) = (scene.camera.width, scene.camera.height);
         ctx.check_texture_size("final image", width, height)?;
         // Heights without water in the scene have no square to cover: the frame has no surface.
@@ -59,6 +80,7 @@ impl FinalImage {
         let lighting = match caustics {
             Some(Output::Floor(_)) => Lighting::Floor {
                 size: map_size.unwrap_or(scene.water.as_ref().map_or(scene.size, |w| w.size)),
+                light_space: light.is_some(),
             },
             Some(Output::EyeSpace(_)) => Lighting::EyeSpace,
             None => Lighting::Flat,
@@ -133,7 +155,13 @@ impl FinalImage {
             output.create_view(&Default::default()),
             array_view(walls.map_or(&self.empty_walls, |w| w.texture)),
             view(mips.as_ref(), &self.empty_rgba32),
+            view(light.map(|l| l.deposit), &self.empty_rgba32),
+            view(light.map(|l| l.heights), &self.empty_r32),
         ];
+        let light_uniform = ctx.uniform(
+            "final image light space",
+            &light.map_or(LightSpaceUniform::default(), |l| l.uniform),
+        );
         let scene_group = bind_group(
             ctx,
             "final image scene",
@@ -150,6 +178,9 @@ impl FinalImage {
                 &views[4],
                 &wall_cols,
                 &views[5],
+                &light_uniform,
+                &views[6],
+                &views[7],
             ],
         );
         let mesh_group = bind_group(
@@ -158,7 +189,14 @@ impl FinalImage {
             &self.mesh_layout,
             &[&nodes, &triangles],
         );
-        let mut resources = vec![objects, nodes, triangles, wall_cols, no_slopes];
+        let mut resources = vec![
+            objects,
+            nodes,
+            triangles,
+            wall_cols,
+            no_slopes,
+            light_uniform,
+        ];
         let slab_group = match (water, &scene.water) {
             (Some(w), Some(sw)) => {
                 // The water's square and edge rule are the scene's: a new frame when they change.

@@ -54,6 +54,7 @@
 
 mod encode;
 mod frame;
+pub use frame::ImageInputs;
 mod readback;
 mod resources;
 pub mod slopes;
@@ -246,6 +247,20 @@ impl FinalImage {
                 },
                 storage_entry(9),
                 texture_entry(10),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 11,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<
+                            crate::receivers::LightSpaceUniform,
+                        >() as u64),
+                    },
+                    count: None,
+                },
+                texture_entry(12),
+                texture_entry(13),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

@@ -9,10 +9,12 @@ use caustics_core::water::Surface;
 use crate::technique::{Output, WallsOutput, WaterTextures};
 use crate::{GpuContext, GpuError, GpuTimer};
 
-use super::resources::{upload_map, upload_walls};
+use super::frame::ImageInputs;
+use super::resources::{upload_light_space, upload_map, upload_walls};
 use super::slopes;
 use super::{FinalImage, FinalImageFrame, PyramidLevel, Slab, water_grid};
 use crate::pass::float_texture;
+use crate::receivers::LightSpaceOutput;
 
 impl FinalImage {
     /// Render `scene` from its camera: the GPU counterpart of
@@ -43,7 +45,7 @@ impl FinalImage {
         };
         let water = heights.as_ref().map(WaterTextures::of);
         let map = match caustics {
-            Some(Caustics::Floor(m)) => Some(upload_map(ctx, m)?),
+            Some(Caustics::Floor(m) | Caustics::Received(m, _)) => Some(upload_map(ctx, m)?),
             Some(Caustics::EyeSpace(e)) => Some(float_texture(
                 ctx,
                 "eye-space caustics",
@@ -54,7 +56,9 @@ impl FinalImage {
             None => None,
         };
         let (output, map_size) = match (caustics, &map) {
-            (Some(Caustics::Floor(m)), Some(t)) => (Some(Output::Floor(t)), Some(m.size)),
+            (Some(Caustics::Floor(m) | Caustics::Received(m, _)), Some(t)) => {
+                (Some(Output::Floor(t)), Some(m.size))
+            }
             (Some(Caustics::EyeSpace(_)), Some(t)) => (Some(Output::EyeSpace(t)), None),
             _ => (None, None),
         };
@@ -63,15 +67,24 @@ impl FinalImage {
             texture,
             cols: *cols,
         });
-        let frame = self.build(
-            ctx,
-            scene,
-            water.as_ref(),
-            output,
-            walls_output,
+        let light = match caustics {
+            Some(Caustics::Received(_, l)) => Some(upload_light_space(ctx, l)?),
+            _ => None,
+        };
+        let inputs = ImageInputs {
+            water: water.as_ref(),
+            caustics: output,
+            walls: walls_output,
+            light: light
+                .as_ref()
+                .map(|(deposit, heights, uniform)| LightSpaceOutput {
+                    deposit,
+                    heights,
+                    uniform: *uniform,
+                }),
             map_size,
-            options,
-        )?;
+        };
+        let frame = self.frame(ctx, scene, inputs, options)?;
 
         let mut encoder = ctx.encoder("final image");
         frame.encode(&mut encoder, timer.as_deref_mut());

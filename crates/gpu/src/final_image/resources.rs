@@ -2,6 +2,7 @@
 //! inputs (caustics maps, walls' maps) and the storage buffers that may not be empty.
 
 use crate::pass::float_texture;
+use crate::receivers::LightSpaceUniform;
 use caustics_core::map::CausticsMap;
 use caustics_core::walls::WallMaps;
 
@@ -76,6 +77,18 @@ pub fn upload_map(ctx: &GpuContext, map: &CausticsMap) -> Result<wgpu::Texture, 
         (map.width as u32, map.height as u32, 1),
         bytemuck::cast_slice(&rgba32(&map.texels)),
     )
+}
+
+/// A CPU technique's light-space deposit and its receivers' heights, uploaded for the final
+/// image's objects, with the uniform that places them.
+pub fn upload_light_space(
+    ctx: &GpuContext,
+    light: &caustics_core::receivers::LightSpace,
+) -> Result<(wgpu::Texture, wgpu::Texture, LightSpaceUniform), GpuError> {
+    let deposit = upload_map(ctx, &light.deposit)?;
+    let heights = crate::receivers::heights_texture(ctx, Some(&light.receivers))?;
+    let uniform = LightSpaceUniform::of(&light.receivers, light.absorption, light.wrap);
+    Ok((deposit, heights, uniform))
 }
 
 /// `map`'s texels into mip 0 of `texture` (`Rgba32Float`, `COPY_DST`, at least the map's size):

@@ -134,6 +134,9 @@ pub mod flags {
     /// The waves' normals filtered by each sample's footprint (`RenderOptions::filter_water`),
     /// above the deck's bits.
     pub const FILTER_WATER: u32 = 1 << 16;
+    /// The objects under the water take their light from the technique's light-space deposit
+    /// (bound with the receivers' heights), as a shadow map is read.
+    pub const LIGHT_SPACE: u32 = 1 << 17;
 }
 
 /// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
@@ -191,8 +194,9 @@ pub use caustics_core::render::{Slab, slab_bounds};
 pub(super) enum Lighting {
     /// No map: lit as under flat water.
     Flat,
-    /// A map of the floor covering the square `[0, size]²`.
-    Floor { size: f64 },
+    /// A map of the floor covering the square `[0, size]²`; with `light_space`, the deposit it
+    /// was looked up from, for the objects among the technique's receivers.
+    Floor { size: f64, light_space: bool },
     /// An eye-space image of the scene's camera (`cascaded`).
     EyeSpace,
 }
@@ -234,7 +238,12 @@ pub(super) fn uniform(
             f |= flags::WRAP_SURFACE;
         }
         match lighting {
-            Lighting::Floor { .. } => f |= flags::CAUSTICS,
+            Lighting::Floor { light_space, .. } => {
+                f |= flags::CAUSTICS;
+                if light_space {
+                    f |= flags::LIGHT_SPACE;
+                }
+            }
             Lighting::EyeSpace => f |= flags::EYE_CAUSTICS,
             Lighting::Flat => {}
         }
@@ -270,7 +279,7 @@ pub(super) fn uniform(
         absorption: f3(water.map_or(DVec3::ZERO, |w| w.absorption)),
         scene_size: scene.size as f32,
         map_size: match lighting {
-            Lighting::Floor { size } => size,
+            Lighting::Floor { size, .. } => size,
             _ => scene.size,
         } as f32,
         width,

@@ -307,6 +307,7 @@ fn run_cpu(
             height: setup.eye.height,
             texels: image,
         }),
+        light: None,
         walls: None,
     })
 }

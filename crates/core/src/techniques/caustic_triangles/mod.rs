@@ -306,9 +306,9 @@ fn run_cpu(
         return Ok(JobOutput::floor(render(job.scene, &params)?, None));
     }
     let (ws, heights) = water_job_setup(job, table)?;
-    let (map, walls) = water::maps(&ws, &heights)?;
+    let out = water::maps(&ws, &heights)?;
     progress(1, 1);
-    Ok(JobOutput::floor(map, walls))
+    Ok(out)
 }
 
 /// How a vertex's area `ΔA` is taken from the triangles around it (see the module docs).

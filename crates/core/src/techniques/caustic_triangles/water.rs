@@ -54,8 +54,11 @@ use crate::grid::{Edge, Grid};
 use crate::map::CausticsMap;
 use crate::optics::{air_transmittance, height_field_normal, refract};
 use crate::parallel::prelude::*;
-use crate::receivers::{ReceiverHeights, flat_refracted, light_space, lookup};
+use crate::receivers::{
+    LightSpace, ReceiverHeights, flat_refracted, light_space, received_with_light,
+};
 use crate::scene::{Floor, Scene, Water};
+use crate::techniques::JobOutput;
 use crate::walls::{Wall, WallMaps};
 
 /// The water photon pass's inputs (the GPU uploads the same numbers, `WaterPhotonUniform`).
@@ -434,6 +437,9 @@ pub struct WaterOutput {
     pub irradiance: Vec<f32>,
     /// The floor map, relative irradiance per RGB channel after absorption.
     pub map: CausticsMap,
+    /// The light-space deposit the floor map was looked up from, where objects are among the
+    /// receivers.
+    pub light: Option<LightSpace>,
 }
 
 fn check_heights(heights: &Grid) -> Result<()> {
@@ -499,25 +505,25 @@ pub fn caustics(ws: &WaterSetup, heights: &Grid) -> Result<WaterOutput> {
     let ws = &ws;
     let (photons, paths) = photon_pass(ws, heights);
     let irradiance = irradiance_pass(&ws.setup, &photons);
-    let mut map = triangles_pass_with_paths(&ws.setup, &photons, &irradiance, Some(&paths));
-    if let Some(r) = &ws.receivers {
-        map = lookup(&map, r, ws.wrap(), DVec3::ZERO);
-    }
+    let deposit = triangles_pass_with_paths(&ws.setup, &photons, &irradiance, Some(&paths));
+    let (map, light) = received_with_light(deposit, ws.receivers.as_ref(), ws.wrap(), DVec3::ZERO);
     Ok(WaterOutput {
         photons,
         paths,
         irradiance,
         map,
+        light,
     })
 }
 
 /// The floor's map and, with the scene's walls, the walls' maps ([`wall_caustics`]).
-pub fn maps(ws: &WaterSetup, heights: &Grid) -> Result<(CausticsMap, Option<WallMaps>)> {
+pub fn maps(ws: &WaterSetup, heights: &Grid) -> Result<JobOutput> {
     let walls = match ws.walls {
         true => Some(wall_caustics(ws, heights)?),
         false => None,
     };
-    Ok((caustics(ws, heights)?.map, walls))
+    let out = caustics(ws, heights)?;
+    Ok(JobOutput::received((out.map, out.light), walls))
 }
 
 /// The technique on a scene with water, the water as the generator, over the scene square at the
@@ -535,7 +541,9 @@ pub fn render_with_walls(
     params: &CausticTrianglesParams,
 ) -> Result<(CausticsMap, Option<WallMaps>)> {
     let (ws, heights) = super::water_setup(&crate::techniques::Job::new(scene, None, 1), params)?;
-    maps(&ws, &heights)
+    let out = maps(&ws, &heights)?;
+    let map = out.caustics.into_floor(super::DESCRIPTOR.name)?;
+    Ok((map, out.walls))
 }
 
 #[cfg(test)]

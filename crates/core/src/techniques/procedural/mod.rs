@@ -124,6 +124,7 @@ use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::refract;
 use crate::receivers::Shared;
+use crate::receivers::{LightSpace, received_with_light};
 use crate::water::Surface;
 
 /// The paper's index of refraction of water.
@@ -387,8 +388,9 @@ fn run_cpu(
     _progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<JobOutput> {
     let (setup, heights) = job_setup(job, table)?;
-    Ok(JobOutput::floor(
-        setup.received(caustics(&setup, &SurfaceInput::Grid(&heights))),
+    let deposit = caustics(&setup, &SurfaceInput::Grid(&heights));
+    Ok(JobOutput::received(
+        setup.received_with_light(deposit),
         None,
     ))
 }
@@ -637,6 +639,12 @@ impl ProceduralSetup {
     /// floor texel through the receivers.
     pub fn received(&self, map: CausticsMap) -> CausticsMap {
         crate::receivers::received(map, self.receivers.as_ref(), self.wrap, self.absorption)
+    }
+
+    /// [`received`](Self::received), with the deposit where objects are among the receivers.
+    pub fn received_with_light(&self, map: CausticsMap) -> (CausticsMap, Option<LightSpace>) {
+        let receivers = self.receivers.as_ref().map(|r| &r.0);
+        received_with_light(map, receivers, self.wrap, self.absorption)
     }
 
     /// Mip levels of the texture variant's target, level 0 included.

@@ -97,6 +97,7 @@ use crate::grid::Grid;
 use crate::map::CausticsMap;
 use crate::optics::{air_transmittance, refract};
 use crate::receivers::Shared;
+use crate::receivers::{LightSpace, received_with_light};
 
 use super::describe::{
     Descriptor, Kind, Param, ParamDefault as D, Receiver, check_params, read_params, serde_defaults,
@@ -117,7 +118,7 @@ pub use pass1::pass1;
 pub use pass2::pass2;
 pub use prepass::{Tier, pack_half_widths, prepass, unpack_half_widths};
 pub use region::region_bound;
-pub use scatter::{FIXED, scatter, scatter_in_region};
+pub use scatter::{FIXED, scatter, scatter_deposit, scatter_in_region};
 
 /// Paper 1 as registered: the passes its `passes` names (the scatter by default, the paper's
 /// render-target passes, §4, with its preset).
@@ -275,11 +276,14 @@ fn run_cpu(
     _progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<JobOutput> {
     let (setup, heights) = job_setup(job, table)?;
-    let map = match YukselParams::from_table(table)?.passes() {
-        Passes::Scatter => scatter(&setup, &heights),
-        Passes::Targets => caustics(&setup, &heights),
+    let deposit = match YukselParams::from_table(table)?.passes() {
+        Passes::Scatter => scatter_deposit(&setup, &heights),
+        Passes::Targets => caustics_deposit(&setup, &heights),
     };
-    Ok(JobOutput::floor(map, None))
+    Ok(JobOutput::received(
+        setup.received_with_light(deposit),
+        None,
+    ))
 }
 
 /// The largest channel count: 8 render targets of 4 channels.
@@ -608,6 +612,12 @@ impl YukselSetup {
         crate::receivers::received(map, self.receivers.as_ref(), self.wrap, self.absorption)
     }
 
+    /// [`received`](Self::received), with the deposit where objects are among the receivers.
+    pub fn received_with_light(&self, map: CausticsMap) -> (CausticsMap, Option<LightSpace>) {
+        let receivers = self.receivers.as_ref().map(|r| &r.0);
+        received_with_light(map, receivers, self.wrap, self.absorption)
+    }
+
     /// Samples per pixel along each axis at `level`: `k · 2^level`, at most
     /// [`MAX_LEVEL_SUBSAMPLES`] (or `k` where it is larger).
     pub fn subsamples_at(&self, level: u32) -> usize {
@@ -674,19 +684,28 @@ pub fn box_share(c: f32, h: f32) -> f32 {
 /// the twin of the render targets, [`scatter()`] the scatter's): the surface sampled as `heights`
 /// over the map's square, with the region fitted to `heights` where N or M is not fixed.
 pub fn caustics(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
+    setup.received(caustics_deposit(setup, heights))
+}
+
+/// [`caustics`]'s light before the receivers' lookup: its light-space deposit.
+pub fn caustics_deposit(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     let mut setup = setup.clone();
     setup.fit_region(heights);
-    caustics_in_region(&setup, heights)
+    targets_in_region(&setup, heights)
 }
 
 /// The passes in `setup`'s region as it stands: the pre-pass at its level, then pass 1 and pass 2
 /// once per row phase (`2^level` of them) into the map's own pixels.
 pub fn caustics_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
+    setup.received(targets_in_region(setup, heights))
+}
+
+fn targets_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     let pre = prepass(&setup.at_level(setup.region.level), heights);
     let mut map = CausticsMap::new(setup.width, setup.height, setup.size);
     for phase in 0..1usize << setup.region.level {
         let p1 = pass1(setup, &pre, phase);
         pass2(setup, &p1, phase, &mut map);
     }
-    setup.received(map)
+    map
 }

@@ -27,9 +27,14 @@ pub const FIXED: f32 = 1_048_576.0;
 /// The whole technique through the scatter on the CPU: the region fitted to `heights` where N or
 /// M is not fixed, as [`caustics`](super::caustics) fits it.
 pub fn scatter(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
+    setup.received(scatter_deposit(setup, heights))
+}
+
+/// [`scatter`]'s light before the receivers' lookup: its light-space deposit.
+pub fn scatter_deposit(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     let mut setup = setup.clone();
     setup.fit_region(heights);
-    scatter_in_region(&setup, heights)
+    deposit_in_region(&setup, heights)
 }
 
 /// The scatter in `setup`'s region as it stands: the pre-pass at the region's level, its records
@@ -37,11 +42,15 @@ pub fn scatter(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
 /// resolved ([`scatter_resolve`]). Every level at once: a level's pixel adds its light into the
 /// `2^level × 2^level` map pixels below it, so there are no row phases.
 pub fn scatter_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
+    setup.received(deposit_in_region(setup, heights))
+}
+
+fn deposit_in_region(setup: &YukselSetup, heights: &Grid) -> CausticsMap {
     let pre = prepass(&setup.at_level(setup.region.level), heights);
     let mut sums = vec![0u32; setup.width * setup.height];
     let listed = scatter_tier(setup, &pre, &mut sums);
     scatter_fill(setup, &pre, &listed, &mut sums);
-    setup.received(scatter_resolve(setup, &sums))
+    scatter_resolve(setup, &sums)
 }
 
 /// The pre-pass's pixels at the region's level, `(columns, rows)`: the level's map and the
