@@ -2,9 +2,7 @@ struct VsOut {
     @builtin(position)
     position: vec4<f32>,
     @location(0)
-    e: f32,
-    @location(1)
-    d: f32
+    light: vec3<f32>
 }
 
 @group(0) @binding(5)
@@ -12,7 +10,7 @@ var<storage, read> copy_band: package__1caustic_triangles_common_CopyBand;
 
 @fragment
 fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(in.e * exp(-package__1caustic_triangles_merge_u.absorption.xyz * in.d), 1.0);
+    return vec4<f32>(in.light, 1.0);
 }
 
 @group(0) @binding(2)
@@ -176,8 +174,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) instance: u3
     var corners = array<vec2<u32>, 6>(vec2<u32>(0u, 0u), vec2<u32>(0u, 1u), vec2<u32>(1u, 1u), vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(1u, 0u));
     let c = corners[vi % 6u];
     var out: VsOut;
-    out.e = 0.0;
-    out.d = 0.0;
+    out.light = vec3<f32>(0.0);
     out.position = package__1caustic_triangles_common_CULLED;
     if qi >= r.y || qj >= r.w {
         return out;
@@ -197,7 +194,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) instance: u3
     }
     let k = (qi + c.x * s) * package__1caustic_triangles_merge_u.p + qj + c.y * s;
     out.position = package__1caustic_triangles_common__2pixel_to_clip(package__1caustic_triangles_merge_u, package__1caustic_triangles_common__1to_pixel(package__1caustic_triangles_merge_u, package__1caustic_triangles_merge_photons[k].xy + off));
-    out.e = select(irradiance[k], draw.y, draw.x > 0.0);
-    out.d = paths[k];
+    let e = select(irradiance[k], draw.y, draw.x > 0.0);
+    out.light = e * exp(-package__1caustic_triangles_merge_u.absorption.xyz * paths[k]);
     return out;
 }

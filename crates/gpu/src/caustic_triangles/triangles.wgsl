@@ -2,9 +2,9 @@
 // sent with no vertex buffer; the vertex shader pulls its photon hit and vertex irradiance from the
 // photon image, collapses the triangles of quads with an invalid corner or corners of different
 // path signatures (photon w) outside the clip volume,
-// and the irradiance is Gouraud shaded and added into the floor map. A water generator's triangles
-// also interpolate their vertices' refracted path lengths and are attenuated by exp(-K d) per
-// channel, and tiling water draws each at nine offsets (instances: the shifted ones over the
+// and the irradiance is Gouraud shaded and added into the floor map. A water generator's vertices
+// carry their irradiance attenuated by exp(-K d) per channel along their own refracted paths, which
+// the triangle interpolates, and tiling water draws each at nine offsets (instances: the shifted ones over the
 // quads along the edge their light crosses, `copy_rect`; copies whose quad misses the square are
 // collapsed; the band is the narrower of the uniform's and the one `band.wgsl` fitted on the GPU,
 // and instances map to copies by `copy_of_instance`). CPU twin: `triangles_pass_with_paths` in
@@ -22,8 +22,8 @@ import package::caustic_triangles::merge::{photons, quad_draw, u};
 
 struct VsOut {
     @builtin(position) position: vec4<f32>,
-    @location(0) e: f32,
-    @location(1) d: f32,
+    // The vertex's irradiance, absorbed along its path.
+    @location(0) light: vec3<f32>,
 }
 
 @vertex
@@ -40,8 +40,7 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) instance: u3
                                       vec2<u32>(0u, 0u), vec2<u32>(1u, 1u), vec2<u32>(1u, 0u));
     let c = corners[vi % 6u];
     var out: VsOut;
-    out.e = 0.0;
-    out.d = 0.0;
+    out.light = vec3<f32>(0.0);
     out.position = CULLED;
     if qi >= r.y || qj >= r.w {
         return out;
@@ -62,12 +61,12 @@ fn vs_main(@builtin(vertex_index) vi: u32, @builtin(instance_index) instance: u3
     }
     let k = (qi + c.x * s) * u.p + qj + c.y * s;
     out.position = pixel_to_clip(u, to_pixel(u, photons[k].xy + off));
-    out.e = select(irradiance[k], draw.y, draw.x > 0.0);
-    out.d = paths[k];
+    let e = select(irradiance[k], draw.y, draw.x > 0.0);
+    out.light = e * exp(-u.absorption.xyz * paths[k]);
     return out;
 }
 
 @fragment
 fn fs_main(in: VsOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(in.e * exp(-u.absorption.xyz * in.d), 1.0);
+    return vec4<f32>(in.light, 1.0);
 }

@@ -87,8 +87,10 @@ pub fn triangles_pass(
 }
 
 /// [`triangles_pass`] with each photon's refracted path length (a water generator, [`water`](super::water)):
-/// the path length is interpolated over the triangle like the irradiance, and each texel gets
-/// `E exp(−K d)` per channel; the triangles are drawn at every offset of
+/// each vertex carries its irradiance attenuated along its own path, `E exp(−K d)` per channel,
+/// and that is what the triangle interpolates (Gouraud shading of the absorbed light: across a
+/// triangle the path changes by millimetres, and the vertex shader does the exponentials the
+/// fragments would otherwise repeat); the triangles are drawn at every offset of
 /// [`CausticTrianglesSetup::copies`].
 pub fn triangles_pass_with_paths(
     setup: &CausticTrianglesSetup,
@@ -103,6 +105,7 @@ pub fn triangles_pass_with_paths(
     let mut acc = vec![[0.0f32; 3]; f.width * f.height];
     for (x, e, idx) in merge::drawn_quads(setup, photons, irradiance) {
         let d = paths.map_or([0.0; 4], |p| idx.map(|i| p[i] as f64));
+        let light: [[f32; 3]; 4] = std::array::from_fn(|v| attenuated(e[v], d[v], k));
         let (qi, qj) = (idx[0] / setup.p, idx[0] % setup.p);
         for (&off, &(i0, i1, j0, j1)) in copies.iter().zip(&rects) {
             if !((i0..i1).contains(&qi) && (j0..j1).contains(&qj)) {
@@ -111,9 +114,11 @@ pub fn triangles_pass_with_paths(
             let [a, b, c, q] = x.map(|x| f.to_pixel(x + off));
             for (v, t) in [([a, b, c], [0, 1, 2]), ([a, c, q], [0, 2, 3])] {
                 raster_barycentric(f.width, f.height, v, |texel, w| {
-                    let mix = |s: [f64; 4]| w[0] * s[t[0]] + w[1] * s[t[1]] + w[2] * s[t[2]];
-                    let rgb = attenuated(mix(e), mix(d), k);
-                    acc[texel].iter_mut().zip(rgb).for_each(|(a, v)| *a += v);
+                    let [l0, l1, l2] = t.map(|v| light[v]);
+                    for (c, a) in acc[texel].iter_mut().enumerate() {
+                        *a += (w[0] * l0[c] as f64 + w[1] * l1[c] as f64 + w[2] * l2[c] as f64)
+                            as f32;
+                    }
                 });
             }
         }
