@@ -103,6 +103,8 @@ const package__1final_image__2final_image_inputs__1MAX_DEPTH: u32 = 6u;
 
 const package__1final_image__2final_image_inputs__1RAY_STACK: u32 = 16u;
 
+const package__1final_image__2final_image_inputs__1ROOT_TOLERANCE: f32 = 0.0001;
+
 const package__1final_image__2final_image_inputs__1SLAB_LATTICE: u32 = 128u;
 
 fn package__1final_image__2final_image_inputs__1albedo_at(p: vec2<f32>, size: f32, extent: vec2<f32>) -> vec3<f32> {
@@ -266,30 +268,27 @@ fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: v
         return t0;
     }
     var hi = t1;
+    var g_hi = 1.0;
+    var crossed = false;
     for (var k = 0u; k < package__1final_image__2final_image_inputs__1MARCH_STEPS + 2u && a < t1; k++) {
         let b = min(a + min(max(gap / rate, shortest), longest), t1);
         let next = side * package__1final_image__2final_image_march__1water_gap(o, d, b);
         if next <= 0.0 {
             hi = b;
+            g_hi = next;
+            crossed = true;
             break;
         }
         a = b;
         gap = next;
     }
-    var lo = a;
-    for (var s = 0u; s < package__1final_image__2final_image_inputs_BISECTIONS; s++) {
-        let m = 0.5 * (lo + hi);
-        if m <= lo || m >= hi {
-            break;
-        }
-        if side * package__1final_image__2final_image_march__1water_gap(o, d, m) > 0.0 {
-            lo = m;
-        }
-        else {
-            hi = m;
+    if !crossed {
+        g_hi = side * package__1final_image__2final_image_march__1water_gap(o, d, hi);
+        if g_hi > 0.0 {
+            return hi;
         }
     }
-    return 0.5 * (lo + hi);
+    return package__1final_image__2final_image_march__1regula_falsi(o, d, side, a, gap, hi, g_hi, package__1final_image__2final_image_inputs__1ROOT_TOLERANCE * min_step);
 }
 
 fn package__1final_image__2final_image_march__1floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
@@ -356,6 +355,39 @@ fn package__1final_image__2final_image_march__1leave_water(p: vec3<f32>, d: vec3
         package__1final_image__2final_image_inputs__1push_ray(p + n * 1e-5, r.xyz, w * t, depth + 1u, false);
     }
     package__1final_image__2final_image_spread__2push_ray_spread(p - n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, true, mirrored);
+}
+
+fn package__1final_image__2final_image_march__1regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a0: f32, ga0: f32, b0: f32, gb0: f32, tol: f32) -> f32 {
+    var a = a0;
+    var ga = ga0;
+    var b = b0;
+    var gb = gb0;
+    var m = b;
+    var kept = 0;
+    for (var s = 0u; s < package__1final_image__2final_image_inputs_BISECTIONS; s++) {
+        m = (a * gb - b * ga) / (gb - ga);
+        let gm = side * package__1final_image__2final_image_march__1water_gap(o, d, m);
+        if gm > 0.0 {
+            a = m;
+            ga = gm;
+            if kept == 1 {
+                gb *= 0.5;
+            }
+            kept = 1;
+        }
+        else {
+            b = m;
+            gb = gm;
+            if kept == -1 {
+                ga *= 0.5;
+            }
+            kept = -1;
+        }
+        if abs(gm) < tol || b - a < tol {
+            break;
+        }
+    }
+    return m;
 }
 
 fn package__1final_image__2final_image_march__1water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {

@@ -171,6 +171,9 @@ const EVEN_STEPS: u32 = 24u;
 const SLAB_LATTICE: u32 = 128u;
 const FLOOR_STEPS: u32 = 64u;
 const BISECTIONS: u32 = 30u;
+// render.rs `ROOT_TOLERANCE`: the surface's crossing is found to this fraction of the march's
+// shortest step.
+const ROOT_TOLERANCE: f32 = 1e-4;
 
 struct Ray {
     o: vec3<f32>,

@@ -4,8 +4,8 @@
 
 import package::final_image::final_image_inputs::{
     BISECTIONS, EVEN_STEPS, FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER,
-    FLOOR_STEPS, MARCH_STEPS, SLAB_LATTICE, floor_height, h_max, has, params, push_ray, slope_max,
-    water_height_gradient,
+    FLOOR_STEPS, MARCH_STEPS, ROOT_TOLERANCE, SLAB_LATTICE, floor_height, h_max, has, params,
+    push_ray, slope_max, water_height_gradient,
 };
 import package::final_image::final_image_receivers::inside;
 import package::final_image::final_image_rough_water::water_slopes;
@@ -39,9 +39,10 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // step can pass a crossing), at least a quarter of the slab lattice's spacing and 1/MARCH_STEPS
 // of the interval, at most 1/EVEN_STEPS of it or the shortest step, whichever is longer (a slab
 // of micrometres, flat water's, in one step: 1/24 of it would not move an f32 distance of metres);
-// then bisections of the step that crossed, or of what is left of [t0, t1] when the march ends
-// without one (the slab's far side lies beyond the surface: only rounding, or the steps spent,
-// leave it uncrossed).
+// then regula falsi in its Illinois form on the step that crossed, or on what is left of [t0, t1]
+// when the march ends without one (the slab's far side lies beyond the surface: only rounding, or
+// the steps spent, leave it uncrossed): within a step the gap is nearly linear, so a few guesses
+// reach what bisection needs a dozen for.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
     let min_step = params.water_size / f32(4u * SLAB_LATTICE);
@@ -53,31 +54,62 @@ fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f3
         return t0;
     }
     var hi = t1;
+    var g_hi = 1.0;
+    var crossed = false;
     // Each step is at least 1/MARCH_STEPS of the interval; two more for rounding.
     for (var k = 0u; k < MARCH_STEPS + 2u && a < t1; k++) {
         let b = min(a + min(max(gap / rate, shortest), longest), t1);
         let next = side * water_gap(o, d, b);
         if next <= 0.0 {
             hi = b;
+            g_hi = next;
+            crossed = true;
             break;
         }
         a = b;
         gap = next;
     }
-    var lo = a;
-    for (var s = 0u; s < BISECTIONS; s++) {
-        let m = 0.5 * (lo + hi);
-        // Where the interval no longer halves in f32 the remaining bisections change nothing.
-        if m <= lo || m >= hi {
-            break;
-        }
-        if side * water_gap(o, d, m) > 0.0 {
-            lo = m;
-        } else {
-            hi = m;
+    if !crossed {
+        g_hi = side * water_gap(o, d, hi);
+        if g_hi > 0.0 {
+            return hi;
         }
     }
-    return 0.5 * (lo + hi);
+    return regula_falsi(o, d, side, a, gap, hi, g_hi, ROOT_TOLERANCE * min_step);
+}
+
+// receivers.rs `regula_falsi` on the ray's gap to the surface between `a` (gap `ga` > 0) and `b`
+// (gap `gb` ≤ 0): each guess where the chord crosses zero, an end kept twice running halved.
+fn regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a0: f32, ga0: f32, b0: f32, gb0: f32, tol: f32) -> f32 {
+    var a = a0;
+    var ga = ga0;
+    var b = b0;
+    var gb = gb0;
+    var m = b;
+    var kept = 0;
+    for (var s = 0u; s < BISECTIONS; s++) {
+        m = (a * gb - b * ga) / (gb - ga);
+        let gm = side * water_gap(o, d, m);
+        if gm > 0.0 {
+            a = m;
+            ga = gm;
+            if kept == 1 {
+                gb *= 0.5;
+            }
+            kept = 1;
+        } else {
+            b = m;
+            gb = gm;
+            if kept == -1 {
+                ga *= 0.5;
+            }
+            kept = -1;
+        }
+        if abs(gm) < tol || b - a < tol {
+            break;
+        }
+    }
+    return m;
 }
 
 // render.rs `hit_water_from_below`: the first crossing of a rising underwater ray with
