@@ -239,8 +239,7 @@ fn keeps_the_light(what: &str, texels: &[[f32; 3]]) -> Result<(), Failed> {
         .map(|c| (mean(texels, c) / flat[c] - 1.0).abs())
         .fold(0.0, f64::max);
     println!("{what}: mean off the flat light by {off:.2e}, contrast {contrast:.3}");
-    // Measured on lavapipe: 5.5e-4 (the triangles interpolating each vertex's absorbed light);
-    // contrast 0.241.
+    // Measured on lavapipe: 5.5e-4; contrast 0.241.
     if off > 5e-3 {
         return Err(
             format!("{what}: the floor's mean light is {off:.3} off the flat water's").into(),
