@@ -10,7 +10,6 @@ mod common;
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
-use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::math::Affine2;
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
@@ -59,7 +58,7 @@ fn main() -> AppExit {
         .add_systems(
             Update,
             (
-                orbit,
+                common::orbit,
                 click_drops,
                 rain,
                 common::switch_technique,
@@ -111,13 +110,6 @@ struct Rain {
 
 #[derive(Component)]
 struct Water;
-
-#[derive(Component)]
-struct Orbit {
-    yaw: f32,
-    pitch: f32,
-    distance: f32,
-}
 
 fn setup(
     mut commands: Commands,
@@ -221,12 +213,14 @@ fn setup(
     commands.spawn((water, maps, at, Water));
     // The pool scene's sun, (0.3, 0.1, −1) in its z-up frame.
     commands.spawn(common::sun(Vec3::new(0.3, 0.1, -1.0), true));
-    let orbit = Orbit {
+    let orbit = common::Orbit {
         yaw: -0.5,
         pitch: 0.75,
         distance: 6.5,
+        centre: Vec3::new(0.0, 0.3, 0.0),
+        farthest: 20.0,
     };
-    commands.spawn((common::camera(orbit_transform(&orbit)), orbit));
+    commands.spawn((common::camera(orbit.transform()), orbit));
 }
 
 /// Pale blue pool tiles with grout, eight to a side, with their mip chain (box-filtered) so the far
@@ -294,32 +288,6 @@ fn tile_texture() -> Image {
         ..ImageSamplerDescriptor::linear()
     });
     image
-}
-
-fn orbit_transform(o: &Orbit) -> Transform {
-    let eye = Vec3::new(
-        o.distance * o.pitch.cos() * o.yaw.sin(),
-        o.distance * o.pitch.sin(),
-        o.distance * o.pitch.cos() * o.yaw.cos(),
-    );
-    Transform::from_translation(eye).looking_at(Vec3::new(0.0, 0.3, 0.0), Vec3::Y)
-}
-
-fn orbit(
-    buttons: Res<ButtonInput<MouseButton>>,
-    motion: Res<AccumulatedMouseMotion>,
-    scroll: Res<AccumulatedMouseScroll>,
-    mut camera: Query<(&mut Orbit, &mut Transform)>,
-) {
-    let Ok((mut o, mut t)) = camera.single_mut() else {
-        return;
-    };
-    if buttons.pressed(MouseButton::Right) {
-        o.yaw -= motion.delta.x * 0.005;
-        o.pitch = (o.pitch + motion.delta.y * 0.005).clamp(0.1, 1.5);
-    }
-    o.distance = (o.distance * (1.0 - scroll.delta.y * 0.1)).clamp(2.0, 20.0);
-    *t = orbit_transform(&o);
 }
 
 /// A left click drops a ripple where the cursor's ray meets the water's surface.

@@ -2,7 +2,8 @@
 //! whose end juts out over the sand, all the application's own meshes, lit by the caustics of a
 //! moving swell: the meshes are the water's receivers, so the light lands on the sand, on the
 //! rocks' flanks and on the crate where it reaches them, and none under the overhang. The water's
-//! surface is a mesh the plugin displaces on the GPU by the heights the technique reads. Right-drag orbits, the wheel zooms, T switches technique.
+//! surface is a mesh the plugin displaces on the GPU by the heights the technique reads.
+//! Right-drag orbits, the wheel zooms, T switches technique.
 //!
 //! `cargo run --example reef -- [--technique NAME] [--flat] [--no-surface] [--frames N
 //! --screenshot PATH]`: `--flat` keeps the water still (the picture caustics are measured
@@ -10,7 +11,6 @@
 
 mod common;
 
-use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::prelude::*;
 use bevy_caustics::{
     CausticMaps, CausticWater, CausticsExtension, CausticsMaterial, CausticsPlugin, Receiver,
@@ -49,7 +49,10 @@ fn main() -> AppExit {
         .insert_resource(ClearColor(Color::srgb(0.55, 0.72, 0.92)))
         .insert_resource(common::sky_light())
         .add_systems(Startup, setup)
-        .add_systems(Update, (orbit, common::switch_technique, common::frames))
+        .add_systems(
+            Update,
+            (common::orbit, common::switch_technique, common::frames),
+        )
         .run()
 }
 
@@ -77,13 +80,6 @@ fn reef_scene(args: &common::Args) -> Result<(CausticWater, Scene), String> {
     scene.caustics.height = 256;
     let water = CausticWater::new(scene, &args.technique).map_err(|e| e.to_string())?;
     Ok((water, reef))
-}
-
-#[derive(Component)]
-struct Orbit {
-    yaw: f32,
-    pitch: f32,
-    distance: f32,
 }
 
 fn setup(
@@ -143,39 +139,12 @@ fn setup(
     commands.spawn(common::sun(Vec3::new(sun.x, sun.y, sun.z), false));
     commands.spawn((water, maps, at));
     // From the sun's side: the sunlit faces, and the sand in the overhang's shade beyond it.
-    let orbit = Orbit {
+    let orbit = common::Orbit {
         yaw: 0.75,
         pitch: 0.8,
         distance: 8.0,
+        centre: common::scene_to_world(Vec3::new(5.0, 5.0, 1.2)),
+        farthest: 30.0,
     };
-    commands.spawn((common::camera(orbit_transform(&orbit)), orbit));
-}
-
-fn orbit_transform(o: &Orbit) -> Transform {
-    // Around the reef's centre, 1 m below the rest level.
-    let centre = common::scene_to_world(Vec3::new(5.0, 5.0, 1.2));
-    let eye = centre
-        + Vec3::new(
-            o.distance * o.pitch.cos() * o.yaw.sin(),
-            o.distance * o.pitch.sin(),
-            o.distance * o.pitch.cos() * o.yaw.cos(),
-        );
-    Transform::from_translation(eye).looking_at(centre, Vec3::Y)
-}
-
-fn orbit(
-    buttons: Res<ButtonInput<MouseButton>>,
-    motion: Res<AccumulatedMouseMotion>,
-    scroll: Res<AccumulatedMouseScroll>,
-    mut camera: Query<(&mut Orbit, &mut Transform)>,
-) {
-    let Ok((mut o, mut t)) = camera.single_mut() else {
-        return;
-    };
-    if buttons.pressed(MouseButton::Right) {
-        o.yaw -= motion.delta.x * 0.005;
-        o.pitch = (o.pitch + motion.delta.y * 0.005).clamp(0.1, 1.5);
-    }
-    o.distance = (o.distance * (1.0 - scroll.delta.y * 0.1)).clamp(2.0, 30.0);
-    *t = orbit_transform(&o);
+    commands.spawn((common::camera(orbit.transform()), orbit));
 }

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::Exposure;
 use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::light::NotShadowCaster;
 use bevy::light::light_consts::lux;
 use bevy::mesh::{Indices, PrimitiveTopology};
@@ -321,4 +322,46 @@ pub fn water_surface(
         MeshMaterial3d(materials.add(WaterSurfaceExtension::material(base, water, maps))),
         at,
     )
+}
+
+/// A camera orbiting `centre`: right-drag turns it, the wheel moves it in or out (up to
+/// `farthest`).
+#[derive(Component)]
+pub struct Orbit {
+    pub yaw: f32,
+    pub pitch: f32,
+    pub distance: f32,
+    pub centre: Vec3,
+    pub farthest: f32,
+}
+
+impl Orbit {
+    pub fn transform(&self) -> Transform {
+        let eye = self.centre
+            + self.distance
+                * Vec3::new(
+                    self.pitch.cos() * self.yaw.sin(),
+                    self.pitch.sin(),
+                    self.pitch.cos() * self.yaw.cos(),
+                );
+        Transform::from_translation(eye).looking_at(self.centre, Vec3::Y)
+    }
+}
+
+/// The [`Orbit`] camera follows the mouse.
+pub fn orbit(
+    buttons: Res<ButtonInput<MouseButton>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    mut camera: Query<(&mut Orbit, &mut Transform)>,
+) {
+    let Ok((mut o, mut t)) = camera.single_mut() else {
+        return;
+    };
+    if buttons.pressed(MouseButton::Right) {
+        o.yaw -= motion.delta.x * 0.005;
+        o.pitch = (o.pitch + motion.delta.y * 0.005).clamp(0.1, 1.5);
+    }
+    o.distance = (o.distance * (1.0 - scroll.delta.y * 0.1)).clamp(2.0, o.farthest);
+    *t = o.transform();
 }

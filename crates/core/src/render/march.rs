@@ -207,8 +207,7 @@ fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> f64
             g => (t1, g),
         },
     };
-    // Within a step the gap is nearly linear: a few chords reach what bisection needs a dozen
-    // halvings for.
+    // Within a step the gap is nearly linear: a few chords reach its zero.
     let tol = ROOT_TOLERANCE * march.min_step;
     crate::receivers::regula_falsi(&f, (a, gap), hi, tol, 30)
 }
@@ -298,9 +297,8 @@ mod tests {
 
     /// The march's two ends: a slab as thin as flat water's (2 µm here, with a 4 mm shortest
     /// step) is crossed in one step, so the whole search is the start, that step and one chord,
-    /// which lands on a plane (3 heights; 30 bisections took 32, steps of 1/24 of the slab, which
-    /// do not move an f32 distance of metres on the GPU, 44); and a march that ends without a
-    /// crossing, as rounding can leave the far side, returns that far side instead of a miss.
+    /// which lands on a plane (3 heights); and a march that ends without a crossing, as rounding
+    /// can leave the far side, returns that far side instead of a miss.
     #[test]
     fn the_march_crosses_a_thin_slab_in_one_step_and_never_misses() {
         let march = March {
