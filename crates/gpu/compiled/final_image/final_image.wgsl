@@ -357,33 +357,14 @@ fn package__1final_image__2final_image_march__1leave_water(p: vec3<f32>, d: vec3
     package__1final_image__2final_image_spread__2push_ray_spread(p - n * 1e-5, reflect(d, n), w * (1.0 - t), depth + 1u, true, mirrored);
 }
 
-fn package__1final_image__2final_image_march__1regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a0: f32, ga0: f32, b0: f32, gb0: f32, tol: f32) -> f32 {
-    var a = a0;
-    var ga = ga0;
-    var b = b0;
-    var gb = gb0;
+fn package__1final_image__2final_image_march__1regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a: f32, ga: f32, b: f32, gb: f32, tol: f32) -> f32 {
+    var br = package_shaders_receivers_Bracket(a, ga, b, gb, 0);
     var m = b;
-    var kept = 0;
     for (var s = 0u; s < package__1final_image__2final_image_inputs_BISECTIONS; s++) {
-        m = (a * gb - b * ga) / (gb - ga);
+        m = package_shaders_receivers_chord(br);
         let gm = side * package__1final_image__2final_image_march__1water_gap(o, d, m);
-        if gm > 0.0 {
-            a = m;
-            ga = gm;
-            if kept == 1 {
-                gb *= 0.5;
-            }
-            kept = 1;
-        }
-        else {
-            b = m;
-            gb = gm;
-            if kept == -1 {
-                ga *= 0.5;
-            }
-            kept = -1;
-        }
-        if abs(gm) < tol || b - a < tol {
+        br = package_shaders_receivers_narrowed(br, m, gm);
+        if abs(gm) < tol || br.b - br.a < tol {
             break;
         }
     }
@@ -1350,6 +1331,14 @@ fn package_shaders_optics__2height_field_normal(gradient: vec2<f32>) -> vec3<f32
     return normalize(vec3<f32>(-gradient.x, -gradient.y, 1.0));
 }
 
+struct package_shaders_receivers_Bracket {
+    a: f32,
+    ga: f32,
+    b: f32,
+    gb: f32,
+    kept: i32
+}
+
 struct package_shaders_receivers_Receivers {
     view: vec4<f32>,
     t0: vec4<f32>
@@ -1379,6 +1368,31 @@ fn package_shaders_receivers__1receiver_share(map: texture_2d<f32>, r: package_s
         return 0.0;
     }
     return max(dot(n, -t0), 0.0) / -t0.z;
+}
+
+fn package_shaders_receivers_chord(br: package_shaders_receivers_Bracket) -> f32 {
+    return (br.a * br.gb - br.b * br.ga) / (br.gb - br.ga);
+}
+
+fn package_shaders_receivers_narrowed(br: package_shaders_receivers_Bracket, m: f32, gm: f32) -> package_shaders_receivers_Bracket {
+    var out = br;
+    if gm > 0.0 {
+        out.a = m;
+        out.ga = gm;
+        if br.kept == 1 {
+            out.gb *= 0.5;
+        }
+        out.kept = 1;
+    }
+    else {
+        out.b = m;
+        out.gb = gm;
+        if br.kept == -1 {
+            out.ga *= 0.5;
+        }
+        out.kept = -1;
+    }
+    return out;
 }
 
 const package_shaders_shading_COPING: f32 = 0.3;

@@ -49,6 +49,14 @@ fn package_shaders_optics__2height_field_normal(gradient: vec2<f32>) -> vec3<f32
     return normalize(vec3<f32>(-gradient.x, -gradient.y, 1.0));
 }
 
+struct package_shaders_receivers_Bracket {
+    a: f32,
+    ga: f32,
+    b: f32,
+    gb: f32,
+    kept: i32
+}
+
 struct package_shaders_receivers_Receivers {
     view: vec4<f32>,
     t0: vec4<f32>
@@ -76,33 +84,14 @@ fn package_shaders_receivers__1meet_receivers(map: texture_2d<f32>, r: package_s
         let p = s + t * (d + step);
         let g_next = p.z - package_shaders_receivers__1receiver_height(map, r, package_shaders_receivers__1light_space(p, t0));
         if g_next <= 0.0 {
-            var a = d;
-            var ga = g;
-            var b = d + step;
-            var gb = g_next;
-            var m = b;
-            var side = 0;
+            var br = package_shaders_receivers_Bracket(d, g, d + step, g_next, 0);
+            var m = br.b;
             for (var n = 0; n < 24; n++) {
-                m = (a * gb - b * ga) / (gb - ga);
+                m = package_shaders_receivers_chord(br);
                 let pm = s + t * m;
                 let gm = pm.z - package_shaders_receivers__1receiver_height(map, r, package_shaders_receivers__1light_space(pm, t0));
-                if gm > 0.0 {
-                    a = m;
-                    ga = gm;
-                    if side == 1 {
-                        gb *= 0.5;
-                    }
-                    side = 1;
-                }
-                else {
-                    b = m;
-                    gb = gm;
-                    if side == -1 {
-                        ga *= 0.5;
-                    }
-                    side = -1;
-                }
-                if abs(gm) < tol || b - a < tol {
+                br = package_shaders_receivers_narrowed(br, m, gm);
+                if abs(gm) < tol || br.b - br.a < tol {
                     break;
                 }
             }
@@ -128,6 +117,31 @@ fn package_shaders_receivers__1receiver_height(map: texture_2d<f32>, r: package_
     let d = textureLoad(map, clamp(i + vec2<i32>(0, 1), vec2<i32>(0), dims - 1), 0).x;
     let e = textureLoad(map, clamp(i + vec2<i32>(1, 1), vec2<i32>(0), dims - 1), 0).x;
     return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
+}
+
+fn package_shaders_receivers_chord(br: package_shaders_receivers_Bracket) -> f32 {
+    return (br.a * br.gb - br.b * br.ga) / (br.gb - br.ga);
+}
+
+fn package_shaders_receivers_narrowed(br: package_shaders_receivers_Bracket, m: f32, gm: f32) -> package_shaders_receivers_Bracket {
+    var out = br;
+    if gm > 0.0 {
+        out.a = m;
+        out.ga = gm;
+        if br.kept == 1 {
+            out.gb *= 0.5;
+        }
+        out.kept = 1;
+    }
+    else {
+        out.b = m;
+        out.gb = gm;
+        if br.kept == -1 {
+            out.ga *= 0.5;
+        }
+        out.kept = -1;
+    }
+    return out;
 }
 
 fn package_shaders_water__2grid_sample_hermite(patches: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {

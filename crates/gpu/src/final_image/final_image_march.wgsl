@@ -13,6 +13,7 @@ import package::final_image::final_image_spread::{
     bent_spread, push_ray_spread, spread, water_normal,
 };
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
+import package::shaders::receivers::{Bracket, chord, narrowed};
 
 // Height of the ray above the water surface at distance t.
 fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
@@ -42,7 +43,7 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
 // then regula falsi in its Illinois form on the step that crossed, or on what is left of [t0, t1]
 // when the march ends without one (the slab's far side lies beyond the surface: only rounding, or
 // the steps spent, leave it uncrossed): within a step the gap is nearly linear, so a few guesses
-// reach what bisection needs a dozen for.
+// reach it.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
     let min_step = params.water_size / f32(4u * SLAB_LATTICE);
@@ -79,33 +80,15 @@ fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f3
 }
 
 // receivers.rs `regula_falsi` on the ray's gap to the surface between `a` (gap `ga` > 0) and `b`
-// (gap `gb` ≤ 0): each guess where the chord crosses zero, an end kept twice running halved.
-fn regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a0: f32, ga0: f32, b0: f32, gb0: f32, tol: f32) -> f32 {
-    var a = a0;
-    var ga = ga0;
-    var b = b0;
-    var gb = gb0;
+// (gap `gb` ≤ 0).
+fn regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a: f32, ga: f32, b: f32, gb: f32, tol: f32) -> f32 {
+    var br = Bracket(a, ga, b, gb, 0);
     var m = b;
-    var kept = 0;
     for (var s = 0u; s < BISECTIONS; s++) {
-        m = (a * gb - b * ga) / (gb - ga);
+        m = chord(br);
         let gm = side * water_gap(o, d, m);
-        if gm > 0.0 {
-            a = m;
-            ga = gm;
-            if kept == 1 {
-                gb *= 0.5;
-            }
-            kept = 1;
-        } else {
-            b = m;
-            gb = gm;
-            if kept == -1 {
-                ga *= 0.5;
-            }
-            kept = -1;
-        }
-        if abs(gm) < tol || b - a < tol {
+        br = narrowed(br, m, gm);
+        if abs(gm) < tol || br.b - br.a < tol {
             break;
         }
     }

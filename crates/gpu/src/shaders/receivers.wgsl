@@ -27,6 +27,45 @@ fn receiver_height(map: texture_2d<f32>, r: Receivers, q: vec2<f32>) -> f32 {
     return mix(mix(a, b, f.x), mix(d, e, f.x), f.y);
 }
 
+// A sign change of a gap being closed by regula falsi in its Illinois form (caustics-core's
+// `receivers::regula_falsi`): `a` where the gap is `ga` > 0, `b` where it is `gb` ≤ 0, and which
+// end the last guess replaced (1: a, -1: b, 0: none yet).
+struct Bracket {
+    a: f32,
+    ga: f32,
+    b: f32,
+    gb: f32,
+    kept: i32,
+}
+
+// The next guess: where the chord between the bracket's ends crosses zero.
+fn chord(br: Bracket) -> f32 {
+    return (br.a * br.gb - br.b * br.ga) / (br.gb - br.ga);
+}
+
+// The bracket after the guess `m` found the gap `gm` there: the end on its side replaced, and the
+// other end's gap halved where that end was kept twice running, so the bracket closes from both
+// sides.
+fn narrowed(br: Bracket, m: f32, gm: f32) -> Bracket {
+    var out = br;
+    if gm > 0.0 {
+        out.a = m;
+        out.ga = gm;
+        if br.kept == 1 {
+            out.gb *= 0.5;
+        }
+        out.kept = 1;
+    } else {
+        out.b = m;
+        out.gb = gm;
+        if br.kept == -1 {
+            out.ga *= 0.5;
+        }
+        out.kept = -1;
+    }
+    return out;
+}
+
 // The length d along s + d t (t unit, going down) to where the ray first meets the receivers, or
 // -1 where it starts below them or never comes down: steps bounded by the map's slope times the
 // ray's drift from t0, then regula falsi in its Illinois form on the sign change (the CPU twin's
@@ -49,32 +88,14 @@ fn meet_receivers(map: texture_2d<f32>, r: Receivers, s: vec3<f32>, t: vec3<f32>
         let p = s + t * (d + step);
         let g_next = p.z - receiver_height(map, r, light_space(p, t0));
         if g_next <= 0.0 {
-            var a = d;
-            var ga = g;
-            var b = d + step;
-            var gb = g_next;
-            var m = b;
-            var side = 0;
+            var br = Bracket(d, g, d + step, g_next, 0);
+            var m = br.b;
             for (var n = 0; n < 24; n++) {
-                m = (a * gb - b * ga) / (gb - ga);
+                m = chord(br);
                 let pm = s + t * m;
                 let gm = pm.z - receiver_height(map, r, light_space(pm, t0));
-                if gm > 0.0 {
-                    a = m;
-                    ga = gm;
-                    if side == 1 {
-                        gb *= 0.5;
-                    }
-                    side = 1;
-                } else {
-                    b = m;
-                    gb = gm;
-                    if side == -1 {
-                        ga *= 0.5;
-                    }
-                    side = -1;
-                }
-                if abs(gm) < tol || b - a < tol {
+                br = narrowed(br, m, gm);
+                if abs(gm) < tol || br.b - br.a < tol {
                     break;
                 }
             }
