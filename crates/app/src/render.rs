@@ -496,7 +496,7 @@ fn render_on_gpu(
     walls: Option<&caustics_core::walls::WallMaps>,
     options: &RenderOptions,
 ) -> Result<Option<caustics_core::render::Image>, GpuError> {
-    let mut timer = GpuTimer::new(ctx, 3);
+    let mut timer = GpuTimer::new(ctx, 4);
     let image = final_image.render(
         ctx,
         scene,

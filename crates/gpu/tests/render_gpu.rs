@@ -200,7 +200,7 @@ fn check_caustics(
     };
     let cpu = render(scene, surface, caustics, None, &options, &|_, _| {});
     let final_image = FinalImage::new(ctx).expect("pipeline");
-    let mut timer = GpuTimer::new(ctx, 3);
+    let mut timer = GpuTimer::new(ctx, 4);
     let gpu = final_image
         .render(
             ctx,
@@ -214,13 +214,14 @@ fn check_caustics(
         .expect("GPU render");
     let times = timer.read(ctx).expect("timestamps");
     if ctx.timestamps {
-        // Every pass is timed, as `FinalImageFrame::encode` says: the water's patches and slab
-        // where there is water.
+        // Every pass is timed, as `FinalImageFrame::encode` says: the water's patches, slab and
+        // surface where there is water.
         let labels: Vec<&str> = times.iter().map(|t| t.label.as_str()).collect();
         let slab = caustics_gpu::final_image::FINAL_IMAGE_SLAB.name;
+        let raster = caustics_gpu::final_image::FINAL_IMAGE_SURFACE.name;
         let patches = caustics_gpu::water::patches::WATER_PATCHES.name;
         let expected: &[&str] = if surface.is_some() {
-            &[patches, slab, "final image"]
+            &[patches, slab, raster, "final image"]
         } else {
             &["final image"]
         };
@@ -1362,7 +1363,7 @@ fn full_size_render_times() {
         // The first dispatch compiles the shader; time the second.
         for _ in 0..2 {
             let started = std::time::Instant::now();
-            let mut timer = GpuTimer::new(&ctx, 3);
+            let mut timer = GpuTimer::new(&ctx, 4);
             let gpu = final_image
                 .render(
                     &ctx,

@@ -248,9 +248,9 @@ impl SceneRenderer {
             Some(Err(e)) => (None, Some(format!("final image on the CPU: {e}"))),
             None => (None, Some("final image on the CPU: no GPU".to_string())),
         };
-        // Two sides, three final-image passes each (the water's patches and slab bound, the
-        // image).
-        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 6));
+        // Two sides, four final-image passes each (the water's patches, slab bound and surface,
+        // the image).
+        let timer = ctx.filter(|c| c.timestamps).map(|c| GpuTimer::new(c, 8));
         let gpu_frame = ctx.map(Renderer::new).transpose().unwrap_or_else(|e| {
             eprintln!("no GPU frame, the viewer runs the techniques one by one: {e}");
             None

@@ -7,6 +7,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     package__1final_image__2final_image_inputs__1slope_max = package__1final_image__2final_image_inputs__1slab_slope();
     let under = package__1final_image__2final_image_march__2camera_under_water();
     let n = max(package__1final_image__2final_image_inputs_params.supersampling, 1u);
+    var raster = package__1final_image__2final_image_inputs__1NO_GUIDE;
+    if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) && !under {
+        raster = nearest_raster(vec2<i32>(id.xy), n > 1u);
+    }
     var c = vec3<f32>(0.0);
     for (var sy = 0u; sy < n; sy++) {
         for (var sx = 0u; sx < n; sx++) {
@@ -14,11 +18,29 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let x = f32(id.x) + o.x - 0.5;
             let y = f32(id.y) + o.y - 0.5;
             let s = package__1final_image__2final_image_spread__1camera_spread(x, y, 1.0 / f32(n));
+            package__1final_image__2final_image_inputs_guide = raster;
             c += radiance(package__1final_image__2final_image_inputs_params.camera_position, package__1final_image__2final_image_spread__1camera_ray(x, y), under, s);
         }
     }
     c = c / f32(n * n) * package__1final_image__2final_image_inputs_params.exposure;
     textureStore(package__1final_image__2final_image_inputs_image, id.xy, vec4<f32>(package_shaders_shading__1tone_map(c, package__1final_image__2final_image_inputs_params.tone_map), 1.0));
+}
+
+fn nearest_raster(p: vec2<i32>, around: bool) -> f32 {
+    if !around {
+        return textureLoad(package__1final_image__2final_image_inputs__1surface_hits, p, 0).r;
+    }
+    let last = vec2<i32>(i32(package__1final_image__2final_image_inputs_params.width) - 1, i32(package__1final_image__2final_image_inputs_params.height) - 1);
+    var nearest = package__1final_image__2final_image_inputs_FAR;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let t = textureLoad(package__1final_image__2final_image_inputs__1surface_hits, clamp(p + vec2<i32>(dx, dy), vec2<i32>(0), last), 0).r;
+            if t >= 0.0 {
+                nearest = min(nearest, t);
+            }
+        }
+    }
+    return select(-1.0, nearest, nearest < package__1final_image__2final_image_inputs_FAR);
 }
 
 const package__1final_image__2final_image_inputs_BISECTIONS: u32 = 30u;
@@ -101,6 +123,8 @@ const package__1final_image__2final_image_inputs__1MARCH_STEPS: u32 = 512u;
 
 const package__1final_image__2final_image_inputs__1MAX_DEPTH: u32 = 6u;
 
+const package__1final_image__2final_image_inputs__1NO_GUIDE: f32 = -2.0;
+
 const package__1final_image__2final_image_inputs__1RAY_STACK: u32 = 16u;
 
 const package__1final_image__2final_image_inputs__1ROOT_TOLERANCE: f32 = 0.0001;
@@ -128,7 +152,7 @@ fn package__1final_image__2final_image_inputs__1floor_height(p: vec2<f32>) -> f3
     if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_TERRAIN) {
         return 0.0;
     }
-    return package_shaders_water__1grid_sample(package__1final_image__2final_image_inputs__1terrain_height, p, package__1final_image__2final_image_inputs_params.scene_size, false).x;
+    return package__1final_image__2final_image_inputs__2terrain_height_gradient(p).x;
 }
 
 var<private> package__1final_image__2final_image_inputs__1h_max: f32;
@@ -172,6 +196,10 @@ fn package__1final_image__2final_image_inputs__1slab_slope() -> f32 {
     if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) {
         return 0.0;
     }
+    return package__1final_image__2final_image_inputs__1slope_bound();
+}
+
+fn package__1final_image__2final_image_inputs__1slope_bound() -> f32 {
     return bitcast<f32>(package__1final_image__2final_image_inputs__1slab_max[1]) * 1.5 + 1e-6;
 }
 
@@ -183,6 +211,9 @@ var<storage, read> package__1final_image__2final_image_inputs__1slope_moments: a
 fn package__1final_image__2final_image_inputs__1sun_radiance() -> vec3<f32> {
     return package__1final_image__2final_image_inputs_params.light_color * package__1final_image__2final_image_inputs_params.sun_intensity;
 }
+
+@group(0) @binding(14)
+var package__1final_image__2final_image_inputs__1surface_hits: texture_2d<f32>;
 
 @group(0) @binding(2)
 var package__1final_image__2final_image_inputs__1terrain_height: texture_2d<f32>;
@@ -225,6 +256,10 @@ fn package__1final_image__2final_image_inputs__2slab_half_height() -> f32 {
     return bitcast<f32>(package__1final_image__2final_image_inputs__1slab_max[0]) * 1.5 + 1e-6;
 }
 
+fn package__1final_image__2final_image_inputs__2terrain_height_gradient(p: vec2<f32>) -> vec3<f32> {
+    return package_shaders_water__2grid_sample_hermite(package__1final_image__2final_image_inputs__1terrain_height, p, package__1final_image__2final_image_inputs_params.scene_size, false);
+}
+
 fn package__1final_image__2final_image_inputs__2water_height_gradient(p: vec2<f32>) -> vec3<f32> {
     return package_shaders_water__2grid_sample_hermite(package__1final_image__2final_image_inputs__1water_height, p, package__1final_image__2final_image_inputs_params.water_size, package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_WRAP_SURFACE));
 }
@@ -238,6 +273,8 @@ fn package__1final_image__2final_image_inputs_absorbed(distance: f32) -> vec3<f3
 fn package__1final_image__2final_image_inputs_emit(weight: vec3<f32>, colour: vec3<f32>) {
     package__1final_image__2final_image_inputs__1pixel_radiance += weight * colour;
 }
+
+var<private> package__1final_image__2final_image_inputs_guide: f32;
 
 fn package__1final_image__2final_image_inputs_has(flag: u32) -> bool {
     if (flag & package__1final_image__2final_image_inputs__3SET_AT_RUN_TIME) != 0u {
@@ -296,6 +333,21 @@ fn package__1final_image__2final_image_march__1floor_gap(o: vec3<f32>, d: vec3<f
     return p.z - package__1final_image__2final_image_inputs__1floor_height(p.xy);
 }
 
+fn package__1final_image__2final_image_march__1guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> f32 {
+    let size = package__1final_image__2final_image_inputs_params.water_size;
+    let a = o.xy + d.xy * t0;
+    if raster < 0.0 {
+        let b = o.xy + d.xy * t1;
+        let outside = (a.x < 0.0 && b.x < 0.0) || (a.y < 0.0 && b.y < 0.0) || (a.x > size && b.x > size) || (a.y > size && b.y > size);
+        return select(t0, t1, package__1final_image__2final_image_inputs__1is_pool() && outside);
+    }
+    let start = raster * (1.0 - 1e-5);
+    if start <= t0 || !package__1final_image__2final_image_receivers_inside(a, size) || package__1final_image__2final_image_march__1water_gap(o, d, start) <= 0.0 {
+        return t0;
+    }
+    return start;
+}
+
 fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     if d.z >= 0.0 {
         return vec4<f32>(o, package__1final_image__2final_image_inputs_FAR);
@@ -331,13 +383,18 @@ fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f
 }
 
 fn package__1final_image__2final_image_march__1hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    let raster = package__1final_image__2final_image_inputs_guide;
+    package__1final_image__2final_image_inputs_guide = package__1final_image__2final_image_inputs__1NO_GUIDE;
     let top = package__1final_image__2final_image_inputs_params.water_level + package__1final_image__2final_image_inputs__1h_max;
     let bottom = package__1final_image__2final_image_inputs_params.water_level - package__1final_image__2final_image_inputs__1h_max;
     if o.z < bottom || d.z >= 0.0 {
         return vec4<f32>(o, -1.0);
     }
-    let t0 = max((top - o.z) / d.z, 0.0);
+    var t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
+    if raster != package__1final_image__2final_image_inputs__1NO_GUIDE {
+        t0 = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
+    }
     let t = package__1final_image__2final_image_march__1first_crossing(o, d, t0, t1, 1.0);
     return vec4<f32>(o + d * t, t);
 }
@@ -1608,53 +1665,6 @@ fn package_shaders_shading_sinc(x: f32) -> f32 {
     return sin(x) / x;
 }
 
-fn package_shaders_water__1catmull_rom(t: f32) -> array<vec4<f32>, 2> {
-    let t2 = t * t;
-    let t3 = t2 * t;
-    let w = 0.5 * vec4<f32>(-t3 + 2.0 * t2 - t, 3.0 * t3 - 5.0 * t2 + 2.0, -3.0 * t3 + 4.0 * t2 + t, t3 - t2);
-    let dw = 0.5 * vec4<f32>(-3.0 * t2 + 4.0 * t - 1.0, 9.0 * t2 - 10.0 * t, -9.0 * t2 + 8.0 * t + 1.0, 3.0 * t2 - 2.0 * t);
-    return array<vec4<f32>, 2>(w, dw);
-}
-
-fn package_shaders_water__1grid_index(first: i32, k: i32, n: i32, wrap: bool) -> i32 {
-    let c = first + k;
-    if wrap {
-        if n < 3 {
-            return c % n;
-        }
-        return select(c, c - n, c >= n);
-    }
-    return clamp(c, 0, n - 1);
-}
-
-fn package_shaders_water__1grid_sample(tex: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {
-    let dims = vec2<f32>(textureDimensions(tex));
-    let texel = size / dims;
-    let uv = p / texel - 0.5;
-    let base = floor(uv);
-    let f = uv - base;
-    let wu = package_shaders_water__1catmull_rom(f.x);
-    let wv = package_shaders_water__1catmull_rom(f.y);
-    let n = vec2<i32>(dims);
-    var first = vec2<i32>(base) - 1;
-    if wrap {
-        first = ((first % n) + n) % n;
-    }
-    var h = 0.0;
-    var hu = 0.0;
-    var hv = 0.0;
-    for (var a = 0; a < 4; a++) {
-        let row = package_shaders_water__1grid_index(first.y, a, n.y, wrap);
-        for (var b = 0; b < 4; b++) {
-            let s = textureLoad(tex, vec2<i32>(package_shaders_water__1grid_index(first.x, b, n.x, wrap), row), 0).r;
-            h += wu[0][b] * wv[0][a] * s;
-            hu += wu[1][b] * wv[0][a] * s;
-            hv += wu[0][b] * wv[1][a] * s;
-        }
-    }
-    return vec3<f32>(h, hu / texel.x, hv / texel.y);
-}
-
 fn package_shaders_water__2grid_sample_hermite(patches: texture_2d<f32>, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {
     let dims = vec2<f32>(textureDimensions(patches));
     let texel = size / dims;
@@ -1804,7 +1814,7 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     else {
         var m = vec3<f32>(0.0, 0.0, 1.0);
         if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_TERRAIN) {
-            m = package_shaders_optics__2height_field_normal(package_shaders_water__1grid_sample(package__1final_image__2final_image_inputs__1terrain_height, floor_hit.xy, package__1final_image__2final_image_inputs_params.scene_size, false).yz);
+            m = package_shaders_optics__2height_field_normal(package__1final_image__2final_image_inputs__2terrain_height_gradient(floor_hit.xy).yz);
         }
         let fa = package__1final_image__2final_image_spread__1on_plane(package__1final_image__2final_image_spread_spread.a, d, t_floor, m);
         let fb = package__1final_image__2final_image_spread__1on_plane(package__1final_image__2final_image_spread_spread.b, d, t_floor, m);

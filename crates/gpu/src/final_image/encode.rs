@@ -8,7 +8,10 @@ use crate::pass::{begin_compute, bind_group};
 use crate::{GpuContext, GpuTimer};
 
 use super::upload::{self, Lighting};
-use super::{FINAL_IMAGE, FINAL_IMAGE_SLAB, FinalImageFrame, SLAB_LATTICE, TILE, flags};
+use super::{
+    FINAL_IMAGE, FINAL_IMAGE_SLAB, FINAL_IMAGE_SURFACE, FinalImageFrame, SLAB_LATTICE,
+    SurfaceRaster, TILE, flags,
+};
 
 impl FinalImageFrame {
     /// Take this frame's camera, sun, exposure and supersampling from `scene` and `options`: one
@@ -64,10 +67,11 @@ impl FinalImageFrame {
         self.written = Some(params);
     }
 
-    /// Record the water's patches and slab bound (when there is water) and the image into
-    /// `encoder`. With a `timer`, every pass is timed: the patches as "water patches", the slab
-    /// pass (128² bicubic samples) as "final image slab", the image as "final image"; a timer
-    /// needs room for three passes per image.
+    /// Record the water's patches, slab bound and surface from the camera (when there is water)
+    /// and the image into `encoder`. With a `timer`, every pass is timed: the patches as "water
+    /// patches", the slab pass (128² bicubic samples) as "final image slab", the surface's grid
+    /// as "final image surface", the image as "final image"; a timer needs room for four passes
+    /// per image.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, mut timer: Option<&mut GpuTimer>) {
         if let Some(patches) = &self.patches {
             self.patches_pipeline.encode(patches, encoder, &mut timer);
@@ -83,6 +87,9 @@ impl FinalImageFrame {
         let Some((_, pipeline)) = &self.pipeline else {
             return;
         };
+        if let Some(surface) = &self.surface {
+            self.rasterise_surface(surface, encoder, &mut timer);
+        }
         let mut pass = begin_compute(encoder, &mut timer, FINAL_IMAGE.name);
         // The floor map's pyramid, finest level first; the image's dispatch reads it all.
         if let Some(mips) = &self.mips_groups {
@@ -97,6 +104,50 @@ impl FinalImageFrame {
         pass.set_bind_group(2, &self.slopes_group, &[]);
         let (width, height) = self.size;
         pass.dispatch_workgroups(width.div_ceil(TILE), height.div_ceil(TILE), 1);
+    }
+
+    /// The water's surface as a grid of triangles from the camera: each pixel's distance to it
+    /// along its central ray (negative where none), where the image's search starts.
+    fn rasterise_surface(
+        &self,
+        surface: &SurfaceRaster,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: &mut Option<&mut GpuTimer>,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(FINAL_IMAGE_SURFACE.name),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &surface.hits,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: -1.0,
+                        g: 0.0,
+                        b: 0.0,
+                        a: 1.0,
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &surface.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timer
+                .as_deref_mut()
+                .and_then(|t| t.render_pass(FINAL_IMAGE_SURFACE.name)),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.surface_pipeline);
+        pass.set_bind_group(0, &surface.group, &[]);
+        let (cols, rows) = surface.cells;
+        pass.draw(0..6 * (cols + 1) * (rows + 1), 0..1);
     }
 
     /// The slope moments' pyramid, for options that filter the water's normals in a frame built

@@ -4,8 +4,9 @@
 
 import package::final_image::final_image_inputs::{
     FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER, MAX_DEPTH, absorbed, albedo_at,
-    emit, h_max, has, image, is_pool, params, pixel_radiance, ray_count, rays, sky_radiance,
-    slab_half_height, slab_slope, slope_max, terrain_height, water_height_gradient,
+    NO_GUIDE, emit, guide, h_max, has, image, is_pool, params, pixel_radiance, ray_count, rays,
+    sky_radiance, slab_half_height, slab_slope, slope_max, surface_hits, terrain_height_gradient,
+    water_height_gradient,
 };
 import package::final_image::final_image_march::{
     camera_under_water, hit_floor, hit_water, hit_water_from_below, leave_water,
@@ -22,7 +23,6 @@ import package::final_image::final_image_spread::{
 import package::shaders::caustics_light::pool_wall_at;
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
 import package::shaders::shading::tone_map;
-import package::shaders::water::grid_sample;
 
 fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     if !has(FLAG_WATER) {
@@ -99,7 +99,7 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     } else {
         var m = vec3<f32>(0.0, 0.0, 1.0);
         if has(FLAG_TERRAIN) {
-            m = height_field_normal(grid_sample(terrain_height, floor_hit.xy, params.scene_size, false).yz);
+            m = height_field_normal(terrain_height_gradient(floor_hit.xy).yz);
         }
         let fa = on_plane(spread.a, d, t_floor, m);
         let fb = on_plane(spread.b, d, t_floor, m);
@@ -133,6 +133,25 @@ fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: Spread) -> vec3<f32> {
     return pixel_radiance;
 }
 
+// The rasterised surface's distance at pixel `p`, or the nearest over its 3 x 3 neighbourhood
+// (negative: the grid met at none of them).
+fn nearest_raster(p: vec2<i32>, around: bool) -> f32 {
+    if !around {
+        return textureLoad(surface_hits, p, 0).r;
+    }
+    let last = vec2<i32>(i32(params.width) - 1, i32(params.height) - 1);
+    var nearest = FAR;
+    for (var dy = -1; dy <= 1; dy++) {
+        for (var dx = -1; dx <= 1; dx++) {
+            let t = textureLoad(surface_hits, clamp(p + vec2<i32>(dx, dy), vec2<i32>(0), last), 0).r;
+            if t >= 0.0 {
+                nearest = min(nearest, t);
+            }
+        }
+    }
+    return select(-1.0, nearest, nearest < FAR);
+}
+
 // render.rs `sample_offset`: sample (sx, sy) of a pixel's n x n on a rotated grid (n-rooks).
 fn sample_offset(sx: u32, sy: u32, n: u32) -> vec2<f32> {
     let m = f32(n);
@@ -151,6 +170,13 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     slope_max = slab_slope();
     let under = camera_under_water();
     let n = max(params.supersampling, 1u);
+    // Where each sample's search for the surface starts: the rasterised surface's distance along
+    // the pixel's central ray, or with several samples, the nearest of those of the pixel and its
+    // neighbours, which bound the samples' rays between them.
+    var raster = NO_GUIDE;
+    if has(FLAG_SURFACE) && !under {
+        raster = nearest_raster(vec2<i32>(id.xy), n > 1u);
+    }
     var c = vec3<f32>(0.0);
     for (var sy = 0u; sy < n; sy++) {
         for (var sx = 0u; sx < n; sx++) {
@@ -158,6 +184,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             let x = f32(id.x) + o.x - 0.5;
             let y = f32(id.y) + o.y - 0.5;
             let s = camera_spread(x, y, 1.0 / f32(n));
+            guide = raster;
             c += radiance(params.camera_position, camera_ray(x, y), under, s);
         }
     }

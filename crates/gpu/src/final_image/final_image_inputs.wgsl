@@ -16,7 +16,7 @@
 import package::shaders::caustics_sampling::caustics_filtered;
 import package::shaders::receivers::Receivers;
 import package::shaders::shading::{floor_albedo, perez_sky, xyy_to_rgb};
-import package::shaders::water::{grid_sample, grid_sample_hermite};
+import package::shaders::water::grid_sample_hermite;
 
 // Mirrors `FinalImageUniform` in crates/gpu/src/final_image/upload.rs.
 struct FinalImage {
@@ -119,7 +119,8 @@ struct Object {
 // form (`water_patches.wgsl`), read through grid_sample_hermite with the water's edge rule, as the
 // CPU's `Grid::sample`: 4 texels a sample where the bicubic reads 16, for the same surface.
 @group(0) @binding(1) var water_height: texture_2d<f32>;
-// The terrain's height (R32Float), clamped at its edges.
+// The terrain's heights in Hermite form (`water_patches.wgsl`, clamped at its edges), read through
+// grid_sample_hermite: the CPU's bicubic `Grid::sample`, 4 texels a sample where it reads 16.
 @group(0) @binding(2) var terrain_height: texture_2d<f32>;
 // The caustics map (Rgba32Float or Rgba16Float, rgb used), filtered by hand as `CausticsMap::sample`
 // does; or the eye-space caustics (rgb, w < 0 where none, as cascaded's compose.wgsl writes them and
@@ -150,6 +151,9 @@ struct LightSpace {
 // receivers it met, objects included (caustics-core's `LightSpace`).
 @group(0) @binding(12) var light_deposit: texture_2d<f32>;
 @group(0) @binding(13) var light_heights: texture_2d<f32>;
+// The water's surface rasterised from the camera (final_image_surface.wgsl): per pixel, the
+// distance along its central ray to a grid through the heights' lattice (negative where none).
+@group(0) @binding(14) var surface_hits: texture_2d<f32>;
 
 // The pyramid of the water's slope moments (final_image/slopes.rs), five floats a texel, level
 // after level from the heights' lattice up to one texel; read only with FLAG_FILTER_WATER.
@@ -192,6 +196,10 @@ var<private> pixel_radiance: vec3<f32>;
 var<private> h_max: f32;
 // Bound on the water's slope |∇h| (render.rs `slope_max`), 0 without a surface.
 var<private> slope_max: f32;
+// The rasterised surface's distance for the primary ray about to be traced from above the water
+// (`surface_hits`), until `hit_water` takes it; NO_GUIDE for every other ray.
+var<private> guide: f32;
+const NO_GUIDE: f32 = -2.0;
 
 fn push_ray(o: vec3<f32>, d: vec3<f32>, weight: vec3<f32>, depth: u32, under: bool) {
     if ray_count < RAY_STACK {
@@ -263,6 +271,11 @@ fn slab_slope() -> f32 {
     if !has(FLAG_SURFACE) {
         return 0.0;
     }
+    return slope_bound();
+}
+
+// `slab_slope` where there is a surface.
+fn slope_bound() -> f32 {
     return bitcast<f32>(slab_max[1]) * 1.5 + 1e-6;
 }
 
@@ -270,7 +283,11 @@ fn floor_height(p: vec2<f32>) -> f32 {
     if !has(FLAG_TERRAIN) {
         return 0.0;
     }
-    return grid_sample(terrain_height, p, params.scene_size, false).x;
+    return terrain_height_gradient(p).x;
+}
+
+fn terrain_height_gradient(p: vec2<f32>) -> vec3<f32> {
+    return grid_sample_hermite(terrain_height, p, params.scene_size, false);
 }
 
 // The floor map's mean over a sample's footprint (`caustics_sampling.wgsl`): its pyramid's levels

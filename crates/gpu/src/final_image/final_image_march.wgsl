@@ -4,8 +4,8 @@
 
 import package::final_image::final_image_inputs::{
     BISECTIONS, EVEN_STEPS, FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER,
-    FLOOR_STEPS, MARCH_STEPS, ROOT_TOLERANCE, SLAB_LATTICE, floor_height, h_max, has, params,
-    push_ray, slope_max, water_height_gradient,
+    FLOOR_STEPS, MARCH_STEPS, NO_GUIDE, ROOT_TOLERANCE, SLAB_LATTICE, floor_height, guide, h_max,
+    has, is_pool, params, push_ray, slope_max, water_height_gradient,
 };
 import package::final_image::final_image_receivers::inside;
 import package::final_image::final_image_rough_water::water_slopes;
@@ -23,15 +23,42 @@ fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
 
 // The first crossing of the ray with z = level + h(x, y): xyz the point, w the distance (-1: none).
 fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+    let raster = guide;
+    guide = NO_GUIDE;
     let top = params.water_level + h_max;
     let bottom = params.water_level - h_max;
     if o.z < bottom || d.z >= 0.0 {
         return vec4<f32>(o, -1.0);
     }
-    let t0 = max((top - o.z) / d.z, 0.0);
+    var t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
+    if raster != NO_GUIDE {
+        t0 = guided_start(o, d, t0, t1, raster);
+    }
     let t = first_crossing(o, d, t0, t1, 1.0);
     return vec4<f32>(o + d * t, t);
+}
+
+// Where a primary ray's search for the surface may start, given the distance `raster` along it to
+// the rasterised grid, which lies above the surface: there, where the ray entered the slab over the
+// water square (so that the march it skips lay over the grid) and is still above the surface; the
+// slab's bottom for a pool's ray that misses the grid and crosses the slab wholly on one side of
+// the square (a crossing there is the deck's, as no crossing is); else the slab's top, `t0`.
+fn guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> f32 {
+    let size = params.water_size;
+    let a = o.xy + d.xy * t0;
+    if raster < 0.0 {
+        let b = o.xy + d.xy * t1;
+        let outside = (a.x < 0.0 && b.x < 0.0) || (a.y < 0.0 && b.y < 0.0)
+            || (a.x > size && b.x > size) || (a.y > size && b.y > size);
+        return select(t0, t1, is_pool() && outside);
+    }
+    // The rasterised distance is interpolated across the triangle in f32.
+    let start = raster * (1.0 - 1e-5);
+    if start <= t0 || !inside(a, size) || water_gap(o, d, start) <= 0.0 {
+        return t0;
+    }
+    return start;
 }
 
 // render.rs `first_crossing`: the first t in [t0, t1] where the ray's signed distance to the

@@ -8,11 +8,15 @@ use crate::map_mips::{MapMips, mip_chain};
 use crate::pass::{Bind, STORAGE_OUT, bind_group};
 use crate::receivers::{LightSpaceOutput, LightSpaceUniform};
 use crate::technique::{Output, WallsOutput, WaterTextures};
+use crate::water::patches::Patches;
 use crate::{GpuContext, GpuError};
 
 use super::resources::rgba32;
 use super::upload::Lighting;
-use super::{FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE, SlabUniform, meshes};
+use super::{
+    FINAL_IMAGE_SURFACE, FinalImage, FinalImageFrame, FinalImageUniform, SLAB_LATTICE,
+    SURFACE_CELLS, SURFACE_DEPTH, SURFACE_HITS, SlabUniform, SurfaceRaster, meshes,
+};
 use crate::pass::{array_view, float_texture, storage_buffer};
 use wgpu::BufferUsages as B;
 
@@ -91,6 +95,7 @@ impl FinalImage {
             Some(t) => Some(ctx.upload_grid("terrain height field", t)?),
             None => None,
         };
+        let terrain_patches = terrain.as_ref().map(|t| self.terrain_patches(ctx, t));
         let albedo_image = match &scene.floor.albedo {
             Albedo::Image {
                 width,
@@ -139,6 +144,13 @@ impl FinalImage {
             Some(p) => p.view.clone(),
             None => view(None, &self.empty_rgba32),
         };
+        // The surface rasterised for the camera, where there is one to search for.
+        let surface = match (&patches, scene.water.as_ref().and(water)) {
+            (Some(p), Some(_)) => {
+                Some(self.surface_raster(ctx, [&uniform, &slab_max], p, (width, height)))
+            }
+            _ => None,
+        };
         let no_slopes = storage_buffer(ctx, "no water slope moments", &[0f32; 5])?;
         // The slope moments' pyramid is made by `update` (the first below, when the options filter
         // the water), which leaves the water unfiltered where it cannot be made.
@@ -149,7 +161,7 @@ impl FinalImage {
             &[&no_slopes],
         );
         let views = [
-            view(terrain.as_ref(), &self.empty_r32),
+            terrain_patches.unwrap_or_else(|| view(None, &self.empty_r32)),
             view(caustics.map(|c| c.texture()), &self.empty_rgba32),
             view(albedo_image.as_ref(), &self.empty_rgba32),
             output.create_view(&Default::default()),
@@ -158,6 +170,10 @@ impl FinalImage {
             view(light.map(|l| l.deposit), &self.empty_rgba32),
             view(light.map(|l| l.heights), &self.empty_r32),
         ];
+        let surface_hits = match &surface {
+            Some(s) => s.hits.clone(),
+            None => view(None, &self.empty_r32),
+        };
         let light_uniform = ctx.uniform(
             "final image light space",
             &light.map_or(LightSpaceUniform::default(), |l| l.uniform),
@@ -181,6 +197,7 @@ impl FinalImage {
                 &light_uniform,
                 &views[6],
                 &views[7],
+                &surface_hits,
             ],
         );
         let mesh_group = bind_group(
@@ -222,6 +239,8 @@ impl FinalImage {
             pipelines: self.pipelines.clone(),
             pipeline: None,
             slab_pipeline: self.slab_pipeline.clone(),
+            surface_pipeline: self.surface_pipeline.clone(),
+            surface,
             patches_pipeline: self.patches.clone(),
             patches,
             mips_groups,
@@ -243,11 +262,56 @@ impl FinalImage {
             slopes_layout: self.slopes_layout.clone(),
             slopes_group,
             slopes_failed: false,
-            _textures: terrain.into_iter().chain(albedo_image).collect(),
+            _textures: albedo_image.into_iter().collect(),
         };
         frame.update(ctx, scene, options);
         ctx.check()?;
         Ok(frame)
+    }
+
+    /// The terrain's heights in Hermite form, clamped at its edges, as the image reads them: made
+    /// once, since a frame's terrain does not change.
+    fn terrain_patches(&self, ctx: &GpuContext, heights: &wgpu::Texture) -> wgpu::TextureView {
+        let patches = self
+            .patches
+            .frame(ctx, &heights.create_view(&Default::default()), false);
+        let mut encoder = ctx.encoder("terrain patches");
+        self.patches.encode(&patches, &mut encoder, &mut None);
+        ctx.queue.submit([encoder.finish()]);
+        patches.view
+    }
+
+    /// The surface's grid for an image of `size` pixels over the heights in Hermite form
+    /// (`patches`), raised by the slab's slope bound (`slab_max`): its bind group and its targets,
+    /// the distances and a depth.
+    fn surface_raster(
+        &self,
+        ctx: &GpuContext,
+        [uniform, slab_max]: [&wgpu::Buffer; 2],
+        patches: &Patches,
+        (width, height): (u32, u32),
+    ) -> SurfaceRaster {
+        let group = self.surface_pipeline.bind_at(
+            ctx,
+            FINAL_IMAGE_SURFACE.name,
+            &[(0, uniform), (1, &patches.view), (7, slab_max)],
+        );
+        let target = |label, format| {
+            ctx.texture_2d(
+                label,
+                (width, height, 1),
+                format,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            )
+            .create_view(&Default::default())
+        };
+        let (cols, rows) = patches.size();
+        SurfaceRaster {
+            group,
+            hits: target("final image surface distances", SURFACE_HITS),
+            depth: target("final image surface depth", SURFACE_DEPTH),
+            cells: (cols.min(SURFACE_CELLS), rows.min(SURFACE_CELLS)),
+        }
     }
 
     /// The levels of `map`'s pyramid below level 0 (`CausticsMap::pyramid`: level `L` is

@@ -8,6 +8,7 @@
 //! |---|---|---|
 //! | the water's heights in Hermite form (compute, one invocation per texel) | `water/water_patches.wgsl` ([`crate::water::patches`]) | (the grid's bicubic sample) |
 //! | water slab bounds (compute, 128² samples) | `final_image/final_image_slab.wgsl` | [`slab_bounds`]: the slab's half height and the slope bound of the march |
+//! | the water's surface from the camera (render, a grid of up to 128² cells through the heights, raised by the slope bound times a cell's diagonal so that it lies above the surface) | `final_image/final_image_surface.wgsl` | (none: where a primary ray's march may start without passing a crossing, so the crossing found is the march's) |
 //! | the floor map's pyramid (compute, one dispatch a level, in the image's pass) | `map_mips.wgsl` | `CausticsMap::pyramid` |
 //! | the water's slope moments' pyramid (compute, one dispatch a level, in the image's pass, when the normals are filtered) | `final_image/water_slopes_base.wgsl`, `final_image/water_slopes_halve.wgsl` ([`slopes`]) | `SlopePyramid::new` |
 //! | final image (compute, one invocation per pixel) | `final_image/final_image.wgsl`, after its parts `final_image_inputs.wgsl` (the uniform, bindings and inputs' reads), `final_image_spread.wgsl`, `final_image_receivers.wgsl`, `final_image_march.wgsl`, `final_image_shade.wgsl`, `final_image_rough_water.wgsl` | `render::render` and `Tracer` (`render/mod.rs`, `spread.rs`, `shade.rs`, `march.rs`, `sky.rs`, `trace.rs`) |
@@ -16,7 +17,7 @@
 //!
 //! The image is a [`FinalImageFrame`]: built once per scene and image size (the objects' trees, the
 //! terrain and albedo textures, the output texture, the bind groups), then per frame one uniform
-//! write ([`FinalImageFrame::update`]) and three passes recorded into the caller's encoder
+//! write ([`FinalImageFrame::update`]) and four passes recorded into the caller's encoder
 //! ([`FinalImageFrame::encode`]). Nothing is created or read back per frame; the one exception is
 //! the first update whose options filter the water's normals, which makes their pyramid, once.
 //!
@@ -75,7 +76,7 @@ use crate::pass::float_texture;
 use crate::shaders::passes;
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError};
-use resources::{storage_entry, texture_entry};
+use resources::{storage_entry, texture_entry, uniform_entry};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
@@ -87,7 +88,16 @@ use upload::Lighting;
 passes! {
     FINAL_IMAGE = "final image", "final_image/final_image.wgsl";
     FINAL_IMAGE_SLAB = "final image slab", "final_image/final_image_slab.wgsl";
+    FINAL_IMAGE_SURFACE = "final image surface", "final_image/final_image_surface.wgsl";
 }
+
+/// The most cells along a side of the grid the water's surface is rasterised as
+/// (`final_image_surface.wgsl`'s `MAX_CELLS`).
+const SURFACE_CELLS: u32 = 128;
+
+/// The format of the rasterised surface's distances, read by the image pass.
+const SURFACE_HITS: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+const SURFACE_DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// Pixels per workgroup side (`@workgroup_size(8, 8)`, both passes).
 const TILE: u32 = 8;
@@ -134,6 +144,9 @@ impl ImagePipelines {
 pub struct FinalImage {
     pipelines: Arc<ImagePipelines>,
     slab_pipeline: wgpu::ComputePipeline,
+    /// The water's surface rasterised from the camera: where the search for it along a primary
+    /// ray starts.
+    surface_pipeline: wgpu::RenderPipeline,
     /// The water's heights in Hermite form, which the search for the surface reads.
     patches: WaterPatches,
     mips_pipeline: wgpu::ComputePipeline,
@@ -161,6 +174,9 @@ pub struct FinalImageFrame {
     /// The image pass's pipeline for the flags of the uniform last written, and those flags.
     pipeline: Option<(u32, wgpu::ComputePipeline)>,
     slab_pipeline: wgpu::ComputePipeline,
+    surface_pipeline: wgpu::RenderPipeline,
+    /// The rasterised surface's bind group, distances and depth (none without a surface).
+    surface: Option<SurfaceRaster>,
     patches_pipeline: WaterPatches,
     /// The water's heights in Hermite form, filled each frame (none without water).
     patches: Option<Patches>,
@@ -197,6 +213,76 @@ pub struct FinalImageFrame {
     /// Kept alive with the bind groups that read them.
     _resources: Vec<wgpu::Buffer>,
     _textures: Vec<wgpu::Texture>,
+}
+
+/// The water's surface rasterised for one frame's camera: what `final_image_surface.wgsl` reads
+/// (the image's uniform, the heights in Hermite form and the slab's bounds) and writes.
+struct SurfaceRaster {
+    group: wgpu::BindGroup,
+    hits: wgpu::TextureView,
+    depth: wgpu::TextureView,
+    /// The grid's cells along each side.
+    cells: (u32, u32),
+}
+
+/// The surface's render pipeline: the grid's triangles, none culled (a crest's far side is seen
+/// from behind where the next is low), the nearest kept by a reversed depth.
+fn surface_pipeline(ctx: &GpuContext) -> wgpu::RenderPipeline {
+    let visible = wgpu::ShaderStages::VERTEX_FRAGMENT;
+    let layout = ctx
+        .device
+        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(FINAL_IMAGE_SURFACE.name),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    visibility: visible,
+                    ..uniform_entry(0)
+                },
+                wgpu::BindGroupLayoutEntry {
+                    visibility: visible,
+                    ..texture_entry(1)
+                },
+                wgpu::BindGroupLayoutEntry {
+                    visibility: visible,
+                    ..storage_entry(7)
+                },
+            ],
+        });
+    let pipeline_layout = ctx
+        .device
+        .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(FINAL_IMAGE_SURFACE.name),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+    let module = FINAL_IMAGE_SURFACE.module(&ctx.device);
+    ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(FINAL_IMAGE_SURFACE.name),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: SURFACE_DEPTH,
+            depth_write_enabled: Some(true),
+            depth_compare: Some(wgpu::CompareFunction::Greater),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &[Some(SURFACE_HITS.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 impl FinalImage {
@@ -261,6 +347,7 @@ impl FinalImage {
                 },
                 texture_entry(12),
                 texture_entry(13),
+                texture_entry(14),
             ],
         });
         let mesh_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -286,6 +373,7 @@ impl FinalImage {
             by_flags: Mutex::new(HashMap::new()),
         });
         let slab_pipeline = compute_pipeline(ctx, &FINAL_IMAGE_SLAB);
+        let surface_pipeline = surface_pipeline(ctx);
         let mips_pipeline = mips_pipeline(ctx);
         let empty_r32 = float_texture(
             ctx,
@@ -312,6 +400,7 @@ impl FinalImage {
         Ok(FinalImage {
             pipelines,
             slab_pipeline,
+            surface_pipeline,
             patches: WaterPatches::new(ctx),
             mips_pipeline,
             slopes: SlopePipelines::new(ctx),
