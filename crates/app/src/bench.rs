@@ -39,6 +39,11 @@ pub struct BenchArgs {
     /// the flag. Default: every registered technique.
     #[arg(long = "technique")]
     pub(crate) techniques: Vec<Spec>,
+    /// Scenes to time each technique on: a scene file (.toml) or a built-in name; repeat the flag.
+    /// Default: the pool, the glass scene for a technique that lights glass, the shore and the
+    /// reef.
+    #[arg(long = "scene")]
+    scenes: Vec<String>,
     /// Resolutions WIDTHxHEIGHT, comma-separated: the camera's (the frame) and the caustics map's
     /// (the technique). Default 1280x720,1920x1080 (with --small: 64x36).
     #[arg(long, value_delimiter = ',')]
@@ -168,7 +173,17 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let timing = Timing { warmup, frames };
     let jobs: Vec<(Spec, Scene)> = specs
         .iter()
-        .map(|s| Ok(scenes_for(s)?.into_iter().map(|sc| (s.clone(), sc))))
+        .map(|s| {
+            let scenes = if args.scenes.is_empty() {
+                scenes_for(s)?
+            } else {
+                args.scenes
+                    .iter()
+                    .map(|name| Scene::load_or_builtin(name))
+                    .collect::<Result<_, _>>()?
+            };
+            Ok(scenes.into_iter().map(|sc| (s.clone(), sc)))
+        })
         .collect::<Result<Vec<_>>>()?
         .into_iter()
         .flatten()

@@ -63,6 +63,45 @@ fn gpu_bench_small_covers_every_technique_and_the_frame() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
+/// `--scene` picks the scenes the techniques are timed on; a scene that does not exist is refused
+/// with its name.
+fn bench_times_the_scenes_asked_for() {
+    drop(caustics_gpu::context::test_gpu());
+    let out = std::env::temp_dir().join(format!("caustics-bench-scene-{}", std::process::id()));
+    let run = |scene: &str| {
+        Command::new(env!("CARGO_BIN_EXE_caustics"))
+            .args([
+                "bench",
+                "--small",
+                "--no-frame",
+                "--technique",
+                "procedural",
+            ])
+            .args(["--scene", scene, "--out"])
+            .arg(&out)
+            .output()
+            .expect("caustics runs")
+    };
+    let o = run("reef");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
+    let labels: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split('"').nth(1).unwrap_or(""))
+        .collect();
+    assert!(!labels.is_empty(), "{csv}");
+    assert!(labels.iter().all(|l| *l == "procedural (reef)"), "{csv}");
+    let o = run("no-such-scene");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && stderr.contains("no-such-scene"),
+        "{stderr}"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 test_main! {
     gpu gpu_bench_small_covers_every_technique_and_the_frame,
+    gpu bench_times_the_scenes_asked_for,
 }

@@ -1728,11 +1728,12 @@ fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: package__1final_image__2
         if r.depth > package__1final_image__2final_image_inputs__1MAX_DEPTH {
             continue;
         }
-        if r.under {
-            trace_under(r.o, r.d, r.depth, r.weight);
+        var below = r;
+        if !r.under {
+            below = trace(r.o, r.d, r.depth, r.weight);
         }
-        else {
-            trace(r.o, r.d, r.depth, r.weight);
+        if below.under {
+            trace_under(below.o, below.d, below.depth, below.weight);
         }
     }
     return package__1final_image__2final_image_inputs__1pixel_radiance;
@@ -1743,10 +1744,11 @@ fn sample_offset(sx: u32, sy: u32, n: u32) -> vec2<f32> {
     return vec2<f32>((f32(sx) + (f32(sy) + 0.5) / m) / m, (f32(sy) + (m - 1.0 - f32(sx) + 0.5) / m) / m);
 }
 
-fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) -> package__1final_image__2final_image_inputs_Ray {
+    let none = package__1final_image__2final_image_inputs_Ray(o, d, vec3<f32>(0.0), depth, false);
     if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_WATER) {
         package__1final_image__2final_image_shade__1trace_air(o, d, depth, w);
-        return;
+        return none;
     }
     let size = package__1final_image__2final_image_inputs_params.water_size;
     var water = vec4<f32>(o, -1.0);
@@ -1757,16 +1759,16 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     let obj = package__1final_image__2final_image_receivers__1nearest_object(o, d, select(package__1final_image__2final_image_inputs_FAR, water.w, hit));
     if obj.found {
         package__1final_image__2final_image_shade__1shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
-        return;
+        return none;
     }
     if !hit {
         package__1final_image__2final_image_inputs_emit(w, package__1final_image__2final_image_shade__1shade_above(o, d));
-        return;
+        return none;
     }
     let p = water.xyz;
     if package__1final_image__2final_image_inputs__1is_pool() && !package__1final_image__2final_image_receivers_inside(p.xy, size) {
         package__1final_image__2final_image_inputs_emit(w, package__1final_image__2final_image_shade__1shade_above(o, d));
-        return;
+        return none;
     }
     var n = package_shaders_optics__2height_field_normal(package__1final_image__2final_image_inputs__2water_height_gradient(p.xy).yz);
     var t_view: f32;
@@ -1781,9 +1783,10 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     }
     let r = package_shaders_optics__1refract_dir(d, n, 1.0 / package__1final_image__2final_image_inputs_params.ior);
     if r.w == 0.0 {
-        return;
+        return none;
     }
-    package__1final_image__2final_image_spread__2push_ray_spread(p, r.xyz, w * t_view, depth, true, package__1final_image__2final_image_spread__1bent_spread(package__1final_image__2final_image_spread_spread, p, d, water.w, n, false));
+    package__1final_image__2final_image_spread_spread = package__1final_image__2final_image_spread__1bent_spread(package__1final_image__2final_image_spread_spread, p, d, water.w, n, false);
+    return package__1final_image__2final_image_inputs_Ray(p, r.xyz, w * t_view, depth, true);
 }
 
 fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {

@@ -3,7 +3,8 @@
 // twin of caustics-core/src/render/trace.rs and render/mod.rs.
 
 import package::final_image::final_image_inputs::{
-    FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER, MAX_DEPTH, absorbed, albedo_at,
+    FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER, MAX_DEPTH, Ray, absorbed,
+    albedo_at,
     NO_GUIDE, emit, guide, h_max, has, image, is_pool, params, pixel_radiance, ray_count, rays,
     sky_radiance, slab_half_height, slab_slope, slope_max, surface_hits, terrain_height_gradient,
     water_height_gradient,
@@ -24,10 +25,15 @@ import package::shaders::caustics_light::pool_wall_at;
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
 import package::shaders::shading::tone_map;
 
-fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+// What a ray from above the water meets. The ray it refracts into the water is returned (`under`
+// set, `spread` its own) for the same step of `radiance` to trace below, rather than pushed: a
+// driver that runs every branch of a step for every pixel (SwiftShader) then runs the step once
+// for the common path, the surface and what lies under it, instead of twice.
+fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) -> Ray {
+    let none = Ray(o, d, vec3<f32>(0.0), depth, false);
     if !has(FLAG_WATER) {
         trace_air(o, d, depth, w);
-        return;
+        return none;
     }
     let size = params.water_size;
     // Water surface hit, searched in the slab |z - level| <= h_max.
@@ -39,17 +45,17 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     let obj = nearest_object(o, d, select(FAR, water.w, hit));
     if obj.found {
         shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
-        return;
+        return none;
     }
     if !hit {
         // A pool is sunk into a deck around it; beyond the terrain's square the world goes on.
         emit(w, shade_above(o, d));
-        return;
+        return none;
     }
     let p = water.xyz;
     if is_pool() && !inside(p.xy, size) {
         emit(w, shade_above(o, d));
-        return;
+        return none;
     }
     var n = height_field_normal(water_height_gradient(p.xy).yz);
     var t_view: f32;
@@ -63,9 +69,10 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
     }
     let r = refract_dir(d, n, 1.0 / params.ior);
     if r.w == 0.0 {
-        return;
+        return none;
     }
-    push_ray_spread(p, r.xyz, w * t_view, depth, true, bent_spread(spread, p, d, water.w, n, false));
+    spread = bent_spread(spread, p, d, water.w, n, false);
+    return Ray(p, r.xyz, w * t_view, depth, true);
 }
 
 // Radiance arriving along `d` at point `o` under the water.
@@ -124,10 +131,12 @@ fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: Spread) -> vec3<f32> {
         if r.depth > MAX_DEPTH {
             continue;
         }
-        if r.under {
-            trace_under(r.o, r.d, r.depth, r.weight);
-        } else {
-            trace(r.o, r.d, r.depth, r.weight);
+        var below = r;
+        if !r.under {
+            below = trace(r.o, r.d, r.depth, r.weight);
+        }
+        if below.under {
+            trace_under(below.o, below.d, below.depth, below.weight);
         }
     }
     return pixel_radiance;
