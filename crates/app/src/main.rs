@@ -33,8 +33,20 @@ struct Cli {
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     verbose: u8,
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
+
+/// What `caustics` alone prints: where to start.
+const START: &str = "\
+caustics: real-time water caustics, five published techniques and a physically based reference.
+
+Try first:
+  caustics render              the pool from its camera, lit by its technique, into pool.png
+  caustics view                the same in a window: move the sun, the camera and the water
+  caustics techniques          the techniques, their papers and their parameters
+  caustics scene list          the built-in scenes (render --scene NAME, or a .toml file)
+
+Every command: caustics --help; one command's options: caustics help render.";
 
 #[derive(Subcommand)]
 enum Command {
@@ -64,6 +76,12 @@ enum Command {
     /// Scene files: check one, list the built-in ones, or print one as TOML.
     #[command(subcommand)]
     Scene(SceneCommand),
+    /// Print the completion script for a shell: bash, zsh, fish, elvish or powershell (e.g.
+    /// `caustics completions bash > ~/.local/share/bash-completion/completions/caustics`).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
 }
 
 #[derive(Subcommand)]
@@ -157,7 +175,21 @@ fn main() -> ExitCode {
 }
 
 fn run(cli: Cli) -> Result<()> {
-    match cli.command {
+    let Some(command) = cli.command else {
+        println!("{START}");
+        return Ok(());
+    };
+    match command {
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            clap_complete::generate(
+                shell,
+                &mut Cli::command(),
+                "caustics",
+                &mut std::io::stdout(),
+            );
+            Ok(())
+        }
         Command::Render(args) => render::run(args),
         Command::Bake(args) => bake::run(args),
         Command::Compare(args) => compare::run(args),
@@ -332,7 +364,8 @@ pub(crate) struct GpuArgs {
 
 impl GpuArgs {
     /// The GPU device, or `None` with `--cpu` or (after one line on stderr saying why) where no
-    /// adapter can be had here: the techniques then run on their CPU twins.
+    /// adapter can be had here and none was asked for: the techniques then run on their CPU twins.
+    /// A `--backend` or `--adapter` that cannot be had is an error, never the CPU in its place.
     pub(crate) fn context(&self) -> Result<Option<caustics_gpu::GpuContext>> {
         use caustics_gpu::{GpuContext, GpuError, GpuOptions};
         if self.cpu {
@@ -347,6 +380,14 @@ impl GpuArgs {
             // A backend list `backend_arg` let through, or CAUSTICS_VALIDATION=1 without the
             // layer: the user's to mend, not a reason to fall back.
             Err(e @ GpuError::BadOption(_)) => return Err(e.into()),
+            Err(e) if self.backend.is_some() || self.adapter.is_some() => {
+                let asked = [("--backend", &self.backend), ("--adapter", &self.adapter)]
+                    .iter()
+                    .filter_map(|(flag, v)| v.as_ref().map(|v| format!("{flag} {v}")))
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                return Err(anyhow::anyhow!("{asked}: no such GPU adapter here ({e})"));
+            }
             Err(e) => {
                 let reason = match e {
                     GpuError::NoAdapter { wanted, seen } if seen.is_empty() => {

@@ -1328,3 +1328,113 @@ fn filter_water_changes_only_the_far_water_on_both_final_images() {
         assert_eq!(near, 0.0, "{on}");
     }
 }
+
+/// The options of one command's `--help`: every `--name` at the start of an option's line.
+fn options_of(command: &str) -> Vec<String> {
+    let d = std::env::temp_dir();
+    let o = caustics(&[command, "--help"], &d);
+    assert!(o.status.success(), "{command} --help: {}", stderr(&o));
+    String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .filter_map(|l| {
+            let l = l.trim_start();
+            let l = l
+                .strip_prefix("-v, ")
+                .or(l.strip_prefix("-h, "))
+                .unwrap_or(l);
+            l.strip_prefix("--")
+                .map(|rest| rest.split([' ', '<', '=']).next().unwrap_or("").to_string())
+        })
+        .collect()
+}
+
+#[test]
+/// One vocabulary: every command that runs techniques on a device takes the same GPU options, and
+/// the scene by the same flag; `--help` shows none of the smoke tests' drivers.
+fn the_commands_speak_one_vocabulary() {
+    for command in ["render", "bake", "compare", "bench"] {
+        let options = options_of(command);
+        for gpu in ["cpu", "backend", "adapter"] {
+            assert!(
+                options.iter().any(|o| o == gpu),
+                "{command} lacks --{gpu}: {options:?}"
+            );
+        }
+    }
+    for command in ["render", "bake", "bench", "view"] {
+        let options = options_of(command);
+        assert!(
+            options.iter().any(|o| o == "scene"),
+            "{command} lacks --scene: {options:?}"
+        );
+    }
+    let view = options_of("view");
+    for gpu in ["backend", "adapter"] {
+        assert!(
+            view.iter().any(|o| o == gpu),
+            "view lacks --{gpu}: {view:?}"
+        );
+    }
+    for hidden in [
+        "cycle-techniques",
+        "resize-every",
+        "drop-every",
+        "show-map-at",
+        "lose-device-at",
+        "report-memory",
+    ] {
+        assert!(
+            !view.iter().any(|o| o == hidden),
+            "view --help shows --{hidden}"
+        );
+    }
+}
+
+#[test]
+/// `caustics` alone says what to try first; `caustics completions SHELL` prints a script that
+/// completes the subcommands.
+fn a_newcomer_is_told_where_to_start_and_shells_complete_the_commands() {
+    let d = std::env::temp_dir();
+    let o = caustics(&[], &d);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        out.contains("Try first") && out.contains("caustics render"),
+        "{out}"
+    );
+    for shell in ["bash", "zsh", "fish"] {
+        let o = caustics(&["completions", shell], &d);
+        assert!(o.status.success(), "{shell}: {}", stderr(&o));
+        let script = String::from_utf8_lossy(&o.stdout);
+        for command in ["render", "bake", "compare", "bench", "view", "techniques"] {
+            assert!(script.contains(command), "{shell}'s script lacks {command}");
+        }
+    }
+    let o = caustics(&["completions", "tcsh"], &d);
+    assert!(
+        !o.status.success() && stderr(&o).contains("tcsh"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+/// A `--backend` or `--adapter` that names no adapter here is an error naming it, not the CPU in
+/// its place.
+fn an_adapter_asked_for_and_absent_is_an_error() {
+    let d = tmpdir("adapter");
+    let o = caustics(
+        &[
+            "render",
+            "--adapter",
+            "no-such-gpu-anywhere",
+            "--out",
+            "x.png",
+        ],
+        &d,
+    );
+    let e = stderr(&o);
+    assert!(!o.status.success(), "{e}");
+    assert!(e.contains("--adapter no-such-gpu-anywhere"), "{e}");
+    assert!(!d.join("x.png").exists());
+}

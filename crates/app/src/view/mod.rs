@@ -108,25 +108,25 @@ pub struct ViewArgs {
     pub screenshot: Option<PathBuf>,
     /// Smoke mode: switch the technique every frame, through every technique the scene offers (or
     /// those listed, comma-separated), splitting the view every other round.
-    #[arg(long, requires = "frames", num_args = 0.., value_delimiter = ',', value_name = "TECHNIQUES")]
+    #[arg(long, requires = "frames", num_args = 0.., value_delimiter = ',', value_name = "TECHNIQUES", hide = true)]
     pub cycle_techniques: Option<Vec<String>>,
     /// Smoke mode: resize the window every K frames.
-    #[arg(long, requires = "frames")]
+    #[arg(long, requires = "frames", hide = true)]
     pub resize_every: Option<u64>,
     /// Smoke mode: drop a ripple as a click near the image's centre would, every K frames.
-    #[arg(long, requires = "frames")]
+    #[arg(long, requires = "frames", hide = true)]
     pub drop_every: Option<u64>,
     /// Smoke mode: open the caustics-map window at frame N (as a click on its toggle would).
-    #[arg(long, requires = "frames", value_name = "N")]
+    #[arg(long, requires = "frames", value_name = "N", hide = true)]
     pub show_map_at: Option<u64>,
     /// Smoke mode: destroy the GPU device at frame N, as a driver reset would lose it, to show
     /// how the viewer reports a lost device (the window's title says so, the run exits with the
     /// error).
-    #[arg(long, requires = "frames", value_name = "N")]
+    #[arg(long, requires = "frames", value_name = "N", hide = true)]
     pub lose_device_at: Option<u64>,
     /// Print the resident memory (VmRSS) at frames 50 and every 100 after, and at the last, with
     /// wgpu's count of the objects alive on the device (buffers, textures, bind groups, ...).
-    #[arg(long)]
+    #[arg(long, hide = true)]
     pub report_memory: bool,
     /// After the run (with --frames), print per technique shown what the GPU crate created,
     /// uploaded and read back per frame over the steady frames (the first ones, which build the
