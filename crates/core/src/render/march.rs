@@ -122,15 +122,21 @@ impl Tracer<'_> {
                     p.z - self.scene.floor.height_gradient(p.truncate(), size).0
                 };
                 let t_end = -o.z / d.z;
-                let steps = 64;
-                let mut a = 0.0;
-                for k in 1..=steps {
-                    let b = t_end * k as f64 / steps as f64;
-                    if gap(b) <= 0.0 {
-                        let t = crate::receivers::bisect(gap, a, b, 30);
+                let step = t_end / FLOOR_STEPS as f64;
+                let (mut a, mut ga) = (0.0, gap(0.0));
+                if ga <= 0.0 {
+                    return (0.0, o);
+                }
+                for k in 1..=FLOOR_STEPS {
+                    let b = step * k as f64;
+                    let gb = gap(b);
+                    if gb <= 0.0 {
+                        // Within a step the gap is nearly linear: regula falsi, as for the water.
+                        let tol = ROOT_TOLERANCE * step;
+                        let t = crate::receivers::regula_falsi(gap, (a, ga), (b, gb), tol, 30);
                         return (t, o + d * t);
                     }
-                    a = b;
+                    (a, ga) = (b, gb);
                 }
                 (t_end, o + d * t_end)
             }
@@ -214,6 +220,10 @@ fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> f64
 
 /// The surface's crossing is found to this fraction of the march's shortest step.
 pub const ROOT_TOLERANCE: f64 = 1e-4;
+
+/// Even steps of an underwater ray's search for the terrain, from the water to the plane z = 0; the
+/// step that crosses it is then narrowed by regula falsi to [`ROOT_TOLERANCE`] of a step.
+pub const FLOOR_STEPS: u32 = 64;
 
 /// Distance along the ray to the wall of the pool square it leaves through.
 pub(super) fn wall_distance(o: DVec3, d: DVec3, size: f64) -> f64 {

@@ -356,28 +356,30 @@ fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f
     if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_TERRAIN) {
         return vec4<f32>(o + d * t_end, t_end);
     }
+    let step = t_end / f32(package__1final_image__2final_image_inputs__1FLOOR_STEPS);
     var a = 0.0;
+    var ga = package__1final_image__2final_image_march__1floor_gap(o, d, 0.0);
+    if ga <= 0.0 {
+        return vec4<f32>(o, 0.0);
+    }
     for (var k = 1u; k <= package__1final_image__2final_image_inputs__1FLOOR_STEPS; k++) {
-        let b = t_end * f32(k) / f32(package__1final_image__2final_image_inputs__1FLOOR_STEPS);
-        if package__1final_image__2final_image_march__1floor_gap(o, d, b) <= 0.0 {
-            var lo = a;
-            var hi = b;
+        let b = step * f32(k);
+        let gb = package__1final_image__2final_image_march__1floor_gap(o, d, b);
+        if gb <= 0.0 {
+            var br = package_shaders_receivers_Bracket(a, ga, b, gb, 0);
+            var m = b;
             for (var s = 0u; s < package__1final_image__2final_image_inputs_BISECTIONS; s++) {
-                let m = 0.5 * (lo + hi);
-                if m <= lo || m >= hi {
+                m = package_shaders_receivers_chord(br);
+                let gm = package__1final_image__2final_image_march__1floor_gap(o, d, m);
+                br = package_shaders_receivers_narrowed(br, m, gm);
+                if abs(gm) < package__1final_image__2final_image_inputs__1ROOT_TOLERANCE * step || br.b - br.a < package__1final_image__2final_image_inputs__1ROOT_TOLERANCE * step {
                     break;
                 }
-                if package__1final_image__2final_image_march__1floor_gap(o, d, m) > 0.0 {
-                    lo = m;
-                }
-                else {
-                    hi = m;
-                }
             }
-            let t = 0.5 * (lo + hi);
-            return vec4<f32>(o + d * t, t);
+            return vec4<f32>(o + d * m, m);
         }
         a = b;
+        ga = gb;
     }
     return vec4<f32>(o + d * t_end, t_end);
 }

@@ -167,8 +167,8 @@ const MAX_DEPTH: u32 = 6u;
 // waiting, so 7 levels need 8 slots.
 const RAY_STACK: u32 = 16u;
 // The march through the water's slab: its most steps and the fewest steps it may take across
-// the slab (render.rs `MARCH_STEPS`, `EVEN_STEPS`). The terrain's search's steps, and bisection
-// steps after either.
+// the slab (render.rs `MARCH_STEPS`, `EVEN_STEPS`). The terrain's search's steps (`FLOOR_STEPS`),
+// and the most guesses of regula falsi after either.
 const MARCH_STEPS: u32 = 512u;
 const EVEN_STEPS: u32 = 24u;
 // render.rs `SLAB_LATTICE`: the march's shortest step is a quarter of its spacing.

@@ -190,27 +190,31 @@ fn hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     if !has(FLAG_TERRAIN) {
         return vec4<f32>(o + d * t_end, t_end);
     }
+    let step = t_end / f32(FLOOR_STEPS);
     var a = 0.0;
+    var ga = floor_gap(o, d, 0.0);
+    if ga <= 0.0 {
+        return vec4<f32>(o, 0.0);
+    }
     for (var k = 1u; k <= FLOOR_STEPS; k++) {
-        let b = t_end * f32(k) / f32(FLOOR_STEPS);
-        if floor_gap(o, d, b) <= 0.0 {
-            var lo = a;
-            var hi = b;
+        let b = step * f32(k);
+        let gb = floor_gap(o, d, b);
+        if gb <= 0.0 {
+            // Within a step the gap is nearly linear: regula falsi, as for the water.
+            var br = Bracket(a, ga, b, gb, 0);
+            var m = b;
             for (var s = 0u; s < BISECTIONS; s++) {
-                let m = 0.5 * (lo + hi);
-                if m <= lo || m >= hi {
+                m = chord(br);
+                let gm = floor_gap(o, d, m);
+                br = narrowed(br, m, gm);
+                if abs(gm) < ROOT_TOLERANCE * step || br.b - br.a < ROOT_TOLERANCE * step {
                     break;
                 }
-                if floor_gap(o, d, m) > 0.0 {
-                    lo = m;
-                } else {
-                    hi = m;
-                }
             }
-            let t = 0.5 * (lo + hi);
-            return vec4<f32>(o + d * t, t);
+            return vec4<f32>(o + d * m, m);
         }
         a = b;
+        ga = gb;
     }
     return vec4<f32>(o + d * t_end, t_end);
 }
