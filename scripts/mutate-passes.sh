@@ -83,6 +83,8 @@ filtered water: slopes halve x1.01 @@ $S/final_image/water_slopes_halve.wgsl @@ 
 filtered water: rough water sky x1.01 @@ $S/final_image/final_image_rough_water.wgsl @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w); @@ reflected += sky_without_sun(reflect(d, facet)) * ((1.0 - t) * w * 1.01); @@ render_gpu
 filtered water: glint x1.01 @@ $S/final_image/final_image_rough_water.wgsl @@ return sun_radiance() * (3.14159265 * f * g); @@ return sun_radiance() * (3.14159265 * f * g * 1.01); @@ render_gpu
 filtered water: from below, slopes x1.01 @@ $S/final_image/final_image_march.wgsl @@ n = height_field_normal(water_slopes(p, d).mean); @@ n = height_field_normal(water_slopes(p, d).mean * 1.01); @@ render_gpu
+final image surface grid not raised @@ $S/final_image/final_image_surface.wgsl @@ params.water_level + h + raise @@ params.water_level + h @@ render_gpu
+final image terrain crossing 1000 times looser @@ $S/final_image/final_image_march.wgsl @@ if abs(gm) < ROOT_TOLERANCE * step || @@ if abs(gm) < 1000.0 * ROOT_TOLERANCE * step || @@ render_gpu
 final image surface crossing 1000 times looser @@ $S/final_image/final_image_march.wgsl @@ g_hi, ROOT_TOLERANCE * min_step); @@ g_hi, 1000.0 * ROOT_TOLERANCE * min_step); @@ render_gpu
 shading rule: flat water's light x1.01 @@ $S/shaders/caustics_light.wgsl @@ return exp(-absorption * (depth / cos_t)) @@ return 1.01 * exp(-absorption * (depth / cos_t)) @@ shared_math render_gpu
 shading rule: sun through water x1.01 @@ $S/shaders/caustics_light.wgsl @@ return relative * (horizontal * transmittance * shadow); @@ return relative * (horizontal * transmittance * shadow * 1.01); @@ render_gpu
