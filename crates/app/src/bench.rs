@@ -163,6 +163,15 @@ pub fn run(args: BenchArgs) -> Result<()> {
             .map(|s| parse_res(s))
             .collect::<Result<Vec<_>>>()?
     };
+    // The scenes asked for, read before any device is made so that a bad one fails at once.
+    let asked = (!args.scenes.is_empty())
+        .then(|| {
+            args.scenes
+                .iter()
+                .map(|name| Scene::load_or_builtin(name))
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .transpose()?;
     let gpu = args.gpu.context()?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -174,13 +183,9 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let jobs: Vec<(Spec, Scene)> = specs
         .iter()
         .map(|s| {
-            let scenes = if args.scenes.is_empty() {
-                scenes_for(s)?
-            } else {
-                args.scenes
-                    .iter()
-                    .map(|name| Scene::load_or_builtin(name))
-                    .collect::<Result<_, _>>()?
+            let scenes = match &asked {
+                Some(scenes) => scenes.clone(),
+                None => scenes_for(s)?,
             };
             Ok(scenes.into_iter().map(|sc| (s.clone(), sc)))
         })

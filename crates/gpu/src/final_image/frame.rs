@@ -145,12 +145,9 @@ impl FinalImage {
             None => view(None, &self.empty_rgba32),
         };
         // The surface rasterised for the camera, where there is one to search for.
-        let surface = match (&patches, scene.water.as_ref().and(water)) {
-            (Some(p), Some(_)) => {
-                Some(self.surface_raster(ctx, [&uniform, &slab_max], p, (width, height)))
-            }
-            _ => None,
-        };
+        let surface = patches
+            .as_ref()
+            .map(|p| self.surface_raster(ctx, [&uniform, &slab_max], p, (width, height)));
         let no_slopes = storage_buffer(ctx, "no water slope moments", &[0f32; 5])?;
         // The slope moments' pyramid is made by `update` (the first below, when the options filter
         // the water), which leaves the water unfiltered where it cannot be made.

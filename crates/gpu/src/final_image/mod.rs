@@ -76,7 +76,7 @@ use crate::pass::float_texture;
 use crate::shaders::passes;
 use crate::water::patches::{Patches, WaterPatches};
 use crate::{GpuContext, GpuError};
-use resources::{storage_entry, texture_entry, uniform_entry};
+use resources::{storage_entry, texture_entry};
 use slopes::{SlopePipelines, SlopePyramid};
 use upload::Lighting;
 
@@ -228,37 +228,10 @@ struct SurfaceRaster {
 /// The surface's render pipeline: the grid's triangles, none culled (a crest's far side is seen
 /// from behind where the next is low), the nearest kept by a reversed depth.
 fn surface_pipeline(ctx: &GpuContext) -> wgpu::RenderPipeline {
-    let visible = wgpu::ShaderStages::VERTEX_FRAGMENT;
-    let layout = ctx
-        .device
-        .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some(FINAL_IMAGE_SURFACE.name),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    visibility: visible,
-                    ..uniform_entry(0)
-                },
-                wgpu::BindGroupLayoutEntry {
-                    visibility: visible,
-                    ..texture_entry(1)
-                },
-                wgpu::BindGroupLayoutEntry {
-                    visibility: visible,
-                    ..storage_entry(7)
-                },
-            ],
-        });
-    let pipeline_layout = ctx
-        .device
-        .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(FINAL_IMAGE_SURFACE.name),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
     let module = FINAL_IMAGE_SURFACE.module(&ctx.device);
     ctx.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(FINAL_IMAGE_SURFACE.name),
-        layout: Some(&pipeline_layout),
+        layout: None,
         vertex: wgpu::VertexState {
             module: &module,
             entry_point: Some("vs_main"),
