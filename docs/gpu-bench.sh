@@ -3,21 +3,21 @@
 # 1920x1080) and the error-against-cost sweep, with an already built `caustics` binary (a GPU
 # machine may have no network and no Rust toolchain: nothing is built here). Writes CSV, Markdown
 # and SVG into DIR, and DIR/summary.md with both tables. Meant to finish in under 8 minutes on a
-# real GPU; --small shrinks it for a software rasteriser (lavapipe).
+# real GPU; --quick shrinks it for a software rasteriser (lavapipe).
 #
-#   CAUSTICS_BIN=path/to/caustics docs/gpu-bench.sh DIR [--small]
-#   docs/gpu-bench.sh DIR [--small] [path/to/caustics]
+#   CAUSTICS_BIN=path/to/caustics docs/gpu-bench.sh DIR [--quick]
+#   docs/gpu-bench.sh DIR [--quick] [path/to/caustics]
 #
 # Without CAUSTICS_BIN or a path: target/release/caustics, then `caustics` on PATH.
 set -euo pipefail
-usage() { echo "usage: [CAUSTICS_BIN=bin] $0 DIR [--small] [BIN]" >&2; exit 2; }
+usage() { echo "usage: [CAUSTICS_BIN=bin] $0 DIR [--quick] [BIN]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 out=$1; shift
 small=()
 bin=${CAUSTICS_BIN:-}
 for a in "$@"; do
   case "$a" in
-    --small) small=(--small) ;;
+    --quick) small=(--quick) ;;
     -*) usage ;;
     *) bin=$a ;;
   esac
@@ -34,22 +34,22 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$(mktemp -d)}
 start=$(date +%s)
 "$bin" bench "${small[@]}" --out "$out" | tee "$out/bench.log"
 "$bin" bench --tradeoff "${small[@]}" --out "$out" | tee "$out/tradeoff.log"
-# yuksel's settings against the paper's at three map sizes (issue 28's table): time and memory.
+# yuksel's settings against the paper's at three map sizes: time and memory.
 if [ ${#small[@]} -eq 0 ]; then
   "$bin" bench --technique yuksel --technique yuksel:subsamples=1 --technique yuksel:subsamples=2 \
     --technique yuksel:split=0 --technique yuksel:preset=paper --technique yuksel-targets \
-    --resolution 640x360,1280x720,1920x1080 --frames 10 --warmup 2 --no-frame --out "$out/yuksel" \
+    --map-size 640x360,1280x720,1920x1080 --frames 10 --warmup 2 --no-frame --out "$out/yuksel" \
     | tee "$out/yuksel.log"
-  # The whole frame with the water's normals filtered by each sample's footprint (issue 30): the
+  # The whole frame with the water's normals filtered by each sample's footprint: the
   # slope moments' pyramid and the filtered shading, against the frame rows above.
-  "$bin" bench --technique yuksel --filter-water --resolution 1280x720,1920x1080 --frames 10 \
+  "$bin" bench --technique yuksel --filter-water --image-size 1280x720,1920x1080 --frames 10 \
     --warmup 2 --out "$out/filtered" | tee "$out/filtered.log"
 fi
 end=$(date +%s)
 {
   echo "# caustics gpu-bench"
   echo
-  echo "$("$bin" --version), $(date -u +%Y-%m-%dT%H:%MZ), $((end - start)) s in all${small:+ (--small)}."
+  echo "$("$bin" --version), $(date -u +%Y-%m-%dT%H:%MZ), $((end - start)) s in all${small:+ (--quick)}."
   echo
   echo "## Every technique and the frame"
   echo

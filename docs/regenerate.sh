@@ -14,7 +14,7 @@ $bin compare \
   --technique procedural --technique procedural-vertex --technique procedural-texture \
   --technique volumes --technique volumes:planes=50 \
   --technique caustic-triangles --technique caustic-triangles:photon_image=256 \
-  --resolution 256,128,512 \
+  --map-size 256,128,512 \
   --picture-cases waves-mid-deep,lens-low-deep,ocean-overhead-shallow,ripples-low-shallow \
   --out docs/compare
 # The receivers: each technique's defaults over a flat floor, a sand bar, rocks, the walls and objects.
@@ -24,7 +24,7 @@ $bin compare --receivers \
   --picture-cases receivers-sand-bar,receivers-rocks,receivers-objects \
   --out docs/compare-receivers
 # Every registered technique and the whole frame (water, technique, final image) at 1280x720 and
-# 1920x1080; then error against cost (each technique's main knob; --small for lavapipe).
+# 1920x1080; then error against cost (each technique's main knob; --quick for lavapipe).
 $bin bench --out docs/bench "$@"
 $bin bench --tradeoff --out docs/bench "$@"
 fi
@@ -61,7 +61,7 @@ fi
   echo
   sed '1,2d' docs/bench/bench.md | sed 's/(bench.svg)/(bench\/bench.svg)/'
   echo
-  echo "CSV: [bench/bench.csv](bench/bench.csv). Numbers from a real GPU, when one was lent, are in [benchmarks.md](benchmarks.md)."
+  echo "CSV: [bench/bench.csv](bench/bench.csv). Hand-run tables, and how to time a real GPU: [benchmarks.md](benchmarks.md)."
   echo
   cat docs/results-walls.md
 } > docs/results.md

@@ -7,7 +7,7 @@
 //!
 //! Outputs in the folder (docs/bake.md): `frame-NNNN.png` (16-bit; flat water's level is
 //! [`FLAT_LEVEL`] of full scale) or `.exr` (linear), `atlas.png` (the flipbook), `preview.apng`
-//! (the loop tiled 2 x 2), `bake.toml` (how to bake it again), and with `--raw` `frame-NNNN.npy`.
+//! (the loop tiled 2 x 2), `bake.toml` (how to bake it again), and with `--npy` `frame-NNNN.npy`.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -25,7 +25,7 @@ use crate::progress;
 
 /// Where flat water's relative irradiance of 1 sits in a 16-bit PNG frame: a quarter of full
 /// scale, so that foci up to four times flat water's light are kept (brighter ones clip; the EXR
-/// and `--raw` outputs keep every value).
+/// and `--npy` outputs keep every value).
 pub const FLAT_LEVEL: f64 = 0.25;
 
 #[derive(Args)]
@@ -38,16 +38,15 @@ pub struct BakeArgs {
     #[arg(long, default_value = "pool")]
     scene: String,
     /// The technique (see `caustics techniques`). Default `reference`: the most accurate, and fast
-    /// enough for a bake (its time and error: docs/bake.md). On a real GPU `yuksel` is the fast
-    /// choice.
+    /// enough for a bake (its time and error: docs/bake.md).
     #[arg(long, default_value = caustics_core::bake::DEFAULT_TECHNIQUE)]
     technique: String,
     /// Frames in one loop.
     #[arg(long, default_value_t = 64)]
     frames: u32,
-    /// Each frame's size, WIDTHxHEIGHT texels over one tile of the water.
-    #[arg(long, value_parser = parse_size, default_value = "512x512")]
-    resolution: [u32; 2],
+    /// Each frame's caustics map, N (N x N texels) or WIDTHxHEIGHT, over one tile of the water.
+    #[arg(long, value_parser = crate::parse_map_size, value_name = "N|WxH", default_value = "512")]
+    map_size: [u32; 2],
     /// The loop's length, seconds of the water's time: frame k is at k / frames of it.
     #[arg(long, default_value_t = 4.0)]
     period: f64,
@@ -70,7 +69,7 @@ pub struct BakeArgs {
     /// Also write each frame's relative irradiance as float32 frame-NNNN.npy, shape (height,
     /// width), or (height, width, 3) with --dispersion; row 0 at y = 0.
     #[arg(long)]
-    raw: bool,
+    npy: bool,
     /// Bake frames A up to (not including) B only, so that a job array can split a long bake;
     /// `caustics bake --assemble DIR` then writes the atlas and the preview from the pieces.
     #[arg(long, value_parser = parse_range, value_name = "A..B")]
@@ -101,9 +100,8 @@ impl Format {
     }
 }
 
-fn parse_size(s: &str) -> Result<[u32; 2], String> {
-    crate::parse_size_within(s, 8..=8192)
-}
+/// A frame's sides, texels.
+const MAP_SIDES: std::ops::RangeInclusive<u32> = 8..=8192;
 
 fn parse_range(s: &str) -> Result<(u32, u32), String> {
     let (a, b) = s
@@ -127,7 +125,9 @@ struct Record {
     scene: String,
     technique: String,
     frames: u32,
-    resolution: [u32; 2],
+    /// The frames' size, texels (read from `resolution` too, the key of older records).
+    #[serde(alias = "resolution")]
+    map_size: [u32; 2],
     period: f64,
     /// The sun's direction of travel.
     sun: [f64; 3],
@@ -174,14 +174,21 @@ pub fn run(args: BakeArgs) -> Result<()> {
     if args.sun_elevation.is_some() || args.sun_azimuth.is_some() {
         scene.light.direction = sun_direction(&scene, args.sun_elevation, args.sun_azimuth)?;
     }
-    let [w, h] = args.resolution;
+    let [w, h] = args.map_size;
+    if !(MAP_SIDES.contains(&w) && MAP_SIDES.contains(&h)) {
+        bail!(
+            "--map-size {w}x{h}: each side must be from {} to {}",
+            MAP_SIDES.start(),
+            MAP_SIDES.end()
+        );
+    }
     let (scene, notes) = bake_scene(&scene, args.period, w, h)?;
     let water = scene.water.as_ref().expect("bake_scene keeps the water");
     let record = Record {
         scene: args.scene.clone(),
         technique: spec.label.clone(),
         frames: args.frames,
-        resolution: args.resolution,
+        map_size: args.map_size,
         period: args.period,
         sun: scene.light.direction.to_array(),
         depth: water.depth,
@@ -200,7 +207,7 @@ pub fn run(args: BakeArgs) -> Result<()> {
         Some(_) => args.gpu.context()?,
         None => None,
     };
-    prepare_folder(&args.out, &record, range, args.raw, args.force)?;
+    prepare_folder(&args.out, &record, range, args.npy, args.force)?;
     let scenes = colour_scenes(&scene, args.dispersion);
     let mut gpu = (ctx.as_ref())
         .map(|ctx| BakeFrames::new(ctx, spec.name(), &spec.params, &scenes))
@@ -219,7 +226,7 @@ pub fn run(args: BakeArgs) -> Result<()> {
             _ => cpu_frame(&spec, &scenes, t).map_err(anyhow::Error::from),
         }
         .with_context(|| format!("frame {k}"))?;
-        write_frame(&args.out, k, &frame, args.format, args.raw)?;
+        write_frame(&args.out, k, &frame, args.format, args.npy)?;
         bar.inc(1);
     }
     bar.finish_and_clear();
@@ -438,7 +445,7 @@ fn assemble(dir: &Path, force: bool) -> Result<()> {
             record.frames
         );
     }
-    let [w, h] = record.resolution;
+    let [w, h] = record.map_size;
     let cols = (record.frames as f64).sqrt().ceil() as u32;
     let rows = record.frames.div_ceil(cols);
     let outputs = [dir.join("atlas.png"), dir.join("preview.apng")];

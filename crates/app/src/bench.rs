@@ -1,7 +1,7 @@
 //! `caustics bench`: every registered GPU technique (`caustics_gpu::registry::REGISTRY`, no name
 //! matched here) on the scenes it applies to (the pool's water for all, the glass scene's objects
 //! for the techniques that take glass generators), then the whole GPU-resident frame (water,
-//! technique, final image through `caustics_gpu::renderer::Renderer`) at each resolution. Warm-up
+//! technique, final image through `caustics_gpu::renderer::Renderer`) at each size. Warm-up
 //! frames then timed frames; GPU time per pass from timestamp queries (median and spread), the
 //! wall time per frame, the GPU memory the technique allocates, and how time grows with
 //! resolution (the slope of log time over log pixels). Writes Markdown, CSV and an SVG plot.
@@ -44,20 +44,25 @@ pub struct BenchArgs {
     /// reef.
     #[arg(long = "scene")]
     scenes: Vec<String>,
-    /// Resolutions WIDTHxHEIGHT, comma-separated: the camera's (the frame) and the caustics map's
-    /// (the technique). Default 1280x720,1920x1080 (with --small: 64x36).
-    #[arg(long, value_delimiter = ',')]
-    resolution: Vec<String>,
-    /// Timed frames per measurement (default 30; with --small 1).
+    /// The whole frame's picture sizes WIDTHxHEIGHT, comma-separated (the whole-frame rows).
+    /// Default 1280x720,1920x1080 (with --quick: 64x36).
+    #[arg(long, value_delimiter = ',', value_parser = parse_image_size, value_name = "WxH")]
+    image_size: Vec<[u32; 2]>,
+    /// The caustics map's sizes, N (N x N texels) or WIDTHxHEIGHT, comma-separated (the technique
+    /// rows, and the map the whole frame reads): one for every image size, or one size for all.
+    /// Default: each image size's own; given alone, each is also its frame's picture size.
+    #[arg(long, value_delimiter = ',', value_parser = crate::parse_map_size, value_name = "N|WxH")]
+    map_size: Vec<[u32; 2]>,
+    /// Timed frames per measurement (default 30; with --quick 1).
     #[arg(long)]
     frames: Option<u32>,
-    /// Untimed frames first: pipeline compilation, caches (default 3; with --small 1).
+    /// Untimed frames first: pipeline compilation, caches (default 3; with --quick 1).
     #[arg(long)]
     warmup: Option<u32>,
-    /// Shrink everything for a software rasteriser (lavapipe): one 64x36 size, one warm-up and
+    /// Shrink everything for a software adapter (lavapipe): one 64x36 size, one warm-up and
     /// one timed frame, the error-against-cost sweep on one case at a 48² map.
     #[arg(long)]
-    pub(crate) small: bool,
+    pub(crate) quick: bool,
     /// Measure error against cost instead: each technique's main knob swept, relative L1 against
     /// the reference (as `caustics compare`) over GPU time per frame (as the bench), with the
     /// Pareto front: writes tradeoff.csv, tradeoff.md and tradeoff.svg.
@@ -100,15 +105,38 @@ pub(crate) fn percentile(sorted: &[f64], p: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * p).round() as usize]
 }
 
-fn parse_res(s: &str) -> Result<(u32, u32)> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .with_context(|| format!("`{s}`: expected WIDTHxHEIGHT"))?;
-    let (w, h): (u32, u32) = (w.trim().parse()?, h.trim().parse()?);
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
-        bail!("resolution {s}: each side must be between 1 and 16384");
+fn parse_image_size(s: &str) -> Result<[u32; 2], String> {
+    crate::parse_size_within(s, 1..=16384)
+}
+
+/// The (picture, map) sizes to time. Each image size with its map: the one map size given for all,
+/// the map sizes paired in order, or the image's own size; map sizes alone each with a picture of
+/// their own size; neither, 1280 x 720 and 1920 x 1080 (64 x 36 `quick`).
+fn sizes(images: &[[u32; 2]], maps: &[[u32; 2]], quick: bool) -> Result<Vec<([u32; 2], [u32; 2])>> {
+    if let Some([w, h]) = maps
+        .iter()
+        .find(|[w, h]| !(1..=16384).contains(w) || !(1..=16384).contains(h))
+    {
+        bail!("--map-size {w}x{h}: each side must be from 1 to 16384");
     }
-    Ok((w, h))
+    let images = match (images, maps) {
+        ([], []) if quick => vec![[64, 36]],
+        ([], []) => vec![[1280, 720], [1920, 1080]],
+        ([], maps) => maps.to_vec(),
+        (given, _) => given.to_vec(),
+    };
+    Ok(match maps {
+        [] => images.iter().map(|&i| (i, i)).collect(),
+        [m] => images.iter().map(|&i| (i, *m)).collect(),
+        maps if maps.len() == images.len() => {
+            images.iter().copied().zip(maps.iter().copied()).collect()
+        }
+        maps => bail!(
+            "--map-size: {} sizes for {} image sizes; give one for all or one for each",
+            maps.len(),
+            images.len()
+        ),
+    })
 }
 
 /// Every registered technique, as specs with default parameters.
@@ -146,23 +174,12 @@ pub fn run(args: BenchArgs) -> Result<()> {
     } else {
         args.techniques.clone()
     };
-    let frames = args.frames.unwrap_or(if args.small { 1 } else { 30 });
-    let warmup = args.warmup.unwrap_or(if args.small { 1 } else { 3 });
+    let frames = args.frames.unwrap_or(if args.quick { 1 } else { 30 });
+    let warmup = args.warmup.unwrap_or(if args.quick { 1 } else { 3 });
     if frames == 0 {
         bail!("--frames must be at least 1");
     }
-    let sizes = if args.resolution.is_empty() {
-        if args.small {
-            vec![(64, 36)]
-        } else {
-            vec![(1280, 720), (1920, 1080)]
-        }
-    } else {
-        args.resolution
-            .iter()
-            .map(|s| parse_res(s))
-            .collect::<Result<Vec<_>>>()?
-    };
+    let sizes = sizes(&args.image_size, &args.map_size, args.quick)?;
     // The scenes asked for, read before any device is made so that a bad one fails at once.
     let asked = (!args.scenes.is_empty())
         .then(|| {
@@ -199,10 +216,10 @@ pub fn run(args: BenchArgs) -> Result<()> {
     let mut runner = None;
     let started = Instant::now();
     for (spec, base) in &jobs {
-        for &(w, h) in &sizes {
+        for &([w, h], [mw, mh]) in &sizes {
             let mut scene = base.clone();
-            scene.caustics.width = w;
-            scene.caustics.height = h;
+            scene.caustics.width = mw;
+            scene.caustics.height = mh;
             scene.camera.width = w;
             scene.camera.height = h;
             let spec = spec.clone().over(&base.caustics.params);
@@ -211,7 +228,7 @@ pub fn run(args: BenchArgs) -> Result<()> {
                 Some(ctx) => {
                     let mut rows = vec![
                         time_technique(ctx, &scene, &spec, &timing)
-                            .with_context(|| format!("{name} at {w} x {h}"))?,
+                            .with_context(|| format!("{name} at a {mw} x {mh} map"))?,
                     ];
                     if !args.no_frame {
                         rows.push(

@@ -27,19 +27,21 @@ pub struct CompareArgs {
     /// map (`caustics bench --tradeoff` scores the eye-space `cascaded`).
     #[arg(long = "technique")]
     techniques: Vec<Spec>,
-    /// Caustics-map resolutions (square), comma-separated. Default 256 (with --quick 64).
-    #[arg(long, value_delimiter = ',')]
-    resolution: Vec<u32>,
-    /// Small: only the mid sun over deep water, a 64² map unless --resolution says otherwise.
+    /// The caustics map's sizes, N (N x N texels; the cases' maps are square), comma-separated.
+    /// Default 256 (with --quick 64).
+    #[arg(long, value_delimiter = ',', value_parser = crate::parse_map_size, value_name = "N")]
+    map_size: Vec<[u32; 2]>,
+    /// Small: only the mid sun over deep water, a 64² map unless --map-size says otherwise.
     #[arg(long)]
     quick: bool,
     /// Output folder.
     #[arg(long, default_value = "compare")]
     out: PathBuf,
-    /// Reference quality: triangulation cells per texel.
-    #[arg(long, default_value_t = 4)]
+    /// Reference quality: triangulation cells per map texel along each axis (1 to 16).
+    #[arg(long, default_value_t = crate::CELLS_PER_TEXEL,
+          value_parser = clap::value_parser!(u32).range(crate::CELLS_PER_TEXEL_RANGE))]
     cells_per_texel: u32,
-    /// Write a picture for every row (by default only for the first resolution).
+    /// Write a picture for every row (by default only for the first map size).
     #[arg(long)]
     all_pictures: bool,
     /// Only these cases (comma-separated names, e.g. `waves-mid-deep`) get pictures; default: all.
@@ -64,19 +66,24 @@ pub struct Row {
 }
 
 pub fn run(mut args: CompareArgs) -> Result<()> {
-    if args.resolution.is_empty() {
-        args.resolution = vec![if args.quick { 64 } else { 256 }];
+    if args.map_size.is_empty() {
+        let n = if args.quick { 64 } else { 256 };
+        args.map_size = vec![[n, n]];
     }
     let specs = if args.techniques.is_empty() {
         default_specs()?
     } else {
         args.techniques.clone()
     };
-    for &r in &args.resolution {
-        if r == 0 || r > 8192 {
-            anyhow::bail!("--resolution {r}: must be between 1 and 8192");
+    for &[w, h] in &args.map_size {
+        if w != h {
+            anyhow::bail!("--map-size {w}x{h}: the cases' maps are square; give one side");
+        }
+        if w == 0 || w > 8192 {
+            anyhow::bail!("--map-size {w}: must be between 1 and 8192");
         }
     }
+    let map_sides: Vec<u32> = args.map_size.iter().map(|[n, _]| *n).collect();
     let mut runner = Runner::new(args.gpu.context()?);
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -90,11 +97,11 @@ pub fn run(mut args: CompareArgs) -> Result<()> {
         cases(args.quick)
     };
     let bar = progress::bar("compare");
-    bar.set_length((cases.len() * args.resolution.len()) as u64);
+    bar.set_length((cases.len() * map_sides.len()) as u64);
     let mut rows = Vec::new();
     for case in &cases {
         let surface = case.water.surface_at(case.time)?;
-        for (k, &res) in args.resolution.iter().enumerate() {
+        for (k, &res) in map_sides.iter().enumerate() {
             let mut scene = case_scene(case, res);
             scene.objects = case.objects.clone();
             let job = Job::new(&scene, Some(surface.as_ref()), args.cells_per_texel);

@@ -6,7 +6,7 @@
 //! CI runs `CASES` cases from a fixed seed; a long run:
 //! `CAUSTICS_FUZZ_SECS=600 cargo test --release -p caustics --bin caustics fuzz_spec -- --nocapture`
 //! (`CAUSTICS_FUZZ_SEED` picks the stream). The core crate's loaders have the same kind of fuzzer,
-//! `crates/core/tests/fuzz_loaders.rs`; docs/reliability.md lists what both found.
+//! `crates/core/tests/fuzz_loaders.rs`; docs/maintainers/reliability.md lists what both found.
 
 use std::time::{Duration, Instant};
 

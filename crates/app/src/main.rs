@@ -90,7 +90,7 @@ enum SceneCommand {
     Check(SceneArg),
     /// List the built-in scenes.
     List,
-    /// Print a built-in scene as TOML, a starting point for your own.
+    /// Print a scene as TOML (a built-in one is a starting point for your own).
     Print(SceneArg),
 }
 
@@ -147,7 +147,19 @@ where
         .finish()
 }
 
+/// A reader that stops early (`caustics techniques | head`) ends the output quietly, as it does
+/// any Unix tool's, rather than making `println!` panic on the broken pipe (Rust ignores SIGPIPE).
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in `main`, before any other thread exists; SIG_DFL is a valid
+    // disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    restore_sigpipe();
     ensure_runtime_dir();
     let cli = Cli::parse();
     use tracing_subscriber::util::SubscriberInitExt;
@@ -194,7 +206,7 @@ fn run(cli: Cli) -> Result<()> {
         Command::Bake(args) => bake::run(args),
         Command::Compare(args) => compare::run(args),
         Command::Bench(args) if args.tradeoff => {
-            tradeoff::run(&args.gpu, args.small, &args.techniques, &args.out)
+            tradeoff::run(&args.gpu, args.quick, &args.techniques, &args.out)
         }
         Command::Bench(args) => bench::run(args),
         Command::View(args) => view::run(args),
@@ -248,16 +260,17 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
         Command::Scene(SceneCommand::Print(arg)) => {
-            let (_, text) = BUILTIN_SCENES
-                .iter()
-                .find(|(n, _)| *n == arg.scene)
-                .with_context(|| {
-                    format!(
-                        "no built-in scene `{}` (try `caustics scene list`)",
-                        arg.scene
-                    )
-                })?;
-            print!("{text}");
+            // A built-in scene as written, comments included; a file as read, checked first so
+            // that what is printed is a scene that loads.
+            match BUILTIN_SCENES.iter().find(|(n, _)| *n == arg.scene) {
+                Some((_, text)) => print!("{text}"),
+                None => {
+                    Scene::load_or_builtin(&arg.scene)?;
+                    let text = std::fs::read_to_string(&arg.scene)
+                        .with_context(|| format!("cannot read {}", arg.scene))?;
+                    print!("{text}");
+                }
+            }
             Ok(())
         }
         Command::Scene(SceneCommand::Check(arg)) => {
@@ -346,12 +359,31 @@ pub(crate) fn parse_size_within(
     Ok([side("width", w)?, side("height", h)?])
 }
 
+/// A caustics map's size on the command line (`--map-size`): `N` for N x N texels, or
+/// `WIDTHxHEIGHT`. The ranges are checked where the size is used, naming the flag and the limit.
+pub(crate) fn parse_map_size(s: &str) -> Result<[u32; 2], String> {
+    match s.trim().parse::<u32>() {
+        Ok(n) => Ok([n, n]),
+        Err(_) if s.contains(['x', 'X']) => parse_size_within(s, 0..=u32::MAX),
+        Err(_) => Err(format!(
+            "expected N (N x N texels) or WIDTHxHEIGHT, got `{s}`"
+        )),
+    }
+}
+
+/// The reference's triangulation cells per map texel along each axis, the same default and range
+/// in every command that runs it.
+pub(crate) const CELLS_PER_TEXEL: u32 = 4;
+pub(crate) const CELLS_PER_TEXEL_RANGE: std::ops::RangeInclusive<i64> = 1..=16;
+/// Samples per pixel along each axis of a final image, in every command that traces one.
+pub(crate) const SUPERSAMPLING_RANGE: std::ops::RangeInclusive<i64> = 1..=16;
+
 /// How to choose the GPU, shared by the commands that use one.
 #[derive(Args, Clone, Debug)]
 pub(crate) struct GpuArgs {
     /// Run the techniques' CPU twins and the CPU final image even where a GPU adapter exists.
     #[arg(long, conflicts_with_all = ["backend", "adapter"])]
-    cpu: bool,
+    pub(crate) cpu: bool,
     /// GPU backend: vulkan, metal, dx12 or gl (comma-separated list allowed; default:
     /// WGPU_BACKEND, else any).
     #[arg(long, value_parser = backend_arg)]
@@ -363,19 +395,23 @@ pub(crate) struct GpuArgs {
 }
 
 impl GpuArgs {
+    /// The adapter asked for, as the device is made from it.
+    pub(crate) fn options(&self) -> caustics_gpu::GpuOptions {
+        caustics_gpu::GpuOptions {
+            backend: self.backend.clone(),
+            adapter_name: self.adapter.clone(),
+        }
+    }
+
     /// The GPU device, or `None` with `--cpu` or (after one line on stderr saying why) where no
     /// adapter can be had here and none was asked for: the techniques then run on their CPU twins.
     /// A `--backend` or `--adapter` that cannot be had is an error, never the CPU in its place.
     pub(crate) fn context(&self) -> Result<Option<caustics_gpu::GpuContext>> {
-        use caustics_gpu::{GpuContext, GpuError, GpuOptions};
+        use caustics_gpu::{GpuContext, GpuError};
         if self.cpu {
             return Ok(None);
         }
-        let options = GpuOptions {
-            backend: self.backend.clone(),
-            adapter_name: self.adapter.clone(),
-        };
-        let ctx = match GpuContext::headless(&options) {
+        let ctx = match GpuContext::headless(&self.options()) {
             Ok(ctx) => ctx,
             // A backend list `backend_arg` let through, or CAUSTICS_VALIDATION=1 without the
             // layer: the user's to mend, not a reason to fall back.

@@ -43,25 +43,27 @@ pub struct RenderArgs {
     /// floor, in the floor map's unit. Techniques reference, caustic-triangles, volumes, cascaded.
     #[arg(long, value_name = "PREFIX")]
     raw_walls: Option<PathBuf>,
-    /// Caustics map resolution WIDTHxHEIGHT, overriding the scene's.
-    #[arg(long, value_parser = parse_size)]
-    resolution: Option<[u32; 2]>,
-    /// Final image resolution WIDTHxHEIGHT, overriding the scene camera's.
-    #[arg(long, value_parser = parse_size)]
+    /// The caustics map's size, N (N x N texels) or WIDTHxHEIGHT, overriding the scene's.
+    #[arg(long, value_parser = crate::parse_map_size, value_name = "N|WxH")]
+    map_size: Option<[u32; 2]>,
+    /// The final image's size WIDTHxHEIGHT, overriding the scene camera's.
+    #[arg(long, value_parser = parse_size, value_name = "WxH")]
     image_size: Option<[u32; 2]>,
     /// Time at which the water is frozen, seconds (the scene's by default; any finite time).
     #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
-    /// Reference quality: triangulation cells per map texel along each axis.
-    #[arg(long, default_value_t = 4)]
+    /// Reference quality: triangulation cells per map texel along each axis (1 to 16).
+    #[arg(long, default_value_t = crate::CELLS_PER_TEXEL,
+          value_parser = clap::value_parser!(u32).range(crate::CELLS_PER_TEXEL_RANGE))]
     cells_per_texel: u32,
     /// Samples per pixel along each axis of the final image (1 to 16).
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, default_value_t = 2,
+          value_parser = clap::value_parser!(u32).range(crate::SUPERSAMPLING_RANGE))]
     supersampling: u32,
     /// Shade the water with normals filtered by each sample's footprint (the waves' slope
     /// moments, LEAN mapping: far water reflects a blurred sky and a glint spread by the waves it
     /// cannot resolve) instead of the exact normal where each sample meets it; both final
-    /// images. docs/look.md has what it measures against many samples.
+    /// images. docs/maintainers/look.md has what it measures against many samples.
     #[arg(long)]
     filter_water: bool,
     /// Exposure of the final image: radiance is multiplied by it before the tone curve (the
@@ -161,8 +163,8 @@ pub fn run(args: RenderArgs) -> Result<()> {
         None => Spec::from_scene(&scene.caustics)?,
     };
     spec.entry.check_light(&scene.light)?;
-    if let Some([w, h]) = args.resolution {
-        check_size("--resolution", w, h)?;
+    if let Some([w, h]) = args.map_size {
+        check_size("--map-size", w, h)?;
         scene.caustics.width = w;
         scene.caustics.height = h;
     }

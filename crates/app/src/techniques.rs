@@ -65,7 +65,11 @@ const TIMED_PASSES: u32 = 32;
 
 /// Runs techniques, keeping their GPU pipelines between runs.
 pub struct Runner {
+    /// The device: the techniques' unless [`twins_only`](Self::twins_only), a window's either way.
     pub gpu: Option<GpuContext>,
+    /// Run every technique on its CPU twin though a device exists (`view --cpu`: the window
+    /// still draws through the device).
+    twins_only: bool,
     /// Timestamps of the technique passes, once [`time_passes`](Self::time_passes) turned them on.
     timer: Option<GpuTimer>,
     /// Each GPU technique's run-once form, made the first time it runs.
@@ -76,15 +80,27 @@ impl Runner {
     pub fn new(gpu: Option<GpuContext>) -> Self {
         Runner {
             gpu,
+            twins_only: false,
             timer: None,
             once: HashMap::new(),
         }
     }
 
+    /// The runner with every technique on its CPU twin, the device kept for whoever draws.
+    pub fn twins_only(mut self) -> Self {
+        self.twins_only = true;
+        self
+    }
+
+    /// The device the techniques run on: none where they run on their CPU twins.
+    pub fn compute(&self) -> Option<&GpuContext> {
+        self.gpu.as_ref().filter(|_| !self.twins_only)
+    }
+
     /// Time every GPU pass of the techniques run from now on, where the adapter has timestamp
     /// queries (the viewer's overlay); [`take_gpu_times`](Self::take_gpu_times) reads them.
     pub fn time_passes(&mut self) {
-        if let Some(ctx) = self.gpu.as_ref().filter(|c| c.timestamps) {
+        if let Some(ctx) = self.compute().filter(|c| c.timestamps) {
             self.timer = Some(GpuTimer::new(ctx, TIMED_PASSES));
         }
     }
@@ -106,7 +122,8 @@ impl Runner {
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Outcome> {
         spec.entry.check_light(&job.scene.light)?;
-        let (made, backend) = match (self.gpu.as_ref(), caustics_gpu::registry::find(spec.name())) {
+        let compute = self.gpu.as_ref().filter(|_| !self.twins_only);
+        let (made, backend) = match (compute, caustics_gpu::registry::find(spec.name())) {
             (Some(ctx), Some(entry)) => {
                 let once = match self.once.entry(spec.name()) {
                     std::collections::hash_map::Entry::Occupied(o) => o.into_mut(),

@@ -30,7 +30,7 @@ fn bake(out: &Path, extra: &[&str]) -> Output {
     let mut args = vec!["bake", "--out", out.to_str().unwrap()];
     for (flag, value) in [
         ("--frames", "4"),
-        ("--resolution", "32x32"),
+        ("--map-size", "32x32"),
         ("--period", "2"),
     ] {
         if !extra.contains(&flag) {
@@ -51,7 +51,7 @@ fn read_npy(path: &Path) -> (Vec<u64>, Vec<f32>) {
 #[test]
 fn a_bake_writes_its_frames_atlas_preview_and_record() {
     let dir = tmpdir("files");
-    let o = bake(&dir, &["--raw"]);
+    let o = bake(&dir, &["--npy"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(err.contains("baked 4 frames of 32 x 32"), "{err}");
@@ -160,7 +160,7 @@ fn pieces_assemble_into_the_whole_bake() {
 #[test]
 fn dispersion_bakes_colour_frames() {
     let dir = tmpdir("dispersion");
-    let o = bake(&dir, &["--dispersion", "--raw", "--format", "exr"]);
+    let o = bake(&dir, &["--dispersion", "--npy", "--format", "exr"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let (shape, data) = read_npy(&dir.join("frame-0000.npy"));
     assert_eq!(shape, [32, 32, 3]);
@@ -208,8 +208,8 @@ fn bad_arguments_get_clear_errors() {
     let dir = tmpdir("bad");
     let cases: [(&[&str], &str); 9] = [
         (&["--frames", "0"], "--frames 0"),
-        (&["--resolution", "4x4"], "from 8 to 8192"),
-        (&["--resolution", "32x32x2"], "WIDTHxHEIGHT"),
+        (&["--map-size", "4x4"], "from 8 to 8192"),
+        (&["--map-size", "32x32x2"], "WIDTHxHEIGHT"),
         (&["--period", "0"], "--period 0"),
         (&["--range", "3..2"], "empty"),
         (&["--range", "0..9"], "the bake has 4 frames"),

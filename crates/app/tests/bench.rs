@@ -20,7 +20,7 @@ fn gpu_bench_small_covers_every_technique_and_the_frame() {
     let o = Command::new("bash")
         .arg(root.join("docs/gpu-bench.sh"))
         .arg(&out)
-        .arg("--small")
+        .arg("--quick")
         .env("CAUSTICS_BIN", env!("CARGO_BIN_EXE_caustics"))
         .output()
         .expect("bash runs");
@@ -72,7 +72,7 @@ fn bench_times_the_scenes_asked_for() {
         Command::new(env!("CARGO_BIN_EXE_caustics"))
             .args([
                 "bench",
-                "--small",
+                "--quick",
                 "--no-frame",
                 "--technique",
                 "procedural",

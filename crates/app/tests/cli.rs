@@ -135,7 +135,7 @@ fn the_default_scene_renders_an_image() {
     let o = caustics(
         &[
             "render",
-            "--resolution",
+            "--map-size",
             "64x64",
             "--image-size",
             "96x54",
@@ -154,7 +154,7 @@ fn the_default_scene_renders_an_image() {
     let o = caustics(
         &[
             "render",
-            "--resolution",
+            "--map-size",
             "64x64",
             "--image-size",
             "96x54",
@@ -199,7 +199,7 @@ fn the_default_scene_renders_an_image() {
 /// tiles filtered over each sample's footprint; 5.5x.
 const DEFAULT_SCENE_DIFF: f64 = 0.63;
 /// The CPU picture's mean channel value (measured 184.5 with the daylight sky, its ambient light,
-/// the stone deck and the footprint-filtered caustics and tiles, docs/look.md; held to 2 %) and
+/// the stone deck and the footprint-filtered caustics and tiles, docs/maintainers/look.md; held to 2 %) and
 /// luminance spread (measured 23.2, a flat floor without caustics has far less): the scene's look.
 const DEFAULT_SCENE_MEAN: f64 = 184.5;
 const DEFAULT_SCENE_SPREAD: f64 = 23.2;
@@ -215,7 +215,7 @@ fn outputs_that_cannot_be_written_fail_before_the_work() {
     ] {
         let start = std::time::Instant::now();
         // A map large enough that the work would take long: the check comes first.
-        let o = caustics(&["render", "--resolution", "2048x2048", flag, path], &d);
+        let o = caustics(&["render", "--map-size", "2048x2048", flag, path], &d);
         let e = stderr(&o);
         assert!(!o.status.success(), "{flag} {path}: must fail");
         assert!(
@@ -237,10 +237,14 @@ fn outputs_that_cannot_be_written_fail_before_the_work() {
 }
 
 #[test]
-fn a_resolution_takes_exactly_two_entries() {
+fn a_size_takes_its_entries_whole() {
     let d = tmpdir("resolution");
-    for bad in ["64x64x64", "64", "64x"] {
-        for flag in ["--resolution", "--image-size"] {
+    let bad = [
+        ("--map-size", ["64x64x64", "64x", "sixty"]),
+        ("--image-size", ["64x64x64", "64", "64x"]),
+    ];
+    for (flag, values) in bad {
+        for bad in values {
             let o = caustics(&["render", flag, bad, "--out", "x.png"], &d);
             let e = stderr(&o);
             assert!(!o.status.success(), "{flag} {bad}: must fail");
@@ -362,15 +366,13 @@ fn numbers_out_of_range_are_refused_by_name() {
     for (args, range) in [
         (&["render", "--supersampling", "0"][..], "1..=16"),
         (&["render", "--supersampling", "17"][..], "1..=16"),
-        (&["view", "--supersampling", "0"][..], "1..=8"),
+        (&["view", "--supersampling", "0"][..], "1..=16"),
+        (&["view", "--cells-per-texel", "0"][..], "1..=16"),
     ] {
         let o = caustics(args, &d);
         assert!(!o.status.success(), "{args:?}");
         let e = stderr(&o);
-        assert!(
-            e.contains("--supersampling") && e.contains(range),
-            "{args:?}: {e}"
-        );
+        assert!(e.contains(args[1]) && e.contains(range), "{args:?}: {e}");
     }
     // Negative numbers are values, not flags: a negative exposure is refused by name, and a
     // negative time gets past the parser to the scene's checks (here: a scene that is not there).
@@ -442,6 +444,21 @@ fn scene_check_and_techniques() {
     }
     let o = caustics(&["scene", "check", "missing.toml"], &d);
     assert!(!o.status.success() && stderr(&o).contains("missing.toml"));
+    // `scene print` takes what `scene check` takes: a built-in scene printed and written to a
+    // file prints the same again; a file that is no scene is refused by name.
+    let pool = caustics(&["scene", "print", "pool"], &d);
+    assert!(pool.status.success(), "{}", stderr(&pool));
+    std::fs::write(d.join("mine.toml"), &pool.stdout).unwrap();
+    let again = caustics(&["scene", "print", "mine.toml"], &d);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert_eq!(again.stdout, pool.stdout);
+    std::fs::write(d.join("bad.toml"), "[water\n").unwrap();
+    let o = caustics(&["scene", "print", "bad.toml"], &d);
+    assert!(
+        !o.status.success() && stderr(&o).contains("bad.toml"),
+        "{}",
+        stderr(&o)
+    );
     // Every registered technique, and every parameter of each under it, from the registry.
     let o = caustics(&["techniques"], &d);
     let out = String::from_utf8_lossy(&o.stdout);
@@ -507,7 +524,7 @@ fn a_small_compare_writes_its_tables_and_scores_correctly() {
             "compare",
             "--quick",
             "--cpu",
-            "--resolution",
+            "--map-size",
             "48",
             "--cells-per-texel",
             "2",
@@ -564,7 +581,7 @@ fn compare_receivers_writes_the_technique_by_receiver_table() {
             "compare",
             "--receivers",
             "--cpu",
-            "--resolution",
+            "--map-size",
             "48",
             "--cells-per-texel",
             "2",
@@ -652,7 +669,7 @@ fn a_small_bench_writes_its_outputs() {
             "1",
             "--warmup",
             "0",
-            "--resolution",
+            "--map-size",
             "40x30,80x60",
             "--out",
             "b",
@@ -693,7 +710,7 @@ fn render_maps_glass_caustics() {
             "--scene",
             "glass",
             "--cpu",
-            "--resolution",
+            "--map-size",
             "64x64",
             "--technique",
             "caustic-triangles:photon_image=32,cube_resolution=64",
@@ -869,7 +886,7 @@ fn volumes_renders_the_objects_scene_with_their_shadows() {
             "objects",
             "--technique",
             "volumes:planes=3,texture=32",
-            "--resolution",
+            "--map-size",
             "96x96",
             "--image-size",
             "64x36",
@@ -922,7 +939,7 @@ fn volumes_writes_its_refracted_view() {
             "objects",
             "--technique",
             "volumes:planes=3,texture=32",
-            "--resolution",
+            "--map-size",
             "64x64",
             "--image-size",
             "80x60",
@@ -964,7 +981,7 @@ fn render_pool_with_caustic_triangles_uses_the_water_as_generator() {
             "--scene",
             &scene,
             "--cpu",
-            "--resolution",
+            "--map-size",
             "64x64",
             "--image-size",
             "48x32",
@@ -1003,7 +1020,7 @@ fn the_glass_reference_renders_foci_and_shadows() {
             "render",
             "--scene",
             "glass",
-            "--resolution",
+            "--map-size",
             "128x128",
             "--image-size",
             "320x180",
@@ -1054,7 +1071,7 @@ fn the_reference_sees_the_objects() {
                 &scene,
                 "--technique",
                 technique,
-                "--resolution",
+                "--map-size",
                 "64x64",
                 "--cells-per-texel",
                 "1",
@@ -1111,7 +1128,7 @@ fn render_writes_the_pools_walls() {
             "render",
             "--scene",
             "low.toml",
-            "--resolution",
+            "--map-size",
             "64x64",
             "--cells-per-texel",
             "2",
@@ -1239,7 +1256,7 @@ fn the_final_image_goes_where_it_is_faster() {
     let run = |extra: &[&str]| {
         let mut args = vec![
             "render",
-            "--resolution",
+            "--map-size",
             "32x32",
             "--image-size",
             "48x27",
@@ -1285,7 +1302,7 @@ fn filter_water_changes_only_the_far_water_on_both_final_images() {
         "shore",
         "--image-size",
         "160x90",
-        "--resolution",
+        "--map-size",
         "64x64",
     ];
     for on in ["cpu", "gpu"] {
@@ -1348,33 +1365,89 @@ fn options_of(command: &str) -> Vec<String> {
         .collect()
 }
 
+/// `command --help`'s text for the option `--name`: its line and its description, up to the next
+/// option.
+fn option_help(command: &str, name: &str) -> Option<String> {
+    let d = std::env::temp_dir();
+    let o = caustics(&[command, "--help"], &d);
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let lines: Vec<&str> = text.lines().collect();
+    let start = lines.iter().position(|l| {
+        l.trim_start()
+            .strip_prefix(&format!("--{name}"))
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with([' ', '<']))
+    })?;
+    let end = lines[start + 1..]
+        .iter()
+        .position(|l| l.trim_start().starts_with('-'))
+        .map_or(lines.len(), |k| start + 1 + k);
+    Some(lines[start..end].join(" "))
+}
+
 #[test]
-/// One vocabulary: every command that runs techniques on a device takes the same GPU options, and
-/// the scene by the same flag; `--help` shows none of the smoke tests' drivers.
+/// One vocabulary: every command that runs techniques on a device takes the same GPU options, the
+/// scene, the caustics map's size and the picture's size by the same flags, with the same defaults
+/// and ranges; `--help` shows none of the smoke tests' drivers.
 fn the_commands_speak_one_vocabulary() {
-    for command in ["render", "bake", "compare", "bench"] {
+    let commands = ["render", "bake", "compare", "bench", "view"];
+    for command in commands {
         let options = options_of(command);
+        let has = |o: &str| options.iter().any(|x| x == o);
         for gpu in ["cpu", "backend", "adapter"] {
-            assert!(
-                options.iter().any(|o| o == gpu),
-                "{command} lacks --{gpu}: {options:?}"
-            );
+            assert!(has(gpu), "{command} lacks --{gpu}: {options:?}");
+        }
+        // Every command here sizes a caustics map, and by one flag taking one spelling.
+        let map = option_help(command, "map-size").unwrap_or_default();
+        assert!(map.contains("<N"), "{command}: --map-size <N|WxH>: {map:?}");
+        for dialect in ["resolution", "size", "small"] {
+            assert!(!has(dialect), "{command} still says --{dialect}");
         }
     }
     for command in ["render", "bake", "bench", "view"] {
-        let options = options_of(command);
         assert!(
-            options.iter().any(|o| o == "scene"),
-            "{command} lacks --scene: {options:?}"
+            options_of(command).iter().any(|o| o == "scene"),
+            "{command} lacks --scene"
         );
+    }
+    for command in ["render", "bench", "view"] {
+        let image = option_help(command, "image-size").unwrap_or_default();
+        assert!(
+            image.contains("WIDTHxHEIGHT"),
+            "{command}: --image-size: {image:?}"
+        );
+    }
+    for command in ["compare", "bench"] {
+        assert!(
+            options_of(command).iter().any(|o| o == "quick"),
+            "{command} lacks --quick"
+        );
+    }
+    // `--raw` names a file wherever it is taken (render's map); bake's extra frames are `--npy`.
+    assert!(!options_of("bake").iter().any(|o| o == "raw"));
+    // The same default and range wherever a setting is taken.
+    let d = std::env::temp_dir();
+    for (flag, commands, default) in [
+        (
+            "cells-per-texel",
+            &["render", "compare", "view"][..],
+            Some("[default: 4]"),
+        ),
+        ("supersampling", &["render", "view"][..], None),
+    ] {
+        for command in commands {
+            let help = option_help(command, flag).unwrap_or_default();
+            if let Some(default) = default {
+                assert!(help.contains(default), "{command} --{flag}: {help}");
+            }
+            let o = caustics(&[command, &format!("--{flag}"), "17"], &d);
+            assert!(
+                !o.status.success() && stderr(&o).contains("1..=16"),
+                "{command} --{flag} 17: {}",
+                stderr(&o)
+            );
+        }
     }
     let view = options_of("view");
-    for gpu in ["backend", "adapter"] {
-        assert!(
-            view.iter().any(|o| o == gpu),
-            "view lacks --{gpu}: {view:?}"
-        );
-    }
     for hidden in [
         "cycle-techniques",
         "resize-every",
@@ -1388,6 +1461,43 @@ fn the_commands_speak_one_vocabulary() {
             "view --help shows --{hidden}"
         );
     }
+}
+
+#[test]
+/// `--map-size N` is the square N x N, as `WIDTHxHEIGHT` would say it.
+fn a_map_size_of_one_number_is_square() {
+    let d = tmpdir("map-size-n");
+    let o = caustics(
+        &[
+            "render",
+            "--cpu",
+            "--technique",
+            "procedural",
+            "--map-size",
+            "24",
+            "--raw",
+            "n.npy",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = caustics(
+        &[
+            "render",
+            "--cpu",
+            "--technique",
+            "procedural",
+            "--map-size",
+            "24x24",
+            "--raw",
+            "wxh.npy",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let n = std::fs::read(d.join("n.npy")).unwrap();
+    assert_eq!(n, std::fs::read(d.join("wxh.npy")).unwrap());
+    assert!(String::from_utf8_lossy(&n[..128]).contains("(24, 24"));
 }
 
 #[test]

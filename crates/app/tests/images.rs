@@ -28,7 +28,7 @@ use caustics_core::scene::BUILTIN_SCENES;
 
 /// Mean FLIP a picture may depart from its reference by. Measured on lavapipe (Mesa 25.0.7), the
 /// CPU twins' pictures (`CAUSTICS_IMAGES_CPU=1`) against the GPU's references, with the daylight
-/// sky and the caustics and floor filtered over each sample's footprint (docs/look.md): pool
+/// sky and the caustics and floor filtered over each sample's footprint (docs/maintainers/look.md): pool
 /// 0.00456, objects 0.00443, shore 0.00015, glass 0.00008 (f32 against f64 where a caustic line or
 /// a grazing ray falls on one side of a pixel or the other); the GPU against itself, run to run: 0
 /// (the same bytes). The bound is 2.2 times the largest, so that a reference blessed on another GPU
@@ -56,7 +56,7 @@ fn render(scene: &str, out: &Path, extra: &[&str]) -> (image::RgbImage, bool) {
             scene,
             "--image-size",
             "256x144",
-            "--resolution",
+            "--map-size",
             "128x128",
             "--cells-per-texel",
             "2",

@@ -29,8 +29,8 @@ fn assert_refused(out: &Output, names: &[&str]) {
 }
 
 fn sizes_beyond_the_program_limit_are_refused_at_the_flag() {
-    let out = render(&["--resolution", "100000x100000", "--out", "x.png"]);
-    assert_refused(&out, &["--resolution 100000x100000", "between 1 and 16384"]);
+    let out = render(&["--map-size", "100000x100000", "--out", "x.png"]);
+    assert_refused(&out, &["--map-size 100000x100000", "between 1 and 16384"]);
     let out = render(&["--image-size", "64x100000", "--out", "x.png"]);
     assert_refused(&out, &["--image-size 64x100000", "between 1 and 16384"]);
 }
@@ -47,7 +47,7 @@ fn a_map_beyond_the_device_gives_one_error_naming_it(max: u32) {
         render(&[
             "--technique",
             technique,
-            "--resolution",
+            "--map-size",
             &size,
             "--image-size",
             "64x36",

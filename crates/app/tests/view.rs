@@ -271,7 +271,7 @@ fn every_technique_shows_caustics_in_the_window() {
         scene,
         "--frames",
         "3",
-        "--size",
+        "--image-size",
         "800x480",
         "--scale",
         "0.4",
@@ -366,7 +366,7 @@ fn every_gpu_technique_runs_without_creating_or_reading_back() {
                 &t,
                 "--frames",
                 "40",
-                "--size",
+                "--image-size",
                 "640x360",
                 "--scale",
                 "0.25",
@@ -410,6 +410,51 @@ fn every_gpu_technique_runs_without_creating_or_reading_back() {
     }
 }
 
+/// `--cpu`, as in the other commands: the technique runs on its CPU twin and the image is traced
+/// by the CPU renderer, so the GPU crate creates, uploads and reads back nothing, the viewer
+/// uploads the images it shows, and the floor still shows the caustics.
+fn with_cpu_the_twins_draw_the_caustics() {
+    let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let display = display();
+    let dir = tmpdir("cpu");
+    let scene = plain_pool(&dir);
+    let png = dir.join("cpu.png");
+    let o = view(
+        &display,
+        &dir,
+        &[
+            "--cpu",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--technique",
+            "caustic-triangles",
+            "--frames",
+            "12",
+            "--image-size",
+            "640x360",
+            "--map-size",
+            "64",
+            "--report-traffic",
+            "--screenshot",
+            png.to_str().unwrap(),
+        ],
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("final image on the CPU: --cpu"), "{stderr}");
+    // The GPU crate's work for the frame (with `--final-image cpu` alone, the technique's GPU
+    // runs and read-backs: 85 resources created, 6 readbacks a frame).
+    for what in ["created ", "uploaded ", "readbacks "] {
+        assert_eq!(traffic(&stdout, "frame", what), 0.0, "{stdout}");
+    }
+    assert!(traffic(&stdout, "viewer", "(images ") > 0.0, "{stdout}");
+    let (mean, sd) = floor_stats(&png, first_view(&stdout));
+    assert!(
+        mean > 20.0 && sd > 10.0,
+        "floor luminance {mean:.1} ± {sd:.2}"
+    );
+}
+
 /// A still frame (the water's clock stopped) renders nothing, so the map window's pictures are
 /// neither read back nor built and uploaded again; and the window opened on a still frame shows
 /// the maps the GPU frame made before it, not "no water, no map".
@@ -426,7 +471,7 @@ fn a_still_frame_reads_and_uploads_no_map_and_a_late_map_window_shows_the_maps()
             "--paused",
             "--frames",
             "12",
-            "--size",
+            "--image-size",
             "900x500",
             "--scale",
             "0.25",
@@ -476,7 +521,7 @@ fn ripples_split_view_and_windows_run() {
             "pool.toml",
             "--frames",
             "12",
-            "--size",
+            "--image-size",
             "900x500",
             "--scale",
             "0.25",
@@ -585,7 +630,7 @@ fn switching_and_resizing_for_hundreds_of_frames_keeps_memory_flat() {
         &[
             "--frames",
             &frames.to_string(),
-            "--size",
+            "--image-size",
             "560x360",
             "--scale",
             "0.2",
@@ -639,7 +684,7 @@ fn switching_and_resizing_for_hundreds_of_frames_keeps_memory_flat() {
         &[
             "--frames",
             "60",
-            "--size",
+            "--image-size",
             "560x360",
             "--scale",
             "0.2",
@@ -675,7 +720,7 @@ fn a_lost_device_ends_the_run_with_one_clear_error() {
             "yuksel",
             "--frames",
             "8",
-            "--size",
+            "--image-size",
             "320x180",
             "--no-panel",
             "--map-size",
@@ -744,7 +789,7 @@ fn a_thousand_frames_of_every_technique_keep_memory_flat() {
         &[
             "--frames",
             &frames.to_string(),
-            "--size",
+            "--image-size",
             "160x90",
             "--no-panel",
             "--scale",
@@ -793,7 +838,7 @@ fn a_thousand_frames_of_every_technique_keep_memory_flat() {
     );
     // Measured on lavapipe from Mesa 25.0.7 on a 2-core machine: 496 288 -> 497 680 kB from frame
     // 100 to 1000 (+0.28 %), 188 s alone, median frame 108 ms. (Mesa 22.3.6's lavapipe grows by
-    // megabytes a frame, docs/reliability.md.)
+    // megabytes a frame, docs/maintainers/reliability.md.)
     assert!(
         growth < 0.025,
         "resident memory grew {:.1} % from frame 100 to {frames}",
@@ -848,7 +893,7 @@ fn the_glass_scene_runs_caustic_triangles_beside_its_reference() {
             "reference",
             "--frames",
             "3",
-            "--size",
+            "--image-size",
             "800x480",
             "--scale",
             "0.3",
@@ -889,7 +934,7 @@ fn the_underwater_scene_shows_snells_window() {
             "underwater",
             "--frames",
             "3",
-            "--size",
+            "--image-size",
             "640x360",
             "--no-panel",
             "--screenshot",
@@ -951,7 +996,11 @@ fn main() -> std::process::ExitCode {
         })
         .with_ignored_flag(!display_possible() && !required()),
     );
-    let windowed: [(&str, fn()); 8] = [
+    let windowed: [(&str, fn()); 9] = [
+        (
+            "with_cpu_the_twins_draw_the_caustics",
+            with_cpu_the_twins_draw_the_caustics,
+        ),
         (
             "every_technique_shows_caustics_in_the_window",
             every_technique_shows_caustics_in_the_window,

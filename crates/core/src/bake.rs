@@ -20,7 +20,7 @@ use crate::{Error, Result};
 /// The technique a bake uses by default: the most accurate one, the reference itself, which at
 /// [`REFERENCE_CELLS`] cells per texel is also fast enough for an offline bake on the CPU (its
 /// error and time per frame against the GPU techniques': docs/bake.md, docs/benchmarks.md
-/// "Baking"). On a real GPU `--technique yuksel` is the fast choice.
+/// "Baking").
 pub const DEFAULT_TECHNIQUE: &str = "reference";
 
 /// The reference's triangulation cells per map texel along each axis in a bake: the fewest that

@@ -1107,7 +1107,7 @@ fn glass_under_water_matches_the_cpu() {
 /// the surface seen from below splits them into Snell's window and the totally reflected mirror.
 fn underwater_matches_the_cpu() {
     let ctx = test_gpu();
-    // Measured with the daylight sky (docs/look.md): 20 channels one step off (mean 0.000463
+    // Measured with the daylight sky (docs/maintainers/look.md): 20 channels one step off (mean 0.000463
     // steps: the sky's exp and acos in f32 against f64, seen through Snell's window and in the
     // reflections), no outliers, no channel off by more than one; 10x that in the mean.
     const UNDERWATER: Bounds = Bounds {

@@ -2,7 +2,7 @@
 //! invalid Vulkan call on the context's device must come back from `GpuContext::check` as a
 //! `GpuError::Validation` naming the rule, and a context dropped with a message nobody reported
 //! must fail its test. Without the flag the tests are reported ignored. (A shader writing past
-//! its storage buffer is not reported by Debian 12's layer: see docs/reliability.md.)
+//! its storage buffer is not reported by Debian 12's layer: see docs/maintainers/reliability.md.)
 //!
 //! wgpu validates everything it is given, so the invalid call is made on the raw device under it:
 //! a buffer created with no usage bit, which Vulkan forbids

@@ -332,7 +332,7 @@ impl Page {
     }
 
     /// Shade the far water with its normals filtered by each sample's footprint: steadier in
-    /// motion under the horizon, off by default (docs/look.md).
+    /// motion under the horizon, off by default (docs/maintainers/look.md).
     pub fn set_filter_water(&mut self, on: bool) {
         self.quality.filter_water = on;
     }

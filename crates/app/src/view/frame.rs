@@ -242,10 +242,13 @@ pub struct SceneRenderer {
 
 impl SceneRenderer {
     pub fn new(runner: Runner, scene: Scene) -> Self {
-        let ctx = runner.gpu.as_ref();
+        let ctx = runner.compute();
         let (final_image, final_note) = match ctx.map(FinalImage::new) {
             Some(Ok(f)) => (Some(f), None),
             Some(Err(e)) => (None, Some(format!("final image on the CPU: {e}"))),
+            None if runner.gpu.is_some() => {
+                (None, Some("final image on the CPU: --cpu".to_string()))
+            }
             None => (None, Some("final image on the CPU: no GPU".to_string())),
         };
         // Two sides, four final-image passes each (the water's patches, slab bound and surface,
@@ -294,7 +297,7 @@ impl SceneRenderer {
         let mut stats = FrameStats::default();
         let started = Instant::now();
         let surface = match water.as_deref_mut() {
-            Some(w) if self.scene.water.is_some() => Some(w.surface(self.runner.gpu.as_ref())?),
+            Some(w) if self.scene.water.is_some() => Some(w.surface(self.runner.compute())?),
             _ => None,
         };
         stats.water_ms = ms(started);
@@ -388,7 +391,7 @@ impl SceneRenderer {
                 self.final_image(surface.as_deref(), caustics, walls, &options)?
             });
         }
-        if let (Some(timer), Some(ctx)) = (self.timer.as_mut(), self.runner.gpu.as_ref()) {
+        if let (Some(timer), Some(ctx)) = (self.timer.as_mut(), self.runner.compute()) {
             stats
                 .gpu
                 .extend(timer.read(ctx).context("reading the GPU timestamps")?);
@@ -626,7 +629,7 @@ impl SceneRenderer {
                 edge: water.edge(),
             }));
         }
-        water.surface(self.runner.gpu.as_ref())
+        water.surface(self.runner.compute())
     }
 
     /// Run one technique on this frame's input: a water job for the floor-map techniques of a
@@ -667,7 +670,7 @@ impl SceneRenderer {
         walls: Option<&WallMaps>,
         options: &RenderOptions,
     ) -> Result<Image> {
-        if let (Some(f), Some(ctx)) = (&self.final_image, self.runner.gpu.as_ref()) {
+        if let (Some(f), Some(ctx)) = (&self.final_image, self.runner.compute()) {
             match f.render(
                 ctx,
                 &self.scene,

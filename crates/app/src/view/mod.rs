@@ -45,23 +45,25 @@ pub struct ViewArgs {
     /// on without it).
     #[arg(long)]
     pub compare: Option<String>,
-    /// Window size WIDTHxHEIGHT in physical pixels.
-    #[arg(long, value_parser = parse_size, default_value = "1280x720")]
-    pub size: [u32; 2],
+    /// The window's size WIDTHxHEIGHT in physical pixels: the picture's size (the image inside
+    /// it is traced at --scale of what it covers).
+    #[arg(long, value_parser = parse_size, value_name = "WxH", default_value = "1280x720")]
+    pub image_size: [u32; 2],
     /// Internal resolution as a fraction of the image's size on screen (default: 1 on a hardware
     /// GPU, 0.25 on a software adapter such as lavapipe).
     #[arg(long)]
     pub scale: Option<f32>,
-    /// Caustics map resolution (square; default: the scene's on a hardware GPU, 128 on a software
-    /// adapter).
-    #[arg(long)]
-    pub map_size: Option<u32>,
-    /// Final-image samples per pixel along each axis, 1 to 8 (default: 2 on a hardware GPU, 1 on
-    /// a software adapter).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=8))]
+    /// The caustics map's size, N (N x N texels; the viewer's maps are square). Default: the
+    /// scene's on a hardware GPU, 128 on a software adapter.
+    #[arg(long, value_parser = crate::parse_map_size, value_name = "N")]
+    pub map_size: Option<[u32; 2]>,
+    /// Samples per pixel along each axis of the final image, 1 to 16 (default: 2 on a hardware
+    /// GPU, 1 on a software adapter).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(crate::SUPERSAMPLING_RANGE))]
     pub supersampling: Option<u32>,
-    /// Reference quality: triangulation cells per map texel along each axis.
-    #[arg(long, default_value_t = 2)]
+    /// Reference quality: triangulation cells per map texel along each axis (1 to 16).
+    #[arg(long, default_value_t = crate::CELLS_PER_TEXEL,
+          value_parser = clap::value_parser!(u32).range(crate::CELLS_PER_TEXEL_RANGE))]
     pub cells_per_texel: u32,
     /// Start with the interactive ripple simulation as the water (clicks drop ripples in any mode).
     #[arg(long)]
@@ -133,13 +135,10 @@ pub struct ViewArgs {
     /// pipelines and frames, left out).
     #[arg(long, requires = "frames")]
     pub report_traffic: bool,
-    /// GPU backend: vulkan, metal, dx12 or gl (comma-separated list allowed; default:
-    /// WGPU_BACKEND, else any).
-    #[arg(long, value_parser = crate::backend_arg)]
-    pub backend: Option<String>,
-    /// A substring of the adapter's name (default: WGPU_ADAPTER_NAME, else the best one).
-    #[arg(long)]
-    pub adapter: Option<String>,
+    /// The GPU choice; with --cpu the techniques run on their CPU twins and the final image on
+    /// the CPU, and the window still draws through the adapter.
+    #[command(flatten)]
+    pub gpu: crate::GpuArgs,
 }
 
 /// Where the final image is traced.
@@ -157,6 +156,13 @@ pub fn run(args: ViewArgs) -> Result<()> {
     }
     if args.resize_every == Some(0) || args.drop_every == Some(0) {
         bail!("--resize-every and --drop-every take a number of frames, at least 1");
+    }
+    if let Some([w, h]) = args.map_size
+        && w != h
+    {
+        bail!(
+            "--map-size {w}x{h}: the viewer's caustics map is square; give one side, e.g. --map-size {w}"
+        );
     }
     if let Some(s) = args.scale
         && !(s > 0.0 && s <= 1.0)

@@ -204,7 +204,7 @@ fn controls(ui: &mut egui::Ui, m: &mut Model) {
             )
             .on_hover_text(
                 "the waves' slopes over each sample's footprint become roughness: a blurred \
-                     sky and a spread glint instead of one wave's reflection (docs/look.md)",
+                     sky and a spread glint instead of one wave's reflection (docs/maintainers/look.md)",
             );
             ui.checkbox(&mut m.quality.cpu_image, "trace the image on the CPU")
                 .on_hover_text(

@@ -97,7 +97,7 @@ pub struct RenderOptions {
     /// water shades with the mean slope and the roughness of the waves it cannot resolve. Off
     /// (the default), every sample shades with the exact normal where it meets the surface.
     /// Both final images (caustics-gpu's `final_image` is its twin); not the default, since many
-    /// samples' FLIP prefers the exact normals: docs/look.md has the measurements.
+    /// samples' FLIP prefers the exact normals: docs/maintainers/look.md has the measurements.
     pub filter_water: bool,
 }
 
@@ -280,7 +280,7 @@ pub fn render(
 /// (n-rooks; for 2 x 2 the rotated-grid pattern of RGSS), so that an edge or a caustic's line
 /// near the image's axes is resolved in `n²` steps instead of `n`, for the same rays: measured on
 /// the shore at 960 x 540 against 8 x 8 samples, mean FLIP 0.0108 against 0.0125 on the square
-/// grid (docs/look.md). For odd `n` one sample sits at the pixel's centre (for `n = 1` the only
+/// grid (docs/maintainers/look.md). For odd `n` one sample sits at the pixel's centre (for `n = 1` the only
 /// one). GPU twin: `sample_offset` in final_image.wgsl.
 pub fn sample_offset(sx: usize, sy: usize, n: usize) -> (f64, f64) {
     let n = n as f64;

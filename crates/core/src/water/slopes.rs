@@ -15,7 +15,7 @@
 //! mirror still shows the sun as a small spot of the sun's whole reflected power.
 //!
 //! Off by default (`RenderOptions::filter_water`, `caustics render --filter-water`): against many
-//! samples it does not yet beat the exact normals (docs/look.md). Its GPU twin is
+//! samples it does not yet beat the exact normals (docs/maintainers/look.md). Its GPU twin is
 //! caustics-gpu's `final_image::slopes` and `final_image_rough_water.wgsl`'s `rough_water`.
 
 use glam::{DVec2, DVec3};

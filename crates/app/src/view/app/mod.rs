@@ -21,7 +21,7 @@ use winit::window::{Window, WindowId};
 
 use caustics_core::scene::Scene;
 use caustics_gpu::final_image::FinalImage;
-use caustics_gpu::{GpuContext, GpuOptions, GpuTimer};
+use caustics_gpu::{GpuContext, GpuTimer};
 
 use super::ViewArgs;
 use super::frame::{Quality, Rendered, SceneRenderer, TechniqueChoice};
@@ -234,7 +234,7 @@ struct Viewer {
 impl Viewer {
     fn new(event_loop: &ActiveEventLoop, args: &ViewArgs) -> Result<Self> {
         let scene = Scene::load_or_builtin(&args.scene)?;
-        let [w, h] = args.size;
+        let [w, h] = args.image_size;
         let attributes = Window::default_attributes()
             .with_title(format!("caustics view: {}", scene.name))
             .with_inner_size(winit::dpi::PhysicalSize::new(w, h));
@@ -243,10 +243,7 @@ impl Viewer {
                 .create_window(attributes)
                 .context("cannot open a window")?,
         );
-        let options = GpuOptions {
-            backend: args.backend.clone(),
-            adapter_name: args.adapter.clone(),
-        };
+        let options = args.gpu.options();
         let instance = GpuContext::instance(&options)?;
         let surface = match create_surface(&instance, window.clone())? {
             Ok(s) => s,
@@ -342,7 +339,13 @@ impl Viewer {
             TechniqueChoice::parse(name, 1)
                 .with_context(|| format!("--cycle-techniques `{name}`"))?;
         }
-        let renderer = SceneRenderer::new(Runner::new(Some(ctx)), scene);
+        let runner = Runner::new(Some(ctx));
+        let runner = if args.gpu.cpu {
+            runner.twins_only()
+        } else {
+            runner
+        };
+        let renderer = SceneRenderer::new(runner, scene);
         if let Some(n) = &renderer.final_note {
             eprintln!("{n}");
         }
@@ -354,7 +357,7 @@ impl Viewer {
             drop_every: args.drop_every,
             show_map_at: args.show_map_at,
             lose_device_at: args.lose_device_at,
-            base_size: args.size,
+            base_size: args.image_size,
             times: Vec::new(),
             passes: Vec::new(),
         });

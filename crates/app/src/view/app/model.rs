@@ -40,9 +40,9 @@ pub(super) fn initial_model(
         state
     });
     let camera = OrbitCamera::from_scene(&scene.camera, scene.size);
-    // Defaults that keep a frame well under a second on a software adapter, full quality on a
-    // GPU. The map's side follows the scene's (its larger side) on a GPU.
-    let (scale, map_size, supersampling) = if software {
+    // Defaults that keep a frame well under a second on a software adapter or the CPU, full
+    // quality on a GPU. The map's side follows the scene's (its larger side) on a GPU.
+    let (scale, map_size, supersampling) = if software || args.gpu.cpu {
         (0.25, 128, 1)
     } else {
         (1.0, scene.caustics.width.max(scene.caustics.height), 2)
@@ -67,21 +67,22 @@ pub(super) fn initial_model(
         slots: [Slot::new(first), Slot::new(second)],
         split: args.compare.is_some(),
         quality: Quality {
-            map_size: args.map_size.unwrap_or(map_size).clamp(8, 4096),
-            supersampling: args.supersampling.unwrap_or(supersampling).clamp(1, 8),
+            map_size: args.map_size.map_or(map_size, |[n, _]| n).clamp(8, 4096),
+            supersampling: args.supersampling.unwrap_or(supersampling),
             exposure: scene.look.exposure,
             filter_water: args.filter_water,
-            cpu_image: match args.final_image {
-                ImageOn::Cpu => true,
-                ImageOn::Gpu => false,
-                // The faster of the two: the GPU frame on a GPU, the CPU image on a software
-                // adapter, where lavapipe runs the GPU passes on the same cores and the CPU
-                // renderer traces the small image faster. Median frame at 640 x 360, CPU image
-                // against GPU frame (docs/benchmarks.md, the viewer's table): yuksel 87.8 / 153.9
-                // ms, procedural 90.1 / 127.8, volumes 163.9 / 179.8, cascaded 774 / 819 on
-                // Mesa 25.0.7; 31.4 / 106.7 ms (yuksel) on Mesa 22.3.6.
-                ImageOn::Auto => software,
-            },
+            cpu_image: args.gpu.cpu
+                || match args.final_image {
+                    ImageOn::Cpu => true,
+                    ImageOn::Gpu => false,
+                    // The faster of the two: the GPU frame on a GPU, the CPU image on a software
+                    // adapter, where lavapipe runs the GPU passes on the same cores and the CPU
+                    // renderer traces the small image faster. Median frame at 640 x 360, CPU image
+                    // against GPU frame (docs/benchmarks.md, the viewer's table): yuksel 87.8 / 153.9
+                    // ms, procedural 90.1 / 127.8, volumes 163.9 / 179.8, cascaded 774 / 819 on
+                    // Mesa 25.0.7; 31.4 / 106.7 ms (yuksel) on Mesa 22.3.6.
+                    ImageOn::Auto => software,
+                },
         },
         scale: args.scale.unwrap_or(scale),
         show_panel: !args.no_panel,
@@ -97,7 +98,7 @@ pub(super) fn initial_model(
             timestamps,
             ..Stats::default()
         },
-        view_px: [args.size[0], args.size[1]],
+        view_px: args.image_size,
         view_rects: Vec::new(),
         frame_dt: 0.0,
         pending_drops: Vec::new(),
