@@ -1548,3 +1548,236 @@ fn an_adapter_asked_for_and_absent_is_an_error() {
     assert!(e.contains("--adapter no-such-gpu-anywhere"), "{e}");
     assert!(!d.join("x.png").exists());
 }
+
+/// The `caustics` command lines of a Markdown file's `sh` blocks, one a line (continued lines
+/// joined, a `&&` chain split, comments dropped).
+fn commands_in(markdown: &str) -> Vec<Vec<String>> {
+    let mut lines = Vec::new();
+    let mut in_sh = false;
+    let mut pending = String::new();
+    for line in markdown.lines() {
+        match line.trim() {
+            "```sh" => in_sh = true,
+            l if l.starts_with("```") => in_sh = false,
+            l if in_sh => {
+                let l = l.find(" #").map_or(l, |k| &l[..k]);
+                match l.strip_suffix('\\') {
+                    Some(head) => pending += &format!("{head} "),
+                    None => lines.push(std::mem::take(&mut pending) + l),
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for line in lines {
+        for part in line.split("&&") {
+            let words: Vec<String> = part.split_whitespace().map(String::from).collect();
+            if words.first().is_some_and(|w| w == "caustics") {
+                out.push(words[1..].to_vec());
+            }
+        }
+    }
+    out
+}
+
+/// `args` with `flag` set to `value`, in place of the value it had.
+fn set(args: &mut Vec<String>, flag: &str, value: &str) {
+    match args.iter().position(|a| a == flag) {
+        Some(k) => args[k + 1] = value.to_string(),
+        None => args.extend([flag.to_string(), value.to_string()]),
+    }
+}
+
+#[test]
+/// Every `caustics` command of the README runs as written, in order in one folder (so that a file
+/// one writes is there for the next), with small sizes where the size only sets the time: renders
+/// at a 32² map and a 96 x 54 picture, bakes of 2 frames of 16². `view` opens a window, which the
+/// viewer's tests do: here its command line must get past the parser to the display check.
+fn every_command_in_the_readme_runs() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let commands = commands_in(&readme);
+    assert!(commands.len() >= 8, "{commands:?}");
+    let d = tmpdir("readme");
+    for mut args in commands {
+        let written = args.join(" ");
+        let redirect = args.iter().position(|a| a == ">").map(|k| {
+            let file = args[k + 1].clone();
+            args.truncate(k);
+            file
+        });
+        match args.first().map(String::as_str) {
+            Some("render") => {
+                set(&mut args, "--map-size", "32");
+                set(&mut args, "--image-size", "96x54");
+            }
+            Some("bake") => {
+                set(&mut args, "--map-size", "16");
+                set(&mut args, "--frames", "2");
+            }
+            _ => {}
+        }
+        let mut command = Command::new(env!("CARGO_BIN_EXE_caustics"));
+        command.args(&args).current_dir(&d);
+        if args.first().is_some_and(|a| a == "view") {
+            command.env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY");
+        }
+        let o = command.output().unwrap();
+        if args.first().is_some_and(|a| a == "view") {
+            assert!(
+                stderr(&o).contains("opens a window"),
+                "`caustics {written}`: {}",
+                stderr(&o)
+            );
+            continue;
+        }
+        assert!(o.status.success(), "`caustics {written}`: {}", stderr(&o));
+        if let Some(file) = redirect {
+            std::fs::write(d.join(file), &o.stdout).unwrap();
+        }
+    }
+}
+
+/// Markdown files under `dir`, recursively.
+fn markdown_under(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            markdown_under(&path, out);
+        } else if path.extension().is_some_and(|e| e == "md") {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+/// The README and the guides describe the project as it is: no session, issue or stop numbers of
+/// the work that made it, no names of the tools it was made with. History is the commit log's.
+fn the_docs_tell_no_history_of_their_making() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = vec![root.join("README.md")];
+    markdown_under(&root.join("docs"), &mut files);
+    assert!(files.len() > 15, "{files:?}");
+    let numbered = |text: &str, word: &str| {
+        text.match_indices(word).any(|(k, _)| {
+            let rest = text[k + word.len()..].trim_start_matches('#');
+            rest.starts_with(|c: char| c.is_ascii_digit())
+        })
+    };
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap().to_lowercase();
+        for word in ["session ", "issue ", "issues ", "stop "] {
+            assert!(
+                !numbered(&text, word),
+                "{}: `{word}` with a number",
+                file.display()
+            );
+        }
+        for phrase in ["`device` tool", "the draw did", "helper agent"] {
+            assert!(!text.contains(phrase), "{}: `{phrase}`", file.display());
+        }
+    }
+}
+
+#[test]
+/// Every `caustics` command of the guides (docs/) names flags, values and subcommands the tool
+/// takes: each is given to the parser as written with `--help` after it, which clap reaches only
+/// when every word before it parsed. (The README's commands run whole, above.)
+fn every_command_in_the_guides_parses() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = Vec::new();
+    markdown_under(&root.join("docs"), &mut files);
+    let mut checked = 0;
+    for file in files {
+        let text = std::fs::read_to_string(&file).unwrap();
+        for mut args in commands_in(&text) {
+            if let Some(k) = args.iter().position(|a| a == ">" || a == "|") {
+                args.truncate(k);
+            }
+            let written = args.join(" ");
+            args.push("--help".into());
+            let o = Command::new(env!("CARGO_BIN_EXE_caustics"))
+                .args(&args)
+                .output()
+                .unwrap();
+            assert!(
+                o.status.success(),
+                "{}: `caustics {written}`: {}",
+                file.display(),
+                stderr(&o)
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 20, "{checked} commands in the guides");
+}
+
+/// GitHub's anchor of a Markdown heading: lower case, punctuation dropped, spaces to hyphens.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || *c == ' ' || *c == '-' || *c == '_')
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+/// The anchors of a Markdown file's headings (outside code blocks).
+fn anchors_of(text: &str) -> Vec<String> {
+    let mut fenced = false;
+    text.lines()
+        .filter(|l| {
+            if l.trim_start().starts_with("```") {
+                fenced = !fenced;
+            }
+            !fenced && l.starts_with('#')
+        })
+        .map(|l| anchor(l.trim_start_matches('#')))
+        .collect()
+}
+
+#[test]
+/// Every relative link of the README and the guides reaches a file of the repository, and a link
+/// to a heading (`file.md#heading`, `#heading`) reaches a heading of that file.
+fn the_docs_links_resolve() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut files = vec![root.join("README.md")];
+    markdown_under(&root.join("docs"), &mut files);
+    let mut checked = 0;
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for (k, _) in text.match_indices("](") {
+            let Some(end) = text[k + 2..].find(')') else {
+                continue;
+            };
+            let link = &text[k + 2..k + 2 + end];
+            if link.contains("://") || link.starts_with("mailto:") || link.contains(' ') {
+                continue;
+            }
+            let (path, heading) = link.split_once('#').unwrap_or((link, ""));
+            let target = if path.is_empty() {
+                file.clone()
+            } else {
+                file.parent().unwrap().join(path)
+            };
+            assert!(
+                target.exists(),
+                "{}: the link `{link}` reaches no file",
+                file.display()
+            );
+            if !heading.is_empty() && target.extension().is_some_and(|e| e == "md") {
+                let anchors = anchors_of(&std::fs::read_to_string(&target).unwrap());
+                assert!(
+                    anchors.iter().any(|a| a == heading),
+                    "{}: the link `{link}` reaches no heading of {}",
+                    file.display(),
+                    target.display()
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked} links");
+}

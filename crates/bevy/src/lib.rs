@@ -545,9 +545,26 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
-    /// docs/bevy.md's example is this crate's front-page example, which `cargo test` compiles.
+    /// The lines of the first `rust` block under `heading` in the Markdown file `path` (from the
+    /// repository's root).
+    fn rust_block_under(path: &str, heading: &str) -> Vec<String> {
+        let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join(path);
+        let text = std::fs::read_to_string(&file).unwrap_or_else(|e| panic!("{path}: {e}"));
+        text.lines()
+            .skip_while(|l| *l != heading)
+            .skip_while(|l| *l != "```rust")
+            .skip(1)
+            .take_while(|l| *l != "```")
+            .map(String::from)
+            .collect()
+    }
+
+    /// docs/bevy.md's and the README's example is this crate's front-page example, which `cargo
+    /// test` compiles.
     #[test]
-    fn the_guide_shows_the_compiled_example() {
+    fn the_guide_and_the_readme_show_the_compiled_example() {
         let lib = include_str!("lib.rs");
         let front: Vec<&str> = lib
             .lines()
@@ -557,20 +574,12 @@ mod tests {
             .skip(1)
             .take_while(|l| !l.starts_with("```"))
             .collect();
-        let guide = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/bevy.md");
-        let guide = std::fs::read_to_string(&guide).expect("docs/bevy.md beside the crate");
-        let shown: Vec<&str> = guide
-            .lines()
-            .skip_while(|l| *l != "## Using it")
-            .skip_while(|l| *l != "```rust")
-            .skip(1)
-            .take_while(|l| *l != "```")
-            .collect();
         assert!(
             front.len() > 20,
             "{} lines in the front page's example",
             front.len()
         );
-        assert_eq!(shown, front);
+        assert_eq!(rust_block_under("docs/bevy.md", "## Using it"), front);
+        assert_eq!(rust_block_under("README.md", "## In Bevy"), front);
     }
 }

@@ -6,7 +6,7 @@
 //! cargo run --release -p caustics-gpu --example minimal -- yuksel:n=15 floor.png
 //! ```
 
-use caustics_core::scene::WaterOnly;
+use caustics_gpu::core::scene::WaterOnly;
 use caustics_gpu::wgpu::{self, util::DeviceExt};
 use caustics_gpu::{GpuContext, WaterTextures, registry};
 

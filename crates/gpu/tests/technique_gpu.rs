@@ -87,6 +87,35 @@ fn the_minimal_example_lights_its_floor() {
     }
 }
 
+/// The README's wgpu snippet is lines of the minimal example, which the test above runs: each of
+/// its lines that is not a comment is one of the example's, in the example's order.
+fn the_readme_shows_lines_of_the_minimal_example() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let example = include_str!("../examples/minimal.rs");
+    let shown: Vec<&str> = readme
+        .lines()
+        .skip_while(|l| *l != "## In your own wgpu code")
+        .skip_while(|l| *l != "```rust")
+        .skip(1)
+        .take_while(|l| *l != "```")
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("//"))
+        .collect();
+    assert!(
+        shown.len() > 10,
+        "{} lines in the README's snippet",
+        shown.len()
+    );
+    let mut lines = example.lines().map(str::trim);
+    for line in &shown {
+        assert!(
+            lines.any(|l| l == *line),
+            "README.md's wgpu snippet: `{line}` is not the next line of examples/minimal.rs"
+        );
+    }
+}
+
 fn yuksel_through_the_interface_matches_its_cpu_twin() {
     let ctx = test_gpu();
     // The pool's own sun, and one 80 degrees from the zenith: the region the GPU chooses from the
@@ -378,6 +407,7 @@ test_main! {
     gpu new_parameters_keep_the_pipelines_and_give_a_fresh_techniques_map,
     gpu the_registry_names_are_unique_and_unknown_names_are_refused,
     gpu the_minimal_example_lights_its_floor,
+    cpu the_readme_shows_lines_of_the_minimal_example,
     gpu yuksel_through_the_interface_matches_its_cpu_twin,
     gpu yuksel_steady_frames_create_nothing_and_read_nothing_back,
     gpu yuksel_follows_steeper_water_without_new_resources,
