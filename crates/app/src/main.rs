@@ -61,7 +61,7 @@ enum Command {
         /// (`yuksel-targets`, `procedural-vertex`, ...), one a line, for scripts.
         #[arg(long)]
         gpu_names: bool,
-        /// Print the README's table of techniques (Markdown), made from the registry.
+        /// Print docs/techniques.md's table of techniques (Markdown), made from the registry.
         #[arg(long, conflicts_with = "gpu_names")]
         markdown: bool,
     },
@@ -472,11 +472,11 @@ pub(crate) fn default_output(scene: &str) -> PathBuf {
     PathBuf::from(format!("{stem}.png"))
 }
 
-/// The README's table of techniques, made from the registry (`caustics techniques --markdown`; a
-/// test keeps the README's copy current).
+/// docs/techniques.md's table of techniques, made from the registry (`caustics techniques
+/// --markdown`; a test keeps the copy current). Its links are relative to docs/.
 fn markdown_table() -> String {
     let mut s = String::from(
-        "| technique | paper | reads -> makes | lights | parameters (default) | documentation |\n|---|---|---|---|---|---|\n",
+        "| technique | paper | reads -> makes | maps | parameters (default) | documentation |\n|---|---|---|---|---|---|\n",
     );
     for d in REGISTRY {
         let params: Vec<String> = d
@@ -487,6 +487,7 @@ fn markdown_table() -> String {
                 other => format!("`{}` ({other})", p.key),
             })
             .collect();
+        let page = d.docs.strip_prefix("docs/").unwrap_or(d.docs);
         let _ = writeln!(
             s,
             "| `{}` | {} | {} | {} | {} | [{}]({}) |",
@@ -503,8 +504,8 @@ fn markdown_table() -> String {
             } else {
                 params.join(", ")
             },
-            d.docs,
-            d.docs
+            page,
+            page
         );
     }
     s

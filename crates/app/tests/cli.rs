@@ -477,19 +477,25 @@ fn scene_check_and_techniques() {
             );
         }
     }
-    // The README's table is the one the registry makes.
+    // docs/techniques.md's table is the one the registry makes.
     let o = caustics(&["techniques", "--markdown"], &d);
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let readme = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/techniques.md"
+    ))
+    .unwrap();
     let begin = "<!-- techniques: made by `caustics techniques --markdown` -->\n";
-    let a = readme.find(begin).expect("the README marks its table") + begin.len();
+    let a = readme
+        .find(begin)
+        .expect("docs/techniques.md marks its table")
+        + begin.len();
     let b = a + readme[a..]
         .find("<!-- techniques end -->")
         .expect("the table's end marker");
     assert_eq!(
         &readme[a..b],
         String::from_utf8_lossy(&o.stdout),
-        "README.md's table of techniques is stale: paste `caustics techniques --markdown` between its markers"
+        "docs/techniques.md's table is stale: paste `caustics techniques --markdown` between its markers"
     );
     for t in caustics_core::techniques::REGISTRY {
         assert!(

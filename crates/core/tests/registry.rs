@@ -1,7 +1,7 @@
 //! The registry's descriptors agree with the techniques they describe: the ranges the parser
 //! enforces are the ranges each technique's own checks accept, the defaults are the techniques'
-//! own, every parameter is reachable through the one spec parser, and the README's table is the
-//! registry's.
+//! own, every parameter is reachable through the one spec parser, and docs/techniques.md's table
+//! is the registry's.
 
 use caustics_core::techniques::describe::{Kind, ParamDefault, check_value};
 use caustics_core::techniques::{REGISTRY, Spec, find};

@@ -2,8 +2,8 @@
 //! lights, and its parameters as typed descriptors. Every front end reads these and nothing else:
 //! the spec parser (`name:key=value`, a scene's `technique` and its `[caustics.<name>]` tables),
 //! `caustics techniques`, the viewer's panel, bench and the error-against-cost sweep, the fuzzed
-//! specs and the README's table. The CPU twin is reached from the entry ([`Descriptor::cpu`]); the
-//! GPU crate's registry points at the same entry.
+//! specs and docs/techniques.md's table. The CPU twin is reached from the entry
+//! ([`Descriptor::cpu`]); the GPU crate's registry points at the same entry.
 //!
 //! This is what every technique is written against, so it knows no technique: what needs the
 //! list of them (looking a name up, the spec parser, the checks of a scene's tables, naming the
@@ -160,7 +160,7 @@ pub enum Receiver {
 }
 
 impl Receiver {
-    /// Its name in the README's table of techniques (`floor`, `eye space`).
+    /// Its name in docs/techniques.md's table (`floor`, `eye space`).
     pub fn name(self) -> &'static str {
         ["floor", "walls", "objects", "eye space"][self as usize]
     }
@@ -179,7 +179,7 @@ pub enum Input {
 }
 
 impl Input {
-    /// Its `input -> output` column in `caustics techniques` and the README's table
+    /// Its `input -> output` column in `caustics techniques` and docs/techniques.md's table
     /// (`water -> floor map`).
     pub fn describe(self) -> &'static str {
         let names = [

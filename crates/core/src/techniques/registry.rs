@@ -1,8 +1,8 @@
 //! The registry: every technique in one table ([`REGISTRY`]), and everything that walks it.
 //! Looking an entry up by name, the spec parser ([`Spec`], `name:key=value`) and the checks of a
-//! technique's tables, the README's table, the techniques a scene offers, and the check of a scene
-//! file's `technique` and `[caustics.<name>]` tables while it is read. The one place in the crate
-//! that names every technique: the techniques and the reference below it know only the
+//! technique's tables, docs/techniques.md's table, the techniques a scene offers, and the check of
+//! a scene file's `technique` and `[caustics.<name>]` tables while it is read. The one place in
+//! the crate that names every technique: the techniques and the reference below it know only the
 //! description ([`super::describe`]) they are written against; the renderer and the front ends
 //! above it find them here.
 
