@@ -1052,19 +1052,40 @@ fn package_shaders__1caustics_light__2sun_through_water(relative: vec3<f32>, hor
 }
 
 fn package_shaders__1caustics_sampling__1caustics_bilinear(map: texture_2d<f32>, mips: texture_2d<f32>, mips_from: u32, level: u32, p: vec2<f32>, size: f32, wrap: bool) -> vec3<f32> {
-    let dims = vec2<f32>(package_shaders__1caustics_sampling__1caustics_dims(map, level));
-    let u = p.x / size * dims.x - 0.5;
-    let v = p.y / size * dims.y - 0.5;
+    let dims = package_shaders__1caustics_sampling__1caustics_dims(map, level);
+    let u = p.x / size * f32(dims.x) - 0.5;
+    let v = p.y / size * f32(dims.y) - 0.5;
     let j0 = floor(u);
     let i0 = floor(v);
     let fu = u - j0;
     let fv = v - i0;
-    let i = i32(i0);
-    let j = i32(j0);
-    let a = package_shaders__1caustics_sampling__1caustics_texel(map, mips, mips_from, level, i, j, wrap);
-    let b = package_shaders__1caustics_sampling__1caustics_texel(map, mips, mips_from, level, i, j + 1, wrap);
-    let c = package_shaders__1caustics_sampling__1caustics_texel(map, mips, mips_from, level, i + 1, j, wrap);
-    let d = package_shaders__1caustics_sampling__1caustics_texel(map, mips, mips_from, level, i + 1, j + 1, wrap);
+    var c0 = vec2<i32>(i32(j0), i32(i0));
+    var c1 = c0 + 1;
+    if wrap {
+        c0 = ((c0 % dims) + dims) % dims;
+        c1 = select(c0 + 1, vec2<i32>(0), c0 + 1 == dims);
+    }
+    else {
+        c0 = clamp(c0, vec2<i32>(0), dims - 1);
+        c1 = clamp(c1, vec2<i32>(0), dims - 1);
+    }
+    var a: vec3<f32>;
+    var b: vec3<f32>;
+    var c: vec3<f32>;
+    var d: vec3<f32>;
+    if level == 0u {
+        a = textureLoad(map, c0, 0).rgb;
+        b = textureLoad(map, vec2<i32>(c1.x, c0.y), 0).rgb;
+        c = textureLoad(map, vec2<i32>(c0.x, c1.y), 0).rgb;
+        d = textureLoad(map, c1, 0).rgb;
+    }
+    else {
+        let m = level - mips_from;
+        a = textureLoad(mips, c0, m).rgb;
+        b = textureLoad(mips, vec2<i32>(c1.x, c0.y), m).rgb;
+        c = textureLoad(mips, vec2<i32>(c0.x, c1.y), m).rgb;
+        d = textureLoad(mips, c1, m).rgb;
+    }
     return (a * (1.0 - fu) + b * fu) * (1.0 - fv) + (c * (1.0 - fu) + d * fu) * fv;
 }
 
@@ -1104,21 +1125,6 @@ fn package_shaders__1caustics_sampling__1caustics_filtered(map: texture_2d<f32>,
         }
     }
     return sum / taps;
-}
-
-fn package_shaders__1caustics_sampling__1caustics_texel(map: texture_2d<f32>, mips: texture_2d<f32>, mips_from: u32, level: u32, i: i32, j: i32, wrap: bool) -> vec3<f32> {
-    let dims = package_shaders__1caustics_sampling__1caustics_dims(map, level);
-    var c = vec2<i32>(j, i);
-    if wrap {
-        c = ((c % dims) + dims) % dims;
-    }
-    else {
-        c = clamp(c, vec2<i32>(0), dims - 1);
-    }
-    if level == 0u {
-        return textureLoad(map, c, 0).rgb;
-    }
-    return textureLoad(mips, c, level - mips_from).rgb;
 }
 
 fn package_shaders__1caustics_sampling__1caustics_trilinear(map: texture_2d<f32>, mips: texture_2d<f32>, mips_from: u32, p: vec2<f32>, level: f32, size: f32, wrap: bool) -> vec3<f32> {
