@@ -294,16 +294,19 @@ var<uniform> package__1final_image__2final_image_inputs_params: package__1final_
 
 var<private> package__1final_image__2final_image_inputs_rays: array<package__1final_image__2final_image_inputs_Ray, package__1final_image__2final_image_inputs__1RAY_STACK>;
 
-fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
+struct package__1final_image__2final_image_march_Start {
+    t: f32,
+    gap: f32,
+    known: bool
+}
+
+fn package__1final_image__2final_image_march__1crossing_after(o: vec3<f32>, d: vec3<f32>, t0: f32, gap0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + package__1final_image__2final_image_inputs__1slope_max * length(d.xy);
     let min_step = package__1final_image__2final_image_inputs_params.water_size / f32(4u * package__1final_image__2final_image_inputs__1SLAB_LATTICE);
     let shortest = max(min_step, (t1 - t0) / f32(package__1final_image__2final_image_inputs__1MARCH_STEPS));
     let longest = max((t1 - t0) / f32(package__1final_image__2final_image_inputs__1EVEN_STEPS), min_step);
     var a = t0;
-    var gap = side * package__1final_image__2final_image_march__1water_gap(o, d, a);
-    if gap <= 0.0 {
-        return t0;
-    }
+    var gap = gap0;
     var hi = t1;
     var g_hi = 1.0;
     var crossed = false;
@@ -328,24 +331,43 @@ fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: v
     return package__1final_image__2final_image_march__1regula_falsi(o, d, side, a, gap, hi, g_hi, package__1final_image__2final_image_inputs__1ROOT_TOLERANCE * min_step);
 }
 
+fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
+    if t0 == t1 {
+        return t1;
+    }
+    let gap = side * package__1final_image__2final_image_march__1water_gap(o, d, t0);
+    if gap <= 0.0 {
+        return t0;
+    }
+    return package__1final_image__2final_image_march__1crossing_after(o, d, t0, gap, t1, side);
+}
+
 fn package__1final_image__2final_image_march__1floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     let p = o + d * t;
     return p.z - package__1final_image__2final_image_inputs__1floor_height(p.xy);
 }
 
-fn package__1final_image__2final_image_march__1guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> f32 {
+fn package__1final_image__2final_image_march__1guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> package__1final_image__2final_image_march_Start {
     let size = package__1final_image__2final_image_inputs_params.water_size;
     let a = o.xy + d.xy * t0;
+    let top = package__1final_image__2final_image_march_Start(t0, 0.0, false);
     if raster < 0.0 {
         let b = o.xy + d.xy * t1;
         let outside = (a.x < 0.0 && b.x < 0.0) || (a.y < 0.0 && b.y < 0.0) || (a.x > size && b.x > size) || (a.y > size && b.y > size);
-        return select(t0, t1, package__1final_image__2final_image_inputs__1is_pool() && outside);
+        if package__1final_image__2final_image_inputs__1is_pool() && outside {
+            return package__1final_image__2final_image_march_Start(t1, 0.0, false);
+        }
+        return top;
     }
     let start = raster * (1.0 - 1e-5);
-    if start <= t0 || !package__1final_image__2final_image_receivers_inside(a, size) || package__1final_image__2final_image_march__1water_gap(o, d, start) <= 0.0 {
-        return t0;
+    if start <= t0 || !package__1final_image__2final_image_receivers_inside(a, size) {
+        return top;
     }
-    return start;
+    let gap = package__1final_image__2final_image_march__1water_gap(o, d, start);
+    if gap <= 0.0 {
+        return top;
+    }
+    return package__1final_image__2final_image_march_Start(start, gap, true);
 }
 
 fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
@@ -392,12 +414,21 @@ fn package__1final_image__2final_image_march__1hit_water(o: vec3<f32>, d: vec3<f
     if o.z < bottom || d.z >= 0.0 {
         return vec4<f32>(o, -1.0);
     }
-    var t0 = max((top - o.z) / d.z, 0.0);
+    let t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
+    var t: f32;
     if raster != package__1final_image__2final_image_inputs__1NO_GUIDE {
-        t0 = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
+        let start = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
+        if start.known {
+            t = package__1final_image__2final_image_march__1crossing_after(o, d, start.t, start.gap, t1, 1.0);
+        }
+        else {
+            t = package__1final_image__2final_image_march__1first_crossing(o, d, start.t, t1, 1.0);
+        }
     }
-    let t = package__1final_image__2final_image_march__1first_crossing(o, d, t0, t1, 1.0);
+    else {
+        t = package__1final_image__2final_image_march__1first_crossing(o, d, t0, t1, 1.0);
+    }
     return vec4<f32>(o + d * t, t);
 }
 

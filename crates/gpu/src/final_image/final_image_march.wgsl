@@ -30,35 +30,58 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     if o.z < bottom || d.z >= 0.0 {
         return vec4<f32>(o, -1.0);
     }
-    var t0 = max((top - o.z) / d.z, 0.0);
+    let t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
+    var t: f32;
     if raster != NO_GUIDE {
-        t0 = guided_start(o, d, t0, t1, raster);
+        let start = guided_start(o, d, t0, t1, raster);
+        if start.known {
+            t = crossing_after(o, d, start.t, start.gap, t1, 1.0);
+        } else {
+            t = first_crossing(o, d, start.t, t1, 1.0);
+        }
+    } else {
+        t = first_crossing(o, d, t0, t1, 1.0);
     }
-    let t = first_crossing(o, d, t0, t1, 1.0);
     return vec4<f32>(o + d * t, t);
+}
+
+// Where a search starts, and the ray's gap to the surface there where it was read on the way.
+struct Start {
+    t: f32,
+    gap: f32,
+    known: bool,
 }
 
 // Where a primary ray's search for the surface may start, given the distance `raster` along it to
 // the rasterised grid, which lies above the surface: there, where the ray entered the slab over the
-// water square (so that the march it skips lay over the grid) and is still above the surface; the
-// slab's bottom for a pool's ray that misses the grid and crosses the slab wholly on one side of
-// the square (a crossing there is the deck's, as no crossing is); else the slab's top, `t0`.
-fn guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> f32 {
+// water square (so that the march it skips lay over the grid) and is still above the surface (its
+// gap there kept for the march); the slab's bottom for a pool's ray that misses the grid and
+// crosses the slab wholly on one side of the square (a crossing there is the deck's, as no
+// crossing is); else the slab's top, `t0`.
+fn guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> Start {
     let size = params.water_size;
     let a = o.xy + d.xy * t0;
+    let top = Start(t0, 0.0, false);
     if raster < 0.0 {
         let b = o.xy + d.xy * t1;
         let outside = (a.x < 0.0 && b.x < 0.0) || (a.y < 0.0 && b.y < 0.0)
             || (a.x > size && b.x > size) || (a.y > size && b.y > size);
-        return select(t0, t1, is_pool() && outside);
+        if is_pool() && outside {
+            return Start(t1, 0.0, false);
+        }
+        return top;
     }
     // The rasterised distance is interpolated across the triangle in f32.
     let start = raster * (1.0 - 1e-5);
-    if start <= t0 || !inside(a, size) || water_gap(o, d, start) <= 0.0 {
-        return t0;
+    if start <= t0 || !inside(a, size) {
+        return top;
     }
-    return start;
+    let gap = water_gap(o, d, start);
+    if gap <= 0.0 {
+        return top;
+    }
+    return Start(start, gap, true);
 }
 
 // render.rs `first_crossing`: the first t in [t0, t1] where the ray's signed distance to the
@@ -70,17 +93,27 @@ fn guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> f3
 // then regula falsi in its Illinois form on the step that crossed, or on what is left of [t0, t1]
 // when the march ends without one (the slab's far side lies beyond the surface: only rounding, or
 // the steps spent, leave it uncrossed): within a step the gap is nearly linear, so a few guesses
-// reach it.
+// reach it. An empty interval's answer is t1 whatever the gap there (at or below 0: t0 = t1;
+// above: the march's end), so it is given without reading the surface.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
+    if t0 == t1 {
+        return t1;
+    }
+    let gap = side * water_gap(o, d, t0);
+    if gap <= 0.0 {
+        return t0;
+    }
+    return crossing_after(o, d, t0, gap, t1, side);
+}
+
+// `first_crossing` from `t0`, where the ray's signed distance to the surface is `gap0` > 0.
+fn crossing_after(o: vec3<f32>, d: vec3<f32>, t0: f32, gap0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
     let min_step = params.water_size / f32(4u * SLAB_LATTICE);
     let shortest = max(min_step, (t1 - t0) / f32(MARCH_STEPS));
     let longest = max((t1 - t0) / f32(EVEN_STEPS), min_step);
     var a = t0;
-    var gap = side * water_gap(o, d, a);
-    if gap <= 0.0 {
-        return t0;
-    }
+    var gap = gap0;
     var hi = t1;
     var g_hi = 1.0;
     var crossed = false;
