@@ -416,18 +416,19 @@ fn package__1final_image__2final_image_march__1hit_water(o: vec3<f32>, d: vec3<f
     }
     let t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
-    var t: f32;
+    var start = package__1final_image__2final_image_march_Start(t0, 0.0, false);
     if raster != package__1final_image__2final_image_inputs__1NO_GUIDE {
-        let start = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
-        if start.known {
-            t = package__1final_image__2final_image_march__1crossing_after(o, d, start.t, start.gap, t1, 1.0);
-        }
-        else {
-            t = package__1final_image__2final_image_march__1first_crossing(o, d, start.t, t1, 1.0);
-        }
+        start = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
     }
-    else {
-        t = package__1final_image__2final_image_march__1first_crossing(o, d, t0, t1, 1.0);
+    var t = start.t;
+    if t != t1 {
+        var gap = start.gap;
+        if !start.known {
+            gap = package__1final_image__2final_image_march__1water_gap(o, d, t);
+        }
+        if gap > 0.0 {
+            t = package__1final_image__2final_image_march__1crossing_after(o, d, t, gap, t1, 1.0);
+        }
     }
     return vec4<f32>(o + d * t, t);
 }

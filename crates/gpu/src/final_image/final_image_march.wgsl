@@ -32,16 +32,21 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
     }
     let t0 = max((top - o.z) / d.z, 0.0);
     let t1 = (bottom - o.z) / d.z;
-    var t: f32;
+    var start = Start(t0, 0.0, false);
     if raster != NO_GUIDE {
-        let start = guided_start(o, d, t0, t1, raster);
-        if start.known {
-            t = crossing_after(o, d, start.t, start.gap, t1, 1.0);
-        } else {
-            t = first_crossing(o, d, start.t, t1, 1.0);
+        start = guided_start(o, d, t0, t1, raster);
+    }
+    // `first_crossing` from the start, written out so that the march has one call site: a driver
+    // that runs every branch's code for every pixel (SwiftShader) would run a second one too.
+    var t = start.t;
+    if t != t1 {
+        var gap = start.gap;
+        if !start.known {
+            gap = water_gap(o, d, t);
         }
-    } else {
-        t = first_crossing(o, d, t0, t1, 1.0);
+        if gap > 0.0 {
+            t = crossing_after(o, d, t, gap, t1, 1.0);
+        }
     }
     return vec4<f32>(o + d * t, t);
 }
