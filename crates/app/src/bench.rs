@@ -662,3 +662,30 @@ fn plot(results: &[Measurement], path: &std::path::Path, adapter: &str) -> Resul
     root.present()?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::sizes;
+
+    #[test]
+    fn image_and_map_sizes_pair_as_documented() {
+        let (hd, fhd) = ([1280, 720], [1920, 1080]);
+        // Neither: the two picture sizes, each its own map; `quick`, one small size.
+        assert_eq!(sizes(&[], &[], false).unwrap(), [(hd, hd), (fhd, fhd)]);
+        assert_eq!(sizes(&[], &[], true).unwrap(), [([64, 36], [64, 36])]);
+        // One map for every picture, or one each in order.
+        let m = [1024, 1024];
+        assert_eq!(sizes(&[hd, fhd], &[m], false).unwrap(), [(hd, m), (fhd, m)]);
+        assert_eq!(
+            sizes(&[hd, fhd], &[m, [512, 512]], false).unwrap(),
+            [(hd, m), (fhd, [512, 512])]
+        );
+        // Maps alone: each with a picture of its own size.
+        assert_eq!(sizes(&[], &[m], true).unwrap(), [(m, m)]);
+        // Counts that pair no way, and a side beyond the limit, are refused by name.
+        let e = sizes(&[hd], &[m, m], false).unwrap_err().to_string();
+        assert!(e.contains("--map-size: 2 sizes for 1 image sizes"), "{e}");
+        let e = sizes(&[hd], &[[0, 8]], false).unwrap_err().to_string();
+        assert!(e.contains("--map-size 0x8"), "{e}");
+    }
+}

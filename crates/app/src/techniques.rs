@@ -94,7 +94,7 @@ impl Runner {
 
     /// The device the techniques run on: none where they run on their CPU twins.
     pub fn compute(&self) -> Option<&GpuContext> {
-        self.gpu.as_ref().filter(|_| !self.twins_only)
+        compute_device(&self.gpu, self.twins_only)
     }
 
     /// Time every GPU pass of the techniques run from now on, where the adapter has timestamp
@@ -122,7 +122,8 @@ impl Runner {
         progress: &(dyn Fn(usize, usize) + Sync),
     ) -> Result<Outcome> {
         spec.entry.check_light(&job.scene.light)?;
-        let compute = self.gpu.as_ref().filter(|_| !self.twins_only);
+        // The fields apart (not `compute()`): `once` is borrowed mutably beside the device.
+        let compute = compute_device(&self.gpu, self.twins_only);
         let (made, backend) = match (compute, caustics_gpu::registry::find(spec.name())) {
             (Some(ctx), Some(entry)) => {
                 let once = match self.once.entry(spec.name()) {
@@ -143,4 +144,9 @@ impl Runner {
             light: made.light,
         })
     }
+}
+
+/// [`Runner::compute`]'s rule on the runner's fields.
+fn compute_device(gpu: &Option<GpuContext>, twins_only: bool) -> Option<&GpuContext> {
+    gpu.as_ref().filter(|_| !twins_only)
 }

@@ -1470,6 +1470,30 @@ fn the_commands_speak_one_vocabulary() {
 }
 
 #[test]
+/// The commands whose maps are square refuse a map that is not, by name, before any work (the
+/// viewer before it looks for a display).
+fn a_square_map_is_asked_for_where_maps_are_square() {
+    let d = tmpdir("square");
+    for args in [&["compare", "--out", "x"][..], &["view"][..]] {
+        let command = args[0];
+        let o = Command::new(env!("CARGO_BIN_EXE_caustics"))
+            .args(args)
+            .args(["--map-size", "32x16"])
+            .current_dir(&d)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        let e = stderr(&o);
+        assert!(
+            !o.status.success() && e.contains("--map-size 32x16") && e.contains("square"),
+            "{command}: {e}"
+        );
+    }
+    assert!(!d.join("x").exists());
+}
+
+#[test]
 /// `--map-size N` is the square N x N, as `WIDTHxHEIGHT` would say it.
 fn a_map_size_of_one_number_is_square() {
     let d = tmpdir("map-size-n");

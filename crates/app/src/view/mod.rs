@@ -150,7 +150,6 @@ pub enum ImageOn {
 }
 
 pub fn run(args: ViewArgs) -> Result<()> {
-    check_display()?;
     if let Some(0) = args.frames {
         bail!("--frames must be at least 1");
     }
@@ -174,6 +173,8 @@ pub fn run(args: ViewArgs) -> Result<()> {
     {
         bail!("--screenshot {}: expected a .png file name", p.display());
     }
+    // The arguments first: a mistake in them is named even where no window can open.
+    check_display()?;
     app::run(args)
 }
 

@@ -332,9 +332,6 @@ fn package__1final_image__2final_image_march__1crossing_after(o: vec3<f32>, d: v
 }
 
 fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
-    if t0 == t1 {
-        return t1;
-    }
     let gap = side * package__1final_image__2final_image_march__1water_gap(o, d, t0);
     if gap <= 0.0 {
         return t0;

@@ -37,7 +37,9 @@ fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
         start = guided_start(o, d, t0, t1, raster);
     }
     // `first_crossing` from the start, written out so that the march has one call site: a driver
-    // that runs every branch's code for every pixel (SwiftShader) would run a second one too.
+    // that runs every branch's code for every pixel (SwiftShader) would run a second one too. An
+    // empty interval's answer is t1 whatever the gap there (at or below 0: t0 = t1; above: the
+    // march's end), so it is given without reading the surface.
     var t = start.t;
     if t != t1 {
         var gap = start.gap;
@@ -98,12 +100,8 @@ fn guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> St
 // then regula falsi in its Illinois form on the step that crossed, or on what is left of [t0, t1]
 // when the march ends without one (the slab's far side lies beyond the surface: only rounding, or
 // the steps spent, leave it uncrossed): within a step the gap is nearly linear, so a few guesses
-// reach it. An empty interval's answer is t1 whatever the gap there (at or below 0: t0 = t1;
-// above: the march's end), so it is given without reading the surface.
+// reach it.
 fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
-    if t0 == t1 {
-        return t1;
-    }
     let gap = side * water_gap(o, d, t0);
     if gap <= 0.0 {
         return t0;
