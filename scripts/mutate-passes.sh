@@ -92,6 +92,7 @@ shading rule: sun under water 1 % steeper @@ $S/shaders/caustics_light.wgsl @@ r
 caustics sampling: eye-space image x1.01 @@ $S/shaders/caustics_sampling.wgsl @@ return vec4<f32>(sum / weight, 1.0); @@ return vec4<f32>(sum * 1.01 / weight, 1.0); @@ $CA
 caustics sampling: floor map x1.01 @@ $S/shaders/caustics_sampling.wgsl @@ return sum / taps; @@ return sum * 1.01 / taps; @@ render_gpu
 caustics sampling: wall map x1.01 @@ $S/shaders/caustics_sampling.wgsl @@ = textureLoad(walls, @@ = 1.01 * textureLoad(walls, @@ render_gpu
+caustics sampling: wrapped second texel the first's @@ $S/shaders/caustics_sampling.wgsl @@ c1 = select(c0 + 1, vec2<i32>(0), c0 + 1 == dims); @@ c1 = c0; @@ render_gpu
 map mips x1.01 @@ $S/map_mips.wgsl @@ (a + b + e + d) * 0.25 @@ (a + b + e + d) * 0.2525 @@ render_gpu
 yuksel region bound 1 % short @@ $S/yuksel/region_bound.wgsl @@ let d = tr.xy / -tr.z * max(u.depth + h, 0.0); @@ let d = tr.xy / -tr.z * max(u.depth + h, 0.0) * 0.99; @@ $YU
 yuksel prepass record flux x1.01 in the texture @@ $S/yuksel/prepass.wgsl @@ textureStore(pre_out, at.xy, at.z, rec); @@ textureStore(pre_out, at.xy, at.z, rec * vec4<f32>(1.0, 1.0, 1.0, 1.01)); @@ $YU
