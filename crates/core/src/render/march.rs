@@ -180,7 +180,7 @@ pub const EVEN_STEPS: usize = 24;
 /// that crossed, or on what is left of the interval when the march ends without a crossing (the
 /// slab's far side lies beyond the surface: only rounding, or the steps spent, leave it
 /// uncrossed), to [`ROOT_TOLERANCE`] of the shortest step. Both crossings,
-/// from above and from below, use it; the GPU twin is `first_crossing` in final_image_march.wgsl.
+/// from above and from below, use it; the GPU twin is `crossing_after` in final_image_march.wgsl.
 fn first_crossing(f: impl Fn(f64) -> f64, t0: f64, t1: f64, march: March) -> f64 {
     let shortest = march.min_step.max((t1 - t0) / MARCH_STEPS as f64);
     let longest = ((t1 - t0) / EVEN_STEPS as f64).max(march.min_step);

@@ -331,14 +331,6 @@ fn package__1final_image__2final_image_march__1crossing_after(o: vec3<f32>, d: v
     return package__1final_image__2final_image_march__1regula_falsi(o, d, side, a, gap, hi, g_hi, package__1final_image__2final_image_inputs__1ROOT_TOLERANCE * min_step);
 }
 
-fn package__1final_image__2final_image_march__1first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
-    let gap = side * package__1final_image__2final_image_march__1water_gap(o, d, t0);
-    if gap <= 0.0 {
-        return t0;
-    }
-    return package__1final_image__2final_image_march__1crossing_after(o, d, t0, gap, t1, side);
-}
-
 fn package__1final_image__2final_image_march__1floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     let p = o + d * t;
     return p.z - package__1final_image__2final_image_inputs__1floor_height(p.xy);
@@ -403,28 +395,46 @@ fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f
     return vec4<f32>(o + d * t_end, t_end);
 }
 
-fn package__1final_image__2final_image_march__1hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+fn package__1final_image__2final_image_march__1hit_surface(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec4<f32> {
     let raster = package__1final_image__2final_image_inputs_guide;
     package__1final_image__2final_image_inputs_guide = package__1final_image__2final_image_inputs__1NO_GUIDE;
+    let none = vec4<f32>(o, -1.0);
     let top = package__1final_image__2final_image_inputs_params.water_level + package__1final_image__2final_image_inputs__1h_max;
     let bottom = package__1final_image__2final_image_inputs_params.water_level - package__1final_image__2final_image_inputs__1h_max;
-    if o.z < bottom || d.z >= 0.0 {
-        return vec4<f32>(o, -1.0);
+    var start = package__1final_image__2final_image_march_Start(0.0, 0.0, false);
+    var t1: f32;
+    var side = 1.0;
+    if under {
+        if d.z <= 0.0 || o.z > top {
+            return none;
+        }
+        if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) {
+            let t = max((package__1final_image__2final_image_inputs_params.water_level - o.z) / d.z, 0.0);
+            return vec4<f32>(o + d * t, t);
+        }
+        start.t = max((bottom - o.z) / d.z, 0.0);
+        t1 = (top - o.z) / d.z;
+        side = -1.0;
     }
-    let t0 = max((top - o.z) / d.z, 0.0);
-    let t1 = (bottom - o.z) / d.z;
-    var start = package__1final_image__2final_image_march_Start(t0, 0.0, false);
-    if raster != package__1final_image__2final_image_inputs__1NO_GUIDE {
-        start = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
+    else {
+        if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) || o.z < bottom || d.z >= 0.0 {
+            return none;
+        }
+        let t0 = max((top - o.z) / d.z, 0.0);
+        t1 = (bottom - o.z) / d.z;
+        start.t = t0;
+        if raster != package__1final_image__2final_image_inputs__1NO_GUIDE {
+            start = package__1final_image__2final_image_march__1guided_start(o, d, t0, t1, raster);
+        }
     }
     var t = start.t;
     if t != t1 {
         var gap = start.gap;
         if !start.known {
-            gap = package__1final_image__2final_image_march__1water_gap(o, d, t);
+            gap = side * package__1final_image__2final_image_march__1water_gap(o, d, t);
         }
         if gap > 0.0 {
-            t = package__1final_image__2final_image_march__1crossing_after(o, d, t, gap, t1, 1.0);
+            t = package__1final_image__2final_image_march__1crossing_after(o, d, t, gap, t1, side);
         }
     }
     return vec4<f32>(o + d * t, t);
@@ -474,25 +484,6 @@ fn package__1final_image__2final_image_march__2camera_under_water() -> bool {
         h = package__1final_image__2final_image_inputs__2water_height_gradient(c.xy).x;
     }
     return package__1final_image__2final_image_receivers_inside(c.xy, package__1final_image__2final_image_inputs_params.water_size) && c.z < package__1final_image__2final_image_inputs_params.water_level + h;
-}
-
-fn package__1final_image__2final_image_march__3hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
-    if d.z <= 0.0 {
-        return vec4<f32>(o, -1.0);
-    }
-    if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) {
-        let t = max((package__1final_image__2final_image_inputs_params.water_level - o.z) / d.z, 0.0);
-        return vec4<f32>(o + d * t, t);
-    }
-    let top = package__1final_image__2final_image_inputs_params.water_level + package__1final_image__2final_image_inputs__1h_max;
-    let bottom = package__1final_image__2final_image_inputs_params.water_level - package__1final_image__2final_image_inputs__1h_max;
-    if o.z > top {
-        return vec4<f32>(o, -1.0);
-    }
-    let t0 = max((bottom - o.z) / d.z, 0.0);
-    let t1 = (top - o.z) / d.z;
-    let t = package__1final_image__2final_image_march__1first_crossing(o, d, t0, t1, -1.0);
-    return vec4<f32>(o + d * t, t);
 }
 
 struct package__1final_image__2final_image_receivers_ObjectHit {
@@ -1765,12 +1756,17 @@ fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: package__1final_image__2
         if r.depth > package__1final_image__2final_image_inputs__1MAX_DEPTH {
             continue;
         }
+        var crossing = vec4<f32>(r.o, -1.0);
+        if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_WATER) {
+            crossing = package__1final_image__2final_image_march__1hit_surface(r.o, r.d, r.under);
+        }
         var below = r;
         if !r.under {
-            below = trace(r.o, r.d, r.depth, r.weight);
+            below = trace(r.o, r.d, r.depth, r.weight, crossing);
+            crossing = vec4<f32>(below.o, -1.0);
         }
         if below.under {
-            trace_under(below.o, below.d, below.depth, below.weight);
+            trace_under(below.o, below.d, below.depth, below.weight, crossing);
         }
     }
     return package__1final_image__2final_image_inputs__1pixel_radiance;
@@ -1781,17 +1777,13 @@ fn sample_offset(sx: u32, sy: u32, n: u32) -> vec2<f32> {
     return vec2<f32>((f32(sx) + (f32(sy) + 0.5) / m) / m, (f32(sy) + (m - 1.0 - f32(sx) + 0.5) / m) / m);
 }
 
-fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) -> package__1final_image__2final_image_inputs_Ray {
+fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, water: vec4<f32>) -> package__1final_image__2final_image_inputs_Ray {
     let none = package__1final_image__2final_image_inputs_Ray(o, d, vec3<f32>(0.0), depth, false);
     if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_WATER) {
         package__1final_image__2final_image_shade__1trace_air(o, d, depth, w);
         return none;
     }
     let size = package__1final_image__2final_image_inputs_params.water_size;
-    var water = vec4<f32>(o, -1.0);
-    if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) {
-        water = package__1final_image__2final_image_march__1hit_water(o, d);
-    }
     let hit = water.w >= 0.0;
     let obj = package__1final_image__2final_image_receivers__1nearest_object(o, d, select(package__1final_image__2final_image_inputs_FAR, water.w, hit));
     if obj.found {
@@ -1823,13 +1815,16 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) -> package__1fina
         return none;
     }
     package__1final_image__2final_image_spread_spread = package__1final_image__2final_image_spread__1bent_spread(package__1final_image__2final_image_spread_spread, p, d, water.w, n, false);
+    if r.z > 0.0 {
+        package__1final_image__2final_image_spread__2push_ray_spread(p, r.xyz, w * t_view, depth, true, package__1final_image__2final_image_spread_spread);
+        return none;
+    }
     return package__1final_image__2final_image_inputs_Ray(p, r.xyz, w * t_view, depth, true);
 }
 
-fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, ceiling: vec4<f32>) {
     let size = package__1final_image__2final_image_inputs_params.water_size;
     var floor_hit = package__1final_image__2final_image_march__1hit_floor(o, d);
-    let ceiling = package__1final_image__2final_image_march__3hit_water_from_below(o, d);
     if ceiling.w >= 0.0 {
         floor_hit = ceiling;
     }

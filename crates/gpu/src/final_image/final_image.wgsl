@@ -10,7 +10,7 @@ import package::final_image::final_image_inputs::{
     water_height_gradient,
 };
 import package::final_image::final_image_march::{
-    camera_under_water, hit_floor, hit_water, hit_water_from_below, leave_water,
+    camera_under_water, hit_floor, hit_surface, leave_water,
 };
 import package::final_image::final_image_receivers::{
     inside, nearest_object, wall_distance, wall_light,
@@ -25,22 +25,19 @@ import package::shaders::caustics_light::pool_wall_at;
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
 import package::shaders::shading::tone_map;
 
-// What a ray from above the water meets. The ray it refracts into the water is returned (`under`
-// set, `spread` its own) for the same step of `radiance` to trace below, rather than pushed: a
-// driver that runs every branch of a step for every pixel (SwiftShader) then runs the step once
-// for the common path, the surface and what lies under it, instead of twice.
-fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) -> Ray {
+// What a ray from above the water meets, `water` its crossing of the surface (`hit_surface`). The
+// ray it refracts down into the water is returned (`under` set, `spread` its own) for the same step
+// of `radiance` to trace below, rather than pushed: a driver that runs every branch of a step for
+// every pixel (SwiftShader) then runs the step once for the common path, the surface and what lies
+// under it, instead of twice. One refracted up a steep wave's face meets the surface from below:
+// it is pushed, for the next step's search.
+fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, water: vec4<f32>) -> Ray {
     let none = Ray(o, d, vec3<f32>(0.0), depth, false);
     if !has(FLAG_WATER) {
         trace_air(o, d, depth, w);
         return none;
     }
     let size = params.water_size;
-    // Water surface hit, searched in the slab |z - level| <= h_max.
-    var water = vec4<f32>(o, -1.0);
-    if has(FLAG_SURFACE) {
-        water = hit_water(o, d);
-    }
     let hit = water.w >= 0.0;
     let obj = nearest_object(o, d, select(FAR, water.w, hit));
     if obj.found {
@@ -72,16 +69,20 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) -> Ray {
         return none;
     }
     spread = bent_spread(spread, p, d, water.w, n, false);
+    if r.z > 0.0 {
+        push_ray_spread(p, r.xyz, w * t_view, depth, true, spread);
+        return none;
+    }
     return Ray(p, r.xyz, w * t_view, depth, true);
 }
 
-// Radiance arriving along `d` at point `o` under the water.
-fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>) {
+// Radiance arriving along `d` at point `o` under the water, `ceiling` the ray's crossing of the
+// surface from below (`hit_surface`; none for a ray going down).
+fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, ceiling: vec4<f32>) {
     let size = params.water_size;
     var floor_hit = hit_floor(o, d);
     // A ray going up ends at the surface seen from below instead; the branches below read
     // `floor_hit` as the ray's end, wherever it is.
-    let ceiling = hit_water_from_below(o, d);
     if ceiling.w >= 0.0 {
         floor_hit = ceiling;
     }
@@ -131,12 +132,19 @@ fn radiance(o: vec3<f32>, d: vec3<f32>, under: bool, s: Spread) -> vec3<f32> {
         if r.depth > MAX_DEPTH {
             continue;
         }
+        // The step's one search for the surface: from above for a ray in the air, from below for
+        // one in the water; a ray refracted into the water in this step goes down, and meets none.
+        var crossing = vec4<f32>(r.o, -1.0);
+        if has(FLAG_WATER) {
+            crossing = hit_surface(r.o, r.d, r.under);
+        }
         var below = r;
         if !r.under {
-            below = trace(r.o, r.d, r.depth, r.weight);
+            below = trace(r.o, r.d, r.depth, r.weight, crossing);
+            crossing = vec4<f32>(below.o, -1.0);
         }
         if below.under {
-            trace_under(below.o, below.d, below.depth, below.weight);
+            trace_under(below.o, below.d, below.depth, below.weight, crossing);
         }
     }
     return pixel_radiance;

@@ -1,7 +1,8 @@
 // The final image, one invocation per pixel: the GPU twin of caustics-core/src/render.rs, function
 // for function (`render`, `Tracer::trace`, `trace_under`, `shade_floor`, `shade_object`,
-// `trace_air`, `shade_above`, `hit_water`, `hit_floor`, `inside`, `wall_distance`, `wall_light`,
-// `wall_at`, `hit_water_from_below`, `leave_water`, `camera_under_water`). The light
+// `trace_air`, `shade_above`, `hit_floor`, `inside`, `wall_distance`, `wall_light`, `wall_at`,
+// `leave_water`, `camera_under_water`; `hit_water` and `hit_water_from_below` are one
+// `hit_surface`). The light
 // transport is documented there. This module holds the pass's uniform, bindings and reads of its
 // inputs; final_image.wgsl, the pass's main module, imports it and the other parts.
 //
@@ -197,7 +198,7 @@ var<private> h_max: f32;
 // Bound on the water's slope |∇h| (render.rs `slope_max`), 0 without a surface.
 var<private> slope_max: f32;
 // The rasterised surface's distance for the primary ray about to be traced from above the water
-// (`surface_hits`), until `hit_water` takes it; NO_GUIDE for every other ray.
+// (`surface_hits`), until `hit_surface` takes it; NO_GUIDE for every other ray.
 var<private> guide: f32;
 const NO_GUIDE: f32 = -2.0;
 

@@ -21,33 +21,53 @@ fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     return p.z - params.water_level - water_height_gradient(p.xy).x;
 }
 
-// The first crossing of the ray with z = level + h(x, y): xyz the point, w the distance (-1: none).
-fn hit_water(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
+// The first crossing of the ray with z = level + h(x, y): from above for a ray in the air
+// (render.rs `hit_water`), from below for one under the water (`hit_water_from_below`, the rest
+// plane without a surface): xyz the point, w the distance (-1: none). One search for both, so that
+// the march has one call site: a driver that runs every branch's code for every pixel
+// (SwiftShader) would otherwise run a second one for every ray.
+fn hit_surface(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec4<f32> {
     let raster = guide;
     guide = NO_GUIDE;
+    let none = vec4<f32>(o, -1.0);
     let top = params.water_level + h_max;
     let bottom = params.water_level - h_max;
-    if o.z < bottom || d.z >= 0.0 {
-        return vec4<f32>(o, -1.0);
+    var start = Start(0.0, 0.0, false);
+    var t1: f32;
+    var side = 1.0;
+    if under {
+        if d.z <= 0.0 || o.z > top {
+            return none;
+        }
+        if !has(FLAG_SURFACE) {
+            let t = max((params.water_level - o.z) / d.z, 0.0);
+            return vec4<f32>(o + d * t, t);
+        }
+        start.t = max((bottom - o.z) / d.z, 0.0);
+        t1 = (top - o.z) / d.z;
+        side = -1.0;
+    } else {
+        if !has(FLAG_SURFACE) || o.z < bottom || d.z >= 0.0 {
+            return none;
+        }
+        let t0 = max((top - o.z) / d.z, 0.0);
+        t1 = (bottom - o.z) / d.z;
+        start.t = t0;
+        if raster != NO_GUIDE {
+            start = guided_start(o, d, t0, t1, raster);
+        }
     }
-    let t0 = max((top - o.z) / d.z, 0.0);
-    let t1 = (bottom - o.z) / d.z;
-    var start = Start(t0, 0.0, false);
-    if raster != NO_GUIDE {
-        start = guided_start(o, d, t0, t1, raster);
-    }
-    // `first_crossing` from the start, written out so that the march has one call site: a driver
-    // that runs every branch's code for every pixel (SwiftShader) would run a second one too. An
-    // empty interval's answer is t1 whatever the gap there (at or below 0: t0 = t1; above: the
-    // march's end), so it is given without reading the surface.
+    // `first_crossing` from the start. An empty interval's answer is t1 whatever the gap there (at
+    // or below 0: the start is t1; above: the march's end), so it is given without reading the
+    // surface.
     var t = start.t;
     if t != t1 {
         var gap = start.gap;
         if !start.known {
-            gap = water_gap(o, d, t);
+            gap = side * water_gap(o, d, t);
         }
         if gap > 0.0 {
-            t = crossing_after(o, d, t, gap, t1, 1.0);
+            t = crossing_after(o, d, t, gap, t1, side);
         }
     }
     return vec4<f32>(o + d * t, t);
@@ -101,15 +121,7 @@ fn guided_start(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, raster: f32) -> St
 // when the march ends without one (the slab's far side lies beyond the surface: only rounding, or
 // the steps spent, leave it uncrossed): within a step the gap is nearly linear, so a few guesses
 // reach it.
-fn first_crossing(o: vec3<f32>, d: vec3<f32>, t0: f32, t1: f32, side: f32) -> f32 {
-    let gap = side * water_gap(o, d, t0);
-    if gap <= 0.0 {
-        return t0;
-    }
-    return crossing_after(o, d, t0, gap, t1, side);
-}
-
-// `first_crossing` from `t0`, where the ray's signed distance to the surface is `gap0` > 0.
+// Here from `t0`, where that distance is already known: `gap0` > 0.
 fn crossing_after(o: vec3<f32>, d: vec3<f32>, t0: f32, gap0: f32, t1: f32, side: f32) -> f32 {
     let rate = abs(d.z) + slope_max * length(d.xy);
     let min_step = params.water_size / f32(4u * SLAB_LATTICE);
@@ -156,27 +168,6 @@ fn regula_falsi(o: vec3<f32>, d: vec3<f32>, side: f32, a: f32, ga: f32, b: f32, 
         }
     }
     return m;
-}
-
-// render.rs `hit_water_from_below`: the first crossing of a rising underwater ray with
-// z = level + h(x, y) (the rest plane without a surface): xyz the point, w the distance (-1: none).
-fn hit_water_from_below(o: vec3<f32>, d: vec3<f32>) -> vec4<f32> {
-    if d.z <= 0.0 {
-        return vec4<f32>(o, -1.0);
-    }
-    if !has(FLAG_SURFACE) {
-        let t = max((params.water_level - o.z) / d.z, 0.0);
-        return vec4<f32>(o + d * t, t);
-    }
-    let top = params.water_level + h_max;
-    let bottom = params.water_level - h_max;
-    if o.z > top {
-        return vec4<f32>(o, -1.0);
-    }
-    let t0 = max((bottom - o.z) / d.z, 0.0);
-    let t1 = (top - o.z) / d.z;
-    let t = first_crossing(o, d, t0, t1, -1.0);
-    return vec4<f32>(o + d * t, t);
 }
 
 // render.rs `leave_water` with `from_below`: a ray meeting the surface at `p` from below splits by

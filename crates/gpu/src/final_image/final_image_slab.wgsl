@@ -1,5 +1,5 @@
 // The slab the water surface lies in and its steepest slope, found each frame from the heights the
-// techniques read, for the final image's water search (`hit_water`, `first_crossing`) and the pool
+// techniques read, for the final image's water search (`hit_surface`, `crossing_after`) and the pool
 // deck's height. CPU twin: caustics-core/src/render.rs `slab_bounds`, 1.5 times the largest |h|
 // and |∇h| at the centres of a 128² lattice over the water square plus 1e-6; the maxima are taken
 // here, the final image scales them.

@@ -3,7 +3,7 @@
 // R32Float target holding, per pixel, the distance from the camera to the grid's nearest point on
 // the pixel centre's view ray (negative where the ray misses the grid). A ray from above meets the
 // raised grid no later than the surface, so the final image starts its search for the surface
-// along a primary ray there (`hit_water`) instead of marching the whole slab from its top: the grid
+// along a primary ray there (`hit_surface`) instead of marching the whole slab from its top: the grid
 // accelerates the search, the crossing it returns is still the first of the bicubic surface, as
 // the CPU's march finds it. A render pass of the final image, before its compute pass.
 
