@@ -86,6 +86,7 @@ filtered water: from below, slopes x1.01 @@ $S/final_image/final_image_march.wgs
 final image surface grid not raised @@ $S/final_image/final_image_surface.wgsl @@ params.water_level + h + raise @@ params.water_level + h @@ render_gpu
 final image terrain crossing 1000 times looser @@ $S/final_image/final_image_march.wgsl @@ if abs(gm) < ROOT_TOLERANCE * step || @@ if abs(gm) < 1000.0 * ROOT_TOLERANCE * step || @@ render_gpu
 final image surface crossing 1000 times looser @@ $S/final_image/final_image_march.wgsl @@ g_hi, ROOT_TOLERANCE * min_step); @@ g_hi, 1000.0 * ROOT_TOLERANCE * min_step); @@ render_gpu
+final image crossing's gradient kept swapped @@ $S/final_image/final_image_march.wgsl @@ return last_read.zw; @@ return last_read.wz; @@ render_gpu
 shading rule: flat water's light x1.01 @@ $S/shaders/caustics_light.wgsl @@ return exp(-absorption * (depth / cos_t)) @@ return 1.01 * exp(-absorption * (depth / cos_t)) @@ shared_math render_gpu
 shading rule: sun through water x1.01 @@ $S/shaders/caustics_light.wgsl @@ return relative * (horizontal * transmittance * shadow); @@ return relative * (horizontal * transmittance * shadow * 1.01); @@ render_gpu
 shading rule: sun under water 1 % steeper @@ $S/shaders/caustics_light.wgsl @@ return vec3<f32>(to_sun.xy / ior, cos_t); @@ return vec3<f32>(to_sun.xy / ior, cos_t * 1.01); @@ shared_math

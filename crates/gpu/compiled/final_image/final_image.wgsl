@@ -331,6 +331,13 @@ fn package__1final_image__2final_image_march__1crossing_after(o: vec3<f32>, d: v
     return package__1final_image__2final_image_march__1regula_falsi(o, d, side, a, gap, hi, g_hi, package__1final_image__2final_image_inputs__1ROOT_TOLERANCE * min_step);
 }
 
+fn package__1final_image__2final_image_march__1crossing_gradient(p: vec3<f32>, t: f32) -> vec2<f32> {
+    if package__1final_image__2final_image_march__1last_read.x == t {
+        return package__1final_image__2final_image_march__1last_read.zw;
+    }
+    return package__1final_image__2final_image_inputs__2water_height_gradient(p.xy).yz;
+}
+
 fn package__1final_image__2final_image_march__1floor_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     let p = o + d * t;
     return p.z - package__1final_image__2final_image_inputs__1floor_height(p.xy);
@@ -398,6 +405,7 @@ fn package__1final_image__2final_image_march__1hit_floor(o: vec3<f32>, d: vec3<f
 fn package__1final_image__2final_image_march__1hit_surface(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec4<f32> {
     let raster = package__1final_image__2final_image_inputs_guide;
     package__1final_image__2final_image_inputs_guide = package__1final_image__2final_image_inputs__1NO_GUIDE;
+    package__1final_image__2final_image_march__1last_read.x = -1.0;
     let none = vec4<f32>(o, -1.0);
     let top = package__1final_image__2final_image_inputs_params.water_level + package__1final_image__2final_image_inputs__1h_max;
     let bottom = package__1final_image__2final_image_inputs_params.water_level - package__1final_image__2final_image_inputs__1h_max;
@@ -440,6 +448,8 @@ fn package__1final_image__2final_image_march__1hit_surface(o: vec3<f32>, d: vec3
     return vec4<f32>(o + d * t, t);
 }
 
+var<private> package__1final_image__2final_image_march__1last_read: vec4<f32>;
+
 fn package__1final_image__2final_image_march__1leave_water(p: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, t_ray: f32) {
     var n = package__1final_image__2final_image_spread__1water_normal(p.xy);
     if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_FILTER_WATER) && package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) {
@@ -471,7 +481,9 @@ fn package__1final_image__2final_image_march__1regula_falsi(o: vec3<f32>, d: vec
 
 fn package__1final_image__2final_image_march__1water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     let p = o + d * t;
-    return p.z - package__1final_image__2final_image_inputs_params.water_level - package__1final_image__2final_image_inputs__2water_height_gradient(p.xy).x;
+    let h = package__1final_image__2final_image_inputs__2water_height_gradient(p.xy);
+    package__1final_image__2final_image_march__1last_read = vec4<f32>(t, h);
+    return p.z - package__1final_image__2final_image_inputs_params.water_level - h.x;
 }
 
 fn package__1final_image__2final_image_march__2camera_under_water() -> bool {
@@ -1799,7 +1811,7 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, water: vec4<f32>)
         package__1final_image__2final_image_inputs_emit(w, package__1final_image__2final_image_shade__1shade_above(o, d));
         return none;
     }
-    var n = package_shaders_optics__2height_field_normal(package__1final_image__2final_image_inputs__2water_height_gradient(p.xy).yz);
+    var n = package_shaders_optics__2height_field_normal(package__1final_image__2final_image_march__1crossing_gradient(p, water.w));
     var t_view: f32;
     if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__2FLAG_FILTER_WATER) {
         let rough = package__1final_image__3final_image_rough_water__1rough_water(p, d, &n);

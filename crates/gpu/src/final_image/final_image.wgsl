@@ -7,10 +7,9 @@ import package::final_image::final_image_inputs::{
     albedo_at,
     NO_GUIDE, emit, guide, h_max, has, image, is_pool, params, pixel_radiance, ray_count, rays,
     sky_radiance, slab_half_height, slab_slope, slope_max, surface_hits, terrain_height_gradient,
-    water_height_gradient,
 };
 import package::final_image::final_image_march::{
-    camera_under_water, hit_floor, hit_surface, leave_water,
+    camera_under_water, crossing_gradient, hit_floor, hit_surface, leave_water,
 };
 import package::final_image::final_image_receivers::{
     inside, nearest_object, wall_distance, wall_light,
@@ -54,7 +53,7 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, water: vec4<f32>)
         emit(w, shade_above(o, d));
         return none;
     }
-    var n = height_field_normal(water_height_gradient(p.xy).yz);
+    var n = height_field_normal(crossing_gradient(p, water.w));
     var t_view: f32;
     if has(FLAG_FILTER_WATER) {
         let rough = rough_water(p, d, &n);

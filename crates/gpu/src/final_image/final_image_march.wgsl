@@ -15,10 +15,25 @@ import package::final_image::final_image_spread::{
 import package::shaders::optics::{fresnel_transmittance, height_field_normal, refract_dir};
 import package::shaders::receivers::{Bracket, chord, narrowed};
 
+// The search's last read of the surface: the distance along the ray it was read at (-1: none
+// yet), and the surface's height and gradient there. The search ends on a read at the crossing but
+// where its interval was empty, so the normal there is read once, not twice.
+var<private> last_read: vec4<f32>;
+
 // Height of the ray above the water surface at distance t.
 fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
     let p = o + d * t;
-    return p.z - params.water_level - water_height_gradient(p.xy).x;
+    let h = water_height_gradient(p.xy);
+    last_read = vec4<f32>(t, h);
+    return p.z - params.water_level - h.x;
+}
+
+// The surface's gradient at the point `p` a search for the surface returned at distance `t`.
+fn crossing_gradient(p: vec3<f32>, t: f32) -> vec2<f32> {
+    if last_read.x == t {
+        return last_read.zw;
+    }
+    return water_height_gradient(p.xy).yz;
 }
 
 // The first crossing of the ray with z = level + h(x, y): from above for a ray in the air
@@ -29,6 +44,7 @@ fn water_gap(o: vec3<f32>, d: vec3<f32>, t: f32) -> f32 {
 fn hit_surface(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec4<f32> {
     let raster = guide;
     guide = NO_GUIDE;
+    last_read.x = -1.0;
     let none = vec4<f32>(o, -1.0);
     let top = params.water_level + h_max;
     let bottom = params.water_level - h_max;
