@@ -73,7 +73,7 @@ struct package__1final_image__2final_image_inputs_FinalImage {
     supersampling: u32,
     object_count: u32,
     flags: u32,
-    albedo: u32,
+    _pad: u32,
     tone_map: u32,
     ambient: vec3<f32>,
     sun_cos_radius: f32,
@@ -105,6 +105,8 @@ struct package__1final_image__2final_image_inputs_Ray {
     under: bool
 }
 
+const package__1final_image__2final_image_inputs__1ALBEDO_SHIFT: u32 = 18u;
+
 const package__1final_image__2final_image_inputs__1DECK_SHIFT: u32 = 8u;
 
 const package__1final_image__2final_image_inputs__1EVEN_STEPS: u32 = 24u;
@@ -132,11 +134,15 @@ const package__1final_image__2final_image_inputs__1ROOT_TOLERANCE: f32 = 0.0001;
 const package__1final_image__2final_image_inputs__1SLAB_LATTICE: u32 = 128u;
 
 fn package__1final_image__2final_image_inputs__1albedo_at(p: vec2<f32>, size: f32, extent: vec2<f32>) -> vec3<f32> {
-    return package_shaders_shading__1floor_albedo(package__1final_image__2final_image_inputs_params.albedo, package__1final_image__2final_image_inputs__1albedo_image, p, size, extent);
+    return package_shaders_shading__1floor_albedo(package__1final_image__2final_image_inputs__1albedo_kind(), package__1final_image__2final_image_inputs__1albedo_image, p, size, extent);
 }
 
 @group(0) @binding(4)
 var package__1final_image__2final_image_inputs__1albedo_image: texture_2d<f32>;
+
+fn package__1final_image__2final_image_inputs__1albedo_kind() -> u32 {
+    return (package__1final_image__2final_image_inputs_FLAGS >> package__1final_image__2final_image_inputs__1ALBEDO_SHIFT) & 3u;
+}
 
 @group(0) @binding(3)
 var package__1final_image__2final_image_inputs__1caustics_map: texture_2d<f32>;

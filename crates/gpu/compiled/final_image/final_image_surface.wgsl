@@ -41,7 +41,7 @@ struct package__1final_image__2final_image_inputs_FinalImage {
     supersampling: u32,
     object_count: u32,
     flags: u32,
-    albedo: u32,
+    _pad: u32,
     tone_map: u32,
     ambient: vec3<f32>,
     sun_cos_radius: f32,

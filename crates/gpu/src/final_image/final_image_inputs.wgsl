@@ -53,8 +53,7 @@ struct FinalImage {
     supersampling: u32,
     object_count: u32,
     flags: u32,
-    // ALBEDO_* of shading.wgsl.
-    albedo: u32,
+    _pad: u32,
     // TONE_* of shading.wgsl (`ToneMap::code`).
     tone_map: u32,
     // render.rs `sky_ambient` times the sun's intensity: the sky's irradiance on a horizontal
@@ -90,12 +89,14 @@ const FLAG_FILTER_WATER: u32 = 65536u;
 // The objects under the water take their light from the technique's light-space deposit
 // (light_deposit, light_heights, light_space), as a shadow map is read.
 const FLAG_LIGHT_SPACE: u32 = 131072u;
+// The floor's ALBEDO_* (shading.wgsl) sits in these two bits of the flags (`flags::ALBEDO_SHIFT`).
+const ALBEDO_SHIFT: u32 = 18u;
 
 // The frame's flags (`FinalImageUniform::flags`) but those of SET_AT_RUN_TIME, fixed per pipeline:
 // the frame specialises its pipeline by them (`final_image::SPECIALISED`), so the compiler drops
-// the code a scene does not run (the rough water, the deck kinds, the terrain's march, the other
-// kinds of caustics). A software rasteriser that runs both sides of every branch (SwiftShader)
-// otherwise runs all of it for every pixel.
+// the code a scene does not run (the rough water, the deck's and the floor's kinds, the terrain's
+// march, the other kinds of caustics). A software rasteriser that runs both sides of every branch
+// (SwiftShader) otherwise runs all of it for every pixel.
 @id(0) override FLAGS: u32;
 // Read from the uniform: with the water's edge rule fixed, SwiftShader's compiler takes minutes
 // over the pipeline of a water that does not wrap.
@@ -103,6 +104,12 @@ const SET_AT_RUN_TIME: u32 = FLAG_WRAP_SURFACE | FLAG_WRAP_CAUSTICS;
 
 fn deck_kind() -> u32 {
     return (FLAGS >> DECK_SHIFT) & 255u;
+}
+
+// The floor's ALBEDO_*, fixed per pipeline: SwiftShader would run every kind's code (the sand's
+// two noises) for every pixel, twice (the floor's and the walls' tiles).
+fn albedo_kind() -> u32 {
+    return (FLAGS >> ALBEDO_SHIFT) & 3u;
 }
 
 // One object: its material and the root of its tree in bvh_nodes. Mirrors `GpuObject`.
@@ -248,7 +255,7 @@ fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
 
 // `Albedo::filtered` over a footprint `extent` wide along x and y (zero: a point).
 fn albedo_at(p: vec2<f32>, size: f32, extent: vec2<f32>) -> vec3<f32> {
-    return floor_albedo(params.albedo, albedo_image, p, size, extent);
+    return floor_albedo(albedo_kind(), albedo_image, p, size, extent);
 }
 
 fn absorbed(distance: f32) -> vec3<f32> {

@@ -70,10 +70,10 @@ pub struct FinalImageUniform {
     /// How many entries the objects' buffer holds.
     pub object_count: u32,
     /// Bits of [`flags`]: what the scene has and how the caustics are bound; the deck's code above
-    /// [`flags::DECK_SHIFT`].
+    /// [`flags::DECK_SHIFT`], the floor's albedo, one of [`albedo`], above [`flags::ALBEDO_SHIFT`].
     pub flags: u32,
-    /// The floor's albedo, one of [`albedo`].
-    pub albedo: u32,
+    /// Keeps `tone_map` in its place in the shader's block.
+    pub _pad: u32,
     /// `ToneMap::code` of the options' tone curve.
     pub tone_map: u32,
     /// The sky's irradiance on a horizontal surface (`render::sky_ambient`) times the sun's
@@ -137,9 +137,13 @@ pub mod flags {
     /// The objects under the water take their light from the technique's light-space deposit
     /// (bound with the receivers' heights), as a shadow map is read.
     pub const LIGHT_SPACE: u32 = 1 << 17;
+    /// The floor's albedo, one of [`super::albedo`], in the two bits from this one up
+    /// (`albedo_kind`).
+    pub const ALBEDO_SHIFT: u32 = 18;
 }
 
-/// `FinalImageUniform::albedo`, the `ALBEDO_*` constants of `shading.wgsl`.
+/// The floor's albedo in `FinalImageUniform::flags` ([`flags::ALBEDO_SHIFT`]), the `ALBEDO_*`
+/// constants of `shading.wgsl`.
 pub mod albedo {
     /// The pool's tiles (`FloorPattern::Tiles`).
     pub const TILES: u32 = 0;
@@ -261,6 +265,12 @@ pub(super) fn uniform(
     if scene.floor.terrain.is_some() {
         f |= flags::TERRAIN;
     }
+    f |= match &scene.floor.albedo {
+        Albedo::Pattern(FloorPattern::Tiles) => albedo::TILES,
+        Albedo::Pattern(FloorPattern::Sand) => albedo::SAND,
+        Albedo::Pattern(FloorPattern::Plain) => albedo::PLAIN,
+        Albedo::Image { .. } => albedo::IMAGE,
+    } << flags::ALBEDO_SHIFT;
     FinalImageUniform {
         camera_position: f3(cam.position),
         exposure: options.exposure as f32,
@@ -287,12 +297,7 @@ pub(super) fn uniform(
         supersampling: options.supersampling.max(1),
         object_count,
         flags: f,
-        albedo: match &scene.floor.albedo {
-            Albedo::Pattern(FloorPattern::Tiles) => albedo::TILES,
-            Albedo::Pattern(FloorPattern::Sand) => albedo::SAND,
-            Albedo::Pattern(FloorPattern::Plain) => albedo::PLAIN,
-            Albedo::Image { .. } => albedo::IMAGE,
-        },
+        _pad: 0,
         tone_map: options.tone_map.code(),
         ambient: f3(sky_ambient(sun) * scene.light.intensity),
         sun_cos_radius: SUN_RADIUS.cos() as f32,
