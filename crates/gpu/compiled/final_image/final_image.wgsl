@@ -419,12 +419,15 @@ fn package__1final_image__2final_image_march__1hit_surface(o: vec3<f32>, d: vec3
     var t1: f32;
     var side = 1.0;
     if under {
-        if d.z <= 0.0 || o.z > top {
+        if d.z <= 0.0 {
             return none;
         }
         if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_SURFACE) {
             let t = max((package__1final_image__2final_image_inputs_params.water_level - o.z) / d.z, 0.0);
             return vec4<f32>(o + d * t, t);
+        }
+        if o.z > top {
+            return none;
         }
         start.t = max((bottom - o.z) / d.z, 0.0);
         t1 = (top - o.z) / d.z;

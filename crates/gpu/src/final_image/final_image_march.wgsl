@@ -52,12 +52,15 @@ fn hit_surface(o: vec3<f32>, d: vec3<f32>, under: bool) -> vec4<f32> {
     var t1: f32;
     var side = 1.0;
     if under {
-        if d.z <= 0.0 || o.z > top {
+        if d.z <= 0.0 {
             return none;
         }
         if !has(FLAG_SURFACE) {
             let t = max((params.water_level - o.z) / d.z, 0.0);
             return vec4<f32>(o + d * t, t);
+        }
+        if o.z > top {
+            return none;
         }
         start.t = max((bottom - o.z) / d.z, 0.0);
         t1 = (top - o.z) / d.z;
