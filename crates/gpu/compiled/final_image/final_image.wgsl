@@ -113,6 +113,8 @@ const package__1final_image__2final_image_inputs__1EVEN_STEPS: u32 = 24u;
 
 const package__1final_image__2final_image_inputs__1FLAG_CAUSTICS: u32 = 4u;
 
+const package__1final_image__2final_image_inputs__1FLAG_OBJECTS: u32 = 1048576u;
+
 const package__1final_image__2final_image_inputs__1FLAG_SURFACE: u32 = 2u;
 
 const package__1final_image__2final_image_inputs__1FLAG_TERRAIN: u32 = 8u;
@@ -580,6 +582,9 @@ fn package__1final_image__2final_image_receivers_inside(p: vec2<f32>, size: f32)
 }
 
 fn package__1final_image__2final_image_receivers_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, with_glass: bool) -> bool {
+    if !package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_OBJECTS) {
+        return false;
+    }
     for (var k = 0u; k < package__1final_image__2final_image_inputs_params.object_count; k++) {
         let casts = with_glass || package__1final_image__2final_image_inputs_objects[k].glass == 0u;
         if casts && package_shaders_bvh__1bvh_intersect(package__1final_image__2final_image_inputs_objects[k].root, o, d, t_max, true).found {
@@ -1806,10 +1811,12 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, water: vec4<f32>)
     }
     let size = package__1final_image__2final_image_inputs_params.water_size;
     let hit = water.w >= 0.0;
-    let obj = package__1final_image__2final_image_receivers__1nearest_object(o, d, select(package__1final_image__2final_image_inputs_FAR, water.w, hit));
-    if obj.found {
-        package__1final_image__2final_image_shade__1shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
-        return none;
+    if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_OBJECTS) {
+        let obj = package__1final_image__2final_image_receivers__1nearest_object(o, d, select(package__1final_image__2final_image_inputs_FAR, water.w, hit));
+        if obj.found {
+            package__1final_image__2final_image_shade__1shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
+            return none;
+        }
     }
     if !hit {
         package__1final_image__2final_image_inputs_emit(w, package__1final_image__2final_image_shade__1shade_above(o, d));
@@ -1850,11 +1857,14 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, ceiling: ve
         floor_hit = ceiling;
     }
     let t_floor = floor_hit.w;
-    let obj = package__1final_image__2final_image_receivers__1nearest_object(o, d, t_floor);
-    if obj.found {
-        package__1final_image__2final_image_shade__1shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, true, w * package__1final_image__2final_image_inputs_absorbed(obj.t));
+    if package__1final_image__2final_image_inputs_has(package__1final_image__2final_image_inputs__1FLAG_OBJECTS) {
+        let obj = package__1final_image__2final_image_receivers__1nearest_object(o, d, t_floor);
+        if obj.found {
+            package__1final_image__2final_image_shade__1shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, true, w * package__1final_image__2final_image_inputs_absorbed(obj.t));
+            return;
+        }
     }
-    else if package__1final_image__2final_image_inputs__1is_pool() && !package__1final_image__2final_image_receivers_inside(floor_hit.xy, size) {
+    if package__1final_image__2final_image_inputs__1is_pool() && !package__1final_image__2final_image_receivers_inside(floor_hit.xy, size) {
         let t = package__1final_image__2final_image_receivers__1wall_distance(o, d, size);
         let p = o + d * t;
         let m = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), package_shaders__1caustics_light__2pool_wall_at(p.xy, size) < 2u);

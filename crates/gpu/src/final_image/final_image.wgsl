@@ -3,7 +3,8 @@
 // twin of caustics-core/src/render/trace.rs and render/mod.rs.
 
 import package::final_image::final_image_inputs::{
-    FAR, FLAG_FILTER_WATER, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER, MAX_DEPTH, Ray, absorbed,
+    FAR, FLAG_FILTER_WATER, FLAG_OBJECTS, FLAG_SURFACE, FLAG_TERRAIN, FLAG_WATER, MAX_DEPTH, Ray,
+    absorbed,
     albedo_at,
     NO_GUIDE, emit, guide, h_max, has, image, is_pool, params, pixel_radiance, ray_count, rays,
     sky_radiance, slab_half_height, slab_slope, slope_max, surface_hits, terrain_height_gradient,
@@ -38,10 +39,12 @@ fn trace(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, water: vec4<f32>)
     }
     let size = params.water_size;
     let hit = water.w >= 0.0;
-    let obj = nearest_object(o, d, select(FAR, water.w, hit));
-    if obj.found {
-        shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
-        return none;
+    if has(FLAG_OBJECTS) {
+        let obj = nearest_object(o, d, select(FAR, water.w, hit));
+        if obj.found {
+            shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, false, w);
+            return none;
+        }
     }
     if !hit {
         // A pool is sunk into a deck around it; beyond the terrain's square the world goes on.
@@ -86,10 +89,14 @@ fn trace_under(o: vec3<f32>, d: vec3<f32>, depth: u32, w: vec3<f32>, ceiling: ve
         floor_hit = ceiling;
     }
     let t_floor = floor_hit.w;
-    let obj = nearest_object(o, d, t_floor);
-    if obj.found {
-        shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, true, w * absorbed(obj.t));
-    } else if is_pool() && !inside(floor_hit.xy, size) {
+    if has(FLAG_OBJECTS) {
+        let obj = nearest_object(o, d, t_floor);
+        if obj.found {
+            shade_object(o + d * obj.t, obj.normal, d, obj.k, depth, true, w * absorbed(obj.t));
+            return;
+        }
+    }
+    if is_pool() && !inside(floor_hit.xy, size) {
         // The ray meets a pool wall first: tiles lit by the ambient light, and by the sun through
         // the wall's map where the technique lit the walls.
         let t = wall_distance(o, d, size);

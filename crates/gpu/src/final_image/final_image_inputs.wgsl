@@ -89,6 +89,9 @@ const FLAG_FILTER_WATER: u32 = 65536u;
 // The objects under the water take their light from the technique's light-space deposit
 // (light_deposit, light_heights, light_space), as a shadow map is read.
 const FLAG_LIGHT_SPACE: u32 = 131072u;
+// The scene has objects. Without, a pipeline holds none of their code: SwiftShader would run their
+// intersection and shading code for every pixel though no ray meets one.
+const FLAG_OBJECTS: u32 = 1048576u;
 // The floor's ALBEDO_* (shading.wgsl) sits in these two bits of the flags (`flags::ALBEDO_SHIFT`).
 const ALBEDO_SHIFT: u32 = 18u;
 

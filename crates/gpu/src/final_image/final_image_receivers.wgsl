@@ -3,7 +3,7 @@
 // march.rs). A module of the final image pass.
 
 import package::final_image::final_image_inputs::{
-    FAR, FLAG_EYE_CAUSTICS, caustics_map, has, objects, params, wall_cols, wall_maps,
+    FAR, FLAG_EYE_CAUSTICS, FLAG_OBJECTS, caustics_map, has, objects, params, wall_cols, wall_maps,
 };
 import package::shaders::bvh::bvh_intersect;
 import package::shaders::caustics_light::{pool_wall_along, pool_wall_at, sun_through_water};
@@ -46,6 +46,9 @@ fn nearest_object(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> ObjectHit {
 
 // Whether an object along the ray casts a shadow: a diffuse one, or any one `with_glass`.
 fn occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, with_glass: bool) -> bool {
+    if !has(FLAG_OBJECTS) {
+        return false;
+    }
     for (var k = 0u; k < params.object_count; k++) {
         let casts = with_glass || objects[k].glass == 0u;
         if casts && bvh_intersect(objects[k].root, o, d, t_max, true).found {

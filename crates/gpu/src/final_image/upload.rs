@@ -140,6 +140,8 @@ pub mod flags {
     /// The floor's albedo, one of [`super::albedo`], in the two bits from this one up
     /// (`albedo_kind`).
     pub const ALBEDO_SHIFT: u32 = 18;
+    /// The scene has objects (`object_count` > 0).
+    pub const OBJECTS: u32 = 1 << 20;
 }
 
 /// The floor's albedo in `FinalImageUniform::flags` ([`flags::ALBEDO_SHIFT`]), the `ALBEDO_*`
@@ -264,6 +266,9 @@ pub(super) fn uniform(
     }
     if scene.floor.terrain.is_some() {
         f |= flags::TERRAIN;
+    }
+    if object_count > 0 {
+        f |= flags::OBJECTS;
     }
     f |= match &scene.floor.albedo {
         Albedo::Pattern(FloorPattern::Tiles) => albedo::TILES,
